@@ -15,20 +15,21 @@
 #include "pruasm.h"
 #include "asm_symtab.h"
 
-#define ASM_TOKEN_MAX      128         /* names and operand terms are shorter than this */
-#define ASM_MAX_TERMS      12          /* mnemonic + at most 11 operands */
-#define ASM_LINE_MAX       8192        /* a statement after #define expansion */
-#define ASM_RAW_LINE_MAX   16384       /* a source line after comment removal */
-#define ASM_MACRO_LINE_MAX 256         /* a stored or expanded macro line */
-#define ASM_MAX_WORDS      16384       /* program size */
-#define ASM_MAX_OPEN       15          /* simultaneously open (nested) source files */
-#define ASM_MAX_FILES      64          /* distinct source files */
-#define ASM_MAX_ERRORS     25          /* give up after this many */
-#define ASM_CC_MAX         8           /* #ifdef nesting */
-#define ASM_NAME_MAX       64          /* source file base name */
-#define ASM_DIR_MAX        256         /* source file directory */
-#define ASM_FILE_MAX       (16u << 20) /* refuse larger source files */
-#define ASM_NEST_MAX       64          /* macro-in-macro and #define-in-#define depth */
+#define ASM_TOKEN_MAX       128         /* names and operand terms are shorter than this */
+#define ASM_MAX_TERMS       12          /* mnemonic + at most 11 operands */
+#define ASM_LINE_MAX        8192        /* a statement after #define expansion */
+#define ASM_RAW_LINE_MAX    16384       /* a source line after comment removal */
+#define ASM_MACRO_LINE_MAX  256         /* a stored or expanded macro line */
+#define ASM_MAX_WORDS       16384       /* program size */
+#define ASM_MAX_OPEN        15          /* simultaneously open (nested) source files */
+#define ASM_MAX_FILES       64          /* distinct source files */
+#define ASM_MAX_ERRORS      25          /* give up after this many */
+#define ASM_CC_MAX          8           /* #ifdef nesting */
+#define ASM_NAME_MAX        64          /* source file base name */
+#define ASM_DIR_MAX         256         /* source file directory */
+#define ASM_FILE_MAX        (16u << 20) /* refuse larger source files */
+#define ASM_MACRO_NEST_MAX  256         /* macro-in-macro depth (bounds the stack) */
+#define ASM_EQUATE_NEST_MAX 1024        /* #define-in-#define depth */
 
 enum asm_rep { REP_NOTE, REP_WARN1, REP_WARN2, REP_ERROR, REP_FATAL };
 
@@ -95,7 +96,8 @@ struct asm_ctx {
     struct asm_symtab equates; /* value: struct asm_equate * */
     struct asm_symtab macros;  /* value: struct asm_macro * */
     int macro_id;
-    int nest; /* current macro / equate expansion depth */
+    int macro_nest;  /* current macro expansion depth */
+    int equate_nest; /* current equate expansion depth */
 
     struct asm_symtab structs; /* value: struct asm_struct * */
     struct asm_struct *struct_open;
@@ -111,6 +113,8 @@ void asm_report(struct asm_ctx *c, const struct asm_file *f, enum asm_rep level,
 void asm_report_at(struct asm_ctx *c, const char *name, unsigned line, enum asm_rep level,
                    const char *fmt, ...) __attribute__((format(printf, 5, 6)));
 void asm_report_abort(struct asm_ctx *c);
+/* An error printed as a bare line (no location, no extra blank line). */
+void asm_report_plain_error(struct asm_ctx *c, const char *text);
 void asm_buf_printf(struct asm_buf *b, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 void asm_buf_put(struct asm_buf *b, const char *s, size_t n);
 void asm_buf_free(struct asm_buf *b);

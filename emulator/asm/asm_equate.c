@@ -170,14 +170,14 @@ int asm_equate_expand(struct asm_ctx *c, const struct asm_file *f, const char *s
             word[wn] = 0;
             struct asm_equate *e = asm_sym_get(&c->equates, word, NULL);
             if (e && !e->busy) {
-                if (c->nest >= ASM_NEST_MAX) {
+                if (c->equate_nest >= ASM_EQUATE_NEST_MAX) {
                     asm_report(c, f, REP_ERROR, "Equate '%s' nested too deeply", word);
                     return 0;
                 }
                 e->busy = 1;
-                c->nest++;
+                c->equate_nest++;
                 int ok = asm_equate_expand(c, f, e->data, dst, idx, max);
-                c->nest--;
+                c->equate_nest--;
                 e->busy = 0;
                 if (!ok)
                     return 0;

@@ -179,7 +179,7 @@ again:
 
 int asm_process_line(struct asm_ctx *c, struct asm_file *f, const char *line) {
     struct asm_stmt st;
-    char gen[ASM_LINE_MAX];
+    char gen[2 * ASM_TOKEN_MAX]; /* what .proc or .ret produce */
     const char *src = line;
     for (;;) {
         if (!asm_parse_stmt(c, f, src, &st))

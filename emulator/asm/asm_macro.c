@@ -244,13 +244,13 @@ int asm_macro_expand(struct asm_ctx *c, struct asm_file *f, int nterms,
                    terms[0]);
         return 0;
     }
-    if (c->nest >= ASM_NEST_MAX) {
+    if (c->macro_nest >= ASM_MACRO_NEST_MAX) {
         asm_report(c, f, REP_ERROR, "Macros nested too deeply at '%s'", terms[0]);
         return 0;
     }
     m->uses++;
     m->in_use = 1;
-    c->nest++;
+    c->macro_nest++;
     int ok = 1;
     char src[ASM_MACRO_LINE_MAX];
     for (int k = 0; k < m->nlines && ok; k++) {
@@ -274,7 +274,7 @@ int asm_macro_expand(struct asm_ctx *c, struct asm_file *f, int nterms,
             ok = 0;
         }
     }
-    c->nest--;
+    c->macro_nest--;
     m->in_use = 0;
     return ok;
 }

@@ -80,12 +80,24 @@ void asm_report_at(struct asm_ctx *c, const char *name, unsigned line, enum asm_
     va_end(ap);
 }
 
+void asm_report_plain_error(struct asm_ctx *c, const char *text) {
+    c->errors++;
+    struct pruasm_diag *d = c->diag;
+    if (!d)
+        return;
+    d->errors = c->errors;
+    if (!d->first_error[0])
+        snprintf(d->first_error, sizeof d->first_error, "%s", text);
+    if (d->emit)
+        d->emit(d->ctx, PRUASM_PLAIN, NULL, 0, text);
+}
+
 void asm_report_abort(struct asm_ctx *c) {
     if (c->aborted)
         return;
     c->aborted = 1;
     if (c->diag && c->diag->emit)
-        c->diag->emit(c->diag->ctx, PRUASM_ABORT, NULL, 0, "Aborting...");
+        c->diag->emit(c->diag->ctx, PRUASM_PLAIN, NULL, 0, "Aborting...");
 }
 
 void asm_buf_put(struct asm_buf *b, const char *s, size_t n) {

@@ -118,7 +118,7 @@ static int assemble(const struct pruasm_options *opt, const char *path, const ch
     }
     c->pass = diag->pass;
     if (pass1_offset != c->code_offset)
-        asm_report(c, NULL, REP_ERROR, "Offset changed between pass 1 and pass 2");
+        asm_report_plain_error(c, "Error: Offset changed between pass 1 and pass 2");
 
     int rc = -1;
     if (!c->errors && c->code_offset > 0) {

@@ -29,7 +29,7 @@ enum pruasm_level {
     PRUASM_WARNING, /* "Warning: "     (stderr) */
     PRUASM_ERROR,   /* "Error: "       (stderr) */
     PRUASM_FATAL,   /* "Fatal Error: " (stderr) */
-    PRUASM_ABORT,   /* the bare "Aborting..." line after too many errors */
+    PRUASM_PLAIN,   /* a bare line printed as is: "Aborting...", "Error: Offset changed..." */
 };
 
 /* What to assemble and how. A NULL options pointer means all defaults. */

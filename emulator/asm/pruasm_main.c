@@ -227,7 +227,7 @@ static void print_message(void *ctx, enum pruasm_level level, const char *file, 
     (void)ctx;
     FILE *fp = level == PRUASM_NOTE ? stdout : stderr;
     static const char *const tag[] = {"Note: ", "Warning: ", "Error: ", "Fatal Error: ", ""};
-    if (level == PRUASM_ABORT) {
+    if (level == PRUASM_PLAIN) {
         fprintf(fp, "%s\n", text);
         return;
     }
