@@ -92,7 +92,9 @@ struct asm_ctx {
     unsigned cc_depth;
     uint8_t cc_flags[ASM_CC_MAX];
 
-    struct asm_symtab labels;  /* value: (intptr_t) word address */
+    struct asm_symtab labels; /* value: (intptr_t) word address */
+    char **label_order;       /* label names in creation order (for -d) */
+    size_t nlabels, label_cap;
     struct asm_symtab equates; /* value: struct asm_equate * */
     struct asm_symtab macros;  /* value: struct asm_macro * */
     int macro_id;
@@ -219,5 +221,8 @@ int asm_scope_using(struct asm_ctx *c, const struct asm_file *f, const char *nam
 
 /* asm_listing.c: the -L source listing */
 void asm_source_listing(struct asm_ctx *c, struct asm_buf *out);
+
+/* asm_dbg.c: the -d pView debug file */
+void asm_debug_file(struct asm_ctx *c, struct asm_buf *out);
 
 #endif

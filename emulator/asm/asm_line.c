@@ -7,6 +7,7 @@
 
 #include <stdint.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 int asm_label_char(int ch, int first) {
@@ -52,8 +53,23 @@ static void label_create(struct asm_ctx *c, const struct asm_file *f, const char
     }
     if (!asm_check_name(c, f, name))
         return;
-    if (asm_sym_put(&c->labels, name, (void *)(uintptr_t)(uint32_t)value))
+    if (c->nlabels == c->label_cap) {
+        size_t cap = c->label_cap ? 2 * c->label_cap : 64;
+        char **p = realloc(c->label_order, cap * sizeof *p);
+        if (!p) {
+            asm_report(c, f, REP_FATAL, "Memory allocation failed");
+            return;
+        }
+        c->label_order = p;
+        c->label_cap = cap;
+    }
+    char *copy = strdup(name);
+    if (!copy || asm_sym_put(&c->labels, name, (void *)(uintptr_t)(uint32_t)value)) {
+        free(copy);
         asm_report(c, f, REP_FATAL, "Memory allocation failed");
+        return;
+    }
+    c->label_order[c->nlabels++] = copy;
 }
 
 int asm_validate_offset(struct asm_ctx *c, const struct asm_file *f) {

@@ -48,6 +48,9 @@ static void release(struct asm_ctx *c) {
     for (unsigned i = 0; i < c->nfiles; i++)
         free(c->files[i].text);
     asm_sym_clear(&c->labels, NULL);
+    for (size_t i = 0; i < c->nlabels; i++)
+        free(c->label_order[i]);
+    free(c->label_order);
     asm_buf_free(&c->listing);
     free(c);
 }
@@ -76,6 +79,16 @@ static int fill_image(struct asm_ctx *c, struct pruasm_image *out) {
             return -1;
         }
         out->source_listing = b.data;
+    }
+    if (c->opt && c->opt->want_debug_file) {
+        struct asm_buf b = {0};
+        asm_debug_file(c, &b);
+        if (b.failed || !b.data) {
+            asm_buf_free(&b);
+            return -1;
+        }
+        out->debug_file = (unsigned char *)b.data;
+        out->debug_file_len = b.len;
     }
     return 0;
 }
@@ -150,6 +163,7 @@ void pruasm_image_free(struct pruasm_image *img) {
     free(img->words);
     free(img->listing);
     free(img->source_listing);
+    free(img->debug_file);
     memset(img, 0, sizeof *img);
 }
 

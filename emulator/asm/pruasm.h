@@ -41,15 +41,18 @@ struct pruasm_options {
     size_t ninclude_dirs;
     int want_listing;        /* fill pruasm_image.listing (the -l .lst text) */
     int want_source_listing; /* fill pruasm_image.source_listing (the -L .txt text) */
+    int want_debug_file;     /* fill pruasm_image.debug_file (the -d pView .dbg file) */
 };
 
 /* The result of a successful assembly. Free with pruasm_image_free(). */
 struct pruasm_image {
     uint32_t *words; /* code words from address 0; gaps are 0 */
     size_t nwords;
-    int32_t entry_point;  /* .entrypoint, else the first .origin, else 8 */
-    char *listing;        /* NUL-terminated .lst text, or NULL */
-    char *source_listing; /* NUL-terminated .txt text, or NULL */
+    int32_t entry_point;       /* .entrypoint, else the first .origin, else 8 */
+    char *listing;             /* NUL-terminated .lst text, or NULL */
+    char *source_listing;      /* NUL-terminated .txt text, or NULL */
+    unsigned char *debug_file; /* .dbg bytes, or NULL */
+    size_t debug_file_len;
 };
 
 /*

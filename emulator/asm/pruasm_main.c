@@ -24,6 +24,7 @@ enum {
     OUT_LST = 1 << 4,
     OUT_TXT = 1 << 5,
     OUT_FB = 1 << 6,
+    OUT_DBG = 1 << 7,
 };
 
 struct cli {
@@ -50,7 +51,8 @@ static void usage(FILE *fp, const char *prog) {
             "    l  - listing <base>.lst\n"
             "    f  - FreeBasic array <base>.bi\n"
             "    z  - accepted for compatibility (no debug messages)\n"
-            "    d, E, x, V0 - not supported (pView debug file, big-endian core, V0 core)\n"
+            "    d  - pView debugger file <base>.dbg\n"
+            "    E, x, V0 - not supported (big-endian core, V0 core)\n"
             "    I  - directory searched by #include <file>: -Idir\n"
             "    D  - define an equate: -Dname (value 1) or -Dname=value (at most 8)\n"
             "    C  - name of the C/FreeBasic array: -Cname (default PRUcode)\n\n"
@@ -122,7 +124,8 @@ static int parse_flags(struct cli *o, const char *arg) {
         case 'E':
             return unsupported("assembling for a big-endian core (-E)");
         case 'd':
-            return unsupported("the pView debug file (-d)");
+            o->outputs |= OUT_DBG;
+            break;
         case 'b':
             o->outputs |= OUT_BIN;
             break;
@@ -290,6 +293,8 @@ static int write_outputs(const struct cli *o, const char *base, const struct pru
         rc = stage(&s, base, ".img", text, len);
         free(text);
     }
+    if (!rc && (o->outputs & OUT_DBG))
+        rc = stage(&s, base, ".dbg", img->debug_file, img->debug_file_len);
     if (!rc && (o->outputs & OUT_TXT))
         rc = stage(&s, base, ".txt", img->source_listing, strlen(img->source_listing));
     if (!rc && (o->outputs & OUT_BIN)) {
@@ -336,7 +341,7 @@ int main(int argc, char **argv) {
         free(o.incdirs);
         return 1;
     }
-    if (!(o.outputs & (OUT_BIN | OUT_BIB | OUT_CARRAY | OUT_IMG | OUT_FB))) {
+    if (!(o.outputs & (OUT_BIN | OUT_BIB | OUT_CARRAY | OUT_IMG | OUT_FB | OUT_DBG))) {
         printf("Note: Using default output '-c' (C array *_bin.h)\n\n");
         o.outputs |= OUT_CARRAY;
     }
@@ -350,6 +355,7 @@ int main(int argc, char **argv) {
         .ninclude_dirs = o.nincdirs,
         .want_listing = (o.outputs & OUT_LST) != 0,
         .want_source_listing = (o.outputs & OUT_TXT) != 0,
+        .want_debug_file = (o.outputs & OUT_DBG) != 0,
     };
     struct pruasm_diag diag = {.emit = print_message};
     struct pruasm_image img;
