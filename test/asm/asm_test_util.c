@@ -38,6 +38,18 @@ const char *asm_error(const char *src) {
     return text;
 }
 
+static char made[8][1024]; /* directories to remove when the test exits */
+static int nmade;
+
+static void remove_dirs(void) {
+    for (int i = 0; i < nmade; i++) {
+        char cmd[1100];
+        snprintf(cmd, sizeof cmd, "rm -rf '%.1000s'", made[i]);
+        if (system(cmd) != 0)
+            fprintf(stderr, "could not remove %s\n", made[i]);
+    }
+}
+
 const char *asm_tmpdir(const char *tag) {
     static char path[1024];
     const char *bin = getenv("TEST_BIN_DIR");
@@ -46,6 +58,11 @@ const char *asm_tmpdir(const char *tag) {
     snprintf(cmd, sizeof cmd, "rm -rf '%s'", path);
     ck_assert_int_eq(system(cmd), 0);
     ck_assert_int_eq(mkdir(path, 0700), 0);
+    if (nmade < 8) {
+        if (!nmade)
+            atexit(remove_dirs);
+        snprintf(made[nmade++], sizeof made[0], "%s", path);
+    }
     return path;
 }
 

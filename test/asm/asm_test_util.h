@@ -19,7 +19,8 @@ size_t asm_words(const char *src, uint32_t *out, size_t max);
 /* Assemble and require failure; returns diag.first_error (static buffer). */
 const char *asm_error(const char *src);
 
-/* A fresh empty directory under the build tree; returns its path. */
+/* A fresh empty directory under the build tree, removed when the test
+ * process exits; returns its path. */
 const char *asm_tmpdir(const char *tag);
 
 /* Write a file (path relative to dir); aborts the test on failure. */
