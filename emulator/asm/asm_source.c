@@ -498,7 +498,9 @@ int asm_get_line(struct asm_ctx *c, struct asm_file *f, char *dst, int max) {
             continue;
         int idx = 0;
         if (!asm_equate_expand(c, f, raw, dst, &idx, max)) {
-            rc = -1;
+            /* pasm ends the file here (reported as its end); matching
+             * that keeps the later messages identical. */
+            rc = 0;
             goto out;
         }
         dst[idx] = 0;
