@@ -70,6 +70,7 @@ struct asm_ctx {
     const struct pruasm_options *opt;
     struct pruasm_diag *diag;
     int core;
+    int big_endian;        /* -E: register-file bytes are numbered from the MSB */
     const char *main_path; /* NULL when assembling a string */
     const char *main_text; /* the string being assembled */
 
@@ -187,6 +188,11 @@ int asm_get_imm(struct asm_ctx *c, const struct asm_file *f, int num, const char
                 struct asm_arg *a, uint32_t lo, uint32_t hi);
 int asm_get_const(struct asm_ctx *c, const struct asm_file *f, int num, const char *src,
                   struct asm_arg *a);
+/* Register-file byte order: the first byte of a field within its register
+ * (0..3), and the field selector of `size` bytes at byte `off`. Big-endian
+ * cores (-E) number the bytes of a register from its most significant end. */
+unsigned asm_field_start(const struct asm_ctx *c, unsigned field);
+unsigned asm_field_at(const struct asm_ctx *c, unsigned off, unsigned size);
 int asm_get_r0byte(struct asm_ctx *c, const struct asm_file *f, int num, const char *src,
                    struct asm_arg *a);
 

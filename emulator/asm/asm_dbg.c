@@ -41,7 +41,7 @@ void asm_debug_file(struct asm_ctx *c, struct asm_buf *b) {
     put32(b, nwords);
     put32(b, code_at);
     put32(b, (uint32_t)c->entry_point);
-    put32(b, 0); /* flags: little-endian core */
+    put32(b, c->big_endian ? 1u : 0u); /* flags: bit 0 = big-endian core */
 
     for (size_t i = c->nlabels; i-- > 0;) {
         uint32_t v = 0;

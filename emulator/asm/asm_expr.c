@@ -19,7 +19,6 @@ static int expression(struct asm_ctx *c, const struct asm_file *f, char *s, uint
                       int *pidx);
 
 int asm_reg_offset(struct asm_ctx *c, const char *s, uint32_t *out) {
-    (void)c;
     const unsigned char *p = (const unsigned char *)s;
     if (toupper(*p++) != 'R' || !isdigit(*p))
         return 0;
@@ -47,7 +46,7 @@ int asm_reg_offset(struct asm_ctx *c, const char *s, uint32_t *out) {
         width = w;
         offset += v;
     }
-    *out = reg * 4 + offset;
+    *out = reg * 4 + (c->big_endian ? 4 - offset - width / 8 : offset);
     return 1;
 }
 

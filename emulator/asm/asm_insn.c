@@ -69,22 +69,6 @@ static int core_at_least(struct stmt *s, int core) {
     return 1;
 }
 
-/* Start byte of a byte-addressed register operand (little-endian mapping). */
-static unsigned start_byte(unsigned field) {
-    switch (field) {
-    case PRU_SEL_B1:
-    case PRU_SEL_W1:
-        return 1;
-    case PRU_SEL_B2:
-    case PRU_SEL_W2:
-        return 2;
-    case PRU_SEL_B3:
-        return 3;
-    default:
-        return 0;
-    }
-}
-
 /* ADD..MAX, NOT, LMBD, NOPn: Rd, Rs1, OP(255) (NOT also Rd, Rs1). */
 static int alu(struct stmt *s, int op) {
     struct asm_arg a[3];
@@ -233,7 +217,7 @@ static int mvi_addr(struct stmt *s, int num, struct asm_arg *a, unsigned size) {
     }
     a->type = ARG_REG;
     a->value = addr / 4;
-    a->field = size == 4 ? PRU_SEL_R : size == 2 ? PRU_SEL_W0 + off : PRU_SEL_B0 + off;
+    a->field = asm_field_at(s->c, off, size);
     return 1;
 }
 
@@ -361,13 +345,13 @@ static int length_code(struct stmt *s, int num, unsigned *len) {
 
 /* First operand of burst/XFR: a register (start byte from its field) or a
  * register-file byte address. */
-static void set_rx(struct pru_insn *in, const struct asm_arg *a) {
+static void set_rx(struct stmt *s, struct pru_insn *in, const struct asm_arg *a) {
     if (a->type == ARG_IMM) {
         in->rx = (uint8_t)((a->value >> 2) & 31);
         in->rxbyte = (uint8_t)(a->value & 3);
     } else {
         in->rx = (uint8_t)a->value;
-        in->rxbyte = (uint8_t)start_byte(a->field);
+        in->rxbyte = (uint8_t)asm_field_start(s->c, a->field);
     }
 }
 
@@ -390,7 +374,7 @@ static int burst(struct stmt *s, int op) {
         return 0;
     struct pru_insn in = {0};
     in.op = (uint8_t)op;
-    set_rx(&in, &rx);
+    set_rx(s, &in, &rx);
     in.base = (uint8_t)base.value;
     set_op2(&in, &off);
     in.len = (uint8_t)len;
@@ -422,7 +406,7 @@ static int xfr(struct stmt *s, int op) {
     struct pru_insn in = {0};
     in.op = (uint8_t)op;
     in.dev = (uint8_t)dev.value;
-    set_rx(&in, &rx);
+    set_rx(s, &in, &rx);
     in.len = (uint8_t)len;
     emit(s, &in);
     return 1;
@@ -431,26 +415,9 @@ static int xfr(struct stmt *s, int op) {
 /* ZERO before V2: clear the bytes with LDI #0 words, widest field first. */
 static void zero_by_ldi(struct stmt *s, uint32_t addr, uint32_t len) {
     while (len) {
-        unsigned size, field;
-        switch (addr & 3) {
-        case 0:
-            size = len >= 4 ? 4 : len >= 2 ? 2 : 1;
-            field = size == 4 ? PRU_SEL_R : size == 2 ? PRU_SEL_W0 : PRU_SEL_B0;
-            break;
-        case 1:
-            size = len >= 2 ? 2 : 1;
-            field = size == 2 ? PRU_SEL_W1 : PRU_SEL_B1;
-            break;
-        case 2:
-            size = len >= 2 ? 2 : 1;
-            field = size == 2 ? PRU_SEL_W2 : PRU_SEL_B2;
-            break;
-        default:
-            size = 1;
-            field = PRU_SEL_B3;
-            break;
-        }
-        emit_ldi(s, addr / 4, field, 0);
+        unsigned off = addr & 3;
+        unsigned size = off == 0 && len >= 4 ? 4 : off < 3 && len >= 2 ? 2 : 1;
+        emit_ldi(s, addr / 4, asm_field_at(s->c, off, size), 0);
         addr += size;
         len -= size;
     }

@@ -214,10 +214,12 @@ static int regname(struct asm_ctx *c, const struct asm_file *f, unsigned elem, c
         asm_report(c, f, REP_ERROR, "Register alignment error on element %u", elem);
         return -1;
     }
+    unsigned field = asm_field_at(c, off % 4, size);
     if (size == 4)
         snprintf(out, REGNAME_MAX, "R%u", off / 4);
     else
-        snprintf(out, REGNAME_MAX, size == 2 ? "R%u.w%u" : "R%u.b%u", off / 4, off % 4);
+        snprintf(out, REGNAME_MAX, size == 2 ? "R%u.w%u" : "R%u.b%u", off / 4,
+                 pru_sel_shift(field) / 8);
     return 0;
 }
 
@@ -243,9 +245,9 @@ int asm_struct_assign(struct asm_ctx *c, const struct asm_file *f, const char *s
         asm_report(c, f, REP_ERROR, "Structure '%s' not defined", sname);
         return -1;
     }
-    unsigned start = rs.value * 4 + pru_sel_shift(rs.field) / 8;
+    unsigned start = rs.value * 4 + asm_field_start(c, rs.field);
     if (check_end) {
-        unsigned end = re.value * 4 + (pru_sel_shift(re.field) + pru_sel_width(re.field)) / 8;
+        unsigned end = re.value * 4 + asm_field_start(c, re.field) + pru_sel_width(re.field) / 8;
         unsigned want = start + st->total;
         if (want != end) {
             unsigned sz = !(want & 3) ? 4 : !(want & 1) ? 2 : 1;
@@ -303,7 +305,8 @@ static const char *assigned_reg(struct asm_ctx *c, const char *cand) {
 }
 
 /* Size or offset of a .bN/.wN part of a field of `size` bytes at `offset`. */
-static int subfield(const char *ext, unsigned size, unsigned offset, int want_size, uint32_t *out) {
+static int subfield(const struct asm_ctx *c, const char *ext, unsigned size, unsigned offset,
+                    int want_size, uint32_t *out) {
     if (strlen(ext) > 2)
         return -1;
     int kind = toupper((unsigned char)ext[0]);
@@ -311,12 +314,14 @@ static int subfield(const char *ext, unsigned size, unsigned offset, int want_si
     unsigned w = kind == 'B' ? 1 : kind == 'W' ? 2 : 0;
     if (!w || v + w > size)
         return -1;
+    if (c->big_endian)
+        v = size - v - w; /* the part counts from the other end */
     *out = want_size ? w : offset + v;
     return 0;
 }
 
-static int layout_value(const struct asm_struct *s, const char *field, const char *ext,
-                        int want_size, uint32_t *out) {
+static int layout_value(const struct asm_ctx *c, const struct asm_struct *s, const char *field,
+                        const char *ext, int want_size, uint32_t *out) {
     if (!field[0]) {
         *out = want_size ? s->total : 0;
         return 0;
@@ -324,7 +329,7 @@ static int layout_value(const struct asm_struct *s, const char *field, const cha
     for (int i = 0; i < s->nelem; i++) {
         if (!strcmp(field, s->elem[i])) {
             if (ext)
-                return subfield(ext, s->size[i], s->offset[i], want_size, out);
+                return subfield(c, ext, s->size[i], s->offset[i], want_size, out);
             *out = want_size ? s->size[i] : s->offset[i];
             return 0;
         }
@@ -350,8 +355,8 @@ static int size_offset(struct asm_ctx *c, const struct asm_file *f, const char *
     }
     struct asm_assign *a = assign_find(c, name);
     struct asm_struct *s = asm_sym_get(&c->structs, name, NULL);
-    int rc = a   ? layout_value(&a->layout, field, ext, want_size, out)
-             : s ? layout_value(s, field, ext, want_size, out)
+    int rc = a   ? layout_value(c, &a->layout, field, ext, want_size, out)
+             : s ? layout_value(c, s, field, ext, want_size, out)
                  : -1;
     if (rc == 0)
         return 0;

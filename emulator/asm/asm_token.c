@@ -223,3 +223,14 @@ int asm_get_r0byte(struct asm_ctx *c, const struct asm_file *f, int num, const c
     a->field = 0;
     return 1;
 }
+
+unsigned asm_field_start(const struct asm_ctx *c, unsigned field) {
+    unsigned off = pru_sel_shift(field) / 8, size = pru_sel_width(field) / 8;
+    return c->big_endian ? 4 - off - size : off;
+}
+
+unsigned asm_field_at(const struct asm_ctx *c, unsigned off, unsigned size) {
+    if (c->big_endian)
+        off = 4 - off - size;
+    return size == 4 ? PRU_SEL_R : size == 2 ? PRU_SEL_W0 + off : PRU_SEL_B0 + off;
+}

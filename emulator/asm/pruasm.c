@@ -112,6 +112,7 @@ static int assemble(const struct pruasm_options *opt, const char *path, const ch
     c->opt = opt;
     c->diag = diag;
     c->core = opt && opt->core ? opt->core : CORE_V3;
+    c->big_endian = opt && opt->big_endian;
     c->main_path = path;
     c->main_text = text;
     c->retreg = 30;

@@ -42,6 +42,7 @@ struct pruasm_options {
     int want_listing;        /* fill pruasm_image.listing (the -l .lst text) */
     int want_source_listing; /* fill pruasm_image.source_listing (the -L .txt text) */
     int want_debug_file;     /* fill pruasm_image.debug_file (the -d pView .dbg file) */
+    int big_endian;          /* pasm -E: assemble for a big-endian core */
 };
 
 /* The result of a successful assembly. Free with pruasm_image_free(). */

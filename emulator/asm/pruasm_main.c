@@ -32,6 +32,7 @@ struct cli {
     const char *infile, *outfile;
     unsigned outputs;
     int core;
+    int big_endian;
     const char *defines[MAX_DEFINES];
     size_t ndefines;
     const char **incdirs;
@@ -52,7 +53,8 @@ static void usage(FILE *fp, const char *prog) {
             "    f  - FreeBasic array <base>.bi\n"
             "    z  - accepted for compatibility (no debug messages)\n"
             "    d  - pView debugger file <base>.dbg\n"
-            "    E, x, V0 - not supported (big-endian core, V0 core)\n"
+            "    E  - assemble for a big-endian core\n"
+            "    x, V0 - not supported (the legacy V0 core)\n"
             "    I  - directory searched by #include <file>: -Idir\n"
             "    D  - define an equate: -Dname (value 1) or -Dname=value (at most 8)\n"
             "    C  - name of the C/FreeBasic array: -Cname (default PRUcode)\n\n"
@@ -122,7 +124,8 @@ static int parse_flags(struct cli *o, const char *arg) {
             o->core = 2;
             break;
         case 'E':
-            return unsupported("assembling for a big-endian core (-E)");
+            o->big_endian = 1;
+            break;
         case 'd':
             o->outputs |= OUT_DBG;
             break;
@@ -349,6 +352,7 @@ int main(int argc, char **argv) {
 
     struct pruasm_options opt = {
         .core = o.core,
+        .big_endian = o.big_endian,
         .defines = o.defines,
         .ndefines = o.ndefines,
         .include_dirs = o.incdirs,

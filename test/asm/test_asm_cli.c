@@ -286,7 +286,7 @@ START_TEST(bad_command_lines) {
     free(err);
 
     ck_assert_int_eq(run(dir, "-x src/prog.v1.p"), 1);
-    ck_assert_int_eq(run(dir, "-E src/prog.v1.p"), 1);
+    ck_assert_int_eq(run(dir, "-V0 src/prog.v1.p"), 1);
     ck_assert_int_eq(run(dir, "a.p b c"), 1);
 }
 END_TEST

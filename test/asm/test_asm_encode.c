@@ -206,6 +206,33 @@ START_TEST(core_versions) {
 }
 END_TEST
 
+/* -E (big-endian core): register-file byte numbering flips for &reg, burst
+ * start bytes, MVI addresses, ZERO and structure fields (checked with pasm
+ * 0.87 -V3 -E). */
+START_TEST(big_endian) {
+    static const char src[] = ".origin 0\nzero &r1.b1, 7\nzero 0, 11\nzero 2,2\nzero 3,1\n"
+                              "mvib *&r3.b1, *r1.b3\nmviw *&r3.w1, *r1.b3\nldi r1, &r2.b0\n"
+                              "ldi r1, &r2.w1\nldi r1, &r2.w1.b0\nlbbo r2.b0, r1, 0, 4\n"
+                              "lbbo r2.w0, r1, 0, 4\nlbbo r2.b2, r1, 0, 4\n"
+                              ".struct S\n.u8 a\n.u16 b\n.u8 c\n.u32 d\n.ends\n"
+                              ".assign S, r4, r5, s\nmov s.a, 1\nmov s.b, 2\nmov s.c, 3\n"
+                              "mov s.d, 4\nldi r1, OFFSET(s.b.b1)\nldi r1, OFFSET(s.d.w0)\n"
+                              "ldi r1, OFFSET(S.d.b3)\n";
+    static const uint32_t want[] = {0x2eff8341, 0x2eff8500, 0x2eff80c0, 0x2eff8060, 0x2c206123,
+                                    0x2c2161a3, 0x24000be1, 0x240009e1, 0x24000ae1, 0xf10021e2,
+                                    0xf10021c2, 0xf10021a2, 0x24000164, 0x240002a4, 0x24000304,
+                                    0x240004e5, 0x240001e1, 0x240006e1, 0x240004e1};
+    struct pruasm_options o = {.core = 3, .big_endian = 1};
+    struct pruasm_image img;
+    struct pruasm_diag d = {0};
+    ck_assert_int_eq(pruasm_assemble_string(&o, "be.p", src, &img, &d), 0);
+    ck_assert_uint_eq(img.nwords, sizeof want / sizeof want[0]);
+    for (size_t i = 0; i < img.nwords; i++)
+        ck_assert_msg(img.words[i] == want[i], "word %zu is 0x%08x", i, (unsigned)img.words[i]);
+    pruasm_image_free(&img);
+}
+END_TEST
+
 static Suite *suite(void) {
     Suite *s = suite_create("asm_encode");
     TCase *tc = tcase_create("encode");
@@ -213,6 +240,7 @@ static Suite *suite(void) {
     tcase_add_test(tc, case_insensitive);
     tcase_add_test(tc, default_origin);
     tcase_add_test(tc, core_versions);
+    tcase_add_test(tc, big_endian);
     suite_add_tcase(s, tc);
     return s;
 }
