@@ -79,7 +79,6 @@ struct asm_ctx {
     int entry_point;
     int have_entry;
     int errors, warnings, fatal;
-    int aborted; /* "Aborting..." was shown */
     unsigned retreg, retfield;
     int retreg_set;
 

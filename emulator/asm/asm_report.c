@@ -93,9 +93,6 @@ void asm_report_plain_error(struct asm_ctx *c, const char *text) {
 }
 
 void asm_report_abort(struct asm_ctx *c) {
-    if (c->aborted)
-        return;
-    c->aborted = 1;
     if (c->diag && c->diag->emit)
         c->diag->emit(c->diag->ctx, PRUASM_PLAIN, NULL, 0, "Aborting...");
 }

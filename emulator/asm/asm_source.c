@@ -182,21 +182,30 @@ void asm_file_close(struct asm_ctx *c, struct asm_file *f) {
     f->in_use = 0;
 }
 
-/* One character, carriage returns dropped; -1 at the end. Lines are counted
- * when the character after a newline is read, as pasm does, so a statement's
- * line is the line it ends on. */
+#define CH_EOF (-1)
+#define CH_FF  (-2) /* byte 0xff: pasm reads it as a signed char, i.e. as EOF */
+
+/* One character, carriage returns dropped; CH_EOF at the end. Lines are
+ * counted when the character after a newline is read, as pasm does, so a
+ * statement's line is the line it ends on. */
 static int read_char(struct asm_file *f) {
     for (;;) {
         if (f->pos >= f->len)
-            return -1;
+            return CH_EOF;
         int ch = (unsigned char)f->text[f->pos++];
         if (ch == '\r')
             continue;
         if (f->last == '\n')
             f->line++;
         f->last = ch;
-        return ch;
+        return ch == 0xff ? CH_FF : ch;
     }
+}
+
+/* Does ch end a line? (0xff does, and at the start of a line it ends the
+ * file, exactly like the end of the file does in pasm.) */
+static int line_end(int ch) {
+    return ch == 0 || ch == CH_EOF || ch == CH_FF || ch == '\n';
 }
 
 /* Read one logical line with comments removed. Returns 0 on error. */
@@ -218,16 +227,18 @@ static int read_text_line(struct asm_ctx *c, struct asm_file *f, char *dst, int 
         if ((comment && ch == '/') || (!quote && ch == ';')) {
             if (ch == '/' && idx > 0)
                 idx--;
-            while (ch != 0 && ch != -1 && ch != '\n')
+            while (!line_end(ch))
                 ch = read_char(f);
             break;
         } else if (comment && ch == '*') {
             if (idx > 0)
                 idx--;
             for (;;) {
-                while (ch != -1 && ch != '*')
+                /* pasm's scan also stops at a 0xff byte, so "\xff/" ends
+                 * a comment too. */
+                while (ch != CH_EOF && ch != CH_FF && ch != '*')
                     ch = read_char(f);
-                if (ch == -1) {
+                if (ch == CH_EOF) {
                     /* pasm loops forever here; an error is kinder. */
                     asm_report(c, f, REP_ERROR, "Unterminated /* comment");
                     *plen = 0;
@@ -251,13 +262,11 @@ static int read_text_line(struct asm_ctx *c, struct asm_file *f, char *dst, int 
         }
         comment = ch == '/';
         cont = ch == '\\';
-        if (ch == 0 || ch == -1 || ch == '\n')
+        if (line_end(ch))
             break;
         if (idx >= max - 1) {
+            /* Like pasm, the rest of the line is read as further lines. */
             asm_report(c, f, REP_ERROR, "Line too long");
-            /* Skip the rest so one long line is one error. */
-            while (ch != -1 && ch != '\n')
-                ch = read_char(f);
             return 0;
         }
         dst[idx++] = (char)ch;
@@ -269,7 +278,7 @@ static int read_text_line(struct asm_ctx *c, struct asm_file *f, char *dst, int 
     if (quote)
         asm_report(c, f, REP_ERROR, "Open Quotes");
     *plen = idx;
-    *peof = !(idx || ch != -1);
+    *peof = !idx && (ch == CH_EOF || ch == CH_FF);
     return 1;
 }
 
@@ -485,10 +494,6 @@ int asm_get_line(struct asm_ctx *c, struct asm_file *f, char *dst, int max) {
         }
         if (raw[0] == '#') {
             if (!directive(c, f, raw)) {
-                rc = -1;
-                goto out;
-            }
-            if (c->fatal) {
                 rc = -1;
                 goto out;
             }

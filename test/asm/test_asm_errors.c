@@ -167,6 +167,19 @@ START_TEST(nul_bytes_in_file) {
 }
 END_TEST
 
+/* pasm reads bytes as signed chars, so 0xff acts as end of file: it ends a
+ * line, at the start of a line it ends the file, and in a block comment it
+ * stops the scan like '*' does (checked with pasm 0.87). */
+START_TEST(ff_byte_like_pasm) {
+    uint32_t w[4];
+    ck_assert_uint_eq(asm_words(".origin 0\nhalt\xffldi r1, 2\n\xffjunk junk\n", w, 4), 2);
+    ck_assert_uint_eq(w[0], 0x2A000000);
+    ck_assert_uint_eq(w[1], 0x240002E1);
+    ck_assert_uint_eq(asm_words(".origin 0\n/* a \xff/ldi r1, 3\n", w, 4), 1);
+    ck_assert_uint_eq(w[0], 0x240003E1);
+}
+END_TEST
+
 START_TEST(megabyte_line) {
     size_t n = 1u << 20;
     char *src = malloc(n + 64);
@@ -284,6 +297,7 @@ static Suite *suite(void) {
     tc = tcase_create("robustness");
     tcase_add_loop_test(tc, binary_junk, 0, 20);
     tcase_add_test(tc, nul_bytes_in_file);
+    tcase_add_test(tc, ff_byte_like_pasm);
     tcase_add_test(tc, megabyte_line);
     tcase_add_test(tc, long_statement_after_expansion);
     tcase_add_test(tc, include_recursion);
