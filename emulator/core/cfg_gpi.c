@@ -23,24 +23,21 @@
 #define SHIFT_MASK  0x0fffffffu
 #define MODE_SHIFT  2u
 
-static unsigned gpi_mode(const struct pru_core *c)
-{
+static unsigned gpi_mode(const struct pru_core *c) {
     return c->cfg_regs[GPCFG0 / 4] & 3u;
 }
 
-void cfg_reset(struct pru_core *c)
-{
+void cfg_reset(struct pru_core *c) {
     for (unsigned i = 0; i < CFG_BYTES / 4; i++)
         c->cfg_regs[i] = 0;
-    c->cfg_regs[0] = 0x47000000u;        /* REVID (value not used by anyone) */
-    c->cfg_regs[SYSCFG / 4] = 0x1Au;     /* idle/standby modes, STANDBY_INIT = 1 */
+    c->cfg_regs[0] = 0x47000000u;    /* REVID (value not used by anyone) */
+    c->cfg_regs[SYSCFG / 4] = 0x1Au; /* idle/standby modes, STANDBY_INIT = 1 */
     c->sh = (struct gpi_shift){0};
     c->sh.period_ps = 5000;
     c->sh.cnt16_k = -1;
 }
 
-uint32_t pins_inputs_at(struct pru_core *c, int64_t t_ps)
-{
+uint32_t pins_inputs_at(struct pru_core *c, int64_t t_ps) {
     if (!c->have_pins)
         return c->const_inputs;
     return c->pins.inputs_at(c->pins.ctx, t_ps < 0 ? 0 : t_ps);
@@ -48,18 +45,15 @@ uint32_t pins_inputs_at(struct pru_core *c, int64_t t_ps)
 
 /* ---- shift clock geometry ---- */
 
-static int64_t period_ps(const struct pru_core *c)
-{
+static int64_t period_ps(const struct pru_core *c) {
     return c->sh.period_ps;
 }
 
-static int64_t t0(const struct pru_core *c)
-{
+static int64_t t0(const struct pru_core *c) {
     return c->sh.t_cfg_ps + c->p.shift_phase_ps;
 }
 
-static int64_t edge_time(const struct pru_core *c, int64_t k)
-{
+static int64_t edge_time(const struct pru_core *c, int64_t k) {
     int64_t off = k * period_ps(c);
     if (c->p.shift_frac == PRU_FRAC_CYCLE)
         off = off / PRU_PS_PER_CYCLE * PRU_PS_PER_CYCLE;
@@ -67,8 +61,7 @@ static int64_t edge_time(const struct pru_core *c, int64_t k)
 }
 
 /* Index of the last edge at or before t (0 if none). */
-static int64_t last_edge(const struct pru_core *c, int64_t t)
-{
+static int64_t last_edge(const struct pru_core *c, int64_t t) {
     int64_t rel = t - t0(c);
     if (rel < 0)
         return 0;
@@ -80,16 +73,14 @@ static int64_t last_edge(const struct pru_core *c, int64_t t)
     return rel / p;
 }
 
-static int64_t cycle_of(int64_t t_ps)
-{
+static int64_t cycle_of(int64_t t_ps) {
     return t_ps <= 0 ? 0 : (t_ps + PRU_PS_PER_CYCLE - 1) / PRU_PS_PER_CYCLE;
 }
 
 /* ---- lazy shift register ---- */
 
 /* Apply m samples of value v starting at edge k. */
-static void shift_samples(struct gpi_shift *s, uint32_t v, int64_t m, int64_t k)
-{
+static void shift_samples(struct gpi_shift *s, uint32_t v, int64_t m, int64_t k) {
     if (v && !s->sb) {
         s->sb = true;
         s->cnt16_k = k; /* here: the start-bit edge; pulses at k + 16j */
@@ -101,8 +92,7 @@ static void shift_samples(struct gpi_shift *s, uint32_t v, int64_t m, int64_t k)
 }
 
 /* Did a Cnt_16 edge (k_sb + 16j, j >= 1) fall into edges [a, b]? */
-static bool cnt16_in(const struct gpi_shift *s, int64_t a, int64_t b)
-{
+static bool cnt16_in(const struct gpi_shift *s, int64_t a, int64_t b) {
     if (!s->sb || b <= s->cnt16_k)
         return false;
     int64_t lo = a > s->cnt16_k + 1 ? a : s->cnt16_k + 1;
@@ -110,8 +100,7 @@ static bool cnt16_in(const struct gpi_shift *s, int64_t a, int64_t b)
     return first <= b;
 }
 
-static void shift_apply(struct pru_core *c, int64_t k_from, int64_t k_to)
-{
+static void shift_apply(struct pru_core *c, int64_t k_from, int64_t k_to) {
     struct gpi_shift *s = &c->sh;
     int64_t delay = c->p.gpi_delay_ps;
     int64_t k = k_from;
@@ -137,8 +126,7 @@ static void shift_apply(struct pru_core *c, int64_t k_from, int64_t k_to)
         intc_event(c, 1); /* PRU0 Cnt_16 */
 }
 
-void gpi_sync(struct pru_core *c, int64_t cycle)
-{
+void gpi_sync(struct pru_core *c, int64_t cycle) {
     if (gpi_mode(c) != MODE_SHIFT)
         return;
     int64_t k = last_edge(c, cycle * PRU_PS_PER_CYCLE);
@@ -148,13 +136,11 @@ void gpi_sync(struct pru_core *c, int64_t cycle)
     }
 }
 
-static bool cnt16_high(const struct gpi_shift *s, int64_t k)
-{
+static bool cnt16_high(const struct gpi_shift *s, int64_t k) {
     return s->sb && k > s->cnt16_k && (k - s->cnt16_k) % 16 == 0;
 }
 
-uint32_t gpi_r31(struct pru_core *c, int64_t cycle)
-{
+uint32_t gpi_r31(struct pru_core *c, int64_t cycle) {
     uint32_t v;
     if (gpi_mode(c) == MODE_SHIFT) {
         gpi_sync(c, cycle);
@@ -170,8 +156,7 @@ uint32_t gpi_r31(struct pru_core *c, int64_t cycle)
 }
 
 /* First cycle after `cycle` at which the input level may differ from now. */
-static int64_t input_change_cycle(struct pru_core *c, int64_t cycle)
-{
+static int64_t input_change_cycle(struct pru_core *c, int64_t cycle) {
     if (!c->have_pins)
         return CYCLE_NEVER;
     if (!c->pins.next_input_change)
@@ -184,8 +169,7 @@ static int64_t input_change_cycle(struct pru_core *c, int64_t cycle)
     return cn > cycle ? cn : cycle + 1;
 }
 
-static int64_t shift_stable_until(struct pru_core *c, int64_t cycle)
-{
+static int64_t shift_stable_until(struct pru_core *c, int64_t cycle) {
     struct gpi_shift *s = &c->sh;
     gpi_sync(c, cycle);
     int64_t k = s->k_done;
@@ -213,10 +197,9 @@ static int64_t shift_stable_until(struct pru_core *c, int64_t cycle)
     return in;
 }
 
-int64_t gpi_stable_until(struct pru_core *c, int64_t cycle)
-{
-    int64_t h = gpi_mode(c) == MODE_SHIFT ? shift_stable_until(c, cycle)
-                                          : input_change_cycle(c, cycle);
+int64_t gpi_stable_until(struct pru_core *c, int64_t cycle) {
+    int64_t h =
+        gpi_mode(c) == MODE_SHIFT ? shift_stable_until(c, cycle) : input_change_cycle(c, cycle);
     if ((c->intc.ger & 1u) && (c->intc.hier & 3u)) { /* R31[31:30] can move */
         int64_t hi = intc_next_change(c, cycle);
         if (hi < h)
@@ -225,8 +208,7 @@ int64_t gpi_stable_until(struct pru_core *c, int64_t cycle)
     return h;
 }
 
-int64_t gpi_next_cnt16(struct pru_core *c, int64_t cycle)
-{
+int64_t gpi_next_cnt16(struct pru_core *c, int64_t cycle) {
     struct gpi_shift *s = &c->sh;
     if (gpi_mode(c) != MODE_SHIFT)
         return CYCLE_NEVER;
@@ -239,8 +221,7 @@ int64_t gpi_next_cnt16(struct pru_core *c, int64_t cycle)
 
 /* ---- CFG registers ---- */
 
-uint32_t cfg_read(struct pru_core *c, uint32_t ofs, int64_t at)
-{
+uint32_t cfg_read(struct pru_core *c, uint32_t ofs, int64_t at) {
     if (ofs == GPCFG0) {
         gpi_sync(c, at);
         return (c->cfg_regs[GPCFG0 / 4] & ~(GP_SB | GP_GPO_SEL)) | (c->sh.sb ? GP_SB : 0);
@@ -248,8 +229,7 @@ uint32_t cfg_read(struct pru_core *c, uint32_t ofs, int64_t at)
     return c->cfg_regs[ofs / 4];
 }
 
-static void gpcfg0_write(struct pru_core *c, uint32_t v, uint32_t bm, int64_t at)
-{
+static void gpcfg0_write(struct pru_core *c, uint32_t v, uint32_t bm, int64_t at) {
     uint32_t old = c->cfg_regs[GPCFG0 / 4];
     uint32_t nv = ((old & ~bm) | (v & bm)) & ~(GP_SB | GP_GPO_SEL);
     gpi_sync(c, at);
@@ -273,8 +253,7 @@ static void gpcfg0_write(struct pru_core *c, uint32_t v, uint32_t bm, int64_t at
         core_fault(c, PRU_FAULT_UNSUPPORTED, 0x26000u + GPCFG0);
 }
 
-void cfg_write(struct pru_core *c, uint32_t ofs, uint32_t val, uint32_t bmask, int64_t at)
-{
+void cfg_write(struct pru_core *c, uint32_t ofs, uint32_t val, uint32_t bmask, int64_t at) {
     ff_dirty(c);
     if (ofs == GPCFG0) {
         gpcfg0_write(c, val, bmask, at);

@@ -7,8 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-void pru_params_default(struct pru_params *p)
-{
+void pru_params_default(struct pru_params *p) {
     /* Sources and reasoning for each value: TIMING.md. */
     p->load_local_base = 2;
     p->store_beat_cycles = 1;
@@ -34,8 +33,7 @@ static const struct {
     [PRU_SOC_AM437X_ICSS1] = {"am437x-icss1", 0x54400000u, 12288, 8192, 32768},
 };
 
-int pru_soc_from_name(const char *name, enum pru_soc *soc)
-{
+int pru_soc_from_name(const char *name, enum pru_soc *soc) {
     for (unsigned i = 0; i < sizeof socs / sizeof socs[0]; i++) {
         if (strcmp(name, socs[i].name) == 0) {
             *soc = (enum pru_soc)i;
@@ -45,33 +43,27 @@ int pru_soc_from_name(const char *name, enum pru_soc *soc)
     return -1;
 }
 
-const char *pru_soc_name(enum pru_soc soc)
-{
+const char *pru_soc_name(enum pru_soc soc) {
     return socs[soc].name;
 }
 
-uint32_t pru_soc_base(enum pru_soc soc)
-{
+uint32_t pru_soc_base(enum pru_soc soc) {
     return socs[soc].base;
 }
 
-uint32_t pru_iram_bytes(const struct pru_core *c)
-{
+uint32_t pru_iram_bytes(const struct pru_core *c) {
     return c->iram_bytes;
 }
 
-uint32_t pru_dram_bytes(const struct pru_core *c)
-{
+uint32_t pru_dram_bytes(const struct pru_core *c) {
     return c->dram_bytes;
 }
 
-uint32_t pru_shared_bytes(const struct pru_core *c)
-{
+uint32_t pru_shared_bytes(const struct pru_core *c) {
     return c->shared_bytes;
 }
 
-struct pru_core *pru_core_new(enum pru_soc soc, const struct pru_params *params)
-{
+struct pru_core *pru_core_new(enum pru_soc soc, const struct pru_params *params) {
     if ((unsigned)soc > PRU_SOC_AM437X_ICSS1)
         return NULL;
     struct pru_core *c = calloc(1, sizeof *c);
@@ -107,8 +99,7 @@ struct pru_core *pru_core_new(enum pru_soc soc, const struct pru_params *params)
     return c;
 }
 
-void pru_core_free(struct pru_core *c)
-{
+void pru_core_free(struct pru_core *c) {
     if (!c)
         return;
     free(c->dram0);
@@ -122,8 +113,7 @@ void pru_core_free(struct pru_core *c)
     free(c);
 }
 
-void core_fault(struct pru_core *c, enum pru_fault_cause cause, uint32_t addr)
-{
+void core_fault(struct pru_core *c, enum pru_fault_cause cause, uint32_t addr) {
     if (c->fault.cause != PRU_FAULT_NONE)
         return; /* keep the first one */
     c->fault.cause = cause;
@@ -135,13 +125,11 @@ void core_fault(struct pru_core *c, enum pru_fault_cause cause, uint32_t addr)
     c->stop_reason = PRU_STOP_FAULT;
 }
 
-const struct pru_fault *pru_get_fault(const struct pru_core *c)
-{
+const struct pru_fault *pru_get_fault(const struct pru_core *c) {
     return &c->fault;
 }
 
-const char *pru_fault_name(enum pru_fault_cause cause)
-{
+const char *pru_fault_name(enum pru_fault_cause cause) {
     static const char *const names[] = {
         [PRU_FAULT_NONE] = "none",
         [PRU_FAULT_BAD_OPCODE] = "invalid or unsupported opcode",
@@ -156,15 +144,13 @@ const char *pru_fault_name(enum pru_fault_cause cause)
     return (unsigned)cause < sizeof names / sizeof names[0] ? names[cause] : "unknown";
 }
 
-void pru_print_fault(const struct pru_core *c, FILE *f)
-{
+void pru_print_fault(const struct pru_core *c, FILE *f) {
     const struct pru_fault *ft = &c->fault;
     fprintf(f, "fault: %s at pc=0x%04x cycle=%lld (addr=0x%08x, word=0x%08x)\n",
             pru_fault_name(ft->cause), ft->pc, (long long)ft->cycle, ft->addr, ft->word);
 }
 
-int pru_load_image(struct pru_core *c, const void *image, size_t bytes)
-{
+int pru_load_image(struct pru_core *c, const void *image, size_t bytes) {
     if (bytes > c->iram_bytes)
         return -1;
     uint8_t *buf = calloc(1, c->iram_bytes);
@@ -176,20 +162,17 @@ int pru_load_image(struct pru_core *c, const void *image, size_t bytes)
     return rc;
 }
 
-void pru_start(struct pru_core *c)
-{
+void pru_start(struct pru_core *c) {
     uint32_t v = ctrl_read(c, 0, c->cycle);
     ctrl_write(c, 0, v | PRU_CTRL_ENABLE, 0xffffffffu, c->cycle);
 }
 
-void pru_stop(struct pru_core *c)
-{
+void pru_stop(struct pru_core *c) {
     uint32_t v = ctrl_read(c, 0, c->cycle);
     ctrl_write(c, 0, v & ~PRU_CTRL_ENABLE, 0xffffffffu, c->cycle);
 }
 
-void pru_set_pins(struct pru_core *c, const struct pru_pins *pins)
-{
+void pru_set_pins(struct pru_core *c, const struct pru_pins *pins) {
     if (pins) {
         c->pins = *pins;
         c->have_pins = pins->inputs_at != NULL;
@@ -199,67 +182,55 @@ void pru_set_pins(struct pru_core *c, const struct pru_pins *pins)
     }
 }
 
-void pru_set_inputs(struct pru_core *c, uint32_t levels)
-{
+void pru_set_inputs(struct pru_core *c, uint32_t levels) {
     c->const_inputs = levels;
 }
 
-void pru_set_trace(struct pru_core *c, FILE *f)
-{
+void pru_set_trace(struct pru_core *c, FILE *f) {
     c->trace = f;
     c->trace_on = f != NULL;
 }
 
-enum pru_stop pru_run_until_cycle(struct pru_core *c, int64_t cycle)
-{
+enum pru_stop pru_run_until_cycle(struct pru_core *c, int64_t cycle) {
     return exec_run(c, cycle, false);
 }
 
-enum pru_stop pru_run_until_time(struct pru_core *c, int64_t t_ps)
-{
+enum pru_stop pru_run_until_time(struct pru_core *c, int64_t t_ps) {
     /* run every cycle that starts before t_ps */
     int64_t cyc = t_ps <= 0 ? 0 : (t_ps + PRU_PS_PER_CYCLE - 1) / PRU_PS_PER_CYCLE;
     return exec_run(c, cyc, false);
 }
 
-enum pru_stop pru_run(struct pru_core *c, int64_t max_cycles)
-{
+enum pru_stop pru_run(struct pru_core *c, int64_t max_cycles) {
     int64_t limit = max_cycles > INT64_MAX - c->cycle ? INT64_MAX : c->cycle + max_cycles;
     return exec_run(c, limit, false);
 }
 
-enum pru_stop pru_step(struct pru_core *c)
-{
+enum pru_stop pru_step(struct pru_core *c) {
     return exec_run(c, INT64_MAX, true);
 }
 
-int64_t pru_cycles(const struct pru_core *c)
-{
+int64_t pru_cycles(const struct pru_core *c) {
     return c->cycle;
 }
 
-int64_t pru_time_ps(const struct pru_core *c)
-{
+int64_t pru_time_ps(const struct pru_core *c) {
     return c->cycle * PRU_PS_PER_CYCLE;
 }
 
-uint64_t pru_instructions(const struct pru_core *c)
-{
+uint64_t pru_instructions(const struct pru_core *c) {
     return c->insns;
 }
 
-uint32_t pru_pc(const struct pru_core *c)
-{
+uint32_t pru_pc(const struct pru_core *c) {
     return c->pc;
 }
 
-void pru_set_pc(struct pru_core *c, uint32_t pc)
-{
+void pru_set_pc(struct pru_core *c, uint32_t pc) {
     c->pc = pc & 0xffffu;
 }
 
-uint32_t pru_reg(struct pru_core *c, unsigned n)
-{
+uint32_t pru_reg(struct pru_core *c, unsigned n) {
     if (n > 31)
         return 0;
     if (n == 31)
@@ -267,28 +238,23 @@ uint32_t pru_reg(struct pru_core *c, unsigned n)
     return c->r[n];
 }
 
-void pru_set_reg(struct pru_core *c, unsigned n, uint32_t v)
-{
+void pru_set_reg(struct pru_core *c, unsigned n, uint32_t v) {
     if (n < 31)
         c->r[n] = v;
 }
 
-int pru_carry(const struct pru_core *c)
-{
+int pru_carry(const struct pru_core *c) {
     return c->carry;
 }
 
-int pru_halted(const struct pru_core *c)
-{
+int pru_halted(const struct pru_core *c) {
     return c->halted;
 }
 
-int pru_sleeping(const struct pru_core *c)
-{
+int pru_sleeping(const struct pru_core *c) {
     return c->sleeping;
 }
 
-uint64_t pru_ff_skipped(const struct pru_core *c)
-{
+uint64_t pru_ff_skipped(const struct pru_core *c) {
     return c->ff.skipped;
 }

@@ -10,22 +10,56 @@
 
 #include <stdbool.h>
 
-#define NO_LOOP      0xffffffffu
-#define CYCLE_NEVER  INT64_MAX
-#define IEP_BYTES    0x1000u
-#define INTC_BYTES   0x2000u
-#define CFG_BYTES    0x2000u
-#define CTRL_BYTES   0x1000u
-#define SPAD_BYTES   120u /* scratch-pad bank: R0..R29 */
-#define LOCAL_LIMIT  0x80000u
+#define NO_LOOP     0xffffffffu
+#define CYCLE_NEVER INT64_MAX
+#define IEP_BYTES   0x1000u
+#define INTC_BYTES  0x2000u
+#define CFG_BYTES   0x2000u
+#define CTRL_BYTES  0x1000u
+#define SPAD_BYTES  120u /* scratch-pad bank: R0..R29 */
+#define LOCAL_LIMIT 0x80000u
 
 /* Execution kinds of the predecoded form; one per handler in exec.c. */
 enum pd_kind {
-    K_ADD, K_ADC, K_SUB, K_SUC, K_LSL, K_LSR, K_RSB, K_RSC,
-    K_AND, K_OR, K_XOR, K_NOT, K_MIN, K_MAX, K_CLR, K_SET,
-    K_NOP, K_JMP, K_JAL, K_LDI, K_LMBD, K_HALT, K_MVI, K_XFR, K_LOOP, K_SLP,
-    K_QBGT, K_QBGE, K_QBLT, K_QBLE, K_QBEQ, K_QBNE, K_QBA, K_QBBS, K_QBBC,
-    K_LBBO, K_SBBO, K_LBCO, K_SBCO,
+    K_ADD,
+    K_ADC,
+    K_SUB,
+    K_SUC,
+    K_LSL,
+    K_LSR,
+    K_RSB,
+    K_RSC,
+    K_AND,
+    K_OR,
+    K_XOR,
+    K_NOT,
+    K_MIN,
+    K_MAX,
+    K_CLR,
+    K_SET,
+    K_NOP,
+    K_JMP,
+    K_JAL,
+    K_LDI,
+    K_LMBD,
+    K_HALT,
+    K_MVI,
+    K_XFR,
+    K_LOOP,
+    K_SLP,
+    K_QBGT,
+    K_QBGE,
+    K_QBLT,
+    K_QBLE,
+    K_QBEQ,
+    K_QBNE,
+    K_QBA,
+    K_QBBS,
+    K_QBBC,
+    K_LBBO,
+    K_SBBO,
+    K_LBCO,
+    K_SBCO,
     K_BAD,
 };
 
@@ -60,13 +94,13 @@ struct gpi_shift {
     int64_t k_done;    /* edges already applied (edge k at t_cfg + phase + k*period) */
     uint32_t reg;      /* 28 bits */
     bool sb;
-    int64_t cnt16_k;   /* edge that captured the start bit; Cnt_16 at +16j */
+    int64_t cnt16_k; /* edge that captured the start bit; Cnt_16 at +16j */
 };
 
 struct iep {
     uint32_t global_cfg, global_status, compen, count, cmp_cfg, cmp_status;
     uint32_t cmp[8];
-    int64_t synced; /* state is as of this cycle boundary */
+    int64_t synced;          /* state is as of this cycle boundary */
     uint8_t regs[IEP_BYTES]; /* backing store for the registers not modelled */
 };
 
@@ -93,7 +127,7 @@ struct ext_window {
 
 /* Fast-forward probe of an idle polling loop (ff.c). */
 struct ff_probe {
-    uint32_t top;   /* loop top, NO_LOOP when unarmed */
+    uint32_t top; /* loop top, NO_LOOP when unarmed */
     int64_t cycle0;
     uint64_t insn0;
     int64_t stall0;
@@ -109,14 +143,14 @@ struct pru_core {
     uint32_t r[33]; /* r[32] is a constant 0 for immediate operands */
     uint32_t pc;
     int carry;
-    int64_t cycle;   /* current time in cycles */
+    int64_t cycle; /* current time in cycles */
     uint64_t insns;
     int64_t stall_total; /* cycles in which no instruction was fetched */
     uint32_t loop_end, loop_top, loop_count;
     uint32_t iram_words;
     struct pd *pd;
-    bool stop;       /* leave the run loop after this instruction */
-    bool recheck;    /* ... and re-evaluate enable/sleep/step (not a stop) */
+    bool stop;    /* leave the run loop after this instruction */
+    bool recheck; /* ... and re-evaluate enable/sleep/step (not a stop) */
     enum pru_stop stop_reason;
     bool trace_on;
     bool ff_on;
@@ -160,8 +194,7 @@ enum pru_stop exec_run(struct pru_core *c, int64_t limit, bool one_step);
 
 /* memmap.c: PRU data-space access; return 0 or -1 (fault recorded). */
 int mem_load(struct pru_core *c, uint32_t addr, uint8_t *dst, unsigned n, unsigned *cycles);
-int mem_store(struct pru_core *c, uint32_t addr, const uint8_t *src, unsigned n,
-              unsigned *cycles);
+int mem_store(struct pru_core *c, uint32_t addr, const uint8_t *src, unsigned n, unsigned *cycles);
 uint32_t const_table(const struct pru_core *c, unsigned n);
 
 /* ctrl.c */
@@ -197,13 +230,11 @@ int64_t intc_next_change(struct pru_core *c, int64_t cycle);
 
 /* ff.c */
 void ff_backward_branch(struct pru_core *c, uint32_t pc, uint32_t top, int64_t limit);
-static inline void ff_horizon(struct pru_core *c, int64_t cycle)
-{
+static inline void ff_horizon(struct pru_core *c, int64_t cycle) {
     if (cycle < c->ff.horizon)
         c->ff.horizon = cycle;
 }
-static inline void ff_dirty(struct pru_core *c)
-{
+static inline void ff_dirty(struct pru_core *c) {
     c->ff.dirty = true;
 }
 
@@ -212,12 +243,10 @@ void trace_insn(struct pru_core *c, uint32_t pc, int64_t cycle, const uint32_t *
                 int carry_before);
 
 /* Field helpers */
-static inline uint32_t fld(const uint32_t *r, unsigned reg, unsigned sh, uint32_t mask)
-{
+static inline uint32_t fld(const uint32_t *r, unsigned reg, unsigned sh, uint32_t mask) {
     return (r[reg] >> sh) & mask;
 }
-static inline void fld_set(uint32_t *r, unsigned reg, unsigned sh, uint32_t mask, uint32_t v)
-{
+static inline void fld_set(uint32_t *r, unsigned reg, unsigned sh, uint32_t mask, uint32_t v) {
     r[reg] = (r[reg] & ~(mask << sh)) | ((v & mask) << sh);
 }
 

@@ -11,21 +11,18 @@
 
 #define RF_BYTES 128u
 
-static uint8_t *rf(struct pru_core *c)
-{
+static uint8_t *rf(struct pru_core *c) {
     return (uint8_t *)c->r;
 }
 
 /* Before reading register-file bytes [start, start+n): refresh R31. */
-static void rf_before_read(struct pru_core *c, unsigned start, unsigned n)
-{
+static void rf_before_read(struct pru_core *c, unsigned start, unsigned n) {
     if (start + n > 124u)
         c->r[31] = gpi_r31(c, c->cycle);
 }
 
 /* After writing register-file bytes [start, start+n). */
-static void rf_after_write(struct pru_core *c, unsigned start, unsigned n, int64_t end_cycle)
-{
+static void rf_after_write(struct pru_core *c, unsigned start, unsigned n, int64_t end_cycle) {
     unsigned end = start + n;
     if (start < 124u && end > 120u)
         exec_r30_changed(c, end_cycle);
@@ -37,8 +34,7 @@ static void rf_after_write(struct pru_core *c, unsigned start, unsigned n, int64
     }
 }
 
-unsigned exec_burst(struct pru_core *c, const struct pd *d, bool load, bool cbase)
-{
+unsigned exec_burst(struct pru_core *c, const struct pd *d, bool load, bool cbase) {
     const struct pru_insn *in = &d->in;
     unsigned n = pru_len_bytes(in->len, c->r[0]);
     unsigned start = 4u * in->rx + in->rxbyte;
@@ -67,8 +63,7 @@ unsigned exec_burst(struct pru_core *c, const struct pd *d, bool load, bool cbas
 }
 
 /* XIN/XOUT on a scratch-pad bank (device 10, 11, 12). */
-static void xfr_spad(struct pru_core *c, unsigned op, uint8_t *bank, unsigned start, unsigned n)
-{
+static void xfr_spad(struct pru_core *c, unsigned op, uint8_t *bank, unsigned start, unsigned n) {
     bool in = op == PRU_OP_XIN || op == PRU_OP_SXIN;
     bool out = op == PRU_OP_XOUT || op == PRU_OP_SXOUT;
     if (in || (!out && !c->p.xchg_swaps)) {
@@ -89,8 +84,7 @@ static void xfr_spad(struct pru_core *c, unsigned op, uint8_t *bank, unsigned st
     }
 }
 
-void exec_xfr(struct pru_core *c, const struct pd *d)
-{
+void exec_xfr(struct pru_core *c, const struct pd *d) {
     const struct pru_insn *in = &d->in;
     unsigned n = pru_len_bytes(in->len, c->r[0]);
     unsigned start = 4u * in->rx + in->rxbyte;
@@ -118,8 +112,7 @@ void exec_xfr(struct pru_core *c, const struct pd *d)
 }
 
 /* MVIx: register-file pointers are byte fields of r1; addresses wrap at 128. */
-static uint32_t mvi_read(struct pru_core *c, unsigned addr, unsigned size)
-{
+static uint32_t mvi_read(struct pru_core *c, unsigned addr, unsigned size) {
     uint32_t v = 0;
     rf_before_read(c, 0, RF_BYTES);
     for (unsigned i = 0; i < size; i++)
@@ -127,8 +120,7 @@ static uint32_t mvi_read(struct pru_core *c, unsigned addr, unsigned size)
     return v;
 }
 
-static void mvi_write(struct pru_core *c, unsigned addr, unsigned size, uint32_t v)
-{
+static void mvi_write(struct pru_core *c, unsigned addr, unsigned size, uint32_t v) {
     for (unsigned i = 0; i < size; i++) {
         unsigned a = (addr + i) & 0x7fu;
         rf(c)[a] = (uint8_t)(v >> (8u * i));
@@ -138,8 +130,7 @@ static void mvi_write(struct pru_core *c, unsigned addr, unsigned size, uint32_t
 
 /* Pointer field value; pre-decrement / post-increment update it. */
 static unsigned mvi_ptr(struct pru_core *c, unsigned reg, unsigned sel, unsigned mode,
-                        unsigned size, bool post)
-{
+                        unsigned size, bool post) {
     unsigned sh = pru_sel_shift(sel);
     uint32_t m = pru_sel_mask(sel);
     uint32_t p = fld(c->r, reg, sh, m);
@@ -152,8 +143,7 @@ static unsigned mvi_ptr(struct pru_core *c, unsigned reg, unsigned sel, unsigned
     return p;
 }
 
-void exec_mvi(struct pru_core *c, const struct pd *d)
-{
+void exec_mvi(struct pru_core *c, const struct pd *d) {
     const struct pru_insn *in = &d->in;
     unsigned size = 1u << in->mvi_size;
     uint32_t smask = size == 4 ? 0xffffffffu : (1u << (8u * size)) - 1u;
@@ -172,8 +162,7 @@ void exec_mvi(struct pru_core *c, const struct pd *d)
         unsigned sh = pru_sel_shift(in->rdsel);
         fld_set(c->r, in->rd, sh, pru_sel_mask(in->rdsel), v);
         if (in->rd >= 30)
-            rf_after_write(c, 4u * in->rd + sh / 8u, pru_sel_width(in->rdsel) / 8u,
-                           c->cycle + 1);
+            rf_after_write(c, 4u * in->rd + sh / 8u, pru_sel_width(in->rdsel) / 8u, c->cycle + 1);
     } else {
         unsigned a = mvi_ptr(c, in->rd, in->rdsel, in->mvi_dmode, size, false);
         mvi_write(c, a, size, v);

@@ -16,8 +16,7 @@
 
 #define FF_MAX_BODY 16u /* words; longer loops are not idle polls */
 
-static void arm(struct pru_core *c, uint32_t top, int64_t now, uint64_t insns)
-{
+static void arm(struct pru_core *c, uint32_t top, int64_t now, uint64_t insns) {
     struct ff_probe *f = &c->ff;
     f->top = top;
     f->cycle0 = now;
@@ -29,16 +28,13 @@ static void arm(struct pru_core *c, uint32_t top, int64_t now, uint64_t insns)
     f->carry = c->carry;
 }
 
-static bool same_state(const struct pru_core *c)
-{
+static bool same_state(const struct pru_core *c) {
     const struct ff_probe *f = &c->ff;
-    return !f->dirty && f->carry == c->carry &&
-           memcmp(f->regs, c->r, 31 * sizeof c->r[0]) == 0;
+    return !f->dirty && f->carry == c->carry && memcmp(f->regs, c->r, 31 * sizeof c->r[0]) == 0;
 }
 
 /* Called by a taken branch from pc back to top, before its cycle is counted. */
-void ff_backward_branch(struct pru_core *c, uint32_t pc, uint32_t top, int64_t limit)
-{
+void ff_backward_branch(struct pru_core *c, uint32_t pc, uint32_t top, int64_t limit) {
     struct ff_probe *f = &c->ff;
     int64_t now = c->cycle + 1; /* the branch itself takes one cycle */
     uint64_t insns = c->insns + 1;

@@ -22,43 +22,36 @@
 #define CMP0     0x48u
 #define U32_MAX  0xffffffffu
 
-void iep_reset(struct pru_core *c)
-{
+void iep_reset(struct pru_core *c) {
     struct iep *e = &c->iep;
     memset(e, 0, sizeof *e);
     e->global_cfg = 0x550u;
 }
 
-static bool counting(const struct iep *e)
-{
+static bool counting(const struct iep *e) {
     return e->global_cfg & 1u;
 }
 
-static uint32_t inc_now(const struct iep *e)
-{
+static uint32_t inc_now(const struct iep *e) {
     return e->compen ? (e->global_cfg >> 8) & 0xfu : (e->global_cfg >> 4) & 0xfu;
 }
 
-static bool cmp_enabled(const struct iep *e, unsigned n)
-{
+static bool cmp_enabled(const struct iep *e, unsigned n) {
     return (e->cmp_cfg >> (n + 1)) & 1u;
 }
 
-static bool reset_pending(const struct iep *e)
-{
+static bool reset_pending(const struct iep *e) {
     return (e->cmp_cfg & 1u) && cmp_enabled(e, 0) && e->count >= e->cmp[0];
 }
 
-static void check_hits(struct iep *e)
-{
+static void check_hits(struct iep *e) {
     for (unsigned n = 0; n < 8; n++)
         if (cmp_enabled(e, n) && e->count >= e->cmp[n])
             e->cmp_status |= 1u << n;
 }
 
 /* One tick with every event applied. */
-static void tick(struct iep *e)
-{
+static void tick(struct iep *e) {
     if (reset_pending(e)) {
         e->count = 0;
     } else {
@@ -73,8 +66,7 @@ static void tick(struct iep *e)
 }
 
 /* How many ticks can be applied as plain additions (no event among them). */
-static int64_t quiet_ticks(const struct iep *e)
-{
+static int64_t quiet_ticks(const struct iep *e) {
     if (reset_pending(e))
         return 0;
     uint32_t inc = inc_now(e);
@@ -102,8 +94,7 @@ static int64_t quiet_ticks(const struct iep *e)
     return k;
 }
 
-void iep_sync(struct pru_core *c, int64_t cycle)
-{
+void iep_sync(struct pru_core *c, int64_t cycle) {
     struct iep *e = &c->iep;
     while (e->synced < cycle) {
         if (!counting(e)) {
@@ -125,17 +116,22 @@ void iep_sync(struct pru_core *c, int64_t cycle)
     }
 }
 
-uint32_t iep_read(struct pru_core *c, uint32_t ofs, int64_t at)
-{
+uint32_t iep_read(struct pru_core *c, uint32_t ofs, int64_t at) {
     struct iep *e = &c->iep;
     iep_sync(c, at);
     switch (ofs) {
-    case G_CFG: return e->global_cfg;
-    case G_STATUS: return e->global_status;
-    case COMPEN: return e->compen;
-    case COUNT: return e->count;
-    case CMP_CFG: return e->cmp_cfg;
-    case CMP_STAT: return e->cmp_status;
+    case G_CFG:
+        return e->global_cfg;
+    case G_STATUS:
+        return e->global_status;
+    case COMPEN:
+        return e->compen;
+    case COUNT:
+        return e->count;
+    case CMP_CFG:
+        return e->cmp_cfg;
+    case CMP_STAT:
+        return e->cmp_status;
     default:
         if (ofs >= CMP0 && ofs < CMP0 + 32u)
             return e->cmp[(ofs - CMP0) / 4u];
@@ -145,8 +141,7 @@ uint32_t iep_read(struct pru_core *c, uint32_t ofs, int64_t at)
     }
 }
 
-void iep_write(struct pru_core *c, uint32_t ofs, uint32_t val, uint32_t bm, int64_t at)
-{
+void iep_write(struct pru_core *c, uint32_t ofs, uint32_t val, uint32_t bm, int64_t at) {
     struct iep *e = &c->iep;
     uint32_t v = val & bm;
     iep_sync(c, at);
@@ -154,12 +149,24 @@ void iep_write(struct pru_core *c, uint32_t ofs, uint32_t val, uint32_t bm, int6
         e->synced = at;
     ff_dirty(c);
     switch (ofs) {
-    case G_CFG: e->global_cfg = ((e->global_cfg & ~bm) | v) & 0xff1u; break;
-    case G_STATUS: e->global_status &= ~v; break; /* write 1 to clear */
-    case COMPEN: e->compen = ((e->compen & ~bm) | v) & 0xffffffu; break;
-    case COUNT: e->count = (e->count & ~bm) | v; break; /* plain write (pru-facts 8) */
-    case CMP_CFG: e->cmp_cfg = ((e->cmp_cfg & ~bm) | v) & 0x1ffu; break;
-    case CMP_STAT: e->cmp_status &= ~(v & 0xffu); break;
+    case G_CFG:
+        e->global_cfg = ((e->global_cfg & ~bm) | v) & 0xff1u;
+        break;
+    case G_STATUS:
+        e->global_status &= ~v;
+        break; /* write 1 to clear */
+    case COMPEN:
+        e->compen = ((e->compen & ~bm) | v) & 0xffffffu;
+        break;
+    case COUNT:
+        e->count = (e->count & ~bm) | v;
+        break; /* plain write (pru-facts 8) */
+    case CMP_CFG:
+        e->cmp_cfg = ((e->cmp_cfg & ~bm) | v) & 0x1ffu;
+        break;
+    case CMP_STAT:
+        e->cmp_status &= ~(v & 0xffu);
+        break;
     default:
         if (ofs >= CMP0 && ofs < CMP0 + 32u) {
             uint32_t *r = &e->cmp[(ofs - CMP0) / 4u];
@@ -175,15 +182,15 @@ void iep_write(struct pru_core *c, uint32_t ofs, uint32_t val, uint32_t bm, int6
 }
 
 /* First cycle after `cycle` at which register `ofs` may read differently. */
-int64_t iep_next_change(struct pru_core *c, int64_t cycle, uint32_t ofs)
-{
+int64_t iep_next_change(struct pru_core *c, int64_t cycle, uint32_t ofs) {
     struct iep *e = &c->iep;
     iep_sync(c, cycle);
     if (!counting(e))
         return CYCLE_NEVER;
     switch (ofs) {
     case COUNT:
-    case COMPEN: return cycle + 1;
+    case COMPEN:
+        return cycle + 1;
     case G_STATUS:
     case CMP_STAT: {
         int64_t k = quiet_ticks(e);
@@ -191,6 +198,7 @@ int64_t iep_next_change(struct pru_core *c, int64_t cycle, uint32_t ofs)
             return CYCLE_NEVER;
         return e->synced + k + 1;
     }
-    default: return CYCLE_NEVER;
+    default:
+        return CYCLE_NEVER;
     }
 }

@@ -23,24 +23,22 @@ enum region {
 
 struct hit {
     enum region rg;
-    uint32_t ofs;  /* offset inside the block */
-    uint8_t *mem;  /* RAM blocks: bytes at ofs */
+    uint32_t ofs; /* offset inside the block */
+    uint8_t *mem; /* RAM blocks: bytes at ofs */
 };
 
-static bool inside(uint32_t addr, uint32_t n, uint32_t base, uint32_t size)
-{
+static bool inside(uint32_t addr, uint32_t n, uint32_t base, uint32_t size) {
     return addr >= base && (uint64_t)addr + n <= (uint64_t)base + size;
 }
 
 /* Find the block holding [addr, addr+n) of the local space; host adds IRAM. */
 static enum region find_local(struct pru_core *c, uint32_t addr, uint32_t n, bool host,
-                              struct hit *h)
-{
+                              struct hit *h) {
     static const struct {
         enum region rg;
         uint32_t base, size;
     } regs[] = {
-        {RG_INTC, 0x20000u, INTC_BYTES}, {RG_CTRL0, 0x22000u, CTRL_BYTES},
+        {RG_INTC, 0x20000u, INTC_BYTES},  {RG_CTRL0, 0x22000u, CTRL_BYTES},
         {RG_CTRL1, 0x24000u, CTRL_BYTES}, {RG_CFG, 0x26000u, CFG_BYTES},
         {RG_IEP, 0x2E000u, IEP_BYTES},
     };
@@ -79,8 +77,7 @@ static enum region find_local(struct pru_core *c, uint32_t addr, uint32_t n, boo
     return h->rg = RG_NONE;
 }
 
-static enum region find_ext(struct pru_core *c, uint32_t addr, uint32_t n, struct hit *h)
-{
+static enum region find_ext(struct pru_core *c, uint32_t addr, uint32_t n, struct hit *h) {
     for (unsigned i = 0; i < c->n_ext; i++) {
         if (inside(addr, n, c->ext[i].base, c->ext[i].size)) {
             h->ofs = addr - c->ext[i].base;
@@ -91,8 +88,7 @@ static enum region find_ext(struct pru_core *c, uint32_t addr, uint32_t n, struc
     return h->rg = RG_NONE;
 }
 
-uint32_t const_table(const struct pru_core *c, unsigned n)
-{
+uint32_t const_table(const struct pru_core *c, unsigned n) {
     static const uint32_t fixed[24] = {
         0x00020000u, 0x48040000u, 0x4802A000u, 0x00030000u, 0x00026000u, 0x48060000u,
         0x48030000u, 0x00028000u, 0x46000000u, 0x4A100000u, 0x48318000u, 0x48022000u,
@@ -101,21 +97,29 @@ uint32_t const_table(const struct pru_core *c, unsigned n)
     };
     const struct ctrl *k = &c->ctrl;
     switch (n & 31u) {
-    case 24: return (k->ctbir0 & 0xffu) << 8;
-    case 25: return 0x2000u | ((k->ctbir0 >> 16) & 0xffu) << 8;
-    case 26: return 0x2E000u | (k->ctbir1 & 0xffu) << 8;
-    case 27: return 0x32000u | ((k->ctbir1 >> 16) & 0xffu) << 8;
-    case 28: return (k->ctppr0 & 0xffffu) << 8;
-    case 29: return 0x49000000u | ((k->ctppr0 >> 16) & 0xffffu) << 8;
-    case 30: return 0x40000000u | (k->ctppr1 & 0xffffu) << 8;
-    case 31: return 0x80000000u | ((k->ctppr1 >> 16) & 0xffffu) << 8;
-    default: return fixed[n & 31u];
+    case 24:
+        return (k->ctbir0 & 0xffu) << 8;
+    case 25:
+        return 0x2000u | ((k->ctbir0 >> 16) & 0xffu) << 8;
+    case 26:
+        return 0x2E000u | (k->ctbir1 & 0xffu) << 8;
+    case 27:
+        return 0x32000u | ((k->ctbir1 >> 16) & 0xffu) << 8;
+    case 28:
+        return (k->ctppr0 & 0xffffu) << 8;
+    case 29:
+        return 0x49000000u | ((k->ctppr0 >> 16) & 0xffffu) << 8;
+    case 30:
+        return 0x40000000u | (k->ctppr1 & 0xffffu) << 8;
+    case 31:
+        return 0x80000000u | ((k->ctppr1 >> 16) & 0xffffu) << 8;
+    default:
+        return fixed[n & 31u];
     }
 }
 
 /* Debug block (CTRL + 0x400): GPREG0-31 then CT_REG0-31. */
-static uint32_t debug_read(struct pru_core *c, uint32_t ofs)
-{
+static uint32_t debug_read(struct pru_core *c, uint32_t ofs) {
     unsigned i = (ofs - 0x400u) / 4u;
     if (i < 32)
         return i == 31 ? gpi_r31(c, c->cycle) : c->r[i];
@@ -124,27 +128,32 @@ static uint32_t debug_read(struct pru_core *c, uint32_t ofs)
     return 0;
 }
 
-static uint32_t reg_read(struct pru_core *c, enum region rg, uint32_t ofs, int64_t at)
-{
+static uint32_t reg_read(struct pru_core *c, enum region rg, uint32_t ofs, int64_t at) {
     switch (rg) {
-    case RG_INTC: return intc_read(c, ofs, at);
-    case RG_CTRL0: return ofs >= 0x400u ? debug_read(c, ofs) : ctrl_read(c, ofs, at);
+    case RG_INTC:
+        return intc_read(c, ofs, at);
+    case RG_CTRL0:
+        return ofs >= 0x400u ? debug_read(c, ofs) : ctrl_read(c, ofs, at);
     case RG_CTRL1: {
         uint32_t v;
         memcpy(&v, c->ctrl1 + ofs, 4);
         return v;
     }
-    case RG_CFG: return cfg_read(c, ofs, at);
-    case RG_IEP: return iep_read(c, ofs, at);
-    default: return 0;
+    case RG_CFG:
+        return cfg_read(c, ofs, at);
+    case RG_IEP:
+        return iep_read(c, ofs, at);
+    default:
+        return 0;
     }
 }
 
 static void reg_write(struct pru_core *c, enum region rg, uint32_t ofs, uint32_t v, uint32_t bm,
-                      int64_t at)
-{
+                      int64_t at) {
     switch (rg) {
-    case RG_INTC: intc_write(c, ofs, v, bm, at); break;
+    case RG_INTC:
+        intc_write(c, ofs, v, bm, at);
+        break;
     case RG_CTRL0:
         if (ofs < 0x400u) {
             ctrl_write(c, ofs, v, bm, at);
@@ -160,16 +169,20 @@ static void reg_write(struct pru_core *c, enum region rg, uint32_t ofs, uint32_t
         memcpy(c->ctrl1 + ofs, &old, 4);
         break;
     }
-    case RG_CFG: cfg_write(c, ofs, v, bm, at); break;
-    case RG_IEP: iep_write(c, ofs, v, bm, at); break;
-    default: break;
+    case RG_CFG:
+        cfg_write(c, ofs, v, bm, at);
+        break;
+    case RG_IEP:
+        iep_write(c, ofs, v, bm, at);
+        break;
+    default:
+        break;
     }
 }
 
 /* Register blocks: byte accesses become aligned word reads. */
 static void regs_load(struct pru_core *c, const struct hit *h, uint8_t *dst, unsigned n,
-                      int64_t at)
-{
+                      int64_t at) {
     uint32_t first = h->ofs & ~3u;
     for (uint32_t w = first; w < h->ofs + n; w += 4) {
         uint32_t v = reg_read(c, h->rg, w, at);
@@ -183,8 +196,7 @@ static void regs_load(struct pru_core *c, const struct hit *h, uint8_t *dst, uns
 
 /* ... and writes become aligned word writes with a bit mask of the bytes. */
 static void regs_store(struct pru_core *c, const struct hit *h, const uint8_t *src, unsigned n,
-                       int64_t at)
-{
+                       int64_t at) {
     uint32_t first = h->ofs & ~3u;
     for (uint32_t w = first; w < h->ofs + n; w += 4) {
         uint32_t v = 0, bm = 0;
@@ -199,43 +211,55 @@ static void regs_store(struct pru_core *c, const struct hit *h, const uint8_t *s
     }
 }
 
-static unsigned beats(unsigned n)
-{
+static unsigned beats(unsigned n) {
     return (n + 3u) / 4u;
 }
 
-static unsigned load_cycles(const struct pru_core *c, enum region rg, unsigned n)
-{
+static unsigned load_cycles(const struct pru_core *c, enum region rg, unsigned n) {
     const struct pru_params *p = &c->p;
     switch (rg) {
     case RG_DRAM0:
     case RG_DRAM1:
-    case RG_SHARED: return p->load_local_base + beats(n);
-    case RG_INTC: return p->load_intc_cycles + beats(n) - 1;
+    case RG_SHARED:
+        return p->load_local_base + beats(n);
+    case RG_INTC:
+        return p->load_intc_cycles + beats(n) - 1;
     case RG_CTRL0:
-    case RG_CTRL1: return p->load_ctrl_cycles + beats(n) - 1;
-    case RG_CFG: return p->load_cfg_cycles + beats(n) - 1;
-    case RG_IEP: return p->load_iep_cycles + beats(n) - 1;
-    default: return p->load_ext_cycles + beats(n) - 1;
+    case RG_CTRL1:
+        return p->load_ctrl_cycles + beats(n) - 1;
+    case RG_CFG:
+        return p->load_cfg_cycles + beats(n) - 1;
+    case RG_IEP:
+        return p->load_iep_cycles + beats(n) - 1;
+    default:
+        return p->load_ext_cycles + beats(n) - 1;
     }
 }
 
 /* How far ahead a value read from a block can be known unchanged (ff.c). */
-static void note_horizon(struct pru_core *c, const struct hit *h, unsigned n)
-{
+static void note_horizon(struct pru_core *c, const struct hit *h, unsigned n) {
     if (c->ff.top == NO_LOOP)
         return;
     switch (h->rg) {
-    case RG_CTRL0: ff_horizon(c, c->cycle + 1); break; /* CYCLE, STALL, STATUS */
-    case RG_CFG: ff_horizon(c, gpi_stable_until(c, c->cycle)); break;
-    case RG_INTC: ff_horizon(c, intc_next_change(c, c->cycle)); break;
-    case RG_IEP: ff_horizon(c, iep_next_change(c, c->cycle, h->ofs & ~3u)); (void)n; break;
-    default: break;
+    case RG_CTRL0:
+        ff_horizon(c, c->cycle + 1);
+        break; /* CYCLE, STALL, STATUS */
+    case RG_CFG:
+        ff_horizon(c, gpi_stable_until(c, c->cycle));
+        break;
+    case RG_INTC:
+        ff_horizon(c, intc_next_change(c, c->cycle));
+        break;
+    case RG_IEP:
+        ff_horizon(c, iep_next_change(c, c->cycle, h->ofs & ~3u));
+        (void)n;
+        break;
+    default:
+        break;
     }
 }
 
-int mem_load(struct pru_core *c, uint32_t addr, uint8_t *dst, unsigned n, unsigned *cycles)
-{
+int mem_load(struct pru_core *c, uint32_t addr, uint8_t *dst, unsigned n, unsigned *cycles) {
     struct hit h;
     if (addr < LOCAL_LIMIT ? find_local(c, addr, n, false, &h) == RG_NONE
                            : find_ext(c, addr, n, &h) == RG_NONE) {
@@ -252,9 +276,7 @@ int mem_load(struct pru_core *c, uint32_t addr, uint8_t *dst, unsigned n, unsign
     return 0;
 }
 
-int mem_store(struct pru_core *c, uint32_t addr, const uint8_t *src, unsigned n,
-              unsigned *cycles)
-{
+int mem_store(struct pru_core *c, uint32_t addr, const uint8_t *src, unsigned n, unsigned *cycles) {
     struct hit h;
     if (addr < LOCAL_LIMIT ? find_local(c, addr, n, false, &h) == RG_NONE
                            : find_ext(c, addr, n, &h) == RG_NONE) {
@@ -272,21 +294,18 @@ int mem_store(struct pru_core *c, uint32_t addr, const uint8_t *src, unsigned n,
 
 /* ---- host (ARM) view ---- */
 
-static bool host_find(struct pru_core *c, uint32_t addr, size_t n, struct hit *h)
-{
+static bool host_find(struct pru_core *c, uint32_t addr, size_t n, struct hit *h) {
     uint32_t base = pru_soc_base(c->soc);
     if (addr < base || n > LOCAL_LIMIT || addr - base >= LOCAL_LIMIT)
         return false;
     return find_local(c, addr - base, (uint32_t)n, true, h) != RG_NONE;
 }
 
-static bool running(const struct pru_core *c)
-{
+static bool running(const struct pru_core *c) {
     return (c->ctrl.control & PRU_CTRL_ENABLE) != 0;
 }
 
-int pru_host_read(struct pru_core *c, uint32_t addr, void *buf, size_t n)
-{
+int pru_host_read(struct pru_core *c, uint32_t addr, void *buf, size_t n) {
     struct hit h;
     if (!host_find(c, addr, n, &h))
         return -1;
@@ -297,8 +316,7 @@ int pru_host_read(struct pru_core *c, uint32_t addr, void *buf, size_t n)
     return 0;
 }
 
-int pru_host_write(struct pru_core *c, uint32_t addr, const void *buf, size_t n)
-{
+int pru_host_write(struct pru_core *c, uint32_t addr, const void *buf, size_t n) {
     struct hit h;
     if (!host_find(c, addr, n, &h))
         return -1;
@@ -317,8 +335,7 @@ int pru_host_write(struct pru_core *c, uint32_t addr, const void *buf, size_t n)
     return 0;
 }
 
-int pru_host_read32(struct pru_core *c, uint32_t addr, uint32_t *val)
-{
+int pru_host_read32(struct pru_core *c, uint32_t addr, uint32_t *val) {
     if (addr & 3u)
         return -1;
     uint8_t b[4];
@@ -328,8 +345,7 @@ int pru_host_read32(struct pru_core *c, uint32_t addr, uint32_t *val)
     return rc;
 }
 
-int pru_host_write32(struct pru_core *c, uint32_t addr, uint32_t val)
-{
+int pru_host_write32(struct pru_core *c, uint32_t addr, uint32_t val) {
     if (addr & 3u)
         return -1;
     uint8_t b[4] = {(uint8_t)val, (uint8_t)(val >> 8), (uint8_t)(val >> 16), (uint8_t)(val >> 24)};

@@ -8,8 +8,7 @@
 
 #define ZERO_REG 32u
 
-static void set_dst(struct pd *d, unsigned reg, unsigned sel)
-{
+static void set_dst(struct pd *d, unsigned reg, unsigned sel) {
     d->rd = (uint8_t)reg;
     d->rdsh = (uint8_t)pru_sel_shift(sel);
     d->rdmask = pru_sel_mask(sel);
@@ -20,8 +19,7 @@ static void set_dst(struct pd *d, unsigned reg, unsigned sel)
         d->flags |= PD_WRITES_R31;
 }
 
-static void set_rs1(struct pd *d, unsigned reg, unsigned sel)
-{
+static void set_rs1(struct pd *d, unsigned reg, unsigned sel) {
     d->rs1 = (uint8_t)reg;
     d->rs1sh = (uint8_t)pru_sel_shift(sel);
     d->rs1mask = pru_sel_mask(sel);
@@ -30,8 +28,7 @@ static void set_rs1(struct pd *d, unsigned reg, unsigned sel)
 }
 
 /* op2: a register field, or an immediate read through the zero register. */
-static void set_op2(struct pd *d, const struct pru_insn *in)
-{
+static void set_op2(struct pd *d, const struct pru_insn *in) {
     if (in->io) {
         d->rs2 = ZERO_REG;
         d->rs2sh = 0;
@@ -47,30 +44,36 @@ static void set_op2(struct pd *d, const struct pru_insn *in)
     }
 }
 
-static enum pd_kind alu_kind(unsigned op)
-{
+static enum pd_kind alu_kind(unsigned op) {
     static const uint8_t k[] = {K_ADD, K_ADC, K_SUB, K_SUC, K_LSL, K_LSR, K_RSB, K_RSC,
                                 K_AND, K_OR,  K_XOR, K_NOT, K_MIN, K_MAX, K_CLR, K_SET};
     return (enum pd_kind)k[op - PRU_OP_ADD];
 }
 
-static enum pd_kind branch_kind(unsigned op)
-{
+static enum pd_kind branch_kind(unsigned op) {
     switch (op) {
-    case PRU_OP_QBGT: return K_QBGT;
-    case PRU_OP_QBGE: return K_QBGE;
-    case PRU_OP_QBLT: return K_QBLT;
-    case PRU_OP_QBLE: return K_QBLE;
-    case PRU_OP_QBEQ: return K_QBEQ;
-    case PRU_OP_QBNE: return K_QBNE;
-    case PRU_OP_QBBS: return K_QBBS;
-    case PRU_OP_QBBC: return K_QBBC;
-    default: return K_QBA;
+    case PRU_OP_QBGT:
+        return K_QBGT;
+    case PRU_OP_QBGE:
+        return K_QBGE;
+    case PRU_OP_QBLT:
+        return K_QBLT;
+    case PRU_OP_QBLE:
+        return K_QBLE;
+    case PRU_OP_QBEQ:
+        return K_QBEQ;
+    case PRU_OP_QBNE:
+        return K_QBNE;
+    case PRU_OP_QBBS:
+        return K_QBBS;
+    case PRU_OP_QBBC:
+        return K_QBBC;
+    default:
+        return K_QBA;
     }
 }
 
-static void decode_into(struct pd *d, const struct pru_insn *in, uint32_t pc)
-{
+static void decode_into(struct pd *d, const struct pru_insn *in, uint32_t pc) {
     unsigned op = in->op;
     if (op <= PRU_OP_SET) {
         d->kind = (uint8_t)alu_kind(op);
@@ -170,8 +173,7 @@ static void decode_into(struct pd *d, const struct pru_insn *in, uint32_t pc)
     }
 }
 
-void predecode_word(struct pru_core *c, uint32_t pc)
-{
+void predecode_word(struct pru_core *c, uint32_t pc) {
     struct pd *d = &c->pd[pc];
     memset(d, 0, sizeof *d);
     struct pru_insn in;
@@ -183,8 +185,7 @@ void predecode_word(struct pru_core *c, uint32_t pc)
     decode_into(d, &in, pc);
 }
 
-void predecode_all(struct pru_core *c)
-{
+void predecode_all(struct pru_core *c) {
     for (uint32_t pc = 0; pc < c->iram_words; pc++)
         predecode_word(c, pc);
 }

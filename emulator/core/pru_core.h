@@ -79,22 +79,22 @@ struct pru_pins {
 
 enum pru_fault_cause {
     PRU_FAULT_NONE,
-    PRU_FAULT_BAD_OPCODE,    /* word does not decode, or SCAN/MAC not modelled */
-    PRU_FAULT_UNMAPPED,      /* data access outside any modelled block */
-    PRU_FAULT_PC_RANGE,      /* PC past the end of IRAM */
-    PRU_FAULT_IRAM_RUNNING,  /* host wrote IRAM while the PRU was running */
-    PRU_FAULT_BURST,         /* zero-length burst or register file overrun */
-    PRU_FAULT_XFR_DEVICE,    /* XIN/XOUT to a device that is not modelled */
-    PRU_FAULT_GPO_SHIFT,     /* GPO shift-out mode enabled (not modelled) */
-    PRU_FAULT_UNSUPPORTED,   /* other mode not modelled (GPI parallel/MII) */
+    PRU_FAULT_BAD_OPCODE,   /* word does not decode, or SCAN/MAC not modelled */
+    PRU_FAULT_UNMAPPED,     /* data access outside any modelled block */
+    PRU_FAULT_PC_RANGE,     /* PC past the end of IRAM */
+    PRU_FAULT_IRAM_RUNNING, /* host wrote IRAM while the PRU was running */
+    PRU_FAULT_BURST,        /* zero-length burst or register file overrun */
+    PRU_FAULT_XFR_DEVICE,   /* XIN/XOUT to a device that is not modelled */
+    PRU_FAULT_GPO_SHIFT,    /* GPO shift-out mode enabled (not modelled) */
+    PRU_FAULT_UNSUPPORTED,  /* other mode not modelled (GPI parallel/MII) */
 };
 
 struct pru_fault {
     enum pru_fault_cause cause;
-    uint32_t pc;     /* word address of the faulting instruction */
-    int64_t cycle;   /* cycle in which it was issued */
-    uint32_t addr;   /* data address involved (if any) */
-    uint32_t word;   /* instruction word (if any) */
+    uint32_t pc;   /* word address of the faulting instruction */
+    int64_t cycle; /* cycle in which it was issued */
+    uint32_t addr; /* data address involved (if any) */
+    uint32_t word; /* instruction word (if any) */
 };
 
 enum pru_stop {
@@ -114,7 +114,7 @@ void pru_core_free(struct pru_core *c);
 
 int pru_soc_from_name(const char *name, enum pru_soc *soc); /* 0 or -1 */
 const char *pru_soc_name(enum pru_soc soc);
-uint32_t pru_soc_base(enum pru_soc soc);       /* global PRU-ICSS base address */
+uint32_t pru_soc_base(enum pru_soc soc); /* global PRU-ICSS base address */
 uint32_t pru_iram_bytes(const struct pru_core *c);
 uint32_t pru_dram_bytes(const struct pru_core *c);
 uint32_t pru_shared_bytes(const struct pru_core *c);
@@ -172,7 +172,7 @@ enum pru_stop pru_run(struct pru_core *c, int64_t max_cycles);
 enum pru_stop pru_step(struct pru_core *c);
 
 /* State */
-int64_t pru_cycles(const struct pru_core *c);       /* current time in cycles */
+int64_t pru_cycles(const struct pru_core *c); /* current time in cycles */
 int64_t pru_time_ps(const struct pru_core *c);
 uint64_t pru_instructions(const struct pru_core *c); /* executed instructions */
 uint32_t pru_pc(const struct pru_core *c);

@@ -11,8 +11,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define EXIT_NOHALT 2
-#define EXIT_FAULT  3
+#define EXIT_NOHALT        2
+#define EXIT_FAULT         3
 #define DEFAULT_MAX_CYCLES 2000000000LL
 
 struct opts {
@@ -23,8 +23,7 @@ struct opts {
     int dump_regs, trace;
 };
 
-static void usage(FILE *f)
-{
+static void usage(FILE *f) {
     fprintf(f,
             "usage: pru-run [options] IMAGE.bin\n"
             "Runs a raw little-endian PRU IRAM image on one emulated PRU (PRU0) from\n"
@@ -42,8 +41,7 @@ static void usage(FILE *f)
             (long long)DEFAULT_MAX_CYCLES);
 }
 
-static int parse_u64(const char *s, uint64_t *out)
-{
+static int parse_u64(const char *s, uint64_t *out) {
     char *end;
     errno = 0;
     if (!s || !*s || *s == '-')
@@ -55,15 +53,13 @@ static int parse_u64(const char *s, uint64_t *out)
     return 0;
 }
 
-static int bad(const char *msg, const char *arg)
-{
+static int bad(const char *msg, const char *arg) {
     fprintf(stderr, "pru-run: %s%s%s\n", msg, arg ? ": " : "", arg ? arg : "");
     fprintf(stderr, "try 'pru-run --help'\n");
     return -1;
 }
 
-static int parse_args(int argc, char **argv, struct opts *o)
-{
+static int parse_args(int argc, char **argv, struct opts *o) {
     *o = (struct opts){.soc = PRU_SOC_AM335X, .max_cycles = DEFAULT_MAX_CYCLES};
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
@@ -109,8 +105,7 @@ static int parse_args(int argc, char **argv, struct opts *o)
 }
 
 /* Read a whole file; returns 0 or -1 (message printed). */
-static int read_file(const char *path, uint8_t **buf, size_t *len)
-{
+static int read_file(const char *path, uint8_t **buf, size_t *len) {
     FILE *f = fopen(path, "rb");
     if (!f) {
         fprintf(stderr, "pru-run: cannot open %s: %s\n", path, strerror(errno));
@@ -144,8 +139,7 @@ static int read_file(const char *path, uint8_t **buf, size_t *len)
     return 0;
 }
 
-static int load(struct pru_core *c, const struct opts *o)
-{
+static int load(struct pru_core *c, const struct opts *o) {
     uint8_t *buf;
     size_t len;
     if (read_file(o->image, &buf, &len))
@@ -155,8 +149,8 @@ static int load(struct pru_core *c, const struct opts *o)
         fprintf(stderr, "pru-run: %s: size %zu is not a multiple of 4\n", o->image, len);
         rc = -1;
     } else if (pru_load_image(c, buf, len) != 0) {
-        fprintf(stderr, "pru-run: %s: %zu bytes do not fit the %u-byte IRAM of %s\n", o->image,
-                len, pru_iram_bytes(c), pru_soc_name(o->soc));
+        fprintf(stderr, "pru-run: %s: %zu bytes do not fit the %u-byte IRAM of %s\n", o->image, len,
+                pru_iram_bytes(c), pru_soc_name(o->soc));
         rc = -1;
     }
     free(buf);
@@ -174,8 +168,7 @@ static int load(struct pru_core *c, const struct opts *o)
     return rc;
 }
 
-static void dump_regs(struct pru_core *c)
-{
+static void dump_regs(struct pru_core *c) {
     for (unsigned i = 0; i < 32; i++)
         printf("r%u=0x%08" PRIx32 "\n", i, pru_reg(c, i));
     printf("pc=0x%04" PRIx32 "\n", pru_pc(c));
@@ -183,8 +176,7 @@ static void dump_regs(struct pru_core *c)
     printf("instructions=%llu\n", (unsigned long long)pru_instructions(c));
 }
 
-int main(int argc, char **argv)
-{
+int main(int argc, char **argv) {
     struct opts o;
     if (parse_args(argc, argv, &o))
         return 1;

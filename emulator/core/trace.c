@@ -5,8 +5,7 @@
 #include "core_priv.h"
 
 void trace_insn(struct pru_core *c, uint32_t pc, int64_t cycle, const uint32_t *before,
-                int carry_before)
-{
+                int carry_before) {
     char text[96];
     pru_disasm(c->iram0[pc], pc, text, sizeof text);
     fprintf(c->trace, "%10lld  %04x  %-32s", (long long)cycle, pc, text);
