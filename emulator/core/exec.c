@@ -314,13 +314,13 @@ static bool sleep_until(struct pru_core *c, int64_t limit) {
         if (!(c->ctrl.control & PRU_CTRL_SLEEPING)) {
             c->sleeping = false; /* woken by a write of SLEEPING = 0 */
         } else if (c->sleep_wake_on_event) {
-            c->ff.horizon = CYCLE_NEVER;
             uint32_t v = gpi_r31(c, c->cycle) & c->ctrl.wakeup_en;
             if (v) {
                 c->sleeping = false;
                 c->ctrl.control &= ~PRU_CTRL_SLEEPING;
             } else {
-                int64_t next = c->ff.horizon > c->cycle ? c->ff.horizon : c->cycle + 1;
+                int64_t h = gpi_stable_until(c, c->cycle);
+                int64_t next = h > c->cycle ? h : c->cycle + 1;
                 c->cycle = next < limit ? next : limit;
                 continue;
             }

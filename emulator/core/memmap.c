@@ -23,8 +23,9 @@ enum region {
 
 struct hit {
     enum region rg;
-    uint32_t ofs; /* offset inside the block */
-    uint8_t *mem; /* RAM blocks: bytes at ofs */
+    uint32_t ofs;  /* offset inside the block */
+    uint32_t size; /* size of the block */
+    uint8_t *mem;  /* RAM blocks: bytes at ofs */
 };
 
 static bool inside(uint32_t addr, uint32_t n, uint32_t base, uint32_t size) {
@@ -45,32 +46,38 @@ static enum region find_local(struct pru_core *c, uint32_t addr, uint32_t n, boo
     h->mem = NULL;
     if (inside(addr, n, 0, c->dram_bytes)) {
         h->ofs = addr;
+        h->size = c->dram_bytes;
         h->mem = c->dram0 + addr;
         return h->rg = RG_DRAM0;
     }
     if (inside(addr, n, 0x2000u, c->dram_bytes)) {
         h->ofs = addr - 0x2000u;
+        h->size = c->dram_bytes;
         h->mem = c->dram1 + h->ofs;
         return h->rg = RG_DRAM1;
     }
     if (c->shared_bytes && inside(addr, n, 0x10000u, c->shared_bytes)) {
         h->ofs = addr - 0x10000u;
+        h->size = c->shared_bytes;
         h->mem = c->shared + h->ofs;
         return h->rg = RG_SHARED;
     }
     for (unsigned i = 0; i < sizeof regs / sizeof regs[0]; i++) {
         if (inside(addr, n, regs[i].base, regs[i].size)) {
             h->ofs = addr - regs[i].base;
+            h->size = regs[i].size;
             return h->rg = regs[i].rg;
         }
     }
     if (host && inside(addr, n, PRU_OFS_IRAM0, c->iram_bytes)) {
         h->ofs = addr - PRU_OFS_IRAM0;
+        h->size = c->iram_bytes;
         h->mem = (uint8_t *)c->iram0 + h->ofs;
         return h->rg = RG_IRAM0;
     }
     if (host && inside(addr, n, PRU_OFS_IRAM1, c->iram_bytes)) {
         h->ofs = addr - PRU_OFS_IRAM1;
+        h->size = c->iram_bytes;
         h->mem = (uint8_t *)c->iram1 + h->ofs;
         return h->rg = RG_IRAM1;
     }
@@ -81,6 +88,7 @@ static enum region find_ext(struct pru_core *c, uint32_t addr, uint32_t n, struc
     for (unsigned i = 0; i < c->n_ext; i++) {
         if (inside(addr, n, c->ext[i].base, c->ext[i].size)) {
             h->ofs = addr - c->ext[i].base;
+            h->size = c->ext[i].size;
             h->mem = c->ext[i].mem + h->ofs;
             return h->rg = RG_EXT;
         }
@@ -259,36 +267,57 @@ static void note_horizon(struct pru_core *c, const struct hit *h, unsigned n) {
     }
 }
 
+/* Block holding the byte at addr and how many bytes of n fit in it. */
+static bool lookup(struct pru_core *c, uint32_t addr, unsigned n, struct hit *h, unsigned *chunk) {
+    enum region rg =
+        addr < LOCAL_LIMIT ? find_local(c, addr, 1, false, h) : find_ext(c, addr, 1, h);
+    if (rg == RG_NONE)
+        return false;
+    unsigned left = h->size - h->ofs;
+    *chunk = n < left ? n : left;
+    return true;
+}
+
+/* Accesses may run from one block into an adjacent one (PRU0 into PRU1
+ * data RAM on an 8 KB part); the first block decides the cost. */
 int mem_load(struct pru_core *c, uint32_t addr, uint8_t *dst, unsigned n, unsigned *cycles) {
-    struct hit h;
-    if (addr < LOCAL_LIMIT ? find_local(c, addr, n, false, &h) == RG_NONE
-                           : find_ext(c, addr, n, &h) == RG_NONE) {
-        core_fault(c, PRU_FAULT_UNMAPPED, addr);
-        return -1;
-    }
-    *cycles = load_cycles(c, h.rg, n);
-    if (h.mem) {
-        memcpy(dst, h.mem, n);
-    } else {
-        regs_load(c, &h, dst, n, c->cycle);
-        note_horizon(c, &h, n);
+    for (unsigned done = 0, chunk; done < n; done += chunk) {
+        struct hit h;
+        if (!lookup(c, addr + done, n - done, &h, &chunk)) {
+            core_fault(c, PRU_FAULT_UNMAPPED, addr + done);
+            return -1;
+        }
+        if (done == 0)
+            *cycles = load_cycles(c, h.rg, n);
+        if (h.mem) {
+            memcpy(dst + done, h.mem, chunk);
+        } else {
+            regs_load(c, &h, dst + done, chunk, c->cycle);
+            note_horizon(c, &h, chunk);
+        }
     }
     return 0;
 }
 
 int mem_store(struct pru_core *c, uint32_t addr, const uint8_t *src, unsigned n, unsigned *cycles) {
-    struct hit h;
-    if (addr < LOCAL_LIMIT ? find_local(c, addr, n, false, &h) == RG_NONE
-                           : find_ext(c, addr, n, &h) == RG_NONE) {
-        core_fault(c, PRU_FAULT_UNMAPPED, addr);
-        return -1;
+    /* check the whole range first: a faulting store writes nothing */
+    for (unsigned done = 0, chunk; done < n; done += chunk) {
+        struct hit h;
+        if (!lookup(c, addr + done, n - done, &h, &chunk)) {
+            core_fault(c, PRU_FAULT_UNMAPPED, addr + done);
+            return -1;
+        }
+    }
+    for (unsigned done = 0, chunk; done < n; done += chunk) {
+        struct hit h;
+        lookup(c, addr + done, n - done, &h, &chunk);
+        if (h.mem)
+            memcpy(h.mem, src + done, chunk);
+        else
+            regs_store(c, &h, src + done, chunk, c->cycle + 1); /* lands next boundary */
     }
     unsigned cyc = beats(n) * c->p.store_beat_cycles;
     *cycles = cyc ? cyc : 1;
-    if (h.mem)
-        memcpy(h.mem, src, n);
-    else
-        regs_store(c, &h, src, n, c->cycle + 1); /* lands at the next cycle boundary */
     return 0;
 }
 
