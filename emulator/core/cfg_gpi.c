@@ -150,7 +150,7 @@ uint32_t gpi_r31(struct pru_core *c, int64_t cycle) {
         v = pins_inputs_at(c, cycle * PRU_PS_PER_CYCLE - c->p.gpi_delay_ps) & 0x3fffffffu;
     }
     v |= intc_host_bits(c, cycle);
-    if (c->ff.top != NO_LOOP)
+    if (ff_input_read(c))
         ff_horizon(c, gpi_stable_until(c, cycle));
     return v;
 }

@@ -133,6 +133,8 @@ struct ff_probe {
     int64_t stall0;
     int64_t horizon; /* first cycle at which a read of this iteration may differ */
     bool dirty;      /* a side effect happened since arming */
+    bool have_snap;  /* regs/carry hold a snapshot: this iteration is a probe */
+    bool saw_input;  /* an input was read since the last arrival at top */
     uint32_t regs[32];
     int carry;
     uint64_t skipped;
@@ -230,6 +232,13 @@ int64_t intc_next_change(struct pru_core *c, int64_t cycle);
 
 /* ff.c */
 void ff_backward_branch(struct pru_core *c, uint32_t pc, uint32_t top, int64_t limit);
+/* An input was read; true if its horizon is wanted (a probe is running). */
+static inline bool ff_input_read(struct pru_core *c) {
+    if (c->ff.top == NO_LOOP)
+        return false;
+    c->ff.saw_input = true;
+    return c->ff.have_snap;
+}
 static inline void ff_horizon(struct pru_core *c, int64_t cycle) {
     if (cycle < c->ff.horizon)
         c->ff.horizon = cycle;

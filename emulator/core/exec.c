@@ -380,6 +380,7 @@ enum pru_stop exec_run(struct pru_core *c, int64_t limit, bool one_step) {
     if (c->fault.cause != PRU_FAULT_NONE)
         return PRU_STOP_FAULT;
     c->ff.top = NO_LOOP; /* inputs may have changed between runs */
+    c->ff.have_snap = false;
     for (;;) {
         if (!enabled(c)) {
             if (limit != INT64_MAX && c->cycle < limit && !one_step)

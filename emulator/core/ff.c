@@ -16,21 +16,29 @@
 
 #define FF_MAX_BODY 16u /* words; longer loops are not idle polls */
 
+/* A probe snapshot is taken only when the last iteration read an input:
+ * pure countdown loops never pay for it. */
 static void arm(struct pru_core *c, uint32_t top, int64_t now, uint64_t insns) {
     struct ff_probe *f = &c->ff;
+    bool snap = f->top == top && f->saw_input;
     f->top = top;
+    f->saw_input = false;
+    f->have_snap = snap;
+    f->dirty = false;
+    if (!snap)
+        return;
     f->cycle0 = now;
     f->insn0 = insns;
     f->stall0 = c->stall_total;
     f->horizon = CYCLE_NEVER;
-    f->dirty = false;
     memcpy(f->regs, c->r, sizeof f->regs);
     f->carry = c->carry;
 }
 
 static bool same_state(const struct pru_core *c) {
     const struct ff_probe *f = &c->ff;
-    return !f->dirty && f->carry == c->carry && memcmp(f->regs, c->r, 31 * sizeof c->r[0]) == 0;
+    return f->have_snap && !f->dirty && f->carry == c->carry &&
+           memcmp(f->regs, c->r, 31 * sizeof c->r[0]) == 0;
 }
 
 /* Called by a taken branch from pc back to top, before its cycle is counted. */
@@ -41,6 +49,7 @@ void ff_backward_branch(struct pru_core *c, uint32_t pc, uint32_t top, int64_t l
 
     if (pc - top >= FF_MAX_BODY) {
         f->top = NO_LOOP;
+        f->have_snap = false;
         return;
     }
     if (f->top == top && same_state(c)) {
@@ -60,6 +69,7 @@ void ff_backward_branch(struct pru_core *c, uint32_t pc, uint32_t top, int64_t l
             now += n * len;
             insns += di;
         }
+        f->saw_input = true; /* the same reads: keep probing */
     }
     arm(c, top, now, insns);
 }

@@ -246,7 +246,7 @@ static unsigned load_cycles(const struct pru_core *c, enum region rg, unsigned n
 
 /* How far ahead a value read from a block can be known unchanged (ff.c). */
 static void note_horizon(struct pru_core *c, const struct hit *h, unsigned n) {
-    if (c->ff.top == NO_LOOP)
+    if (!ff_input_read(c))
         return;
     switch (h->rg) {
     case RG_CTRL0:
