@@ -81,6 +81,9 @@ struct pd {
     uint8_t rs1, rs1sh;
     uint8_t rs2, rs2sh;
     uint8_t rdw; /* destination width in bits (carry position) */
+    /* bursts with a fixed length that stay below r30: bytes and register-file
+     * start, for the fast loop (0 bytes: take the general path) */
+    uint8_t burst_bytes, burst_rf;
     uint32_t rdmask, rs1mask, rs2mask;
     uint32_t imm;
     uint32_t target; /* absolute branch/jump target, LOOP end */

@@ -23,18 +23,16 @@ static inline void wr(uint32_t *r, const struct pd *d, uint32_t v) {
 }
 
 /* carry = bit W of the untruncated sum (W = destination width) */
-static inline uint32_t add_c(struct pru_core *c, const struct pd *d, uint64_t a, uint64_t b,
-                             uint64_t cin) {
+static inline uint32_t add_c(int *carry, const struct pd *d, uint64_t a, uint64_t b, uint64_t cin) {
     uint64_t s = a + b + cin;
-    c->carry = (int)((s >> d->rdw) & 1u);
+    *carry = (int)((s >> d->rdw) & 1u);
     return (uint32_t)s;
 }
 
 /* carry = NOT borrow: NOT bit W of the wide difference (pru-facts 1.3) */
-static inline uint32_t sub_c(struct pru_core *c, const struct pd *d, uint64_t a, uint64_t b,
-                             uint64_t bin) {
+static inline uint32_t sub_c(int *carry, const struct pd *d, uint64_t a, uint64_t b, uint64_t bin) {
     uint64_t s = a - b - bin;
-    c->carry = (int)(((s >> d->rdw) & 1u) ^ 1u);
+    *carry = (int)(((s >> d->rdw) & 1u) ^ 1u);
     return (uint32_t)s;
 }
 
@@ -105,195 +103,162 @@ static void do_slp(struct pru_core *c, const struct pd *d) {
     exec_recheck(c);
 }
 
-static inline void branch(struct pru_core *c, uint32_t pc, uint32_t target, int64_t limit) {
-    c->pc = target;
-    if (target <= pc && c->ff_on)
-        ff_backward_branch(c, pc, target, limit);
-}
-
-/* Execute the instruction at c->pc. Advances pc, cycle and insns. */
-static inline void exec_one(struct pru_core *c, const struct pd *d, int64_t limit) {
-    uint32_t *r = c->r;
-    uint32_t pc = c->pc;
-    unsigned cost = 1;
-
-    if (d->flags & PD_READS_R31)
-        r[31] = gpi_r31(c, c->cycle);
-
+/*
+ * The instructions that only touch registers, carry and PC: ALU, LDI, LMBD,
+ * jumps and quick branches. Returns false for every other kind. Works on
+ * plain variables so the fast loop can keep its state in registers.
+ */
+static inline bool exec_simple(uint32_t *restrict r, const struct pd *restrict d, uint32_t *pc,
+                               int *carry) {
+    uint32_t p = *pc;
     switch ((enum pd_kind)d->kind) {
     case K_ADD:
-        wr(r, d, add_c(c, d, rs1v(r, d), op2v(r, d), 0));
-        c->pc = pc + 1;
+        wr(r, d, add_c(carry, d, rs1v(r, d), op2v(r, d), 0));
         break;
     case K_ADC:
-        wr(r, d, add_c(c, d, rs1v(r, d), op2v(r, d), (uint64_t)c->carry));
-        c->pc = pc + 1;
+        wr(r, d, add_c(carry, d, rs1v(r, d), op2v(r, d), (uint64_t)*carry));
         break;
     case K_SUB:
-        wr(r, d, sub_c(c, d, rs1v(r, d), op2v(r, d), 0));
-        c->pc = pc + 1;
+        wr(r, d, sub_c(carry, d, rs1v(r, d), op2v(r, d), 0));
         break;
     case K_SUC:
-        wr(r, d, sub_c(c, d, rs1v(r, d), op2v(r, d), (uint64_t)!c->carry));
-        c->pc = pc + 1;
+        wr(r, d, sub_c(carry, d, rs1v(r, d), op2v(r, d), (uint64_t) !*carry));
         break;
     case K_RSB:
-        wr(r, d, sub_c(c, d, op2v(r, d), rs1v(r, d), 0));
-        c->pc = pc + 1;
+        wr(r, d, sub_c(carry, d, op2v(r, d), rs1v(r, d), 0));
         break;
     case K_RSC:
-        wr(r, d, sub_c(c, d, op2v(r, d), rs1v(r, d), (uint64_t)!c->carry));
-        c->pc = pc + 1;
+        wr(r, d, sub_c(carry, d, op2v(r, d), rs1v(r, d), (uint64_t) !*carry));
         break;
     case K_LSL:
         wr(r, d, rs1v(r, d) << (op2v(r, d) & 31u));
-        c->pc = pc + 1;
         break;
     case K_LSR:
         wr(r, d, rs1v(r, d) >> (op2v(r, d) & 31u));
-        c->pc = pc + 1;
         break;
     case K_AND:
         wr(r, d, rs1v(r, d) & op2v(r, d));
-        c->pc = pc + 1;
         break;
     case K_OR:
         wr(r, d, rs1v(r, d) | op2v(r, d));
-        c->pc = pc + 1;
         break;
     case K_XOR:
         wr(r, d, rs1v(r, d) ^ op2v(r, d));
-        c->pc = pc + 1;
         break;
     case K_NOT:
         wr(r, d, ~rs1v(r, d));
-        c->pc = pc + 1;
         break;
     case K_MIN: {
         uint32_t a = rs1v(r, d), b = op2v(r, d);
         wr(r, d, a < b ? a : b);
-        c->pc = pc + 1;
         break;
     }
     case K_MAX: {
         uint32_t a = rs1v(r, d), b = op2v(r, d);
         wr(r, d, a > b ? a : b);
-        c->pc = pc + 1;
         break;
     }
     case K_CLR:
         wr(r, d, rs1v(r, d) & ~(1u << (op2v(r, d) & 31u)));
-        c->pc = pc + 1;
         break;
     case K_SET:
         wr(r, d, rs1v(r, d) | (1u << (op2v(r, d) & 31u)));
-        c->pc = pc + 1;
         break;
     case K_NOP:
-        c->pc = pc + 1;
         break;
     case K_LDI:
         wr(r, d, d->imm);
-        c->pc = pc + 1;
         break;
     case K_LMBD:
         wr(r, d, lmbd(rs1v(r, d), d->rs1mask, op2v(r, d)));
-        c->pc = pc + 1;
         break;
     case K_JMP:
-        branch(c, pc, op2v(r, d) & 0xffffu, limit);
-        break;
+        *pc = op2v(r, d) & 0xffffu;
+        return true;
     case K_JAL: {
         uint32_t t = op2v(r, d) & 0xffffu; /* read before the link write */
-        wr(r, d, pc + 1);
-        branch(c, pc, t, limit);
-        break;
+        wr(r, d, p + 1);
+        *pc = t;
+        return true;
     }
+#define QB(cond)                                                                                   \
+    *pc = (cond) ? d->target : p + 1;                                                              \
+    return true
     case K_QBGT:
-        if (op2v(r, d) > rs1v(r, d))
-            branch(c, pc, d->target, limit);
-        else
-            c->pc = pc + 1;
-        break;
+        QB(op2v(r, d) > rs1v(r, d));
     case K_QBGE:
-        if (op2v(r, d) >= rs1v(r, d))
-            branch(c, pc, d->target, limit);
-        else
-            c->pc = pc + 1;
-        break;
+        QB(op2v(r, d) >= rs1v(r, d));
     case K_QBLT:
-        if (op2v(r, d) < rs1v(r, d))
-            branch(c, pc, d->target, limit);
-        else
-            c->pc = pc + 1;
-        break;
+        QB(op2v(r, d) < rs1v(r, d));
     case K_QBLE:
-        if (op2v(r, d) <= rs1v(r, d))
-            branch(c, pc, d->target, limit);
-        else
-            c->pc = pc + 1;
-        break;
+        QB(op2v(r, d) <= rs1v(r, d));
     case K_QBEQ:
-        if (op2v(r, d) == rs1v(r, d))
-            branch(c, pc, d->target, limit);
-        else
-            c->pc = pc + 1;
-        break;
+        QB(op2v(r, d) == rs1v(r, d));
     case K_QBNE:
-        if (op2v(r, d) != rs1v(r, d))
-            branch(c, pc, d->target, limit);
-        else
-            c->pc = pc + 1;
-        break;
+        QB(op2v(r, d) != rs1v(r, d));
     case K_QBA:
-        branch(c, pc, d->target, limit);
-        break;
+        *pc = d->target;
+        return true;
     case K_QBBS:
-        if ((rs1v(r, d) >> (op2v(r, d) & 31u)) & 1u)
-            branch(c, pc, d->target, limit);
-        else
-            c->pc = pc + 1;
-        break;
+        QB((rs1v(r, d) >> (op2v(r, d) & 31u)) & 1u);
     case K_QBBC:
-        if (!((rs1v(r, d) >> (op2v(r, d) & 31u)) & 1u))
-            branch(c, pc, d->target, limit);
-        else
-            c->pc = pc + 1;
-        break;
-    case K_LOOP:
-        do_loop(c, d);
-        break;
-    case K_LBBO:
-        cost = exec_burst(c, d, true, false);
-        break;
-    case K_SBBO:
-        cost = exec_burst(c, d, false, false);
-        break;
-    case K_LBCO:
-        cost = exec_burst(c, d, true, true);
-        break;
-    case K_SBCO:
-        cost = exec_burst(c, d, false, true);
-        break;
-    case K_XFR:
-        exec_xfr(c, d);
-        break;
-    case K_MVI:
-        exec_mvi(c, d);
-        break;
-    case K_HALT:
-        do_halt(c);
-        break;
-    case K_SLP:
-        do_slp(c, d);
-        break;
-    case K_BAD:
+        QB(!((rs1v(r, d) >> (op2v(r, d) & 31u)) & 1u));
+#undef QB
     default:
-        core_fault(c, PRU_FAULT_BAD_OPCODE, 0);
-        return;
+        return false;
     }
-    if (c->fault.cause != PRU_FAULT_NONE)
-        return; /* the faulting instruction does not complete */
+    *pc = p + 1;
+    return true;
+}
+
+/* Execute the instruction at c->pc: any kind, any flags. Advances pc,
+ * cycle and insns. */
+static void exec_one(struct pru_core *c, const struct pd *d, int64_t limit) {
+    uint32_t pc = c->pc;
+    unsigned cost = 1;
+
+    if (d->flags & PD_READS_R31)
+        c->r[31] = gpi_r31(c, c->cycle);
+
+    if (exec_simple(c->r, d, &c->pc, &c->carry)) {
+        if (c->pc <= pc && c->ff_on) /* a backward jump or branch */
+            ff_backward_branch(c, pc, c->pc, limit);
+    } else {
+        switch ((enum pd_kind)d->kind) {
+        case K_LOOP:
+            do_loop(c, d);
+            break;
+        case K_LBBO:
+            cost = exec_burst(c, d, true, false);
+            break;
+        case K_SBBO:
+            cost = exec_burst(c, d, false, false);
+            break;
+        case K_LBCO:
+            cost = exec_burst(c, d, true, true);
+            break;
+        case K_SBCO:
+            cost = exec_burst(c, d, false, true);
+            break;
+        case K_XFR:
+            exec_xfr(c, d);
+            break;
+        case K_MVI:
+            exec_mvi(c, d);
+            break;
+        case K_HALT:
+            do_halt(c);
+            break;
+        case K_SLP:
+            do_slp(c, d);
+            break;
+        default:
+            core_fault(c, PRU_FAULT_BAD_OPCODE, 0);
+            return;
+        }
+        if (c->fault.cause != PRU_FAULT_NONE)
+            return; /* the faulting instruction does not complete */
+    }
 
     if (d->flags & (PD_WRITES_R30 | PD_WRITES_R31)) {
         if (d->flags & PD_WRITES_R30)
@@ -359,19 +324,89 @@ void exec_recheck(struct pru_core *c) {
     c->stop = true;
 }
 
-/* The hot path: no trace, no single step; stops on limit, end of IRAM or
- * anything that sets c->stop. */
+/*
+ * A fixed-length burst between registers below r30 and the own data RAM:
+ * the common load/store, done in place. Returns its cycles, or 0 when the
+ * general path has to handle it (other block, fault).
+ */
+static inline unsigned burst_dram0(struct pru_core *c, const struct pd *d) {
+    bool bbo = d->kind == K_LBBO || d->kind == K_SBBO;
+    uint32_t base = bbo ? c->r[d->in.base] : const_table(c, d->in.base);
+    uint32_t addr = base + op2v(c->r, d);
+    unsigned n = d->burst_bytes;
+    if ((uint64_t)addr + n > c->dram_bytes)
+        return 0;
+    uint8_t *rf = (uint8_t *)c->r + d->burst_rf;
+    unsigned beats = (n + 3u) / 4u;
+    if (d->kind == K_LBBO || d->kind == K_LBCO) {
+        memcpy(rf, c->dram0 + addr, n);
+        return c->p.load_local_base + beats;
+    }
+    memcpy(c->dram0 + addr, rf, n);
+    ff_dirty(c);
+    unsigned cyc = beats * c->p.store_beat_cycles;
+    return cyc ? cyc : 1;
+}
+
+/*
+ * The hot path (no trace, no single step): register-only instructions run
+ * here with PC, carry and counters in local variables; everything else goes
+ * through exec_one(). Stops on limit, end of IRAM or anything setting stop.
+ */
 static void run_fast(struct pru_core *c, int64_t limit) {
     const struct pd *pd = c->pd;
     const uint32_t n = c->iram_words;
-    while (c->cycle < limit) {
-        uint32_t pc = c->pc;
-        if (pc >= n)
-            return;
-        exec_one(c, &pd[pc], limit);
+    const bool ff = c->ff_on;
+    uint32_t *r = c->r;
+    uint32_t pc = c->pc;
+    int carry = c->carry;
+    int64_t cyc = c->cycle;
+    uint64_t ins = c->insns;
+    uint32_t loop_end = c->loop_end;
+
+#define SYNC_OUT() (c->pc = pc, c->carry = carry, c->cycle = cyc, c->insns = ins)
+#define SYNC_IN()                                                                                  \
+    (pc = c->pc, carry = c->carry, cyc = c->cycle, ins = c->insns, loop_end = c->loop_end)
+    while (cyc < limit && pc < n) {
+        const struct pd *d = &pd[pc];
+        uint32_t old = pc;
+        if (d->flags == 0 && exec_simple(r, d, &pc, &carry)) {
+            if (pc <= old && ff) {
+                SYNC_OUT();
+                ff_backward_branch(c, old, pc, limit);
+                SYNC_IN();
+            }
+            cyc++;
+            ins++;
+            if (pc == loop_end) {
+                SYNC_OUT();
+                loop_back(c);
+                SYNC_IN();
+            }
+            continue;
+        }
+        unsigned cost;
+        if (d->burst_bytes && d->flags == 0 && (cost = burst_dram0(c, d)) != 0) {
+            pc++;
+            cyc += cost;
+            ins++;
+            c->stall_total += cost - 1;
+            if (pc == loop_end) {
+                SYNC_OUT();
+                loop_back(c);
+                SYNC_IN();
+            }
+            continue;
+        }
+        SYNC_OUT();
+        exec_one(c, d, limit);
+        SYNC_IN();
         if (c->stop)
-            return;
+            break;
     }
+    SYNC_OUT();
+#undef SYNC_OUT
+#undef SYNC_IN
 }
 
 enum pru_stop exec_run(struct pru_core *c, int64_t limit, bool one_step) {

@@ -281,6 +281,11 @@ static bool lookup(struct pru_core *c, uint32_t addr, unsigned n, struct hit *h,
 /* Accesses may run from one block into an adjacent one (PRU0 into PRU1
  * data RAM on an 8 KB part); the first block decides the cost. */
 int mem_load(struct pru_core *c, uint32_t addr, uint8_t *dst, unsigned n, unsigned *cycles) {
+    if ((uint64_t)addr + n <= c->dram_bytes) { /* the common case: own data RAM */
+        memcpy(dst, c->dram0 + addr, n);
+        *cycles = c->p.load_local_base + beats(n);
+        return 0;
+    }
     for (unsigned done = 0, chunk; done < n; done += chunk) {
         struct hit h;
         if (!lookup(c, addr + done, n - done, &h, &chunk)) {
@@ -300,6 +305,12 @@ int mem_load(struct pru_core *c, uint32_t addr, uint8_t *dst, unsigned n, unsign
 }
 
 int mem_store(struct pru_core *c, uint32_t addr, const uint8_t *src, unsigned n, unsigned *cycles) {
+    unsigned cyc = beats(n) * c->p.store_beat_cycles;
+    *cycles = cyc ? cyc : 1;
+    if ((uint64_t)addr + n <= c->dram_bytes) { /* the common case: own data RAM */
+        memcpy(c->dram0 + addr, src, n);
+        return 0;
+    }
     /* check the whole range first: a faulting store writes nothing */
     for (unsigned done = 0, chunk; done < n; done += chunk) {
         struct hit h;
@@ -316,8 +327,6 @@ int mem_store(struct pru_core *c, uint32_t addr, const uint8_t *src, unsigned n,
         else
             regs_store(c, &h, src + done, chunk, c->cycle + 1); /* lands next boundary */
     }
-    unsigned cyc = beats(n) * c->p.store_beat_cycles;
-    *cycles = cyc ? cyc : 1;
     return 0;
 }
 

@@ -166,6 +166,10 @@ static void decode_into(struct pd *d, const struct pru_insn *in, uint32_t pc) {
         set_op2(d, in);
         if ((op == PRU_OP_LBBO || op == PRU_OP_SBBO) && in->base == 31)
             d->flags |= PD_READS_R31;
+        if (in->len < 124 && 4u * in->rx + in->rxbyte + in->len + 1u <= 120u) {
+            d->burst_bytes = (uint8_t)(in->len + 1u);
+            d->burst_rf = (uint8_t)(4u * in->rx + in->rxbyte);
+        }
         return;
     default:
         d->kind = K_BAD; /* SCAN (V1 only) */
