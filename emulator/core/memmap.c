@@ -4,6 +4,7 @@
  */
 #include "core_priv.h"
 
+#include <stdlib.h>
 #include <string.h>
 
 enum region {
@@ -334,9 +335,25 @@ int mem_store(struct pru_core *c, uint32_t addr, const uint8_t *src, unsigned n,
 
 static bool host_find(struct pru_core *c, uint32_t addr, size_t n, struct hit *h) {
     uint32_t base = pru_soc_base(c->soc);
-    if (addr < base || n > LOCAL_LIMIT || addr - base >= LOCAL_LIMIT)
+    if (n > LOCAL_LIMIT)
         return false;
+    if (addr < base || addr - base >= LOCAL_LIMIT)
+        return find_ext(c, addr, (uint32_t)n, h) != RG_NONE;
     return find_local(c, addr - base, (uint32_t)n, true, h) != RG_NONE;
+}
+
+int pru_map_ext(struct pru_core *c, uint32_t base, uint32_t size) {
+    if (c->n_ext >= sizeof c->ext / sizeof c->ext[0] || base < LOCAL_LIMIT || size == 0 ||
+        (uint64_t)base + size > 0x100000000ull)
+        return -1;
+    for (unsigned i = 0; i < c->n_ext; i++)
+        if (base < c->ext[i].base + c->ext[i].size && c->ext[i].base < base + size)
+            return -1;
+    uint8_t *mem = calloc(1, size);
+    if (!mem)
+        return -1;
+    c->ext[c->n_ext++] = (struct ext_window){base, size, mem};
+    return 0;
 }
 
 static bool running(const struct pru_core *c) {

@@ -148,6 +148,12 @@ int pru_host_write32(struct pru_core *c, uint32_t addr, uint32_t val);
 int pru_host_read(struct pru_core *c, uint32_t addr, void *buf, size_t n);
 int pru_host_write(struct pru_core *c, uint32_t addr, const void *buf, size_t n);
 
+/* Map a RAM window of the system bus (e.g. DDR at 0x80000000 or OCMC at
+ * 0x40300000) that PRU loads/stores above 0x80000 reach, with the cost
+ * load_ext_cycles; the host reaches it at the same address. Zero-filled.
+ * Up to 4 windows. Returns 0, or -1 (overlap, below 0x80000, no memory). */
+int pru_map_ext(struct pru_core *c, uint32_t base, uint32_t size);
+
 /* Convenience: load a raw little-endian IRAM image at word 0 (PRU must be
  * halted); bytes beyond the image are zero. Returns 0 or -1 (too big). */
 int pru_load_image(struct pru_core *c, const void *image, size_t bytes);

@@ -363,11 +363,35 @@ START_TEST(r31_event_to_host_interrupt) {
 }
 END_TEST
 
+/* A system-bus RAM window: C31 = DDR, load cost load_ext_cycles. */
+START_TEST(external_window) {
+    const uint32_t w[] = {burst(PRU_OP_LBCO, 4 * 2, 31, 4, 8), alui(PRU_OP_ADD, R(2), R(2), 1),
+                          burst(PRU_OP_SBCO, 4 * 2, 31, 0, 4), halt()};
+    struct pru_core *c = pru_core_new(PRU_SOC_AM335X, NULL);
+    ck_assert_int_eq(pru_map_ext(c, 0x80000000u, 4096), 0);
+    ck_assert_int_eq(pru_map_ext(c, 0x80000800u, 4096), -1); /* overlap */
+    ck_assert_int_eq(pru_map_ext(c, 0x1000u, 4096), -1);     /* local space */
+    pru_load_image(c, w, sizeof w);
+    pru_host_write32(c, 0x80000004u, 41);
+    pru_host_write32(c, 0x80000008u, 7);
+    pru_start(c);
+    ck_assert_int_eq(pru_run(c, 1000), PRU_STOP_HALT);
+    ck_assert_int_eq(pru_cycles(c), 37 + 1 + 1 + 1);
+    uint32_t v;
+    ck_assert_int_eq(pru_host_read32(c, 0x80000000u, &v), 0);
+    ck_assert_uint_eq(v, 42);
+    ck_assert_uint_eq(pru_reg(c, 3), 7);
+    ck_assert_int_eq(pru_host_read32(c, 0x80001000u, &v), -1);
+    pru_core_free(c);
+}
+END_TEST
+
 Suite *sys_suite(void) {
     Suite *s = suite_create("core_sys");
     TCase *t = tcase_create("memmap");
     tcase_add_test(t, memmap_am335x);
     tcase_add_test(t, memmap_am437x);
+    tcase_add_test(t, external_window);
     suite_add_tcase(s, t);
     t = tcase_create("ctrl");
     tcase_add_test(t, control_start_reset_pc_halt);
