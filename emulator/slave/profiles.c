@@ -150,13 +150,8 @@ int profile_by_name(const char *name, scenario *s) {
     return -1;
 }
 
-const char *const *profile_names(void) {
-    static const char *names[NPROFILES + 1];
-    for (size_t i = 0; i < NPROFILES; i++) {
-        names[i] = table[i].name;
-    }
-    names[NPROFILES] = NULL;
-    return names;
+const char *profile_name_at(size_t i) {
+    return i < NPROFILES ? table[i].name : NULL;
 }
 
 void scenario_set_cable(scenario *s, double length_m) {

@@ -27,8 +27,8 @@ typedef struct {
 /* Fills s with the named profile. Returns 0, or -1 for an unknown name. */
 int profile_by_name(const char *name, scenario *s);
 
-/* Names of all profiles, NULL-terminated. */
-const char *const *profile_names(void);
+/* Name of profile i (0, 1, ...), NULL past the last: for --help lists. */
+const char *profile_name_at(size_t i);
 
 /* Sets both line directions' cable length. */
 void scenario_set_cable(scenario *s, double length_m);
