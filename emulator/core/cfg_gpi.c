@@ -127,9 +127,10 @@ static void shift_apply(struct pru_core *c, int64_t k_from, int64_t k_to) {
 }
 
 void gpi_sync(struct pru_core *c, int64_t cycle) {
-    if (gpi_mode(c) != MODE_SHIFT)
-        return;
+    if (gpi_mode(c) != MODE_SHIFT || cycle < c->sh.next_edge_cycle)
+        return; /* no new edge since the last evaluation */
     int64_t k = last_edge(c, cycle * PRU_PS_PER_CYCLE);
+    c->sh.next_edge_cycle = cycle_of(edge_time(c, k + 1));
     if (k > c->sh.k_done) {
         shift_apply(c, c->sh.k_done + 1, k);
         c->sh.k_done = k;
@@ -240,6 +241,7 @@ static void gpcfg0_write(struct pru_core *c, uint32_t v, uint32_t bm, int64_t at
         c->sh.t_cfg_ps = at * PRU_PS_PER_CYCLE;
         c->sh.period_ps = 1250 * (int64_t)(2 + c0) * (int64_t)(2 + c1);
         c->sh.k_done = 0;
+        c->sh.next_edge_cycle = 0;
     }
     if ((bm & GP_SB) && (v & GP_SB)) { /* write 1: clear SB and the register */
         c->sh.sb = false;

@@ -42,11 +42,6 @@ enum pd_kind {
     K_JAL,
     K_LDI,
     K_LMBD,
-    K_HALT,
-    K_MVI,
-    K_XFR,
-    K_LOOP,
-    K_SLP,
     K_QBGT,
     K_QBGE,
     K_QBLT,
@@ -55,12 +50,18 @@ enum pd_kind {
     K_QBNE,
     K_QBA,
     K_QBBS,
-    K_QBBC,
+    K_QBBC, /* the kinds up to here only touch registers, carry and PC */
+    K_HALT,
+    K_MVI,
+    K_XFR,
+    K_LOOP,
+    K_SLP,
     K_LBBO,
     K_SBBO,
     K_LBCO,
     K_SBCO,
     K_BAD,
+    K_SLOW, /* fast loop: hand over to exec_one() */
 };
 
 /* Flags of a predecoded instruction that need work outside the handler. */
@@ -75,6 +76,7 @@ enum pd_kind {
  * value in imm, so "field | imm" reads either form without a branch.
  */
 struct pd {
+    uint8_t fast; /* kind for the fast loop: K_SLOW if flags or not register-only */
     uint8_t kind;
     uint8_t flags;
     uint8_t rd, rdsh;
@@ -92,10 +94,11 @@ struct pd {
 
 /* Lazily evaluated 28-bit GPI shift register (cfg_gpi.c). */
 struct gpi_shift {
-    int64_t t_cfg_ps;  /* reference for edge times */
-    int64_t period_ps; /* shift period, exact integer ps */
-    int64_t k_done;    /* edges already applied (edge k at t_cfg + phase + k*period) */
-    uint32_t reg;      /* 28 bits */
+    int64_t t_cfg_ps;        /* reference for edge times */
+    int64_t period_ps;       /* shift period, exact integer ps */
+    int64_t k_done;          /* edges already applied (edge k at t_cfg + phase + k*period) */
+    int64_t next_edge_cycle; /* first cycle that sees edge k_done + 1 */
+    uint32_t reg;            /* 28 bits */
     bool sb;
     int64_t cnt16_k; /* edge that captured the start bit; Cnt_16 at +16j */
 };

@@ -108,10 +108,13 @@ static void do_slp(struct pru_core *c, const struct pd *d) {
  * jumps and quick branches. Returns false for every other kind. Works on
  * plain variables so the fast loop can keep its state in registers.
  */
-static inline bool exec_simple(uint32_t *restrict r, const struct pd *restrict d, uint32_t *pc,
-                               int *carry) {
+/* always_inline: the fast loop's state must stay in registers */
+static inline __attribute__((always_inline)) bool exec_simple(uint32_t *restrict r,
+                                                              const struct pd *restrict d,
+                                                              unsigned kind, uint32_t *pc,
+                                                              int *carry) {
     uint32_t p = *pc;
-    switch ((enum pd_kind)d->kind) {
+    switch ((enum pd_kind)kind) {
     case K_ADD:
         wr(r, d, add_c(carry, d, rs1v(r, d), op2v(r, d), 0));
         break;
@@ -213,14 +216,15 @@ static inline bool exec_simple(uint32_t *restrict r, const struct pd *restrict d
 
 /* Execute the instruction at c->pc: any kind, any flags. Advances pc,
  * cycle and insns. */
-static void exec_one(struct pru_core *c, const struct pd *d, int64_t limit) {
+static __attribute__((noinline)) void exec_one(struct pru_core *c, const struct pd *d,
+                                               int64_t limit) {
     uint32_t pc = c->pc;
     unsigned cost = 1;
 
     if (d->flags & PD_READS_R31)
         c->r[31] = gpi_r31(c, c->cycle);
 
-    if (exec_simple(c->r, d, &c->pc, &c->carry)) {
+    if (exec_simple(c->r, d, d->kind, &c->pc, &c->carry)) {
         if (c->pc <= pc && c->ff_on) /* a backward jump or branch */
             ff_backward_branch(c, pc, c->pc, limit);
     } else {
@@ -370,7 +374,7 @@ static void run_fast(struct pru_core *c, int64_t limit) {
     while (cyc < limit && pc < n) {
         const struct pd *d = &pd[pc];
         uint32_t old = pc;
-        if (d->flags == 0 && exec_simple(r, d, &pc, &carry)) {
+        if (exec_simple(r, d, d->fast, &pc, &carry)) {
             if (pc <= old && ff) {
                 SYNC_OUT();
                 ff_backward_branch(c, old, pc, limit);

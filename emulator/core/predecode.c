@@ -183,10 +183,12 @@ void predecode_word(struct pru_core *c, uint32_t pc) {
     struct pru_insn in;
     if (pru_decode(c->iram0[pc], &in) != 0) {
         d->kind = K_BAD;
+        d->fast = K_SLOW;
         return;
     }
     d->in = in;
     decode_into(d, &in, pc);
+    d->fast = d->flags == 0 && d->kind <= K_QBBC ? d->kind : K_SLOW;
 }
 
 void predecode_all(struct pru_core *c) {
