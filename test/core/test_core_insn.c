@@ -404,7 +404,21 @@ START_TEST(mvi_pointer_forms) {
     ck_assert_uint_eq(REG(c, 1) & 0xff, 18);
     ck_assert_uint_eq(REG(c, 10), 0x7777);
     ck_assert_uint_eq((REG(c, 1) >> 8) & 0xff, 44);
+    ck_assert_int_eq(pru_cycles(c), 10); /* one cycle each */
     /* (the predecrement wrote r31 at 252 & 0x7f = 124: an R31 event write) */
+    pru_core_free(c);
+}
+END_TEST
+
+/* ILOOP behaves like LOOP; the S-variants of XFR like the plain ones. */
+START_TEST(iloop_and_s_xfr) {
+    uint32_t il = enc((struct pru_insn){.op = PRU_OP_ILOOP, .loop_end = 2, .io = 1, .imm = 2});
+    struct pru_core *c =
+        RUN(il, alui(PRU_OP_ADD, R(1), R(1), 1), ldi(R(2), 0x5A), xfr(PRU_OP_SXOUT, 11, 8, 4),
+            ldi(R(2), 0), xfr(PRU_OP_SXIN, 11, 8, 4), halt());
+    ck_assert_uint_eq(REG(c, 1), 3);
+    ck_assert_uint_eq(REG(c, 2), 0x5A);
+    ck_assert_int_eq(pru_cycles(c), 1 + 3 + 5);
     pru_core_free(c);
 }
 END_TEST
@@ -428,6 +442,7 @@ Suite *insn_suite(void) {
     tcase_add_test(t, qbb_bits);
     tcase_add_test(t, qb_offset_range_ends);
     tcase_add_test(t, loop_immediate_register_zero);
+    tcase_add_test(t, iloop_and_s_xfr);
     suite_add_tcase(s, t);
     t = tcase_create("mem");
     tcase_add_test(t, loads_and_stores_cost);

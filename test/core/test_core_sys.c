@@ -386,6 +386,52 @@ START_TEST(external_window) {
 }
 END_TEST
 
+START_TEST(run_until_time_and_cycle) {
+    const uint32_t w[] = {qba(0)};
+    struct pru_core *c = core_with(PRU_SOC_AM335X, w, 1);
+    ck_assert_int_eq(pru_run_until_time(c, 12345), PRU_STOP_LIMIT);
+    ck_assert_int_eq(pru_cycles(c), 3); /* cycles starting before 12345 ps */
+    ck_assert_int_eq(pru_time_ps(c), 15000);
+    ck_assert_int_eq(pru_run_until_cycle(c, 10), PRU_STOP_LIMIT);
+    ck_assert_uint_eq(pru_instructions(c), 10);
+    ck_assert_int_eq(pru_step(c), PRU_STOP_STEP);
+    ck_assert_int_eq(pru_cycles(c), 11);
+    pru_core_free(c);
+}
+END_TEST
+
+/* wbc-style poll on a pin: fast-forward gives the same cycle as stepping. */
+START_TEST(pin_poll_fast_forward) {
+    int64_t cyc[2];
+    for (int ff = 0; ff < 2; ff++) {
+        struct pru_params p;
+        pru_params_default(&p);
+        p.fast_forward = ff;
+        struct rec r = {.t_high = 1234567891};
+        struct pru_pins pins = {&r, rec_in, rec_next, rec_out};
+        const uint32_t w[] = {ldi(R(1), 0), alui(PRU_OP_ADD, R(2), R(2), 0),
+                              qbi(PRU_OP_QBBC, -1, R(31), 3), alu(PRU_OP_OR, R(3), R(31), R(31)),
+                              halt()};
+        struct pru_core *c = pru_core_new(PRU_SOC_AM335X, &p);
+        pru_load_image(c, w, sizeof w);
+        pru_set_pins(c, &pins);
+        pru_start(c);
+        ck_assert_int_eq(pru_run(c, 1000000), PRU_STOP_HALT);
+        cyc[ff] = pru_cycles(c);
+        ck_assert_uint_eq(pru_reg(c, 3), 8);
+        ck_assert_uint_eq(pru_instructions(c), (uint64_t)pru_cycles(c));
+        if (ff)
+            ck_assert_uint_gt(pru_ff_skipped(c), 100000);
+        pru_core_free(c);
+    }
+    ck_assert_int_eq(cyc[0], cyc[1]);
+    /* visible from cycle ceil((t_high + 10000) / 5000) = 246916; the poll
+     * reads at odd cycles 2, 4, ... (2-cycle loop from cycle 1) */
+    ck_assert_int_ge(cyc[0], 246916 + 3);
+    ck_assert_int_le(cyc[0], 246916 + 4);
+}
+END_TEST
+
 Suite *sys_suite(void) {
     Suite *s = suite_create("core_sys");
     TCase *t = tcase_create("memmap");
@@ -405,6 +451,8 @@ Suite *sys_suite(void) {
     tcase_add_test(t, slp_wakeup_and_input_delay);
     tcase_add_test(t, slp_woken_by_host);
     tcase_add_test(t, r31_event_to_host_interrupt);
+    tcase_add_test(t, run_until_time_and_cycle);
+    tcase_add_test(t, pin_poll_fast_forward);
     suite_add_tcase(s, t);
     return s;
 }
