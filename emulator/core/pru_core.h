@@ -63,7 +63,17 @@ struct pru_params {
 
 void pru_params_default(struct pru_params *p);
 
-/* Connection to the outside world (cable + encoder models). */
+/*
+ * Connection to the outside world (cable + encoder models).
+ *
+ * Ordering the core guarantees: inputs_at() times never decrease; an
+ * outputs_changed() time is always later than every inputs_at() time asked
+ * so far. With the bench's link model (emulator/slave/link_model.h) the
+ * adapter is direct:
+ *   inputs_at(t)          -> link_sl(l, t) << SL_BIT (bit 0 for shift mode)
+ *   next_input_change(t)  -> link_next_change(l)  (a time <= t is tolerated)
+ *   outputs_changed(t, v) -> link_ma(l, t, (v >> MA_BIT) & 1) when that bit moved
+ */
 struct pru_pins {
     void *ctx;
     /* Input levels of R31[29:0] (bit 0 is also the shift-mode DATAIN) at t_ps.
