@@ -68,7 +68,6 @@ enum pd_kind {
 #define PD_READS_R31  0x01u /* refresh R31 from the inputs before executing */
 #define PD_WRITES_R30 0x02u /* tell the pins if R30 changed */
 #define PD_WRITES_R31 0x04u /* an R31 write raises system events */
-#define PD_SET_R31SRC 0x08u /* SET with R31 as source reads 0 */
 
 /*
  * One IRAM word decoded once. Register operands are (reg, shift, mask);
@@ -137,10 +136,12 @@ struct ff_probe {
     int64_t cycle0;
     uint64_t insn0;
     int64_t stall0;
-    int64_t horizon; /* first cycle at which a read of this iteration may differ */
-    bool dirty;      /* a side effect happened since arming */
-    bool have_snap;  /* regs/carry hold a snapshot: this iteration is a probe */
-    bool saw_input;  /* an input was read since the last arrival at top */
+    int64_t horizon;  /* first cycle at which a read of this iteration may differ */
+    bool dirty;       /* a side effect happened since arming */
+    bool have_snap;   /* regs/carry hold a snapshot: this iteration is a probe */
+    bool saw_input;   /* an input was read since the last arrival at top */
+    unsigned fails;   /* probes in a row that found the state changed */
+    unsigned backoff; /* arrivals to let pass before the next probe */
     uint32_t regs[32];
     int carry;
     uint64_t skipped;

@@ -16,11 +16,15 @@
 
 #define FF_MAX_BODY 16u /* words; longer loops are not idle polls */
 
-/* A probe snapshot is taken only when the last iteration read an input:
- * pure countdown loops never pay for it. */
+/* A probe snapshot is taken only when the last iteration read an input
+ * (pure countdown loops never pay for it) and no backoff is pending. */
 static void arm(struct pru_core *c, uint32_t top, int64_t now, uint64_t insns) {
     struct ff_probe *f = &c->ff;
-    bool snap = f->top == top && f->saw_input;
+    if (f->top != top)
+        f->fails = f->backoff = 0;
+    bool snap = f->top == top && f->saw_input && f->backoff == 0;
+    if (f->backoff)
+        f->backoff--;
     f->top = top;
     f->saw_input = false;
     f->have_snap = snap;
@@ -52,7 +56,12 @@ void ff_backward_branch(struct pru_core *c, uint32_t pc, uint32_t top, int64_t l
         f->have_snap = false;
         return;
     }
-    if (f->top == top && same_state(c)) {
+    if (f->top == top && f->have_snap && !same_state(c)) {
+        /* a busy loop, not an idle one: probe it less and less often */
+        f->fails = f->fails < 10 ? f->fails + 1 : 10;
+        f->backoff = 1u << f->fails;
+    } else if (f->top == top && same_state(c)) {
+        f->fails = 0;
         int64_t len = now - f->cycle0;
         int64_t n = (limit - now) / len;
         if (f->horizon != CYCLE_NEVER) {
