@@ -364,6 +364,8 @@ int pru_host_read(struct pru_core *c, uint32_t addr, void *buf, size_t n) {
     struct hit h;
     if (!host_find(c, addr, n, &h))
         return -1;
+    if (h.rg == RG_IRAM0 && running(c))
+        return -2; /* locked out while RUNSTATE is 1, as on the SoC */
     if (h.mem)
         memcpy(buf, h.mem, n);
     else

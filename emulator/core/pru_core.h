@@ -152,7 +152,8 @@ uint32_t pru_shared_bytes(const struct pru_core *c);
 
 /* Host access through global addresses (pru_soc_base() + offset). Word
  * accesses must be 4-byte aligned. Return 0, -1 for an unmapped address,
- * -2 for an IRAM write while the PRU runs (also recorded as a fault). */
+ * -2 for an IRAM access while the PRU runs (a write is also recorded as a
+ * fault). */
 int pru_host_read32(struct pru_core *c, uint32_t addr, uint32_t *val);
 int pru_host_write32(struct pru_core *c, uint32_t addr, uint32_t val);
 int pru_host_read(struct pru_core *c, uint32_t addr, void *buf, size_t n);

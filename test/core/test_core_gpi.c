@@ -288,6 +288,27 @@ START_TEST(shift_poll_fast_forward_exact) {
 }
 END_TEST
 
+/* Cnt_16 raises system event 1; mapped to host 0 it shows in R31[30]. */
+START_TEST(cnt16_event_to_intc) {
+    struct pru_core *c = pru_core_new(PRU_SOC_AM335X, NULL);
+    pru_host_write32(c, BASE + 0x20010u, 1); /* GER */
+    pru_host_write32(c, BASE + 0x20028u, 1); /* EISR event 1 (channel 0 -> host 0) */
+    pru_host_write32(c, BASE + 0x20034u, 0); /* HIEISR host 0 */
+    pru_set_inputs(c, 1);
+    pru_host_write32(c, GPCFG0, 2u | 3u << 3); /* 80 MHz: edges at 12.5 ns * k */
+    pru_run_until_cycle(c, 42);                /* edge 16: 15 after the SB edge */
+    ck_assert_uint_eq(pru_reg(c, 31) >> 30, 0);
+    pru_run_until_cycle(c, 43);                   /* edge 17 */
+    ck_assert_uint_eq(pru_reg(c, 31) >> 28, 0x7); /* host 0, SB, Cnt_16 */
+    pru_run_until_cycle(c, 45);
+    ck_assert_uint_eq(pru_reg(c, 31) >> 28, 0x6); /* Cnt_16 gone, event latched */
+    uint32_t v;
+    pru_host_read32(c, BASE + 0x20200u, &v);
+    ck_assert_uint_eq(v, 2);
+    pru_core_free(c);
+}
+END_TEST
+
 START_TEST(unsupported_modes_fault) {
     for (unsigned mode = 1; mode <= 3; mode += 2) {
         struct pru_core *c = pru_core_new(PRU_SOC_AM335X, NULL);
@@ -310,6 +331,7 @@ Suite *gpi_suite(void) {
     tcase_add_test(t, shift_read_by_instructions);
     tcase_add_test(t, direct_mode_delay);
     tcase_add_test(t, shift_poll_fast_forward_exact);
+    tcase_add_test(t, cnt16_event_to_intc);
     tcase_add_test(t, unsupported_modes_fault);
     suite_add_tcase(s, t);
     return s;

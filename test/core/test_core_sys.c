@@ -105,7 +105,8 @@ START_TEST(control_start_reset_pc_halt) {
     uint32_t v;
     pru_host_read32(c, AM335X + 0x22000, &v);
     ck_assert_uint_eq(v, (3u << 16) | PRU_CTRL_ENABLE | PRU_CTRL_RUNSTATE | 1u);
-    ck_assert_int_eq(pru_host_write32(c, AM335X + 0x34000, 0), -2); /* IRAM while running */
+    ck_assert_int_eq(pru_host_read32(c, AM335X + 0x34000, &v), -2); /* IRAM while running */
+    ck_assert_int_eq(pru_host_write32(c, AM335X + 0x34000, 0), -2);
     ck_assert_int_eq(pru_run(c, 100), PRU_STOP_FAULT);
     ck_assert_int_eq(pru_get_fault(c)->cause, PRU_FAULT_IRAM_RUNNING);
     pru_core_free(c);
