@@ -61,7 +61,8 @@ enum pd_kind {
     K_LBCO,
     K_SBCO,
     K_BAD,
-    K_SLOW, /* fast loop: hand over to exec_one() */
+    K_SLOW,     /* fast loop: hand over to exec_one() */
+    K_R31_READ, /* fast loop: refresh R31, then run `kind` */
 };
 
 /* Flags of a predecoded instruction that need work outside the handler. */

@@ -374,7 +374,12 @@ static void run_fast(struct pru_core *c, int64_t limit) {
     while (cyc < limit && pc < n) {
         const struct pd *d = &pd[pc];
         uint32_t old = pc;
-        if (exec_simple(r, d, d->fast, &pc, &carry)) {
+        bool done = exec_simple(r, d, d->fast, &pc, &carry);
+        if (!done && d->fast == K_R31_READ) { /* kept off the path of the others */
+            r[31] = gpi_r31(c, cyc);
+            done = exec_simple(r, d, d->kind, &pc, &carry);
+        }
+        if (done) {
             if (pc <= old && ff) {
                 SYNC_OUT();
                 ff_backward_branch(c, old, pc, limit);

@@ -188,7 +188,10 @@ void predecode_word(struct pru_core *c, uint32_t pc) {
     }
     d->in = in;
     decode_into(d, &in, pc);
-    d->fast = d->flags == 0 && d->kind <= K_QBBC ? d->kind : K_SLOW;
+    d->fast = d->kind > K_QBBC           ? K_SLOW
+              : d->flags == 0            ? d->kind
+              : d->flags == PD_READS_R31 ? K_R31_READ
+                                         : K_SLOW;
 }
 
 void predecode_all(struct pru_core *c) {
