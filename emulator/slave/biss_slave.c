@@ -33,30 +33,37 @@ unsigned biss_slave_cfg_bits(const biss_slave_cfg *s) {
            biss_crc_width(s->crc_poly);
 }
 
+const char *biss_slave_cfg_check(const biss_slave_cfg *s) {
+    if (s->id > 7) {
+        return "id: must be 0..7";
+    }
+    if (s->pos_bits < 1 || s->pos_bits > 64) {
+        return "position_bits: must be 1..64";
+    }
+    if (s->fill_bits > 64) {
+        return "fill_bits: must be 0..64";
+    }
+    if (s->lc_bits > 32) {
+        return "life_counter_bits: must be 0..32";
+    }
+    if (s->crc_poly != 0 &&
+        (biss_crc_width(s->crc_poly) < 1 || s->crc_poly > 0x1ffffu || !(s->crc_poly & 1u))) {
+        return "crc_poly: must be an odd polynomial of degree 1..16 (with its top term)";
+    }
+    if (s->crc_poly != 0 && (s->crc_start >> biss_crc_width(s->crc_poly)) != 0) {
+        return "crc_start: wider than the CRC";
+    }
+    return NULL;
+}
+
 const char *biss_chain_cfg_check(const biss_chain_cfg *c) {
     if (c->n < 1 || c->n > BISS_MAX_SLAVES) {
         return "slaves: a chain has 1 to 8 slaves";
     }
     for (unsigned i = 0; i < c->n; i++) {
-        const biss_slave_cfg *s = &c->s[i];
-        if (s->id > 7) {
-            return "id: must be 0..7";
-        }
-        if (s->pos_bits < 1 || s->pos_bits > 64) {
-            return "position_bits: must be 1..64";
-        }
-        if (s->fill_bits > 64) {
-            return "fill_bits: must be 0..64";
-        }
-        if (s->lc_bits > 32) {
-            return "life_counter_bits: must be 0..32";
-        }
-        if (s->crc_poly != 0 &&
-            (biss_crc_width(s->crc_poly) < 1 || s->crc_poly > 0x1ffffu || !(s->crc_poly & 1u))) {
-            return "crc_poly: must be an odd polynomial of degree 1..16 (with its top term)";
-        }
-        if (s->crc_poly != 0 && (s->crc_start >> biss_crc_width(s->crc_poly)) != 0) {
-            return "crc_start: wider than the CRC";
+        const char *e = biss_slave_cfg_check(&c->s[i]);
+        if (e) {
+            return e;
         }
     }
     if (c->out_delay_ps <= 0) {
@@ -66,12 +73,12 @@ const char *biss_chain_cfg_check(const biss_chain_cfg *c) {
         return "busy_ns: must be >= 0";
     }
     if (c->timeout_mode == BISS_TIMEOUT_FIXED && c->timeout_ps <= 0) {
-        return "timeout_ns: must be > 0";
+        return "timeout.ns: must be > 0";
     }
     if (c->timeout_mode == BISS_TIMEOUT_ADAPTIVE &&
         (c->adaptive_factor <= 0.0 || c->adaptive_max_ps <= 0 ||
          c->adaptive_min_ps > c->adaptive_max_ps)) {
-        return "timeout: adaptive needs factor > 0 and 0 <= min <= max, max > 0";
+        return "timeout: adaptive needs factor > 0 and 0 <= min_ns <= max_ns, max_ns > 0";
     }
     return NULL;
 }

@@ -74,7 +74,8 @@ void biss_slave_cfg_default(biss_slave_cfg *s, uint8_t id);
 void biss_chain_cfg_default(biss_chain_cfg *c);
 /* Bits a slave puts on the wire per frame (position .. CRC). */
 unsigned biss_slave_cfg_bits(const biss_slave_cfg *s);
-/* Checks a configuration; returns NULL or a message naming the problem. */
+/* Check a configuration; return NULL or a message naming the field. */
+const char *biss_slave_cfg_check(const biss_slave_cfg *s);
 const char *biss_chain_cfg_check(const biss_chain_cfg *c);
 
 /* What one slave sent in one frame. */

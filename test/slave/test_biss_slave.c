@@ -318,6 +318,87 @@ START_TEST(chain_cds_from_addressed_slave) {
 }
 END_TEST
 
+/* Runs one CDM per frame and collects the CDS seen in each frame. */
+static void run_cdm(bench *x, const char *cdm, int nclk, char *cds) {
+    int bits[128];
+    size_t n = strlen(cdm);
+    for (size_t i = 0; i < n; i++) {
+        rig_frame(&x->r, nclk, cdm[i] == '1', 22 * US, 25 * US, bits);
+        cds[i] = (char)('0' + bits[3]);
+    }
+    cds[n] = '\0';
+}
+
+START_TEST(register_write_over_frames_then_read_back) {
+    biss_chain_cfg *c = cfg_12bit(0);
+    bench *x = bench_new(c, 500 * NS);
+    char cds[80];
+    /* write 0x3A to 0x10: header 10000010000 CRC 0011, RWS 011, data,
+     * CRC4 sent 1101, P, end; then read it back */
+    run_cdm(x,
+            "00000000000000"
+            "1"
+            "10000010000"
+            "0011"
+            "011"
+            "00111010"
+            "1101"
+            "00",
+            24, cds);
+    ck_assert_str_eq(cds + 31, "011"
+                               "00111010"
+                               "1101"
+                               "0");
+    ck_assert_uint_eq(regfile_read(&x->b.cfg.s[0].regs, 0x10), 0x3a);
+    run_cdm(x,
+            "00000000000000"
+            "1"
+            "10000010000"
+            "0011"
+            "101"
+            "00000000"
+            "0000"
+            "000",
+            24, cds);
+    ck_assert_str_eq(cds + 31, "101"
+                               "00111010"
+                               "1101"
+                               "0"
+                               "0");
+    bench_free(x);
+}
+END_TEST
+
+/* A command addressed to ID 2 in a 3-slave chain: only slave 2 answers in
+ * IDA slot 2 and executes it. */
+START_TEST(command_in_chain_over_frames) {
+    biss_chain_cfg c;
+    biss_chain_cfg_default(&c);
+    c.n = 3;
+    bench *x = bench_new(&c, 500 * NS);
+    char cds[80];
+    run_cdm(x,
+            "00000000000000"
+            "1"
+            "0"
+            "00100000"
+            "10"
+            "0111"
+            "00000000"
+            "0"
+            "0",
+            3 * 20 + 6, cds);
+    ck_assert_str_eq(cds + 14 + 16, "001"
+                                    "00000"
+                                    "0"
+                                    "0");
+    ck_assert_uint_eq(x->b.ctrl[2].commands, 1);
+    ck_assert_int_eq(x->b.ctrl[2].last_cmd, 2);
+    ck_assert_uint_eq(x->b.ctrl[0].commands + x->b.ctrl[1].commands, 0);
+    bench_free(x);
+}
+END_TEST
+
 START_TEST(config_check_messages) {
     biss_chain_cfg c;
     biss_chain_cfg_default(&c);
@@ -350,6 +431,8 @@ int main(void) {
     tcase_add_test(tc, register_read_over_frames);
     tcase_add_test(tc, daisy_chain_three_slaves);
     tcase_add_test(tc, chain_cds_from_addressed_slave);
+    tcase_add_test(tc, register_write_over_frames_then_read_back);
+    tcase_add_test(tc, command_in_chain_over_frames);
     tcase_add_test(tc, config_check_messages);
     suite_add_tcase(s, tc);
     SRunner *sr = srunner_create(s);
