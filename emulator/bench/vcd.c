@@ -3,8 +3,7 @@
 
 #include <string.h>
 
-int vcd_open(struct vcd_writer *w, const char *path)
-{
+int vcd_open(struct vcd_writer *w, const char *path) {
     memset(w, 0, sizeof(*w));
     w->f = fopen(path, "w");
     if (!w->f) {
@@ -14,8 +13,7 @@ int vcd_open(struct vcd_writer *w, const char *path)
     return 0;
 }
 
-int vcd_add_wire(struct vcd_writer *w, const char *name)
-{
+int vcd_add_wire(struct vcd_writer *w, const char *name) {
     if (w->started || w->nwires >= VCD_MAX_WIRES || strlen(name) >= sizeof(w->names[0])) {
         return -1;
     }
@@ -24,13 +22,11 @@ int vcd_add_wire(struct vcd_writer *w, const char *name)
 }
 
 /* Identifier codes are single printable characters starting at '!'. */
-static char wire_code(int idx)
-{
+static char wire_code(int idx) {
     return (char)('!' + idx);
 }
 
-static void write_header(struct vcd_writer *w)
-{
+static void write_header(struct vcd_writer *w) {
     fprintf(w->f, "$version pru-biss bench $end\n$timescale 1ps $end\n$scope module bench $end\n");
     for (int i = 0; i < w->nwires; i++) {
         fprintf(w->f, "$var wire 1 %c %s $end\n", wire_code(i), w->names[i]);
@@ -44,8 +40,7 @@ static void write_header(struct vcd_writer *w)
     w->last_t = 0;
 }
 
-void vcd_change(struct vcd_writer *w, int64_t t_ps, int idx, int level)
-{
+void vcd_change(struct vcd_writer *w, int64_t t_ps, int idx, int level) {
     if (!w->f || idx < 0 || idx >= w->nwires) {
         return;
     }
@@ -67,8 +62,7 @@ void vcd_change(struct vcd_writer *w, int64_t t_ps, int idx, int level)
     w->level[idx] = (signed char)level;
 }
 
-int vcd_close(struct vcd_writer *w, int64_t end_ps)
-{
+int vcd_close(struct vcd_writer *w, int64_t end_ps) {
     if (!w->f) {
         return 0;
     }

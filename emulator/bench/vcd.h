@@ -16,7 +16,7 @@ struct vcd_writer {
     FILE *f;
     int nwires;
     int started;
-    int64_t last_t;           /* last time stamp written */
+    int64_t last_t; /* last time stamp written */
     char names[VCD_MAX_WIRES][32];
     signed char level[VCD_MAX_WIRES]; /* last level written, -1 none */
 };
