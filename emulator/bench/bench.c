@@ -36,6 +36,7 @@ struct bench {
     uint64_t cap_frame;
     waveform cap[4];
     sim_ps cap_t0, cap_last; /* first and last MA edge of the frame, at the master */
+    sim_ps cap_end;          /* when the frame was over on every pin */
 
     uint64_t frame_limit; /* frames from this number on are not measured */
     struct bench_stats st;
@@ -144,6 +145,7 @@ static void capture_update(struct bench *b, sim_ps t) {
     } else if (b->cap_state == CAP_ON && slave_frames(b) > b->cap_frame) {
         sim_ps end = capture_end(b);
         if (end >= 0 && t > end) {
+            b->cap_end = end;
             b->cap_state = CAP_DONE;
         }
     }
@@ -311,7 +313,8 @@ enum pru_stop bench_run_frames(struct bench *b, uint64_t frames, int64_t max_ps,
             progress(ctx, slave_frames(b), frames);
         }
     }
-    return why;
+    /* all frames done: whatever else the last step met is past the run */
+    return slave_frames(b) >= frames ? PRU_STOP_LIMIT : why;
 }
 
 const struct bench_stats *bench_stats(struct bench *b) {
@@ -340,7 +343,7 @@ void bench_capture_frame(struct bench *b, uint64_t k) {
 
 int bench_capture_get(struct bench *b, waveform *pins[4], sim_ps *t0, sim_ps *t1) {
     capture_update(b, eq_now(&b->link.q));
-    sim_ps end = capture_end(b);
+    sim_ps end = b->cap_end;
     if (b->cap_state != CAP_DONE || b->cap_t0 < 0 || end <= b->cap_t0) {
         return -1;
     }

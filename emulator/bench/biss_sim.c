@@ -412,6 +412,25 @@ static void print_json(struct bench *b, const struct options *o, enum pru_stop w
     cJSON_Delete(j);
 }
 
+/* What the encoder(s) sent in the last closed frame. */
+static void print_last_frame(link_model *l) {
+    uint64_t n = link_frames(l);
+    if (n == 0) {
+        return;
+    }
+    if (l->sc.protocol == SCENARIO_SSI) {
+        const ssi_frame_record *r = ssi_slave_record(&l->ssi, n - 1);
+        printf("last frame sent      position %llu\n", r ? (unsigned long long)r->position : 0);
+        return;
+    }
+    const biss_frame_record *r = biss_slave_record(&l->biss, n - 1);
+    for (unsigned i = 0; r && i < l->sc.biss.n; i++) {
+        printf("last frame sent      slave %u: position %llu (0x%llx) nE=%d nW=%d crc=0x%x\n", i,
+               (unsigned long long)r->s[i].position, (unsigned long long)r->s[i].position,
+               r->s[i].nE, r->s[i].nW, r->s[i].crc);
+    }
+}
+
 static void print_text(struct bench *b, const struct options *o, enum pru_stop why, double secs) {
     const struct bench_stats *st = bench_stats(b);
     link_model *l = bench_link(b);
@@ -428,6 +447,7 @@ static void print_text(struct bench *b, const struct options *o, enum pru_stop w
     }
     printf("PRU cycles           %lld in %.3f s host time\n", (long long)pru_cycles(bench_core(b)),
            secs);
+    print_last_frame(l);
 }
 
 static int write_svg(struct bench *b, const struct options *o) {
