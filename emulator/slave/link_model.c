@@ -2,7 +2,13 @@
 
 #include <string.h>
 
-/* Fan-out points: a pin is both recorded and passed on. */
+/* Fan-out points: a pin is recorded, passed on, and shown to the observer. */
+
+static void observe(link_model *l, link_pin pin, sim_ps t, int level) {
+    if (l->observer) {
+        l->observer(l->observer_ctx, pin, t, level);
+    }
+}
 
 static void at_ma_slave(void *ctx, sim_ps t, int level) {
     link_model *l = ctx;
@@ -12,12 +18,25 @@ static void at_ma_slave(void *ctx, sim_ps t, int level) {
     } else {
         biss_slave_ma_edge(&l->biss, t, level);
     }
+    observe(l, LINK_MA_SLAVE, t, level);
 }
 
 static void at_sl_slave(void *ctx, sim_ps t, int level) {
     link_model *l = ctx;
     waveform_append(&l->sl_slave, t, level);
     line_dir_input(&l->sl_line, t, level);
+    observe(l, LINK_SL_SLAVE, t, level);
+}
+
+static void at_sl_master(void *ctx, sim_ps t, int level) {
+    link_model *l = ctx;
+    waveform_append(&l->sl_master, t, level);
+    observe(l, LINK_SL_MASTER, t, level);
+}
+
+void link_set_observer(link_model *l, link_pin_fn fn, void *ctx) {
+    l->observer = fn;
+    l->observer_ctx = ctx;
 }
 
 int link_init(link_model *l, const scenario *sc, char *err, size_t errlen) {
@@ -35,7 +54,7 @@ int link_init(link_model *l, const scenario *sc, char *err, size_t errlen) {
     sim_edge_sink from_slave = {at_sl_slave, l};
     line_dir_init(&l->ma_line, &l->sc.ma_line, &l->q, sim_rng_derive(sc->seed, 1), 1, to_slave);
     line_dir_init(&l->sl_line, &l->sc.sl_line, &l->q, sim_rng_derive(sc->seed, 2), 1,
-                  waveform_sink(&l->sl_master));
+                  (sim_edge_sink){at_sl_master, l});
     if (sc->protocol == SCENARIO_SSI) {
         ssi_slave_init(&l->ssi, &l->sc.ssi, &l->q, from_slave);
     } else {
@@ -52,14 +71,26 @@ void link_free(link_model *l) {
     eq_free(&l->q);
 }
 
+/* Runs the queue up to t; never backwards, since the queue may already be
+ * ahead of a read (the read then finds its answer in the record). */
+static void advance(link_model *l, sim_ps t) {
+    if (t > eq_now(&l->q)) {
+        eq_run_until(&l->q, t);
+    }
+}
+
 void link_ma(link_model *l, sim_ps t, int level) {
-    eq_run_until(&l->q, t);
+    advance(l, t);
+    if (waveform_last_level(&l->ma_master) == level) {
+        return;
+    }
     waveform_append(&l->ma_master, t, level);
+    observe(l, LINK_MA_MASTER, t, level);
     line_dir_input(&l->ma_line, t, level);
 }
 
 int link_sl(link_model *l, sim_ps t) {
-    eq_run_until(&l->q, t);
+    advance(l, t);
     return waveform_level_at(&l->sl_master, t);
 }
 
@@ -69,4 +100,11 @@ sim_ps link_next_change(const link_model *l) {
 
 uint64_t link_frames(const link_model *l) {
     return l->sc.protocol == SCENARIO_SSI ? l->ssi.frames : l->biss.frames;
+}
+
+void link_forget_before(link_model *l, sim_ps t) {
+    waveform_forget_before(&l->ma_master, t);
+    waveform_forget_before(&l->ma_slave, t);
+    waveform_forget_before(&l->sl_slave, t);
+    waveform_forget_before(&l->sl_master, t);
 }
