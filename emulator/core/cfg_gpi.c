@@ -22,6 +22,8 @@
 #define GP_GPO_SEL  (1u << 25)
 #define SHIFT_MASK  0x0fffffffu
 #define MODE_SHIFT  2u
+/* input changes this late count as never (keeps edge arithmetic in range) */
+#define NEVER_PS (PRU_MAX_CYCLE * PRU_PS_PER_CYCLE)
 
 static unsigned gpi_mode(const struct pru_core *c) {
     return c->cfg_regs[GPCFG0 / 4] & 3u;
@@ -114,7 +116,7 @@ static void shift_apply(struct pru_core *c, int64_t k_from, int64_t k_to) {
             m = k_to - k + 1;
         } else if (c->pins.next_input_change) {
             int64_t tn = c->pins.next_input_change(c->pins.ctx, t < 0 ? 0 : t);
-            int64_t j = tn >= INT64_MAX - delay ? k_to : last_edge(c, tn + delay - 1);
+            int64_t j = tn >= NEVER_PS ? k_to : last_edge(c, tn + delay - 1);
             if (j > k_to)
                 j = k_to;
             m = j >= k ? j - k + 1 : 1;
@@ -164,7 +166,7 @@ static int64_t input_change_cycle(struct pru_core *c, int64_t cycle) {
         return cycle + 1;
     int64_t t = cycle * PRU_PS_PER_CYCLE - c->p.gpi_delay_ps;
     int64_t tn = c->pins.next_input_change(c->pins.ctx, t < 0 ? 0 : t);
-    if (tn >= INT64_MAX - c->p.gpi_delay_ps - PRU_PS_PER_CYCLE)
+    if (tn >= NEVER_PS)
         return CYCLE_NEVER;
     int64_t cn = cycle_of(tn + c->p.gpi_delay_ps);
     return cn > cycle ? cn : cycle + 1;

@@ -197,7 +197,7 @@ enum pru_stop pru_run_until_cycle(struct pru_core *c, int64_t cycle) {
 
 enum pru_stop pru_run_until_time(struct pru_core *c, int64_t t_ps) {
     /* run every cycle that starts before t_ps */
-    int64_t cyc = t_ps <= 0 ? 0 : (t_ps + PRU_PS_PER_CYCLE - 1) / PRU_PS_PER_CYCLE;
+    int64_t cyc = t_ps <= 0 ? 0 : t_ps / PRU_PS_PER_CYCLE + (t_ps % PRU_PS_PER_CYCLE != 0);
     return exec_run(c, cyc, false);
 }
 

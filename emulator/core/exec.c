@@ -425,9 +425,12 @@ enum pru_stop exec_run(struct pru_core *c, int64_t limit, bool one_step) {
         return PRU_STOP_FAULT;
     c->ff.top = NO_LOOP; /* inputs may have changed between runs */
     c->ff.have_snap = false;
+    bool unbounded = limit >= PRU_MAX_CYCLE; /* "until HALT": time stays put when idle */
+    if (unbounded)
+        limit = PRU_MAX_CYCLE;
     for (;;) {
         if (!enabled(c)) {
-            if (limit != INT64_MAX && c->cycle < limit && !one_step)
+            if (!unbounded && c->cycle < limit && !one_step)
                 c->cycle = limit;
             return c->halted ? PRU_STOP_HALT : PRU_STOP_DISABLED;
         }

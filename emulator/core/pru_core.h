@@ -21,6 +21,8 @@
 #include <stdio.h>
 
 #define PRU_PS_PER_CYCLE 5000
+/* Simulated time is bounded so that times in ps never overflow (~52 days). */
+#define PRU_MAX_CYCLE (INT64_MAX / PRU_PS_PER_CYCLE / 4)
 
 enum pru_soc {
     PRU_SOC_AM335X,
@@ -180,7 +182,9 @@ void pru_set_inputs(struct pru_core *c, uint32_t levels);
 void pru_set_trace(struct pru_core *c, FILE *f);
 
 /* Run. Time advances to the limit even while the PRU is disabled or asleep,
- * except that a run stops right after HALT, a fault, or a step. */
+ * except that a run stops right after HALT, a fault, or a step. Limits are
+ * capped at PRU_MAX_CYCLE; a limit at or above it means "no limit": then a
+ * disabled PRU returns at once and time stays where it is. */
 enum pru_stop pru_run_until_cycle(struct pru_core *c, int64_t cycle);
 enum pru_stop pru_run_until_time(struct pru_core *c, int64_t t_ps);
 /* Run until HALT/fault/disable, at most max_cycles from now. */

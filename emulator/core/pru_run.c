@@ -73,7 +73,7 @@ static int parse_args(int argc, char **argv, struct opts *o) {
         } else if (strcmp(a, "--trace") == 0) {
             o->trace = 1;
         } else if (strcmp(a, "--max-cycles") == 0) {
-            if (parse_u64(val, &u) || u == 0 || u > INT64_MAX / 2)
+            if (parse_u64(val, &u) || u == 0 || u >= (uint64_t)PRU_MAX_CYCLE)
                 return bad("--max-cycles needs a positive number", val);
             o->max_cycles = (int64_t)u;
             i++;
