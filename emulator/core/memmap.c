@@ -313,15 +313,15 @@ int mem_store(struct pru_core *c, uint32_t addr, const uint8_t *src, unsigned n,
         return 0;
     }
     /* check the whole range first: a faulting store writes nothing */
-    for (unsigned done = 0, chunk; done < n; done += chunk) {
-        struct hit h;
+    for (unsigned done = 0, chunk = 0; done < n; done += chunk) {
+        struct hit h = {0};
         if (!lookup(c, addr + done, n - done, &h, &chunk)) {
             core_fault(c, PRU_FAULT_UNMAPPED, addr + done);
             return -1;
         }
     }
-    for (unsigned done = 0, chunk; done < n; done += chunk) {
-        struct hit h;
+    for (unsigned done = 0, chunk = 0; done < n; done += chunk) {
+        struct hit h = {0};
         lookup(c, addr + done, n - done, &h, &chunk);
         if (h.mem)
             memcpy(h.mem, src + done, chunk);

@@ -51,7 +51,7 @@ static int get_number(ctx *c, const cJSON *item, const char *field, double *out)
 }
 
 static int get_uint(ctx *c, const cJSON *item, const char *field, double max, uint64_t *out) {
-    double v;
+    double v = 0;
     if (cJSON_IsString(item)) { /* keep all 64 bits of hex strings */
         char *end;
         errno = 0;
@@ -81,7 +81,7 @@ static int get_bool(ctx *c, const cJSON *item, const char *field, bool *out) {
 
 /* A time in ns (fractions allowed) stored as ps. */
 static int get_ns(ctx *c, const cJSON *item, const char *field, sim_ps *out) {
-    double v;
+    double v = 0;
     if (get_number(c, item, field, &v)) {
         return -1;
     }
@@ -208,8 +208,8 @@ static int parse_registers(ctx *c, const cJSON *obj, regfile *r) {
     }
     const cJSON *it;
     cJSON_ArrayForEach(it, obj) {
-        unsigned bank;
-        uint8_t addr;
+        unsigned bank = 0;
+        uint8_t addr = 0;
         uint64_t v;
         if (parse_addr(c, it->string, "registers", &bank, &addr) ||
             get_uint(c, it, "registers", 255, &v)) {
@@ -226,8 +226,8 @@ static int parse_flags(ctx *c, const cJSON *arr, const char *field, regfile *r, 
     }
     const cJSON *it;
     cJSON_ArrayForEach(it, arr) {
-        unsigned bank;
-        uint8_t addr;
+        unsigned bank = 0;
+        uint8_t addr = 0;
         if (!cJSON_IsString(it)) {
             return fail(c, field, "expected address strings like \"0x44\"");
         }

@@ -40,7 +40,8 @@ static const char *write_file(const char *name, const void *data, size_t n) {
 /* Run pru-run with args; returns its exit status. */
 static int run(const char *args) {
     char cmd[2048];
-    snprintf(cmd, sizeof cmd, "'%s' %s >'%s' 2>'%s'", tool, args, outf, errf);
+    int len = snprintf(cmd, sizeof cmd, "'%s' %s >'%s' 2>'%s'", tool, args, outf, errf);
+    ck_assert_int_lt(len, (int)sizeof cmd);
     int st = system(cmd);
     ck_assert(WIFEXITED(st));
     return WEXITSTATUS(st);
