@@ -338,11 +338,12 @@ static int do_else(struct asm_ctx *c, const struct asm_file *f, const char *s) {
         asm_report(c, f, REP_ERROR, "Unexpected additional characters on line");
         return 0;
     }
-    if (!c->cc_depth || (c->cc_flags[c->cc_depth - 1] & 2)) {
+    unsigned depth = c->cc_depth;
+    if (depth == 0 || depth > sizeof(c->cc_flags) || (c->cc_flags[depth - 1] & 2)) {
         asm_report(c, f, REP_ERROR, "Multiple #else or use without corresponding #if");
         return 0;
     }
-    uint8_t *fl = &c->cc_flags[c->cc_depth - 1];
+    uint8_t *fl = &c->cc_flags[depth - 1];
     *fl = (uint8_t)((*fl | 2) ^ 1);
     for (unsigned i = 0; i + 1 < c->cc_depth; i++)
         if (!(c->cc_flags[i] & 1))

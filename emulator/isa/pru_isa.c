@@ -267,14 +267,19 @@ uint32_t pru_encode(const struct pru_insn *in) {
     return 0;
 }
 
-int pru_op_lookup(const char *name) {
+int pru_op_lookup(const char *name)
+{
     char low[8];
-    size_t n = strlen(name);
-    if (n == 0 || n >= sizeof(low)) {
-        return -1;
+    size_t n = 0;
+    for (; name[n] != '\0'; n++) {
+        if (n == sizeof(low) - 1) {
+            return -1; /* longer than any mnemonic */
+        }
+        low[n] = (char)tolower((unsigned char)name[n]);
     }
-    for (size_t i = 0; i <= n; i++) {
-        low[i] = (char)tolower((unsigned char)name[i]);
+    low[n] = '\0';
+    if (n == 0) {
+        return -1;
     }
     for (int op = 0; op < PRU_OP_COUNT; op++) {
         if (strcmp(pru_optable[op].name, low) == 0) {

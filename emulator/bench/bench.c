@@ -1,0 +1,360 @@
+/* bench.c - the PRU core wired to the link, and what the bench measures
+ * on the way (see bench.h). */
+#include "bench.h"
+
+#include "vcd.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* MA edges in flight between the master pin and the slave. A cable of any
+ * length the models allow holds far fewer. */
+#define MA_RING 4096
+
+static const char *const pin_names[4] = {"MA_master", "SL_master", "MA_slave", "SL_slave"};
+
+enum capture_state { CAP_OFF, CAP_ARMED, CAP_ON, CAP_DONE };
+
+struct bench {
+    struct bench_config cfg;
+    struct pru_core *core;
+    link_model link;
+
+    /* master-side MA edge times by edge number modulo MA_RING, so an edge
+     * the slave takes as part of a frame is timed where the PRU drove it */
+    int64_t ma_times[MA_RING];
+    uint64_t prev_frame; /* frame number + 1 of the previous in-frame edge, 0 none */
+    int64_t prev_t;
+    int64_t frame_start_t;
+    bool have_frame_start;
+
+    struct vcd_writer vcd;
+    bool vcd_on;
+
+    enum capture_state cap_state;
+    uint64_t cap_frame;
+    waveform cap[4];
+    sim_ps cap_t0, cap_last; /* first and last MA edge of the frame, at the master */
+    sim_ps cap_end;          /* when the frame was over on every pin */
+
+    uint64_t frame_limit; /* frames from this number on are not measured */
+    struct bench_stats st;
+};
+
+void bench_config_default(struct bench_config *c) {
+    memset(c, 0, sizeof(*c));
+    c->soc = PRU_SOC_AM335X;
+    pru_params_default(&c->pru);
+    c->ma_bit = 1;
+    profile_by_name("generic", &c->link);
+}
+
+/* ---- frame bookkeeping -------------------------------------------------- */
+
+static uint64_t slave_frames(const struct bench *b) {
+    return link_frames(&b->link);
+}
+
+static bool slave_in_frame(const struct bench *b, uint64_t *frame) {
+    *frame = slave_frames(b);
+    if (*frame >= b->frame_limit) {
+        return false;
+    }
+    if (b->link.sc.protocol == SCENARIO_SSI) {
+        return b->link.ssi.active;
+    }
+    return b->link.biss.phase == BISS_ACTIVE;
+}
+
+static void min_max(int64_t v, uint64_t n, int64_t *lo, int64_t *hi) {
+    if (n == 0 || v < *lo) {
+        *lo = v;
+    }
+    if (n == 0 || v > *hi) {
+        *hi = v;
+    }
+}
+
+/* An MA edge the slave took as part of frame `frame`, timed at the master. */
+static void account_edge(struct bench *b, uint64_t frame, int64_t t) {
+    struct bench_stats *st = &b->st;
+    if (b->prev_frame == frame + 1) {
+        min_max(t - b->prev_t, st->half_periods, &st->half_min_ps, &st->half_max_ps);
+        st->half_periods++;
+    } else {
+        st->frames_started++;
+        if (b->have_frame_start) {
+            int64_t p = t - b->frame_start_t;
+            min_max(p, st->periods, &st->period_min_ps, &st->period_max_ps);
+            st->period_sum_ps += (double)p;
+            st->periods++;
+        }
+        b->frame_start_t = t;
+        b->have_frame_start = true;
+        if (b->cap_state == CAP_ON && frame == b->cap_frame) {
+            b->cap_t0 = t;
+        }
+    }
+    if (b->cap_state == CAP_ON && frame == b->cap_frame) {
+        b->cap_last = t;
+    }
+    b->prev_frame = frame + 1;
+    b->prev_t = t;
+}
+
+static void ma_reached_slave(struct bench *b) {
+    uint64_t idx = b->st.ma_edges_slave++;
+    uint64_t frame;
+    bool timed = idx < b->st.ma_edges_master && b->st.ma_edges_master - idx <= MA_RING;
+    if (timed && slave_in_frame(b, &frame)) {
+        account_edge(b, frame, b->ma_times[idx % MA_RING]);
+    } else {
+        b->prev_frame = 0;
+    }
+}
+
+/* ---- scope capture ------------------------------------------------------ */
+
+/* Time after which frame cap_frame is over on every pin, -1 if unknown:
+ * its close at the slave plus one round trip and a margin. */
+static sim_ps capture_end(const struct bench *b) {
+    sim_ps end = -1;
+    if (b->link.sc.protocol == SCENARIO_SSI) {
+        const ssi_frame_record *r = ssi_slave_record(&b->link.ssi, b->cap_frame);
+        end = r ? r->end_ps : -1;
+    } else {
+        const biss_frame_record *r = biss_slave_record(&b->link.biss, b->cap_frame);
+        end = r ? r->end_ps : -1;
+    }
+    return end < 0 ? -1 : end + (sim_ps)bench_round_trip_ps(b) + 200 * SIM_PS_PER_NS;
+}
+
+static waveform *pin_record(struct bench *b, int pin) {
+    waveform *w[4] = {&b->link.ma_master, &b->link.sl_master, &b->link.ma_slave, &b->link.sl_slave};
+    return w[pin];
+}
+
+/* Capturing runs from the close of frame k-1 until frame k is over. */
+static void capture_update(struct bench *b, sim_ps t) {
+    if (b->cap_state == CAP_ARMED && slave_frames(b) == b->cap_frame) {
+        for (int i = 0; i < 4; i++) {
+            waveform_init(&b->cap[i], waveform_level_at(pin_record(b, i), t));
+        }
+        b->cap_state = CAP_ON;
+    } else if (b->cap_state == CAP_ON && slave_frames(b) > b->cap_frame) {
+        sim_ps end = capture_end(b);
+        if (end >= 0 && t > end) {
+            b->cap_end = end;
+            b->cap_state = CAP_DONE;
+        }
+    }
+}
+
+static void capture_free(struct bench *b) {
+    if (b->cap_state >= CAP_ON) {
+        for (int i = 0; i < 4; i++) {
+            waveform_free(&b->cap[i]);
+        }
+    }
+    b->cap_state = CAP_OFF;
+}
+
+/* ---- pins --------------------------------------------------------------- */
+
+static void on_pin(void *ctx, link_pin pin, sim_ps t, int level) {
+    struct bench *b = ctx;
+    if (b->vcd_on) {
+        vcd_change(&b->vcd, t, (int)pin, level);
+    }
+    if (pin == LINK_MA_SLAVE) {
+        ma_reached_slave(b);
+    }
+    if (b->cap_state != CAP_OFF) {
+        capture_update(b, t);
+        if (b->cap_state == CAP_ON) {
+            waveform_append(&b->cap[pin], t, level);
+        }
+    }
+}
+
+static uint32_t pins_inputs_at(void *ctx, int64_t t) {
+    struct bench *b = ctx;
+    /* SL on R31 bit 0; the other inputs are not connected and read 0 */
+    return (uint32_t)link_sl(&b->link, t);
+}
+
+static int64_t pins_next_change(void *ctx, int64_t t) {
+    struct bench *b = ctx;
+    (void)t;
+    return link_next_change(&b->link);
+}
+
+static void pins_outputs(void *ctx, int64_t t, uint32_t r30) {
+    struct bench *b = ctx;
+    int level = (int)((r30 >> b->cfg.ma_bit) & 1u);
+    if (level == waveform_last_level(&b->link.ma_master)) {
+        return;
+    }
+    b->ma_times[b->st.ma_edges_master % MA_RING] = t;
+    b->st.ma_edges_master++;
+    link_ma(&b->link, t, level);
+}
+
+/* ---- life cycle --------------------------------------------------------- */
+
+struct bench *bench_new(const struct bench_config *cfg, char *err, size_t errlen) {
+    if (cfg->ma_bit > 15) {
+        snprintf(err, errlen, "ma_bit %u: MA must be an R30 output pin, 0..15", cfg->ma_bit);
+        return NULL;
+    }
+    struct bench *b = calloc(1, sizeof(*b));
+    if (!b) {
+        snprintf(err, errlen, "out of memory");
+        return NULL;
+    }
+    b->cfg = *cfg;
+    b->frame_limit = UINT64_MAX;
+    if (link_init(&b->link, &cfg->link, err, errlen) != 0) {
+        free(b);
+        return NULL;
+    }
+    b->core = pru_core_new(cfg->soc, &cfg->pru);
+    if (!b->core) {
+        link_free(&b->link);
+        free(b);
+        snprintf(err, errlen, "out of memory");
+        return NULL;
+    }
+    link_set_observer(&b->link, on_pin, b);
+    struct pru_pins pins = {b, pins_inputs_at, pins_next_change, pins_outputs};
+    pru_set_pins(b->core, &pins);
+    return b;
+}
+
+void bench_free(struct bench *b) {
+    if (!b) {
+        return;
+    }
+    capture_free(b);
+    bench_close_vcd(b);
+    pru_core_free(b->core);
+    link_free(&b->link);
+    free(b);
+}
+
+int bench_open_vcd(struct bench *b, const char *path) {
+    bench_close_vcd(b);
+    if (vcd_open(&b->vcd, path) != 0) {
+        return -1;
+    }
+    for (int i = 0; i < 4; i++) {
+        vcd_add_wire(&b->vcd, pin_names[i]);
+    }
+    b->vcd_on = true;
+    sim_ps now = eq_now(&b->link.q);
+    for (int i = 0; i < 4; i++) {
+        vcd_change(&b->vcd, now, i, waveform_level_at(pin_record(b, i), now));
+    }
+    return 0;
+}
+
+int bench_close_vcd(struct bench *b) {
+    if (!b->vcd_on) {
+        return 0;
+    }
+    b->vcd_on = false;
+    return vcd_close(&b->vcd, eq_now(&b->link.q));
+}
+
+struct pru_core *bench_core(struct bench *b) {
+    return b->core;
+}
+
+link_model *bench_link(struct bench *b) {
+    return &b->link;
+}
+
+int bench_start_image(struct bench *b, const void *image, size_t bytes) {
+    if (pru_load_image(b->core, image, bytes) != 0) {
+        return -1;
+    }
+    pru_start(b->core);
+    return 0;
+}
+
+enum pru_stop bench_run_until(struct bench *b, int64_t t_ps) {
+    enum pru_stop why = pru_run_until_time(b->core, t_ps);
+    /* the link catches up with the core (a halted core leaves it behind) */
+    int64_t now = pru_time_ps(b->core);
+    link_sl(&b->link, now);
+    /* pin history older than a millisecond is never looked at again */
+    if (now > SIM_PS_PER_MS) {
+        link_forget_before(&b->link, now - SIM_PS_PER_MS);
+    }
+    return why;
+}
+
+enum pru_stop bench_run_frames(struct bench *b, uint64_t frames, int64_t max_ps,
+                               void (*progress)(void *ctx, uint64_t done, uint64_t total),
+                               void *ctx) {
+    const int64_t step = 100 * SIM_PS_PER_US;
+    int64_t end = pru_time_ps(b->core) + max_ps;
+    /* a step may close a frame or two more; they are not measured */
+    b->frame_limit = frames;
+    enum pru_stop why = PRU_STOP_LIMIT;
+    while (slave_frames(b) < frames && pru_time_ps(b->core) < end) {
+        int64_t next = pru_time_ps(b->core) + step;
+        why = bench_run_until(b, next < end ? next : end);
+        if (why != PRU_STOP_LIMIT) {
+            break;
+        }
+        if (progress) {
+            progress(ctx, slave_frames(b), frames);
+        }
+    }
+    /* all frames done: whatever else the last step met is past the run */
+    return slave_frames(b) >= frames ? PRU_STOP_LIMIT : why;
+}
+
+const struct bench_stats *bench_stats(struct bench *b) {
+    uint64_t n = slave_frames(b);
+    b->st.frames = n < b->frame_limit ? n : b->frame_limit;
+    return &b->st;
+}
+
+const struct bench_config *bench_config(const struct bench *b) {
+    return &b->cfg;
+}
+
+double bench_round_trip_ps(const struct bench *b) {
+    const scenario *sc = &b->link.sc;
+    sim_ps out = sc->protocol == SCENARIO_SSI ? sc->ssi.out_delay_ps : sc->biss.out_delay_ps;
+    return line_nominal_delay_ps(&sc->ma_line) + (double)out + line_nominal_delay_ps(&sc->sl_line);
+}
+
+void bench_capture_frame(struct bench *b, uint64_t k) {
+    capture_free(b);
+    b->cap_state = CAP_ARMED;
+    b->cap_frame = k;
+    b->cap_t0 = -1;
+    capture_update(b, eq_now(&b->link.q));
+}
+
+int bench_capture_get(struct bench *b, waveform *pins[4], sim_ps *t0, sim_ps *t1) {
+    capture_update(b, eq_now(&b->link.q));
+    sim_ps end = b->cap_end;
+    if (b->cap_state != CAP_DONE || b->cap_t0 < 0 || end <= b->cap_t0) {
+        return -1;
+    }
+    /* The clocked part of the frame and SL's answer to its last clock; a
+     * long timeout is cut short so the bits stay readable. */
+    sim_ps rt = (sim_ps)bench_round_trip_ps(b);
+    sim_ps clocked = b->cap_last + 2 * rt + (b->cap_last - b->cap_t0) / 4;
+    *t1 = end < clocked ? end : clocked;
+    *t0 = b->cap_t0 - (*t1 - b->cap_t0) / 20;
+    for (int i = 0; i < 4; i++) {
+        pins[i] = &b->cap[i];
+    }
+    return 0;
+}

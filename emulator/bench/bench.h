@@ -1,0 +1,98 @@
+/*
+ * bench.h - one emulated PRU wired through a cable to BiSS-C or SSI slaves.
+ *
+ *   PRU R30[ma_bit] --MA line--> slave(s) --SL line--> PRU R31[0]
+ *
+ * The PRU core runs the image; every R30 change enters the link (line
+ * models and slaves, emulator/slave/link_model.h) at its exact pin time, and
+ * the core samples SL at the master from the link's record, directly or
+ * through the 28-bit shift register. Before the core looks at its inputs at
+ * time t the link runs up to t, which is exact because every effect comes
+ * strictly after its cause.
+ *
+ * The bench also watches the pins: it measures MA half periods and frame
+ * periods at the master pin (for the edges the slave counted as part of a
+ * frame), writes MA/SL at both ends to a VCD file, and captures one frame
+ * for a scope picture.
+ */
+#ifndef BENCH_H
+#define BENCH_H
+
+#include "link_model.h"
+#include "pru_core.h"
+#include "waveform.h"
+
+#include <stdbool.h>
+#include <stdint.h>
+
+struct bench_config {
+    enum pru_soc soc;
+    struct pru_params pru;
+    unsigned ma_bit; /* R30 bit that drives MA, default 1 */
+    scenario link;   /* cable, slave(s), seed */
+};
+
+/* Defaults: AM335x, MA on R30 bit 1, the "generic" profile. */
+void bench_config_default(struct bench_config *c);
+
+/* What the bench measured at the master's MA pin and at the slave. */
+struct bench_stats {
+    uint64_t frames;         /* frames the slave closed */
+    uint64_t frames_started; /* frames the master began */
+    uint64_t half_periods;   /* MA half periods measured inside frames */
+    int64_t half_min_ps, half_max_ps;
+    uint64_t periods; /* frame-start to frame-start intervals */
+    int64_t period_min_ps, period_max_ps;
+    double period_sum_ps;
+    uint64_t ma_edges_master; /* MA edges the PRU drove */
+    uint64_t ma_edges_slave;  /* MA edges that reached the slave */
+};
+
+struct bench;
+
+/* Returns NULL and a message in err when cfg is invalid or memory ran out. */
+struct bench *bench_new(const struct bench_config *cfg, char *err, size_t errlen);
+void bench_free(struct bench *b);
+
+/* Records MA_master, SL_master, MA_slave, SL_slave (scope "bench") from now
+ * on. Returns 0, or -1 if the file cannot be written. */
+int bench_open_vcd(struct bench *b, const char *path);
+/* Flushes and closes the VCD, if one is open. Returns 0 or -1. */
+int bench_close_vcd(struct bench *b);
+
+/* The core, for loading images, host access to its memories and running. */
+struct pru_core *bench_core(struct bench *b);
+/* The far end: slave models (frame records, register files) and lines. */
+link_model *bench_link(struct bench *b);
+
+/* Loads a raw IRAM image and starts the PRU at PC 0. */
+int bench_start_image(struct bench *b, const void *image, size_t bytes);
+
+/* Runs the PRU (and the link) until simulated time t_ps. */
+enum pru_stop bench_run_until(struct bench *b, int64_t t_ps);
+
+/* Runs until the slave has closed `frames` frames in all, the PRU halts or
+ * faults, or max_ps of simulated time has passed. Frames beyond `frames`
+ * that close within the last step are neither counted nor measured.
+ * progress, if set, is called now and then with the frames so far. */
+enum pru_stop bench_run_frames(struct bench *b, uint64_t frames, int64_t max_ps,
+                               void (*progress)(void *ctx, uint64_t done, uint64_t total),
+                               void *ctx);
+
+const struct bench_stats *bench_stats(struct bench *b);
+const struct bench_config *bench_config(const struct bench *b);
+
+/* Round trip the master sees from an MA edge to the SL answer, per the
+ * models: MA line + slave output delay + SL line, nominal (no jitter). */
+double bench_round_trip_ps(const struct bench *b);
+
+/* Arms a capture of all four pins around frame k (k counts the frames the
+ * slave sees, from 0) for a scope picture. */
+void bench_capture_frame(struct bench *b, uint64_t k);
+
+/* The captured pins (MA_master, SL_master, MA_slave, SL_slave) and the
+ * window that shows frame k whole. Returns 0, or -1 if frame k has not been
+ * captured completely. */
+int bench_capture_get(struct bench *b, waveform *pins[4], sim_ps *t0, sim_ps *t1);
+
+#endif

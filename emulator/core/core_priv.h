@@ -1,0 +1,270 @@
+/*
+ * core_priv.h - internal state of the PRU core emulator, shared by its
+ * source files. Not part of the public API (pru_core.h).
+ */
+#ifndef PRU_CORE_PRIV_H
+#define PRU_CORE_PRIV_H
+
+#include "pru_core.h"
+#include "pru_isa.h"
+
+#include <stdbool.h>
+
+#define NO_LOOP     0xffffffffu
+#define CYCLE_NEVER INT64_MAX
+#define IEP_BYTES   0x1000u
+#define INTC_BYTES  0x2000u
+#define CFG_BYTES   0x2000u
+#define CTRL_BYTES  0x1000u
+#define SPAD_BYTES  120u /* scratch-pad bank: R0..R29 */
+#define LOCAL_LIMIT 0x80000u
+
+/* Execution kinds of the predecoded form; one per handler in exec.c. */
+enum pd_kind {
+    K_ADD,
+    K_ADC,
+    K_SUB,
+    K_SUC,
+    K_LSL,
+    K_LSR,
+    K_RSB,
+    K_RSC,
+    K_AND,
+    K_OR,
+    K_XOR,
+    K_NOT,
+    K_MIN,
+    K_MAX,
+    K_CLR,
+    K_SET,
+    K_NOP,
+    K_JMP,
+    K_JAL,
+    K_LDI,
+    K_LMBD,
+    K_QBGT,
+    K_QBGE,
+    K_QBLT,
+    K_QBLE,
+    K_QBEQ,
+    K_QBNE,
+    K_QBA,
+    K_QBBS,
+    K_QBBC, /* the kinds up to here only touch registers, carry and PC */
+    K_HALT,
+    K_MVI,
+    K_XFR,
+    K_LOOP,
+    K_SLP,
+    K_LBBO,
+    K_SBBO,
+    K_LBCO,
+    K_SBCO,
+    K_BAD,
+    K_SLOW,     /* fast loop: hand over to exec_one() */
+    K_R31_READ, /* fast loop: refresh R31, then run `kind` */
+};
+
+/* Flags of a predecoded instruction that need work outside the handler. */
+#define PD_READS_R31  0x01u /* refresh R31 from the inputs before executing */
+#define PD_WRITES_R30 0x02u /* tell the pins if R30 changed */
+#define PD_WRITES_R31 0x04u /* an R31 write raises system events */
+
+/*
+ * One IRAM word decoded once. Register operands are (reg, shift, mask);
+ * an immediate operand uses register 32 (always 0) with mask 0 and puts the
+ * value in imm, so "field | imm" reads either form without a branch.
+ */
+struct pd {
+    uint8_t fast; /* kind for the fast loop: K_SLOW if flags or not register-only */
+    uint8_t kind;
+    uint8_t flags;
+    uint8_t rd, rdsh;
+    uint8_t rs1, rs1sh;
+    uint8_t rs2, rs2sh;
+    uint8_t rdw; /* destination width in bits (carry position) */
+    /* bursts with a fixed length that stay below r30: bytes and register-file
+     * start, for the fast loop (0 bytes: take the general path) */
+    uint8_t burst_bytes, burst_rf;
+    uint32_t rdmask, rs1mask, rs2mask;
+    uint32_t imm;
+    uint32_t target; /* absolute branch/jump target, LOOP end */
+    struct pru_insn in;
+};
+
+/* Lazily evaluated 28-bit GPI shift register (cfg_gpi.c). */
+struct gpi_shift {
+    int64_t t_cfg_ps;        /* reference for edge times */
+    int64_t period_ps;       /* shift period, exact integer ps */
+    int64_t k_done;          /* edges already applied (edge k at t_cfg + phase + k*period) */
+    int64_t next_edge_cycle; /* first cycle that sees edge k_done + 1 */
+    uint32_t reg;            /* 28 bits */
+    bool sb;
+    int64_t cnt16_k; /* edge that captured the start bit; Cnt_16 at +16j */
+};
+
+struct iep {
+    uint32_t global_cfg, global_status, compen, count, cmp_cfg, cmp_status;
+    uint32_t cmp[8];
+    int64_t synced;          /* state is as of this cycle boundary */
+    uint8_t regs[IEP_BYTES]; /* backing store for the registers not modelled */
+};
+
+struct intc {
+    uint32_t ger, hier;
+    uint32_t raw[2], enabled[2];
+    uint8_t cmr[64]; /* channel per event */
+    uint8_t hmr[16]; /* host per channel */
+    uint8_t regs[INTC_BYTES];
+};
+
+struct ctrl {
+    uint32_t control, wakeup_en, ctbir0, ctbir1, ctppr0, ctppr1;
+    /* CYCLE/STALL, evaluated lazily: value = saved + elapsed since `since`. */
+    bool counting;
+    uint32_t cycle_saved, stall_saved;
+    int64_t cycle_since, stall_since;
+};
+
+struct ext_window {
+    uint32_t base, size;
+    uint8_t *mem;
+};
+
+/* Fast-forward probe of an idle polling loop (ff.c). */
+struct ff_probe {
+    uint32_t top; /* loop top, NO_LOOP when unarmed */
+    int64_t cycle0;
+    uint64_t insn0;
+    int64_t stall0;
+    int64_t horizon;  /* first cycle at which a read of this iteration may differ */
+    bool dirty;       /* a side effect happened since arming */
+    bool have_snap;   /* regs/carry hold a snapshot: this iteration is a probe */
+    bool saw_input;   /* an input was read since the last arrival at top */
+    unsigned fails;   /* probes in a row that found the state changed */
+    unsigned backoff; /* arrivals to let pass before the next probe */
+    uint32_t regs[32];
+    int carry;
+    uint64_t skipped;
+};
+
+struct pru_core {
+    /* hot state first */
+    uint32_t r[33]; /* r[32] is a constant 0 for immediate operands */
+    uint32_t pc;
+    int carry;
+    int64_t cycle; /* current time in cycles */
+    uint64_t insns;
+    int64_t stall_total; /* cycles in which no instruction was fetched */
+    uint32_t loop_end, loop_top, loop_count;
+    uint32_t iram_words;
+    struct pd *pd;
+    bool stop;    /* leave the run loop after this instruction */
+    bool recheck; /* ... and re-evaluate enable/sleep/step (not a stop) */
+    enum pru_stop stop_reason;
+    bool trace_on;
+    bool ff_on;
+
+    struct pru_params p;
+    enum pru_soc soc;
+    uint32_t dram_bytes, shared_bytes, iram_bytes;
+    uint8_t *dram0, *dram1, *shared;
+    uint32_t *iram0, *iram1;
+    uint8_t spad[3][SPAD_BYTES];
+
+    bool halted, sleeping, sleep_wake_on_event;
+    struct pru_fault fault;
+
+    struct ctrl ctrl;
+    uint8_t ctrl1[CTRL_BYTES];
+    uint32_t cfg_regs[CFG_BYTES / 4];
+    struct gpi_shift sh;
+    struct iep iep;
+    struct intc intc;
+    struct ext_window ext[4];
+    unsigned n_ext;
+
+    struct pru_pins pins;
+    bool have_pins;
+    uint32_t const_inputs;
+    uint32_t r30_pins; /* last R30 value given to the pins */
+    FILE *trace;
+    struct ff_probe ff;
+};
+
+/* core.c */
+void core_fault(struct pru_core *c, enum pru_fault_cause cause, uint32_t addr);
+
+/* predecode.c */
+void predecode_word(struct pru_core *c, uint32_t pc);
+void predecode_all(struct pru_core *c);
+
+/* exec.c */
+enum pru_stop exec_run(struct pru_core *c, int64_t limit, bool one_step);
+
+/* memmap.c: PRU data-space access; return 0 or -1 (fault recorded). */
+int mem_load(struct pru_core *c, uint32_t addr, uint8_t *dst, unsigned n, unsigned *cycles);
+int mem_store(struct pru_core *c, uint32_t addr, const uint8_t *src, unsigned n, unsigned *cycles);
+uint32_t const_table(const struct pru_core *c, unsigned n);
+
+/* ctrl.c */
+uint32_t ctrl_read(struct pru_core *c, uint32_t ofs, int64_t at);
+void ctrl_write(struct pru_core *c, uint32_t ofs, uint32_t val, uint32_t bmask, int64_t at);
+void ctrl_counting_update(struct pru_core *c, int64_t at);
+void ctrl_reset(struct pru_core *c);
+
+/* cfg_gpi.c */
+uint32_t cfg_read(struct pru_core *c, uint32_t ofs, int64_t at);
+void cfg_write(struct pru_core *c, uint32_t ofs, uint32_t val, uint32_t bmask, int64_t at);
+void cfg_reset(struct pru_core *c);
+uint32_t gpi_r31(struct pru_core *c, int64_t cycle);
+int64_t gpi_stable_until(struct pru_core *c, int64_t cycle);
+void gpi_sync(struct pru_core *c, int64_t cycle);
+int64_t gpi_next_cnt16(struct pru_core *c, int64_t cycle);
+uint32_t pins_inputs_at(struct pru_core *c, int64_t t_ps);
+
+/* iep.c */
+void iep_reset(struct pru_core *c);
+void iep_sync(struct pru_core *c, int64_t cycle);
+uint32_t iep_read(struct pru_core *c, uint32_t ofs, int64_t at);
+void iep_write(struct pru_core *c, uint32_t ofs, uint32_t val, uint32_t bmask, int64_t at);
+int64_t iep_next_change(struct pru_core *c, int64_t cycle, uint32_t ofs);
+
+/* intc.c */
+void intc_reset(struct pru_core *c);
+void intc_event(struct pru_core *c, unsigned ev);
+uint32_t intc_host_bits(struct pru_core *c, int64_t cycle); /* R31[31:30] */
+uint32_t intc_read(struct pru_core *c, uint32_t ofs, int64_t at);
+void intc_write(struct pru_core *c, uint32_t ofs, uint32_t val, uint32_t bmask, int64_t at);
+int64_t intc_next_change(struct pru_core *c, int64_t cycle);
+
+/* ff.c */
+void ff_backward_branch(struct pru_core *c, uint32_t pc, uint32_t top, int64_t limit);
+/* An input was read; true if its horizon is wanted (a probe is running). */
+static inline bool ff_input_read(struct pru_core *c) {
+    if (c->ff.top == NO_LOOP)
+        return false;
+    c->ff.saw_input = true;
+    return c->ff.have_snap;
+}
+static inline void ff_horizon(struct pru_core *c, int64_t cycle) {
+    if (cycle < c->ff.horizon)
+        c->ff.horizon = cycle;
+}
+static inline void ff_dirty(struct pru_core *c) {
+    c->ff.dirty = true;
+}
+
+/* trace.c */
+void trace_insn(struct pru_core *c, uint32_t pc, int64_t cycle, const uint32_t *before,
+                int carry_before);
+
+/* Field helpers */
+static inline uint32_t fld(const uint32_t *r, unsigned reg, unsigned sh, uint32_t mask) {
+    return (r[reg] >> sh) & mask;
+}
+static inline void fld_set(uint32_t *r, unsigned reg, unsigned sh, uint32_t mask, uint32_t v) {
+    r[reg] = (r[reg] & ~(mask << sh)) | ((v & mask) << sh);
+}
+
+#endif

@@ -1,0 +1,156 @@
+/*
+ * ctrl.c - PRU0 control registers (pru-facts 5.3): CONTROL with soft reset,
+ * enable, sleeping, counter enable, single step and the reset PC; STATUS;
+ * WAKEUP_EN; CYCLE/STALL (section 3) kept lazily; CTBIR/CTPPR.
+ */
+#include "core_priv.h"
+#include "exec_priv.h"
+
+#define CYCLE_MAX 0xffffffffu
+
+void ctrl_reset(struct pru_core *c) {
+    struct ctrl *k = &c->ctrl;
+    *k = (struct ctrl){0};
+    k->control = PRU_CTRL_SOFT_RST_N;
+}
+
+static uint32_t cycle_at(const struct ctrl *k, int64_t at) {
+    if (!k->counting)
+        return k->cycle_saved;
+    int64_t v = (int64_t)k->cycle_saved + (at - k->cycle_since);
+    return v >= (int64_t)CYCLE_MAX ? CYCLE_MAX : (uint32_t)v;
+}
+
+static uint32_t stall_at(const struct pru_core *c, int64_t at) {
+    const struct ctrl *k = &c->ctrl;
+    if (!k->counting)
+        return k->stall_saved;
+    int64_t v = (int64_t)k->stall_saved + (c->stall_total - k->stall_since);
+    uint32_t cyc = cycle_at(k, at);
+    return v >= (int64_t)cyc ? cyc : (uint32_t)v; /* STALL <= CYCLE; frozen when CYCLE is */
+}
+
+/* Fold the running count into the saved values and restart from `at`. */
+static void fold(struct pru_core *c, int64_t at) {
+    struct ctrl *k = &c->ctrl;
+    k->stall_saved = stall_at(c, at);
+    k->cycle_saved = cycle_at(k, at);
+    k->cycle_since = at;
+    k->stall_since = c->stall_total;
+}
+
+/* CYCLE counts while ENABLE and COUNTER_ENABLE are set and the PRU is awake. */
+void ctrl_counting_update(struct pru_core *c, int64_t at) {
+    struct ctrl *k = &c->ctrl;
+    fold(c, at);
+    k->counting = (k->control & PRU_CTRL_ENABLE) && (k->control & PRU_CTRL_CTR_EN) && !c->sleeping;
+}
+
+/* At 0xFFFFFFFF the counter stops and clears COUNTER_ENABLE. */
+static void saturate(struct pru_core *c, int64_t at) {
+    struct ctrl *k = &c->ctrl;
+    if (k->counting && cycle_at(k, at) == CYCLE_MAX) {
+        fold(c, at);
+        k->control &= ~PRU_CTRL_CTR_EN;
+        k->counting = false;
+    }
+}
+
+uint32_t ctrl_read(struct pru_core *c, uint32_t ofs, int64_t at) {
+    struct ctrl *k = &c->ctrl;
+    saturate(c, at);
+    switch (ofs) {
+    case 0x00: {
+        uint32_t v = k->control | PRU_CTRL_SOFT_RST_N;
+        if (v & PRU_CTRL_ENABLE)
+            v |= PRU_CTRL_RUNSTATE;
+        return v;
+    }
+    case 0x04:
+        return c->pc & 0xffffu;
+    case 0x08:
+        return k->wakeup_en;
+    case 0x0C:
+        return cycle_at(k, at);
+    case 0x10:
+        return stall_at(c, at);
+    case 0x20:
+        return k->ctbir0;
+    case 0x24:
+        return k->ctbir1;
+    case 0x28:
+        return k->ctppr0;
+    case 0x2C:
+        return k->ctppr1;
+    default:
+        return 0;
+    }
+}
+
+static void soft_reset(struct pru_core *c, uint32_t control) {
+    c->pc = control >> 16;
+    c->halted = false;
+    c->sleeping = false;
+    c->loop_end = NO_LOOP;
+    c->ctrl.control &= ~PRU_CTRL_SLEEPING;
+}
+
+static void control_write(struct pru_core *c, uint32_t v, uint32_t bm, int64_t at) {
+    struct ctrl *k = &c->ctrl;
+    uint32_t old = k->control;
+    uint32_t nv = (old & ~bm) | (v & bm);
+    /* SLEEPING: only a write of 0 changes it (wakes); RUNSTATE is read-only */
+    nv = (nv & ~(PRU_CTRL_SLEEPING | PRU_CTRL_RUNSTATE)) | (old & PRU_CTRL_SLEEPING);
+    if ((bm & PRU_CTRL_SLEEPING) && !(v & PRU_CTRL_SLEEPING))
+        nv &= ~PRU_CTRL_SLEEPING;
+    if ((bm & PRU_CTRL_SOFT_RST_N) && !(v & PRU_CTRL_SOFT_RST_N))
+        soft_reset(c, nv);
+    nv |= PRU_CTRL_SOFT_RST_N; /* returns to 1 by itself */
+    if ((nv & PRU_CTRL_ENABLE) && !(old & PRU_CTRL_ENABLE))
+        c->halted = false;
+    k->control = nv;
+    if (!(nv & PRU_CTRL_SLEEPING))
+        c->sleeping = false;
+    ctrl_counting_update(c, at);
+    if (nv != old)
+        exec_recheck(c); /* the run loop re-evaluates enable/sleep/step */
+}
+
+void ctrl_write(struct pru_core *c, uint32_t ofs, uint32_t v, uint32_t bm, int64_t at) {
+    struct ctrl *k = &c->ctrl;
+    saturate(c, at);
+    switch (ofs) {
+    case 0x00:
+        control_write(c, v, bm, at);
+        break;
+    case 0x08:
+        k->wakeup_en = (k->wakeup_en & ~bm) | (v & bm);
+        break;
+    case 0x0C:
+        /* writable only while the counter or the PRU is disabled; clears STALL too */
+        if (!k->counting) {
+            k->cycle_saved = (k->cycle_saved & ~bm) | (v & bm);
+            k->stall_saved = 0;
+        }
+        break;
+    case 0x10:
+        if (!k->counting)
+            k->stall_saved = (k->stall_saved & ~bm) | (v & bm);
+        break;
+    case 0x20:
+        k->ctbir0 = (k->ctbir0 & ~bm) | (v & bm & 0x00ff00ffu);
+        break;
+    case 0x24:
+        k->ctbir1 = (k->ctbir1 & ~bm) | (v & bm & 0x00ff00ffu);
+        break;
+    case 0x28:
+        k->ctppr0 = (k->ctppr0 & ~bm) | (v & bm);
+        break;
+    case 0x2C:
+        k->ctppr1 = (k->ctppr1 & ~bm) | (v & bm);
+        break;
+    default:
+        break;
+    }
+    ff_dirty(c);
+}

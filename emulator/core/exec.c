@@ -1,0 +1,471 @@
+/*
+ * exec.c - the execute loop: one predecoded instruction per iteration,
+ * exact cycle costs (pru-facts section 3), LOOP hardware, sleep and stop.
+ */
+#include "core_priv.h"
+#include "exec_priv.h"
+
+#include <string.h>
+
+_Static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__,
+               "the register file is addressed bytewise as little-endian");
+
+static inline uint32_t rs1v(const uint32_t *r, const struct pd *d) {
+    return fld(r, d->rs1, d->rs1sh, d->rs1mask);
+}
+
+static inline uint32_t op2v(const uint32_t *r, const struct pd *d) {
+    return fld(r, d->rs2, d->rs2sh, d->rs2mask) | d->imm;
+}
+
+static inline void wr(uint32_t *r, const struct pd *d, uint32_t v) {
+    fld_set(r, d->rd, d->rdsh, d->rdmask, v);
+}
+
+/* carry = bit W of the untruncated sum (W = destination width) */
+static inline uint32_t add_c(int *carry, const struct pd *d, uint64_t a, uint64_t b, uint64_t cin) {
+    uint64_t s = a + b + cin;
+    *carry = (int)((s >> d->rdw) & 1u);
+    return (uint32_t)s;
+}
+
+/* carry = NOT borrow: NOT bit W of the wide difference (pru-facts 1.3) */
+static inline uint32_t sub_c(int *carry, const struct pd *d, uint64_t a, uint64_t b, uint64_t bin) {
+    uint64_t s = a - b - bin;
+    *carry = (int)(((s >> d->rdw) & 1u) ^ 1u);
+    return (uint32_t)s;
+}
+
+static uint32_t lmbd(uint32_t v, uint32_t mask, uint32_t bit) {
+    uint32_t x = (bit & 1u) ? v : (~v & mask);
+    return x ? 31u - (uint32_t)__builtin_clz(x) : 32u;
+}
+
+/* Tell the pins about an R30 change; the new level lands after the
+ * instruction's last cycle. */
+void exec_r30_changed(struct pru_core *c, int64_t end_cycle) {
+    if (c->r[30] == c->r30_pins)
+        return;
+    c->r30_pins = c->r[30];
+    ff_dirty(c);
+    if (c->have_pins && c->pins.outputs_changed)
+        c->pins.outputs_changed(c->pins.ctx, end_cycle * PRU_PS_PER_CYCLE + c->p.gpo_delay_ps,
+                                c->r[30]);
+}
+
+/* An R31 write: bit 5 with a channel in bits 3:0 pulses system event 16+n. */
+void exec_r31_written(struct pru_core *c, uint32_t written_mask) {
+    ff_dirty(c);
+    if ((written_mask & 0x2fu) != 0x2fu)
+        return;
+    uint32_t v = c->r[31];
+    if (v & 0x20u)
+        intc_event(c, 16u + (v & 0xfu));
+}
+
+static void do_loop(struct pru_core *c, const struct pd *d) {
+    uint32_t n = op2v(c->r, d);
+    if (!d->in.io)
+        n &= 0xffffu; /* only the 16 LS bits of the field count */
+    ff_dirty(c);
+    if (n == 0) {
+        c->pc = d->target;
+        return;
+    }
+    c->loop_top = c->pc + 1;
+    c->loop_end = d->target;
+    c->loop_count = n;
+    c->pc = c->pc + 1;
+}
+
+static inline void loop_back(struct pru_core *c) {
+    ff_dirty(c);
+    if (--c->loop_count)
+        c->pc = c->loop_top;
+    else
+        c->loop_end = NO_LOOP;
+}
+
+static void do_halt(struct pru_core *c) {
+    c->halted = true;
+    c->ctrl.control &= ~PRU_CTRL_ENABLE;
+    ctrl_counting_update(c, c->cycle + 1);
+    c->stop = true;
+    c->stop_reason = PRU_STOP_HALT;
+}
+
+static void do_slp(struct pru_core *c, const struct pd *d) {
+    c->sleeping = true;
+    c->sleep_wake_on_event = d->in.flag != 0;
+    c->ctrl.control |= PRU_CTRL_SLEEPING;
+    ctrl_counting_update(c, c->cycle + 1);
+    c->pc++;
+    exec_recheck(c);
+}
+
+/*
+ * The instructions that only touch registers, carry and PC: ALU, LDI, LMBD,
+ * jumps and quick branches. Returns false for every other kind. Works on
+ * plain variables so the fast loop can keep its state in registers.
+ */
+/* always_inline: the fast loop's state must stay in registers */
+static inline __attribute__((always_inline)) bool exec_simple(uint32_t *restrict r,
+                                                              const struct pd *restrict d,
+                                                              unsigned kind, uint32_t *pc,
+                                                              int *carry) {
+    uint32_t p = *pc;
+    switch ((enum pd_kind)kind) {
+    case K_ADD:
+        wr(r, d, add_c(carry, d, rs1v(r, d), op2v(r, d), 0));
+        break;
+    case K_ADC:
+        wr(r, d, add_c(carry, d, rs1v(r, d), op2v(r, d), (uint64_t)*carry));
+        break;
+    case K_SUB:
+        wr(r, d, sub_c(carry, d, rs1v(r, d), op2v(r, d), 0));
+        break;
+    case K_SUC:
+        wr(r, d, sub_c(carry, d, rs1v(r, d), op2v(r, d), (uint64_t) !*carry));
+        break;
+    case K_RSB:
+        wr(r, d, sub_c(carry, d, op2v(r, d), rs1v(r, d), 0));
+        break;
+    case K_RSC:
+        wr(r, d, sub_c(carry, d, op2v(r, d), rs1v(r, d), (uint64_t) !*carry));
+        break;
+    case K_LSL:
+        wr(r, d, rs1v(r, d) << (op2v(r, d) & 31u));
+        break;
+    case K_LSR:
+        wr(r, d, rs1v(r, d) >> (op2v(r, d) & 31u));
+        break;
+    case K_AND:
+        wr(r, d, rs1v(r, d) & op2v(r, d));
+        break;
+    case K_OR:
+        wr(r, d, rs1v(r, d) | op2v(r, d));
+        break;
+    case K_XOR:
+        wr(r, d, rs1v(r, d) ^ op2v(r, d));
+        break;
+    case K_NOT:
+        wr(r, d, ~rs1v(r, d));
+        break;
+    case K_MIN: {
+        uint32_t a = rs1v(r, d), b = op2v(r, d);
+        wr(r, d, a < b ? a : b);
+        break;
+    }
+    case K_MAX: {
+        uint32_t a = rs1v(r, d), b = op2v(r, d);
+        wr(r, d, a > b ? a : b);
+        break;
+    }
+    case K_CLR:
+        wr(r, d, rs1v(r, d) & ~(1u << (op2v(r, d) & 31u)));
+        break;
+    case K_SET:
+        wr(r, d, rs1v(r, d) | (1u << (op2v(r, d) & 31u)));
+        break;
+    case K_NOP:
+        break;
+    case K_LDI:
+        wr(r, d, d->imm);
+        break;
+    case K_LMBD:
+        wr(r, d, lmbd(rs1v(r, d), d->rs1mask, op2v(r, d)));
+        break;
+    case K_JMP:
+        *pc = op2v(r, d) & 0xffffu;
+        return true;
+    case K_JAL: {
+        uint32_t t = op2v(r, d) & 0xffffu; /* read before the link write */
+        wr(r, d, p + 1);
+        *pc = t;
+        return true;
+    }
+#define QB(cond)                                                                                   \
+    *pc = (cond) ? d->target : p + 1;                                                              \
+    return true
+    case K_QBGT:
+        QB(op2v(r, d) > rs1v(r, d));
+    case K_QBGE:
+        QB(op2v(r, d) >= rs1v(r, d));
+    case K_QBLT:
+        QB(op2v(r, d) < rs1v(r, d));
+    case K_QBLE:
+        QB(op2v(r, d) <= rs1v(r, d));
+    case K_QBEQ:
+        QB(op2v(r, d) == rs1v(r, d));
+    case K_QBNE:
+        QB(op2v(r, d) != rs1v(r, d));
+    case K_QBA:
+        *pc = d->target;
+        return true;
+    case K_QBBS:
+        QB((rs1v(r, d) >> (op2v(r, d) & 31u)) & 1u);
+    case K_QBBC:
+        QB(!((rs1v(r, d) >> (op2v(r, d) & 31u)) & 1u));
+#undef QB
+    default:
+        return false;
+    }
+    *pc = p + 1;
+    return true;
+}
+
+/* Execute the instruction at c->pc: any kind, any flags. Advances pc,
+ * cycle and insns. */
+static __attribute__((noinline)) void exec_one(struct pru_core *c, const struct pd *d,
+                                               int64_t limit) {
+    uint32_t pc = c->pc;
+    unsigned cost = 1;
+
+    if (d->flags & PD_READS_R31)
+        c->r[31] = gpi_r31(c, c->cycle);
+
+    if (exec_simple(c->r, d, d->kind, &c->pc, &c->carry)) {
+        if (c->pc <= pc && c->ff_on) /* a backward jump or branch */
+            ff_backward_branch(c, pc, c->pc, limit);
+    } else {
+        switch ((enum pd_kind)d->kind) {
+        case K_LOOP:
+            do_loop(c, d);
+            break;
+        case K_LBBO:
+            cost = exec_burst(c, d, true, false);
+            break;
+        case K_SBBO:
+            cost = exec_burst(c, d, false, false);
+            break;
+        case K_LBCO:
+            cost = exec_burst(c, d, true, true);
+            break;
+        case K_SBCO:
+            cost = exec_burst(c, d, false, true);
+            break;
+        case K_XFR:
+            exec_xfr(c, d);
+            break;
+        case K_MVI:
+            exec_mvi(c, d);
+            break;
+        case K_HALT:
+            do_halt(c);
+            break;
+        case K_SLP:
+            do_slp(c, d);
+            break;
+        default:
+            core_fault(c, PRU_FAULT_BAD_OPCODE, 0);
+            return;
+        }
+        if (c->fault.cause != PRU_FAULT_NONE)
+            return; /* the faulting instruction does not complete */
+    }
+
+    if (d->flags & (PD_WRITES_R30 | PD_WRITES_R31)) {
+        if (d->flags & PD_WRITES_R30)
+            exec_r30_changed(c, c->cycle + cost);
+        if (d->flags & PD_WRITES_R31)
+            exec_r31_written(c, d->rdmask << d->rdsh);
+    }
+    c->cycle += cost;
+    c->stall_total += cost - 1;
+    c->insns++;
+    if (c->pc == c->loop_end)
+        loop_back(c);
+}
+
+/* Sleep until woken or limit; returns true when awake. */
+static bool sleep_until(struct pru_core *c, int64_t limit) {
+    while (c->cycle < limit) {
+        if (!(c->ctrl.control & PRU_CTRL_SLEEPING)) {
+            c->sleeping = false; /* woken by a write of SLEEPING = 0 */
+        } else if (c->sleep_wake_on_event) {
+            uint32_t v = gpi_r31(c, c->cycle) & c->ctrl.wakeup_en;
+            if (v) {
+                c->sleeping = false;
+                c->ctrl.control &= ~PRU_CTRL_SLEEPING;
+            } else {
+                int64_t h = gpi_stable_until(c, c->cycle);
+                int64_t next = h > c->cycle ? h : c->cycle + 1;
+                c->cycle = next < limit ? next : limit;
+                continue;
+            }
+        } else {
+            c->cycle = limit; /* SLP 0: until reset */
+            continue;
+        }
+        ctrl_counting_update(c, c->cycle);
+        return true;
+    }
+    return false;
+}
+
+static bool enabled(const struct pru_core *c) {
+    return (c->ctrl.control & PRU_CTRL_ENABLE) != 0;
+}
+
+/* Trace wrapper: the same instruction with a before/after register dump. */
+static void exec_traced(struct pru_core *c, const struct pd *d, int64_t limit) {
+    uint32_t before[32];
+    uint32_t pc = c->pc;
+    int64_t cyc = c->cycle;
+    int carry = c->carry;
+    memcpy(before, c->r, sizeof before);
+    uint64_t skipped = c->ff.skipped;
+    exec_one(c, d, limit);
+    trace_insn(c, pc, cyc, before, carry);
+    if (c->ff.skipped != skipped)
+        fprintf(c->trace, "        (fast-forward: %llu loop iterations skipped, now cycle %lld)\n",
+                (unsigned long long)(c->ff.skipped - skipped), (long long)c->cycle);
+}
+
+/* Leave the fast loop so that exec_run() re-evaluates enable/sleep/step. */
+void exec_recheck(struct pru_core *c) {
+    c->recheck = true;
+    c->stop = true;
+}
+
+/*
+ * A fixed-length burst between registers below r30 and the own data RAM:
+ * the common load/store, done in place. Returns its cycles, or 0 when the
+ * general path has to handle it (other block, fault).
+ */
+static inline unsigned burst_dram0(struct pru_core *c, const struct pd *d) {
+    bool bbo = d->kind == K_LBBO || d->kind == K_SBBO;
+    uint32_t base = bbo ? c->r[d->in.base] : const_table(c, d->in.base);
+    uint32_t addr = base + op2v(c->r, d);
+    unsigned n = d->burst_bytes;
+    if ((uint64_t)addr + n > c->dram_bytes)
+        return 0;
+    uint8_t *rf = (uint8_t *)c->r + d->burst_rf;
+    unsigned beats = (n + 3u) / 4u;
+    if (d->kind == K_LBBO || d->kind == K_LBCO) {
+        memcpy(rf, c->dram0 + addr, n);
+        return c->p.load_local_base + beats;
+    }
+    memcpy(c->dram0 + addr, rf, n);
+    ff_dirty(c);
+    unsigned cyc = beats * c->p.store_beat_cycles;
+    return cyc ? cyc : 1;
+}
+
+/*
+ * The hot path (no trace, no single step): register-only instructions run
+ * here with PC, carry and counters in local variables; everything else goes
+ * through exec_one(). Stops on limit, end of IRAM or anything setting stop.
+ */
+static void run_fast(struct pru_core *c, int64_t limit) {
+    const struct pd *pd = c->pd;
+    const uint32_t n = c->iram_words;
+    const bool ff = c->ff_on;
+    uint32_t *r = c->r;
+    uint32_t pc = c->pc;
+    int carry = c->carry;
+    int64_t cyc = c->cycle;
+    uint64_t ins = c->insns;
+    uint32_t loop_end = c->loop_end;
+
+#define SYNC_OUT() (c->pc = pc, c->carry = carry, c->cycle = cyc, c->insns = ins)
+#define SYNC_IN()                                                                                  \
+    (pc = c->pc, carry = c->carry, cyc = c->cycle, ins = c->insns, loop_end = c->loop_end)
+    while (cyc < limit && pc < n) {
+        const struct pd *d = &pd[pc];
+        uint32_t old = pc;
+        bool done = exec_simple(r, d, d->fast, &pc, &carry);
+        if (!done && d->fast == K_R31_READ) { /* kept off the path of the others */
+            r[31] = gpi_r31(c, cyc);
+            done = exec_simple(r, d, d->kind, &pc, &carry);
+        }
+        if (done) {
+            if (pc <= old && ff) {
+                SYNC_OUT();
+                ff_backward_branch(c, old, pc, limit);
+                SYNC_IN();
+            }
+            cyc++;
+            ins++;
+            if (pc == loop_end) {
+                SYNC_OUT();
+                loop_back(c);
+                SYNC_IN();
+            }
+            continue;
+        }
+        unsigned cost;
+        if (d->burst_bytes && d->flags == 0 && (cost = burst_dram0(c, d)) != 0) {
+            pc++;
+            cyc += cost;
+            ins++;
+            c->stall_total += cost - 1;
+            if (pc == loop_end) {
+                SYNC_OUT();
+                loop_back(c);
+                SYNC_IN();
+            }
+            continue;
+        }
+        SYNC_OUT();
+        exec_one(c, d, limit);
+        SYNC_IN();
+        if (c->stop)
+            break;
+    }
+    SYNC_OUT();
+#undef SYNC_OUT
+#undef SYNC_IN
+}
+
+enum pru_stop exec_run(struct pru_core *c, int64_t limit, bool one_step) {
+    c->stop = false;
+    c->recheck = false;
+    if (c->fault.cause != PRU_FAULT_NONE)
+        return PRU_STOP_FAULT;
+    c->ff.top = NO_LOOP; /* inputs may have changed between runs */
+    c->ff.have_snap = false;
+    bool unbounded = limit >= PRU_MAX_CYCLE; /* "until HALT": time stays put when idle */
+    if (unbounded)
+        limit = PRU_MAX_CYCLE;
+    for (;;) {
+        if (!enabled(c)) {
+            if (!unbounded && c->cycle < limit && !one_step)
+                c->cycle = limit;
+            return c->halted ? PRU_STOP_HALT : PRU_STOP_DISABLED;
+        }
+        if (c->sleeping) {
+            if (!sleep_until(c, one_step ? c->cycle + 1 : limit))
+                return one_step ? PRU_STOP_STEP : PRU_STOP_LIMIT;
+        }
+        if (c->cycle >= limit)
+            return PRU_STOP_LIMIT;
+        if (c->pc >= c->iram_words) {
+            core_fault(c, PRU_FAULT_PC_RANGE, c->pc);
+            return PRU_STOP_FAULT;
+        }
+        bool stepping = one_step || (c->ctrl.control & PRU_CTRL_SINGLE_STEP);
+        if (c->trace_on || stepping) {
+            const struct pd *d = &c->pd[c->pc];
+            if (c->trace_on)
+                exec_traced(c, d, limit);
+            else
+                exec_one(c, d, limit);
+        } else {
+            run_fast(c, limit);
+        }
+        if (c->stop) {
+            if (!c->recheck)
+                return c->stop_reason;
+            c->stop = false;
+            c->recheck = false;
+        }
+        if (stepping && enabled(c)) {
+            if (c->ctrl.control & PRU_CTRL_SINGLE_STEP) {
+                c->ctrl.control &= ~PRU_CTRL_ENABLE;
+                ctrl_counting_update(c, c->cycle);
+            }
+            return PRU_STOP_STEP;
+        }
+    }
+}

@@ -1,0 +1,172 @@
+/*
+ * exec_mem.c - instructions that move bytes between the register file and
+ * memory or other register-file bytes: bursts (LBBO/SBBO/LBCO/SBCO), XFR
+ * (XIN/XOUT/XCHG to scratch pads, ZERO, FILL) and MVIx.
+ *
+ * The register file is 128 bytes, little-endian: byte 4*n + k is rn.bk.
+ */
+#include "exec_priv.h"
+
+#include <string.h>
+
+#define RF_BYTES 128u
+
+static uint8_t *rf(struct pru_core *c) {
+    return (uint8_t *)c->r;
+}
+
+/* Before reading register-file bytes [start, start+n): refresh R31. */
+static void rf_before_read(struct pru_core *c, unsigned start, unsigned n) {
+    if (start + n > 124u)
+        c->r[31] = gpi_r31(c, c->cycle);
+}
+
+/* After writing register-file bytes [start, start+n). */
+static void rf_after_write(struct pru_core *c, unsigned start, unsigned n, int64_t end_cycle) {
+    unsigned end = start + n;
+    if (start < 124u && end > 120u)
+        exec_r30_changed(c, end_cycle);
+    if (end > 124u) {
+        uint32_t mask = 0;
+        for (unsigned b = start > 124u ? start : 124u; b < end; b++)
+            mask |= 0xffu << (8u * (b - 124u));
+        exec_r31_written(c, mask);
+    }
+}
+
+unsigned exec_burst(struct pru_core *c, const struct pd *d, bool load, bool cbase) {
+    const struct pru_insn *in = &d->in;
+    unsigned n = pru_len_bytes(in->len, c->r[0]);
+    unsigned start = 4u * in->rx + in->rxbyte;
+    uint32_t base = cbase ? const_table(c, in->base) : c->r[in->base];
+    uint32_t addr = base + (fld(c->r, d->rs2, d->rs2sh, d->rs2mask) | d->imm);
+    unsigned cycles = 1;
+
+    if (n == 0 || start + n > RF_BYTES) {
+        core_fault(c, PRU_FAULT_BURST, addr);
+        return 1;
+    }
+    if (load) {
+        uint8_t tmp[RF_BYTES];
+        if (mem_load(c, addr, tmp, n, &cycles) != 0)
+            return 1;
+        memcpy(rf(c) + start, tmp, n);
+        rf_after_write(c, start, n, c->cycle + cycles);
+    } else {
+        rf_before_read(c, start, n);
+        if (mem_store(c, addr, rf(c) + start, n, &cycles) != 0)
+            return 1;
+        ff_dirty(c);
+    }
+    c->pc++;
+    return cycles;
+}
+
+/* XIN/XOUT on a scratch-pad bank (device 10, 11, 12). */
+static void xfr_spad(struct pru_core *c, unsigned op, uint8_t *bank, unsigned start, unsigned n) {
+    bool in = op == PRU_OP_XIN || op == PRU_OP_SXIN;
+    bool out = op == PRU_OP_XOUT || op == PRU_OP_SXOUT;
+    if (in || (!out && !c->p.xchg_swaps)) {
+        memcpy(rf(c) + start, bank + start, n);
+        rf_after_write(c, start, n, c->cycle + 1);
+    } else if (out) {
+        rf_before_read(c, start, n);
+        memcpy(bank + start, rf(c) + start, n);
+        ff_dirty(c);
+    } else {
+        uint8_t tmp[RF_BYTES];
+        rf_before_read(c, start, n);
+        memcpy(tmp, rf(c) + start, n);
+        memcpy(rf(c) + start, bank + start, n);
+        memcpy(bank + start, tmp, n);
+        rf_after_write(c, start, n, c->cycle + 1);
+        ff_dirty(c);
+    }
+}
+
+void exec_xfr(struct pru_core *c, const struct pd *d) {
+    const struct pru_insn *in = &d->in;
+    unsigned n = pru_len_bytes(in->len, c->r[0]);
+    unsigned start = 4u * in->rx + in->rxbyte;
+    unsigned dev = in->dev;
+    bool is_in = in->op == PRU_OP_XIN || in->op == PRU_OP_SXIN;
+
+    if (n == 0 || start + n > RF_BYTES) {
+        core_fault(c, PRU_FAULT_BURST, dev);
+        return;
+    }
+    if ((dev == 254u || dev == 255u) && is_in) { /* FILL / ZERO */
+        memset(rf(c) + start, dev == 255u ? 0x00 : 0xff, n);
+        rf_after_write(c, start, n, c->cycle + 1);
+    } else if (dev >= 10u && dev <= 12u) {
+        if (start + n > SPAD_BYTES) {
+            core_fault(c, PRU_FAULT_BURST, dev);
+            return;
+        }
+        xfr_spad(c, in->op, c->spad[dev - 10u], start, n);
+    } else {
+        core_fault(c, PRU_FAULT_XFR_DEVICE, dev);
+        return;
+    }
+    c->pc++;
+}
+
+/* MVIx: register-file pointers are byte fields of r1; addresses wrap at 128. */
+static uint32_t mvi_read(struct pru_core *c, unsigned addr, unsigned size) {
+    uint32_t v = 0;
+    rf_before_read(c, 0, RF_BYTES);
+    for (unsigned i = 0; i < size; i++)
+        v |= (uint32_t)rf(c)[(addr + i) & 0x7fu] << (8u * i);
+    return v;
+}
+
+static void mvi_write(struct pru_core *c, unsigned addr, unsigned size, uint32_t v) {
+    for (unsigned i = 0; i < size; i++) {
+        unsigned a = (addr + i) & 0x7fu;
+        rf(c)[a] = (uint8_t)(v >> (8u * i));
+        rf_after_write(c, a, 1, c->cycle + 1);
+    }
+}
+
+/* Pointer field value; pre-decrement / post-increment update it. */
+static unsigned mvi_ptr(struct pru_core *c, unsigned reg, unsigned sel, unsigned mode,
+                        unsigned size, bool post) {
+    unsigned sh = pru_sel_shift(sel);
+    uint32_t m = pru_sel_mask(sel);
+    uint32_t p = fld(c->r, reg, sh, m);
+    if (!post && mode == PRU_MVI_PREDEC) {
+        p = (p - size) & m;
+        fld_set(c->r, reg, sh, m, p);
+    }
+    if (post && mode == PRU_MVI_POSTINC)
+        fld_set(c->r, reg, sh, m, p + size);
+    return p;
+}
+
+void exec_mvi(struct pru_core *c, const struct pd *d) {
+    const struct pru_insn *in = &d->in;
+    unsigned size = 1u << in->mvi_size;
+    uint32_t smask = size == 4 ? 0xffffffffu : (1u << (8u * size)) - 1u;
+    uint32_t v;
+
+    if (in->mvi_smode == PRU_MVI_DIRECT) {
+        if (in->rs1 == 31)
+            c->r[31] = gpi_r31(c, c->cycle);
+        v = fld(c->r, in->rs1, pru_sel_shift(in->rs1sel), pru_sel_mask(in->rs1sel)) & smask;
+    } else {
+        unsigned a = mvi_ptr(c, in->rs1, in->rs1sel, in->mvi_smode, size, false);
+        v = mvi_read(c, a, size);
+        mvi_ptr(c, in->rs1, in->rs1sel, in->mvi_smode, size, true);
+    }
+    if (in->mvi_dmode == PRU_MVI_DIRECT) {
+        unsigned sh = pru_sel_shift(in->rdsel);
+        fld_set(c->r, in->rd, sh, pru_sel_mask(in->rdsel), v);
+        if (in->rd >= 30)
+            rf_after_write(c, 4u * in->rd + sh / 8u, pru_sel_width(in->rdsel) / 8u, c->cycle + 1);
+    } else {
+        unsigned a = mvi_ptr(c, in->rd, in->rdsel, in->mvi_dmode, size, false);
+        mvi_write(c, a, size, v);
+        mvi_ptr(c, in->rd, in->rdsel, in->mvi_dmode, size, true);
+    }
+    c->pc++;
+}

@@ -1,0 +1,214 @@
+/*
+ * pru_core.h - cycle-exact emulator of one PRU core (PRU0) of an AM335x or
+ * AM437x PRU-ICSS, with the ICSS blocks the BiSS-C firmware touches.
+ *
+ * Time: 1 PRU cycle = 5000 ps; cycle c starts at t = c * 5000 ps. The core
+ * keeps one clock (pru_cycles()) that advances while the PRU runs, sleeps or
+ * is halted and time is advanced with pru_run_until_*().
+ *
+ * The host side sees the PRU-ICSS through the same global addresses as the
+ * ARM (pru_host_read32/write32 and friends), so a host library drives the
+ * emulator exactly as it drives silicon: load IRAM while halted, write data
+ * RAM, start and stop through CONTROL.
+ *
+ * Timing assumptions and their parameters: emulator/core/TIMING.md.
+ */
+#ifndef PRU_CORE_H
+#define PRU_CORE_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+
+#define PRU_PS_PER_CYCLE 5000
+/* Simulated time is bounded so that times in ps never overflow (~52 days). */
+#define PRU_MAX_CYCLE (INT64_MAX / PRU_PS_PER_CYCLE / 4)
+
+enum pru_soc {
+    PRU_SOC_AM335X,
+    PRU_SOC_AM437X_ICSS0, /* 4 KB IRAM / data RAM, no shared RAM */
+    PRU_SOC_AM437X_ICSS1,
+};
+
+/* How a divide ratio with a .5 (or .25) part places shift-clock edges. */
+enum pru_frac_mode {
+    PRU_FRAC_EXACT, /* edges at the exact average rate (both 200 MHz clock edges usable) */
+    PRU_FRAC_CYCLE, /* edges rounded down to a PRU clock edge (periods alternate) */
+};
+
+/* Emulation parameters for behaviour the documentation leaves open.
+ * pru_params_default() fills the documented defaults (TIMING.md). */
+struct pru_params {
+    /* Local loads (own/other data RAM, shared RAM): base + ceil(N/4) cycles. */
+    unsigned load_local_base;
+    /* Stores anywhere: ceil(N/4) * store_beat_cycles, at least 1. */
+    unsigned store_beat_cycles;
+    /* Loads of 4 bytes from ICSS registers; + ceil(N/4) - 1 for longer bursts. */
+    unsigned load_cfg_cycles, load_intc_cycles, load_ctrl_cycles, load_iep_cycles;
+    /* Loads from the system bus (L3/L4, external windows); + ceil(N/4) - 1. */
+    unsigned load_ext_cycles;
+    /* XCHG to a scratch pad: 1 swaps register and bank, 0 behaves like XIN. */
+    int xchg_swaps;
+    /* GPI synchronizer: R31 read at cycle c sees the pins at c*5000 - gpi_delay_ps;
+     * the shift register samples DATAIN at edge - gpi_delay_ps. */
+    int64_t gpi_delay_ps;
+    /* GPO: an R30 write by an instruction ending at cycle e reaches the pins at
+     * e*5000 + gpo_delay_ps. */
+    int64_t gpo_delay_ps;
+    /* Shift clock: edges at t_cfg + shift_phase_ps + k * period, k >= 1, where
+     * t_cfg is when GPCFG's mode/divider fields were last written. */
+    int64_t shift_phase_ps;
+    enum pru_frac_mode shift_frac;
+    /* Skip idle polling loops in whole iterations (results are identical). */
+    int fast_forward;
+};
+
+void pru_params_default(struct pru_params *p);
+
+/*
+ * Connection to the outside world (cable + encoder models).
+ *
+ * Ordering the core guarantees: inputs_at() times never decrease; an
+ * outputs_changed() time is always later than every inputs_at() time asked
+ * so far. With the bench's link model (emulator/slave/link_model.h) the
+ * adapter is direct:
+ *   inputs_at(t)          -> link_sl(l, t) << SL_BIT (bit 0 for shift mode)
+ *   next_input_change(t)  -> link_next_change(l)  (a time <= t is tolerated)
+ *   outputs_changed(t, v) -> link_ma(l, t, (v >> MA_BIT) & 1) when that bit moved
+ */
+struct pru_pins {
+    void *ctx;
+    /* Input levels of R31[29:0] (bit 0 is also the shift-mode DATAIN) at t_ps.
+     * Called with non-decreasing t. */
+    uint32_t (*inputs_at)(void *ctx, int64_t t_ps);
+    /* Earliest time > t_ps at which the inputs may change if R30 does not
+     * change; INT64_MAX if never. May be NULL (then no fast-forward on pins). */
+    int64_t (*next_input_change)(void *ctx, int64_t t_ps);
+    /* R30 changed; the pins take the new value at t_ps. t_ps may lie up to
+     * 5000 + gpo_delay_ps + gpi_delay_ps after the latest inputs_at() time. */
+    void (*outputs_changed)(void *ctx, int64_t t_ps, uint32_t r30);
+};
+
+enum pru_fault_cause {
+    PRU_FAULT_NONE,
+    PRU_FAULT_BAD_OPCODE,   /* word does not decode, or SCAN/MAC not modelled */
+    PRU_FAULT_UNMAPPED,     /* data access outside any modelled block */
+    PRU_FAULT_PC_RANGE,     /* PC past the end of IRAM */
+    PRU_FAULT_IRAM_RUNNING, /* host wrote IRAM while the PRU was running */
+    PRU_FAULT_BURST,        /* zero-length burst or register file overrun */
+    PRU_FAULT_XFR_DEVICE,   /* XIN/XOUT to a device that is not modelled */
+    PRU_FAULT_GPO_SHIFT,    /* GPO shift-out mode enabled (not modelled) */
+    PRU_FAULT_UNSUPPORTED,  /* other mode not modelled (GPI parallel/MII) */
+};
+
+struct pru_fault {
+    enum pru_fault_cause cause;
+    uint32_t pc;   /* word address of the faulting instruction */
+    int64_t cycle; /* cycle in which it was issued */
+    uint32_t addr; /* data address involved (if any) */
+    uint32_t word; /* instruction word (if any) */
+};
+
+enum pru_stop {
+    PRU_STOP_LIMIT,    /* reached the requested cycle/time */
+    PRU_STOP_HALT,     /* executed HALT */
+    PRU_STOP_FAULT,    /* see pru_get_fault() */
+    PRU_STOP_DISABLED, /* CONTROL.ENABLE is 0 (not started, or stopped by a write) */
+    PRU_STOP_STEP,     /* single step done */
+};
+
+struct pru_core;
+
+/* Create a core; params may be NULL for the defaults. Out of reset the PRU
+ * is disabled (CONTROL = 1) with PC 0, like the SoC. */
+struct pru_core *pru_core_new(enum pru_soc soc, const struct pru_params *params);
+void pru_core_free(struct pru_core *c);
+
+int pru_soc_from_name(const char *name, enum pru_soc *soc); /* 0 or -1 */
+const char *pru_soc_name(enum pru_soc soc);
+uint32_t pru_soc_base(enum pru_soc soc); /* global PRU-ICSS base address */
+uint32_t pru_iram_bytes(const struct pru_core *c);
+uint32_t pru_dram_bytes(const struct pru_core *c);
+uint32_t pru_shared_bytes(const struct pru_core *c);
+
+/* Global (ARM view) offsets inside the PRU-ICSS. */
+#define PRU_OFS_DRAM0  0x00000u
+#define PRU_OFS_DRAM1  0x02000u
+#define PRU_OFS_SHARED 0x10000u
+#define PRU_OFS_INTC   0x20000u
+#define PRU_OFS_CTRL0  0x22000u
+#define PRU_OFS_DEBUG0 0x22400u
+#define PRU_OFS_CTRL1  0x24000u
+#define PRU_OFS_CFG    0x26000u
+#define PRU_OFS_IEP    0x2E000u
+#define PRU_OFS_IRAM0  0x34000u
+#define PRU_OFS_IRAM1  0x38000u
+
+/* CONTROL bits */
+#define PRU_CTRL_SOFT_RST_N  (1u << 0)
+#define PRU_CTRL_ENABLE      (1u << 1)
+#define PRU_CTRL_SLEEPING    (1u << 2)
+#define PRU_CTRL_CTR_EN      (1u << 3)
+#define PRU_CTRL_SINGLE_STEP (1u << 8)
+#define PRU_CTRL_RUNSTATE    (1u << 15)
+
+/* Host access through global addresses (pru_soc_base() + offset). Word
+ * accesses must be 4-byte aligned. Return 0, -1 for an unmapped address,
+ * -2 for an IRAM access while the PRU runs (a write is also recorded as a
+ * fault). */
+int pru_host_read32(struct pru_core *c, uint32_t addr, uint32_t *val);
+int pru_host_write32(struct pru_core *c, uint32_t addr, uint32_t val);
+int pru_host_read(struct pru_core *c, uint32_t addr, void *buf, size_t n);
+int pru_host_write(struct pru_core *c, uint32_t addr, const void *buf, size_t n);
+
+/* Map a RAM window of the system bus (e.g. DDR at 0x80000000 or OCMC at
+ * 0x40300000) that PRU loads/stores above 0x80000 reach, with the cost
+ * load_ext_cycles; the host reaches it at the same address. Zero-filled.
+ * Up to 4 windows. Returns 0, or -1 (overlap, below 0x80000, no memory). */
+int pru_map_ext(struct pru_core *c, uint32_t base, uint32_t size);
+
+/* Convenience: load a raw little-endian IRAM image at word 0 (PRU must be
+ * halted); bytes beyond the image are zero. Returns 0 or -1 (too big). */
+int pru_load_image(struct pru_core *c, const void *image, size_t bytes);
+/* Start (CONTROL.ENABLE = 1) and stop, as a host write to CONTROL would. */
+void pru_start(struct pru_core *c);
+void pru_stop(struct pru_core *c);
+
+/* Pins: without a pins object the inputs are the constant pru_set_inputs(). */
+void pru_set_pins(struct pru_core *c, const struct pru_pins *pins);
+void pru_set_inputs(struct pru_core *c, uint32_t levels);
+
+/* Trace each executed instruction to f (NULL: off). */
+void pru_set_trace(struct pru_core *c, FILE *f);
+
+/* Run. Time advances to the limit even while the PRU is disabled or asleep,
+ * except that a run stops right after HALT, a fault, or a step. Limits are
+ * capped at PRU_MAX_CYCLE; a limit at or above it means "no limit": then a
+ * disabled PRU returns at once and time stays where it is. */
+enum pru_stop pru_run_until_cycle(struct pru_core *c, int64_t cycle);
+enum pru_stop pru_run_until_time(struct pru_core *c, int64_t t_ps);
+/* Run until HALT/fault/disable, at most max_cycles from now. */
+enum pru_stop pru_run(struct pru_core *c, int64_t max_cycles);
+/* Execute exactly one instruction (or one cycle of sleep). */
+enum pru_stop pru_step(struct pru_core *c);
+
+/* State */
+int64_t pru_cycles(const struct pru_core *c); /* current time in cycles */
+int64_t pru_time_ps(const struct pru_core *c);
+uint64_t pru_instructions(const struct pru_core *c); /* executed instructions */
+uint32_t pru_pc(const struct pru_core *c);
+void pru_set_pc(struct pru_core *c, uint32_t pc);
+uint32_t pru_reg(struct pru_core *c, unsigned n); /* r31 reads the inputs now */
+void pru_set_reg(struct pru_core *c, unsigned n, uint32_t v);
+int pru_carry(const struct pru_core *c);
+int pru_halted(const struct pru_core *c); /* stopped by HALT */
+int pru_sleeping(const struct pru_core *c);
+const struct pru_fault *pru_get_fault(const struct pru_core *c);
+const char *pru_fault_name(enum pru_fault_cause cause);
+/* One line "fault: <cause> at pc=0x.. cycle=N (addr=0x.., word=0x..)". */
+void pru_print_fault(const struct pru_core *c, FILE *f);
+
+/* Fast-forward statistics: iterations skipped so far. */
+uint64_t pru_ff_skipped(const struct pru_core *c);
+
+#endif

@@ -1,0 +1,210 @@
+/*
+ * pru-run - run a raw PRU IRAM image on one emulated PRU from PC 0 until HALT.
+ *
+ * Exit status: 0 halted, 2 did not halt within --max-cycles, 3 fault,
+ * 1 bad usage or unreadable file.
+ */
+#include "pru_core.h"
+
+#include <errno.h>
+#include <inttypes.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define EXIT_NOHALT        2
+#define EXIT_FAULT         3
+#define DEFAULT_MAX_CYCLES 2000000000LL
+
+struct opts {
+    const char *image, *data;
+    enum pru_soc soc;
+    int64_t max_cycles;
+    uint32_t inputs;
+    int dump_regs, trace;
+};
+
+static void usage(FILE *f) {
+    fprintf(f,
+            "usage: pru-run [options] IMAGE.bin\n"
+            "Runs a raw little-endian PRU IRAM image on one emulated PRU (PRU0) from\n"
+            "PC 0 until HALT.\n"
+            "\n"
+            "  --max-cycles N   stop after N cycles (default %lld); exit 2 if not halted\n"
+            "  --soc NAME       am335x (default), am437x-icss0, am437x-icss1\n"
+            "  --data FILE      initial contents of PRU0 data RAM (from address 0)\n"
+            "  --inputs VALUE   constant GPI input levels R31[29:0] (default 0)\n"
+            "  --dump-regs      print r0..r31, pc, cycles, instructions after the run\n"
+            "  --trace          print every executed instruction to stderr\n"
+            "  --help           this text\n"
+            "\n"
+            "exit status: 0 halted, 2 no HALT within the cycle limit, 3 fault, 1 usage\n",
+            (long long)DEFAULT_MAX_CYCLES);
+}
+
+static int parse_u64(const char *s, uint64_t *out) {
+    char *end;
+    errno = 0;
+    if (!s || !*s || *s == '-')
+        return -1;
+    unsigned long long v = strtoull(s, &end, 0);
+    if (errno || *end)
+        return -1;
+    *out = v;
+    return 0;
+}
+
+static int bad(const char *msg, const char *arg) {
+    fprintf(stderr, "pru-run: %s%s%s\n", msg, arg ? ": " : "", arg ? arg : "");
+    fprintf(stderr, "try 'pru-run --help'\n");
+    return -1;
+}
+
+static int parse_args(int argc, char **argv, struct opts *o) {
+    *o = (struct opts){.soc = PRU_SOC_AM335X, .max_cycles = DEFAULT_MAX_CYCLES};
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        const char *val = i + 1 < argc ? argv[i + 1] : NULL;
+        uint64_t u;
+        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
+            usage(stdout);
+            exit(0);
+        } else if (strcmp(a, "--dump-regs") == 0) {
+            o->dump_regs = 1;
+        } else if (strcmp(a, "--trace") == 0) {
+            o->trace = 1;
+        } else if (strcmp(a, "--max-cycles") == 0) {
+            if (parse_u64(val, &u) || u == 0 || u >= (uint64_t)PRU_MAX_CYCLE)
+                return bad("--max-cycles needs a positive number", val);
+            o->max_cycles = (int64_t)u;
+            i++;
+        } else if (strcmp(a, "--soc") == 0) {
+            if (!val || pru_soc_from_name(val, &o->soc))
+                return bad("--soc must be am335x, am437x-icss0 or am437x-icss1", val);
+            i++;
+        } else if (strcmp(a, "--data") == 0) {
+            if (!val)
+                return bad("--data needs a file", NULL);
+            o->data = val;
+            i++;
+        } else if (strcmp(a, "--inputs") == 0) {
+            if (parse_u64(val, &u) || u > 0x3fffffffu)
+                return bad("--inputs needs a value 0..0x3fffffff", val);
+            o->inputs = (uint32_t)u;
+            i++;
+        } else if (a[0] == '-' && a[1]) {
+            return bad("unknown option", a);
+        } else if (o->image) {
+            return bad("more than one image given", a);
+        } else {
+            o->image = a;
+        }
+    }
+    if (!o->image)
+        return bad("no image file given", NULL);
+    return 0;
+}
+
+/* Read a whole file; returns 0 or -1 (message printed). */
+static int read_file(const char *path, uint8_t **buf, size_t *len) {
+    FILE *f = fopen(path, "rb");
+    if (!f) {
+        fprintf(stderr, "pru-run: cannot open %s: %s\n", path, strerror(errno));
+        return -1;
+    }
+    size_t cap = 4096, n = 0;
+    uint8_t *b = malloc(cap);
+    size_t got;
+    while (b && (got = fread(b + n, 1, cap - n, f)) > 0) {
+        n += got;
+        if (n == cap) {
+            uint8_t *nb = cap > (1u << 24) ? NULL : realloc(b, cap * 2);
+            if (!nb) {
+                free(b);
+                b = NULL;
+                break;
+            }
+            b = nb;
+            cap *= 2;
+        }
+    }
+    int err = ferror(f);
+    fclose(f);
+    if (!b || err) {
+        free(b);
+        fprintf(stderr, "pru-run: cannot read %s\n", path);
+        return -1;
+    }
+    *buf = b;
+    *len = n;
+    return 0;
+}
+
+static int load(struct pru_core *c, const struct opts *o) {
+    uint8_t *buf;
+    size_t len;
+    if (read_file(o->image, &buf, &len))
+        return -1;
+    int rc = 0;
+    if (len % 4 != 0) {
+        fprintf(stderr, "pru-run: %s: size %zu is not a multiple of 4\n", o->image, len);
+        rc = -1;
+    } else if (pru_load_image(c, buf, len) != 0) {
+        fprintf(stderr, "pru-run: %s: %zu bytes do not fit the %u-byte IRAM of %s\n", o->image, len,
+                pru_iram_bytes(c), pru_soc_name(o->soc));
+        rc = -1;
+    }
+    free(buf);
+    if (rc || !o->data)
+        return rc;
+    if (read_file(o->data, &buf, &len))
+        return -1;
+    if (len > pru_dram_bytes(c) ||
+        pru_host_write(c, pru_soc_base(o->soc) + PRU_OFS_DRAM0, buf, len) != 0) {
+        fprintf(stderr, "pru-run: %s: %zu bytes do not fit the %u-byte data RAM\n", o->data, len,
+                pru_dram_bytes(c));
+        rc = -1;
+    }
+    free(buf);
+    return rc;
+}
+
+static void dump_regs(struct pru_core *c) {
+    for (unsigned i = 0; i < 32; i++)
+        printf("r%u=0x%08" PRIx32 "\n", i, pru_reg(c, i));
+    printf("pc=0x%04" PRIx32 "\n", pru_pc(c));
+    printf("cycles=%lld\n", (long long)pru_cycles(c));
+    printf("instructions=%llu\n", (unsigned long long)pru_instructions(c));
+}
+
+int main(int argc, char **argv) {
+    struct opts o;
+    if (parse_args(argc, argv, &o))
+        return 1;
+    struct pru_core *c = pru_core_new(o.soc, NULL);
+    if (!c) {
+        fprintf(stderr, "pru-run: out of memory\n");
+        return 1;
+    }
+    if (load(c, &o)) {
+        pru_core_free(c);
+        return 1;
+    }
+    pru_set_inputs(c, o.inputs);
+    if (o.trace)
+        pru_set_trace(c, stderr);
+    pru_start(c);
+    enum pru_stop st = pru_run(c, o.max_cycles);
+    int rc = 0;
+    if (st == PRU_STOP_FAULT) {
+        pru_print_fault(c, stderr);
+        rc = EXIT_FAULT;
+    } else if (st != PRU_STOP_HALT) {
+        fprintf(stderr, "pru-run: no HALT within %lld cycles (pc=0x%04x)\n",
+                (long long)o.max_cycles, pru_pc(c));
+        rc = EXIT_NOHALT;
+    }
+    if (o.dump_regs)
+        dump_regs(c);
+    pru_core_free(c);
+    return rc;
+}

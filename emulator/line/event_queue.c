@@ -1,0 +1,119 @@
+/* Binary min-heap ordered by (time, id). Pending events are few (a handful
+ * per component), so cancellation by a linear search is cheaper than
+ * keeping an index map up to date. */
+#include "event_queue.h"
+
+#include <stdlib.h>
+
+static int before(const eq_event *a, const eq_event *b) {
+    return a->t < b->t || (a->t == b->t && a->id < b->id);
+}
+
+static void swap(eq_event *a, eq_event *b) {
+    eq_event tmp = *a;
+    *a = *b;
+    *b = tmp;
+}
+
+static void sift_up(event_queue *q, size_t i) {
+    while (i > 0) {
+        size_t parent = (i - 1) / 2;
+        if (!before(&q->heap[i], &q->heap[parent])) {
+            break;
+        }
+        swap(&q->heap[i], &q->heap[parent]);
+        i = parent;
+    }
+}
+
+static void sift_down(event_queue *q, size_t i) {
+    for (;;) {
+        size_t l = 2 * i + 1, r = l + 1, m = i;
+        if (l < q->len && before(&q->heap[l], &q->heap[m])) {
+            m = l;
+        }
+        if (r < q->len && before(&q->heap[r], &q->heap[m])) {
+            m = r;
+        }
+        if (m == i) {
+            return;
+        }
+        swap(&q->heap[i], &q->heap[m]);
+        i = m;
+    }
+}
+
+static void remove_at(event_queue *q, size_t i) {
+    q->len--;
+    if (i == q->len) {
+        return;
+    }
+    q->heap[i] = q->heap[q->len];
+    sift_down(q, i);
+    sift_up(q, i);
+}
+
+void eq_init(event_queue *q) {
+    q->heap = NULL;
+    q->len = q->cap = 0;
+    q->next_id = 1;
+    q->now = 0;
+}
+
+void eq_free(event_queue *q) {
+    free(q->heap);
+    q->heap = NULL;
+    q->len = q->cap = 0;
+}
+
+eq_id eq_schedule(event_queue *q, sim_ps t, eq_fn fn, void *ctx, int64_t arg) {
+    if (q->len == q->cap) {
+        size_t cap = q->cap ? q->cap * 2 : 16;
+        eq_event *heap = realloc(q->heap, cap * sizeof *heap);
+        if (!heap) {
+            return 0;
+        }
+        q->heap = heap;
+        q->cap = cap;
+    }
+    eq_event *e = &q->heap[q->len];
+    e->t = t < q->now ? q->now : t; /* never schedule into the past */
+    e->id = q->next_id++;
+    e->fn = fn;
+    e->ctx = ctx;
+    e->arg = arg;
+    sift_up(q, q->len++);
+    return e->id;
+}
+
+int eq_cancel(event_queue *q, eq_id id) {
+    if (id == 0) {
+        return 0;
+    }
+    for (size_t i = 0; i < q->len; i++) {
+        if (q->heap[i].id == id) {
+            remove_at(q, i);
+            return 1;
+        }
+    }
+    return 0;
+}
+
+size_t eq_run_until(event_queue *q, sim_ps t) {
+    size_t n = 0;
+    while (q->len > 0 && q->heap[0].t <= t) {
+        eq_event e = q->heap[0];
+        remove_at(q, 0);
+        q->now = e.t;
+        e.fn(e.ctx, e.t, e.arg);
+        n++;
+    }
+    if (t > q->now) {
+        q->now = t;
+    }
+    return n;
+}
+
+sim_ps eq_next_time(const event_queue *q) {
+    return q->len ? q->heap[0].t : SIM_NEVER;
+}

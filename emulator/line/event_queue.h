@@ -1,0 +1,61 @@
+/* A small discrete-event scheduler.
+ *
+ * Components schedule callbacks at future times; the bench advances the
+ * queue to a time T, which runs every event with time <= T in order of time
+ * and then of scheduling (so equal-time events run first-in first-out and a
+ * run is reproducible). A scheduled event can be cancelled by its id, which
+ * is how a slave drops its pending timeout when MA moves again. */
+#ifndef EVENT_QUEUE_H
+#define EVENT_QUEUE_H
+
+#include "sim_time.h"
+
+#include <stddef.h>
+#include <stdint.h>
+
+typedef void (*eq_fn)(void *ctx, sim_ps t, int64_t arg);
+
+typedef uint64_t eq_id; /* 0 is never a valid id: use it for "none pending" */
+
+typedef struct {
+    sim_ps t;
+    eq_id id; /* also the scheduling order */
+    eq_fn fn;
+    void *ctx;
+    int64_t arg;
+} eq_event;
+
+typedef struct {
+    eq_event *heap;
+    size_t len, cap;
+    eq_id next_id;
+    sim_ps now; /* time of the event running or last run, or of the last advance */
+} event_queue;
+
+void eq_init(event_queue *q);
+void eq_free(event_queue *q);
+
+/* Schedules fn(ctx, t, arg). t must not be earlier than eq_now(q).
+ * Returns the event's id, or 0 if memory ran out. */
+eq_id eq_schedule(event_queue *q, sim_ps t, eq_fn fn, void *ctx, int64_t arg);
+
+/* Removes a pending event. Returns 1 if it was pending, 0 otherwise (already
+ * run, cancelled, or id 0), so callers may cancel unconditionally. */
+int eq_cancel(event_queue *q, eq_id id);
+
+/* Runs every event with time <= t (including ones scheduled while running),
+ * then sets the current time to t. Returns the number of events run. */
+size_t eq_run_until(event_queue *q, sim_ps t);
+
+/* Time of the earliest pending event, or SIM_NEVER. */
+sim_ps eq_next_time(const event_queue *q);
+
+static inline sim_ps eq_now(const event_queue *q) {
+    return q->now;
+}
+
+static inline size_t eq_pending(const event_queue *q) {
+    return q->len;
+}
+
+#endif

@@ -1,0 +1,220 @@
+#include "line_model.h"
+
+#include <math.h>
+
+#define LN2 0.69314718055994530942
+
+void line_params_default(line_params *p) {
+    p->length_m = 0.0;
+    p->ps_per_m = 5000.0;
+    p->driver_delay_ps = 9000;
+    p->receiver_delay_ps = 15000;
+    p->rise_extra_ps = 0;
+    p->fall_extra_ps = 1000;
+    p->tau0_ps = 0.0;
+    p->tau_per_m2_ps = 20.0;
+    p->jitter_rms_ps = 0.0;
+    p->glitch_rate_hz = 0.0;
+    p->glitch_width_ps = 20000;
+    p->fault = LINE_OK;
+    p->fault_at_ps = 0;
+}
+
+double line_tau_ps(const line_params *p) {
+    double t = p->tau0_ps + p->tau_per_m2_ps * p->length_m * p->length_m;
+    return t > 0.0 ? t : 0.0;
+}
+
+static sim_ps fixed_delay(const line_params *p) {
+    return p->driver_delay_ps + p->receiver_delay_ps + (sim_ps)llround(p->length_m * p->ps_per_m);
+}
+
+double line_nominal_delay_ps(const line_params *p) {
+    return (double)fixed_delay(p) + line_tau_ps(p) * LN2 +
+           0.5 * (double)(p->rise_extra_ps + p->fall_extra_ps);
+}
+
+/* ---- output stage: glitches and faults sit on the receiver output ---- */
+
+static int forced_level(line_fault f, int fallback) {
+    switch (f) {
+    case LINE_STUCK_LOW:
+        return 0;
+    case LINE_STUCK_HIGH:
+    case LINE_OPEN:
+        return 1;
+    default:
+        return fallback;
+    }
+}
+
+static void send_current(line_dir *l, sim_ps t) {
+    int want = l->fault != LINE_OK ? forced_level(l->fault, 0)
+                                   : (l->glitching ? !l->true_level : l->true_level);
+    if (want != l->cur_level) {
+        l->cur_level = want;
+        sim_edge_send(&l->out, t, want);
+    }
+}
+
+static void on_output_edge(void *ctx, sim_ps t, int64_t level) {
+    line_dir *l = ctx;
+    l->true_level = (int)level;
+    l->edges_out++;
+    send_current(l, t);
+}
+
+static void on_glitch_end(void *ctx, sim_ps t, int64_t arg) {
+    (void)arg;
+    line_dir *l = ctx;
+    l->glitching = 0;
+    send_current(l, t);
+}
+
+static void schedule_next_glitch(line_dir *l, sim_ps from);
+
+static void on_glitch_start(void *ctx, sim_ps t, int64_t arg) {
+    (void)arg;
+    line_dir *l = ctx;
+    l->glitching = 1;
+    l->glitches++;
+    send_current(l, t);
+    sim_ps w = l->p.glitch_width_ps > 0 ? l->p.glitch_width_ps : 1;
+    eq_schedule(l->q, t + w, on_glitch_end, l, 0);
+    schedule_next_glitch(l, t + w);
+}
+
+static void schedule_next_glitch(line_dir *l, sim_ps from) {
+    if (l->p.glitch_rate_hz <= 0.0) {
+        return;
+    }
+    double mean_ps = (double)SIM_PS_PER_S / l->p.glitch_rate_hz;
+    sim_ps gap = (sim_ps)llround(sim_rng_exponential(&l->rng, mean_ps));
+    eq_schedule(l->q, from + (gap > 0 ? gap : 1), on_glitch_start, l, 0);
+}
+
+static void on_fault(void *ctx, sim_ps t, int64_t f) {
+    line_dir *l = ctx;
+    l->fault = (line_fault)f;
+    send_current(l, t);
+}
+
+/* ---- driver, low-pass, cable, receiver ---- */
+
+void line_dir_init(line_dir *l, const line_params *p, event_queue *q, uint64_t seed, int idle_level,
+                   sim_edge_sink out) {
+    l->p = *p;
+    l->q = q;
+    sim_rng_seed(&l->rng, seed);
+    l->out = out;
+    l->tau = line_tau_ps(p);
+    l->fixed = fixed_delay(p);
+    idle_level = idle_level ? 1 : 0;
+    l->v0 = idle_level;
+    l->t0 = eq_now(q);
+    l->target = idle_level;
+    l->in_level = idle_level;
+    l->last_in = eq_now(q);
+    l->filt_level = idle_level;
+    l->pending = 0;
+    l->pending_cross = 0;
+    l->pending_ev = 0;
+    l->pending_out = 0;
+    l->last_out = eq_now(q);
+    l->true_level = idle_level;
+    l->cur_level = idle_level;
+    l->glitching = 0;
+    l->fault = LINE_OK;
+    l->edges_in = l->edges_out = l->glitches = l->vanished = 0;
+    schedule_next_glitch(l, eq_now(q));
+    if (p->fault != LINE_OK) {
+        line_dir_set_fault(l, p->fault_at_ps, p->fault);
+    }
+}
+
+void line_dir_set_fault(line_dir *l, sim_ps t, line_fault f) {
+    eq_schedule(l->q, t, on_fault, l, (int64_t)f);
+}
+
+/* Filter value at time t (>= t0). */
+static double filter_value(const line_dir *l, sim_ps t) {
+    if (l->tau <= 0.0) {
+        return l->target;
+    }
+    double dt = (double)(t - l->t0);
+    return l->target + (l->v0 - l->target) * exp(-dt / l->tau);
+}
+
+/* Time after t at which a filter at value v heading for target crosses 1/2. */
+static sim_ps crossing_after(const line_dir *l, double v, int target) {
+    if (l->tau <= 0.0) {
+        return 0;
+    }
+    double ratio = (v - target) / (0.5 - target); /* > 1 when a crossing lies ahead */
+    if (ratio <= 1.0) {
+        return 0;
+    }
+    return (sim_ps)llround(l->tau * log(ratio));
+}
+
+void line_dir_input(line_dir *l, sim_ps t, int level) {
+    level = level ? 1 : 0;
+    if (level == l->in_level) {
+        return;
+    }
+    l->in_level = level;
+    l->edges_in++;
+
+    /* Driver skew moves the edge; it can never move before the previous one. */
+    sim_ps te = t + (level ? l->p.rise_extra_ps : l->p.fall_extra_ps);
+    if (te < l->last_in) {
+        te = l->last_in;
+    }
+    l->last_in = te;
+
+    /* A crossing still ahead of this edge never happens: the pulse vanished.
+     * One already passed is final, whether or not its output event has run. */
+    if (l->pending) {
+        if (l->pending_cross > te) {
+            eq_cancel(l->q, l->pending_ev);
+            l->vanished++;
+        } else {
+            l->filt_level = l->target;
+            l->last_out = l->pending_out;
+        }
+        l->pending = 0;
+    }
+
+    double v = filter_value(l, te);
+    l->v0 = v;
+    l->t0 = te;
+    l->target = level;
+    if (level == l->filt_level) {
+        return; /* heading back to the level the receiver still shows */
+    }
+
+    sim_ps cross = te + crossing_after(l, v, level);
+    sim_ps out = cross + l->fixed;
+    if (l->p.jitter_rms_ps > 0.0) {
+        out += (sim_ps)llround(sim_rng_gauss(&l->rng) * l->p.jitter_rms_ps);
+    }
+    if (out <= t) {
+        out = t + 1; /* every effect strictly after its cause */
+    }
+    if (out <= l->last_out) {
+        out = l->last_out + 1; /* jitter never reorders edges */
+    }
+    l->pending = 1;
+    l->pending_cross = cross;
+    l->pending_out = out;
+    l->pending_ev = eq_schedule(l->q, out, on_output_edge, l, level);
+}
+
+static void sink_fn(void *ctx, sim_ps t, int level) {
+    line_dir_input(ctx, t, level);
+}
+
+sim_edge_sink line_dir_sink(line_dir *l) {
+    sim_edge_sink s = {sink_fn, l};
+    return s;
+}

@@ -1,0 +1,108 @@
+/* One direction of the cable: driver, twisted pair, receiver.
+ *
+ * Input edges (the logic level at the driver input) arrive in time order at
+ * their own time; output edges (the receiver output) are delivered to a sink
+ * through the event queue at the time they happen. The chain of effects:
+ *
+ *   driver skew      rising edges are delayed by rise_extra, falling by
+ *                    fall_extra (driver tPLH vs tPHL), so pulse widths change
+ *   bandwidth        a first-order low-pass with time constant
+ *                    tau = tau0 + tau_per_m2 * length^2; the receiver switches
+ *                    where the filtered signal crosses half swing. The crossing
+ *                    time is solved in closed form from the filter state left
+ *                    by earlier edges, so a pulse shorter than about
+ *                    tau * ln 2 after a long run vanishes, longer ones shrink
+ *   propagation      length * ps_per_m
+ *   transceivers     driver_delay + receiver_delay
+ *   jitter           Gaussian, per output edge (edges never reorder)
+ *   glitches         Poisson-timed inversions of the receiver output
+ *   faults           stuck low, stuck high, or open (an RS-485 receiver with
+ *                    open-bus fail-safe then reads high), from a given time
+ *
+ * Every output happens strictly after the input that caused it. */
+#ifndef LINE_MODEL_H
+#define LINE_MODEL_H
+
+#include "event_queue.h"
+#include "sim_rng.h"
+#include "sim_time.h"
+
+typedef enum {
+    LINE_OK = 0,
+    LINE_STUCK_LOW,
+    LINE_STUCK_HIGH,
+    LINE_OPEN, /* receiver fail-safe: reads high */
+} line_fault;
+
+typedef struct {
+    double length_m;
+    double ps_per_m;          /* propagation, default 5000 (5 ns/m) */
+    sim_ps driver_delay_ps;   /* default 9 ns */
+    sim_ps receiver_delay_ps; /* default 15 ns */
+    sim_ps rise_extra_ps;     /* added to rising edges, default 0 */
+    sim_ps fall_extra_ps;     /* added to falling edges, default 1 ns */
+    double tau0_ps;           /* low-pass time constant at 0 m, default 0 */
+    double tau_per_m2_ps;     /* growth with length squared, default 20 ps/m^2 */
+    double jitter_rms_ps;     /* default 0 */
+    double glitch_rate_hz;    /* mean glitches per second, default 0 */
+    sim_ps glitch_width_ps;   /* default 20 ns */
+    line_fault fault;         /* applied from fault_at_ps; default LINE_OK */
+    sim_ps fault_at_ps;
+} line_params;
+
+void line_params_default(line_params *p);
+
+/* Low-pass time constant for these parameters, in ps. */
+double line_tau_ps(const line_params *p);
+
+/* Delay of an isolated edge after a long steady level: transceivers,
+ * cable, the low-pass threshold delay tau*ln2 and the mean of the rise and
+ * fall skews. What a master measures as the one-way line delay. */
+double line_nominal_delay_ps(const line_params *p);
+
+typedef struct {
+    line_params p;
+    event_queue *q;
+    sim_rng rng;
+    sim_edge_sink out;
+    double tau;   /* ps */
+    sim_ps fixed; /* propagation + transceivers, ps */
+
+    /* low-pass state: value v0 at time t0, heading for target */
+    double v0;
+    sim_ps t0;
+    int target;
+    int in_level;   /* last input level */
+    sim_ps last_in; /* time of the last effective input edge */
+
+    int filt_level; /* receiver decision after the last committed crossing */
+    int pending;    /* a crossing is computed but may still be cancelled */
+    sim_ps pending_cross;
+    sim_ps pending_out;
+    eq_id pending_ev;
+    sim_ps last_out; /* output time of the last committed edge: later ones must follow */
+
+    int true_level; /* receiver output without glitches and faults */
+    int cur_level;  /* what the sink was last told */
+    int glitching;
+    line_fault fault;
+
+    unsigned long edges_in, edges_out, glitches, vanished;
+} line_dir;
+
+/* Starts the line at the idle level at time eq_now(q). Schedules the first
+ * glitch and the configured fault, if any. The sink receives the output. */
+void line_dir_init(line_dir *l, const line_params *p, event_queue *q, uint64_t seed, int idle_level,
+                   sim_edge_sink out);
+
+/* An input edge at time t (>= the previous one, and the queue must not be
+ * past t). Repeated levels are ignored. */
+void line_dir_input(line_dir *l, sim_ps t, int level);
+
+/* Switches the fault state at time t (LINE_OK reconnects). */
+void line_dir_set_fault(line_dir *l, sim_ps t, line_fault f);
+
+/* A sink that feeds this line's input, for wiring it behind a model. */
+sim_edge_sink line_dir_sink(line_dir *l);
+
+#endif

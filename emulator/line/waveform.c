@@ -1,0 +1,116 @@
+#include "waveform.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+void waveform_init(waveform *w, int initial_level) {
+    w->initial = initial_level ? 1 : 0;
+    w->edges = NULL;
+    w->len = w->cap = 0;
+    w->hint = 0;
+}
+
+void waveform_free(waveform *w) {
+    free(w->edges);
+    w->edges = NULL;
+    w->len = w->cap = 0;
+}
+
+int waveform_last_level(const waveform *w) {
+    return w->len ? w->edges[w->len - 1].level : w->initial;
+}
+
+int waveform_append(waveform *w, sim_ps t, int level) {
+    level = level ? 1 : 0;
+    if (w->len && t < w->edges[w->len - 1].t) {
+        return -1;
+    }
+    if (level == waveform_last_level(w)) {
+        return 0;
+    }
+    if (w->len == w->cap) {
+        size_t cap = w->cap ? w->cap * 2 : 64;
+        wave_edge *e = realloc(w->edges, cap * sizeof *e);
+        if (!e) {
+            return -1;
+        }
+        w->edges = e;
+        w->cap = cap;
+    }
+    w->edges[w->len].t = t;
+    w->edges[w->len].level = level;
+    w->len++;
+    return 0;
+}
+
+/* Number of transitions with time <= t. Starts from the last answer and
+ * walks, falling back to a binary search for long jumps. */
+static size_t count_upto(waveform *w, sim_ps t) {
+    size_t i = w->hint > w->len ? w->len : w->hint;
+    if (i > 0 && w->edges[i - 1].t > t) {
+        size_t lo = 0, hi = i; /* answer in [lo, hi) */
+        while (lo < hi) {
+            size_t mid = lo + (hi - lo) / 2;
+            if (w->edges[mid].t <= t) {
+                lo = mid + 1;
+            } else {
+                hi = mid;
+            }
+        }
+        i = lo;
+    } else {
+        size_t steps = 0;
+        while (i < w->len && w->edges[i].t <= t && steps < 16) {
+            i++;
+            steps++;
+        }
+        if (i < w->len && w->edges[i].t <= t) {
+            size_t lo = i, hi = w->len;
+            while (lo < hi) {
+                size_t mid = lo + (hi - lo) / 2;
+                if (w->edges[mid].t <= t) {
+                    lo = mid + 1;
+                } else {
+                    hi = mid;
+                }
+            }
+            i = lo;
+        }
+    }
+    w->hint = i;
+    return i;
+}
+
+int waveform_level_at(waveform *w, sim_ps t) {
+    size_t n = count_upto(w, t);
+    return n ? w->edges[n - 1].level : w->initial;
+}
+
+sim_ps waveform_next_after(waveform *w, sim_ps t) {
+    size_t n = count_upto(w, t);
+    return n < w->len ? w->edges[n].t : SIM_NEVER;
+}
+
+void waveform_forget_before(waveform *w, sim_ps t) {
+    size_t n = count_upto(w, t);
+    /* Keep the transition at exactly t if there is one, so edge times stay. */
+    while (n > 0 && w->edges[n - 1].t == t) {
+        n--;
+    }
+    if (n == 0) {
+        return;
+    }
+    w->initial = w->edges[n - 1].level;
+    memmove(w->edges, w->edges + n, (w->len - n) * sizeof *w->edges);
+    w->len -= n;
+    w->hint = 0;
+}
+
+static void sink_fn(void *ctx, sim_ps t, int level) {
+    waveform_append(ctx, t, level);
+}
+
+sim_edge_sink waveform_sink(waveform *w) {
+    sim_edge_sink s = {sink_fn, w};
+    return s;
+}

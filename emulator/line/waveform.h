@@ -1,0 +1,50 @@
+/* The record of one wire: its initial level and every transition after it.
+ *
+ * The bench keeps one per pin of interest ("SL at the master", "MA at the
+ * slave", ...) to answer level queries when the PRU reads SL, to find the
+ * next change for fast-forwarding, and to write VCD. Transitions are stored
+ * in time order; appending an edge that does not change the level is a
+ * no-op, so producers may send redundant edges. */
+#ifndef WAVEFORM_H
+#define WAVEFORM_H
+
+#include "sim_time.h"
+
+#include <stddef.h>
+
+typedef struct {
+    sim_ps t;
+    int level;
+} wave_edge;
+
+typedef struct {
+    int initial;
+    wave_edge *edges;
+    size_t len, cap;
+    size_t hint; /* index of the last lookup: queries are mostly monotonic */
+} waveform;
+
+void waveform_init(waveform *w, int initial_level);
+void waveform_free(waveform *w);
+
+/* Appends a transition at t (not earlier than the last one). Returns 0, or -1
+ * on out-of-order time or no memory (the record is left unchanged). */
+int waveform_append(waveform *w, sim_ps t, int level);
+
+/* Level at time t; a transition at exactly t is already in effect. */
+int waveform_level_at(waveform *w, sim_ps t);
+
+/* Time of the first transition strictly after t, or SIM_NEVER. */
+sim_ps waveform_next_after(waveform *w, sim_ps t);
+
+/* Level after the last transition. */
+int waveform_last_level(const waveform *w);
+
+/* Drops transitions before t, keeping the level at t as the initial level,
+ * so a long run can bound its memory. */
+void waveform_forget_before(waveform *w, sim_ps t);
+
+/* A sink that appends to the waveform, for wiring it behind a model. */
+sim_edge_sink waveform_sink(waveform *w);
+
+#endif

@@ -1,0 +1,321 @@
+#include "biss_slave.h"
+
+#include "biss_crc.h"
+
+#include <math.h>
+#include <string.h>
+
+void biss_slave_cfg_default(biss_slave_cfg *s, uint8_t id) {
+    memset(s, 0, sizeof *s);
+    s->id = id;
+    s->pos_bits = 12;
+    s->has_err = s->has_warn = true;
+    s->crc_poly = 0x43;
+    regfile_init(&s->regs, 1);
+}
+
+void biss_chain_cfg_default(biss_chain_cfg *c) {
+    memset(c, 0, sizeof *c);
+    c->n = 1;
+    for (unsigned i = 0; i < BISS_MAX_SLAVES; i++) {
+        biss_slave_cfg_default(&c->s[i], (uint8_t)i);
+    }
+    c->out_delay_ps = 20 * SIM_PS_PER_NS;
+    c->timeout_mode = BISS_TIMEOUT_FIXED;
+    c->timeout_ps = 20 * SIM_PS_PER_US;
+    c->adaptive_factor = 1.5;
+    c->adaptive_min_ps = 0;
+    c->adaptive_max_ps = 20 * SIM_PS_PER_US;
+}
+
+unsigned biss_slave_cfg_bits(const biss_slave_cfg *s) {
+    return s->pos_bits + s->fill_bits + (s->has_err ? 1 : 0) + (s->has_warn ? 1 : 0) + s->lc_bits +
+           biss_crc_width(s->crc_poly);
+}
+
+const char *biss_slave_cfg_check(const biss_slave_cfg *s) {
+    if (s->id > 7) {
+        return "id: must be 0..7";
+    }
+    if (s->pos_bits < 1 || s->pos_bits > 64) {
+        return "position_bits: must be 1..64";
+    }
+    if (s->fill_bits > 64) {
+        return "fill_bits: must be 0..64";
+    }
+    if (s->lc_bits > 32) {
+        return "life_counter_bits: must be 0..32";
+    }
+    if (s->crc_poly != 0 &&
+        (biss_crc_width(s->crc_poly) < 1 || s->crc_poly > 0x1ffffu || !(s->crc_poly & 1u))) {
+        return "crc_poly: must be an odd polynomial of degree 1..16 (with its top term)";
+    }
+    if (s->crc_poly != 0 && (s->crc_start >> biss_crc_width(s->crc_poly)) != 0) {
+        return "crc_start: wider than the CRC";
+    }
+    return NULL;
+}
+
+const char *biss_chain_cfg_check(const biss_chain_cfg *c) {
+    if (c->n < 1 || c->n > BISS_MAX_SLAVES) {
+        return "slaves: a chain has 1 to 8 slaves";
+    }
+    for (unsigned i = 0; i < c->n; i++) {
+        const char *e = biss_slave_cfg_check(&c->s[i]);
+        if (e) {
+            return e;
+        }
+    }
+    if (c->out_delay_ps <= 0) {
+        return "output_delay_ns: must be > 0 (every effect follows its cause)";
+    }
+    if (c->busy_ps < 0) {
+        return "busy_ns: must be >= 0";
+    }
+    if (c->timeout_mode == BISS_TIMEOUT_FIXED && c->timeout_ps <= 0) {
+        return "timeout.ns: must be > 0";
+    }
+    if (c->timeout_mode == BISS_TIMEOUT_ADAPTIVE &&
+        (c->adaptive_factor <= 0.0 || c->adaptive_max_ps <= 0 ||
+         c->adaptive_min_ps > c->adaptive_max_ps)) {
+        return "timeout: adaptive needs factor > 0 and 0 <= min_ns <= max_ns, max_ns > 0";
+    }
+    return NULL;
+}
+
+void biss_slave_init(biss_slave *b, const biss_chain_cfg *cfg, event_queue *q, sim_edge_sink out) {
+    memset(b, 0, sizeof *b);
+    b->cfg = *cfg;
+    b->q = q;
+    b->out = out;
+    for (unsigned i = 0; i < cfg->n; i++) {
+        biss_ctrl_init(&b->ctrl[i], b->cfg.s[i].id, &b->cfg.s[i].regs, b->cfg.s[i].reg_proc_frames);
+    }
+    b->phase = BISS_IDLE;
+    b->ma = 1;
+    b->sl_sched = 1;
+    b->last_edge = b->prev_edge = b->last_rise = b->prev_rise = eq_now(q);
+}
+
+void biss_slave_on_frame(biss_slave *b, biss_frame_fn fn, void *ctx) {
+    b->on_frame = fn;
+    b->on_frame_ctx = ctx;
+}
+
+const biss_frame_record *biss_slave_record(const biss_slave *b, uint64_t n) {
+    if (n >= b->frames || b->frames - n > BISS_RECORD_RING) {
+        return NULL;
+    }
+    return &b->ring[n % BISS_RECORD_RING];
+}
+
+void biss_slave_set_status(biss_slave *b, unsigned i, bool error, bool warning) {
+    if (i < b->cfg.n) {
+        b->cfg.s[i].error = error;
+        b->cfg.s[i].warning = warning;
+    }
+}
+
+static uint64_t mask_bits(unsigned n) {
+    return n >= 64 ? UINT64_MAX : ((UINT64_C(1) << n) - 1);
+}
+
+uint64_t biss_slave_position_at(const biss_slave *b, unsigned i, sim_ps t) {
+    const biss_slave_cfg *s = &b->cfg.s[i];
+    double moved = floor(s->speed_cps * ((double)t / (double)SIM_PS_PER_S));
+    /* two's-complement wrap of the step keeps negative speeds right */
+    uint64_t step = (uint64_t)(int64_t)moved;
+    return (s->pos0 + step) & mask_bits(s->pos_bits);
+}
+
+/* ---- SL output ---- */
+
+static void emit_sl(void *ctx, sim_ps t, int64_t level) {
+    biss_slave *b = ctx;
+    sim_edge_send(&b->out, t, (int)level);
+}
+
+static void drive_sl(biss_slave *b, sim_ps t_cause, int level) {
+    if (level == b->sl_sched) {
+        return;
+    }
+    b->sl_sched = level;
+    eq_schedule(b->q, t_cause + b->cfg.out_delay_ps, emit_sl, b, level);
+}
+
+/* ---- frame data ---- */
+
+static void push_bits(biss_slave *b, uint64_t v, unsigned n, uint32_t *crc, uint32_t poly) {
+    for (unsigned k = n; k > 0; k--) {
+        int bit = (int)((v >> (k - 1)) & 1u);
+        if (b->nbits < BISS_MAX_FRAME_BITS) {
+            b->bits[b->nbits++] = (uint8_t)bit;
+        }
+        if (crc) {
+            *crc = biss_crc_bit(*crc, poly, bit);
+        }
+    }
+}
+
+static void build_slave_data(biss_slave *b, unsigned i, sim_ps t) {
+    const biss_slave_cfg *s = &b->cfg.s[i];
+    biss_slave_sent *rec = &b->cur.s[i];
+    uint32_t crc = s->crc_start;
+    rec->position = biss_slave_position_at(b, i, t);
+    push_bits(b, rec->position, s->pos_bits, &crc, s->crc_poly);
+    push_bits(b, 0, s->fill_bits, &crc, s->crc_poly);
+    rec->nE = s->has_err ? !s->error : -1;
+    rec->nW = s->has_warn ? !s->warning : -1;
+    if (s->has_err) {
+        push_bits(b, (uint64_t)rec->nE, 1, &crc, s->crc_poly);
+    }
+    if (s->has_warn) {
+        push_bits(b, (uint64_t)rec->nW, 1, &crc, s->crc_poly);
+    }
+    rec->lc = (uint32_t)(b->lc[i] & mask_bits(s->lc_bits));
+    push_bits(b, rec->lc, s->lc_bits, &crc, s->crc_poly);
+    b->lc[i]++;
+    unsigned w = biss_crc_width(s->crc_poly);
+    rec->crc = (uint32_t)(~crc & mask_bits(w));
+    push_bits(b, rec->crc, w, NULL, 0);
+}
+
+static void start_frame(biss_slave *b, sim_ps t) {
+    memset(&b->cur, 0, sizeof b->cur);
+    b->cur.frame = b->frames;
+    b->cur.start_ps = t;
+    b->cur.cdm = -1;
+    b->cur.cds = b->cds;
+    b->nbits = 0;
+    b->bit = 0;
+    push_bits(b, (uint64_t)b->cds, 1, NULL, 0);
+    for (unsigned i = 0; i < b->cfg.n; i++) {
+        build_slave_data(b, i, t);
+    }
+    b->rises = 0;
+    b->started = false;
+    b->phase = BISS_ACTIVE;
+}
+
+/* ---- timeout ---- */
+
+static sim_ps timeout_len(const biss_slave *b) {
+    const biss_chain_cfg *c = &b->cfg;
+    if (c->timeout_mode == BISS_TIMEOUT_FIXED) {
+        return c->timeout_ps;
+    }
+    sim_ps period = c->adaptive_max_ps;
+    if (b->rises >= 2) {
+        period = b->last_rise - b->prev_rise;
+    } else if (b->last_edge != b->prev_edge) {
+        period = 2 * (b->last_edge - b->prev_edge);
+    }
+    sim_ps t = (sim_ps)llround(c->adaptive_factor * (double)period);
+    if (t < c->adaptive_min_ps) {
+        t = c->adaptive_min_ps;
+    }
+    if (t > c->adaptive_max_ps) {
+        t = c->adaptive_max_ps;
+    }
+    return t > 0 ? t : 1;
+}
+
+static void close_frame(biss_slave *b, sim_ps t) {
+    b->cur.end_ps = t;
+    b->cur.clocks = b->rises;
+    b->cur.complete = b->started && b->bit >= b->nbits;
+    b->ring[b->frames % BISS_RECORD_RING] = b->cur;
+    b->frames++;
+    if (b->on_frame) {
+        b->on_frame(b->on_frame_ctx, &b->ring[(b->frames - 1) % BISS_RECORD_RING]);
+    }
+}
+
+static void on_timeout(void *ctx, sim_ps t, int64_t arg) {
+    (void)arg;
+    biss_slave *b = ctx;
+    b->timeout_ev = 0;
+    if (b->phase != BISS_ACTIVE) {
+        return;
+    }
+    if (b->rises >= 2) {
+        int cdm = !b->ma;
+        int cds = 0;
+        for (unsigned i = 0; i < b->cfg.n; i++) {
+            cds |= biss_ctrl_cdm(&b->ctrl[i], cdm);
+        }
+        b->cds = cds;
+        b->cur.cdm = cdm;
+    }
+    drive_sl(b, t, 1);
+    b->phase = BISS_IDLE;
+    close_frame(b, t);
+}
+
+static void restart_timeout(biss_slave *b, sim_ps t) {
+    eq_cancel(b->q, b->timeout_ev);
+    b->timeout_ev = eq_schedule(b->q, t + timeout_len(b), on_timeout, b, 0);
+}
+
+/* ---- MA edges ---- */
+
+static void on_rise(biss_slave *b, sim_ps t) {
+    b->rises++;
+    if (b->rises == 1) {
+        return;
+    }
+    if (b->rises == 2) {
+        b->cur.acked = true;
+        b->cur.ack_ps = t;
+        drive_sl(b, t, 0);
+        return;
+    }
+    if (!b->started) {
+        bool clocks_ok = b->rises >= 3 + b->cfg.busy_clocks;
+        bool time_ok = t - b->cur.ack_ps >= b->cfg.busy_ps;
+        if (clocks_ok && time_ok) {
+            b->started = true;
+            b->cur.started = true;
+            b->cur.start_bit_ps = t;
+            drive_sl(b, t, 1);
+        }
+        return;
+    }
+    int level = b->bit < b->nbits ? b->bits[b->bit] : 0;
+    if (b->bit < b->nbits) {
+        b->bit++;
+    }
+    drive_sl(b, t, level);
+}
+
+void biss_slave_ma_edge(biss_slave *b, sim_ps t, int level) {
+    level = level ? 1 : 0;
+    if (level == b->ma) {
+        return;
+    }
+    b->ma = level;
+    b->prev_edge = b->last_edge;
+    b->last_edge = t;
+    if (level) {
+        b->prev_rise = b->last_rise;
+        b->last_rise = t;
+    }
+    if (b->phase == BISS_IDLE) {
+        if (level) {
+            return; /* MA returning high after a CDM = 1: not a frame */
+        }
+        start_frame(b, t);
+    } else if (level) {
+        on_rise(b, t);
+    }
+    restart_timeout(b, t);
+}
+
+static void sink_fn(void *ctx, sim_ps t, int level) {
+    biss_slave_ma_edge(ctx, t, level);
+}
+
+sim_edge_sink biss_slave_sink(biss_slave *b) {
+    sim_edge_sink s = {sink_fn, b};
+    return s;
+}

@@ -1,0 +1,150 @@
+/* A BiSS-C slave, or a daisy chain of up to 8, as seen from the MA/SL pins.
+ *
+ * Feed it MA edges as they arrive at the slave (biss_slave_ma_edge, or wire
+ * biss_slave_sink() behind the MA line); it schedules SL edges on the event
+ * queue, each out_delay after the MA edge that caused it, and sends them to
+ * its output sink (normally the SL line).
+ *
+ * One frame, from the slave's side:
+ *   idle       SL high
+ *   MA falls   (while idle) the frame starts: every slave latches its
+ *              position at this instant and builds its single-cycle data
+ *   1st rise   nothing
+ *   2nd rise   SL low: ACK
+ *   busy       SL stays low on further rising edges until both busy_clocks
+ *              extra clocks have passed and busy_ps has elapsed since the ACK
+ *   next rise  start bit (1), then CDS (OR of the chain's CDS bits), then
+ *              each slave's data, nearest the master first: position MSB
+ *              first, fill zeros, nE, nW (active low), life counter, CRC
+ *              (inverted, MSB first; over everything from the position on)
+ *   then       0 on every further rising edge (the last slave's input is low)
+ *   timeout    once MA has not moved for the timeout, the slave samples MA:
+ *              CDM = NOT MA at that instant; SL goes high (out_delay later)
+ *              and the frame record is closed. Fixed: timeout_ps. Adaptive:
+ *              adaptive_factor x the MA period (last two rising edges; twice
+ *              the last edge gap before that), clamped to [min, max].
+ * A frame whose timeout comes before the ACK passes no CDM. */
+#ifndef BISS_SLAVE_H
+#define BISS_SLAVE_H
+
+#include "biss_ctrl.h"
+#include "event_queue.h"
+#include "regfile.h"
+#include "sim_time.h"
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#define BISS_MAX_SLAVES     8
+#define BISS_MAX_FRAME_BITS 2048
+#define BISS_RECORD_RING    256
+
+typedef struct {
+    uint8_t id;             /* control-frame ID, 0..7 */
+    unsigned pos_bits;      /* 1..64: position / data word (MT+ST, A/D, ...) */
+    unsigned fill_bits;     /* zeros after the position */
+    bool has_err, has_warn; /* nE, nW bits present */
+    unsigned lc_bits;       /* life counter after nE/nW, 0..32 */
+    uint32_t crc_poly;      /* with its top term; 0 = no CRC */
+    uint32_t crc_start;
+    uint64_t pos0;            /* position at time 0 */
+    double speed_cps;         /* counts per second, may be negative */
+    bool error, warning;      /* drive nE / nW low (active) */
+    unsigned reg_proc_frames; /* late S in register access */
+    regfile regs;
+} biss_slave_cfg;
+
+typedef enum { BISS_TIMEOUT_FIXED, BISS_TIMEOUT_ADAPTIVE } biss_timeout_mode;
+
+typedef struct {
+    unsigned n; /* slaves in the chain, 1..8 */
+    biss_slave_cfg s[BISS_MAX_SLAVES];
+    sim_ps out_delay_ps; /* MA edge at the slave to SL edge, default 20 ns */
+    sim_ps busy_ps;      /* processing time after the ACK edge */
+    unsigned busy_clocks;
+    biss_timeout_mode timeout_mode;
+    sim_ps timeout_ps;      /* fixed timeout, default 20 us */
+    double adaptive_factor; /* default 1.5 */
+    sim_ps adaptive_min_ps, adaptive_max_ps;
+} biss_chain_cfg;
+
+/* One slave with defaults: 12-bit position, nE nW, CRC6 0x43. */
+void biss_slave_cfg_default(biss_slave_cfg *s, uint8_t id);
+/* A chain of one default slave and default timing. */
+void biss_chain_cfg_default(biss_chain_cfg *c);
+/* Bits a slave puts on the wire per frame (position .. CRC). */
+unsigned biss_slave_cfg_bits(const biss_slave_cfg *s);
+/* Check a configuration; return NULL or a message naming the field. */
+const char *biss_slave_cfg_check(const biss_slave_cfg *s);
+const char *biss_chain_cfg_check(const biss_chain_cfg *c);
+
+/* What one slave sent in one frame. */
+typedef struct {
+    uint64_t position;
+    int nE, nW;    /* as sent: 1 = no error / no warning; -1 if absent */
+    uint32_t lc;   /* life counter */
+    uint32_t crc;  /* as sent (inverted) */
+    uint64_t fill; /* always 0 */
+} biss_slave_sent;
+
+typedef struct {
+    uint64_t frame; /* 0, 1, ... */
+    sim_ps start_ps, ack_ps, start_bit_ps, end_ps;
+    int cds;         /* CDS sent in this frame */
+    int cdm;         /* CDM sampled at its timeout, -1 if none */
+    bool acked;      /* at least two rising edges */
+    bool started;    /* start bit sent */
+    bool complete;   /* every data bit was clocked out */
+    unsigned clocks; /* rising edges seen */
+    biss_slave_sent s[BISS_MAX_SLAVES];
+} biss_frame_record;
+
+typedef void (*biss_frame_fn)(void *ctx, const biss_frame_record *rec);
+
+typedef enum { BISS_IDLE, BISS_ACTIVE } biss_phase;
+
+typedef struct {
+    biss_chain_cfg cfg;
+    event_queue *q;
+    sim_edge_sink out;
+    biss_ctrl ctrl[BISS_MAX_SLAVES];
+    uint32_t lc[BISS_MAX_SLAVES];
+
+    biss_phase phase;
+    int ma;
+    sim_ps last_edge, prev_edge, last_rise, prev_rise;
+    unsigned rises;
+    bool started;
+    unsigned bit, nbits;
+    uint8_t bits[BISS_MAX_FRAME_BITS];
+    int sl_sched; /* SL level after the last scheduled change */
+    eq_id timeout_ev;
+    int cds; /* CDS for the next frame */
+
+    biss_frame_record cur;
+    biss_frame_record ring[BISS_RECORD_RING];
+    uint64_t frames; /* closed frames */
+    biss_frame_fn on_frame;
+    void *on_frame_ctx;
+} biss_slave;
+
+/* cfg must pass biss_chain_cfg_check. The chain starts idle (SL high, MA
+ * assumed high) at eq_now(q). The slave keeps its own copy of cfg. */
+void biss_slave_init(biss_slave *b, const biss_chain_cfg *cfg, event_queue *q, sim_edge_sink out);
+
+void biss_slave_ma_edge(biss_slave *b, sim_ps t, int level);
+sim_edge_sink biss_slave_sink(biss_slave *b);
+
+/* Called with each closed frame record. */
+void biss_slave_on_frame(biss_slave *b, biss_frame_fn fn, void *ctx);
+
+/* Record of closed frame n, if still in the ring; NULL otherwise. */
+const biss_frame_record *biss_slave_record(const biss_slave *b, uint64_t n);
+
+/* Position slave i would latch at time t. */
+uint64_t biss_slave_position_at(const biss_slave *b, unsigned i, sim_ps t);
+
+/* Runtime switches. */
+void biss_slave_set_status(biss_slave *b, unsigned i, bool error, bool warning);
+
+#endif

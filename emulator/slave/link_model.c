@@ -1,0 +1,110 @@
+#include "link_model.h"
+
+#include <string.h>
+
+/* Fan-out points: a pin is recorded, passed on, and shown to the observer. */
+
+static void observe(link_model *l, link_pin pin, sim_ps t, int level) {
+    if (l->observer) {
+        l->observer(l->observer_ctx, pin, t, level);
+    }
+}
+
+static void at_ma_slave(void *ctx, sim_ps t, int level) {
+    link_model *l = ctx;
+    waveform_append(&l->ma_slave, t, level);
+    if (l->sc.protocol == SCENARIO_SSI) {
+        ssi_slave_ma_edge(&l->ssi, t, level);
+    } else {
+        biss_slave_ma_edge(&l->biss, t, level);
+    }
+    observe(l, LINK_MA_SLAVE, t, level);
+}
+
+static void at_sl_slave(void *ctx, sim_ps t, int level) {
+    link_model *l = ctx;
+    waveform_append(&l->sl_slave, t, level);
+    line_dir_input(&l->sl_line, t, level);
+    observe(l, LINK_SL_SLAVE, t, level);
+}
+
+static void at_sl_master(void *ctx, sim_ps t, int level) {
+    link_model *l = ctx;
+    waveform_append(&l->sl_master, t, level);
+    observe(l, LINK_SL_MASTER, t, level);
+}
+
+void link_set_observer(link_model *l, link_pin_fn fn, void *ctx) {
+    l->observer = fn;
+    l->observer_ctx = ctx;
+}
+
+int link_init(link_model *l, const scenario *sc, char *err, size_t errlen) {
+    if (scenario_check(sc, err, errlen)) {
+        return -1;
+    }
+    memset(l, 0, sizeof *l);
+    l->sc = *sc;
+    eq_init(&l->q);
+    waveform_init(&l->ma_master, 1);
+    waveform_init(&l->ma_slave, 1);
+    waveform_init(&l->sl_slave, 1);
+    waveform_init(&l->sl_master, 1);
+    sim_edge_sink to_slave = {at_ma_slave, l};
+    sim_edge_sink from_slave = {at_sl_slave, l};
+    line_dir_init(&l->ma_line, &l->sc.ma_line, &l->q, sim_rng_derive(sc->seed, 1), 1, to_slave);
+    line_dir_init(&l->sl_line, &l->sc.sl_line, &l->q, sim_rng_derive(sc->seed, 2), 1,
+                  (sim_edge_sink){at_sl_master, l});
+    if (sc->protocol == SCENARIO_SSI) {
+        ssi_slave_init(&l->ssi, &l->sc.ssi, &l->q, from_slave);
+    } else {
+        biss_slave_init(&l->biss, &l->sc.biss, &l->q, from_slave);
+    }
+    return 0;
+}
+
+void link_free(link_model *l) {
+    waveform_free(&l->ma_master);
+    waveform_free(&l->ma_slave);
+    waveform_free(&l->sl_slave);
+    waveform_free(&l->sl_master);
+    eq_free(&l->q);
+}
+
+/* Runs the queue up to t; never backwards, since the queue may already be
+ * ahead of a read (the read then finds its answer in the record). */
+static void advance(link_model *l, sim_ps t) {
+    if (t > eq_now(&l->q)) {
+        eq_run_until(&l->q, t);
+    }
+}
+
+void link_ma(link_model *l, sim_ps t, int level) {
+    advance(l, t);
+    if (waveform_last_level(&l->ma_master) == level) {
+        return;
+    }
+    waveform_append(&l->ma_master, t, level);
+    observe(l, LINK_MA_MASTER, t, level);
+    line_dir_input(&l->ma_line, t, level);
+}
+
+int link_sl(link_model *l, sim_ps t) {
+    advance(l, t);
+    return waveform_level_at(&l->sl_master, t);
+}
+
+sim_ps link_next_change(const link_model *l) {
+    return eq_next_time(&l->q);
+}
+
+uint64_t link_frames(const link_model *l) {
+    return l->sc.protocol == SCENARIO_SSI ? l->ssi.frames : l->biss.frames;
+}
+
+void link_forget_before(link_model *l, sim_ps t) {
+    waveform_forget_before(&l->ma_master, t);
+    waveform_forget_before(&l->ma_slave, t);
+    waveform_forget_before(&l->sl_slave, t);
+    waveform_forget_before(&l->sl_master, t);
+}

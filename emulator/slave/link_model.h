@@ -1,0 +1,66 @@
+/* The far end of a BiSS/SSI link, ready for the bench: MA line, slave
+ * model(s), SL line, and waveform records of the four pins, all on one
+ * event queue, built from a scenario.
+ *
+ *   master MA pin --ma_line--> slave MA pin -> slave model -> slave SL pin
+ *   master SL pin <--sl_line--------------------------------'
+ *
+ * Protocol with the PRU core (discrete-event, exact because every effect
+ * comes strictly after its cause):
+ *   - each MA pin change at the master: link_ma(l, t, level), in time order;
+ *   - before the core reads SL at time T: link_sl(l, T) (advances every model
+ *     to T, then returns the SL level at the master at T; T may lie a little
+ *     before the latest MA change, whose effects are all later);
+ *   - to fast-forward idle polling: nothing at the master can change before
+ *     link_next_change(l) unless MA moves first. */
+#ifndef LINK_MODEL_H
+#define LINK_MODEL_H
+
+#include "biss_slave.h"
+#include "event_queue.h"
+#include "line_model.h"
+#include "scenario.h"
+#include "ssi_slave.h"
+#include "waveform.h"
+
+/* The four pins, in the order the bench writes them to VCD. */
+typedef enum { LINK_MA_MASTER, LINK_SL_MASTER, LINK_MA_SLAVE, LINK_SL_SLAVE } link_pin;
+
+/* Told of every level change on a pin, after the models have taken it. */
+typedef void (*link_pin_fn)(void *ctx, link_pin pin, sim_ps t, int level);
+
+typedef struct {
+    scenario sc;
+    link_pin_fn observer;
+    void *observer_ctx;
+    event_queue q;
+    line_dir ma_line, sl_line;
+    biss_slave biss;
+    ssi_slave ssi;
+    waveform ma_master, ma_slave, sl_slave, sl_master;
+} link_model;
+
+/* Builds the link at time 0, idle (MA and SL high). The random streams of
+ * the two lines derive from the scenario seed. Returns 0, or -1 with a
+ * message naming the bad field. Heap-allocate: the struct is large. */
+int link_init(link_model *l, const scenario *sc, char *err, size_t errlen);
+void link_free(link_model *l);
+
+/* Sets (or with NULL clears) the pin observer. */
+void link_set_observer(link_model *l, link_pin_fn fn, void *ctx);
+
+void link_ma(link_model *l, sim_ps t, int level);
+int link_sl(link_model *l, sim_ps t);
+
+/* Earliest time at which anything pending (an edge in flight, a timeout, a
+ * glitch) happens, or SIM_NEVER: SL at the master is constant until then
+ * unless MA changes. */
+sim_ps link_next_change(const link_model *l);
+
+/* Drops pin history before t (a long run keeps its memory bounded). */
+void link_forget_before(link_model *l, sim_ps t);
+
+/* Closed frame records of the slave model (BiSS or SSI). */
+uint64_t link_frames(const link_model *l);
+
+#endif

@@ -1,0 +1,209 @@
+/* Named encoder profiles. Values come from the reference documents (named
+ * per profile); where a document leaves a value open the choice is marked
+ * "model choice" and listed in MODELS.md. */
+#include "scenario.h"
+
+#include <stdio.h>
+#include <string.h>
+
+#define NS SIM_PS_PER_NS
+#define US SIM_PS_PER_US
+
+static void base(scenario *s, const char *name) {
+    memset(s, 0, sizeof *s);
+    snprintf(s->profile, sizeof s->profile, "%s", name);
+    s->protocol = SCENARIO_BISS;
+    biss_chain_cfg_default(&s->biss);
+    ssi_cfg_default(&s->ssi);
+    line_params_default(&s->ma_line);
+    line_params_default(&s->sl_line);
+    scenario_set_cable(s, 2.0); /* TIDEP0022 Table 10's shortest setup */
+    s->seed = 1;
+}
+
+static void poke_ro(biss_slave_cfg *c, uint8_t addr, uint8_t value) {
+    regfile_poke(&c->regs, 0, addr, value);
+    c->regs.flags[addr] |= REG_RO;
+}
+
+/* TIDEP0022: 12-bit single-turn test encoder, nE nW, CRC6 0x43; register
+ * values read back in the design guide's Table 11 (0x60 is written to send
+ * commands, Table 7, so it stays writable). */
+static void tidep0022(scenario *s) {
+    base(s, "tidep0022-test-encoder");
+    biss_slave_cfg *c = &s->biss.s[0];
+    c->pos_bits = 12;
+    c->speed_cps = 50000.0; /* model choice: a new value every 20 us */
+    static const struct {
+        uint8_t addr, value;
+    } t11[] = {{0x44, 0x00}, {0x45, 0xD9}, {0x46, 0x01}, {0x47, 0x32}, {0x67, 0x5F},
+               {0x68, 0x00}, {0x78, 0x46}, {0x79, 0x3A}, {0x7A, 0xC0}, {0x7B, 0x0C},
+               {0x7C, 0x00}, {0x7D, 0x01}, {0x7E, 0x57}, {0x7F, 0x41}};
+    for (size_t i = 0; i < sizeof t11 / sizeof t11[0]; i++) {
+        poke_ro(c, t11[i].addr, t11[i].value);
+    }
+    regfile_poke(&c->regs, 0, 0x60, 0x0B);
+}
+
+/* POSITAL IXARC kit: SCD MT24 + ST17 + 7 fill + E + W + CRC6 0x43 (start
+ * 0, inverted); direct registers of the manual's appendix 8.1.1, 68 banks. */
+static void posital(scenario *s) {
+    base(s, "posital-kit");
+    biss_slave_cfg *c = &s->biss.s[0];
+    c->pos_bits = 41;
+    c->fill_bits = 7;
+    c->speed_cps = 1e6; /* model choice */
+    regfile_init(&c->regs, 68);
+    static const struct {
+        uint8_t addr, value;
+    } direct[] = {{0x41, 0x02},
+                  {0x42, 0x61},
+                  {0x43, 0x29},
+                  /* serial number and live values: "-" in the manual, model choice */
+                  {0x44, 0x12},
+                  {0x45, 0x34},
+                  {0x46, 0x56},
+                  {0x47, 0x78},
+                  {0x66, 0x2A},
+                  {0x68, 0x00},
+                  {0x69, 0x00},
+                  {0x6E, 0x03},
+                  {0x74, 0x01},
+                  {0x75, 0x00},
+                  {0x76, 0x00},
+                  /* device ID and manufacturer: manual defaults */
+                  {0x78, 0x01},
+                  {0x79, 0x01},
+                  {0x7A, 0x68},
+                  {0x7B, 0x11},
+                  {0x7C, 0x00},
+                  {0x7D, 0x01},
+                  {0x7E, 0x46},
+                  {0x7F, 0x72}};
+    for (size_t i = 0; i < sizeof direct / sizeof direct[0]; i++) {
+        poke_ro(c, direct[i].addr, direct[i].value);
+    }
+    /* R/W direct registers: bank select, device mode, protection */
+    regfile_poke(&c->regs, 0, 0x6A, 0x00);
+    regfile_poke(&c->regs, 0, 0x6B, 0x00);
+    /* banks: 0 special functions, 1 reserved, 2-3 EDS, 4-67 user data; their
+     * contents are not in the manual and start as zeros */
+}
+
+/* Hengstler AD38 3-slave chain (application notes): A/D converter,
+ * MT+ST position, ST + life counter; busy about 2.3-2.5 us, adaptive
+ * timeout 650 ns. */
+static void ad38(scenario *s) {
+    base(s, "hengstler-ad38");
+    biss_chain_cfg *b = &s->biss;
+    b->n = 3;
+    b->busy_ps = 2400 * NS;
+    b->timeout_mode = BISS_TIMEOUT_ADAPTIVE;
+    b->adaptive_factor = 1.5;
+    b->adaptive_min_ps = 650 * NS;
+    b->adaptive_max_ps = 20 * US;
+    b->s[0].pos_bits = 16; /* PT1000 A/D value */
+    b->s[0].crc_poly = 0x25;
+    b->s[0].pos0 = 0x4000;
+    b->s[0].speed_cps = 1000.0; /* model choice: slowly drifting reading */
+    b->s[1].pos_bits = 36;      /* MT 24 + ST 12 */
+    b->s[1].crc_poly = 0x43;
+    b->s[1].speed_cps = 1e6;
+    b->s[2].pos_bits = 9;
+    b->s[2].lc_bits = 6;
+    b->s[2].crc_poly = 0x190D9;
+    b->s[2].speed_cps = 20000.0;
+}
+
+static void generic(scenario *s) {
+    base(s, "generic");
+    s->biss.s[0].speed_cps = 50000.0;
+}
+
+static void ssi(scenario *s) {
+    base(s, "ssi");
+    s->protocol = SCENARIO_SSI;
+    s->ssi.bits = 13;
+    s->ssi.speed_cps = 50000.0;
+}
+
+static const struct {
+    const char *name;
+    void (*fill)(scenario *);
+} table[] = {
+    {"tidep0022-test-encoder", tidep0022},
+    {"posital-kit", posital},
+    {"hengstler-ad38", ad38},
+    {"generic", generic},
+    {"ssi", ssi},
+};
+
+#define NPROFILES (sizeof table / sizeof table[0])
+
+int profile_by_name(const char *name, scenario *s) {
+    for (size_t i = 0; i < NPROFILES; i++) {
+        if (strcmp(name, table[i].name) == 0) {
+            table[i].fill(s);
+            return 0;
+        }
+    }
+    return -1;
+}
+
+const char *profile_name_at(size_t i) {
+    return i < NPROFILES ? table[i].name : NULL;
+}
+
+void scenario_set_cable(scenario *s, double length_m) {
+    s->ma_line.length_m = length_m;
+    s->sl_line.length_m = length_m;
+}
+
+static const char *check_line(const line_params *p) {
+    if (p->length_m < 0.0) {
+        return "length_m: must be >= 0";
+    }
+    if (p->ps_per_m < 0.0 || p->driver_delay_ps < 0 || p->receiver_delay_ps < 0) {
+        return "delays must be >= 0";
+    }
+    if (p->driver_delay_ps + p->receiver_delay_ps + p->length_m * p->ps_per_m <= 0.0) {
+        return "total delay must be > 0 (every effect follows its cause)";
+    }
+    if (p->tau0_ps < 0.0 || p->tau_per_m2_ps < 0.0 || p->jitter_rms_ps < 0.0 ||
+        p->glitch_rate_hz < 0.0 || p->glitch_width_ps < 0) {
+        return "bandwidth, jitter and glitch parameters must be >= 0";
+    }
+    return NULL;
+}
+
+int scenario_check(const scenario *s, char *err, size_t errlen) {
+    const char *e = check_line(&s->ma_line);
+    if (e) {
+        snprintf(err, errlen, "ma_line.%s", e);
+        return -1;
+    }
+    if ((e = check_line(&s->sl_line))) {
+        snprintf(err, errlen, "sl_line.%s", e);
+        return -1;
+    }
+    if (s->protocol == SCENARIO_SSI) {
+        if ((e = ssi_cfg_check(&s->ssi))) {
+            snprintf(err, errlen, "ssi.%s", e);
+            return -1;
+        }
+        return 0;
+    }
+    if (s->biss.n >= 1 && s->biss.n <= BISS_MAX_SLAVES) {
+        for (unsigned i = 0; i < s->biss.n; i++) {
+            if ((e = biss_slave_cfg_check(&s->biss.s[i]))) {
+                snprintf(err, errlen, "biss.slaves[%u].%s", i, e);
+                return -1;
+            }
+        }
+    }
+    if ((e = biss_chain_cfg_check(&s->biss))) {
+        snprintf(err, errlen, "biss.%s", e);
+        return -1;
+    }
+    return 0;
+}

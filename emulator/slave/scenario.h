@@ -1,0 +1,40 @@
+/* Everything the bench needs to build the far end of a link: which slave
+ * model, its configuration, both line directions and the seed. Named
+ * profiles fill one in (profile_by_name); a JSON scenario file can start
+ * from a profile and change any field (scenario_json.h). */
+#ifndef SCENARIO_H
+#define SCENARIO_H
+
+#include "biss_slave.h"
+#include "line_model.h"
+#include "ssi_slave.h"
+
+#include <stddef.h>
+#include <stdint.h>
+
+typedef enum { SCENARIO_BISS, SCENARIO_SSI } scenario_protocol;
+
+typedef struct {
+    char profile[48]; /* name of the profile it started from */
+    scenario_protocol protocol;
+    biss_chain_cfg biss;
+    ssi_cfg ssi;
+    line_params ma_line; /* master -> slave */
+    line_params sl_line; /* slave -> master */
+    uint64_t seed;
+} scenario;
+
+/* Fills s with the named profile. Returns 0, or -1 for an unknown name. */
+int profile_by_name(const char *name, scenario *s);
+
+/* Name of profile i (0, 1, ...), NULL past the last: for --help lists. */
+const char *profile_name_at(size_t i);
+
+/* Sets both line directions' cable length. */
+void scenario_set_cable(scenario *s, double length_m);
+
+/* Checks the whole scenario. Returns 0, or -1 with a message naming the
+ * field ("biss.slaves[1].crc_poly: ...") in err. */
+int scenario_check(const scenario *s, char *err, size_t errlen);
+
+#endif

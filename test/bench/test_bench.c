@@ -1,0 +1,126 @@
+/* Check suite for the bench: the clocking test image drives MA through the
+ * line into the slave model; the bench's measurements must match the
+ * image's exact timing and the models' delays. */
+#include "bench.h"
+#include "pruasm.h"
+
+#include <check.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static char src_dir[512];
+
+static struct pruasm_image assemble_clock(unsigned half, unsigned clocks, unsigned frames,
+                                          unsigned gap) {
+    char path[600], d1[32], d2[32], d3[32], d4[32];
+    snprintf(path, sizeof(path), "%s/test/bench/clock_frames.p", src_dir);
+    snprintf(d1, sizeof(d1), "HALF=%u", half);
+    snprintf(d2, sizeof(d2), "CLOCKS=%u", clocks);
+    snprintf(d3, sizeof(d3), "FRAMES=%u", frames);
+    snprintf(d4, sizeof(d4), "GAP=%u", gap);
+    const char *defs[] = {d1, d2, d3, d4};
+    struct pruasm_options opt = {.core = 3, .defines = defs, .ndefines = 4};
+    struct pruasm_image img;
+    struct pruasm_diag diag = {0};
+    ck_assert_msg(pruasm_assemble_file(&opt, path, &img, &diag) == 0, "%s", diag.first_error);
+    return img;
+}
+
+static struct bench *bench_with_image(struct bench_config *cfg, struct pruasm_image *img) {
+    char err[200];
+    struct bench *b = bench_new(cfg, err, sizeof(err));
+    ck_assert_msg(b != NULL, "%s", err);
+    ck_assert_int_eq(bench_start_image(b, img->words, img->nwords * 4), 0);
+    return b;
+}
+
+/* 10 frames at 10 MHz: every half period is 10 cycles, every frame is
+ * closed by the slave, the frame period is the image's exact loop time. */
+START_TEST(test_clocked_frames_exact_timing) {
+    struct pruasm_image img = assemble_clock(10, 30, 10, 8000);
+    struct bench_config cfg;
+    bench_config_default(&cfg);
+    struct bench *b = bench_with_image(&cfg, &img);
+    enum pru_stop why = bench_run_until(b, 2 * SIM_PS_PER_MS);
+    ck_assert_int_eq(why, PRU_STOP_HALT);
+    bench_run_until(b, pru_time_ps(bench_core(b)) + 100 * SIM_PS_PER_US);
+    const struct bench_stats *st = bench_stats(b);
+    ck_assert_uint_eq(st->frames, 10);
+    ck_assert_uint_eq(st->frames_started, 10);
+    ck_assert_uint_eq(st->ma_edges_master, 10 * 60);
+    ck_assert_uint_eq(st->ma_edges_slave, 10 * 60);
+    ck_assert_int_eq(st->half_min_ps, 10 * 5000);
+    ck_assert_int_eq(st->half_max_ps, 10 * 5000);
+    ck_assert_uint_eq(st->half_periods, 10 * 59);
+    /* frame loop: 30 clocks of 20 cycles, mov 1, gap 8000, sub+qbne 2, mov 1 */
+    int64_t period = (30 * 20 + 1 + 8000 + 2 + 1) * 5000;
+    ck_assert_uint_eq(st->periods, 9);
+    ck_assert_int_eq(st->period_min_ps, period);
+    ck_assert_int_eq(st->period_max_ps, period);
+    /* the slave saw complete frames with valid records */
+    const biss_frame_record *r = biss_slave_record(&bench_link(b)->biss, 9);
+    ck_assert_ptr_nonnull(r);
+    ck_assert(r->acked && r->started && r->complete);
+    bench_free(b);
+    pruasm_image_free(&img);
+}
+END_TEST
+
+/* The SL answer reaches the master one round trip after the MA edge that
+ * caused it: check the ACK edge on a 100 m cable. */
+START_TEST(test_round_trip_on_long_cable) {
+    struct pruasm_image img = assemble_clock(100, 30, 1, 8000);
+    struct bench_config cfg;
+    bench_config_default(&cfg);
+    scenario_set_cable(&cfg.link, 100.0);
+    struct bench *b = bench_with_image(&cfg, &img);
+    ck_assert_int_eq(bench_open_vcd(b, "bench_round_trip.vcd"), 0);
+    bench_run_until(b, 200 * SIM_PS_PER_US);
+    ck_assert_int_eq(bench_close_vcd(b), 0);
+    const biss_frame_record *r = biss_slave_record(&bench_link(b)->biss, 0);
+    ck_assert_ptr_nonnull(r);
+    ck_assert(r->complete);
+    /* ACK at the slave = 2nd rising edge at the slave + output delay; the
+     * 2nd rising MA edge leaves the master at 1 + 3 * 100 cycles (set r30,
+     * mov, then low-high-low half periods) plus the GPO delay. */
+    double ma_delay = line_nominal_delay_ps(&cfg.link.ma_line);
+    double rt = bench_round_trip_ps(b);
+    ck_assert(rt > 2 * 100 * 5000.0); /* 100 m each way at 5 ns/m */
+    ck_assert(r->ack_ps > 0);
+    ck_assert(ma_delay > 500000.0 && ma_delay < 700000.0);
+    bench_free(b);
+    pruasm_image_free(&img);
+}
+END_TEST
+
+START_TEST(test_bad_config_is_refused) {
+    struct bench_config cfg;
+    bench_config_default(&cfg);
+    cfg.ma_bit = 31;
+    char err[200] = "";
+    ck_assert_ptr_null(bench_new(&cfg, err, sizeof(err)));
+    ck_assert(strstr(err, "ma_bit") != NULL);
+    bench_config_default(&cfg);
+    cfg.link.biss.n = 0;
+    ck_assert_ptr_null(bench_new(&cfg, err, sizeof(err)));
+    ck_assert(err[0] != '\0');
+}
+END_TEST
+
+int main(void) {
+    const char *d = getenv("TEST_SRC_DIR");
+    snprintf(src_dir, sizeof(src_dir), "%s", d ? d : ".");
+    Suite *s = suite_create("bench");
+    TCase *tc = tcase_create("bench");
+    tcase_set_timeout(tc, 60);
+    tcase_add_test(tc, test_clocked_frames_exact_timing);
+    tcase_add_test(tc, test_round_trip_on_long_cable);
+    tcase_add_test(tc, test_bad_config_is_refused);
+    suite_add_tcase(s, tc);
+    SRunner *sr = srunner_create(s);
+    srunner_run_all(sr, CK_NORMAL);
+    int failed = srunner_ntests_failed(sr);
+    srunner_free(sr);
+    return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+}

@@ -1,0 +1,153 @@
+/*
+ * core_test_util.h - building PRU programs from pru_encode() for the core
+ * suites, and running them.
+ *
+ * Register operands are pasm operand bytes: (sel << 5) | reg, made with
+ * R(n), B0(n)..B3(n), W0(n)..W2(n).
+ */
+#ifndef CORE_TEST_UTIL_H
+#define CORE_TEST_UTIL_H
+
+#include "pru_core.h"
+#include "pru_isa.h"
+
+#include <check.h>
+#include <string.h>
+
+#define R(n)  ((7u << 5) | (n))
+#define B0(n) ((0u << 5) | (n))
+#define B1(n) ((1u << 5) | (n))
+#define B2(n) ((2u << 5) | (n))
+#define B3(n) ((3u << 5) | (n))
+#define W0(n) ((4u << 5) | (n))
+#define W1(n) ((5u << 5) | (n))
+#define W2(n) ((6u << 5) | (n))
+
+static inline uint32_t enc(struct pru_insn in) {
+    return pru_encode(&in);
+}
+
+/* ALU (and LMBD, NOPn) with a register or an immediate op2 */
+static inline uint32_t alu(int op, unsigned d, unsigned s1, unsigned s2) {
+    return enc((struct pru_insn){.op = (uint8_t)op,
+                                 .rd = d & 31,
+                                 .rdsel = d >> 5,
+                                 .rs1 = s1 & 31,
+                                 .rs1sel = s1 >> 5,
+                                 .rs2 = s2 & 31,
+                                 .rs2sel = s2 >> 5});
+}
+static inline uint32_t alui(int op, unsigned d, unsigned s1, unsigned imm) {
+    return enc((struct pru_insn){.op = (uint8_t)op,
+                                 .rd = d & 31,
+                                 .rdsel = d >> 5,
+                                 .rs1 = s1 & 31,
+                                 .rs1sel = s1 >> 5,
+                                 .io = 1,
+                                 .imm = (uint16_t)imm});
+}
+static inline uint32_t ldi(unsigned d, unsigned imm) {
+    return enc(
+        (struct pru_insn){.op = PRU_OP_LDI, .rd = d & 31, .rdsel = d >> 5, .imm = (uint16_t)imm});
+}
+static inline uint32_t halt(void) {
+    return 0x2A000000u;
+}
+static inline uint32_t slp(int wake) {
+    return wake ? 0x3E800000u : 0x3E000000u;
+}
+static inline uint32_t jmpi(unsigned target) {
+    return enc((struct pru_insn){.op = PRU_OP_JMP, .io = 1, .imm = (uint16_t)target});
+}
+static inline uint32_t jmpr(unsigned s) {
+    return enc((struct pru_insn){.op = PRU_OP_JMP, .rs2 = s & 31, .rs2sel = s >> 5});
+}
+static inline uint32_t jali(unsigned d, unsigned target) {
+    return enc((struct pru_insn){
+        .op = PRU_OP_JAL, .rd = d & 31, .rdsel = d >> 5, .io = 1, .imm = (uint16_t)target});
+}
+/* quick branches: offset in words from this instruction */
+static inline uint32_t qb(int op, int off, unsigned s1, unsigned s2) {
+    return enc((struct pru_insn){.op = (uint8_t)op,
+                                 .broff = (int16_t)off,
+                                 .rs1 = s1 & 31,
+                                 .rs1sel = s1 >> 5,
+                                 .rs2 = s2 & 31,
+                                 .rs2sel = s2 >> 5});
+}
+static inline uint32_t qbi(int op, int off, unsigned s1, unsigned imm) {
+    return enc((struct pru_insn){.op = (uint8_t)op,
+                                 .broff = (int16_t)off,
+                                 .rs1 = s1 & 31,
+                                 .rs1sel = s1 >> 5,
+                                 .io = 1,
+                                 .imm = (uint16_t)imm});
+}
+static inline uint32_t qba(int off) {
+    return enc((struct pru_insn){.op = PRU_OP_QBA, .broff = (int16_t)off, .io = 1});
+}
+static inline uint32_t loopi(unsigned end_off, unsigned count) {
+    return enc((struct pru_insn){
+        .op = PRU_OP_LOOP, .loop_end = (uint8_t)end_off, .io = 1, .imm = (uint16_t)(count - 1)});
+}
+static inline uint32_t loopr(unsigned end_off, unsigned s) {
+    return enc((struct pru_insn){
+        .op = PRU_OP_LOOP, .loop_end = (uint8_t)end_off, .rs2 = s & 31, .rs2sel = s >> 5});
+}
+/* bursts: rx byte address (4*reg + byte), base register or Cn, imm offset, bytes */
+static inline uint32_t burst(int op, unsigned rxaddr, unsigned base, unsigned off, unsigned bytes) {
+    return enc((struct pru_insn){.op = (uint8_t)op,
+                                 .rx = (uint8_t)(rxaddr / 4),
+                                 .rxbyte = (uint8_t)(rxaddr % 4),
+                                 .base = (uint8_t)base,
+                                 .io = 1,
+                                 .imm = (uint16_t)off,
+                                 .len = (uint8_t)(bytes - 1)});
+}
+/* burst with a register offset and a length code (124..127 = r0.b0..b3) */
+static inline uint32_t burstr(int op, unsigned rxaddr, unsigned base, unsigned offreg,
+                              unsigned lencode) {
+    return enc((struct pru_insn){.op = (uint8_t)op,
+                                 .rx = (uint8_t)(rxaddr / 4),
+                                 .rxbyte = (uint8_t)(rxaddr % 4),
+                                 .base = (uint8_t)base,
+                                 .rs2 = offreg & 31,
+                                 .rs2sel = offreg >> 5,
+                                 .len = (uint8_t)lencode});
+}
+static inline uint32_t xfr(int op, unsigned dev, unsigned rxaddr, unsigned bytes) {
+    return enc((struct pru_insn){.op = (uint8_t)op,
+                                 .dev = (uint8_t)dev,
+                                 .rx = (uint8_t)(rxaddr / 4),
+                                 .rxbyte = (uint8_t)(rxaddr % 4),
+                                 .len = (uint8_t)(bytes - 1)});
+}
+/* mov r, imm32 as pasm does it (two LDIs) */
+static inline void mov32(uint32_t *w, unsigned *n, unsigned reg, uint32_t v) {
+    w[(*n)++] = ldi(W2(reg), v >> 16);
+    w[(*n)++] = ldi(W0(reg), v & 0xffff);
+}
+
+/* A core with the program loaded, started, not yet run. */
+static inline struct pru_core *core_with(enum pru_soc soc, const uint32_t *w, size_t n) {
+    struct pru_core *c = pru_core_new(soc, NULL);
+    ck_assert_ptr_nonnull(c);
+    ck_assert_int_eq(pru_load_image(c, w, n * 4), 0);
+    pru_start(c);
+    return c;
+}
+
+/* Run a program on an AM335x PRU0 until HALT (asserted). */
+static inline struct pru_core *run_prog(const uint32_t *w, size_t n) {
+    struct pru_core *c = core_with(PRU_SOC_AM335X, w, n);
+    ck_assert_int_eq(pru_run(c, 10000000), PRU_STOP_HALT);
+    return c;
+}
+
+#define RUN(...)                                                                                   \
+    ({                                                                                             \
+        const uint32_t prog_[] = {__VA_ARGS__};                                                    \
+        run_prog(prog_, sizeof prog_ / sizeof prog_[0]);                                           \
+    })
+
+#endif

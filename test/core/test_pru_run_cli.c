@@ -1,0 +1,177 @@
+/*
+ * Check suite: the pru-run CLI contract - --dump-regs output, exit codes
+ * (0 halted, 2 no HALT within --max-cycles, 3 fault, non-zero for bad
+ * usage), --data, --soc, --help.
+ */
+#include "core_test_util.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+static char dir[256], tool[512], outf[600], errf[600];
+
+static void setup(void) {
+    const char *bin = getenv("TEST_BIN_DIR");
+    snprintf(tool, sizeof tool, "%s/emulator/core/pru-run", bin ? bin : ".");
+    snprintf(dir, sizeof dir, "/tmp/pru-run-test-XXXXXX");
+    ck_assert_ptr_nonnull(mkdtemp(dir));
+    snprintf(outf, sizeof outf, "%s/out", dir);
+    snprintf(errf, sizeof errf, "%s/err", dir);
+}
+
+static void teardown(void) {
+    char cmd[600];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    ck_assert_int_eq(system(cmd), 0);
+}
+
+static const char *write_file(const char *name, const void *data, size_t n) {
+    static char path[600];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    FILE *f = fopen(path, "wb");
+    ck_assert_ptr_nonnull(f);
+    ck_assert_uint_eq(fwrite(data, 1, n, f), n);
+    fclose(f);
+    return path;
+}
+
+/* Run pru-run with args; returns its exit status. */
+static int run(const char *args) {
+    char cmd[2048];
+    int len = snprintf(cmd, sizeof cmd, "'%s' %s >'%s' 2>'%s'", tool, args, outf, errf);
+    ck_assert_int_lt(len, (int)sizeof cmd);
+    int st = system(cmd);
+    ck_assert(WIFEXITED(st));
+    return WEXITSTATUS(st);
+}
+
+static char *slurp(const char *path) {
+    static char buf[8192];
+    FILE *f = fopen(path, "r");
+    ck_assert_ptr_nonnull(f);
+    size_t n = fread(buf, 1, sizeof buf - 1, f);
+    buf[n] = 0;
+    fclose(f);
+    return buf;
+}
+
+START_TEST(halts_and_dumps_registers) {
+    const uint32_t w[] = {ldi(R(1), 42), ldi(W2(5), 0xDEAD), halt()};
+    const char *img = write_file("a.bin", w, sizeof w);
+    char args[700];
+    snprintf(args, sizeof args, "--dump-regs '%s'", img);
+    ck_assert_int_eq(run(args), 0);
+    const char *out = slurp(outf);
+    ck_assert_ptr_nonnull(strstr(out, "r0=0x00000000\nr1=0x0000002a\n"));
+    ck_assert_ptr_nonnull(strstr(out, "\nr5=0xdead0000\n"));
+    ck_assert_ptr_nonnull(strstr(out, "\nr31=0x00000000\npc=0x0002\ncycles=3\ninstructions=3\n"));
+    /* one line per register, in order */
+    int lines = 0;
+    for (const char *p = out; *p; p++)
+        lines += *p == '\n';
+    ck_assert_int_eq(lines, 35);
+}
+END_TEST
+
+START_TEST(no_halt_exit_2) {
+    const uint32_t w[] = {qba(0)};
+    const char *img = write_file("loop.bin", w, sizeof w);
+    char args[700];
+    snprintf(args, sizeof args, "--max-cycles 1000 --dump-regs '%s'", img);
+    ck_assert_int_eq(run(args), 2);
+    ck_assert_ptr_nonnull(strstr(slurp(outf), "cycles=1000\ninstructions=1000\n"));
+}
+END_TEST
+
+START_TEST(fault_exit_3) {
+    const uint32_t w[] = {ldi(R(1), 1), 0x32000000u};
+    const char *img = write_file("bad.bin", w, sizeof w);
+    char args[700];
+    snprintf(args, sizeof args, "'%s'", img);
+    ck_assert_int_eq(run(args), 3);
+    const char *err = slurp(errf);
+    ck_assert_ptr_nonnull(strstr(err, "fault"));
+    ck_assert_ptr_nonnull(strstr(err, "pc=0x0001"));
+    ck_assert_ptr_nonnull(strstr(err, "cycle=1"));
+}
+END_TEST
+
+START_TEST(data_and_soc) {
+    const uint32_t w[] = {burst(PRU_OP_LBCO, 4 * 2, 24, 4, 4), halt()};
+    const uint32_t d[] = {0x11111111u, 0xCAFEF00Du};
+    const char *img = write_file("d.bin", w, sizeof w);
+    char imgp[600];
+    snprintf(imgp, sizeof imgp, "%s", img);
+    const char *dat = write_file("d.dat", d, sizeof d);
+    char args[1400];
+    snprintf(args, sizeof args, "--soc am437x-icss0 --data '%s' --dump-regs '%s'", dat, imgp);
+    ck_assert_int_eq(run(args), 0);
+    const char *out = slurp(outf);
+    ck_assert_ptr_nonnull(strstr(out, "\nr2=0xcafef00d\n"));
+    ck_assert_ptr_nonnull(strstr(out, "\ncycles=4\n"));
+    /* an image too big for the 4 KB IRAM of ICSS0 */
+    uint32_t *big = calloc(1025, 4);
+    big[1024] = halt();
+    const char *bigp = write_file("big.bin", big, 1025 * 4);
+    snprintf(args, sizeof args, "--soc am437x-icss0 '%s'", bigp);
+    ck_assert_int_ne(run(args), 0);
+    snprintf(args, sizeof args, "--soc am335x '%s'", bigp);
+    ck_assert_int_eq(run(args), 0);
+    free(big);
+}
+END_TEST
+
+START_TEST(usage_errors) {
+    ck_assert_int_eq(run("--help"), 0);
+    ck_assert_ptr_nonnull(strstr(slurp(outf), "--max-cycles"));
+    ck_assert_int_ne(run(""), 0);
+    ck_assert_ptr_nonnull(strstr(slurp(errf), "no image"));
+    ck_assert_int_ne(run("--bogus x.bin"), 0);
+    ck_assert_ptr_nonnull(strstr(slurp(errf), "unknown option"));
+    ck_assert_int_ne(run("--soc am999 x.bin"), 0);
+    ck_assert_int_ne(run("--max-cycles abc x.bin"), 0);
+    ck_assert_int_ne(run("/nonexistent/file.bin"), 0);
+    ck_assert_ptr_nonnull(strstr(slurp(errf), "cannot open"));
+    const uint8_t odd[3] = {1, 2, 3};
+    char args[700];
+    snprintf(args, sizeof args, "'%s'", write_file("odd.bin", odd, 3));
+    ck_assert_int_ne(run(args), 0);
+}
+END_TEST
+
+START_TEST(trace_output) {
+    const uint32_t w[] = {ldi(R(1), 42), halt()};
+    const char *img = write_file("t.bin", w, sizeof w);
+    char args[700];
+    snprintf(args, sizeof args, "--trace '%s'", img);
+    ck_assert_int_eq(run(args), 0);
+    const char *err = slurp(errf);
+    ck_assert_ptr_nonnull(strstr(err, "ldi r1, 0x2a"));
+    ck_assert_ptr_nonnull(strstr(err, "r1=0x0000002a"));
+    ck_assert_ptr_nonnull(strstr(err, "halt"));
+}
+END_TEST
+
+Suite *cli_suite(void) {
+    Suite *s = suite_create("pru_run_cli");
+    TCase *t = tcase_create("cli");
+    tcase_add_checked_fixture(t, setup, teardown);
+    tcase_add_test(t, halts_and_dumps_registers);
+    tcase_add_test(t, no_halt_exit_2);
+    tcase_add_test(t, fault_exit_3);
+    tcase_add_test(t, data_and_soc);
+    tcase_add_test(t, usage_errors);
+    tcase_add_test(t, trace_output);
+    suite_add_tcase(s, t);
+    return s;
+}
+
+int main(void) {
+    SRunner *sr = srunner_create(cli_suite());
+    srunner_run_all(sr, CK_NORMAL);
+    int failed = srunner_ntests_failed(sr);
+    srunner_free(sr);
+    return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+}

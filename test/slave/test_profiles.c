@@ -1,0 +1,177 @@
+/* Check suite for the named profiles and the JSON scenario loader. */
+#include "biss_ctrl.h"
+#include "scenario_json.h"
+
+#include <check.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static scenario sc;
+static char err[256];
+
+START_TEST(every_profile_loads_and_checks) {
+    size_t n = 0;
+    for (const char *name; (name = profile_name_at(n)); n++) {
+        ck_assert_int_eq(profile_by_name(name, &sc), 0);
+        ck_assert_str_eq(sc.profile, name);
+        ck_assert_msg(scenario_check(&sc, err, sizeof err) == 0, "%s: %s", name, err);
+    }
+    ck_assert_uint_eq(n, 5);
+    ck_assert_int_eq(profile_by_name("nope", &sc), -1);
+}
+END_TEST
+
+/* Reads an address with a real control frame through the state machine. */
+static int ctrl_read(regfile *r, uint8_t addr) {
+    biss_ctrl c;
+    biss_ctrl_init(&c, 0, r, 0);
+    for (int i = 0; i < 14; i++) {
+        biss_ctrl_cdm(&c, 0);
+    }
+    uint32_t hdr = biss_ctrl_reg_header(0, addr);
+    uint32_t bits = (1u << 17) | (hdr << 6) | ((uint32_t)biss_ctrl_crc4_sent(hdr, 11) << 2) | 2u;
+    /* S, header, CRC, R W: 17 bits; then S */
+    for (int i = 17; i >= 0; i--) {
+        biss_ctrl_cdm(&c, (int)((bits >> i) & 1u));
+    }
+    biss_ctrl_cdm(&c, 1); /* S */
+    int v = 0;
+    for (int i = 0; i < 8; i++) {
+        v = (v << 1) | biss_ctrl_cdm(&c, 0);
+    }
+    return v;
+}
+
+START_TEST(tidep0022_registers_match_table11) {
+    ck_assert_int_eq(profile_by_name("tidep0022-test-encoder", &sc), 0);
+    static const struct {
+        uint8_t addr, value;
+    } t11[] = {{0x44, 0x00}, {0x45, 0xD9}, {0x46, 0x01}, {0x47, 0x32}, {0x60, 0x0B},
+               {0x67, 0x5F}, {0x68, 0x00}, {0x78, 0x46}, {0x79, 0x3A}, {0x7A, 0xC0},
+               {0x7B, 0x0C}, {0x7C, 0x00}, {0x7D, 0x01}, {0x7E, 0x57}, {0x7F, 0x41}};
+    for (size_t i = 0; i < sizeof t11 / sizeof t11[0]; i++) {
+        ck_assert_int_eq(ctrl_read(&sc.biss.s[0].regs, t11[i].addr), t11[i].value);
+    }
+    biss_slave_cfg *s = &sc.biss.s[0];
+    ck_assert_uint_eq(s->pos_bits, 12);
+    ck_assert_uint_eq(s->crc_poly, 0x43);
+    ck_assert(s->has_err && s->has_warn);
+    ck_assert(!regfile_write(&s->regs, 0x45, 1));
+    ck_assert(regfile_write(&s->regs, 0x60, 1));
+}
+END_TEST
+
+START_TEST(posital_layout_and_registers) {
+    ck_assert_int_eq(profile_by_name("posital-kit", &sc), 0);
+    biss_slave_cfg *s = &sc.biss.s[0];
+    ck_assert_uint_eq(biss_slave_cfg_bits(s), 24 + 17 + 7 + 2 + 6);
+    ck_assert_int_eq(ctrl_read(&s->regs, 0x42), 0x61);
+    ck_assert_int_eq(ctrl_read(&s->regs, 0x7E), 0x46);
+    ck_assert_int_eq(ctrl_read(&s->regs, 0x7F), 0x72);
+    ck_assert_int_eq(ctrl_read(&s->regs, 0x7A), 0x68);
+    ck_assert_uint_eq(s->regs.nbanks, 68);
+    ck_assert(regfile_write(&s->regs, 0x40, 67)); /* last bank exists */
+    ck_assert(regfile_write(&s->regs, 0x10, 0x99));
+    ck_assert(!regfile_write(&s->regs, 0x41, 0));
+}
+END_TEST
+
+START_TEST(ad38_chain) {
+    ck_assert_int_eq(profile_by_name("hengstler-ad38", &sc), 0);
+    biss_chain_cfg *b = &sc.biss;
+    ck_assert_uint_eq(b->n, 3);
+    ck_assert_uint_eq(biss_slave_cfg_bits(&b->s[0]), 16 + 2 + 5);
+    ck_assert_uint_eq(biss_slave_cfg_bits(&b->s[1]), 36 + 2 + 6);
+    ck_assert_uint_eq(biss_slave_cfg_bits(&b->s[2]), 9 + 2 + 6 + 16);
+    ck_assert_int_eq(b->timeout_mode, BISS_TIMEOUT_ADAPTIVE);
+    ck_assert_int_eq(b->busy_ps, 2400 * SIM_PS_PER_NS);
+    ck_assert_uint_eq(b->s[2].id, 2);
+}
+END_TEST
+
+START_TEST(json_file_overrides_profile) {
+    char path[512];
+    snprintf(path, sizeof path, "%s/test/slave/scenarios/ad38_long_cable.json",
+             getenv("TEST_SRC_DIR") ? getenv("TEST_SRC_DIR") : ".");
+    ck_assert_msg(scenario_load_file(path, &sc, err, sizeof err) == 0, "%s", err);
+    ck_assert_uint_eq(sc.seed, 7);
+    ck_assert_double_eq(sc.ma_line.length_m, 50.0);
+    ck_assert_double_eq(sc.sl_line.jitter_rms_ps, 200.0);
+    ck_assert_int_eq(sc.sl_line.fault, LINE_STUCK_LOW);
+    ck_assert_int_eq(sc.ma_line.fault, LINE_OK);
+    ck_assert_int_eq(sc.sl_line.fault_at_ps, 5000000000LL);
+    ck_assert_int_eq(sc.biss.busy_ps, 2500000);
+    ck_assert_int_eq(sc.biss.adaptive_min_ps, 650000);
+    ck_assert_uint_eq(sc.biss.n, 3);
+    ck_assert_uint_eq(sc.biss.s[0].pos0, 0x1234);
+    ck_assert_double_eq(sc.biss.s[0].speed_cps, 0.0);
+    ck_assert_uint_eq(sc.biss.s[0].crc_poly, 0x25); /* kept from the profile */
+    ck_assert_uint_eq(regfile_read(&sc.biss.s[1].regs, 0x44), 0xAB);
+    ck_assert(sc.biss.s[1].regs.flags[0x44] & REG_RO);
+    ck_assert_uint_eq(sc.biss.s[1].regs.bank[1][0x10], 5);
+    ck_assert(sc.biss.s[2].error);
+}
+END_TEST
+
+static void expect_error(const char *json, const char *msg) {
+    ck_assert_int_eq(scenario_from_json(json, &sc, err, sizeof err), -1);
+    ck_assert_msg(strcmp(err, msg) == 0, "got \"%s\", want \"%s\"", err, msg);
+}
+
+START_TEST(json_errors_name_the_field) {
+    expect_error("{", "not valid JSON (near byte 1)");
+    expect_error("[]", "the scenario must be a JSON object");
+    expect_error("{\"profile\": \"nope\"}", "profile: unknown profile \"nope\"");
+    expect_error("{\"sede\": 1}", "sede: unknown field");
+    expect_error("{\"line\": {\"length_m\": -3}}", "line.length_m: must be >= 0");
+    expect_error("{\"line\": {\"fault\": \"cut\"}}",
+                 "line.fault: expected \"none\", \"stuck_low\", \"stuck_high\" or \"open\"");
+    expect_error("{\"biss\": {\"slaves\": [{\"crc_poly\": \"0x42\"}]}}",
+                 "biss.slaves[0].crc_poly: must be an odd polynomial of degree 1..16 (with its "
+                 "top term)");
+    expect_error("{\"biss\": {\"slaves\": [{}, {\"position_bits\": true}]}}",
+                 "biss.slaves[1].position_bits: expected a number (or a string like \"0x43\")");
+    expect_error("{\"biss\": {\"slaves\": [{\"id\": 9}]}}",
+                 "biss.slaves[0].id: expected a whole number from 0 to 7");
+    expect_error("{\"biss\": {\"slaves\": []}}",
+                 "biss.slaves: expected an array of 1 to 8 slave objects");
+    expect_error("{\"biss\": {\"timeout\": {\"mode\": \"slow\"}}}",
+                 "biss.timeout.mode: expected \"fixed\" or \"adaptive\"");
+    expect_error("{\"biss\": {\"slaves\": [{\"registers\": {\"0x80\": 1}}]}}",
+                 "biss.slaves[0].registers: address \"0x80\": expected 0x00..0x7F (banked: "
+                 "0x00..0x3F)");
+    expect_error("{\"ssi\": {\"gray\": 1}}", "ssi.gray: expected true or false");
+    expect_error("{\"protocol\": \"ssi\", \"ssi\": {\"bits\": 0}}", "ssi.bits: must be 1..64");
+}
+END_TEST
+
+START_TEST(json_ssi_scenario) {
+    ck_assert_int_eq(scenario_from_json("{\"profile\": \"ssi\", \"ssi\": {\"bits\": 25, \"gray\": "
+                                        "true, \"monoflop_ns\": 30000}}",
+                                        &sc, err, sizeof err),
+                     0);
+    ck_assert_int_eq(sc.protocol, SCENARIO_SSI);
+    ck_assert_uint_eq(sc.ssi.bits, 25);
+    ck_assert(sc.ssi.gray);
+    ck_assert_int_eq(sc.ssi.monoflop_ps, 30 * SIM_PS_PER_US);
+}
+END_TEST
+
+int main(void) {
+    Suite *s = suite_create("profiles");
+    TCase *tc = tcase_create("profiles");
+    tcase_add_test(tc, every_profile_loads_and_checks);
+    tcase_add_test(tc, tidep0022_registers_match_table11);
+    tcase_add_test(tc, posital_layout_and_registers);
+    tcase_add_test(tc, ad38_chain);
+    tcase_add_test(tc, json_file_overrides_profile);
+    tcase_add_test(tc, json_errors_name_the_field);
+    tcase_add_test(tc, json_ssi_scenario);
+    suite_add_tcase(s, tc);
+    SRunner *sr = srunner_create(s);
+    srunner_run_all(sr, CK_NORMAL);
+    int failed = srunner_ntests_failed(sr);
+    srunner_free(sr);
+    return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+}
