@@ -35,7 +35,7 @@ enum pruasm_level {
 /* What to assemble and how. A NULL options pointer means all defaults. */
 struct pruasm_options {
     int core;                   /* pasm -V: 1, 2 or 3; 0 means 3 (V0 is not supported) */
-    const char *const *defines; /* "NAME" or "NAME=value", like -D (at most 8) */
+    const char *const *defines; /* "NAME" or "NAME=value", like -D */
     size_t ndefines;
     const char *const *include_dirs; /* searched by #include <file>, like -I */
     size_t ninclude_dirs;
@@ -74,8 +74,9 @@ struct pruasm_diag {
 
 /*
  * Assemble the file at `path` (its #include "..." files are read relative to
- * its directory). Returns 0 and fills `out`, or -1 on any error (then `out`
- * holds nothing to free). `diag` may be NULL.
+ * its directory). Returns 0 and fills `out`, or -1 on any error or when no
+ * code was produced (first_error is then "No code generated"); `out` then
+ * holds nothing to free. `diag` may be NULL.
  */
 int pruasm_assemble_file(const struct pruasm_options *opt, const char *path,
                          struct pruasm_image *out, struct pruasm_diag *diag);
@@ -91,8 +92,9 @@ int pruasm_assemble_string(const struct pruasm_options *opt, const char *name, c
 /* Release what a successful assembly allocated; safe on a zeroed image. */
 void pruasm_image_free(struct pruasm_image *img);
 
-/* The five text/binary outputs of pasm, byte for byte, into a malloc'd buffer.
- * `array_name` is the -C name (NULL for "PRUcode"). Return NULL on no memory. */
+/* pasm's -c, -f, -m and -b/-B outputs, byte for byte, in a malloc'd buffer
+ * (*len gets its size). `array_name` is the -C name (NULL for "PRUcode").
+ * They return NULL when out of memory. */
 char *pruasm_format_c_array(const struct pruasm_image *img, const char *array_name, size_t *len);
 char *pruasm_format_fb_array(const struct pruasm_image *img, const char *array_name, size_t *len);
 char *pruasm_format_img(const struct pruasm_image *img, size_t *len);
