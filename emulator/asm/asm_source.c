@@ -386,6 +386,11 @@ static int do_include(struct asm_ctx *c, struct asm_file *f, const char *s) {
     int start = idx;
     for (;;) {
         char ch = *s++;
+        if (ch == ':' && idx > 0) {
+            /* pasm takes "x:" as a DOS drive letter: the name restarts there */
+            path[0] = path[idx - 1];
+            idx = start = 1;
+        }
         if (ch == term)
             break;
         if (!ch) {
