@@ -1,0 +1,763 @@
+// biss_master.p - BiSS-C interface master for PRU0 of an AM335x/AM437x
+// PRU-ICSS (pasm dialect).
+//
+// MA is R30 bit MA_BIT (default 1), SL is R31 bit 0 in 28-bit shift mode,
+// sampled at 8x the MA rate. The host configures and reads results through
+// PRU0's data RAM, laid out in include/biss/biss_shm.h.
+//
+// A frame (MA period p = 0, 1, ...; each period exactly 2H PRU cycles):
+//   WAIT_ACK    clock until the newest 8 samples show SL low (the ACK edge);
+//               the position of that edge (ones before it) gives this
+//               frame's line delay in bit/8, averaged with the last 3 frames
+//   LAG         clock while the sample point and lag are derived from it
+//   START_WAIT  clock while the slave is busy; count it, abort over the limit
+//   CDS         read the CDS bit, load the first slave's record
+//   slaves      data bits and CRC bits of each slave, CRC computed per bit;
+//               clocking stops by itself after the clock that follows the
+//               last bit (on it the slave starts its timeout, SL low), and
+//               the remaining bits are read from the samples: no extra
+//               clocks for the line delay
+// Then, outside the clocked part: CDM on MA, CRC verdicts, publication,
+// and the wait for the slave's timeout to end (SL high).
+//
+// The clocked periods are in biss_periods.hp; their timing rules are
+// described there.
+
+.origin 0
+.entrypoint START
+
+#include "../include/biss/biss_shm.h"
+
+#ifndef MA_BIT
+#define MA_BIT          1               // R30 bit driving MA: 0..7
+#endif
+#define MA_MASK         (1 << MA_BIT)
+#define LAG             2               // extra whole periods between a bit and its read
+#define CLOCK_FOREVER   0x7fff0000      // r12 while the start bit is awaited
+
+// offsets from a result buffer (r9) to the current slave's result
+#define RES_DATA_LO     (BISS_R_SLAVE0 + BISS_R_S_DATA_LO)
+#define RES_DATA_HI     (BISS_R_SLAVE0 + BISS_R_S_DATA_HI)
+#define RES_CRC         (BISS_R_SLAVE0 + BISS_R_S_CRC_REG)
+
+// PRU-ICSS registers
+#define GPCFG0          0x08            // CFG (C4)
+#define SHIFT_MODE      2               // GPCFG GPI_MODE: 28-bit shift
+#define IEP_GLOBAL_CFG  0x00            // IEP (C26)
+#define IEP_COUNT       0x0c
+#define IEP_CMP_CFG     0x40
+#define IEP_CMP_STATUS  0x44
+#define IEP_CMP0        0x48
+
+// Firmware-private data RAM, reached through C28 (CTPPR0 points it at
+// BISS_PRIV, since burst offsets are 8 bits). Offsets from BISS_PRIV:
+#define P_RECORDS       0x00                // 68 bytes: the image of r13..r29
+#define P_DELAYS        0x44                // u32: r0 (delay counts)
+#define P_HIST          0x48                // u16 h0, h1, h2 (last ACK positions), u16 K
+#define P_HSUM          0x50                // u32: h0 + h1 + h2 + 2
+#define P_BUF           0x54                // u32: result buffer being filled (0/1)
+#define P_NSLAVES       0x58                // u8 slaves, u8 trigger, u8 CDM, u8 frames in the average
+#define P_HALF          0x5c                // u16 H, u16 ACK limit (periods x 8)
+#define P_PROC          0x60                // u16 processing-time limit, u8 training due, u8 running
+#define P_GPCFG         0x64                // u32: GPCFG0 value
+#define P_SLAVES        0x80                // 8 x 16: mask lo, mask hi, residue, [w, n, ew, flags]
+#define PRU0_CTPPR0     0x22028             // C28 = 0x00nnnn00 with nnnn = CTPPR0[15:0]
+
+// (after the equates: macro bodies take equates as they are read)
+#include "biss_periods.hp"
+#define REC_BASE        52                  // register-file byte address of r13
+
+// ============================================================================
+START:
+    zero    &r0, 120                        // r0..r29
+    mov     r2, PRU0_CTPPR0
+    ldi     r3, BISS_PRIV >> 8
+    sbbo    r3, r2, 0, 4                    // C28 -> the private area
+    set     r30, r30, MA_BIT                // MA idles high
+    mov     r2, BISS_MAGIC
+    sbco    r2, c24, BISS_ST_MAGIC, 4
+    ldi     r2, 0                           // status and private areas start clear
+    ldi     r3, 0
+    ldi     r4, 0
+    ldi     r5, 0
+    ldi     r6, BISS_ST_SEQ
+CLEAR_ST:
+    sbbo    r2, r6, 0, 4
+    add     r6, r6, 4
+    qbgt    CLEAR_ST, r6, BISS_ST_END       // while r6 < END
+    mov     r6, BISS_PRIV
+    mov     r7, BISS_PRIV_END
+CLEAR_PRIV:
+    sbbo    r2, r6, 0, 16
+    add     r6, r6, 16
+    qbgt    CLEAR_PRIV, r6, r7
+    mov     r2, 0xffffffff                  // no configuration applied yet
+    sbco    r2, c24, BISS_ST_CFG_ACK, 4
+    // IEP: count PRU cycles (increment 1), free running
+    ldi     r2, 0x0111
+    sbco    r2, c26, IEP_GLOBAL_CFG, 4
+
+// ---- the main loop: configuration, trigger, frame --------------------------
+MAIN:
+    lbco    r2, c24, BISS_CFG_SEQ, 4
+    lbco    r3, c24, BISS_ST_CFG_ACK, 4
+    qbeq    MAIN_CFG_OK, r2, r3
+    qbeq    MAIN_CFG_OK, r2, 0              // the host has written none yet
+    jmp     APPLY_CONFIG
+MAIN_CFG_OK:
+    lbco    r2, c28, P_PROC, 4
+    qbeq    MAIN, r2.b3, 0                  // not running (no or a refused configuration)
+    qbeq    TRIGGER_DONE, r2.b2, 0
+    jmp     TRAIN                           // a training frame is due first
+TRIGGER_DONE:
+    lbco    r2, c28, P_NSLAVES, 4
+    qbeq    WAIT_HOST, r2.b1, BISS_TRIG_HOST
+    qbeq    WAIT_IEP, r2.b1, BISS_TRIG_IEP
+    jmp     FRAME                           // free-run
+WAIT_HOST:
+    lbco    r3, c24, BISS_CMD_TRIGGER, 4
+    qbeq    MAIN, r3, 0
+    ldi     r3, 0
+    sbco    r3, c24, BISS_CMD_TRIGGER, 4
+    jmp     FRAME
+WAIT_IEP:
+    lbco    r3, c26, IEP_CMP_STATUS, 4
+    qbbc    MAIN, r3, 0
+    ldi     r3, 1
+    sbco    r3, c26, IEP_CMP_STATUS, 4      // clear the CMP0 hit
+    jmp     FRAME
+
+// ============================================================================
+// Configuration: check the host's block, derive everything the clocked code
+// needs, and report the verdict.
+APPLY_CONFIG:
+    mov     r29, r2                         // the sequence number being applied
+    lbco    r20, c24, BISS_CFG_HALF, 12     // r20.w0 H, r20.b2 slaves, r20.b3 trigger,
+                                            // r21 IEP period, r22.w0 proc limit, r22.b2 CDM
+    ldi     r28, BISS_CFGERR_NSLAVES
+    qbeq    CFG_FAIL, r20.b2, 0
+    qblt    CFG_FAIL, r20.b2, BISS_MAX_SLAVES   // 8 < slaves
+    ldi     r28, BISS_CFGERR_TRIGGER
+    qblt    CFG_FAIL, r20.b3, BISS_TRIG_FREERUN
+    ldi     r28, BISS_CFGERR_HALF
+    qbgt    CFG_FAIL, r20.w0, BISS_MIN_HALF     // H < 10
+    mov     r2, BISS_MAX_HALF
+    qblt    CFG_FAIL, r20.w0, r2                // H > 1024
+
+    // The shift clock must be exactly 8x MA: H = a * b with divide ratios
+    // a/2 and b/2, 2 <= a, b <= 32. Prefer two whole ratios (even a and b).
+    ldi     r27, 1                          // pass 1: whole ratios only
+FACTOR_PASS:
+    ldi     r23, 2                          // a
+FACTOR_A:
+    mov     r24, r20.w0                     // r24 = H mod a, r25 = H / a
+    ldi     r25, 0
+FACTOR_DIV:
+    qbgt    FACTOR_DIVIDED, r24, r23        // r24 < a
+    sub     r24, r24, r23
+    add     r25, r25, 1
+    qba     FACTOR_DIV
+FACTOR_DIVIDED:
+    qbne    FACTOR_NEXT, r24, 0
+    qbgt    FACTOR_NEXT, r25, 2             // b < 2
+    qblt    FACTOR_NEXT, r25, 32            // b > 32
+    qbne    FACTOR_FOUND, r27, 1
+    qbbs    FACTOR_NEXT, r23, 0
+    qbbc    FACTOR_FOUND, r25, 0
+FACTOR_NEXT:
+    add     r23, r23, 1
+    qbge    FACTOR_A, r23, 32               // a <= 32
+    add     r27, r27, 1
+    qbeq    FACTOR_PASS, r27, 2
+    jmp     CFG_FAIL                        // r28 is still CFGERR_HALF
+FACTOR_FOUND:
+    sub     r23, r23, 2                     // divisor codes: ratio = 1 + code / 2
+    sub     r25, r25, 2
+    lsl     r23, r23, 3
+    lsl     r25, r25, 8
+    or      r26, r23, r25
+    or      r26, r26, SHIFT_MODE
+    sbco    r26, c28, P_GPCFG, 4
+
+    // Slaves: records for the clocked code, verdict data for the checks.
+    ldi     r23, 0                          // slave index
+    ldi     r24, 0                          // N: bits of all slaves
+    mov     r25, BISS_CFG_SLAVE0            // host block
+    mov     r26, BISS_PRIV + P_RECORDS
+    mov     r27, BISS_PRIV + P_SLAVES
+CFG_SLAVE:
+    lbbo    r2, r25, 0, 8                   // r2.b0 n, r2.b1 w, r2.b2 ew, r2.b3 flags, r3 poly|start
+    ldi     r28, BISS_CFGERR_DATA_BITS
+    qbeq    CFG_FAIL, r2.b0, 0
+    qblt    CFG_FAIL, r2.b0, BISS_MAX_DATA_BITS
+    ldi     r28, BISS_CFGERR_CRC_BITS
+    qblt    CFG_FAIL, r2.b1, BISS_MAX_CRC_BITS
+    ldi     r28, BISS_CFGERR_EW
+    qbbc    CFG_EW_OK, r2.b3, 0
+    add     r4, r2.b2, 1                    // nE's bit must lie in the data word
+    qble    CFG_FAIL, r4, r2.b0             // n <= ew + 1
+CFG_EW_OK:
+    add     r24, r24, r2.b0
+    add     r24, r24, r2.b1
+    // record: counts and entry by the slave's shape
+    mov     r4.b0, r2.b0                    // data bits counted by the data loop
+    ldi     r4.b1, 0
+    qbeq    CFG_NOCRC, r2.b1, 0
+    ldi     r4.w2, ENTRY_CRC1
+    qbeq    CFG_REC, r2.b1, 1
+    sub     r4.b1, r2.b1, 1                 // CRC bits before the last
+    ldi     r4.w2, ENTRY_CRC2
+    qba     CFG_REC
+CFG_NOCRC:
+    sub     r4.b0, r2.b0, 1                 // data bits before the last
+    ldi     r4.w2, ENTRY_PLAIN
+    qbne    CFG_REC, r2.b0, 1
+    ldi     r4.w2, ENTRY_PLAIN1
+CFG_REC:
+    // polynomial and start value left-aligned to bit 15 (the w2 halves)
+    rsb     r6, r2.b1, 16                   // 16 - w
+    lsl     r5, r3.w0, r6
+    lsl     r7, r3.w2, r6
+    mov     r5.w2, r7.w0
+    qbne    CFG_REC_STORE, r2.b1, 0
+    ldi     r5, 0                           // no CRC: no polynomial
+CFG_REC_STORE:
+    sbbo    r4, r26, 0, 8
+    add     r26, r26, 8
+    // data mask: n ones
+    mov     r6, 0xffffffff
+    mov     r7, 0xffffffff
+    qbeq    CFG_MASK_DONE, r2.b0, 64
+    qble    CFG_MASK_HI, r2.b0, 32          // 32 <= n
+    rsb     r8, r2.b0, 32
+    lsr     r6, r6, r8
+    ldi     r7, 0
+    qba     CFG_MASK_DONE
+CFG_MASK_HI:
+    rsb     r8, r2.b0, 64
+    lsr     r7, r7, r8
+CFG_MASK_DONE:
+    // residue: the CRC register after w inverted CRC bits of a right frame
+    // = w ones fed to a zero register (linearity)
+    ldi     r8, 0
+    lsl     r9, r5.w0, 16                   // polynomial, left-aligned to bit 31
+    qbeq    CFG_RESIDUE_DONE, r2.b1, 0
+    loop    CFG_RESIDUE_DONE, r2.b1
+    lsl     r10, r8, 0                      // keep bit 31 (feedback = bit31 ^ 1)
+    lsl     r8, r8, 1
+    qbbs    CFG_RESIDUE_STEP, r10, 31
+    xor     r8, r8, r9
+CFG_RESIDUE_STEP:
+    mov     r0, r0
+CFG_RESIDUE_DONE:
+    mov     r10.b0, r2.b1                   // w
+    mov     r10.b1, r2.b0                   // n
+    mov     r10.b2, r2.b2                   // ew shift
+    mov     r10.b3, r2.b3                   // flags
+    sbbo    r6, r27, 0, 4
+    sbbo    r7, r27, 4, 4
+    sbbo    r8, r27, 8, 4
+    sbbo    r10, r27, 12, 4
+    add     r27, r27, 16
+    add     r25, r25, BISS_CFG_SLAVE_SIZE
+    add     r23, r23, 1
+    qbgt    CFG_SLAVE, r23, r20.b2          // while index < slaves
+    // after the last slave: the end of the frame
+    ldi     r4, 0
+    ldi     r4.w2, FRAME_END
+    sbbo    r4, r26, 0, 4
+
+    // IEP period: at least 2H (N + 8) cycles
+    qbne    CFG_IEP_OK, r20.b3, BISS_TRIG_IEP
+    add     r2, r24, 8
+    ldi     r3, 0
+    lsl     r4, r20.w0, 1                   // 2H
+CFG_IEP_MIN:
+    add     r3, r3, r4
+    sub     r2, r2, 1
+    qbne    CFG_IEP_MIN, r2, 0
+    ldi     r28, BISS_CFGERR_IEP_PERIOD
+    qbgt    CFG_FAIL, r21, r3               // period < minimum
+    sub     r2, r21, 1                      // CMP0 = period - 1 (the count resets after it)
+    sbco    r2, c26, IEP_CMP0, 4
+    ldi     r2, 3                           // CMP0 enabled, resets the count
+    sbco    r2, c26, IEP_CMP_CFG, 4
+    ldi     r2, 0
+    sbco    r2, c26, IEP_COUNT, 4
+    ldi     r2, 0xff
+    sbco    r2, c26, IEP_CMP_STATUS, 4
+CFG_IEP_OK:
+
+    // Accepted: commit everything.
+    sub     r2, r20.w0, 10                  // delay counts of both halves: H - 10
+    mov     r0.w0, r2.w0
+    mov     r0.w2, r2.w0
+    sbco    r0, c28, P_DELAYS, 4
+    // K = N + 2 - LAG: the clocks after the start bit's period are the CDS,
+    // the N bits and one more, on which the slave starts its timeout (SL
+    // low); LAG of them are already out when the start bit is seen.
+    sub     r2, r24, LAG - 2
+    ldi     r3, 0
+    ldi     r4, 0
+    mov     r4.w2, r2.w0                    // history empty (training fills it), K
+    sbco    r3, c28, P_HIST, 8
+    mov     r2.b0, r20.b2                   // slaves, trigger, CDM, frames in the average
+    mov     r2.b1, r20.b3
+    mov     r2.b2, r22.b2
+    ldi     r2.b3, 0
+    sbco    r2, c28, P_NSLAVES, 4
+    // ACK limit in periods x 8: (BISS_MAX_DELAY_NS / 10 / H + 4) x 8
+    mov     r2, BISS_MAX_DELAY_NS / 10
+    ldi     r3, 4
+CFG_ACKLIM:
+    qbgt    CFG_ACKLIM_DONE, r2, r20.w0
+    sub     r2, r2, r20.w0
+    add     r3, r3, 1
+    qba     CFG_ACKLIM
+CFG_ACKLIM_DONE:
+    lsl     r3, r3, 3
+    mov     r2.w0, r20.w0
+    mov     r2.w2, r3.w0
+    sbco    r2, c28, P_HALF, 4
+    mov     r2.w0, r22.w0                   // processing-time limit
+    ldi     r2.b2, 1                        // training due
+    ldi     r2.b3, 1                        // running
+    sbco    r2, c28, P_PROC, 4
+    lbco    r2, c28, P_GPCFG, 4
+    sbco    r2, c4, GPCFG0, 4               // shift mode at 8x the new rate
+    ldi     r28, BISS_CFGERR_NONE
+    ldi     r2, BISS_STATE_RUNNING
+    qba     CFG_REPORT
+CFG_FAIL:
+    ldi     r2, 0
+    sbco    r2, c28, P_PROC, 4              // not running
+    ldi     r2, BISS_STATE_CFG_ERROR
+CFG_REPORT:
+    sbco    r2, c24, BISS_ST_STATE, 4
+    sbco    r28, c24, BISS_ST_CFG_ERROR, 4
+    sbco    r29, c24, BISS_ST_CFG_ACK, 4
+    lbco    r13, c28, P_RECORDS, 68         // slave records into r13..r29
+    jmp     MAIN
+
+// reg = the result buffer being filled (P_BUF: 0 or 1).
+.macro RESULT_BASE
+.mparam reg
+    lbco    reg, c28, P_BUF, 4
+    qbeq    RESULT_BASE_0, reg, 0
+    mov     reg, BISS_RES0 + BISS_RES_SIZE
+    qba     RESULT_BASE_DONE
+RESULT_BASE_0:
+    mov     reg, BISS_RES0
+RESULT_BASE_DONE:
+.endm
+
+// ============================================================================
+// Before a frame: the slave must be idle (SL high); then the registers the
+// clocked code starts from, and the frame's timestamp.
+//   r3 = 8p (ACK position base), r4.w0/w2, r5.w0 = history, r5.w2 = K,
+//   r7.w0 = ACK limit, r7.w2 = processing-time limit, r10 = history sum.
+.macro FRAME_SETUP
+    lbco    r0, c28, P_DELAYS, 4
+    RESULT_BASE r9
+    lbco    r4, c28, P_HIST, 8
+    lbco    r10, c28, P_HSUM, 4
+    lbco    r7.w0, c28, P_HALF + 2, 2
+    lbco    r7.w2, c28, P_PROC, 2
+    ldi     r1.b0, REC_BASE
+    ldi     r1.b1, 0
+    ldi     r3, 0
+    ldi     r6, 0
+    ldi     r8, 0
+    ldi     r11, MA_MASK
+    mov     r12, CLOCK_FOREVER
+    lbco    r2, c26, IEP_COUNT, 4
+    sbbo    r2, r9, BISS_R_TIMESTAMP, 4
+.endm
+
+FRAME:
+    jal     r29.w0, SLAVE_IDLE
+    qbne    FRAME_GO, r2, 0
+    jmp     NO_SLAVE_IDLE
+FRAME_GO:
+    FRAME_SETUP
+    // fall into the first period
+
+// ---- WAIT_ACK ---------------------------------------------------------------
+// Clock until the newest 8 samples hold the ACK edge (a 0), then go to
+// `found` at t = 3 with the samples in r2.b0 and 8p in r3.
+.macro WAIT_ACK_PERIOD
+.mparam found
+WA_TOP:
+    xor     r30, r30, r11
+    mov     r2, r31                         // 1
+    qbne    found, r2.b0, 0xff              // 2
+    add     r3, r3, 8                       // 3
+    PAD                                    // 4
+    PAD                                    // 5
+    PAD                                    // 6
+    PAD                                    // 7
+    PAD                                    // 8
+    DELAY_A
+    xor     r30, r30, r11
+    qble    NO_ACK, r3, r7.w0               // 1: limit <= 8p: give up after this rise
+    NEXT_CLOCK                              // 2..3
+    PAD                                    // 4
+    PAD                                    // 5
+    PAD                                    // 6
+    PAD                                    // 7
+    DELAY_B
+    qba     WA_TOP
+.endm
+
+// The ones before the ACK edge in r2.b0 (a constant-time count: a glitch
+// moves it by one, not to another bit), as Q' = 8p + ones in r1.w2.
+// Split over the two halves: 6 cycles, then 5.
+.macro ONES_A
+    lsr     r6, r2.b0, 1
+    and     r6, r6, 0x55
+    sub     r6, r2.b0, r6                   // 2-bit sums
+    lsr     r8, r6, 2
+    and     r8, r8, 0x33
+    and     r6, r6, 0x33
+.endm
+.macro ONES_B
+    add     r6, r6, r8                      // 4-bit sums
+    lsr     r8, r6, 4
+    add     r6, r6, r8
+    and     r6, r6, 0x0f                    // ones before the edge
+    add     r1.w2, r3, r6                   // Q'
+.endm
+
+    WAIT_ACK_PERIOD ACK_FOUND
+
+ACK_FOUND:                                  // t = 3
+    ONES_A                                  // 3..8
+    DELAY_A
+    xor     r30, r30, r11
+    ONES_B                                  // 1..5
+    NEXT_CLOCK                              // 6..7
+    DELAY_B
+    PAD
+
+// ---- LAG: sample point and lag from the averaged ACK position ------------------
+LAG1:
+    xor     r30, r30, r11
+    add     r2, r1.w2, r10                  // 1  Q' + h0 + h1 + h2 + 2
+    lsr     r2, r2, 2                       // 2  Qf': the 4-frame average
+    sub     r2, r2, 4                       // 3
+    and     r10, r2, 7                      // 4
+    add     r10, r10, 8                     // 5  r10 = 31 - (8 (m + LAG) - Qf)
+    lsr     r8, r2, 3                       // 6  m = (Qf' - 4) / 8
+    lsr     r6, r3, 3                       // 7  p (this frame's ACK period)
+    add     r7.w0, r8, 2                    // 8
+    DELAY_A
+    xor     r30, r30, r11
+    max     r7.w0, r7.w0, r6                // 1
+    sub     r7.w0, r7.w0, r6                // 2  idle periods before the first read
+    ldi     r6, 0                           // 3  busy clocks
+    NEXT_CLOCK                              // 4..5
+    PAD                                    // 6
+    PAD                                    // 7
+    DELAY_B
+    qbeq    SW_TOP, r7.w0, 0
+LAG_TOP:
+    xor     r30, r30, r11
+    PAD                                    // 1
+    PAD                                    // 2
+    PAD                                    // 3
+    PAD                                    // 4
+    PAD                                    // 5
+    PAD                                    // 6
+    PAD                                    // 7
+    PAD                                    // 8
+    DELAY_A
+    xor     r30, r30, r11
+    sub     r7.w0, r7.w0, 1                 // 1
+    NEXT_CLOCK                              // 2..3
+    PAD                                    // 4
+    PAD                                    // 5
+    PAD                                    // 6
+    PAD                                    // 7
+    DELAY_B
+    qbne    LAG_TOP, r7.w0, 0
+
+// ---- START_WAIT: ACK and busy read 0, the start bit 1 ------------------------
+SW_TOP:
+    xor     r30, r30, r11
+    SAMPLE                                  // 1
+    qbbs    START_FOUND, r2, 31             // 2
+    add     r6, r6, 1                       // 3
+    PAD                                    // 4
+    PAD                                    // 5
+    PAD                                    // 6
+    PAD                                    // 7
+    PAD                                    // 8
+    DELAY_A
+    xor     r30, r30, r11
+    qblt    PROC_ERROR, r6, r7.w2           // 1: limit < busy: give up after this rise
+    NEXT_CLOCK                              // 2..3
+    PAD                                    // 4
+    PAD                                    // 5
+    PAD                                    // 6
+    PAD                                    // 7
+    DELAY_B
+    qba     SW_TOP
+
+START_FOUND:                                // t = 3
+    sbbo    r6, r9, BISS_R_PROC_CLOCKS, 2   // 3  busy clocks before the start bit
+    PAD                                     // 4
+    max     r3, r5.w2, r8                   // 5  clocks after this period:
+    sub     r3, r3, r8                      // 6  max(N + 2 - LAG - m, 0)
+    lsl     r12, r3, MA_BIT                 // 7
+    ldi     r6, 0                           // 8  (r6.w0 stays 0 from here on)
+    DELAY_A
+    xor     r30, r30, r11
+    ldi     r8, 0                           // 1  (r8.w0 stays 0 from here on)
+    NEXT_CLOCK                              // 2..3
+    PAD                                    // 4
+    PAD                                    // 5
+    PAD                                    // 6
+    PAD                                    // 7
+    DELAY_B
+    PAD
+
+// ---- CDS, then the slaves ----------------------------------------------------
+CDS_PERIOD:
+    xor     r30, r30, r11
+    SAMPLE                                  // 1
+    lsr     r1.b1, r2, 31                   // 2
+    LOAD_RECORD                             // 3..6
+    PAD                                    // 7
+    PAD                                    // 8
+    DELAY_A
+    xor     r30, r30, r11
+    NEXT_CLOCK                              // 1..2
+    PAD                                    // 3
+    PAD                                    // 4
+    PAD                                    // 5
+    PAD                                    // 6
+    PAD                                    // 7
+    DELAY_B
+    jmp     r7.w2
+
+// A slave's bits: n data bits, then w CRC bits, the last bit switching to the
+// next slave. One entry per shape of slave.
+ENTRY_CRC2:                                 // w >= 2
+    DATA_PERIOD
+    CRC_PERIOD
+    CRC_SWITCH
+ENTRY_CRC1:                                 // w = 1
+    DATA_PERIOD
+    CRC_SWITCH
+ENTRY_PLAIN:                                // w = 0, n >= 2
+    PLAIN_PERIOD
+ENTRY_PLAIN1:                               // w = 0, n = 1
+    PLAIN_SWITCH
+
+
+// ============================================================================
+// After the last bit. MA is high: the clocks ran out before the last reads.
+// Nothing below is clocked.
+
+FRAME_END:
+    lbco    r2, c28, P_NSLAVES, 4
+    qbeq    FE_CDM_DONE, r2.b2, 0
+    clr     r30, r30, MA_BIT                // CDM = 1: MA low through the timeout
+FE_CDM_DONE:
+    mov     r1.b0, r2.b0                    // slaves to check
+    RESULT_BASE r2
+    rsb     r3, r10, 31 - 8 * LAG           // sample point 0..7 within the bit
+    sbbo    r3.b0, r2, BISS_R_SAMPLE_POINT, 1
+    sbbo    r1.b1, r2, BISS_R_CDS, 1
+    ldi     r12, BISS_RF_VALID              // frame flags
+    add     r3, r2, BISS_R_SLAVE0           // slave result
+    mov     r11, BISS_PRIV + P_SLAVES       // slave check data
+FE_SLAVE:
+    lbbo    r4, r3, 0, 12                   // data lo, data hi, CRC register
+    lbbo    r7, r11, 0, 16                  // mask lo, mask hi, residue, [w, n, ew, flags]
+    and     r4, r4, r7
+    and     r5, r5, r8
+    ldi     r0, 0                           // slave status
+    qbeq    FE_CRC_OK, r10.b0, 0            // no CRC
+    qbeq    FE_CRC_OK, r6, r9
+    or      r12, r12, BISS_RF_CRC_ERROR
+    qba     FE_CRC_DONE
+FE_CRC_OK:
+    or      r0, r0, BISS_RS_CRC_OK
+FE_CRC_DONE:
+    qbbc    FE_EW_DONE, r10.b3, 0           // no nE/nW
+    mov     r6, r10.b2                      // nW's bit
+    jal     r29.w0, DATA_BIT
+    qbbc    FE_NW_LOW, r7, 0
+    or      r0, r0, BISS_RS_NW
+FE_NW_LOW:
+    add     r6, r10.b2, 1                   // nE's bit
+    jal     r29.w0, DATA_BIT
+    qbbc    FE_EW_DONE, r7, 0
+    or      r0, r0, BISS_RS_NE
+FE_EW_DONE:
+    sbbo    r4, r3, BISS_R_S_DATA_LO, 8
+    sbbo    r0, r3, BISS_R_S_STATUS, 4
+    add     r3, r3, BISS_R_SLAVE_SIZE
+    add     r11, r11, 16
+    sub     r1.b0, r1.b0, 1
+    qbne    FE_SLAVE, r1.b0, 0
+    // frame counters
+    qbbc    FE_NO_CRC_ERR, r12, 1
+    lbco    r3, c24, BISS_ST_CRC_ERRORS, 4
+    add     r3, r3, 1
+    sbco    r3, c24, BISS_ST_CRC_ERRORS, 4
+FE_NO_CRC_ERR:
+    // line delay: this frame's ACK position and the average it was read with
+    lbco    r4, c28, P_HIST, 8
+    lbco    r3, c28, P_HSUM, 4
+    add     r3, r3, r1.w2
+    lsr     r3, r3, 2                       // Qf'
+    sbbo    r1.w2, r2, BISS_R_DELAY_RAW, 2
+    sbbo    r3.w0, r2, BISS_R_DELAY_AVG, 2
+    sub     r6, r3, 4
+    lsr     r6, r6, 3
+    add     r6, r6, LAG
+    sbbo    r6.b0, r2, BISS_R_LAG_PERIODS, 1
+    // history: a jump of more than half a bit starts the average afresh
+    sub     r6, r1.w2, r3                   // Q' - Qf' + 4 in 0..8: no jump
+    add     r6, r6, 4
+    lbco    r7, c28, P_NSLAVES, 4
+    qblt    FE_HIST_RESET, r6, 8
+    mov     r5.w0, r4.w2                    // h2 = h1
+    mov     r4.w2, r4.w0                    // h1 = h0
+    mov     r4.w0, r1.w2                    // h0 = Q'
+    qble    FE_HIST_SAVE, r7.b3, 3          // 3 <= frames in the average: full
+    add     r7.b3, r7.b3, 1
+    qba     FE_HIST_SAVE
+FE_HIST_RESET:
+    mov     r4.w0, r1.w2
+    mov     r4.w2, r1.w2
+    mov     r5.w0, r1.w2
+    ldi     r7.b3, 0
+FE_HIST_SAVE:
+    qbgt    FE_NO_SMA, r7.b3, 3
+    or      r12, r12, BISS_RF_SMA
+FE_NO_SMA:
+    sbco    r7, c28, P_NSLAVES, 4
+    jal     r29.w0, HIST_SAVE
+    jal     r29.w0, PUBLISH
+    jal     r29.w0, SLAVE_IDLE              // the slave's timeout ends: SL high
+    set     r30, r30, MA_BIT                // CDM done: MA idles high
+    jmp     MAIN
+
+// The data bit numbered r6 (0..63) of r4:r5, in r7 bit 0.
+DATA_BIT:
+    qble    DATA_BIT_HI, r6, 32             // 32 <= bit
+    lsr     r7, r4, r6
+    jmp     r29.w0
+DATA_BIT_HI:
+    lsr     r7, r5, r6                      // the shift uses bit & 31
+    jmp     r29.w0
+
+// History r4.w0, r4.w2, r5.w0 and its sum + 2 (rounding) to P_HIST/P_HSUM.
+HIST_SAVE:
+    sbco    r4, c28, P_HIST, 6
+    add     r3, r4.w0, r4.w2
+    add     r3, r3, r5.w0
+    add     r3, r3, 2
+    sbco    r3, c28, P_HSUM, 4
+    jmp     r29.w0
+
+// Publish the result buffer r2 with the flags in r12: header words, then
+// the sequence number (its low bit names the buffer), then the next buffer.
+PUBLISH:
+    lbco    r3, c24, BISS_ST_FRAMES, 4
+    add     r3, r3, 1
+    sbco    r3, c24, BISS_ST_FRAMES, 4
+    sbbo    r3, r2, BISS_R_FRAME, 4
+    sbbo    r12, r2, BISS_R_FLAGS, 4
+    lbco    r4, c28, P_NSLAVES, 1
+    sbbo    r4.b0, r2, BISS_R_NSLAVES, 1
+    lbco    r4, c28, P_HALF, 2
+    sbbo    r4.w0, r2, BISS_R_HALF, 2
+    lbco    r4, c28, P_BUF, 4
+    sbco    r4, c24, BISS_ST_BUF, 4
+    lbco    r3, c24, BISS_ST_SEQ, 4
+    add     r3, r3, 1                       // odd seq: buffer 1, even: buffer 0
+    sbco    r3, c24, BISS_ST_SEQ, 4
+    xor     r4, r4, 1
+    sbco    r4, c28, P_BUF, 4
+    ldi     r3, BISS_STATE_RUNNING
+    sbco    r3, c24, BISS_ST_STATE, 4
+    jmp     r29.w0
+
+// Wait for SL high (the newest 8x sample, R31 bit 0), at most about 10 ms.
+// r2 = 1 if it came, 0 if not.
+SLAVE_IDLE:
+    mov     r3, 1000000
+SLAVE_IDLE_POLL:
+    qbbs    SLAVE_IDLE_YES, r31, 0
+    sub     r3, r3, 1
+    qbne    SLAVE_IDLE_POLL, r3, 0
+    ldi     r2, 0
+    jmp     r29.w0
+SLAVE_IDLE_YES:
+    ldi     r2, 1
+    jmp     r29.w0
+
+// ---- frames that end early ---------------------------------------------------
+// r12 = flags, r3 = the counter to increment; publish, wait for the slave.
+ABORT_FRAME:
+    lbbo    r4, r3, 0, 4
+    add     r4, r4, 1
+    sbbo    r4, r3, 0, 4
+    RESULT_BASE r2
+    jal     r29.w0, PUBLISH
+    jal     r29.w0, SLAVE_IDLE
+    set     r30, r30, MA_BIT
+    jmp     MAIN
+
+NO_ACK:                                     // after a rising edge: MA stays high
+    ldi     r12, BISS_RF_NO_SLAVE
+    ldi     r3, BISS_ST_NO_SLAVE
+    jmp     ABORT_FRAME
+
+PROC_ERROR:                                 // after a rising edge: MA stays high
+    RESULT_BASE r2
+    sbbo    r6, r2, BISS_R_PROC_CLOCKS, 2
+    ldi     r12, BISS_RF_PROC_ERROR
+    ldi     r3, BISS_ST_PROC_ERRORS
+    jmp     ABORT_FRAME
+
+NO_SLAVE_IDLE:                              // SL low before a frame
+    ldi     r12, BISS_RF_NO_SLAVE
+    ldi     r3, BISS_ST_NO_SLAVE
+    jmp     ABORT_FRAME
+
+// ---- training: the line delay at a new rate -----------------------------------
+// A frame cut short after the ACK: its position fills the history, so the
+// next frame samples at the right point from its first bit.
+TRAIN:
+    jal     r29.w0, SLAVE_IDLE
+    qbne    TRAIN_GO, r2, 0
+    jmp     NO_SLAVE_IDLE
+TRAIN_GO:
+    FRAME_SETUP
+    WAIT_ACK_PERIOD TRAIN_ACK
+TRAIN_ACK:                                  // t = 3
+    ONES_A                                  // 3..8
+    DELAY_A
+    xor     r30, r30, r11                   // the last rising edge of this frame
+    ONES_B
+    mov     r4.w0, r1.w2
+    mov     r4.w2, r1.w2
+    mov     r5.w0, r1.w2
+    jal     r29.w0, HIST_SAVE
+    lbco    r2, c28, P_PROC, 4
+    ldi     r2.b2, 0                        // training done
+    sbco    r2, c28, P_PROC, 4
+    lbco    r2, c28, P_NSLAVES, 4
+    ldi     r2.b3, 0                        // the average starts at this frame
+    sbco    r2, c28, P_NSLAVES, 4
+    RESULT_BASE r2
+    sbbo    r1.w2, r2, BISS_R_DELAY_RAW, 2
+    sbbo    r1.w2, r2, BISS_R_DELAY_AVG, 2
+    ldi     r12, BISS_RF_TRAINING
+    ldi     r3, BISS_ST_TRAINING
+    jmp     ABORT_FRAME
