@@ -1,0 +1,177 @@
+/*
+ * biss_shm_struct.h - the C struct view of the shared-memory layout in
+ * biss_shm.h (PRU0 data RAM, little-endian).
+ *
+ * biss_shm.h is the source of truth: every field below is checked against
+ * its offset there at compile time, so the two views cannot drift apart.
+ * Fields are ordered so that natural alignment gives the packed layout; no
+ * compiler-specific packing is needed.
+ */
+#ifndef BISS_SHM_STRUCT_H
+#define BISS_SHM_STRUCT_H
+
+#include "biss_shm.h"
+
+#include <stddef.h>
+#include <stdint.h>
+
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ != __ORDER_LITTLE_ENDIAN__
+#error "the shared-memory struct view assumes a little-endian host, as the PRU is"
+#endif
+
+/* One slave's block of the configuration (BISS_CFG_S_*). */
+struct biss_shm_slave_cfg {
+    uint8_t data_bits; /* 1..64: everything before the CRC */
+    uint8_t crc_bits;  /* 0..16 */
+    uint8_t ew_shift;  /* bit of nW from the data word's LSB */
+    uint8_t flags;     /* BISS_SF_* */
+    uint16_t crc_poly; /* without its top term */
+    uint16_t crc_start;
+};
+
+/* The configuration block the host writes (BISS_CFG_*). */
+struct biss_shm_config {
+    uint32_t seq;
+    uint16_t half;
+    uint8_t nslaves;
+    uint8_t trigger;
+    uint32_t iep_period;
+    uint16_t proc_limit;
+    uint8_t cdm;
+    uint8_t reserved0;
+    struct biss_shm_slave_cfg slave[BISS_MAX_SLAVES];
+};
+
+/* Status words the firmware writes (BISS_ST_*). */
+struct biss_shm_status {
+    uint32_t magic;
+    uint32_t seq;
+    uint32_t buf;
+    uint32_t cfg_ack;
+    uint32_t cfg_error;
+    uint32_t state;
+    uint32_t frames;
+    uint32_t crc_errors;
+    uint32_t no_slave;
+    uint32_t proc_errors;
+    uint32_t training;
+};
+
+/* One slave's result (BISS_R_S_*). */
+struct biss_shm_slave_result {
+    uint32_t data_lo;
+    uint32_t data_hi;
+    uint32_t crc_reg;
+    uint32_t status; /* BISS_RS_* */
+};
+
+/* One result buffer (BISS_R_*). */
+struct biss_shm_result {
+    uint32_t frame;
+    uint32_t flags; /* BISS_RF_* */
+    uint32_t timestamp;
+    uint16_t proc_clocks;
+    uint8_t cds;
+    uint8_t nslaves;
+    uint16_t delay_raw;
+    uint16_t delay_avg;
+    uint8_t sample_point;
+    uint8_t lag_periods;
+    uint16_t half;
+    uint8_t reserved[BISS_R_SLAVE0 - BISS_R_HALF - 2];
+    struct biss_shm_slave_result slave[BISS_MAX_SLAVES];
+};
+
+/* The whole shared area, from data RAM address 0 to the end of the
+ * firmware-private area. */
+struct biss_shm {
+    struct biss_shm_config cfg;
+    uint32_t cmd_trigger;
+    uint8_t gap_cmd[BISS_ST_MAGIC - BISS_CMD_TRIGGER - 4];
+    struct biss_shm_status st;
+    uint8_t gap_st[BISS_RES0 - BISS_ST_END];
+    struct biss_shm_result res[2];
+    uint8_t gap_res[BISS_PRIV - BISS_RES0 - 2 * BISS_RES_SIZE];
+    uint8_t priv[BISS_PRIV_END - BISS_PRIV];
+};
+
+/* ---- compile-time agreement with biss_shm.h ---------------------------- */
+#define BISS_SHM_AT(member, off)                                                                   \
+    _Static_assert(offsetof(struct biss_shm, member) == (off), #member " is not at " #off)
+#define BISS_SHM_SLAVE_CFG_AT(member, off)                                                         \
+    _Static_assert(offsetof(struct biss_shm_slave_cfg, member) == (off),                           \
+                   "slave cfg " #member " is not at " #off)
+#define BISS_SHM_RESULT_AT(member, off)                                                            \
+    _Static_assert(offsetof(struct biss_shm_result, member) == (off),                              \
+                   "result " #member " is not at " #off)
+#define BISS_SHM_SLAVE_RESULT_AT(member, off)                                                      \
+    _Static_assert(offsetof(struct biss_shm_slave_result, member) == (off),                        \
+                   "slave result " #member " is not at " #off)
+
+BISS_SHM_AT(cfg.seq, BISS_CFG_SEQ);
+BISS_SHM_AT(cfg.half, BISS_CFG_HALF);
+BISS_SHM_AT(cfg.nslaves, BISS_CFG_NSLAVES);
+BISS_SHM_AT(cfg.trigger, BISS_CFG_TRIGGER);
+BISS_SHM_AT(cfg.iep_period, BISS_CFG_IEP_PERIOD);
+BISS_SHM_AT(cfg.proc_limit, BISS_CFG_PROC_LIMIT);
+BISS_SHM_AT(cfg.cdm, BISS_CFG_CDM);
+BISS_SHM_AT(cfg.reserved0, BISS_CFG_RESERVED0);
+BISS_SHM_AT(cfg.slave, BISS_CFG_SLAVE0);
+BISS_SHM_AT(cfg.slave[1], BISS_CFG_SLAVE0 + BISS_CFG_SLAVE_SIZE);
+_Static_assert(sizeof(struct biss_shm_config) == BISS_CFG_END, "config block size");
+_Static_assert(sizeof(struct biss_shm_slave_cfg) == BISS_CFG_SLAVE_SIZE, "slave cfg size");
+BISS_SHM_SLAVE_CFG_AT(data_bits, BISS_CFG_S_DATA_BITS);
+BISS_SHM_SLAVE_CFG_AT(crc_bits, BISS_CFG_S_CRC_BITS);
+BISS_SHM_SLAVE_CFG_AT(ew_shift, BISS_CFG_S_EW_SHIFT);
+BISS_SHM_SLAVE_CFG_AT(flags, BISS_CFG_S_FLAGS);
+BISS_SHM_SLAVE_CFG_AT(crc_poly, BISS_CFG_S_CRC_POLY);
+BISS_SHM_SLAVE_CFG_AT(crc_start, BISS_CFG_S_CRC_START);
+
+BISS_SHM_AT(cmd_trigger, BISS_CMD_TRIGGER);
+
+BISS_SHM_AT(st, BISS_ST_MAGIC);
+BISS_SHM_AT(st.magic, BISS_ST_MAGIC);
+BISS_SHM_AT(st.seq, BISS_ST_SEQ);
+BISS_SHM_AT(st.buf, BISS_ST_BUF);
+BISS_SHM_AT(st.cfg_ack, BISS_ST_CFG_ACK);
+BISS_SHM_AT(st.cfg_error, BISS_ST_CFG_ERROR);
+BISS_SHM_AT(st.state, BISS_ST_STATE);
+BISS_SHM_AT(st.frames, BISS_ST_FRAMES);
+BISS_SHM_AT(st.crc_errors, BISS_ST_CRC_ERRORS);
+BISS_SHM_AT(st.no_slave, BISS_ST_NO_SLAVE);
+BISS_SHM_AT(st.proc_errors, BISS_ST_PROC_ERRORS);
+BISS_SHM_AT(st.training, BISS_ST_TRAINING);
+_Static_assert(BISS_ST_MAGIC + sizeof(struct biss_shm_status) == BISS_ST_END, "status size");
+
+BISS_SHM_AT(res[0], BISS_RES0);
+BISS_SHM_AT(res[1], BISS_RES0 + BISS_RES_SIZE);
+_Static_assert(sizeof(struct biss_shm_result) == BISS_RES_SIZE, "result buffer size");
+BISS_SHM_RESULT_AT(frame, BISS_R_FRAME);
+BISS_SHM_RESULT_AT(flags, BISS_R_FLAGS);
+BISS_SHM_RESULT_AT(timestamp, BISS_R_TIMESTAMP);
+BISS_SHM_RESULT_AT(proc_clocks, BISS_R_PROC_CLOCKS);
+BISS_SHM_RESULT_AT(cds, BISS_R_CDS);
+BISS_SHM_RESULT_AT(nslaves, BISS_R_NSLAVES);
+BISS_SHM_RESULT_AT(delay_raw, BISS_R_DELAY_RAW);
+BISS_SHM_RESULT_AT(delay_avg, BISS_R_DELAY_AVG);
+BISS_SHM_RESULT_AT(sample_point, BISS_R_SAMPLE_POINT);
+BISS_SHM_RESULT_AT(lag_periods, BISS_R_LAG_PERIODS);
+BISS_SHM_RESULT_AT(half, BISS_R_HALF);
+BISS_SHM_RESULT_AT(slave, BISS_R_SLAVE0);
+BISS_SHM_RESULT_AT(slave[1], BISS_R_SLAVE0 + BISS_R_SLAVE_SIZE);
+_Static_assert(sizeof(struct biss_shm_slave_result) == BISS_R_SLAVE_SIZE, "slave result size");
+BISS_SHM_SLAVE_RESULT_AT(data_lo, BISS_R_S_DATA_LO);
+BISS_SHM_SLAVE_RESULT_AT(data_hi, BISS_R_S_DATA_HI);
+BISS_SHM_SLAVE_RESULT_AT(crc_reg, BISS_R_S_CRC_REG);
+BISS_SHM_SLAVE_RESULT_AT(status, BISS_R_S_STATUS);
+
+BISS_SHM_AT(priv, BISS_PRIV);
+_Static_assert(sizeof(struct biss_shm) == BISS_PRIV_END, "shared area size");
+_Static_assert(sizeof(struct biss_shm) <= BISS_DRAM_BYTES, "shared area fits the data RAM");
+
+#undef BISS_SHM_AT
+#undef BISS_SHM_SLAVE_CFG_AT
+#undef BISS_SHM_RESULT_AT
+#undef BISS_SHM_SLAVE_RESULT_AT
+
+#endif
