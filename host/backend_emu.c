@@ -1,0 +1,142 @@
+/* backend_emu.c - the in-process backend: the bench's emulated PRU-ICSS,
+ * reached through the same global addresses as on the SoC. Time is
+ * simulated and moves only in advance(). */
+#include "biss_priv.h"
+
+#include "bench.h"
+#include "scenario_json.h"
+
+#include <stdlib.h>
+
+#define EMU_DEFAULT_PROFILE "tidep0022-test-encoder"
+
+struct emu {
+    struct bench *bench;
+    uint32_t base; /* global address of the PRU-ICSS */
+};
+
+static int emu_read(void *ctx, uint32_t off, void *buf, size_t n) {
+    struct emu *e = ctx;
+    return pru_host_read(bench_core(e->bench), e->base + off, buf, n) ? BISS_E_IO : BISS_OK;
+}
+
+static int emu_write(void *ctx, uint32_t off, const void *buf, size_t n) {
+    struct emu *e = ctx;
+    return pru_host_write(bench_core(e->bench), e->base + off, buf, n) ? BISS_E_IO : BISS_OK;
+}
+
+static int emu_advance(void *ctx, unsigned us) {
+    struct emu *e = ctx;
+    int64_t until = pru_time_ps(bench_core(e->bench)) + (int64_t)us * SIM_PS_PER_US;
+    enum pru_stop why = bench_run_until(e->bench, until);
+    /* a stopped PRU (DISABLED) lets time pass; a fault or HALT is final */
+    return why == PRU_STOP_FAULT || why == PRU_STOP_HALT ? BISS_E_PRU_FAULT : BISS_OK;
+}
+
+static uint64_t emu_now_us(void *ctx) {
+    struct emu *e = ctx;
+    return (uint64_t)(pru_time_ps(bench_core(e->bench)) / SIM_PS_PER_US);
+}
+
+static void emu_close(void *ctx) {
+    struct emu *e = ctx;
+    bench_free(e->bench);
+    free(e);
+}
+
+static const struct biss_backend_ops emu_ops = {
+    .read = emu_read,
+    .write = emu_write,
+    .advance = emu_advance,
+    .now_us = emu_now_us,
+    .close = emu_close,
+    .poll_us = 1, /* a 10 MHz frame is ~20 us: publications are seen within 1 us */
+    .advance_sleeps = 0,
+};
+
+static int build_scenario(const struct biss_open_params *p, scenario *sc) {
+    char err[256];
+    if (p->scenario_file && *p->scenario_file) {
+        if (scenario_load_file(p->scenario_file, sc, err, sizeof err) != 0) {
+            return BISS_E_SCENARIO;
+        }
+    } else if (profile_by_name(p->profile && *p->profile ? p->profile : EMU_DEFAULT_PROFILE, sc) !=
+               0) {
+        return BISS_E_PROFILE;
+    }
+    if (p->cable_m >= 0) {
+        scenario_set_cable(sc, p->cable_m);
+    }
+    if (p->set_seed) {
+        sc->seed = p->seed;
+    }
+    return scenario_check(sc, err, sizeof err) == 0 ? BISS_OK : BISS_E_SCENARIO;
+}
+
+int biss_emu_backend_open(const struct biss_open_params *p, struct biss_backend *be) {
+    struct bench_config cfg;
+    bench_config_default(&cfg);
+    int rc = build_scenario(p, &cfg.link);
+    if (rc) {
+        return rc;
+    }
+    struct emu *e = calloc(1, sizeof *e);
+    if (!e) {
+        return BISS_E_NOMEM;
+    }
+    char err[256];
+    e->bench = bench_new(&cfg, err, sizeof err);
+    if (!e->bench) {
+        free(e);
+        return BISS_E_EMU;
+    }
+    e->base = pru_soc_base(cfg.soc);
+    *be = (struct biss_backend){
+        .ops = &emu_ops,
+        .ctx = e,
+        .iram_bytes = pru_iram_bytes(bench_core(e->bench)),
+        .bench = e->bench,
+    };
+    return BISS_OK;
+}
+
+/* The single-cycle data layout of each slave the scenario wired up: data
+ * word = position, fill, nE, nW, life counter (everything before the CRC). */
+static void layout_of(const biss_slave_cfg *s, struct biss_slave_config *o) {
+    unsigned crc_bits = 0;
+    while (s->crc_poly >> (crc_bits + 1)) {
+        crc_bits++;
+    }
+    *o = (struct biss_slave_config){
+        .data_bits = s->pos_bits + s->fill_bits + s->has_err + s->has_warn + s->lc_bits,
+        .crc_bits = s->crc_poly ? crc_bits : 0,
+        .crc_poly = s->crc_poly,
+        .crc_start = s->crc_start,
+        /* the firmware knows nE and nW only as a pair */
+        .has_ew = s->has_err && s->has_warn,
+        .ew_shift = s->has_err && s->has_warn ? s->lc_bits : 0,
+        .pos_bits = s->pos_bits,
+    };
+}
+
+int biss_config_from_emu(biss_t *h, struct biss_config *c) {
+    if (!h || !c) {
+        return BISS_E_INVAL;
+    }
+    if (!h->be.bench) {
+        return BISS_E_NOT_EMU;
+    }
+    pthread_mutex_lock(&h->lock);
+    const scenario *sc = &bench_link(h->be.bench)->sc;
+    int rc = BISS_OK;
+    if (sc->protocol != SCENARIO_BISS) {
+        rc = BISS_E_SCENARIO; /* an SSI encoder has no BiSS layout */
+    } else {
+        c->nslaves = sc->biss.n;
+        for (unsigned i = 0; i < sc->biss.n && i < BISS_API_MAX_SLAVES; i++) {
+            layout_of(&sc->biss.s[i], &c->slave[i]);
+        }
+    }
+    pthread_mutex_unlock(&h->lock);
+    return rc;
+}

@@ -1,0 +1,88 @@
+/* biss_config_encode.c - a checked biss_config to the firmware's block and
+ * back, and the firmware's verdict as an error code. */
+#include "biss_priv.h"
+
+#include "biss/biss_shm_struct.h"
+
+#include <string.h>
+
+_Static_assert(BISS_TRIGGER_HOST == BISS_TRIG_HOST && BISS_TRIGGER_IEP == BISS_TRIG_IEP &&
+                   BISS_TRIGGER_FREERUN == BISS_TRIG_FREERUN,
+               "trigger enum matches the shm codes");
+_Static_assert(BISS_API_MAX_SLAVES == BISS_MAX_SLAVES, "slave limit matches the shm");
+
+static void encode_slave(const struct biss_slave_config *s, struct biss_shm_slave_cfg *o) {
+    o->data_bits = (uint8_t)s->data_bits;
+    o->crc_bits = (uint8_t)s->crc_bits;
+    o->ew_shift = s->has_ew ? (uint8_t)s->ew_shift : 0;
+    o->flags = s->has_ew ? BISS_SF_EW : 0;
+    /* the firmware keeps the polynomial without its top term */
+    o->crc_poly = s->crc_bits ? (uint16_t)(s->crc_poly & ((1u << s->crc_bits) - 1u)) : 0;
+    o->crc_start = (uint16_t)s->crc_start;
+}
+
+/* out->seq is left 0: the caller writes CFG_SEQ last, on its own. */
+void biss_config_encode(const struct biss_config *c, struct biss_shm_config *out) {
+    unsigned half = 0;
+    biss_rate_half(c->freq_hz, &half);
+    memset(out, 0, sizeof *out);
+    out->half = (uint16_t)half;
+    out->nslaves = (uint8_t)c->nslaves;
+    out->trigger = (uint8_t)c->trigger;
+    out->iep_period = c->trigger == BISS_TRIGGER_IEP ? c->iep_period_ns / 5 : 0;
+    out->proc_limit = (uint16_t)c->proc_limit;
+    out->cdm = (uint8_t)c->cdm;
+    for (unsigned i = 0; i < c->nslaves && i < BISS_MAX_SLAVES; i++) {
+        encode_slave(&c->slave[i], &out->slave[i]);
+    }
+}
+
+/* Reading back a block another process wrote (attach): the position field
+ * is what lies above nE/nW, as pos_bits 0 means. */
+int biss_config_decode(const struct biss_shm_config *in, struct biss_config *c) {
+    biss_config_default(c);
+    if (in->half == 0) {
+        return BISS_E_NOT_CONFIGURED;
+    }
+    c->freq_hz = BISS_HALF_CLOCK_HZ / in->half;
+    c->nslaves = in->nslaves <= BISS_MAX_SLAVES ? in->nslaves : BISS_MAX_SLAVES;
+    c->trigger = (enum biss_trigger)in->trigger;
+    c->iep_period_ns = in->iep_period * 5u;
+    c->proc_limit = in->proc_limit;
+    c->cdm = in->cdm;
+    for (unsigned i = 0; i < c->nslaves; i++) {
+        const struct biss_shm_slave_cfg *s = &in->slave[i];
+        struct biss_slave_config *o = &c->slave[i];
+        o->data_bits = s->data_bits;
+        o->crc_bits = s->crc_bits;
+        o->crc_poly = s->crc_bits ? (s->crc_poly | (1u << s->crc_bits)) : 0;
+        o->crc_start = s->crc_start;
+        o->has_ew = (s->flags & BISS_SF_EW) != 0;
+        o->ew_shift = o->has_ew ? s->ew_shift : 0;
+        o->pos_bits = 0;
+    }
+    return BISS_OK;
+}
+
+int biss_fw_cfg_error(uint32_t cfgerr) {
+    switch (cfgerr) {
+    case BISS_CFGERR_NONE:
+        return BISS_OK;
+    case BISS_CFGERR_NSLAVES:
+        return BISS_E_FW_NSLAVES;
+    case BISS_CFGERR_HALF:
+        return BISS_E_FW_HALF;
+    case BISS_CFGERR_DATA_BITS:
+        return BISS_E_FW_DATA_BITS;
+    case BISS_CFGERR_CRC_BITS:
+        return BISS_E_FW_CRC_BITS;
+    case BISS_CFGERR_TRIGGER:
+        return BISS_E_FW_TRIGGER;
+    case BISS_CFGERR_EW:
+        return BISS_E_FW_EW;
+    case BISS_CFGERR_IEP_PERIOD:
+        return BISS_E_FW_IEP_PERIOD;
+    default:
+        return BISS_E_FW_UNKNOWN;
+    }
+}

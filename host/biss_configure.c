@@ -1,0 +1,111 @@
+/* biss_configure.c - handing a configuration to the firmware: block first,
+ * CFG_SEQ last, then the firmware's ack and verdict. */
+#include "biss_priv.h"
+
+#include "biss/biss_shm_struct.h"
+
+#include <stdatomic.h>
+#include <stddef.h>
+
+/* The firmware treats CFG_SEQ 0 as "nothing written yet" and starts with
+ * ST_CFG_ACK = 0xffffffff: neither may ever be a real sequence number. */
+static uint32_t next_seq(uint32_t seq) {
+    do {
+        seq++;
+    } while (seq == 0 || seq == 0xffffffffu);
+    return seq;
+}
+
+static int acked(biss_t *h, void *arg) {
+    uint32_t ack;
+    int rc = biss_dram_read32(h, BISS_ST_CFG_ACK, &ack);
+    if (rc) {
+        return rc;
+    }
+    return ack == *(const uint32_t *)arg;
+}
+
+/* A timeout means one thing when the firmware never came up, another when
+ * it runs but did not take the block. */
+static int timeout_reason(biss_t *h) {
+    uint32_t magic = 0;
+    biss_dram_read32(h, BISS_ST_MAGIC, &magic);
+    return magic == BISS_MAGIC ? BISS_E_TIMEOUT : BISS_E_NOT_RUNNING;
+}
+
+static int write_block(biss_t *h, const struct biss_config *c, uint32_t seq) {
+    struct biss_shm_config blk;
+    biss_config_encode(c, &blk);
+    /* everything after CFG_SEQ, then (ordered after it) CFG_SEQ itself */
+    int rc = biss_dram_write(h, BISS_CFG_HALF, (const uint8_t *)&blk + BISS_CFG_HALF,
+                             sizeof blk - BISS_CFG_HALF);
+    atomic_thread_fence(memory_order_seq_cst);
+    if (!rc) {
+        rc = biss_dram_write32(h, BISS_CFG_SEQ, seq);
+    }
+    atomic_thread_fence(memory_order_seq_cst);
+    return rc;
+}
+
+static int configure_locked(biss_t *h, const struct biss_config *c) {
+    uint32_t seq = next_seq(h->cfg_seq);
+    int rc = write_block(h, c, seq);
+    if (rc) {
+        return rc;
+    }
+    h->cfg_seq = seq;
+    h->configured = false;
+    rc = biss_wait_for(h, h->timeout_ms, acked, &seq);
+    if (rc == BISS_E_TIMEOUT) {
+        return timeout_reason(h);
+    }
+    if (rc) {
+        return rc;
+    }
+    uint32_t err;
+    rc = biss_dram_read32(h, BISS_ST_CFG_ERROR, &err);
+    if (!rc) {
+        rc = biss_fw_cfg_error(err);
+    }
+    if (!rc) {
+        h->cfg = *c;
+        h->configured = true;
+    }
+    return rc;
+}
+
+int biss_configure(biss_t *h, const struct biss_config *c) {
+    if (!h || !c) {
+        return BISS_E_INVAL;
+    }
+    int rc = biss_config_check(c);
+    if (rc) {
+        return rc;
+    }
+    pthread_mutex_lock(&h->lock);
+    rc = configure_locked(h, c);
+    pthread_mutex_unlock(&h->lock);
+    return rc;
+}
+
+/* Used by biss_start after a restart: the firmware forgot everything. */
+int biss_reconfigure_locked(biss_t *h) {
+    if (!h->configured) {
+        return BISS_OK;
+    }
+    struct biss_config c = h->cfg;
+    return configure_locked(h, &c);
+}
+
+int biss_get_config(biss_t *h, struct biss_config *c) {
+    if (!h || !c) {
+        return BISS_E_INVAL;
+    }
+    pthread_mutex_lock(&h->lock);
+    int rc = h->configured ? BISS_OK : BISS_E_NOT_CONFIGURED;
+    if (!rc) {
+        *c = h->cfg;
+    }
+    pthread_mutex_unlock(&h->lock);
+    return rc;
+}

@@ -1,0 +1,143 @@
+/* biss_error.c - texts for the error codes and names for the enums. */
+#include "libbiss.h"
+
+#include "biss/biss_shm.h"
+
+#include <stddef.h>
+#include <string.h>
+
+struct err_text {
+    int code;
+    const char *text;
+};
+
+static const struct err_text errors[] = {
+    {BISS_OK, "success"},
+    {BISS_E_INVAL, "invalid argument"},
+    {BISS_E_NOMEM, "out of memory"},
+    {BISS_E_TARGET, "unknown target (emu, am335x, am437x-icss0, am437x-icss1)"},
+    {BISS_E_FIRMWARE_IO, "firmware image cannot be read"},
+    {BISS_E_FIRMWARE_SIZE, "firmware image is empty, not whole 32-bit words, or too big for IRAM"},
+    {BISS_E_DEVMEM, "devmem cannot be opened or mapped at the PRU-ICSS base"},
+    {BISS_E_PROFILE, "unknown emulator profile"},
+    {BISS_E_SCENARIO, "scenario file cannot be read or is invalid"},
+    {BISS_E_EMU, "emulator bench cannot be built"},
+    {BISS_E_RATE_RANGE, "MA rate out of range (97.7 kHz .. 10 MHz: H = 10..1024 PRU cycles)"},
+    {BISS_E_RATE_INEXACT, "MA rate is not 100 MHz divided by a whole number"},
+    {BISS_E_RATE_SHIFT,
+     "MA rate has no exact 8x shift clock (100 MHz / f must be a*b with 2 <= a, b <= 32)"},
+    {BISS_E_NSLAVES, "slave count out of range (1..8)"},
+    {BISS_E_DATA_BITS, "slave data bits out of range (1..64)"},
+    {BISS_E_CRC_BITS, "slave CRC bits out of range (0..16)"},
+    {BISS_E_CRC_POLY, "CRC polynomial's degree does not match the CRC bits (give it with its "
+                      "top term, e.g. 0x43 for CRC6)"},
+    {BISS_E_CRC_START, "CRC start value wider than the CRC"},
+    {BISS_E_EW, "nE/nW position outside the data word"},
+    {BISS_E_POS_BITS, "position bits do not fit in the data word above nE/nW"},
+    {BISS_E_TRIGGER, "unknown trigger mode (host, iep, free)"},
+    {BISS_E_IEP_PERIOD, "IEP period not a multiple of 5 ns or shorter than one frame"},
+    {BISS_E_PROC_LIMIT, "processing-time limit above 65535 MA clocks"},
+    {BISS_E_CDM, "CDM must be 0 or 1"},
+    {BISS_E_TIMEOUT, "timed out waiting for the firmware"},
+    {BISS_E_NOT_RUNNING, "firmware not running (no magic in data RAM)"},
+    {BISS_E_NO_SAMPLE, "no frame published yet"},
+    {BISS_E_RETRY, "no consistent sample: the firmware kept publishing during the read"},
+    {BISS_E_NOT_HOST_TRIG, "trigger needs host-trigger mode"},
+    {BISS_E_NOT_CONFIGURED, "not configured"},
+    {BISS_E_PRU_FAULT, "the PRU faulted or halted"},
+    {BISS_E_IO, "access outside the mapped PRU-ICSS window"},
+    {BISS_E_NOT_EMU, "only the emulator target can do this"},
+    {BISS_E_STOPPED, "the PRU is stopped"},
+    {BISS_E_FW_NSLAVES, "firmware refused the configuration: slave count"},
+    {BISS_E_FW_HALF, "firmware refused the configuration: MA half period"},
+    {BISS_E_FW_DATA_BITS, "firmware refused the configuration: data bits"},
+    {BISS_E_FW_CRC_BITS, "firmware refused the configuration: CRC bits"},
+    {BISS_E_FW_TRIGGER, "firmware refused the configuration: trigger mode"},
+    {BISS_E_FW_EW, "firmware refused the configuration: nE/nW position"},
+    {BISS_E_FW_IEP_PERIOD, "firmware refused the configuration: IEP period"},
+    {BISS_E_FW_UNKNOWN, "firmware refused the configuration (unknown reason)"},
+};
+
+const char *biss_strerror(int err) {
+    for (size_t i = 0; i < sizeof errors / sizeof errors[0]; i++) {
+        if (errors[i].code == err) {
+            return errors[i].text;
+        }
+    }
+    return "unknown error";
+}
+
+static const char *const target_names[] = {
+    [BISS_TARGET_EMU] = "emu",
+    [BISS_TARGET_AM335X] = "am335x",
+    [BISS_TARGET_AM437X_ICSS0] = "am437x-icss0",
+    [BISS_TARGET_AM437X_ICSS1] = "am437x-icss1",
+};
+
+int biss_target_from_name(const char *name, enum biss_target *t) {
+    if (!name || !t) {
+        return BISS_E_INVAL;
+    }
+    for (size_t i = 0; i < sizeof target_names / sizeof target_names[0]; i++) {
+        if (strcmp(name, target_names[i]) == 0) {
+            *t = (enum biss_target)i;
+            return BISS_OK;
+        }
+    }
+    /* the architecture's short name: the PRU-ICSS with the bigger IRAM */
+    if (strcmp(name, "am437x") == 0) {
+        *t = BISS_TARGET_AM437X_ICSS1;
+        return BISS_OK;
+    }
+    return BISS_E_TARGET;
+}
+
+const char *biss_target_name(enum biss_target t) {
+    if ((unsigned)t >= sizeof target_names / sizeof target_names[0]) {
+        return "?";
+    }
+    return target_names[t];
+}
+
+int biss_trigger_from_name(const char *name, enum biss_trigger *t) {
+    if (!name || !t) {
+        return BISS_E_INVAL;
+    }
+    if (strcmp(name, "host") == 0) {
+        *t = BISS_TRIGGER_HOST;
+    } else if (strcmp(name, "iep") == 0) {
+        *t = BISS_TRIGGER_IEP;
+    } else if (strcmp(name, "free") == 0 || strcmp(name, "freerun") == 0) {
+        *t = BISS_TRIGGER_FREERUN;
+    } else {
+        return BISS_E_TRIGGER;
+    }
+    return BISS_OK;
+}
+
+const char *biss_trigger_name(enum biss_trigger t) {
+    switch (t) {
+    case BISS_TRIGGER_HOST:
+        return "host";
+    case BISS_TRIGGER_IEP:
+        return "iep";
+    case BISS_TRIGGER_FREERUN:
+        return "free";
+    }
+    return "?";
+}
+
+const char *biss_fw_state_name(uint32_t state) {
+    switch (state) {
+    case BISS_STATE_STOPPED:
+        return "stopped";
+    case BISS_STATE_RUNNING:
+        return "running";
+    case BISS_STATE_CFG_ERROR:
+        return "config-error";
+    case BISS_STATE_NO_SLAVE:
+        return "no-slave";
+    default:
+        return "unknown";
+    }
+}

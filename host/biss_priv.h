@@ -1,0 +1,104 @@
+/*
+ * biss_priv.h - libbiss internals: the backend boundary and the handle.
+ *
+ * A backend only moves bytes at offsets from the PRU-ICSS base and lets
+ * time pass; loading IRAM, starting and stopping the PRU and the whole
+ * shared-memory protocol are written once on top of it (PRU registers are
+ * reached the same way on silicon and in the emulator).
+ */
+#ifndef BISS_PRIV_H
+#define BISS_PRIV_H
+
+#include "libbiss.h"
+
+#include <pthread.h>
+#include <stddef.h>
+#include <stdint.h>
+
+/* PRU-ICSS layout, offsets from its base (same for AM335x and AM437x). */
+#define ICSS_DRAM0        0x00000u
+#define ICSS_CTRL0        0x22000u /* PRU0 CONTROL */
+#define ICSS_IRAM0        0x34000u
+#define ICSS_WINDOW       0x80000u /* bytes mapped */
+#define ICSS_CTRL_RESET_N (1u << 0)
+#define ICSS_CTRL_ENABLE  (1u << 1)
+
+struct biss_backend_ops {
+    /* n bytes at offset off from the PRU-ICSS base; 0 or BISS_E_*. Word
+     * aligned transfers are done as 32-bit accesses. */
+    int (*read)(void *ctx, uint32_t off, void *buf, size_t n);
+    int (*write)(void *ctx, uint32_t off, const void *buf, size_t n);
+    /* Lets about us microseconds pass (emulator: runs the bench). 0 or
+     * BISS_E_PRU_FAULT. */
+    int (*advance)(void *ctx, unsigned us);
+    /* The backend's clock in microseconds (simulated time for the emulator). */
+    uint64_t (*now_us)(void *ctx);
+    void (*close)(void *ctx);
+    /* How long one advance() step of a wait is, microseconds. */
+    unsigned poll_us;
+    /* advance() only sleeps: the handle is unlocked around it so other
+     * threads get in while one waits. */
+    int advance_sleeps;
+};
+
+struct biss_backend {
+    const struct biss_backend_ops *ops;
+    void *ctx;
+    uint32_t iram_bytes;
+    struct bench *bench; /* emulator only */
+};
+
+struct biss {
+    pthread_mutex_t lock;
+    enum biss_target target;
+    struct biss_backend be;
+    unsigned timeout_ms;
+    char firmware[512];
+    uint8_t *image; /* kept for biss_start's restart */
+    size_t image_bytes;
+    bool configured;
+    struct biss_config cfg;
+    uint32_t cfg_seq;
+};
+
+/* A handle around a ready backend (takes it over, closing it on error);
+ * no firmware is loaded. biss_open uses it; tests use it with fakes. */
+int biss_handle_new(enum biss_target t, const struct biss_backend *be, unsigned timeout_ms,
+                    biss_t **out);
+
+/* Backends: fill be, or return BISS_E_*. */
+int biss_emu_backend_open(const struct biss_open_params *p, struct biss_backend *be);
+int biss_linux_backend_open(const struct biss_open_params *p, struct biss_backend *be);
+
+/* Register helpers over the backend (data RAM offsets are BISS_* values). */
+int biss_dram_read(biss_t *h, uint32_t off, void *buf, size_t n);
+int biss_dram_write(biss_t *h, uint32_t off, const void *buf, size_t n);
+int biss_dram_read32(biss_t *h, uint32_t off, uint32_t *v);
+int biss_dram_write32(biss_t *h, uint32_t off, uint32_t v);
+
+/* PRU control and image loading (biss_pru.c). */
+int biss_pru_halt(biss_t *h);
+int biss_pru_load_and_start(biss_t *h);
+
+/* Waits (handle locked) until done(h, arg) returns nonzero or timeout_ms
+ * of backend time passed; returns 0, BISS_E_TIMEOUT, or done's error if
+ * it returned a negative value. */
+int biss_wait_for(biss_t *h, unsigned timeout_ms, int (*done)(biss_t *h, void *arg), void *arg);
+
+/* Re-sends the handle's configuration after a restart (handle locked). */
+int biss_reconfigure_locked(biss_t *h);
+
+/* Encoding of a checked config into the shm block (biss_config_encode.c). */
+struct biss_shm_config;
+void biss_config_encode(const struct biss_config *c, struct biss_shm_config *out);
+int biss_config_decode(const struct biss_shm_config *in, struct biss_config *c);
+/* Maps ST_CFG_ERROR to BISS_E_FW_* (0 stays 0). */
+int biss_fw_cfg_error(uint32_t cfgerr);
+
+/* Sample decoding (biss_sample_decode.c). */
+struct biss_shm_result;
+void biss_sample_decode(const struct biss_config *c, bool configured, uint32_t seq,
+                        const struct biss_shm_result *r, struct biss_sample *s);
+void biss_delay_decode(uint16_t raw, uint16_t avg, unsigned half, struct biss_line_delay *d);
+
+#endif

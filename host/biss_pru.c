@@ -1,0 +1,54 @@
+/* biss_pru.c - PRU0 control through its CONTROL register, and loading the
+ * image into IRAM; the same register writes on silicon and in the
+ * emulator. */
+#include "biss_priv.h"
+
+#include "biss/biss_shm.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+static int write_control(biss_t *h, uint32_t v) {
+    return h->be.ops->write(h->be.ctx, ICSS_CTRL0, &v, 4);
+}
+
+int biss_pru_halt(biss_t *h) {
+    /* ENABLE clear, SOFT_RST_N kept high: the PRU stops where it is */
+    return write_control(h, ICSS_CTRL_RESET_N);
+}
+
+/* IRAM is written whole (zeros after the image) so nothing from an earlier
+ * program survives behind a shorter one. */
+static int load_iram(biss_t *h) {
+    uint8_t *buf = calloc(1, h->be.iram_bytes);
+    if (!buf) {
+        return BISS_E_NOMEM;
+    }
+    memcpy(buf, h->image, h->image_bytes);
+    int rc = h->be.ops->write(h->be.ctx, ICSS_IRAM0, buf, h->be.iram_bytes);
+    free(buf);
+    return rc;
+}
+
+/* Config, commands, status and results start from zero: data RAM keeps
+ * whatever an earlier run left (a stale magic or ack would lie). */
+static int clear_shared(biss_t *h) {
+    static const uint8_t zeros[BISS_PRIV_END] = {0};
+    return biss_dram_write(h, 0, zeros, sizeof zeros);
+}
+
+int biss_pru_load_and_start(biss_t *h) {
+    int rc = biss_pru_halt(h);
+    if (!rc) {
+        rc = load_iram(h);
+    }
+    if (!rc) {
+        rc = clear_shared(h);
+    }
+    /* ENABLE with SOFT_RST_N low: reset (PC to 0) and run, as prussdrv does */
+    if (!rc) {
+        rc = write_control(h, ICSS_CTRL_ENABLE);
+    }
+    h->cfg_seq = 0;
+    return rc;
+}

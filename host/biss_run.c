@@ -1,0 +1,130 @@
+/* biss_run.c - starting, stopping and triggering the firmware; status and
+ * counters. */
+#include "biss_priv.h"
+
+#include "biss/biss_shm_struct.h"
+
+#include <stdatomic.h>
+
+_Static_assert(BISS_FW_STOPPED == BISS_STATE_STOPPED && BISS_FW_RUNNING == BISS_STATE_RUNNING &&
+                   BISS_FW_CFG_ERROR == BISS_STATE_CFG_ERROR &&
+                   BISS_FW_NO_SLAVE == BISS_STATE_NO_SLAVE,
+               "firmware state enum matches the shm codes");
+
+static int start_locked(biss_t *h) {
+    if (!h->image) {
+        /* attached to a firmware someone else loaded: resume it */
+        uint32_t v = ICSS_CTRL_RESET_N | ICSS_CTRL_ENABLE;
+        return h->be.ops->write(h->be.ctx, ICSS_CTRL0, &v, 4);
+    }
+    int rc = biss_pru_load_and_start(h);
+    if (!rc) {
+        rc = biss_reconfigure_locked(h);
+    }
+    return rc;
+}
+
+int biss_start(biss_t *h) {
+    if (!h) {
+        return BISS_E_INVAL;
+    }
+    pthread_mutex_lock(&h->lock);
+    int rc = start_locked(h);
+    pthread_mutex_unlock(&h->lock);
+    return rc;
+}
+
+int biss_stop(biss_t *h) {
+    if (!h) {
+        return BISS_E_INVAL;
+    }
+    pthread_mutex_lock(&h->lock);
+    int rc = biss_pru_halt(h);
+    pthread_mutex_unlock(&h->lock);
+    return rc;
+}
+
+int biss_trigger(biss_t *h) {
+    if (!h) {
+        return BISS_E_INVAL;
+    }
+    pthread_mutex_lock(&h->lock);
+    int rc = BISS_OK;
+    if (!h->configured) {
+        rc = BISS_E_NOT_CONFIGURED;
+    } else if (h->cfg.trigger != BISS_TRIGGER_HOST) {
+        rc = BISS_E_NOT_HOST_TRIG;
+    } else {
+        atomic_thread_fence(memory_order_seq_cst);
+        rc = biss_dram_write32(h, BISS_CMD_TRIGGER, 1);
+    }
+    pthread_mutex_unlock(&h->lock);
+    return rc;
+}
+
+static int never(biss_t *h, void *arg) {
+    (void)h;
+    (void)arg;
+    return 0;
+}
+
+int biss_run_ms(biss_t *h, unsigned ms) {
+    if (!h) {
+        return BISS_E_INVAL;
+    }
+    pthread_mutex_lock(&h->lock);
+    int rc = biss_wait_for(h, ms, never, NULL);
+    pthread_mutex_unlock(&h->lock);
+    return rc == BISS_E_TIMEOUT ? BISS_OK : rc;
+}
+
+static int status_locked(biss_t *h, struct biss_status *st) {
+    struct biss_shm_status s;
+    uint32_t control = 0;
+    int rc = biss_dram_read(h, BISS_ST_MAGIC, &s, sizeof s);
+    if (!rc) {
+        rc = h->be.ops->read(h->be.ctx, ICSS_CTRL0, &control, 4);
+    }
+    if (!rc) {
+        rc = biss_dram_read32(h, BISS_CFG_SEQ, &st->cfg_seq);
+    }
+    if (rc) {
+        return rc;
+    }
+    st->firmware_running = s.magic == BISS_MAGIC;
+    st->pru_enabled = (control & ICSS_CTRL_ENABLE) != 0;
+    st->state = s.state;
+    st->cfg_ack = s.cfg_ack;
+    st->cfg_error = s.cfg_error;
+    st->seq = s.seq;
+    return BISS_OK;
+}
+
+int biss_get_status(biss_t *h, struct biss_status *st) {
+    if (!h || !st) {
+        return BISS_E_INVAL;
+    }
+    pthread_mutex_lock(&h->lock);
+    int rc = status_locked(h, st);
+    pthread_mutex_unlock(&h->lock);
+    return rc;
+}
+
+int biss_get_stats(biss_t *h, struct biss_stats *st) {
+    if (!h || !st) {
+        return BISS_E_INVAL;
+    }
+    struct biss_shm_status s;
+    pthread_mutex_lock(&h->lock);
+    int rc = biss_dram_read(h, BISS_ST_MAGIC, &s, sizeof s);
+    pthread_mutex_unlock(&h->lock);
+    if (rc) {
+        return rc;
+    }
+    st->frames = s.frames;
+    st->crc_errors = s.crc_errors;
+    st->no_slave = s.no_slave;
+    st->proc_errors = s.proc_errors;
+    st->training = s.training;
+    return BISS_OK;
+}

@@ -1,0 +1,134 @@
+/* biss_sample.c - consistent reads of the published results (the ST_SEQ /
+ * ST_BUF protocol of biss_shm.h) and waiting for a newer one. */
+#include "biss_priv.h"
+
+#include "biss/biss_shm_struct.h"
+
+#include <stdatomic.h>
+#include <stddef.h>
+
+/* A publication takes the firmware a few hundred ns; a reader racing it
+ * many times in a row means something else is wrong. */
+#define MAX_TRIES 1000
+
+/* Header and only the slaves that can be in it: fewer bus reads on
+ * silicon, so fewer races with the next publication. */
+static size_t result_bytes(const biss_t *h) {
+    unsigned n = h->configured ? h->cfg.nslaves : BISS_MAX_SLAVES;
+    return offsetof(struct biss_shm_result, slave) + n * sizeof(struct biss_shm_slave_result);
+}
+
+/* Reads ST_SEQ, ST_BUF, that buffer, ST_SEQ again; equal sequence numbers
+ * mean the firmware did not start refilling the buffer meanwhile (it only
+ * does so after publishing the other one, which bumps ST_SEQ). */
+static int read_consistent(biss_t *h, struct biss_shm_result *r, uint32_t *seq) {
+    for (int i = 0; i < MAX_TRIES; i++) {
+        uint32_t s1, buf, s2;
+        int rc = biss_dram_read32(h, BISS_ST_SEQ, &s1);
+        if (rc) {
+            return rc;
+        }
+        if (s1 == 0) {
+            return BISS_E_NO_SAMPLE;
+        }
+        atomic_thread_fence(memory_order_acquire);
+        rc = biss_dram_read32(h, BISS_ST_BUF, &buf);
+        if (rc) {
+            return rc;
+        }
+        if (buf > 1) {
+            continue;
+        }
+        *r = (struct biss_shm_result){0};
+        rc = biss_dram_read(h, BISS_RES0 + buf * BISS_RES_SIZE, r, result_bytes(h));
+        if (rc) {
+            return rc;
+        }
+        atomic_thread_fence(memory_order_acquire);
+        rc = biss_dram_read32(h, BISS_ST_SEQ, &s2);
+        if (rc) {
+            return rc;
+        }
+        if (s1 == s2) {
+            *seq = s1;
+            return BISS_OK;
+        }
+    }
+    return BISS_E_RETRY;
+}
+
+static int read_sample_locked(biss_t *h, struct biss_sample *s) {
+    struct biss_shm_result r;
+    uint32_t seq = 0;
+    int rc = read_consistent(h, &r, &seq);
+    if (!rc) {
+        biss_sample_decode(&h->cfg, h->configured, seq, &r, s);
+    }
+    return rc;
+}
+
+int biss_read_sample(biss_t *h, struct biss_sample *s) {
+    if (!h || !s) {
+        return BISS_E_INVAL;
+    }
+    pthread_mutex_lock(&h->lock);
+    int rc = read_sample_locked(h, s);
+    pthread_mutex_unlock(&h->lock);
+    return rc;
+}
+
+struct wait_arg {
+    uint32_t after_frame;
+    uint32_t last_seq; /* ST_SEQ at the last full read */
+    bool read_once;
+    struct biss_sample *s;
+};
+
+/* Cheap poll of ST_SEQ; the whole sample only when it moved. Frame numbers
+ * wrap, so "newer" is a signed distance. */
+static int newer_published(biss_t *h, void *arg) {
+    struct wait_arg *w = arg;
+    uint32_t seq;
+    int rc = biss_dram_read32(h, BISS_ST_SEQ, &seq);
+    if (rc) {
+        return rc;
+    }
+    if (seq == 0 || (w->read_once && seq == w->last_seq)) {
+        return 0;
+    }
+    rc = read_sample_locked(h, w->s);
+    if (rc) {
+        return rc;
+    }
+    w->read_once = true;
+    w->last_seq = w->s->seq;
+    return (int32_t)(w->s->frame - w->after_frame) > 0;
+}
+
+int biss_wait_sample(biss_t *h, uint32_t after_frame, unsigned timeout_ms, struct biss_sample *s) {
+    if (!h || !s) {
+        return BISS_E_INVAL;
+    }
+    struct wait_arg w = {.after_frame = after_frame, .s = s};
+    pthread_mutex_lock(&h->lock);
+    int rc = biss_wait_for(h, timeout_ms, newer_published, &w);
+    pthread_mutex_unlock(&h->lock);
+    return rc;
+}
+
+int biss_line_delay(biss_t *h, struct biss_line_delay *d) {
+    if (!h || !d) {
+        return BISS_E_INVAL;
+    }
+    struct biss_sample s;
+    int rc = biss_read_sample(h, &s);
+    if (rc) {
+        return rc;
+    }
+    /* aborted frames keep an older frame's delay in their buffer */
+    if (!s.valid && !s.training) {
+        return BISS_E_NO_SAMPLE;
+    }
+    *d = s.delay;
+    return BISS_OK;
+}

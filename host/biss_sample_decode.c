@@ -1,0 +1,86 @@
+/* biss_sample_decode.c - a published result buffer to biss_sample: flags,
+ * line delay, and per slave the data word split by the configuration. */
+#include "biss_priv.h"
+
+#include "biss/biss_shm_struct.h"
+
+#include <string.h>
+
+void biss_delay_decode(uint16_t raw, uint16_t avg, unsigned half, struct biss_line_delay *d) {
+    /* biss_shm.h: round trip = DELAY - BISS_DELAY_ZERO_X2 / 2 bit/8, and one
+     * bit/8 is one 8x sample = H / 4 PRU cycles of 5 ns */
+    const double zero = BISS_DELAY_ZERO_X2 / 2.0;
+    const double ns_per_cycle = 1e9 / BISS_PRU_HZ;
+    d->raw = raw;
+    d->avg = avg;
+    d->half = half;
+    d->bit8 = avg - zero;
+    d->cycles = d->bit8 * half / 4.0;
+    d->ns = d->cycles * ns_per_cycle;
+    d->raw_bit8 = raw - zero;
+    d->raw_cycles = d->raw_bit8 * half / 4.0;
+    d->raw_ns = d->raw_cycles * ns_per_cycle;
+}
+
+static uint64_t low_mask(unsigned bits) {
+    return bits >= 64 ? ~0ull : (1ull << bits) - 1u;
+}
+
+/* The position is the top of the data word: pos_bits of it, or (pos_bits
+ * 0) everything above nE/nW, or the whole word for a slave without them. */
+static uint64_t position_of(const struct biss_slave_config *c, uint64_t data) {
+    unsigned low = c->has_ew ? c->ew_shift + 2 : 0;
+    if (low >= c->data_bits) {
+        return 0;
+    }
+    unsigned pos = c->pos_bits ? c->pos_bits : c->data_bits - low;
+    unsigned shift = c->data_bits - pos;
+    return (data >> shift) & low_mask(pos);
+}
+
+static void decode_slave(const struct biss_slave_config *c, const struct biss_shm_slave_result *r,
+                         struct biss_slave_result *o) {
+    o->data = (uint64_t)r->data_hi << 32 | r->data_lo;
+    o->crc_reg = r->crc_reg;
+    o->status = r->status;
+    o->crc_ok = (r->status & BISS_RS_CRC_OK) != 0;
+    if (!c) {
+        /* no layout known: the whole word, and no claim about nE/nW */
+        o->position = o->data;
+        return;
+    }
+    o->position = position_of(c, o->data);
+    /* nE and nW are active low on the wire; the firmware reports them as
+     * received, and 0 for a slave that sends none */
+    o->error = c->has_ew && !(r->status & BISS_RS_NE);
+    o->warning = c->has_ew && !(r->status & BISS_RS_NW);
+}
+
+void biss_sample_decode(const struct biss_config *c, bool configured, uint32_t seq,
+                        const struct biss_shm_result *r, struct biss_sample *s) {
+    memset(s, 0, sizeof *s);
+    s->seq = seq;
+    s->frame = r->frame;
+    s->flags = r->flags;
+    s->valid = (r->flags & BISS_RF_VALID) != 0;
+    s->crc_error = (r->flags & BISS_RF_CRC_ERROR) != 0;
+    s->no_slave = (r->flags & BISS_RF_NO_SLAVE) != 0;
+    s->proc_error = (r->flags & BISS_RF_PROC_ERROR) != 0;
+    s->training = (r->flags & BISS_RF_TRAINING) != 0;
+    s->sma = (r->flags & BISS_RF_SMA) != 0;
+    s->timestamp = r->timestamp;
+    s->proc_clocks = r->proc_clocks;
+    s->cds = r->cds;
+    s->sample_point = r->sample_point;
+    s->lag_periods = r->lag_periods;
+    biss_delay_decode(r->delay_raw, r->delay_avg, r->half, &s->delay);
+    s->nslaves = r->nslaves <= BISS_MAX_SLAVES ? r->nslaves : BISS_MAX_SLAVES;
+    /* an aborted frame leaves older data in its buffer: report none */
+    if (!s->valid) {
+        return;
+    }
+    for (unsigned i = 0; i < s->nslaves; i++) {
+        const struct biss_slave_config *sc = configured && i < c->nslaves ? &c->slave[i] : NULL;
+        decode_slave(sc, &r->slave[i], &s->slave[i]);
+    }
+}

@@ -1,0 +1,275 @@
+/*
+ * libbiss.h - the ARM-host API of the PRU BiSS-C master.
+ *
+ * One handle drives one PRU0 running biss_master.bin, either emulated in
+ * process (target "emu": PRU core + cable + encoder models) or on an
+ * AM335x/AM437x PRU-ICSS mapped through /dev/mem (or any file standing in
+ * for it). The same protocol code serves both: the firmware and the host
+ * meet in PRU0's data RAM (include/biss/biss_shm.h).
+ *
+ * Every function returns 0 (BISS_OK) or a negative BISS_E_* code;
+ * biss_strerror() names it. Handles hold no global state; each call locks
+ * its handle, so one handle may be shared between threads.
+ *
+ * Emulator time: simulated time advances only inside the blocking calls
+ * (biss_open's start-up, biss_configure's wait for the firmware's ack,
+ * biss_wait_sample, biss_run_ms); their timeouts count simulated ms.
+ */
+#ifndef LIBBISS_H
+#define LIBBISS_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define BISS_API_MAX_SLAVES 8
+#define BISS_PRU_HZ         200000000u /* PRU clock: 5 ns per cycle */
+#define BISS_HALF_CLOCK_HZ  100000000u /* f = 100 MHz / H */
+
+/* ---- errors ------------------------------------------------------------ */
+enum biss_error {
+    BISS_OK = 0,
+    BISS_E_INVAL = -1,           /* NULL pointer or argument out of its domain */
+    BISS_E_NOMEM = -2,           /* out of memory */
+    BISS_E_TARGET = -3,          /* unknown target name */
+    BISS_E_FIRMWARE_IO = -4,     /* firmware image cannot be read */
+    BISS_E_FIRMWARE_SIZE = -5,   /* image empty, not whole words, or larger than IRAM */
+    BISS_E_DEVMEM = -6,          /* devmem cannot be opened or mapped */
+    BISS_E_PROFILE = -7,         /* unknown emulator profile */
+    BISS_E_SCENARIO = -8,        /* scenario file unreadable or invalid */
+    BISS_E_EMU = -9,             /* emulator bench cannot be built */
+    BISS_E_RATE_RANGE = -10,     /* MA rate gives H outside 10..1024 (97.7 kHz..10 MHz) */
+    BISS_E_RATE_INEXACT = -11,   /* 100 MHz / f is not a whole number of PRU cycles */
+    BISS_E_RATE_SHIFT = -12,     /* H has no exact 8x shift clock (H = a*b, 2 <= a,b <= 32) */
+    BISS_E_NSLAVES = -13,        /* slave count outside 1..8 */
+    BISS_E_DATA_BITS = -14,      /* data bits outside 1..64 */
+    BISS_E_CRC_BITS = -15,       /* CRC bits outside 0..16 */
+    BISS_E_CRC_POLY = -16,       /* polynomial degree is not crc_bits (or a poly without CRC) */
+    BISS_E_CRC_START = -17,      /* CRC start value wider than crc_bits */
+    BISS_E_EW = -18,             /* nE/nW position outside the data word */
+    BISS_E_POS_BITS = -19,       /* position bits do not fit above nE/nW */
+    BISS_E_TRIGGER = -20,        /* unknown trigger mode */
+    BISS_E_IEP_PERIOD = -21,     /* IEP period not a multiple of 5 ns or shorter than a frame */
+    BISS_E_PROC_LIMIT = -22,     /* processing-time limit above 65535 MA clocks */
+    BISS_E_CDM = -23,            /* CDM not 0 or 1 */
+    BISS_E_TIMEOUT = -24,        /* the firmware did not answer in time */
+    BISS_E_NOT_RUNNING = -25,    /* firmware not running (no magic in data RAM) */
+    BISS_E_NO_SAMPLE = -26,      /* nothing published yet */
+    BISS_E_RETRY = -27,          /* no consistent sample after many tries */
+    BISS_E_NOT_HOST_TRIG = -28,  /* biss_trigger outside host-trigger mode */
+    BISS_E_NOT_CONFIGURED = -29, /* no configuration accepted yet */
+    BISS_E_PRU_FAULT = -30,      /* the (emulated) PRU faulted or halted */
+    BISS_E_IO = -31,             /* backend access outside the mapped window */
+    BISS_E_NOT_EMU = -32,        /* emulator-only call on a hardware handle */
+    BISS_E_STOPPED = -33,        /* the PRU is stopped */
+    /* the firmware refused the configuration (ST_CFG_ERROR = BISS_CFGERR_*) */
+    BISS_E_FW_NSLAVES = -41,
+    BISS_E_FW_HALF = -42,
+    BISS_E_FW_DATA_BITS = -43,
+    BISS_E_FW_CRC_BITS = -44,
+    BISS_E_FW_TRIGGER = -45,
+    BISS_E_FW_EW = -46,
+    BISS_E_FW_IEP_PERIOD = -47,
+    BISS_E_FW_UNKNOWN = -49, /* an ST_CFG_ERROR code this library does not know */
+};
+
+/* Static text for any return value of this library (never NULL). */
+const char *biss_strerror(int err);
+
+/* ---- opening ----------------------------------------------------------- */
+enum biss_target {
+    BISS_TARGET_EMU,
+    BISS_TARGET_AM335X,
+    BISS_TARGET_AM437X_ICSS0,
+    BISS_TARGET_AM437X_ICSS1,
+};
+
+/* "emu", "am335x", "am437x-icss0", "am437x-icss1" ("am437x" = ICSS1). */
+int biss_target_from_name(const char *name, enum biss_target *t);
+const char *biss_target_name(enum biss_target t);
+
+struct biss_open_params {
+    enum biss_target target;
+    /* Raw IRAM image. NULL: $BISS_FIRMWARE, else the build tree's image. */
+    const char *firmware;
+    /* Linux targets: file mapped at the SoC's PRU-ICSS base. NULL: /dev/mem. */
+    const char *devmem;
+    /* Linux targets: attach to a running firmware (no load, no restart). */
+    bool attach;
+    /* Emulator: named profile (NULL: "tidep0022-test-encoder"), or a JSON
+     * scenario file, which wins when both are given. */
+    const char *profile;
+    const char *scenario_file;
+    double cable_m; /* < 0: the profile's/scenario's own length */
+    bool set_seed;  /* use seed instead of the scenario's */
+    uint64_t seed;
+    unsigned timeout_ms; /* firmware answers (start-up, config ack); 0: 100 ms */
+};
+
+void biss_open_params_default(struct biss_open_params *p);
+
+typedef struct biss biss_t;
+
+/* Builds the backend, loads the image into IRAM with the PRU halted,
+ * clears the shared area, starts the PRU and waits for the firmware's
+ * magic. On error *out is NULL. */
+int biss_open(const struct biss_open_params *p, biss_t **out);
+void biss_close(biss_t *h);
+
+enum biss_target biss_target(const biss_t *h);
+/* The firmware image path this handle loaded ("" when attached). */
+const char *biss_firmware_path(const biss_t *h);
+
+/* ---- configuration ----------------------------------------------------- */
+enum biss_trigger {
+    BISS_TRIGGER_HOST = 0,    /* one frame per biss_trigger() */
+    BISS_TRIGGER_IEP = 1,     /* one frame every iep_period_ns */
+    BISS_TRIGGER_FREERUN = 2, /* next frame as soon as the slave is ready */
+};
+
+/* "host", "iep", "free" (or "freerun"). */
+int biss_trigger_from_name(const char *name, enum biss_trigger *t);
+const char *biss_trigger_name(enum biss_trigger t);
+
+/* One slave's single-cycle data, as its datasheet describes it. The data
+ * word is everything before the CRC, MSB first on the wire:
+ *   [position][fill][nE nW][life counter ...]            (data_bits in all)
+ * with nW at bit ew_shift from the LSB and nE just above it. */
+struct biss_slave_config {
+    unsigned data_bits; /* 1..64 */
+    unsigned crc_bits;  /* 0..16; 0 = no CRC */
+    uint32_t crc_poly;  /* WITH its top term, as datasheets write it: 0x43, 0x25, 0x190D9 */
+    uint32_t crc_start; /* start value, < 2^crc_bits */
+    bool has_ew;        /* the slave sends nE and nW */
+    unsigned ew_shift;  /* bit of nW from the data word's LSB (= life-counter bits) */
+    /* Position bits at the top of the data word; 0 = everything above nE
+     * (or the whole word without nE/nW). Only used for decoding. */
+    unsigned pos_bits;
+};
+
+struct biss_config {
+    uint32_t freq_hz; /* MA rate: 100 MHz / H, H = a*b (2..32 each), 10 <= H <= 1024 */
+    unsigned nslaves; /* 1..8; slave[0] is nearest the master */
+    struct biss_slave_config slave[BISS_API_MAX_SLAVES];
+    enum biss_trigger trigger;
+    uint32_t iep_period_ns; /* BISS_TRIGGER_IEP: frame period, multiple of 5 ns */
+    uint32_t proc_limit;    /* longest processing time (busy) accepted, MA clocks, <= 65535 */
+    unsigned cdm;           /* CDM bit sent after each frame: 0 or 1 */
+};
+
+/* 1 MHz, no slaves, free-run, processing-time limit 1000 clocks, CDM 0. */
+void biss_config_default(struct biss_config *c);
+
+/* The MA half period H in PRU cycles for freq_hz, or a BISS_E_RATE_* error. */
+int biss_rate_half(uint32_t freq_hz, unsigned *half);
+
+/* Checks every field as the firmware would, and more (polynomial degree,
+ * start value, position bits). 0 or the first specific error. */
+int biss_config_check(const struct biss_config *c);
+
+/* Emulator only: the slave layout of the bench's encoder(s), into
+ * c->nslaves and c->slave[] (the rest of c is left alone). */
+int biss_config_from_emu(biss_t *h, struct biss_config *c);
+
+/* Validates, writes the block, bumps CFG_SEQ and waits for the firmware's
+ * ack; the firmware's refusal comes back as BISS_E_FW_*. */
+int biss_configure(biss_t *h, const struct biss_config *c);
+/* The configuration in force (from this handle, or read back when attached). */
+int biss_get_config(biss_t *h, struct biss_config *c);
+
+/* ---- running ----------------------------------------------------------- */
+/* Stop halts the PRU where it is. Start restarts the firmware from its
+ * first instruction (counters cleared) and re-applies the configuration. */
+int biss_start(biss_t *h);
+int biss_stop(biss_t *h);
+/* Host-trigger mode: asks for one frame. */
+int biss_trigger(biss_t *h);
+/* Lets time pass: the emulator runs for ms simulated milliseconds, on
+ * hardware the call sleeps. */
+int biss_run_ms(biss_t *h, unsigned ms);
+
+/* ---- samples ----------------------------------------------------------- */
+/* Round trip MA edge -> slave answer at the master pin, PRU input
+ * synchronizer included, from the firmware's ACK position (biss_shm.h):
+ * bit8 = DELAY - BISS_DELAY_ZERO_X2 / 2 in 1/8 bit units, cycles = bit8 *
+ * H / 4, ns = cycles * 5. Good to one bit/8. */
+struct biss_line_delay {
+    uint16_t raw, avg;                   /* the firmware's DELAY_RAW / DELAY_AVG */
+    unsigned half;                       /* H of the frame */
+    double bit8, cycles, ns;             /* from avg (the filtered value) */
+    double raw_bit8, raw_cycles, raw_ns; /* from raw (this frame alone) */
+};
+
+struct biss_slave_result {
+    uint64_t data;     /* raw data word: everything before the CRC, right-aligned */
+    uint64_t position; /* the position field of data (see biss_slave_config.pos_bits) */
+    bool crc_ok;       /* CRC right (true when the slave has no CRC) */
+    bool error;        /* nE active (low): the encoder reports an error */
+    bool warning;      /* nW active (low) */
+    uint32_t crc_reg;  /* firmware's CRC register (left-aligned) */
+    uint32_t status;   /* BISS_RS_* as published */
+};
+
+struct biss_sample {
+    uint32_t seq;   /* ST_SEQ of the publication */
+    uint32_t frame; /* frame number (all frames the firmware ran, training included) */
+    uint32_t flags; /* BISS_RF_* */
+    bool valid, crc_error, no_slave, proc_error, training, sma;
+    uint32_t timestamp;    /* IEP count when the first MA edge was due */
+    unsigned proc_clocks;  /* slave busy time, MA clocks */
+    unsigned cds;          /* CDS bit */
+    unsigned sample_point; /* 0..7 within a bit */
+    unsigned lag_periods;  /* whole MA periods between a clock and its bit */
+    struct biss_line_delay delay;
+    unsigned nslaves;
+    struct biss_slave_result slave[BISS_API_MAX_SLAVES];
+};
+
+/* The latest published frame, consistent (ST_SEQ/ST_BUF protocol). */
+int biss_read_sample(biss_t *h, struct biss_sample *s);
+/* Blocks until a frame numbered after after_frame is published (at most
+ * timeout_ms; BISS_E_TIMEOUT), and returns it. timeout_ms 0: one look. */
+int biss_wait_sample(biss_t *h, uint32_t after_frame, unsigned timeout_ms, struct biss_sample *s);
+/* The line delay of the latest frame that measured one. */
+int biss_line_delay(biss_t *h, struct biss_line_delay *d);
+
+/* ---- status and statistics --------------------------------------------- */
+enum biss_fw_state {
+    BISS_FW_STOPPED = 0,
+    BISS_FW_RUNNING = 1,
+    BISS_FW_CFG_ERROR = 2,
+    BISS_FW_NO_SLAVE = 3,
+};
+const char *biss_fw_state_name(uint32_t state);
+
+struct biss_status {
+    bool firmware_running; /* magic present */
+    bool pru_enabled;      /* CONTROL.ENABLE */
+    uint32_t state;        /* BISS_STATE_* */
+    uint32_t cfg_seq;      /* written by the host */
+    uint32_t cfg_ack;      /* echoed by the firmware (0xffffffff: none yet) */
+    uint32_t cfg_error;    /* BISS_CFGERR_* */
+    uint32_t seq;          /* publications */
+};
+
+struct biss_stats {
+    uint32_t frames, crc_errors, no_slave, proc_errors, training;
+};
+
+int biss_get_status(biss_t *h, struct biss_status *st);
+int biss_get_stats(biss_t *h, struct biss_stats *st);
+
+/* ---- emulator access --------------------------------------------------- */
+struct bench;
+/* The bench behind an emulator handle (NULL for hardware). Use it only
+ * while no other thread is inside a call on h. */
+struct bench *biss_emu_bench(biss_t *h);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif
