@@ -1,0 +1,45 @@
+/* bissctl.h - the bissctl command line: options, and the subcommands that
+ * run on an open handle. */
+#ifndef BISSCTL_H
+#define BISSCTL_H
+
+#include "libbiss.h"
+
+#include <stdbool.h>
+
+struct bissctl_opts {
+    struct biss_open_params open;
+    struct biss_config cfg;
+    bool slaves_given; /* --slave: layout from the command line, not the profile */
+    bool config_given; /* any configuration option */
+    bool no_configure; /* --no-configure: use what the firmware runs */
+    const char *command;
+    unsigned count;      /* read -n */
+    unsigned run_ms;     /* run --ms */
+    unsigned timeout_ms; /* per sample */
+    bool help;
+};
+
+/* Exit codes */
+#define BISSCTL_OK    0
+#define BISSCTL_FAIL  1 /* the library reported an error */
+#define BISSCTL_USAGE 2 /* bad command line */
+
+/* Parses argv; on a usage error prints it to stderr and returns
+ * BISSCTL_USAGE, else BISSCTL_OK. */
+int bissctl_parse(int argc, char **argv, struct bissctl_opts *o);
+void bissctl_usage(const char *command);
+
+/* Subcommands: each returns an exit code and reports its own errors. */
+int bissctl_info(biss_t *h, const struct bissctl_opts *o);
+int bissctl_read(biss_t *h, const struct bissctl_opts *o);
+int bissctl_stats(biss_t *h, const struct bissctl_opts *o);
+int bissctl_run(biss_t *h, const struct bissctl_opts *o);
+int bissctl_trigger(biss_t *h, const struct bissctl_opts *o);
+int bissctl_start(biss_t *h, const struct bissctl_opts *o);
+int bissctl_stop(biss_t *h, const struct bissctl_opts *o);
+
+/* "bissctl: <what>: <strerror>" on stderr; returns BISSCTL_FAIL. */
+int bissctl_fail(const char *what, int err);
+
+#endif

@@ -1,0 +1,139 @@
+/* bissctl_cmds.c - bissctl's subcommands on an open, configured handle. */
+#include "bissctl.h"
+
+#include <stdio.h>
+
+int bissctl_fail(const char *what, int err) {
+    fprintf(stderr, "bissctl: %s: %s\n", what, biss_strerror(err));
+    return BISSCTL_FAIL;
+}
+
+static void print_delay(const struct biss_line_delay *d) {
+    printf("delay_bit8=%.1f delay_cycles=%.1f delay_ns=%.1f", d->bit8, d->cycles, d->ns);
+}
+
+static void print_sample(const struct biss_sample *s) {
+    printf("frame=%u flags=0x%02x %s", s->frame, s->flags,
+           s->valid        ? (s->crc_error ? "crc-error" : "valid")
+           : s->training   ? "training"
+           : s->no_slave   ? "no-slave"
+           : s->proc_error ? "proc-error"
+                           : "invalid");
+    if (s->valid) {
+        for (unsigned i = 0; i < s->nslaves; i++) {
+            const struct biss_slave_result *r = &s->slave[i];
+            printf(" s%u.pos=%llu s%u.data=0x%llx s%u.nE=%s s%u.nW=%s s%u.crc=%s", i,
+                   (unsigned long long)r->position, i, (unsigned long long)r->data, i,
+                   r->error ? "error" : "ok", i, r->warning ? "warning" : "ok", i,
+                   r->crc_ok ? "ok" : "bad");
+        }
+    }
+    if (s->valid || s->training) {
+        printf(" ");
+        print_delay(&s->delay);
+    }
+    printf("\n");
+}
+
+static void print_stats(const struct biss_stats *st) {
+    printf("frames=%u crc_errors=%u no_slave=%u proc_errors=%u training=%u\n", st->frames,
+           st->crc_errors, st->no_slave, st->proc_errors, st->training);
+}
+
+int bissctl_stats(biss_t *h, const struct bissctl_opts *o) {
+    (void)o;
+    struct biss_stats st;
+    int rc = biss_get_stats(h, &st);
+    if (rc) {
+        return bissctl_fail("stats", rc);
+    }
+    print_stats(&st);
+    return BISSCTL_OK;
+}
+
+int bissctl_info(biss_t *h, const struct bissctl_opts *o) {
+    struct biss_status st;
+    int rc = biss_get_status(h, &st);
+    if (rc) {
+        return bissctl_fail("info", rc);
+    }
+    printf("target=%s firmware=%s\n", biss_target_name(biss_target(h)),
+           *biss_firmware_path(h) ? biss_firmware_path(h) : "(attached)");
+    printf("pru=%s firmware_running=%s state=%s\n", st.pru_enabled ? "enabled" : "halted",
+           st.firmware_running ? "yes" : "no", biss_fw_state_name(st.state));
+    printf("cfg_seq=%u cfg_ack=%u cfg_error=%u publications=%u\n", st.cfg_seq, st.cfg_ack,
+           st.cfg_error, st.seq);
+    struct biss_config c;
+    if (biss_get_config(h, &c) == BISS_OK) {
+        printf("freq_hz=%u slaves=%u trigger=%s proc_limit=%u\n", c.freq_hz, c.nslaves,
+               biss_trigger_name(c.trigger), c.proc_limit);
+    }
+    return bissctl_stats(h, o);
+}
+
+/* In host-trigger mode a frame comes only when asked for. */
+static int next_sample(biss_t *h, const struct bissctl_opts *o, uint32_t after,
+                       struct biss_sample *s) {
+    struct biss_config c;
+    if (biss_get_config(h, &c) == BISS_OK && c.trigger == BISS_TRIGGER_HOST) {
+        int rc = biss_trigger(h);
+        if (rc) {
+            return rc;
+        }
+    }
+    return biss_wait_sample(h, after, o->timeout_ms, s);
+}
+
+int bissctl_read(biss_t *h, const struct bissctl_opts *o) {
+    struct biss_sample s;
+    /* start after what is already published: every line is a new frame */
+    uint32_t after = 0;
+    if (biss_read_sample(h, &s) == BISS_OK) {
+        after = s.frame;
+    }
+    for (unsigned i = 0; i < o->count; i++) {
+        int rc = next_sample(h, o, after, &s);
+        if (rc) {
+            return bissctl_fail("read", rc);
+        }
+        print_sample(&s);
+        after = s.frame;
+    }
+    return BISSCTL_OK;
+}
+
+int bissctl_trigger(biss_t *h, const struct bissctl_opts *o) {
+    struct bissctl_opts one = *o;
+    one.count = 1;
+    struct biss_config c;
+    if (biss_get_config(h, &c) != BISS_OK || c.trigger != BISS_TRIGGER_HOST) {
+        return bissctl_fail("trigger", BISS_E_NOT_HOST_TRIG);
+    }
+    return bissctl_read(h, &one);
+}
+
+int bissctl_run(biss_t *h, const struct bissctl_opts *o) {
+    int rc = biss_run_ms(h, o->run_ms);
+    if (rc) {
+        return bissctl_fail("run", rc);
+    }
+    rc = bissctl_stats(h, o);
+    struct biss_line_delay d;
+    if (rc == BISSCTL_OK && biss_line_delay(h, &d) == BISS_OK) {
+        print_delay(&d);
+        printf("\n");
+    }
+    return rc;
+}
+
+int bissctl_start(biss_t *h, const struct bissctl_opts *o) {
+    (void)o;
+    int rc = biss_start(h);
+    return rc ? bissctl_fail("start", rc) : BISSCTL_OK;
+}
+
+int bissctl_stop(biss_t *h, const struct bissctl_opts *o) {
+    (void)o;
+    int rc = biss_stop(h);
+    return rc ? bissctl_fail("stop", rc) : BISSCTL_OK;
+}

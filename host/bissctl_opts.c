@@ -1,0 +1,358 @@
+/* bissctl_opts.c - bissctl's command line and help texts. */
+#include "bissctl.h"
+
+#include <errno.h>
+#include <getopt.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const char *const commands[] = {"info", "read", "stats", "run", "trigger", "start", "stop"};
+
+static const char common_help[] =
+    "Target:\n"
+    "  --target T         emu (default), am335x, am437x-icss0, am437x-icss1\n"
+    "  --devmem PATH      file mapped at the PRU-ICSS base (default /dev/mem)\n"
+    "  --attach           use the firmware already running (no load, no restart)\n"
+    "  --firmware FILE    IRAM image (default: $BISS_FIRMWARE, else the build's)\n"
+    "  --timeout-ms MS    firmware answers and each sample (default 100; emu: simulated)\n"
+    "Emulator:\n"
+    "  --profile NAME     encoder profile (default tidep0022-test-encoder)\n"
+    "  --scenario FILE    JSON scenario file (wins over --profile)\n"
+    "  --cable-m M        cable length in metres\n"
+    "  --seed S           random seed of the line models\n"
+    "Configuration (the slave layout defaults to the emulator profile's):\n"
+    "  --freq HZ          MA rate, 100 MHz / H (default 1000000)\n"
+    "  --slave D,C,POLY,START[,EW[,POS]]\n"
+    "                     one slave (repeat, nearest first): data bits, CRC bits,\n"
+    "                     CRC polynomial with its top term (0x43), CRC start, nW bit\n"
+    "                     (if the slave has nE/nW), position bits\n"
+    "  --trigger MODE     host, iep, free (default free)\n"
+    "  --iep-period-ns NS frame period for --trigger iep\n"
+    "  --proc-limit N     longest processing time accepted, MA clocks (default 1000)\n"
+    "  --cdm 0|1          CDM bit sent after each frame\n"
+    "  --no-configure     leave the configuration as it is\n";
+
+static const char *command_help(const char *command) {
+    if (strcmp(command, "info") == 0) {
+        return "bissctl [options] info\n"
+               "  Firmware state, configuration ack and error, counters.\n";
+    }
+    if (strcmp(command, "read") == 0) {
+        return "bissctl [options] read [-n N]\n"
+               "  Prints N published frames (default 1), one line each: frame, flags,\n"
+               "  per slave position, data, nE/nW, CRC; line delay. In host-trigger mode\n"
+               "  each frame is triggered first.\n";
+    }
+    if (strcmp(command, "stats") == 0) {
+        return "bissctl [options] stats\n"
+               "  Frame, CRC error, no-slave, processing-time error and training counters.\n";
+    }
+    if (strcmp(command, "run") == 0) {
+        return "bissctl [options] run [--ms MS]\n"
+               "  Lets the master run for MS ms (default 100; emu: simulated), then prints\n"
+               "  the counters and the line delay.\n";
+    }
+    if (strcmp(command, "trigger") == 0) {
+        return "bissctl [options] trigger\n"
+               "  Host-trigger mode: starts one frame and prints it.\n";
+    }
+    if (strcmp(command, "start") == 0) {
+        return "bissctl [options] start\n"
+               "  Restarts the firmware and applies the configuration.\n";
+    }
+    if (strcmp(command, "stop") == 0) {
+        return "bissctl [options] stop\n  Halts the PRU.\n";
+    }
+    return NULL;
+}
+
+void bissctl_usage(const char *command) {
+    const char *h = command ? command_help(command) : NULL;
+    if (h) {
+        printf("%s\n%s", h, common_help);
+        return;
+    }
+    printf("usage: bissctl [options] COMMAND [command options]\n"
+           "BiSS-C master on a PRU (emulated or real) through libbiss.\n"
+           "Commands: info, read [-n N], stats, run [--ms MS], trigger, start, stop\n"
+           "          (bissctl COMMAND --help for each)\n\n%s",
+           common_help);
+}
+
+static int usage_error(const char *fmt, const char *arg) {
+    fprintf(stderr, "bissctl: ");
+    fprintf(stderr, fmt, arg);
+    fprintf(stderr, "\n(bissctl --help for usage)\n");
+    return BISSCTL_USAGE;
+}
+
+static int parse_ulong(const char *s, unsigned long long max, unsigned long long *v) {
+    if (!s || !*s || *s == '-') {
+        return -1;
+    }
+    char *end;
+    errno = 0;
+    unsigned long long x = strtoull(s, &end, 0);
+    if (errno || *end || x > max) {
+        return -1;
+    }
+    *v = x;
+    return 0;
+}
+
+static int parse_u32(const char *s, uint32_t *v) {
+    unsigned long long x;
+    if (parse_ulong(s, 0xffffffffu, &x)) {
+        return -1;
+    }
+    *v = (uint32_t)x;
+    return 0;
+}
+
+static int parse_unsigned(const char *s, unsigned *v) {
+    uint32_t x;
+    if (parse_u32(s, &x)) {
+        return -1;
+    }
+    *v = x;
+    return 0;
+}
+
+/* D,C,POLY,START[,EW[,POS]] */
+static int parse_slave(const char *arg, struct biss_slave_config *s) {
+    char buf[128];
+    if (snprintf(buf, sizeof buf, "%s", arg) >= (int)sizeof buf) {
+        return -1;
+    }
+    uint32_t f[6];
+    int n = 0;
+    for (char *save = NULL, *tok = strtok_r(buf, ",", &save); tok;
+         tok = strtok_r(NULL, ",", &save)) {
+        if (n == 6 || parse_u32(tok, &f[n])) {
+            return -1;
+        }
+        n++;
+    }
+    if (n < 4) {
+        return -1;
+    }
+    *s = (struct biss_slave_config){
+        .data_bits = f[0],
+        .crc_bits = f[1],
+        .crc_poly = f[2],
+        .crc_start = f[3],
+        .has_ew = n >= 5,
+        .ew_shift = n >= 5 ? f[4] : 0,
+        .pos_bits = n >= 6 ? f[5] : 0,
+    };
+    return 0;
+}
+
+enum {
+    OPT_TARGET = 256,
+    OPT_DEVMEM,
+    OPT_ATTACH,
+    OPT_FIRMWARE,
+    OPT_TIMEOUT,
+    OPT_PROFILE,
+    OPT_SCENARIO,
+    OPT_CABLE,
+    OPT_SEED,
+    OPT_FREQ,
+    OPT_SLAVE,
+    OPT_TRIGGER,
+    OPT_IEP,
+    OPT_PROC,
+    OPT_CDM,
+    OPT_NOCONF,
+    OPT_MS,
+};
+
+static const struct option long_opts[] = {
+    {"target", required_argument, NULL, OPT_TARGET},
+    {"devmem", required_argument, NULL, OPT_DEVMEM},
+    {"attach", no_argument, NULL, OPT_ATTACH},
+    {"firmware", required_argument, NULL, OPT_FIRMWARE},
+    {"timeout-ms", required_argument, NULL, OPT_TIMEOUT},
+    {"profile", required_argument, NULL, OPT_PROFILE},
+    {"scenario", required_argument, NULL, OPT_SCENARIO},
+    {"cable-m", required_argument, NULL, OPT_CABLE},
+    {"seed", required_argument, NULL, OPT_SEED},
+    {"freq", required_argument, NULL, OPT_FREQ},
+    {"slave", required_argument, NULL, OPT_SLAVE},
+    {"trigger", required_argument, NULL, OPT_TRIGGER},
+    {"iep-period-ns", required_argument, NULL, OPT_IEP},
+    {"proc-limit", required_argument, NULL, OPT_PROC},
+    {"cdm", required_argument, NULL, OPT_CDM},
+    {"no-configure", no_argument, NULL, OPT_NOCONF},
+    {"ms", required_argument, NULL, OPT_MS},
+    {"help", no_argument, NULL, 'h'},
+    {NULL, 0, NULL, 0},
+};
+
+static int parse_cable(const char *arg, double *m) {
+    char *end;
+    errno = 0;
+    double v = strtod(arg, &end);
+    if (errno || *end || end == arg || !(v >= 0 && v <= 1000)) {
+        return -1;
+    }
+    *m = v;
+    return 0;
+}
+
+/* Target options */
+static int take_target_opt(int c, const char *arg, struct bissctl_opts *o) {
+    unsigned long long v;
+    switch (c) {
+    case OPT_TARGET:
+        return biss_target_from_name(arg, &o->open.target)
+                   ? usage_error("unknown target '%s' (emu, am335x, am437x-icss0, am437x-icss1)",
+                                 arg)
+                   : 0;
+    case OPT_DEVMEM:
+        o->open.devmem = arg;
+        return 0;
+    case OPT_ATTACH:
+        o->open.attach = true;
+        return 0;
+    case OPT_FIRMWARE:
+        o->open.firmware = arg;
+        return 0;
+    case OPT_TIMEOUT:
+        if (parse_unsigned(arg, &o->timeout_ms) || o->timeout_ms == 0) {
+            return usage_error("--timeout-ms '%s': expected a positive number", arg);
+        }
+        o->open.timeout_ms = o->timeout_ms;
+        return 0;
+    case OPT_PROFILE:
+        o->open.profile = arg;
+        return 0;
+    case OPT_SCENARIO:
+        o->open.scenario_file = arg;
+        return 0;
+    case OPT_CABLE:
+        return parse_cable(arg, &o->open.cable_m)
+                   ? usage_error("--cable-m '%s': expected metres, 0..1000", arg)
+                   : 0;
+    case OPT_SEED:
+        if (parse_ulong(arg, ~0ull, &v)) {
+            return usage_error("--seed '%s': expected a number", arg);
+        }
+        o->open.seed = v;
+        o->open.set_seed = true;
+        return 0;
+    }
+    return 1; /* not a target option */
+}
+
+/* Configuration options */
+static int take_config_opt(int c, const char *arg, struct bissctl_opts *o) {
+    struct biss_config *cfg = &o->cfg;
+    if (c < OPT_FREQ || c > OPT_CDM) {
+        return 1; /* not a configuration option */
+    }
+    o->config_given = true;
+    switch (c) {
+    case OPT_FREQ:
+        return parse_u32(arg, &cfg->freq_hz) ? usage_error("--freq '%s': expected Hz", arg) : 0;
+    case OPT_SLAVE:
+        if (!o->slaves_given) {
+            cfg->nslaves = 0;
+            o->slaves_given = true;
+        }
+        if (cfg->nslaves == BISS_API_MAX_SLAVES) {
+            return usage_error("--slave %s: at most 8 slaves", arg);
+        }
+        return parse_slave(arg, &cfg->slave[cfg->nslaves++])
+                   ? usage_error("--slave '%s': expected D,C,POLY,START[,EW[,POS]]", arg)
+                   : 0;
+    case OPT_TRIGGER:
+        return biss_trigger_from_name(arg, &cfg->trigger)
+                   ? usage_error("--trigger '%s': expected host, iep or free", arg)
+                   : 0;
+    case OPT_IEP:
+        return parse_u32(arg, &cfg->iep_period_ns)
+                   ? usage_error("--iep-period-ns '%s': expected ns", arg)
+                   : 0;
+    case OPT_PROC:
+        return parse_u32(arg, &cfg->proc_limit)
+                   ? usage_error("--proc-limit '%s': expected MA clocks", arg)
+                   : 0;
+    case OPT_CDM:
+        return parse_unsigned(arg, &cfg->cdm) ? usage_error("--cdm '%s': expected 0 or 1", arg) : 0;
+    }
+    return 1;
+}
+
+static int take_command_opt(int c, const char *arg, struct bissctl_opts *o) {
+    switch (c) {
+    case 'n':
+        if (parse_unsigned(arg, &o->count) || o->count == 0) {
+            return usage_error("-n '%s': expected a positive count", arg);
+        }
+        return 0;
+    case OPT_MS:
+        return parse_unsigned(arg, &o->run_ms) ? usage_error("--ms '%s': expected ms", arg) : 0;
+    case OPT_NOCONF:
+        o->no_configure = true;
+        return 0;
+    case 'h':
+        o->help = true;
+        return 0;
+    }
+    return 1;
+}
+
+static int known_command(const char *s) {
+    for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++) {
+        if (strcmp(s, commands[i]) == 0) {
+            return 1;
+        }
+    }
+    return 0;
+}
+
+int bissctl_parse(int argc, char **argv, struct bissctl_opts *o) {
+    memset(o, 0, sizeof *o);
+    biss_open_params_default(&o->open);
+    biss_config_default(&o->cfg);
+    o->count = 1;
+    o->run_ms = 100;
+    o->timeout_ms = 100;
+    opterr = 0;
+    optind = 1;
+    int c;
+    while ((c = getopt_long(argc, argv, ":n:h", long_opts, NULL)) != -1) {
+        if (c == '?') {
+            return usage_error("unknown option '%s'", argv[optind - 1]);
+        }
+        if (c == ':') {
+            return usage_error("option '%s' needs a value", argv[optind - 1]);
+        }
+        int rc = take_target_opt(c, optarg, o);
+        if (rc == 1) {
+            rc = take_config_opt(c, optarg, o);
+        }
+        if (rc == 1) {
+            rc = take_command_opt(c, optarg, o);
+        }
+        if (rc) {
+            return rc;
+        }
+    }
+    if (optind < argc) {
+        o->command = argv[optind++];
+        if (!known_command(o->command)) {
+            return usage_error("unknown command '%s'", o->command);
+        }
+    }
+    if (optind < argc) {
+        return usage_error("unexpected argument '%s'", argv[optind]);
+    }
+    if (!o->command && !o->help) {
+        return usage_error("%s", "no command given");
+    }
+    return BISSCTL_OK;
+}
