@@ -214,7 +214,8 @@ struct biss_slave_result {
 };
 
 struct biss_sample {
-    uint32_t seq;   /* ST_SEQ of the publication */
+    uint32_t seq;   /* ST_SEQ as first read; the frame may be the publication in
+                       progress (whole, ST_SEQ not yet bumped): seq + 1 then */
     uint32_t frame; /* frame number (all frames the firmware ran, training included) */
     uint32_t flags; /* BISS_RF_* */
     bool valid, crc_error, no_slave, proc_error, training, sma;

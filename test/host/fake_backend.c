@@ -1,0 +1,127 @@
+/* fake_backend.c - see fake_backend.h. */
+#include "fake_backend.h"
+
+#include "biss/biss_shm.h"
+
+#include <check.h>
+#include <stdlib.h>
+#include <string.h>
+
+uint32_t fake_dram32(const struct fake *f, uint32_t off) {
+    uint32_t v;
+    memcpy(&v, f->mem + ICSS_DRAM0 + off, 4);
+    return v;
+}
+
+void fake_set_dram32(struct fake *f, uint32_t off, uint32_t v) {
+    memcpy(f->mem + ICSS_DRAM0 + off, &v, 4);
+}
+
+/* Every word names its frame, except the flags and the slave count, so a
+ * torn read shows as words of two frames. */
+uint32_t fake_result_word(uint32_t k, unsigned i) {
+    if (i == BISS_R_FLAGS / 4) {
+        return BISS_RF_VALID;
+    }
+    if (i == BISS_R_PROC_CLOCKS / 4) {
+        return (uint32_t)BISS_MAX_SLAVES << 24 | (k & 0xffffu);
+    }
+    return k;
+}
+
+/* One store of the firmware: a result word, ST_BUF, or ST_SEQ. The frame
+ * k fills buffer k % 2 only after k - 1 published the other one. */
+static void firmware_step(struct fake *f) {
+    if (!f->publishing) {
+        return;
+    }
+    uint32_t buf = f->frame % 2;
+    if (f->word < FAKE_RESULT_WORDS) {
+        fake_set_dram32(f, BISS_RES0 + buf * BISS_RES_SIZE + f->word * 4,
+                        fake_result_word(f->frame, f->word));
+        f->word++;
+    } else if (f->word == FAKE_RESULT_WORDS) {
+        fake_set_dram32(f, BISS_ST_BUF, buf);
+        f->word++;
+    } else {
+        fake_set_dram32(f, BISS_ST_SEQ, f->frame);
+        f->frame++;
+        f->word = 0;
+    }
+}
+
+static void interleave(struct fake *f) {
+    f->accesses++;
+    if (f->max_steps == 0) {
+        return;
+    }
+    f->rng = f->rng * 1103515245u + 12345u;
+    unsigned n = f->fixed_steps ? f->max_steps : (f->rng >> 16) % (f->max_steps + 1);
+    for (unsigned i = 0; i < n; i++) {
+        firmware_step(f);
+    }
+}
+
+static int fake_read(void *ctx, uint32_t off, void *buf, size_t n) {
+    struct fake *f = ctx;
+    ck_assert_uint_le(off + n, ICSS_WINDOW);
+    interleave(f);
+    memcpy(buf, f->mem + off, n);
+    return BISS_OK;
+}
+
+static int fake_write(void *ctx, uint32_t off, const void *buf, size_t n) {
+    struct fake *f = ctx;
+    ck_assert_uint_le(off + n, ICSS_WINDOW);
+    interleave(f);
+    memcpy(f->mem + off, buf, n);
+    return BISS_OK;
+}
+
+static int fake_advance(void *ctx, unsigned us) {
+    struct fake *f = ctx;
+    f->now_us += us;
+    if (f->acks && fake_dram32(f, BISS_CFG_SEQ) != fake_dram32(f, BISS_ST_CFG_ACK)) {
+        fake_set_dram32(f, BISS_ST_CFG_ERROR, f->cfg_error);
+        fake_set_dram32(f, BISS_ST_CFG_ACK, fake_dram32(f, BISS_CFG_SEQ));
+    }
+    for (unsigned i = 0; i < us * f->steps_per_us; i++) {
+        firmware_step(f);
+    }
+    return BISS_OK;
+}
+
+static uint64_t fake_now_us(void *ctx) {
+    return ((struct fake *)ctx)->now_us;
+}
+
+static void fake_close(void *ctx) {
+    struct fake *f = ctx;
+    free(f->mem);
+    free(f);
+}
+
+static const struct biss_backend_ops fake_ops = {
+    .read = fake_read,
+    .write = fake_write,
+    .advance = fake_advance,
+    .now_us = fake_now_us,
+    .close = fake_close,
+    .poll_us = 1,
+    .advance_sleeps = 0,
+};
+
+biss_t *fake_handle(struct fake **out) {
+    struct fake *f = calloc(1, sizeof *f);
+    ck_assert_ptr_nonnull(f);
+    f->mem = calloc(1, ICSS_WINDOW);
+    ck_assert_ptr_nonnull(f->mem);
+    f->frame = 1;
+    f->rng = 1;
+    fake_set_dram32(f, BISS_ST_CFG_ACK, 0xffffffffu);
+    struct biss_backend be = {.ops = &fake_ops, .ctx = f, .iram_bytes = 8192};
+    biss_t *h;
+    ck_assert_int_eq(biss_handle_new(BISS_TARGET_EMU, &be, 10, &h), BISS_OK);
+    *out = f;
+    return h;
+}

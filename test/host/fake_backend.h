@@ -1,0 +1,40 @@
+/* fake_backend.h - a backend over plain memory with a scripted firmware:
+ * it acks configurations and publishes frames by the biss_shm.h protocol,
+ * one word at a time, interleaved with the host's accesses. */
+#ifndef FAKE_BACKEND_H
+#define FAKE_BACKEND_H
+
+#include "biss_priv.h"
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#define FAKE_RESULT_WORDS (BISS_RES_SIZE / 4)
+
+struct fake {
+    uint8_t *mem; /* the PRU-ICSS window */
+    uint64_t now_us;
+    /* firmware model */
+    bool acks;             /* answers CFG_SEQ in advance() */
+    uint32_t cfg_error;    /* with this ST_CFG_ERROR */
+    bool publishing;       /* publishes frames */
+    unsigned max_steps;    /* before each host access: 0..max_steps words */
+    bool fixed_steps;      /* ... or exactly max_steps */
+    unsigned steps_per_us; /* in advance() */
+    uint32_t rng;
+    uint32_t frame; /* the frame being written, from 1 */
+    unsigned word;  /* its next word; then ST_BUF, then ST_SEQ */
+    /* what the host did */
+    unsigned long accesses;
+};
+
+/* Makes a handle over a new fake; *f stays valid until biss_close. */
+biss_t *fake_handle(struct fake **f);
+
+uint32_t fake_dram32(const struct fake *f, uint32_t off);
+void fake_set_dram32(struct fake *f, uint32_t off, uint32_t v);
+
+/* The word the fake writes at index i of frame k's result buffer. */
+uint32_t fake_result_word(uint32_t k, unsigned i);
+
+#endif

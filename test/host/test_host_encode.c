@@ -1,0 +1,235 @@
+/* libbiss shm encoding: the configuration block as bytes at the offsets of
+ * biss_shm.h, and result buffers (built as bytes the same way) decoded into
+ * samples. */
+#include "biss_priv.h"
+
+#include "biss/biss_shm.h"
+#include "biss/biss_shm_struct.h"
+
+#include <check.h>
+#include <stdlib.h>
+#include <string.h>
+
+static unsigned u8(const uint8_t *b, unsigned off) {
+    return b[off];
+}
+static unsigned u16(const uint8_t *b, unsigned off) {
+    return b[off] | b[off + 1] << 8;
+}
+static uint32_t u32(const uint8_t *b, unsigned off) {
+    return (uint32_t)b[off] | (uint32_t)b[off + 1] << 8 | (uint32_t)b[off + 2] << 16 |
+           (uint32_t)b[off + 3] << 24;
+}
+static void put16(uint8_t *b, unsigned off, unsigned v) {
+    b[off] = (uint8_t)v;
+    b[off + 1] = (uint8_t)(v >> 8);
+}
+static void put32(uint8_t *b, unsigned off, uint32_t v) {
+    for (int i = 0; i < 4; i++) {
+        b[off + i] = (uint8_t)(v >> (8 * i));
+    }
+}
+
+START_TEST(test_config_bytes) {
+    struct biss_config c;
+    biss_config_default(&c);
+    c.freq_hz = 2000000;
+    c.nslaves = 2;
+    c.trigger = BISS_TRIGGER_IEP;
+    c.iep_period_ns = 100000;
+    c.proc_limit = 300;
+    c.cdm = 1;
+    /* CRC6 0x43 with nE/nW under a 4-bit life counter */
+    c.slave[0] = (struct biss_slave_config){.data_bits = 30,
+                                            .crc_bits = 6,
+                                            .crc_poly = 0x43,
+                                            .crc_start = 0x2a,
+                                            .has_ew = true,
+                                            .ew_shift = 4};
+    /* CRC16 0x190D9, no nE/nW */
+    c.slave[1] = (struct biss_slave_config){
+        .data_bits = 64, .crc_bits = 16, .crc_poly = 0x190D9, .crc_start = 0xbeef};
+    ck_assert_int_eq(biss_config_check(&c), BISS_OK);
+    struct biss_shm_config blk;
+    memset(&blk, 0xa5, sizeof blk);
+    biss_config_encode(&c, &blk);
+    uint8_t b[BISS_CFG_END];
+    memcpy(b, &blk, sizeof b);
+    ck_assert_uint_eq(u32(b, BISS_CFG_SEQ), 0); /* the caller writes it last */
+    ck_assert_uint_eq(u16(b, BISS_CFG_HALF), 50);
+    ck_assert_uint_eq(u8(b, BISS_CFG_NSLAVES), 2);
+    ck_assert_uint_eq(u8(b, BISS_CFG_TRIGGER), BISS_TRIG_IEP);
+    ck_assert_uint_eq(u32(b, BISS_CFG_IEP_PERIOD), 20000); /* 5 ns counts */
+    ck_assert_uint_eq(u16(b, BISS_CFG_PROC_LIMIT), 300);
+    ck_assert_uint_eq(u8(b, BISS_CFG_CDM), 1);
+    ck_assert_uint_eq(u8(b, BISS_CFG_RESERVED0), 0);
+    unsigned s0 = BISS_CFG_SLAVE0, s1 = BISS_CFG_SLAVE0 + BISS_CFG_SLAVE_SIZE;
+    ck_assert_uint_eq(u8(b, s0 + BISS_CFG_S_DATA_BITS), 30);
+    ck_assert_uint_eq(u8(b, s0 + BISS_CFG_S_CRC_BITS), 6);
+    ck_assert_uint_eq(u8(b, s0 + BISS_CFG_S_EW_SHIFT), 4);
+    ck_assert_uint_eq(u8(b, s0 + BISS_CFG_S_FLAGS), BISS_SF_EW);
+    ck_assert_uint_eq(u16(b, s0 + BISS_CFG_S_CRC_POLY), 0x03); /* top term dropped */
+    ck_assert_uint_eq(u16(b, s0 + BISS_CFG_S_CRC_START), 0x2a);
+    ck_assert_uint_eq(u8(b, s1 + BISS_CFG_S_DATA_BITS), 64);
+    ck_assert_uint_eq(u8(b, s1 + BISS_CFG_S_CRC_BITS), 16);
+    ck_assert_uint_eq(u8(b, s1 + BISS_CFG_S_FLAGS), 0);
+    ck_assert_uint_eq(u16(b, s1 + BISS_CFG_S_CRC_POLY), 0x90D9);
+    ck_assert_uint_eq(u16(b, s1 + BISS_CFG_S_CRC_START), 0xbeef);
+    /* unused slave blocks are zero */
+    for (unsigned off = s1 + BISS_CFG_SLAVE_SIZE; off < BISS_CFG_END; off++) {
+        ck_assert_uint_eq(b[off], 0);
+    }
+    /* and back (what an attached handle reads) */
+    struct biss_config d;
+    ck_assert_int_eq(biss_config_decode(&blk, &d), BISS_OK);
+    ck_assert_uint_eq(d.freq_hz, 2000000);
+    ck_assert_uint_eq(d.slave[0].crc_poly, 0x43);
+    ck_assert_uint_eq(d.slave[1].crc_poly, 0x190D9);
+    ck_assert(d.slave[0].has_ew && !d.slave[1].has_ew);
+    ck_assert_uint_eq(d.iep_period_ns, 100000);
+}
+END_TEST
+
+START_TEST(test_free_run_writes_no_iep_period) {
+    struct biss_config c;
+    biss_config_default(&c);
+    c.nslaves = 1;
+    c.slave[0] = (struct biss_slave_config){.data_bits = 12};
+    c.iep_period_ns = 5000;
+    struct biss_shm_config blk;
+    biss_config_encode(&c, &blk);
+    ck_assert_uint_eq(blk.iep_period, 0);
+    ck_assert_uint_eq(blk.half, 100);
+    ck_assert_uint_eq(blk.slave[0].crc_bits, 0);
+    ck_assert_uint_eq(blk.slave[0].crc_poly, 0);
+}
+END_TEST
+
+START_TEST(test_firmware_errors_map) {
+    ck_assert_int_eq(biss_fw_cfg_error(BISS_CFGERR_NONE), BISS_OK);
+    ck_assert_int_eq(biss_fw_cfg_error(BISS_CFGERR_NSLAVES), BISS_E_FW_NSLAVES);
+    ck_assert_int_eq(biss_fw_cfg_error(BISS_CFGERR_HALF), BISS_E_FW_HALF);
+    ck_assert_int_eq(biss_fw_cfg_error(BISS_CFGERR_DATA_BITS), BISS_E_FW_DATA_BITS);
+    ck_assert_int_eq(biss_fw_cfg_error(BISS_CFGERR_CRC_BITS), BISS_E_FW_CRC_BITS);
+    ck_assert_int_eq(biss_fw_cfg_error(BISS_CFGERR_TRIGGER), BISS_E_FW_TRIGGER);
+    ck_assert_int_eq(biss_fw_cfg_error(BISS_CFGERR_EW), BISS_E_FW_EW);
+    ck_assert_int_eq(biss_fw_cfg_error(BISS_CFGERR_IEP_PERIOD), BISS_E_FW_IEP_PERIOD);
+    ck_assert_int_eq(biss_fw_cfg_error(99), BISS_E_FW_UNKNOWN);
+}
+END_TEST
+
+/* A result buffer as the firmware writes it, byte by byte. */
+static void result_bytes(uint8_t *b) {
+    memset(b, 0, BISS_RES_SIZE);
+    put32(b, BISS_R_FRAME, 77);
+    put32(b, BISS_R_FLAGS, BISS_RF_VALID | BISS_RF_CRC_ERROR | BISS_RF_SMA);
+    put32(b, BISS_R_TIMESTAMP, 123456);
+    put16(b, BISS_R_PROC_CLOCKS, 3);
+    b[BISS_R_CDS] = 1;
+    b[BISS_R_NSLAVES] = 2;
+    put16(b, BISS_R_DELAY_RAW, 27);
+    put16(b, BISS_R_DELAY_AVG, 28);
+    b[BISS_R_SAMPLE_POINT] = 7;
+    b[BISS_R_LAG_PERIODS] = 5;
+    put16(b, BISS_R_HALF, 10);
+    unsigned s0 = BISS_R_SLAVE0, s1 = BISS_R_SLAVE0 + BISS_R_SLAVE_SIZE;
+    /* slave 0: 12-bit position 0xabc, nE = 0 (error), nW = 1, 4-bit counter 0x5 */
+    put32(b, s0 + BISS_R_S_DATA_LO, 0xabc << 6 | 0 << 5 | 1 << 4 | 0x5);
+    put32(b, s0 + BISS_R_S_CRC_REG, 0x08000000);
+    put32(b, s0 + BISS_R_S_STATUS, BISS_RS_CRC_OK | BISS_RS_NW);
+    /* slave 1: 40 bits, no nE/nW, CRC wrong */
+    put32(b, s1 + BISS_R_S_DATA_LO, 0x89abcdef);
+    put32(b, s1 + BISS_R_S_DATA_HI, 0x12);
+    put32(b, s1 + BISS_R_S_STATUS, 0);
+}
+
+static struct biss_config two_slaves(void) {
+    struct biss_config c;
+    biss_config_default(&c);
+    c.freq_hz = 10000000;
+    c.nslaves = 2;
+    c.slave[0] = (struct biss_slave_config){
+        .data_bits = 18, .crc_bits = 6, .crc_poly = 0x43, .has_ew = true, .ew_shift = 4};
+    c.slave[1] = (struct biss_slave_config){.data_bits = 40, .crc_bits = 0};
+    return c;
+}
+
+START_TEST(test_result_decode) {
+    uint8_t b[BISS_RES_SIZE];
+    result_bytes(b);
+    struct biss_shm_result r;
+    memcpy(&r, b, sizeof r);
+    struct biss_config c = two_slaves();
+    struct biss_sample s;
+    biss_sample_decode(&c, true, 9, &r, &s);
+    ck_assert_uint_eq(s.seq, 9);
+    ck_assert_uint_eq(s.frame, 77);
+    ck_assert(s.valid && s.crc_error && s.sma && !s.training && !s.no_slave && !s.proc_error);
+    ck_assert_uint_eq(s.timestamp, 123456);
+    ck_assert_uint_eq(s.proc_clocks, 3);
+    ck_assert_uint_eq(s.cds, 1);
+    ck_assert_uint_eq(s.nslaves, 2);
+    ck_assert_uint_eq(s.sample_point, 7);
+    ck_assert_uint_eq(s.lag_periods, 5);
+    ck_assert_uint_eq(s.slave[0].data, 0xabc << 6 | 1 << 4 | 0x5);
+    ck_assert_uint_eq(s.slave[0].position, 0xabc);
+    ck_assert(s.slave[0].crc_ok);
+    ck_assert(s.slave[0].error);    /* nE low */
+    ck_assert(!s.slave[0].warning); /* nW high */
+    ck_assert_uint_eq(s.slave[0].crc_reg, 0x08000000);
+    ck_assert_uint_eq(s.slave[1].data, 0x1289abcdefull);
+    ck_assert_uint_eq(s.slave[1].position, 0x1289abcdefull);
+    ck_assert(!s.slave[1].crc_ok);
+    ck_assert(!s.slave[1].error && !s.slave[1].warning); /* it has none */
+    /* explicit position bits: the top 8 of slave 0's 12 */
+    c.slave[0].pos_bits = 8;
+    biss_sample_decode(&c, true, 9, &r, &s);
+    ck_assert_uint_eq(s.slave[0].position, 0xab);
+}
+END_TEST
+
+/* biss_shm.h: round trip = DELAY - 19.5 bit/8; a bit/8 is H/4 cycles. */
+START_TEST(test_delay_decode) {
+    struct biss_line_delay d;
+    biss_delay_decode(27, 28, 10, &d);
+    ck_assert_double_eq_tol(d.bit8, 8.5, 1e-9);
+    ck_assert_double_eq_tol(d.cycles, 21.25, 1e-9);
+    ck_assert_double_eq_tol(d.ns, 106.25, 1e-9);
+    ck_assert_double_eq_tol(d.raw_bit8, 7.5, 1e-9);
+    ck_assert_double_eq_tol(d.raw_ns, 93.75, 1e-9);
+    biss_delay_decode(100, 100, 100, &d);
+    ck_assert_double_eq_tol(d.ns, 80.5 * 25 * 5, 1e-9);
+}
+END_TEST
+
+START_TEST(test_aborted_frame_has_no_slave_data) {
+    uint8_t b[BISS_RES_SIZE];
+    result_bytes(b);
+    put32(b, BISS_R_FLAGS, BISS_RF_NO_SLAVE);
+    struct biss_shm_result r;
+    memcpy(&r, b, sizeof r);
+    struct biss_config c = two_slaves();
+    struct biss_sample s;
+    biss_sample_decode(&c, true, 1, &r, &s);
+    ck_assert(!s.valid && s.no_slave);
+    ck_assert_uint_eq(s.slave[0].data, 0);
+    ck_assert_uint_eq(s.slave[0].position, 0);
+}
+END_TEST
+
+int main(void) {
+    Suite *s = suite_create("host_encode");
+    TCase *tc = tcase_create("encode");
+    tcase_add_test(tc, test_config_bytes);
+    tcase_add_test(tc, test_free_run_writes_no_iep_period);
+    tcase_add_test(tc, test_firmware_errors_map);
+    tcase_add_test(tc, test_result_decode);
+    tcase_add_test(tc, test_delay_decode);
+    tcase_add_test(tc, test_aborted_frame_has_no_slave_data);
+    suite_add_tcase(s, tc);
+    SRunner *r = srunner_create(s);
+    srunner_run_all(r, CK_NORMAL);
+    int failed = srunner_ntests_failed(r);
+    srunner_free(r);
+    return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+}

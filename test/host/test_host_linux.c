@@ -1,0 +1,332 @@
+/* libbiss's Linux backend against a sparse file standing in for /dev/mem:
+ * the image lands in PRU0 IRAM at the SoC's PRU-ICSS base + 0x34000,
+ * CONTROL is written, the configuration bytes are where biss_shm.h says;
+ * with a "virtual firmware" thread on the same file the whole protocol
+ * runs as on a board. */
+#include "libbiss.h"
+
+#include "biss/biss_shm.h"
+
+#include <check.h>
+#include <fcntl.h>
+#include <pthread.h>
+#include <stdatomic.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/mman.h>
+#include <time.h>
+#include <unistd.h>
+
+#define AM335X_BASE 0x4A300000L
+#define ICSS1_BASE  0x54400000L
+#define ICSS0_BASE  0x54440000L
+#define WINDOW      0x80000L
+#define CTRL0       0x22000L
+#define IRAM0       0x34000L
+
+static char devmem[256], image[256];
+
+static void make_devmem(off_t size) {
+    snprintf(devmem, sizeof devmem, "/tmp/biss_devmem_XXXXXX");
+    int fd = mkstemp(devmem);
+    ck_assert_int_ge(fd, 0);
+    ck_assert_int_eq(ftruncate(fd, size), 0); /* sparse: costs no disk */
+    close(fd);
+}
+
+/* An image of n bytes whose word i is 0x1000 + i. */
+static void make_image(size_t n) {
+    snprintf(image, sizeof image, "/tmp/biss_image_XXXXXX");
+    int fd = mkstemp(image);
+    ck_assert_int_ge(fd, 0);
+    for (uint32_t i = 0; i < n / 4; i++) {
+        uint32_t w = 0x1000 + i;
+        ck_assert_int_eq(write(fd, &w, 4), 4);
+    }
+    if (n % 4) {
+        ck_assert_int_eq(write(fd, "xyz", n % 4), (ssize_t)(n % 4));
+    }
+    close(fd);
+}
+
+static void cleanup(void) {
+    unlink(devmem);
+    unlink(image);
+}
+
+static void file_read(off_t at, void *buf, size_t n) {
+    int fd = open(devmem, O_RDONLY);
+    ck_assert_int_ge(fd, 0);
+    ck_assert_int_eq(pread(fd, buf, n, at), (ssize_t)n);
+    close(fd);
+}
+
+static uint32_t file32(off_t at) {
+    uint32_t v;
+    file_read(at, &v, 4);
+    return v;
+}
+
+static void file_write32(off_t at, uint32_t v) {
+    int fd = open(devmem, O_WRONLY);
+    ck_assert_int_ge(fd, 0);
+    ck_assert_int_eq(pwrite(fd, &v, 4, at), 4);
+    close(fd);
+}
+
+static struct biss_open_params params(enum biss_target t) {
+    struct biss_open_params p;
+    biss_open_params_default(&p);
+    p.target = t;
+    p.devmem = devmem;
+    p.firmware = image;
+    p.timeout_ms = 20;
+    return p;
+}
+
+static struct biss_config one_slave(void) {
+    struct biss_config c;
+    biss_config_default(&c);
+    c.freq_hz = 5000000;
+    c.nslaves = 1;
+    c.proc_limit = 250;
+    c.slave[0] = (struct biss_slave_config){
+        .data_bits = 14, .crc_bits = 6, .crc_poly = 0x43, .has_ew = true, .ew_shift = 0};
+    return c;
+}
+
+START_TEST(test_image_lands_in_iram) {
+    make_devmem(AM335X_BASE + WINDOW);
+    make_image(1000);
+    /* leftovers of an earlier run in IRAM and data RAM */
+    file_write32(AM335X_BASE + IRAM0 + 4000, 0xdeadbeef);
+    file_write32(AM335X_BASE + BISS_ST_MAGIC, BISS_MAGIC);
+    file_write32(AM335X_BASE + BISS_ST_CFG_ACK, 1);
+    struct biss_open_params p = params(BISS_TARGET_AM335X);
+    biss_t *h;
+    ck_assert_int_eq(biss_open(&p, &h), BISS_OK);
+    for (uint32_t i = 0; i < 250; i++) {
+        ck_assert_uint_eq(file32(AM335X_BASE + IRAM0 + 4 * i), 0x1000 + i);
+    }
+    /* the rest of the 8 KB IRAM is cleared, nothing written past it */
+    ck_assert_uint_eq(file32(AM335X_BASE + IRAM0 + 1000), 0);
+    ck_assert_uint_eq(file32(AM335X_BASE + IRAM0 + 4000), 0);
+    ck_assert_uint_eq(file32(AM335X_BASE + IRAM0 + 8188), 0);
+    /* status cleared: a stale magic or ack cannot fool the handshake */
+    ck_assert_uint_eq(file32(AM335X_BASE + BISS_ST_MAGIC), 0);
+    ck_assert_uint_eq(file32(AM335X_BASE + BISS_ST_CFG_ACK), 0);
+    /* CONTROL: ENABLE with SOFT_RST_N low (reset to PC 0 and run) */
+    ck_assert_uint_eq(file32(AM335X_BASE + CTRL0), 0x2);
+    ck_assert_str_eq(biss_firmware_path(h), image);
+    ck_assert_int_eq(biss_stop(h), BISS_OK);
+    ck_assert_uint_eq(file32(AM335X_BASE + CTRL0), 0x1);
+    biss_close(h);
+    cleanup();
+}
+END_TEST
+
+START_TEST(test_config_bytes_in_data_ram) {
+    make_devmem(AM335X_BASE + WINDOW);
+    make_image(64);
+    struct biss_open_params p = params(BISS_TARGET_AM335X);
+    biss_t *h;
+    ck_assert_int_eq(biss_open(&p, &h), BISS_OK);
+    struct biss_config c = one_slave();
+    /* no firmware runs on a file: the block is written, nobody answers */
+    ck_assert_int_eq(biss_configure(h, &c), BISS_E_NOT_RUNNING);
+    uint8_t b[BISS_CFG_END];
+    file_read(AM335X_BASE, b, sizeof b);
+    ck_assert_uint_eq(b[BISS_CFG_SEQ], 1);
+    ck_assert_uint_eq(b[BISS_CFG_HALF] | b[BISS_CFG_HALF + 1] << 8, 20);
+    ck_assert_uint_eq(b[BISS_CFG_NSLAVES], 1);
+    ck_assert_uint_eq(b[BISS_CFG_TRIGGER], BISS_TRIG_FREERUN);
+    ck_assert_uint_eq(b[BISS_CFG_PROC_LIMIT] | b[BISS_CFG_PROC_LIMIT + 1] << 8, 250);
+    ck_assert_uint_eq(b[BISS_CFG_SLAVE0 + BISS_CFG_S_DATA_BITS], 14);
+    ck_assert_uint_eq(b[BISS_CFG_SLAVE0 + BISS_CFG_S_CRC_BITS], 6);
+    ck_assert_uint_eq(b[BISS_CFG_SLAVE0 + BISS_CFG_S_EW_SHIFT], 0);
+    ck_assert_uint_eq(b[BISS_CFG_SLAVE0 + BISS_CFG_S_FLAGS], BISS_SF_EW);
+    ck_assert_uint_eq(b[BISS_CFG_SLAVE0 + BISS_CFG_S_CRC_POLY], 0x03);
+    biss_close(h);
+    cleanup();
+}
+END_TEST
+
+/* ---- a virtual firmware on the same file ------------------------------- */
+struct vfw {
+    volatile uint32_t *dram;
+    atomic_int stop;
+    atomic_int publish; /* frames still to publish */
+};
+
+static void *virtual_firmware(void *arg) {
+    struct vfw *v = arg;
+    volatile uint32_t *d = v->dram;
+    d[BISS_ST_CFG_ACK / 4] = 0xffffffffu;
+    d[BISS_ST_MAGIC / 4] = BISS_MAGIC;
+    uint32_t seq = 0;
+    while (!atomic_load(&v->stop)) {
+        uint32_t cfg = d[BISS_CFG_SEQ / 4];
+        if (cfg != 0 && cfg != d[BISS_ST_CFG_ACK / 4]) {
+            d[BISS_ST_CFG_ERROR / 4] = BISS_CFGERR_NONE;
+            d[BISS_ST_STATE / 4] = BISS_STATE_RUNNING;
+            d[BISS_ST_CFG_ACK / 4] = cfg;
+        }
+        if (atomic_load(&v->publish) > 0) {
+            seq++;
+            uint32_t buf = seq % 2;
+            volatile uint32_t *r = d + (BISS_RES0 + buf * BISS_RES_SIZE) / 4;
+            r[BISS_R_FRAME / 4] = seq;
+            r[BISS_R_FLAGS / 4] = BISS_RF_VALID;
+            r[BISS_R_PROC_CLOCKS / 4] = 1u << 24; /* one slave */
+            r[BISS_R_DELAY_RAW / 4] = 28u << 16 | 27u;
+            r[BISS_R_SAMPLE_POINT / 4] = 20u << 16;                            /* H */
+            r[(BISS_R_SLAVE0 + BISS_R_S_DATA_LO) / 4] = 0x123u << 2 | 1u << 1; /* nE ok */
+            r[(BISS_R_SLAVE0 + BISS_R_S_STATUS) / 4] = BISS_RS_CRC_OK | BISS_RS_NE;
+            atomic_thread_fence(memory_order_seq_cst);
+            d[BISS_ST_BUF / 4] = buf;
+            d[BISS_ST_SEQ / 4] = seq;
+            d[BISS_ST_FRAMES / 4] = seq;
+            atomic_fetch_sub(&v->publish, 1);
+        }
+        nanosleep(&(struct timespec){.tv_nsec = 20000}, NULL);
+    }
+    return NULL;
+}
+
+START_TEST(test_virtual_board) {
+    make_devmem(AM335X_BASE + WINDOW);
+    make_image(64);
+    struct biss_open_params p = params(BISS_TARGET_AM335X);
+    p.timeout_ms = 2000;
+    biss_t *h;
+    ck_assert_int_eq(biss_open(&p, &h), BISS_OK);
+    int fd = open(devmem, O_RDWR);
+    ck_assert_int_ge(fd, 0);
+    void *m = mmap(NULL, WINDOW, PROT_READ | PROT_WRITE, MAP_SHARED, fd, AM335X_BASE);
+    ck_assert_ptr_ne(m, MAP_FAILED);
+    struct vfw v = {.dram = m};
+    pthread_t t;
+    ck_assert_int_eq(pthread_create(&t, NULL, virtual_firmware, &v), 0);
+
+    struct biss_config c = one_slave();
+    ck_assert_int_eq(biss_configure(h, &c), BISS_OK);
+    struct biss_sample s;
+    ck_assert_int_eq(biss_wait_sample(h, 0, 0, &s), BISS_E_TIMEOUT);
+    uint32_t after = 0;
+    for (int i = 0; i < 3; i++) {
+        atomic_store(&v.publish, 1);
+        ck_assert_int_eq(biss_wait_sample(h, after, 2000, &s), BISS_OK);
+        ck_assert_uint_gt(s.frame, after);
+        ck_assert(s.valid);
+        ck_assert_uint_eq(s.slave[0].position, 0x123);
+        ck_assert(!s.slave[0].error && s.slave[0].warning);
+        ck_assert(s.slave[0].crc_ok);
+        ck_assert_double_eq_tol(s.delay.bit8, 8.5, 1e-9);
+        after = s.frame;
+    }
+    struct biss_stats st;
+    ck_assert_int_eq(biss_get_stats(h, &st), BISS_OK);
+    ck_assert_uint_eq(st.frames, 3);
+    struct biss_status status;
+    ck_assert_int_eq(biss_get_status(h, &status), BISS_OK);
+    ck_assert(status.firmware_running && status.pru_enabled);
+    ck_assert_uint_eq(status.cfg_ack, 1);
+
+    /* a second process attaches: no reload, the running configuration */
+    struct biss_open_params pa = params(BISS_TARGET_AM335X);
+    pa.attach = true;
+    pa.firmware = "/nonexistent";
+    biss_t *h2;
+    ck_assert_int_eq(biss_open(&pa, &h2), BISS_OK);
+    struct biss_config back;
+    ck_assert_int_eq(biss_get_config(h2, &back), BISS_OK);
+    ck_assert_uint_eq(back.freq_hz, 5000000);
+    ck_assert_uint_eq(back.slave[0].crc_poly, 0x43);
+    ck_assert_int_eq(biss_read_sample(h2, &s), BISS_OK);
+    ck_assert_uint_eq(s.slave[0].position, 0x123);
+    biss_close(h2);
+
+    atomic_store(&v.stop, 1);
+    pthread_join(t, NULL);
+    munmap(m, WINDOW);
+    close(fd);
+    biss_close(h);
+    cleanup();
+}
+END_TEST
+
+/* AM437x: ICSS1 (12 KB IRAM) and ICSS0 (4 KB) at their own bases. */
+START_TEST(test_am437x_bases_and_iram_sizes) {
+    make_devmem(ICSS0_BASE + WINDOW);
+    make_image(12 * 1024);
+    biss_t *h;
+    struct biss_open_params p = params(BISS_TARGET_AM437X_ICSS1);
+    ck_assert_int_eq(biss_open(&p, &h), BISS_OK);
+    ck_assert_uint_eq(file32(ICSS1_BASE + IRAM0 + 12 * 1024 - 4), 0x1000 + 3071);
+    ck_assert_uint_eq(file32(ICSS1_BASE + CTRL0), 0x2);
+    biss_close(h);
+    p = params(BISS_TARGET_AM437X_ICSS0);
+    ck_assert_int_eq(biss_open(&p, &h), BISS_E_FIRMWARE_SIZE);
+    ck_assert_ptr_null(h);
+    unlink(image);
+    make_image(4 * 1024);
+    ck_assert_int_eq(biss_open(&p, &h), BISS_OK);
+    ck_assert_uint_eq(file32(ICSS0_BASE + IRAM0), 0x1000);
+    ck_assert_uint_eq(file32(ICSS0_BASE + CTRL0), 0x2);
+    biss_close(h);
+    /* AM335x's image (8 KB max) is too big at 12 KB */
+    cleanup();
+    make_devmem(AM335X_BASE + WINDOW);
+    make_image(8 * 1024 + 4);
+    p = params(BISS_TARGET_AM335X);
+    ck_assert_int_eq(biss_open(&p, &h), BISS_E_FIRMWARE_SIZE);
+    cleanup();
+}
+END_TEST
+
+START_TEST(test_open_errors) {
+    make_devmem(AM335X_BASE + WINDOW);
+    biss_t *h;
+    struct biss_open_params p = params(BISS_TARGET_AM335X);
+    make_image(0);
+    ck_assert_int_eq(biss_open(&p, &h), BISS_E_FIRMWARE_SIZE);
+    unlink(image);
+    make_image(10);
+    ck_assert_int_eq(biss_open(&p, &h), BISS_E_FIRMWARE_SIZE);
+    p.firmware = "/nonexistent/biss.bin";
+    ck_assert_int_eq(biss_open(&p, &h), BISS_E_FIRMWARE_IO);
+    p = params(BISS_TARGET_AM335X);
+    p.devmem = "/nonexistent/mem";
+    ck_assert_int_eq(biss_open(&p, &h), BISS_E_DEVMEM);
+    cleanup();
+    /* a file that ends before the PRU-ICSS window */
+    make_devmem(AM335X_BASE + 0x1000);
+    make_image(64);
+    p = params(BISS_TARGET_AM335X);
+    ck_assert_int_eq(biss_open(&p, &h), BISS_E_DEVMEM);
+    p.target = (enum biss_target)42;
+    ck_assert_int_eq(biss_open(&p, &h), BISS_E_TARGET);
+    ck_assert_int_eq(biss_open(NULL, &h), BISS_E_INVAL);
+    ck_assert_int_eq(biss_open(&p, NULL), BISS_E_INVAL);
+    ck_assert_ptr_null(biss_emu_bench(NULL));
+    cleanup();
+}
+END_TEST
+
+int main(void) {
+    Suite *s = suite_create("host_linux");
+    TCase *tc = tcase_create("devmem-file");
+    tcase_set_timeout(tc, 60);
+    tcase_add_test(tc, test_image_lands_in_iram);
+    tcase_add_test(tc, test_config_bytes_in_data_ram);
+    tcase_add_test(tc, test_virtual_board);
+    tcase_add_test(tc, test_am437x_bases_and_iram_sizes);
+    tcase_add_test(tc, test_open_errors);
+    suite_add_tcase(s, tc);
+    SRunner *r = srunner_create(s);
+    srunner_run_all(r, CK_NORMAL);
+    int failed = srunner_ntests_failed(r);
+    srunner_free(r);
+    return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+}

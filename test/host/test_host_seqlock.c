@@ -1,0 +1,255 @@
+/* libbiss protocol code against a scripted firmware (fake_backend.c): the
+ * seqlock reader while frames are published under it, waiting, and the
+ * configuration handshake with the firmware's verdict. */
+#include "fake_backend.h"
+
+#include "biss/biss_shm.h"
+
+#include <check.h>
+#include <pthread.h>
+#include <stdlib.h>
+
+/* A sample is whole when every word came from the one frame it names. Its
+ * seq is ST_SEQ as read first: the buffer ST_BUF names may already be the
+ * one being published (whole, with ST_SEQ not yet bumped), so seq can be
+ * one behind the frame. */
+static void assert_consistent(const struct biss_sample *s) {
+    uint32_t k = s->frame;
+    ck_assert(s->seq == k || s->seq + 1 == k);
+    ck_assert_uint_eq(s->timestamp, k);
+    ck_assert_uint_eq(s->proc_clocks, k & 0xffffu);
+    ck_assert_uint_eq(s->delay.raw, k & 0xffffu);
+    ck_assert_uint_eq(s->delay.avg, k >> 16);
+    ck_assert(s->valid);
+    ck_assert_uint_eq(s->nslaves, BISS_MAX_SLAVES);
+    for (unsigned i = 0; i < s->nslaves; i++) {
+        ck_assert_uint_eq(s->slave[i].data, (uint64_t)k << 32 | k);
+        ck_assert_uint_eq(s->slave[i].crc_reg, k);
+        ck_assert_uint_eq(s->slave[i].status, k);
+    }
+}
+
+/* The fake stores 0..12 words before each host access: a publication
+ * (42 stores) lands in the middle of most reads of the 40-word buffer. */
+START_TEST(test_reader_never_sees_a_torn_frame) {
+    struct fake *f;
+    biss_t *h = fake_handle(&f);
+    f->publishing = true;
+    f->max_steps = 12;
+    struct biss_sample s;
+    uint32_t last = 0;
+    unsigned samples = 0;
+    while (samples < 3000) {
+        int rc = biss_read_sample(h, &s);
+        if (rc == BISS_E_NO_SAMPLE) {
+            continue;
+        }
+        ck_assert_int_eq(rc, BISS_OK);
+        assert_consistent(&s);
+        ck_assert_uint_ge(s.frame, last);
+        last = s.frame;
+        samples++;
+    }
+    /* the reads really did race the publications */
+    ck_assert_uint_gt(f->frame, 1000);
+    ck_assert_uint_gt(f->accesses, 4ul * samples);
+    biss_close(h);
+}
+END_TEST
+
+/* A whole publication (42 stores) before every access: ST_SEQ differs
+ * at each re-read, so no read can complete. */
+START_TEST(test_reader_gives_up) {
+    struct fake *f;
+    biss_t *h = fake_handle(&f);
+    f->publishing = true;
+    f->fixed_steps = true;
+    f->max_steps = FAKE_RESULT_WORDS + 2;
+    struct biss_sample s;
+    ck_assert_int_eq(biss_read_sample(h, &s), BISS_E_RETRY);
+    biss_close(h);
+}
+END_TEST
+
+START_TEST(test_nothing_published) {
+    struct fake *f;
+    biss_t *h = fake_handle(&f);
+    struct biss_sample s;
+    ck_assert_int_eq(biss_read_sample(h, &s), BISS_E_NO_SAMPLE);
+    ck_assert_int_eq(biss_wait_sample(h, 0, 0, &s), BISS_E_TIMEOUT);
+    struct biss_line_delay d;
+    ck_assert_int_eq(biss_line_delay(h, &d), BISS_E_NO_SAMPLE);
+    ck_assert_int_eq(biss_read_sample(NULL, &s), BISS_E_INVAL);
+    ck_assert_int_eq(biss_read_sample(h, NULL), BISS_E_INVAL);
+    biss_close(h);
+}
+END_TEST
+
+/* Publications only as (fake) time passes: 42 stores per frame at 4 per
+ * microsecond is one frame every 10.5 us. */
+START_TEST(test_wait_sample) {
+    struct fake *f;
+    biss_t *h = fake_handle(&f);
+    f->publishing = true;
+    f->steps_per_us = 4;
+    struct biss_sample s;
+    ck_assert_int_eq(biss_wait_sample(h, 0, 1, &s), BISS_OK);
+    ck_assert_uint_eq(s.frame, 1);
+    uint64_t t0 = f->now_us;
+    ck_assert_int_eq(biss_wait_sample(h, 5, 1, &s), BISS_OK);
+    ck_assert_uint_eq(s.frame, 6);
+    assert_consistent(&s);
+    /* it returned as soon as frame 6 was out, not at the timeout */
+    ck_assert_uint_lt(f->now_us - t0, 1000);
+    /* nothing newer comes: the timeout, in backend time */
+    f->publishing = false;
+    t0 = f->now_us;
+    ck_assert_int_eq(biss_wait_sample(h, s.frame, 3, &s), BISS_E_TIMEOUT);
+    ck_assert_uint_eq(f->now_us - t0, 3000);
+    /* frame numbers wrap: 0xfffffff0 is "before" 6 */
+    ck_assert_int_eq(biss_wait_sample(h, 0xfffffff0u, 0, &s), BISS_OK);
+    biss_close(h);
+}
+END_TEST
+
+static struct biss_config one_slave(enum biss_trigger t) {
+    struct biss_config c;
+    biss_config_default(&c);
+    c.freq_hz = 10000000;
+    c.nslaves = 1;
+    c.trigger = t;
+    c.slave[0] = (struct biss_slave_config){
+        .data_bits = 14, .crc_bits = 6, .crc_poly = 0x43, .has_ew = true};
+    return c;
+}
+
+START_TEST(test_configure_handshake) {
+    struct fake *f;
+    biss_t *h = fake_handle(&f);
+    struct biss_config c = one_slave(BISS_TRIGGER_FREERUN);
+    /* no firmware at all */
+    ck_assert_int_eq(biss_configure(h, &c), BISS_E_NOT_RUNNING);
+    ck_assert_uint_eq(fake_dram32(f, BISS_CFG_SEQ), 1);
+    /* running but deaf */
+    fake_set_dram32(f, BISS_ST_MAGIC, BISS_MAGIC);
+    ck_assert_int_eq(biss_configure(h, &c), BISS_E_TIMEOUT);
+    ck_assert_uint_eq(fake_dram32(f, BISS_CFG_SEQ), 2);
+    /* answering */
+    f->acks = true;
+    ck_assert_int_eq(biss_configure(h, &c), BISS_OK);
+    ck_assert_uint_eq(fake_dram32(f, BISS_CFG_SEQ), 3);
+    ck_assert_uint_eq(fake_dram32(f, BISS_ST_CFG_ACK), 3);
+    ck_assert_uint_eq(fake_dram32(f, BISS_CFG_HALF) & 0xffff, 10);
+    struct biss_config back;
+    ck_assert_int_eq(biss_get_config(h, &back), BISS_OK);
+    ck_assert_uint_eq(back.freq_hz, 10000000);
+    /* the firmware refuses: its reason comes back */
+    f->cfg_error = BISS_CFGERR_HALF;
+    ck_assert_int_eq(biss_configure(h, &c), BISS_E_FW_HALF);
+    ck_assert_int_eq(biss_get_config(h, &back), BISS_E_NOT_CONFIGURED);
+    f->cfg_error = BISS_CFGERR_IEP_PERIOD;
+    ck_assert_int_eq(biss_configure(h, &c), BISS_E_FW_IEP_PERIOD);
+    /* host-side checks never reach the firmware */
+    uint32_t seq = fake_dram32(f, BISS_CFG_SEQ);
+    c.freq_hz = 3000000;
+    ck_assert_int_eq(biss_configure(h, &c), BISS_E_RATE_INEXACT);
+    ck_assert_uint_eq(fake_dram32(f, BISS_CFG_SEQ), seq);
+    biss_close(h);
+}
+END_TEST
+
+/* CFG_SEQ never takes 0 ("none written") or 0xffffffff (the firmware's
+ * initial ack): either would be taken as already acknowledged. */
+START_TEST(test_seq_skips_reserved_values) {
+    struct fake *f;
+    biss_t *h = fake_handle(&f);
+    f->acks = true;
+    fake_set_dram32(f, BISS_ST_MAGIC, BISS_MAGIC);
+    struct biss_config c = one_slave(BISS_TRIGGER_FREERUN);
+    h->cfg_seq = 0xfffffffeu;
+    ck_assert_int_eq(biss_configure(h, &c), BISS_OK);
+    ck_assert_uint_eq(fake_dram32(f, BISS_CFG_SEQ), 1);
+    biss_close(h);
+}
+END_TEST
+
+START_TEST(test_trigger_modes) {
+    struct fake *f;
+    biss_t *h = fake_handle(&f);
+    f->acks = true;
+    fake_set_dram32(f, BISS_ST_MAGIC, BISS_MAGIC);
+    ck_assert_int_eq(biss_trigger(h), BISS_E_NOT_CONFIGURED);
+    struct biss_config c = one_slave(BISS_TRIGGER_FREERUN);
+    ck_assert_int_eq(biss_configure(h, &c), BISS_OK);
+    ck_assert_int_eq(biss_trigger(h), BISS_E_NOT_HOST_TRIG);
+    ck_assert_uint_eq(fake_dram32(f, BISS_CMD_TRIGGER), 0);
+    c = one_slave(BISS_TRIGGER_HOST);
+    ck_assert_int_eq(biss_configure(h, &c), BISS_OK);
+    ck_assert_int_eq(biss_trigger(h), BISS_OK);
+    ck_assert_uint_eq(fake_dram32(f, BISS_CMD_TRIGGER), 1);
+    biss_close(h);
+}
+END_TEST
+
+struct reader {
+    biss_t *h;
+    int bad;
+    int last_rc;
+};
+
+static void *read_many(void *arg) {
+    struct reader *r = arg;
+    for (int i = 0; i < 2000; i++) {
+        struct biss_sample s;
+        int rc = biss_read_sample(r->h, &s);
+        if (rc == BISS_OK) {
+            r->bad += (s.seq != s.frame && s.seq + 1 != s.frame) || s.timestamp != s.frame ||
+                      s.slave[7].data != ((uint64_t)s.frame << 32 | s.frame);
+        } else if (rc != BISS_E_NO_SAMPLE) {
+            r->bad++;
+            r->last_rc = rc;
+        }
+    }
+    return NULL;
+}
+
+/* One handle, several threads: the handle's lock keeps the fake (which is
+ * not thread safe at all) and the reads whole. */
+START_TEST(test_threads_share_a_handle) {
+    struct fake *f;
+    biss_t *h = fake_handle(&f);
+    f->publishing = true;
+    f->max_steps = 6;
+    pthread_t t[4];
+    struct reader r[4];
+    for (int i = 0; i < 4; i++) {
+        r[i] = (struct reader){.h = h};
+        ck_assert_int_eq(pthread_create(&t[i], NULL, read_many, &r[i]), 0);
+    }
+    for (int i = 0; i < 4; i++) {
+        pthread_join(t[i], NULL);
+        ck_assert_msg(r[i].bad == 0, "%d bad reads, last %s", r[i].bad,
+                      biss_strerror(r[i].last_rc));
+    }
+    biss_close(h);
+}
+END_TEST
+
+int main(void) {
+    Suite *s = suite_create("host_seqlock");
+    TCase *tc = tcase_create("protocol");
+    tcase_add_test(tc, test_reader_never_sees_a_torn_frame);
+    tcase_add_test(tc, test_reader_gives_up);
+    tcase_add_test(tc, test_nothing_published);
+    tcase_add_test(tc, test_wait_sample);
+    tcase_add_test(tc, test_configure_handshake);
+    tcase_add_test(tc, test_seq_skips_reserved_values);
+    tcase_add_test(tc, test_trigger_modes);
+    tcase_add_test(tc, test_threads_share_a_handle);
+    suite_add_tcase(s, tc);
+    SRunner *r = srunner_create(s);
+    srunner_run_all(r, CK_NORMAL);
+    int failed = srunner_ntests_failed(r);
+    srunner_free(r);
+    return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+}
