@@ -71,17 +71,24 @@ int bissctl_info(biss_t *h, const struct bissctl_opts *o) {
     return bissctl_stats(h, o);
 }
 
-/* In host-trigger mode a frame comes only when asked for. */
+/* In host-trigger mode a frame comes only when asked for. The firmware
+ * measures the line with a training frame of its own after a
+ * configuration; that one is not the answer to the trigger. */
 static int next_sample(biss_t *h, const struct bissctl_opts *o, uint32_t after,
                        struct biss_sample *s) {
     struct biss_config c;
-    if (biss_get_config(h, &c) == BISS_OK && c.trigger == BISS_TRIGGER_HOST) {
-        int rc = biss_trigger(h);
-        if (rc) {
-            return rc;
-        }
+    if (biss_get_config(h, &c) != BISS_OK || c.trigger != BISS_TRIGGER_HOST) {
+        return biss_wait_sample(h, after, o->timeout_ms, s);
     }
-    return biss_wait_sample(h, after, o->timeout_ms, s);
+    int rc = biss_trigger(h);
+    while (rc == BISS_OK) {
+        rc = biss_wait_sample(h, after, o->timeout_ms, s);
+        if (rc == BISS_OK && !s->training) {
+            break;
+        }
+        after = s->frame;
+    }
+    return rc;
 }
 
 int bissctl_read(biss_t *h, const struct bissctl_opts *o) {

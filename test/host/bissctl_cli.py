@@ -1,1 +1,112 @@
+#!/usr/bin/env python3
+"""bissctl as a user runs it: help for every command, reading frames from
+the emulator, clear errors with non-zero exits, and the same subcommands
+against a file standing in for /dev/mem."""
+import os
+import re
+import subprocess
+import sys
+import tempfile
 
+CTL = sys.argv[1]
+failures = 0
+
+
+def check(cond, what):
+    global failures
+    if not cond:
+        failures += 1
+        print("FAIL:", what)
+
+
+def run(*args, env=None):
+    return subprocess.run([CTL, *args], capture_output=True, text=True, timeout=120, env=env)
+
+
+# help: the overview and each command's own, exit 0
+r = run("--help")
+check(r.returncode == 0 and "info" in r.stdout and "--target" in r.stdout, "--help: %r" % r.stdout)
+for cmd in ["info", "read", "stats", "run", "trigger", "start", "stop"]:
+    r = run(cmd, "--help")
+    check(r.returncode == 0 and r.stdout.startswith("bissctl [options] " + cmd),
+          "%s --help: %r" % (cmd, r.stdout[:80]))
+
+# usage errors: exit 2, a message on stderr
+for args, text in [(["frobnicate"], "unknown command"),
+                   (["--bogus", "info"], "unknown option"),
+                   ([], "no command"),
+                   (["--target", "pi", "info"], "unknown target"),
+                   (["--slave", "14,6", "info"], "--slave"),
+                   (["read", "-n", "0"], "-n"),
+                   (["--freq"], "needs a value")]:
+    r = run(*args)
+    check(r.returncode == 2 and text in r.stderr, "%r: rc %d, %r" % (args, r.returncode, r.stderr))
+
+# read on the emulator: N lines, one frame each, numbered in order
+r = run("--freq", "10000000", "--cable-m", "2", "read", "-n", "5")
+check(r.returncode == 0, "read: rc %d %r" % (r.returncode, r.stderr))
+lines = r.stdout.splitlines()
+check(len(lines) == 5, "read -n 5 printed %d lines" % len(lines))
+frames = [int(m.group(1)) for m in (re.match(r"frame=(\d+) ", l) for l in lines) if m]
+check(frames == list(range(frames[0], frames[0] + 5)) if frames else False, "frames %r" % frames)
+data = [l for l in lines if " valid " in l]
+check(len(data) >= 4, "at least 4 data frames: %r" % lines)
+for l in data:
+    check("s0.crc=ok" in l and "s0.nE=ok" in l and "s0.nW=ok" in l and "delay_ns=" in l, l)
+
+# an explicit slave layout (the profile's own: 14 data bits, CRC6 0x43, nE/nW at 0)
+r = run("--freq", "10000000", "--slave", "14,6,0x43,0,0", "read", "-n", "3")
+check(r.returncode == 0 and r.stdout.count("s0.crc=ok") >= 2, "--slave read: %r %r" % (r.stdout, r.stderr))
+
+# host trigger: one frame per trigger
+r = run("--freq", "10000000", "--trigger", "host", "trigger")
+check(r.returncode == 0 and " valid " in r.stdout, "trigger: %r %r" % (r.stdout, r.stderr))
+r = run("--freq", "10000000", "trigger")
+check(r.returncode == 1 and "host-trigger" in r.stderr, "trigger in free-run: %r" % r.stderr)
+
+# run and stats
+r = run("--freq", "10000000", "run", "--ms", "2")
+m = re.search(r"frames=(\d+) crc_errors=(\d+)", r.stdout)
+check(r.returncode == 0 and m and int(m.group(1)) > 50 and m.group(2) == "0", "run: %r" % r.stdout)
+r = run("--freq", "10000000", "info")
+check(r.returncode == 0 and "firmware_running=yes" in r.stdout and "cfg_error=0" in r.stdout,
+      "info: %r" % r.stdout)
+
+# the library's errors, in its words, exit 1
+for args, text in [(["--freq", "3000000", "read"], "not 100 MHz divided by a whole number"),
+                   (["--freq", "100000", "read"], "no exact 8x shift clock"),
+                   (["--freq", "20000000", "read"], "out of range"),
+                   (["--slave", "14,6,0x03,0,0", "read"], "polynomial"),
+                   (["--slave", "70,6,0x43,0", "read"], "data bits"),
+                   (["--profile", "nope", "info"], "unknown emulator profile"),
+                   (["--firmware", "/nonexistent.bin", "info"], "firmware image cannot be read"),
+                   (["--target", "am335x", "--devmem", "/nonexistent", "info"], "devmem")]:
+    r = run(*args)
+    check(r.returncode == 1 and text in r.stderr, "%r: rc %d %r" % (args, r.returncode, r.stderr))
+
+# a real target on a file: loads, writes, and reports that no firmware answers
+with tempfile.TemporaryDirectory() as tmp:
+    mem = os.path.join(tmp, "mem")
+    with open(mem, "wb") as f:
+        f.truncate(0x4A300000 + 0x80000)
+    r = run("--target", "am335x", "--devmem", mem, "--timeout-ms", "20", "info")
+    check(r.returncode == 2 and "--slave" in r.stderr, "real target without layout: %r" % r.stderr)
+    r = run("--target", "am335x", "--devmem", mem, "--timeout-ms", "20",
+            "--slave", "14,6,0x43,0,0", "--freq", "10000000", "info")
+    check(r.returncode == 1 and "not running" in r.stderr, "file target: %r" % r.stderr)
+    with open(mem, "rb") as f:
+        f.seek(0x4A300000 + 0x22000)
+        control = int.from_bytes(f.read(4), "little")
+        f.seek(0x4A300000 + 0x4)
+        half = int.from_bytes(f.read(2), "little")
+    check(control == 2 and half == 10, "CONTROL %#x, CFG_HALF %d" % (control, half))
+    r = run("--target", "am335x", "--devmem", mem, "--attach", "stats")
+    check(r.returncode == 0 and "frames=0" in r.stdout, "attach stats: %r %r" % (r.stdout, r.stderr))
+    r = run("--target", "am335x", "--devmem", mem, "--attach", "stop")
+    with open(mem, "rb") as f:
+        f.seek(0x4A300000 + 0x22000)
+        control = int.from_bytes(f.read(4), "little")
+    check(r.returncode == 0 and control == 1, "stop: CONTROL %#x" % control)
+
+print("bissctl CLI: %d failure(s)" % failures)
+sys.exit(1 if failures else 0)
