@@ -687,12 +687,14 @@ PUBLISH:
     sbco    r3, c24, BISS_ST_STATE, 4
     jmp     r29.w0
 
-// Wait for SL high (the newest 8x sample, R31 bit 0), at most about 10 ms.
-// r2 = 1 if it came, 0 if not.
+// Wait for SL high through the last 8 samples (R31.b0 = 0xff: a whole MA
+// period), at most about 15 ms, so that a frame starting now finds no old
+// low sample to take for its ACK. r2 = 1 if it came, 0 if not.
 SLAVE_IDLE:
     mov     r3, 1000000
 SLAVE_IDLE_POLL:
-    qbbs    SLAVE_IDLE_YES, r31, 0
+    mov     r2, r31
+    qbeq    SLAVE_IDLE_YES, r2.b0, 0xff
     sub     r3, r3, 1
     qbne    SLAVE_IDLE_POLL, r3, 0
     ldi     r2, 0
@@ -731,19 +733,22 @@ NO_SLAVE_IDLE:                              // SL low before a frame
     jmp     ABORT_FRAME
 
 // ---- training: the line delay at a new rate -----------------------------------
-// A frame cut short after the ACK: its position fills the history, so the
-// next frame samples at the right point from its first bit.
+// Two clocks only (as iC-MB4's INIT): the slave answers the second with its
+// ACK and, clocked no further, holds SL low until its timeout. The periods
+// go on without clocks until the ACK edge is seen; its position fills the
+// history, so the next frame samples at the right point from its first bit.
 TRAIN:
     jal     r29.w0, SLAVE_IDLE
     qbne    TRAIN_GO, r2, 0
     jmp     NO_SLAVE_IDLE
 TRAIN_GO:
     FRAME_SETUP
+    ldi     r12, MA_MASK                    // one clock after period 0's
     WAIT_ACK_PERIOD TRAIN_ACK
 TRAIN_ACK:                                  // t = 3
     ONES_A                                  // 3..8
     DELAY_A
-    xor     r30, r30, r11                   // the last rising edge of this frame
+    xor     r30, r30, r11
     ONES_B
     mov     r4.w0, r1.w2
     mov     r4.w2, r1.w2
