@@ -48,6 +48,7 @@
 #define IEP_CMP_CFG     0x40
 #define IEP_CMP_STATUS  0x44
 #define IEP_CMP0        0x48
+#define IEP_ALIGN       96              // IEP count at which periodic frames start
 
 // Firmware-private data RAM, reached through C28 (CTPPR0 points it at
 // BISS_PRIV, since burst offsets are 8 bits). Offsets from BISS_PRIV:
@@ -125,6 +126,14 @@ WAIT_IEP:
     qbbc    MAIN, r3, 0
     ldi     r3, 1
     sbco    r3, c26, IEP_CMP_STATUS, 4      // clear the CMP0 hit
+    // The hit was seen up to one turn of MAIN late; start every frame at
+    // the same count after the period's reset instead, so periods are exact.
+    lbco    r3, c26, IEP_COUNT, 4
+    rsb     r3, r3, IEP_ALIGN               // cycles to wait; none if later
+    qbne    FRAME, r3.w2, 0                 // upper half set: late, go now
+    loop    IEP_ALIGNED, r3.w0
+    mov     r0, r0
+IEP_ALIGNED:
     jmp     FRAME
 
 // ============================================================================
