@@ -401,19 +401,12 @@ WA_TOP:
     mov     r2, r31                         // 1
     qbne    found, r2.b0, 0xff              // 2
     add     r3, r3, 8                       // 3
-    PAD                                    // 4
-    PAD                                    // 5
-    PAD                                    // 6
-    PAD                                    // 7
-    PAD                                    // 8
+    PADS    5                               // 4..8
     DELAY_A
     xor     r30, r30, r11
     qble    NO_ACK, r3, r7.w0               // 1: limit <= 8p: give up after this rise
     NEXT_CLOCK                              // 2..3
-    PAD                                    // 4
-    PAD                                    // 5
-    PAD                                    // 6
-    PAD                                    // 7
+    PADS    4                               // 4..7
     DELAY_B
     qba     WA_TOP
 .endm
@@ -465,28 +458,17 @@ LAG1:
     sub     r7.w0, r7.w0, r6                // 2  idle periods before the first read
     ldi     r6, 0                           // 3  busy clocks
     NEXT_CLOCK                              // 4..5
-    PAD                                    // 6
-    PAD                                    // 7
+    PADS    2                               // 6..7
     DELAY_B
     qbeq    SW_TOP, r7.w0, 0
 LAG_TOP:
     xor     r30, r30, r11
-    PAD                                    // 1
-    PAD                                    // 2
-    PAD                                    // 3
-    PAD                                    // 4
-    PAD                                    // 5
-    PAD                                    // 6
-    PAD                                    // 7
-    PAD                                    // 8
+    PADS    8                               // 1..8
     DELAY_A
     xor     r30, r30, r11
     sub     r7.w0, r7.w0, 1                 // 1
     NEXT_CLOCK                              // 2..3
-    PAD                                    // 4
-    PAD                                    // 5
-    PAD                                    // 6
-    PAD                                    // 7
+    PADS    4                               // 4..7
     DELAY_B
     qbne    LAG_TOP, r7.w0, 0
 
@@ -496,19 +478,12 @@ SW_TOP:
     SAMPLE                                  // 1
     qbbs    START_FOUND, r2, 31             // 2
     add     r6, r6, 1                       // 3
-    PAD                                    // 4
-    PAD                                    // 5
-    PAD                                    // 6
-    PAD                                    // 7
-    PAD                                    // 8
+    PADS    5                               // 4..8
     DELAY_A
     xor     r30, r30, r11
     qblt    PROC_ERROR, r6, r7.w2           // 1: limit < busy: give up after this rise
     NEXT_CLOCK                              // 2..3
-    PAD                                    // 4
-    PAD                                    // 5
-    PAD                                    // 6
-    PAD                                    // 7
+    PADS    4                               // 4..7
     DELAY_B
     qba     SW_TOP
 
@@ -523,10 +498,7 @@ START_FOUND:                                // t = 3
     xor     r30, r30, r11
     ldi     r8, 0                           // 1  (r8.w0 stays 0 from here on)
     NEXT_CLOCK                              // 2..3
-    PAD                                    // 4
-    PAD                                    // 5
-    PAD                                    // 6
-    PAD                                    // 7
+    PADS    4                               // 4..7
     DELAY_B
     PAD
 
@@ -536,16 +508,11 @@ CDS_PERIOD:
     SAMPLE                                  // 1
     lsr     r1.b1, r2, 31                   // 2
     LOAD_RECORD                             // 3..6
-    PAD                                    // 7
-    PAD                                    // 8
+    PADS    2                               // 7..8
     DELAY_A
     xor     r30, r30, r11
     NEXT_CLOCK                              // 1..2
-    PAD                                    // 3
-    PAD                                    // 4
-    PAD                                    // 5
-    PAD                                    // 6
-    PAD                                    // 7
+    PADS    5                               // 3..7
     DELAY_B
     jmp     r7.w2
 
