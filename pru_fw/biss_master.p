@@ -48,6 +48,7 @@
 #define IEP_CMP_CFG     0x40
 #define IEP_CMP_STATUS  0x44
 #define IEP_CMP0        0x48
+#define IEP_ALIGN       96              // IEP count at which periodic frames start
 
 // Firmware-private data RAM, reached through C28 (CTPPR0 points it at
 // BISS_PRIV, since burst offsets are 8 bits). Offsets from BISS_PRIV:
@@ -56,10 +57,17 @@
 #define P_HIST          0x48                // u16 h0, h1, h2 (last ACK positions), u16 K
 #define P_HSUM          0x50                // u32: h0 + h1 + h2 + 2
 #define P_BUF           0x54                // u32: result buffer being filled (0/1)
-#define P_NSLAVES       0x58                // u8 slaves, u8 trigger, u8 CDM, u8 frames in the average
+#define P_NSLAVES       0x58                // u8 slaves, u8 trigger, -, u8 frames in the average
 #define P_HALF          0x5c                // u16 H, u16 ACK limit (periods x 8)
 #define P_PROC          0x60                // u16 processing-time limit, u8 training due, u8 running
 #define P_GPCFG         0x64                // u32: GPCFG0 value
+#define P_CD            0x68                // 16 bytes: control communication state:
+                                            //   u32 CD_CMD being run (0: none), u16 next step,
+                                            //   u16 step answered by this frame's CDS (+1, 0: none),
+                                            //   u16 frames with CDM 0 in a row, u16 frames in a WAIT,
+                                            //   u8 CDM edge for CDS 0, u8 its change for CDS 1,
+                                            //   u16 program length
+#define P_CDM           (P_CD + 12)
 #define P_SLAVES        0x80                // 8 x 16: mask lo, mask hi, residue, [w, n, ew, flags]
 #define PRU0_CTPPR0     0x22028             // C28 = 0x00nnnn00 with nnnn = CTPPR0[15:0]
 
@@ -125,6 +133,14 @@ WAIT_IEP:
     qbbc    MAIN, r3, 0
     ldi     r3, 1
     sbco    r3, c26, IEP_CMP_STATUS, 4      // clear the CMP0 hit
+    // The hit was seen up to one turn of MAIN late; start every frame at
+    // the same count after the period's reset instead, so periods are exact.
+    lbco    r3, c26, IEP_COUNT, 4
+    rsb     r3, r3, IEP_ALIGN               // cycles to wait; none if later
+    qbne    FRAME, r3.w2, 0                 // upper half set: late, go now
+    loop    IEP_ALIGNED, r3.w0
+    mov     r0, r0
+IEP_ALIGNED:
     jmp     FRAME
 
 // ============================================================================
@@ -133,7 +149,7 @@ WAIT_IEP:
 APPLY_CONFIG:
     mov     r29, r2                         // the sequence number being applied
     lbco    r20, c24, BISS_CFG_HALF, 12     // r20.w0 H, r20.b2 slaves, r20.b3 trigger,
-                                            // r21 IEP period, r22.w0 proc limit, r22.b2 CDM
+                                            // r21 IEP period, r22.w0 proc limit
     ldi     r28, BISS_CFGERR_NSLAVES
     qbeq    CFG_FAIL, r20.b2, 0
     qblt    CFG_FAIL, r20.b2, BISS_MAX_SLAVES   // 8 < slaves
@@ -301,9 +317,9 @@ CFG_IEP_OK:
     ldi     r4, 0
     mov     r4.w2, r2.w0                    // history empty (training fills it), K
     sbco    r3, c28, P_HIST, 8
-    mov     r2.b0, r20.b2                   // slaves, trigger, CDM, frames in the average
+    mov     r2.b0, r20.b2                   // slaves, trigger, -, frames in the average
     mov     r2.b1, r20.b3
-    mov     r2.b2, r22.b2
+    ldi     r2.b2, 0
     ldi     r2.b3, 0
     sbco    r2, c28, P_NSLAVES, 4
     // ACK limit in periods x 8: (BISS_MAX_DELAY_NS / 10 / H + 4) x 8
@@ -359,7 +375,8 @@ RESULT_BASE_DONE:
 .macro FRAME_SETUP
     lbco    r0, c28, P_DELAYS, 4
     RESULT_BASE r9
-    lbco    r4, c28, P_HIST, 8
+    lbco    r4, c28, P_HIST, 8              // r5.w2 = K (the history itself is not needed)
+    lbco    r4.w0, c28, P_CDM, 2            // the CDM edge for either CDS
     lbco    r10, c28, P_HSUM, 4
     lbco    r7.w0, c28, P_HALF + 2, 2
     lbco    r7.w2, c28, P_PROC, 2
@@ -368,43 +385,39 @@ RESULT_BASE_DONE:
     ldi     r3, 0
     ldi     r6, 0
     ldi     r8, 0
-    ldi     r11, MA_MASK
+    ldi     r11, MA_MASK | (MA_MASK << 8)   // period 0 clocks
     mov     r12, CLOCK_FOREVER
     lbco    r2, c26, IEP_COUNT, 4
     sbbo    r2, r9, BISS_R_TIMESTAMP, 4
 .endm
 
 FRAME:
-    jal     r29.w0, SLAVE_IDLE
+    jal     r0.w0, SLAVE_IDLE
     qbne    FRAME_GO, r2, 0
     jmp     NO_SLAVE_IDLE
 FRAME_GO:
+    jal     r0.w0, CD_PREPARE
     FRAME_SETUP
     // fall into the first period
 
 // ---- WAIT_ACK ---------------------------------------------------------------
 // Clock until the newest 8 samples hold the ACK edge (a 0), then go to
-// `found` at t = 3 with the samples in r2.b0 and 8p in r3.
+// `found` at t = 3 with the samples in r2.b0 and 8p in r3. The only
+// pre-data period that counts MA edges down (r12): a training frame stops
+// after two clocks; a normal frame clocks on until its start bit is seen.
 .macro WAIT_ACK_PERIOD
 .mparam found
 WA_TOP:
-    xor     r30, r30, r11
+    MA_FALL
     mov     r2, r31                         // 1
     qbne    found, r2.b0, 0xff              // 2
     add     r3, r3, 8                       // 3
-    PAD                                    // 4
-    PAD                                    // 5
-    PAD                                    // 6
-    PAD                                    // 7
-    PAD                                    // 8
+    PADS    5                               // 4..8
     DELAY_A
-    xor     r30, r30, r11
+    MA_RISE
     qble    NO_ACK, r3, r7.w0               // 1: limit <= 8p: give up after this rise
-    NEXT_CLOCK                              // 2..3
-    PAD                                    // 4
-    PAD                                    // 5
-    PAD                                    // 6
-    PAD                                    // 7
+    NEXT_CLOCK                              // 2..5
+    PADS    2                               // 6..7
     DELAY_B
     qba     WA_TOP
 .endm
@@ -430,18 +443,20 @@ WA_TOP:
 
     WAIT_ACK_PERIOD ACK_FOUND
 
+// From here to the start bit MA clocks on (r11 stays MA_MASK both ways), so
+// these periods leave r12 alone.
 ACK_FOUND:                                  // t = 3
     ONES_A                                  // 3..8
     DELAY_A
-    xor     r30, r30, r11
+    MA_RISE
     ONES_B                                  // 1..5
-    NEXT_CLOCK                              // 6..7
+    PADS    2                               // 6..7
     DELAY_B
     PAD
 
 // ---- LAG: sample point and lag from the averaged ACK position ------------------
 LAG1:
-    xor     r30, r30, r11
+    MA_FALL
     add     r2, r1.w2, r10                  // 1  Q' + h0 + h1 + h2 + 2
     lsr     r2, r2, 2                       // 2  Qf': the 4-frame average
     sub     r2, r2, 4                       // 3
@@ -451,55 +466,34 @@ LAG1:
     lsr     r6, r3, 3                       // 7  p (this frame's ACK period)
     add     r7.w0, r8, 2                    // 8
     DELAY_A
-    xor     r30, r30, r11
+    MA_RISE
     max     r7.w0, r7.w0, r6                // 1
     sub     r7.w0, r7.w0, r6                // 2  idle periods before the first read
     ldi     r6, 0                           // 3  busy clocks
-    NEXT_CLOCK                              // 4..5
-    PAD                                    // 6
-    PAD                                    // 7
+    PADS    4                               // 4..7
     DELAY_B
     qbeq    SW_TOP, r7.w0, 0
 LAG_TOP:
-    xor     r30, r30, r11
-    PAD                                    // 1
-    PAD                                    // 2
-    PAD                                    // 3
-    PAD                                    // 4
-    PAD                                    // 5
-    PAD                                    // 6
-    PAD                                    // 7
-    PAD                                    // 8
+    MA_FALL
+    PADS    8                               // 1..8
     DELAY_A
-    xor     r30, r30, r11
+    MA_RISE
     sub     r7.w0, r7.w0, 1                 // 1
-    NEXT_CLOCK                              // 2..3
-    PAD                                    // 4
-    PAD                                    // 5
-    PAD                                    // 6
-    PAD                                    // 7
+    PADS    6                               // 2..7
     DELAY_B
     qbne    LAG_TOP, r7.w0, 0
 
 // ---- START_WAIT: ACK and busy read 0, the start bit 1 ------------------------
 SW_TOP:
-    xor     r30, r30, r11
+    MA_FALL
     SAMPLE                                  // 1
     qbbs    START_FOUND, r2, 31             // 2
     add     r6, r6, 1                       // 3
-    PAD                                    // 4
-    PAD                                    // 5
-    PAD                                    // 6
-    PAD                                    // 7
-    PAD                                    // 8
+    PADS    5                               // 4..8
     DELAY_A
-    xor     r30, r30, r11
+    MA_RISE
     qblt    PROC_ERROR, r6, r7.w2           // 1: limit < busy: give up after this rise
-    NEXT_CLOCK                              // 2..3
-    PAD                                    // 4
-    PAD                                    // 5
-    PAD                                    // 6
-    PAD                                    // 7
+    PADS    6                               // 2..7
     DELAY_B
     qba     SW_TOP
 
@@ -507,36 +501,34 @@ START_FOUND:                                // t = 3
     sbbo    r6, r9, BISS_R_PROC_CLOCKS, 2   // 3  busy clocks before the start bit
     PAD                                     // 4
     max     r3, r5.w2, r8                   // 5  clocks after this period:
-    sub     r3, r3, r8                      // 6  max(N + 2 - LAG - m, 0)
-    lsl     r12, r3, MA_BIT                 // 7
+    sub     r3, r3, r8                      // 6  max(N + 2 - LAG - m, 0), 2 edges each
+    lsl     r12, r3, MA_BIT + 1             // 7
     ldi     r6, 0                           // 8  (r6.w0 stays 0 from here on)
     DELAY_A
-    xor     r30, r30, r11
+    MA_RISE
     ldi     r8, 0                           // 1  (r8.w0 stays 0 from here on)
-    NEXT_CLOCK                              // 2..3
-    PAD                                    // 4
-    PAD                                    // 5
-    PAD                                    // 6
-    PAD                                    // 7
+    NEXT_CLOCK                              // 2..5
+    PADS    2                               // 6..7
     DELAY_B
     PAD
 
 // ---- CDS, then the slaves ----------------------------------------------------
+// The CDM of this frame may depend on its CDS (a WAIT step): r4.b0 holds
+// the CDM edge (0 or MA_MASK) for CDS = 0, r4.b1 the change for CDS = 1.
+// A CDM of 1 is one more MA edge after the last clock: MA low.
 CDS_PERIOD:
-    xor     r30, r30, r11
+    MA_FALL
     SAMPLE                                  // 1
     lsr     r1.b1, r2, 31                   // 2
     LOAD_RECORD                             // 3..6
-    PAD                                    // 7
-    PAD                                    // 8
+    rsb     r3, r1.b1, 0                    // 7  CDS ? ~0 : 0
+    and     r3, r3, r4.b1                   // 8
     DELAY_A
-    xor     r30, r30, r11
-    NEXT_CLOCK                              // 1..2
-    PAD                                    // 3
-    PAD                                    // 4
-    PAD                                    // 5
-    PAD                                    // 6
-    PAD                                    // 7
+    MA_RISE
+    xor     r3, r3, r4.b0                   // 1  the CDM edge
+    add     r12, r12, r3                    // 2
+    NEXT_CLOCK                              // 3..6
+    PAD                                     // 7
     DELAY_B
     jmp     r7.w2
 
@@ -560,12 +552,12 @@ ENTRY_PLAIN1:                               // w = 0, n = 1
 // Nothing below is clocked.
 
 FRAME_END:
-    lbco    r2, c28, P_NSLAVES, 4
-    qbeq    FE_CDM_DONE, r2.b2, 0
-    clr     r30, r30, MA_BIT                // CDM = 1: MA low through the timeout
-FE_CDM_DONE:
-    mov     r1.b0, r2.b0                    // slaves to check
+    jal     r0.w0, CD_COMMIT               // r1.b1 = CDS; r2.b0 = the CDM sent
+    lbco    r3, c28, P_NSLAVES, 4
+    mov     r1.b0, r3.b0                    // slaves to check
+    mov     r3.b0, r2.b0
     RESULT_BASE r2
+    sbbo    r3.b0, r2, BISS_R_CDM, 1
     rsb     r3, r10, 31 - 8 * LAG           // sample point 0..7 within the bit
     sbbo    r3.b0, r2, BISS_R_SAMPLE_POINT, 1
     sbbo    r1.b1, r2, BISS_R_CDS, 1
@@ -587,12 +579,12 @@ FE_CRC_OK:
 FE_CRC_DONE:
     qbbc    FE_EW_DONE, r10.b3, 0           // no nE/nW
     mov     r6, r10.b2                      // nW's bit
-    jal     r29.w0, DATA_BIT
+    jal     r0.w0, DATA_BIT
     qbbc    FE_NW_LOW, r7, 0
     or      r0, r0, BISS_RS_NW
 FE_NW_LOW:
     add     r6, r10.b2, 1                   // nE's bit
-    jal     r29.w0, DATA_BIT
+    jal     r0.w0, DATA_BIT
     qbbc    FE_EW_DONE, r7, 0
     or      r0, r0, BISS_RS_NE
 FE_EW_DONE:
@@ -640,9 +632,9 @@ FE_HIST_SAVE:
     or      r12, r12, BISS_RF_SMA
 FE_NO_SMA:
     sbco    r7, c28, P_NSLAVES, 4
-    jal     r29.w0, HIST_SAVE
-    jal     r29.w0, PUBLISH
-    jal     r29.w0, SLAVE_IDLE              // the slave's timeout ends: SL high
+    jal     r0.w0, HIST_SAVE
+    jal     r0.w0, PUBLISH
+    jal     r0.w0, SLAVE_IDLE              // the slave's timeout ends: SL high
     set     r30, r30, MA_BIT                // CDM done: MA idles high
     jmp     MAIN
 
@@ -650,10 +642,10 @@ FE_NO_SMA:
 DATA_BIT:
     qble    DATA_BIT_HI, r6, 32             // 32 <= bit
     lsr     r7, r4, r6
-    jmp     r29.w0
+    jmp     r0.w0
 DATA_BIT_HI:
     lsr     r7, r5, r6                      // the shift uses bit & 31
-    jmp     r29.w0
+    jmp     r0.w0
 
 // History r4.w0, r4.w2, r5.w0 and its sum + 2 (rounding) to P_HIST/P_HSUM.
 HIST_SAVE:
@@ -662,7 +654,7 @@ HIST_SAVE:
     add     r3, r3, r5.w0
     add     r3, r3, 2
     sbco    r3, c28, P_HSUM, 4
-    jmp     r29.w0
+    jmp     r0.w0
 
 // Publish the result buffer r2 with the flags in r12: header words, then
 // the sequence number (its low bit names the buffer), then the next buffer.
@@ -685,31 +677,34 @@ PUBLISH:
     sbco    r4, c28, P_BUF, 4
     ldi     r3, BISS_STATE_RUNNING
     sbco    r3, c24, BISS_ST_STATE, 4
-    jmp     r29.w0
+    jmp     r0.w0
 
-// Wait for SL high (the newest 8x sample, R31 bit 0), at most about 10 ms.
-// r2 = 1 if it came, 0 if not.
+// Wait for SL high through the last 8 samples (R31.b0 = 0xff: a whole MA
+// period), at most about 15 ms, so that a frame starting now finds no old
+// low sample to take for its ACK. r2 = 1 if it came, 0 if not.
 SLAVE_IDLE:
     mov     r3, 1000000
 SLAVE_IDLE_POLL:
-    qbbs    SLAVE_IDLE_YES, r31, 0
+    mov     r2, r31
+    qbeq    SLAVE_IDLE_YES, r2.b0, 0xff
     sub     r3, r3, 1
     qbne    SLAVE_IDLE_POLL, r3, 0
     ldi     r2, 0
-    jmp     r29.w0
+    jmp     r0.w0
 SLAVE_IDLE_YES:
     ldi     r2, 1
-    jmp     r29.w0
+    jmp     r0.w0
 
 // ---- frames that end early ---------------------------------------------------
 // r12 = flags, r3 = the counter to increment; publish, wait for the slave.
 ABORT_FRAME:
+    jal     r0.w0, CD_ABORT
     lbbo    r4, r3, 0, 4
     add     r4, r4, 1
     sbbo    r4, r3, 0, 4
     RESULT_BASE r2
-    jal     r29.w0, PUBLISH
-    jal     r29.w0, SLAVE_IDLE
+    jal     r0.w0, PUBLISH
+    jal     r0.w0, SLAVE_IDLE
     set     r30, r30, MA_BIT
     jmp     MAIN
 
@@ -731,24 +726,27 @@ NO_SLAVE_IDLE:                              // SL low before a frame
     jmp     ABORT_FRAME
 
 // ---- training: the line delay at a new rate -----------------------------------
-// A frame cut short after the ACK: its position fills the history, so the
-// next frame samples at the right point from its first bit.
+// Two clocks only (as iC-MB4's INIT): the slave answers the second with its
+// ACK and, clocked no further, holds SL low until its timeout. The periods
+// go on without clocks until the ACK edge is seen; its position fills the
+// history, so the next frame samples at the right point from its first bit.
 TRAIN:
-    jal     r29.w0, SLAVE_IDLE
+    jal     r0.w0, SLAVE_IDLE
     qbne    TRAIN_GO, r2, 0
     jmp     NO_SLAVE_IDLE
 TRAIN_GO:
     FRAME_SETUP
+    ldi     r12, 2 * MA_MASK                // one clock after period 0's
     WAIT_ACK_PERIOD TRAIN_ACK
 TRAIN_ACK:                                  // t = 3
     ONES_A                                  // 3..8
     DELAY_A
-    xor     r30, r30, r11                   // the last rising edge of this frame
+    MA_RISE
     ONES_B
     mov     r4.w0, r1.w2
     mov     r4.w2, r1.w2
     mov     r5.w0, r1.w2
-    jal     r29.w0, HIST_SAVE
+    jal     r0.w0, HIST_SAVE
     lbco    r2, c28, P_PROC, 4
     ldi     r2.b2, 0                        // training done
     sbco    r2, c28, P_PROC, 4
@@ -761,3 +759,140 @@ TRAIN_ACK:                                  // t = 3
     ldi     r12, BISS_RF_TRAINING
     ldi     r3, BISS_ST_TRAINING
     jmp     ABORT_FRAME
+
+// ============================================================================
+// Control communication: the CDM program (include/biss/biss_shm.h). Not
+// clocked: CD_PREPARE before a frame works out the CDM for either CDS, the
+// CDS period picks one, CD_COMMIT after the frame records the answers.
+// State in P_CD: r2 program run, r3.w0 step, r3.w2 answered step + 1,
+// r4.w0 zeros in a row, r4.w2 WAIT frames, r5.b0/b1 CDM edge, r5.w2 length.
+
+// r6 = the 2-bit step r7 of the program (END past its length).
+CD_OP:
+    ldi     r6, BISS_CDOP_END
+    qble    CD_OP_DONE, r7, r5.w2           // length <= step
+    lsr     r6, r7, 2
+    mov     r8, BISS_CD_PROG
+    add     r8, r8, r6
+    lbbo    r6, r8, 0, 1
+    and     r8, r7, 3
+    lsl     r8, r8, 1
+    lsr     r6, r6, r8
+    and     r6, r6, 3
+CD_OP_DONE:
+    jmp     r0.w2
+
+CD_PREPARE:
+    lbco    r2, c28, P_CD, 16
+    ldi     r5.w0, 0                        // CDM 0 whatever the CDS
+    qbne    CDP_RUN, r2, 0
+    lbco    r6, c24, BISS_CD_CMD, 4         // a new program?
+    lbco    r7, c24, BISS_ST_CD_SEQ, 4
+    qbeq    CDP_OUT, r6, r7
+    qbgt    CDP_OUT, r4.w0, 14              // not before 14 frames with CDM 0
+    lbco    r7, c24, BISS_CD_STEPS, 2
+    mov     r8, BISS_CD_MAX_STEPS
+    qbeq    CDP_BAD, r7.w0, 0
+    qblt    CDP_BAD, r7.w0, r8
+    mov     r2, r6                          // run it from step 0
+    ldi     r3, 0
+    ldi     r4.w2, 0
+    mov     r5.w2, r7.w0
+    ldi     r6, BISS_CDST_BUSY
+    sbco    r6, c24, BISS_ST_CD_STATUS, 4
+CDP_RUN:
+    mov     r7, r3.w0
+    jal     r0.w2, CD_OP
+    qbeq    CDP_WAIT, r6, BISS_CDOP_WAIT
+    qbne    CDP_OUT, r6, BISS_CDOP_1        // 0 or END: CDM 0
+    ldi     r5.b0, MA_MASK
+    qba     CDP_OUT
+CDP_WAIT:
+    add     r7, r3.w0, 1                    // CDS 1 ends the wait: send the next step now
+    jal     r0.w2, CD_OP
+    qbne    CDP_OUT, r6, BISS_CDOP_1
+    ldi     r5.b1, MA_MASK
+CDP_OUT:
+    sbco    r2, c28, P_CD, 16
+    jmp     r0.w0
+CDP_BAD:
+    sbco    r6, c24, BISS_ST_CD_SEQ, 4      // refused
+    ldi     r6, BISS_CDST_ERR_STEPS
+    sbco    r6, c24, BISS_ST_CD_STATUS, 4
+    qba     CDP_OUT
+
+// After a frame with CDS r1.b1: returns the CDM it sent in r2.b0.
+// (Calls nest through r0.w0 and r0.w2: r0 is free outside the clocked part,
+// r13..r29 hold the slave records.)
+CD_COMMIT:
+    lbco    r2, c28, P_CD, 16
+    rsb     r6, r1.b1, 0                    // the CDM edge that went out
+    and     r6, r6, r5.b1
+    xor     r6, r6, r5.b0
+    min     r1.b0, r6, 1
+    qbeq    CDC_ZEROS, r2, 0                // no program
+    qbeq    CDC_NOPREV, r3.w2, 0
+    sub     r7, r3.w2, 1                    // the step this CDS answers
+    lsr     r8, r7, 3
+    mov     r6, BISS_CD_RESP
+    add     r8, r8, r6
+    lbbo    r6, r8, 0, 1
+    and     r7, r7, 7
+    clr     r6, r6, r7
+    qbbc    CDC_BIT0, r1.b1, 0
+    set     r6, r6, r7
+CDC_BIT0:
+    sbbo    r6, r8, 0, 1
+CDC_NOPREV:
+    ldi     r3.w2, 0
+    mov     r7, r3.w0
+    jal     r0.w2, CD_OP
+    qbeq    CDC_END, r6, BISS_CDOP_END
+    qbne    CDC_SENT, r6, BISS_CDOP_WAIT
+    qbbs    CDC_WAITED, r1.b1, 0
+    add     r4.w2, r4.w2, 1                 // another frame in the WAIT
+    lbco    r6, c24, BISS_CD_WAIT_LIMIT, 2
+    qbge    CDC_ZEROS, r4.w2, r6.w0         // waits <= limit: go on
+    ldi     r6, BISS_CDST_ERR_WAIT
+    qba     CDC_STOP
+CDC_WAITED:
+    add     r3.w0, r3.w0, 1                 // past the WAIT: its next step went out
+    ldi     r4.w2, 0
+    mov     r7, r3.w0
+    jal     r0.w2, CD_OP
+    qbeq    CDC_END, r6, BISS_CDOP_END
+CDC_SENT:
+    add     r3.w0, r3.w0, 1
+    mov     r3.w2, r3.w0                    // its CDS comes with the next frame
+    qba     CDC_ZEROS
+CDC_END:
+    ldi     r6, BISS_CDST_DONE
+CDC_STOP:
+    mov     r6.w2, r3.w0                    // steps executed
+    sbco    r6, c24, BISS_ST_CD_STATUS, 4
+    sbco    r2, c24, BISS_ST_CD_SEQ, 4
+    ldi     r2, 0
+CDC_ZEROS:
+    add     r4.w0, r4.w0, 1                 // frames with CDM 0 in a row
+    min     r4.w0, r4.w0, 255
+    qbeq    CDC_SAVE, r1.b0, 0
+    ldi     r4.w0, 0
+CDC_SAVE:
+    sbco    r2, c28, P_CD, 16
+    mov     r2.b0, r1.b0
+    jmp     r0.w0
+
+// A frame failed: a running program cannot go on (the slave saw a broken
+// frame), and the zeros start again.
+CD_ABORT:
+    lbco    r4, c28, P_CD, 16
+    ldi     r6, 0
+    sbco    r6, c28, P_CD + 8, 2            // zeros in a row: none
+    qbeq    CDA_DONE, r4, 0
+    sbco    r6, c28, P_CD, 4                // no program
+    sbco    r4, c24, BISS_ST_CD_SEQ, 4
+    mov     r6.w2, r5.w0
+    ldi     r6.w0, BISS_CDST_ERR_FRAME
+    sbco    r6, c24, BISS_ST_CD_STATUS, 4
+CDA_DONE:
+    jmp     r0.w0

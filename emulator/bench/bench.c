@@ -28,6 +28,7 @@ struct bench {
     int64_t prev_t;
     int64_t frame_start_t;
     bool have_frame_start;
+    int64_t pending_half; /* a half period ending in a falling edge, 0 none */
 
     struct vcd_writer vcd;
     bool vcd_on;
@@ -76,13 +77,29 @@ static void min_max(int64_t v, uint64_t n, int64_t *lo, int64_t *hi) {
     }
 }
 
-/* An MA edge the slave took as part of frame `frame`, timed at the master. */
-static void account_edge(struct bench *b, uint64_t frame, int64_t t) {
+static void count_half_period(struct bench_stats *st, int64_t h) {
+    min_max(h, st->half_periods, &st->half_min_ps, &st->half_max_ps);
+    st->half_periods++;
+}
+
+/* An MA edge the slave took as part of frame `frame`, timed at the master.
+ * A half period that ends in a falling edge counts once the next rising
+ * edge comes in the same frame: a frame's last falling edge is the CDM
+ * (MA low through the timeout), not a clock. */
+static void account_edge(struct bench *b, uint64_t frame, int64_t t, int level) {
     struct bench_stats *st = &b->st;
     if (b->prev_frame == frame + 1) {
-        min_max(t - b->prev_t, st->half_periods, &st->half_min_ps, &st->half_max_ps);
-        st->half_periods++;
+        if (b->pending_half > 0) {
+            count_half_period(st, b->pending_half);
+        }
+        b->pending_half = 0;
+        if (level) {
+            count_half_period(st, t - b->prev_t);
+        } else {
+            b->pending_half = t - b->prev_t;
+        }
     } else {
+        b->pending_half = 0;
         st->frames_started++;
         if (b->have_frame_start) {
             int64_t p = t - b->frame_start_t;
@@ -103,12 +120,12 @@ static void account_edge(struct bench *b, uint64_t frame, int64_t t) {
     b->prev_t = t;
 }
 
-static void ma_reached_slave(struct bench *b) {
+static void ma_reached_slave(struct bench *b, int level) {
     uint64_t idx = b->st.ma_edges_slave++;
     uint64_t frame;
     bool timed = idx < b->st.ma_edges_master && b->st.ma_edges_master - idx <= MA_RING;
     if (timed && slave_in_frame(b, &frame)) {
-        account_edge(b, frame, b->ma_times[idx % MA_RING]);
+        account_edge(b, frame, b->ma_times[idx % MA_RING], level);
     } else {
         b->prev_frame = 0;
     }
@@ -168,7 +185,7 @@ static void on_pin(void *ctx, link_pin pin, sim_ps t, int level) {
         vcd_change(&b->vcd, t, (int)pin, level);
     }
     if (pin == LINK_MA_SLAVE) {
-        ma_reached_slave(b);
+        ma_reached_slave(b, level);
     }
     if (b->cap_state != CAP_OFF) {
         capture_update(b, t);

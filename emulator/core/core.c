@@ -74,6 +74,7 @@ struct pru_core *pru_core_new(enum pru_soc soc, const struct pru_params *params)
     else
         pru_params_default(&c->p);
     c->soc = soc;
+    c->watch_addr = UINT32_MAX;
     c->iram_bytes = socs[soc].iram;
     c->dram_bytes = socs[soc].dram;
     c->shared_bytes = socs[soc].shared;
@@ -170,6 +171,13 @@ void pru_start(struct pru_core *c) {
 void pru_stop(struct pru_core *c) {
     uint32_t v = ctrl_read(c, 0, c->cycle);
     ctrl_write(c, 0, v & ~PRU_CTRL_ENABLE, 0xffffffffu, c->cycle);
+}
+
+void pru_set_store_watch(struct pru_core *c, uint32_t addr, void (*fn)(void *ctx, uint32_t addr),
+                         void *ctx) {
+    c->watch_fn = fn;
+    c->watch_ctx = ctx;
+    c->watch_addr = fn ? addr : UINT32_MAX;
 }
 
 void pru_set_pins(struct pru_core *c, const struct pru_pins *pins) {

@@ -149,6 +149,10 @@ struct ff_probe {
 };
 
 struct pru_core {
+    /* store watch (pru_set_store_watch): checked on stores to data RAM */
+    uint32_t watch_addr; /* UINT32_MAX: none */
+    void (*watch_fn)(void *ctx, uint32_t addr);
+    void *watch_ctx;
     /* hot state first */
     uint32_t r[33]; /* r[32] is a constant 0 for immediate operands */
     uint32_t pc;
@@ -265,6 +269,12 @@ static inline uint32_t fld(const uint32_t *r, unsigned reg, unsigned sh, uint32_
 }
 static inline void fld_set(uint32_t *r, unsigned reg, unsigned sh, uint32_t mask, uint32_t v) {
     r[reg] = (r[reg] & ~(mask << sh)) | ((v & mask) << sh);
+}
+
+/* A store to [addr, addr + n) of data RAM just happened: tell the watch. */
+static inline void core_store_watch(struct pru_core *c, uint32_t addr, unsigned n) {
+    if (c->watch_addr - addr < n)
+        c->watch_fn(c->watch_ctx, c->watch_addr);
 }
 
 #endif

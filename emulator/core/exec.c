@@ -347,6 +347,7 @@ static inline unsigned burst_dram0(struct pru_core *c, const struct pd *d) {
         return c->p.load_local_base + beats;
     }
     memcpy(c->dram0 + addr, rf, n);
+    core_store_watch(c, addr, n);
     ff_dirty(c);
     unsigned cyc = beats * c->p.store_beat_cycles;
     return cyc ? cyc : 1;

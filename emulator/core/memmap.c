@@ -310,6 +310,7 @@ int mem_store(struct pru_core *c, uint32_t addr, const uint8_t *src, unsigned n,
     *cycles = cyc ? cyc : 1;
     if ((uint64_t)addr + n <= c->dram_bytes) { /* the common case: own data RAM */
         memcpy(c->dram0 + addr, src, n);
+        core_store_watch(c, addr, n);
         return 0;
     }
     /* check the whole range first: a faulting store writes nothing */

@@ -178,6 +178,13 @@ void pru_stop(struct pru_core *c);
 void pru_set_pins(struct pru_core *c, const struct pru_pins *pins);
 void pru_set_inputs(struct pru_core *c, uint32_t levels);
 
+/* Calls fn(ctx, addr) right after every PRU store that writes the byte at
+ * local data RAM address addr (PRU0's own data RAM), e.g. a firmware's
+ * publication counter. The callback may read memory (pru_host_read) but
+ * must not run or stop the core. fn NULL removes the watch. */
+void pru_set_store_watch(struct pru_core *c, uint32_t addr, void (*fn)(void *ctx, uint32_t addr),
+                         void *ctx);
+
 /* Trace each executed instruction to f (NULL: off). */
 void pru_set_trace(struct pru_core *c, FILE *f);
 

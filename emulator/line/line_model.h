@@ -102,6 +102,12 @@ void line_dir_input(line_dir *l, sim_ps t, int level);
 /* Switches the fault state at time t (LINE_OK reconnects). */
 void line_dir_set_fault(line_dir *l, sim_ps t, line_fault f);
 
+/* Whether MA clocks with half period half_ps get through this line in
+ * shape: a burst after a long idle keeps every pulse, each within a quarter
+ * of its width (what an 8x-oversampling master tolerates with margin).
+ * Noise (jitter, glitches) and faults are left out. */
+int line_usable(const line_params *p, sim_ps half_ps);
+
 /* A sink that feeds this line's input, for wiring it behind a model. */
 sim_edge_sink line_dir_sink(line_dir *l);
 

@@ -42,7 +42,7 @@
 #define BISS_CFG_TRIGGER        0x007   // u8:  BISS_TRIG_*
 #define BISS_CFG_IEP_PERIOD     0x008   // u32: frame period in IEP counts (5 ns) for BISS_TRIG_IEP
 #define BISS_CFG_PROC_LIMIT     0x00C   // u16: longest processing time (busy) accepted, MA clocks
-#define BISS_CFG_CDM            0x00E   // u8:  CDM bit sent in the timeout after each frame (0/1)
+#define BISS_CFG_RESERVED1      0x00E   // u8
 #define BISS_CFG_RESERVED0      0x00F   // u8
 #define BISS_CFG_SLAVE0         0x010   // first of BISS_MAX_SLAVES slave blocks
 #define BISS_CFG_SLAVE_SIZE     8
@@ -78,6 +78,37 @@
 #define BISS_ST_TRAINING        0x0A8   // u32: training frames (line delay measured, data not used)
 #define BISS_ST_END             0x0AC
 
+// ---- control communication: a CDM program, one step per frame ------------
+// The host writes the program (BISS_CD_PROG, 2 bits a step, step i in bits
+// 2(i%4)+1..2(i%4) of byte i/4), its length and the wait limit, then
+// increments CD_CMD. The firmware starts it once at least 14 frames in a
+// row went out with CDM = 0 (and keeps sending 0 until then), executes one
+// step per frame, and stores in BISS_CD_RESP bit i (byte i/8, bit i%8) the
+// CDS of the frame after the one that sent step i. When the program ends it
+// sets ST_CD_STATUS and echoes CD_CMD in ST_CD_SEQ. Frames keep coming as
+// usual throughout: control data never stops position data.
+#define BISS_CD_CMD             0x0B0   // u32 (host): incremented to run the program
+#define BISS_CD_STEPS           0x0B4   // u16 (host): program length, 1..BISS_CD_MAX_STEPS
+#define BISS_CD_WAIT_LIMIT      0x0B6   // u16 (host): frames a WAIT step may take
+#define BISS_ST_CD_SEQ          0x0B8   // u32: CD_CMD of the program last ended (or refused)
+#define BISS_ST_CD_STATUS       0x0BC   // u16: BISS_CDST_*; u16 at +2: steps executed
+#define BISS_ST_CD_END          0x0C0
+#define BISS_CD_PROG            0x400   // 256 bytes
+#define BISS_CD_RESP            0x500   // 128 bytes
+#define BISS_CD_MAX_STEPS       1024
+
+#define BISS_CDOP_0             0       // send CDM 0
+#define BISS_CDOP_1             1       // send CDM 1
+#define BISS_CDOP_WAIT          2       // CDM 0 until a frame's CDS is 1, then the next step in that frame
+#define BISS_CDOP_END           3       // end of the program (also: CD_STEPS reached)
+
+#define BISS_CDST_IDLE          0       // no program since start
+#define BISS_CDST_BUSY          1       // waiting for the 14 zeros, or running
+#define BISS_CDST_DONE          2       // ended normally
+#define BISS_CDST_ERR_WAIT      3       // a WAIT step saw no CDS = 1 within CD_WAIT_LIMIT frames
+#define BISS_CDST_ERR_STEPS     4       // CD_STEPS out of range
+#define BISS_CDST_ERR_FRAME     5       // a frame failed (no ACK, processing time) while running
+
 #define BISS_MAGIC              0x42695353  // "SSiB"
 
 #define BISS_STATE_STOPPED      0
@@ -100,6 +131,7 @@
 #define BISS_R_SAMPLE_POINT     0x14    // u8:  sample (0..7 within a bit) used for this frame
 #define BISS_R_LAG_PERIODS      0x15    // u8:  whole MA periods between a clock and its bit
 #define BISS_R_HALF             0x16    // u16: MA half period H of this frame
+#define BISS_R_CDM              0x18    // u8:  CDM sent in this frame's timeout
 #define BISS_R_SLAVE0           0x20    // first of BISS_MAX_SLAVES slave results
 #define BISS_R_SLAVE_SIZE       16
 // per slave result, offsets within it:
@@ -139,6 +171,6 @@
 
 // ---- firmware-private area (the host must not write it) -------------------
 #define BISS_PRIV               0x300
-#define BISS_PRIV_END           0x400
+#define BISS_PRIV_END           0x400   // (the CD program and answers follow)
 
 #endif

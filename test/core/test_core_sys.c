@@ -11,6 +11,48 @@
 #define ICSS1  0x54400000u
 #define ICSS0  0x54440000u
 
+/* The store watch sees every store covering its byte, in both store paths
+ * (in-place data RAM bursts and the general one), with the value stored. */
+struct watch_log {
+    struct pru_core *c;
+    int hits;
+    uint32_t seen[4];
+};
+
+static void on_watch(void *ctx, uint32_t addr) {
+    struct watch_log *log = ctx;
+    ck_assert_uint_eq(addr, 0x84);
+    ck_assert_int_lt(log->hits, 4);
+    ck_assert_int_eq(pru_host_read32(log->c, AM335X + 0x84, &log->seen[log->hits]), 0);
+    log->hits++;
+}
+
+START_TEST(store_watch_sees_covering_stores) {
+    uint32_t w[16];
+    unsigned n = 0;
+    w[n++] = ldi(R(1), 0x80);
+    w[n++] = ldi(R(2), 0x1111);
+    w[n++] = burst(PRU_OP_SBBO, 4 * 2, 1, 4, 4); /* 0x84: hit */
+    w[n++] = ldi(R(3), 0x2222);
+    w[n++] = burst(PRU_OP_SBBO, 4 * 2, 1, 0, 8); /* 0x80..0x87: hit, 0x2222 */
+    w[n++] = burst(PRU_OP_SBBO, 4 * 2, 1, 8, 4); /* 0x88: no hit */
+    w[n++] = burst(PRU_OP_SBBO, 4 * 2, 1, 0, 4); /* 0x80: no hit */
+    w[n++] = ldi(R(3), 0x3333);
+    w[n++] = burst(PRU_OP_SBBO, 4 * 3, 1, 3, 2); /* 0x83..0x84: hit */
+    w[n++] = halt();
+    struct pru_core *c = core_with(PRU_SOC_AM335X, w, n);
+    struct watch_log log = {c, 0, {0}};
+    pru_set_store_watch(c, 0x84, on_watch, &log);
+    ck_assert_int_eq(pru_run(c, 1000), PRU_STOP_HALT);
+    ck_assert_int_eq(log.hits, 3);
+    ck_assert_uint_eq(log.seen[0], 0x1111);
+    ck_assert_uint_eq(log.seen[1], 0x2222);
+    ck_assert_uint_eq(log.seen[2], 0x2233); /* byte 0x84 := 0x33 */
+    pru_set_store_watch(c, 0, NULL, NULL);
+    pru_core_free(c);
+}
+END_TEST
+
 /* Load 4 bytes from a local address; returns the stop reason. */
 static enum pru_stop load_from(enum pru_soc soc, uint32_t addr, uint32_t *val) {
     uint32_t w[8];
@@ -454,6 +496,7 @@ Suite *sys_suite(void) {
     tcase_add_test(t, r31_event_to_host_interrupt);
     tcase_add_test(t, run_until_time_and_cycle);
     tcase_add_test(t, pin_poll_fast_forward);
+    tcase_add_test(t, store_watch_sees_covering_stores);
     suite_add_tcase(s, t);
     return s;
 }

@@ -265,6 +265,28 @@ START_TEST(open_line_reads_high) {
 }
 END_TEST
 
+/* The usable-rate verdict follows the bandwidth model: 10 MHz clocks pass
+ * 10 m and 40 m but not 65 m or 100 m; 1 MHz passes 100 m. */
+START_TEST(usable_rate_follows_cable_length) {
+    line_params p;
+    line_params_default(&p);
+    const sim_ps half_10mhz = 50 * SIM_PS_PER_NS, half_1mhz = 500 * SIM_PS_PER_NS;
+    p.length_m = 10;
+    ck_assert_int_eq(line_usable(&p, half_10mhz), 1);
+    p.length_m = 40;
+    ck_assert_int_eq(line_usable(&p, half_10mhz), 1);
+    p.length_m = 65;
+    ck_assert_int_eq(line_usable(&p, half_10mhz), 0);
+    p.length_m = 100;
+    ck_assert_int_eq(line_usable(&p, half_10mhz), 0);
+    ck_assert_int_eq(line_usable(&p, half_1mhz), 1);
+    /* noise does not enter the verdict */
+    p.jitter_rms_ps = 5000;
+    p.glitch_rate_hz = 1e6;
+    ck_assert_int_eq(line_usable(&p, half_1mhz), 1);
+}
+END_TEST
+
 int main(void) {
     Suite *s = suite_create("line");
     TCase *tc = tcase_create("line");
@@ -279,6 +301,7 @@ int main(void) {
     tcase_add_test(tc, glitches_are_counted_and_bounded);
     tcase_add_test(tc, disconnect_stuck_low_then_reconnect);
     tcase_add_test(tc, open_line_reads_high);
+    tcase_add_test(tc, usable_rate_follows_cable_length);
     suite_add_tcase(s, tc);
     SRunner *sr = srunner_create(s);
     srunner_run_all(sr, CK_NORMAL);
