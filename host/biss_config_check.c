@@ -14,7 +14,6 @@ void biss_config_default(struct biss_config *c) {
         .trigger = BISS_TRIGGER_FREERUN,
         .iep_period_ns = 0,
         .proc_limit = 1000,
-        .cdm = 0,
     };
 }
 
@@ -103,9 +102,6 @@ int biss_config_check(const struct biss_config *c) {
     }
     if (c->proc_limit > 0xffff) {
         return BISS_E_PROC_LIMIT;
-    }
-    if (c->cdm > 1) {
-        return BISS_E_CDM;
     }
     for (unsigned i = 0; i < c->nslaves; i++) {
         rc = check_slave(&c->slave[i]);

@@ -31,7 +31,6 @@ void biss_config_encode(const struct biss_config *c, struct biss_shm_config *out
     out->trigger = (uint8_t)c->trigger;
     out->iep_period = c->trigger == BISS_TRIGGER_IEP ? c->iep_period_ns / 5 : 0;
     out->proc_limit = (uint16_t)c->proc_limit;
-    out->cdm = (uint8_t)c->cdm;
     for (unsigned i = 0; i < c->nslaves && i < BISS_MAX_SLAVES; i++) {
         encode_slave(&c->slave[i], &out->slave[i]);
     }
@@ -49,7 +48,6 @@ int biss_config_decode(const struct biss_shm_config *in, struct biss_config *c) 
     c->trigger = (enum biss_trigger)in->trigger;
     c->iep_period_ns = in->iep_period * 5u;
     c->proc_limit = in->proc_limit;
-    c->cdm = in->cdm;
     for (unsigned i = 0; i < c->nslaves; i++) {
         const struct biss_shm_slave_cfg *s = &in->slave[i];
         struct biss_slave_config *o = &c->slave[i];

@@ -37,7 +37,6 @@ static const struct err_text errors[] = {
     {BISS_E_TRIGGER, "unknown trigger mode (host, iep, free)"},
     {BISS_E_IEP_PERIOD, "IEP period not a multiple of 5 ns or shorter than one frame"},
     {BISS_E_PROC_LIMIT, "processing-time limit above 65535 MA clocks"},
-    {BISS_E_CDM, "CDM must be 0 or 1"},
     {BISS_E_TIMEOUT, "timed out waiting for the firmware"},
     {BISS_E_NOT_RUNNING, "firmware not running (no magic in data RAM)"},
     {BISS_E_NO_SAMPLE, "no frame published yet"},

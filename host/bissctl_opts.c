@@ -30,7 +30,6 @@ static const char common_help[] =
     "  --trigger MODE     host, iep, free (default free)\n"
     "  --iep-period-ns NS frame period for --trigger iep\n"
     "  --proc-limit N     longest processing time accepted, MA clocks (default 1000)\n"
-    "  --cdm 0|1          CDM bit sent after each frame\n"
     "  --no-configure     leave the configuration as it is\n";
 
 static const char *command_help(const char *command) {
@@ -164,7 +163,6 @@ enum {
     OPT_TRIGGER,
     OPT_IEP,
     OPT_PROC,
-    OPT_CDM,
     OPT_NOCONF,
     OPT_MS,
 };
@@ -184,7 +182,6 @@ static const struct option long_opts[] = {
     {"trigger", required_argument, NULL, OPT_TRIGGER},
     {"iep-period-ns", required_argument, NULL, OPT_IEP},
     {"proc-limit", required_argument, NULL, OPT_PROC},
-    {"cdm", required_argument, NULL, OPT_CDM},
     {"no-configure", no_argument, NULL, OPT_NOCONF},
     {"ms", required_argument, NULL, OPT_MS},
     {"help", no_argument, NULL, 'h'},
@@ -250,7 +247,7 @@ static int take_target_opt(int c, const char *arg, struct bissctl_opts *o) {
 /* Configuration options */
 static int take_config_opt(int c, const char *arg, struct bissctl_opts *o) {
     struct biss_config *cfg = &o->cfg;
-    if (c < OPT_FREQ || c > OPT_CDM) {
+    if (c < OPT_FREQ || c > OPT_PROC) {
         return 1; /* not a configuration option */
     }
     o->config_given = true;
@@ -280,8 +277,6 @@ static int take_config_opt(int c, const char *arg, struct bissctl_opts *o) {
         return parse_u32(arg, &cfg->proc_limit)
                    ? usage_error("--proc-limit '%s': expected MA clocks", arg)
                    : 0;
-    case OPT_CDM:
-        return parse_unsigned(arg, &cfg->cdm) ? usage_error("--cdm '%s': expected 0 or 1", arg) : 0;
     }
     return 1;
 }

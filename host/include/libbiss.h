@@ -32,29 +32,29 @@ extern "C" {
 /* ---- errors ------------------------------------------------------------ */
 enum biss_error {
     BISS_OK = 0,
-    BISS_E_INVAL = -1,           /* NULL pointer or argument out of its domain */
-    BISS_E_NOMEM = -2,           /* out of memory */
-    BISS_E_TARGET = -3,          /* unknown target name */
-    BISS_E_FIRMWARE_IO = -4,     /* firmware image cannot be read */
-    BISS_E_FIRMWARE_SIZE = -5,   /* image empty, not whole words, or larger than IRAM */
-    BISS_E_DEVMEM = -6,          /* devmem cannot be opened or mapped */
-    BISS_E_PROFILE = -7,         /* unknown emulator profile */
-    BISS_E_SCENARIO = -8,        /* scenario file unreadable or invalid */
-    BISS_E_EMU = -9,             /* emulator bench cannot be built */
-    BISS_E_RATE_RANGE = -10,     /* MA rate gives H outside 10..1024 (97.7 kHz..10 MHz) */
-    BISS_E_RATE_INEXACT = -11,   /* 100 MHz / f is not a whole number of PRU cycles */
-    BISS_E_RATE_SHIFT = -12,     /* H has no exact 8x shift clock (H = a*b, 2 <= a,b <= 32) */
-    BISS_E_NSLAVES = -13,        /* slave count outside 1..8 */
-    BISS_E_DATA_BITS = -14,      /* data bits outside 1..64 */
-    BISS_E_CRC_BITS = -15,       /* CRC bits outside 0..16 */
-    BISS_E_CRC_POLY = -16,       /* polynomial degree is not crc_bits (or a poly without CRC) */
-    BISS_E_CRC_START = -17,      /* CRC start value wider than crc_bits */
-    BISS_E_EW = -18,             /* nE/nW position outside the data word */
-    BISS_E_POS_BITS = -19,       /* position bits do not fit above nE/nW */
-    BISS_E_TRIGGER = -20,        /* unknown trigger mode */
-    BISS_E_IEP_PERIOD = -21,     /* IEP period not a multiple of 5 ns or shorter than a frame */
-    BISS_E_PROC_LIMIT = -22,     /* processing-time limit above 65535 MA clocks */
-    BISS_E_CDM = -23,            /* CDM not 0 or 1 */
+    BISS_E_INVAL = -1,         /* NULL pointer or argument out of its domain */
+    BISS_E_NOMEM = -2,         /* out of memory */
+    BISS_E_TARGET = -3,        /* unknown target name */
+    BISS_E_FIRMWARE_IO = -4,   /* firmware image cannot be read */
+    BISS_E_FIRMWARE_SIZE = -5, /* image empty, not whole words, or larger than IRAM */
+    BISS_E_DEVMEM = -6,        /* devmem cannot be opened or mapped */
+    BISS_E_PROFILE = -7,       /* unknown emulator profile */
+    BISS_E_SCENARIO = -8,      /* scenario file unreadable or invalid */
+    BISS_E_EMU = -9,           /* emulator bench cannot be built */
+    BISS_E_RATE_RANGE = -10,   /* MA rate gives H outside 10..1024 (97.7 kHz..10 MHz) */
+    BISS_E_RATE_INEXACT = -11, /* 100 MHz / f is not a whole number of PRU cycles */
+    BISS_E_RATE_SHIFT = -12,   /* H has no exact 8x shift clock (H = a*b, 2 <= a,b <= 32) */
+    BISS_E_NSLAVES = -13,      /* slave count outside 1..8 */
+    BISS_E_DATA_BITS = -14,    /* data bits outside 1..64 */
+    BISS_E_CRC_BITS = -15,     /* CRC bits outside 0..16 */
+    BISS_E_CRC_POLY = -16,     /* polynomial degree is not crc_bits (or a poly without CRC) */
+    BISS_E_CRC_START = -17,    /* CRC start value wider than crc_bits */
+    BISS_E_EW = -18,           /* nE/nW position outside the data word */
+    BISS_E_POS_BITS = -19,     /* position bits do not fit above nE/nW */
+    BISS_E_TRIGGER = -20,      /* unknown trigger mode */
+    BISS_E_IEP_PERIOD = -21,   /* IEP period not a multiple of 5 ns or shorter than a frame */
+    BISS_E_PROC_LIMIT = -22,   /* processing-time limit above 65535 MA clocks */
+    /* -23: unused */
     BISS_E_TIMEOUT = -24,        /* the firmware did not answer in time */
     BISS_E_NOT_RUNNING = -25,    /* firmware not running (no magic in data RAM) */
     BISS_E_NO_SAMPLE = -26,      /* nothing published yet */
@@ -157,10 +157,9 @@ struct biss_config {
     enum biss_trigger trigger;
     uint32_t iep_period_ns; /* BISS_TRIGGER_IEP: frame period, multiple of 5 ns */
     uint32_t proc_limit;    /* longest processing time (busy) accepted, MA clocks, <= 65535 */
-    unsigned cdm;           /* CDM bit sent after each frame: 0 or 1 */
 };
 
-/* 1 MHz, no slaves, free-run, processing-time limit 1000 clocks, CDM 0. */
+/* 1 MHz, no slaves, free-run, processing-time limit 1000 clocks. */
 void biss_config_default(struct biss_config *c);
 
 /* The MA half period H in PRU cycles for freq_hz, or a BISS_E_RATE_* error. */

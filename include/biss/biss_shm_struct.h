@@ -37,7 +37,7 @@ struct biss_shm_config {
     uint8_t trigger;
     uint32_t iep_period;
     uint16_t proc_limit;
-    uint8_t cdm;
+    uint8_t reserved1;
     uint8_t reserved0;
     struct biss_shm_slave_cfg slave[BISS_MAX_SLAVES];
 };
@@ -55,6 +55,17 @@ struct biss_shm_status {
     uint32_t no_slave;
     uint32_t proc_errors;
     uint32_t training;
+};
+
+/* Control communication: the host's command words and the firmware's
+ * answer (BISS_CD_*, BISS_ST_CD_*). */
+struct biss_shm_cd {
+    uint32_t cmd;        /* host */
+    uint16_t steps;      /* host */
+    uint16_t wait_limit; /* host */
+    uint32_t seq;        /* firmware: CD_CMD of the program last ended */
+    uint16_t status;     /* firmware: BISS_CDST_* */
+    uint16_t steps_done; /* firmware */
 };
 
 /* One slave's result (BISS_R_S_*). */
@@ -78,21 +89,31 @@ struct biss_shm_result {
     uint8_t sample_point;
     uint8_t lag_periods;
     uint16_t half;
-    uint8_t reserved[BISS_R_SLAVE0 - BISS_R_HALF - 2];
+    uint8_t cdm;
+    uint8_t reserved[BISS_R_SLAVE0 - BISS_R_CDM - 1];
     struct biss_shm_slave_result slave[BISS_MAX_SLAVES];
 };
 
+#define BISS_CD_PROG_BYTES (BISS_CD_MAX_STEPS / 4) /* 2 bits a step */
+#define BISS_CD_RESP_BYTES (BISS_CD_MAX_STEPS / 8) /* 1 bit a step */
+
 /* The whole shared area, from data RAM address 0 to the end of the
- * firmware-private area. */
+ * control-communication answers. */
 struct biss_shm {
     struct biss_shm_config cfg;
     uint32_t cmd_trigger;
     uint8_t gap_cmd[BISS_ST_MAGIC - BISS_CMD_TRIGGER - 4];
     struct biss_shm_status st;
-    uint8_t gap_st[BISS_RES0 - BISS_ST_END];
+    uint8_t gap_st[BISS_CD_CMD - BISS_ST_END];
+    struct biss_shm_cd cd;
+    uint8_t gap_cd[BISS_RES0 - BISS_ST_CD_END];
     struct biss_shm_result res[2];
     uint8_t gap_res[BISS_PRIV - BISS_RES0 - 2 * BISS_RES_SIZE];
     uint8_t priv[BISS_PRIV_END - BISS_PRIV];
+    uint8_t gap_priv[BISS_CD_PROG - BISS_PRIV_END];
+    uint8_t cd_prog[BISS_CD_PROG_BYTES];
+    uint8_t gap_prog[BISS_CD_RESP - BISS_CD_PROG - BISS_CD_PROG_BYTES];
+    uint8_t cd_resp[BISS_CD_RESP_BYTES];
 };
 
 /* ---- compile-time agreement with biss_shm.h ---------------------------- */
@@ -114,7 +135,7 @@ BISS_SHM_AT(cfg.nslaves, BISS_CFG_NSLAVES);
 BISS_SHM_AT(cfg.trigger, BISS_CFG_TRIGGER);
 BISS_SHM_AT(cfg.iep_period, BISS_CFG_IEP_PERIOD);
 BISS_SHM_AT(cfg.proc_limit, BISS_CFG_PROC_LIMIT);
-BISS_SHM_AT(cfg.cdm, BISS_CFG_CDM);
+BISS_SHM_AT(cfg.reserved1, BISS_CFG_RESERVED1);
 BISS_SHM_AT(cfg.reserved0, BISS_CFG_RESERVED0);
 BISS_SHM_AT(cfg.slave, BISS_CFG_SLAVE0);
 BISS_SHM_AT(cfg.slave[1], BISS_CFG_SLAVE0 + BISS_CFG_SLAVE_SIZE);
@@ -143,6 +164,14 @@ BISS_SHM_AT(st.proc_errors, BISS_ST_PROC_ERRORS);
 BISS_SHM_AT(st.training, BISS_ST_TRAINING);
 _Static_assert(BISS_ST_MAGIC + sizeof(struct biss_shm_status) == BISS_ST_END, "status size");
 
+BISS_SHM_AT(cd.cmd, BISS_CD_CMD);
+BISS_SHM_AT(cd.steps, BISS_CD_STEPS);
+BISS_SHM_AT(cd.wait_limit, BISS_CD_WAIT_LIMIT);
+BISS_SHM_AT(cd.seq, BISS_ST_CD_SEQ);
+BISS_SHM_AT(cd.status, BISS_ST_CD_STATUS);
+BISS_SHM_AT(cd.steps_done, BISS_ST_CD_STATUS + 2);
+_Static_assert(BISS_CD_CMD + sizeof(struct biss_shm_cd) == BISS_ST_CD_END, "cd area size");
+
 BISS_SHM_AT(res[0], BISS_RES0);
 BISS_SHM_AT(res[1], BISS_RES0 + BISS_RES_SIZE);
 _Static_assert(sizeof(struct biss_shm_result) == BISS_RES_SIZE, "result buffer size");
@@ -157,6 +186,7 @@ BISS_SHM_RESULT_AT(delay_avg, BISS_R_DELAY_AVG);
 BISS_SHM_RESULT_AT(sample_point, BISS_R_SAMPLE_POINT);
 BISS_SHM_RESULT_AT(lag_periods, BISS_R_LAG_PERIODS);
 BISS_SHM_RESULT_AT(half, BISS_R_HALF);
+BISS_SHM_RESULT_AT(cdm, BISS_R_CDM);
 BISS_SHM_RESULT_AT(slave, BISS_R_SLAVE0);
 BISS_SHM_RESULT_AT(slave[1], BISS_R_SLAVE0 + BISS_R_SLAVE_SIZE);
 _Static_assert(sizeof(struct biss_shm_slave_result) == BISS_R_SLAVE_SIZE, "slave result size");
@@ -166,7 +196,10 @@ BISS_SHM_SLAVE_RESULT_AT(crc_reg, BISS_R_S_CRC_REG);
 BISS_SHM_SLAVE_RESULT_AT(status, BISS_R_S_STATUS);
 
 BISS_SHM_AT(priv, BISS_PRIV);
-_Static_assert(sizeof(struct biss_shm) == BISS_PRIV_END, "shared area size");
+BISS_SHM_AT(cd_prog, BISS_CD_PROG);
+BISS_SHM_AT(cd_resp, BISS_CD_RESP);
+_Static_assert(BISS_CD_PROG + BISS_CD_PROG_BYTES <= BISS_CD_RESP, "CD program fits its area");
+_Static_assert(sizeof(struct biss_shm) == BISS_CD_RESP + BISS_CD_RESP_BYTES, "shared area size");
 _Static_assert(sizeof(struct biss_shm) <= BISS_DRAM_BYTES, "shared area fits the data RAM");
 
 #undef BISS_SHM_AT

@@ -187,7 +187,7 @@ START_TEST(test_ew_and_position) {
 }
 END_TEST
 
-START_TEST(test_trigger_proc_cdm) {
+START_TEST(test_trigger_proc) {
     struct biss_config c = good();
     c.trigger = (enum biss_trigger)3;
     ck_assert_int_eq(biss_config_check(&c), BISS_E_TRIGGER);
@@ -196,9 +196,6 @@ START_TEST(test_trigger_proc_cdm) {
     ck_assert_int_eq(biss_config_check(&c), BISS_OK);
     c.proc_limit = 65536;
     ck_assert_int_eq(biss_config_check(&c), BISS_E_PROC_LIMIT);
-    c = good();
-    c.cdm = 2;
-    ck_assert_int_eq(biss_config_check(&c), BISS_E_CDM);
 }
 END_TEST
 
@@ -259,7 +256,7 @@ int main(void) {
     tcase_add_test(tc, test_data_bits);
     tcase_add_test(tc, test_crc);
     tcase_add_test(tc, test_ew_and_position);
-    tcase_add_test(tc, test_trigger_proc_cdm);
+    tcase_add_test(tc, test_trigger_proc);
     tcase_add_test(tc, test_iep_period);
     tcase_add_test(tc, test_names_and_texts);
     suite_add_tcase(s, tc);

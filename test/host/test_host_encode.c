@@ -38,7 +38,6 @@ START_TEST(test_config_bytes) {
     c.trigger = BISS_TRIGGER_IEP;
     c.iep_period_ns = 100000;
     c.proc_limit = 300;
-    c.cdm = 1;
     /* CRC6 0x43 with nE/nW under a 4-bit life counter */
     c.slave[0] = (struct biss_slave_config){.data_bits = 30,
                                             .crc_bits = 6,
@@ -61,7 +60,7 @@ START_TEST(test_config_bytes) {
     ck_assert_uint_eq(u8(b, BISS_CFG_TRIGGER), BISS_TRIG_IEP);
     ck_assert_uint_eq(u32(b, BISS_CFG_IEP_PERIOD), 20000); /* 5 ns counts */
     ck_assert_uint_eq(u16(b, BISS_CFG_PROC_LIMIT), 300);
-    ck_assert_uint_eq(u8(b, BISS_CFG_CDM), 1);
+    ck_assert_uint_eq(u8(b, BISS_CFG_RESERVED1), 0);
     ck_assert_uint_eq(u8(b, BISS_CFG_RESERVED0), 0);
     unsigned s0 = BISS_CFG_SLAVE0, s1 = BISS_CFG_SLAVE0 + BISS_CFG_SLAVE_SIZE;
     ck_assert_uint_eq(u8(b, s0 + BISS_CFG_S_DATA_BITS), 30);
