@@ -3,7 +3,7 @@
  * emulator. */
 #include "biss_priv.h"
 
-#include "biss/biss_shm.h"
+#include "biss/biss_shm_struct.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -30,10 +30,11 @@ static int load_iram(biss_t *h) {
     return rc;
 }
 
-/* Config, commands, status and results start from zero: data RAM keeps
- * whatever an earlier run left (a stale magic or ack would lie). */
+/* Config, commands, status, results and the control-communication area
+ * start from zero: data RAM keeps whatever an earlier run left (a stale
+ * magic or ack would lie). */
 static int clear_shared(biss_t *h) {
-    static const uint8_t zeros[BISS_PRIV_END] = {0};
+    static const uint8_t zeros[sizeof(struct biss_shm)] = {0};
     return biss_dram_write(h, 0, zeros, sizeof zeros);
 }
 

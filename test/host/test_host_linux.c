@@ -103,6 +103,8 @@ START_TEST(test_image_lands_in_iram) {
     file_write32(AM335X_BASE + IRAM0 + 4000, 0xdeadbeef);
     file_write32(AM335X_BASE + BISS_ST_MAGIC, BISS_MAGIC);
     file_write32(AM335X_BASE + BISS_ST_CFG_ACK, 1);
+    file_write32(AM335X_BASE + BISS_ST_CD_SEQ, 1);
+    file_write32(AM335X_BASE + BISS_CD_RESP, 0xffffffff);
     struct biss_open_params p = params(BISS_TARGET_AM335X);
     biss_t *h;
     ck_assert_int_eq(biss_open(&p, &h), BISS_OK);
@@ -116,6 +118,8 @@ START_TEST(test_image_lands_in_iram) {
     /* status cleared: a stale magic or ack cannot fool the handshake */
     ck_assert_uint_eq(file32(AM335X_BASE + BISS_ST_MAGIC), 0);
     ck_assert_uint_eq(file32(AM335X_BASE + BISS_ST_CFG_ACK), 0);
+    ck_assert_uint_eq(file32(AM335X_BASE + BISS_ST_CD_SEQ), 0);
+    ck_assert_uint_eq(file32(AM335X_BASE + BISS_CD_RESP), 0);
     /* CONTROL: ENABLE with SOFT_RST_N low (reset to PC 0 and run) */
     ck_assert_uint_eq(file32(AM335X_BASE + CTRL0), 0x2);
     ck_assert_str_eq(biss_firmware_path(h), image);
