@@ -95,6 +95,10 @@ int biss_config_decode(const struct biss_shm_config *in, struct biss_config *c);
 /* Maps ST_CFG_ERROR to BISS_E_FW_* (0 stays 0). */
 int biss_fw_cfg_error(uint32_t cfgerr);
 
+/* Control communication: CRC4 (x^4 + x + 1, start 0) of the n low bits
+ * of value, MSB first, inverted as sent on the line (biss_cd.c). */
+uint8_t biss_crc4_sent(uint32_t value, unsigned n);
+
 /* Sample decoding (biss_sample_decode.c). */
 struct biss_shm_result;
 void biss_sample_decode(const struct biss_config *c, bool configured, uint32_t seq,

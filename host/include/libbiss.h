@@ -65,6 +65,11 @@ enum biss_error {
     BISS_E_IO = -31,             /* backend access outside the mapped window */
     BISS_E_NOT_EMU = -32,        /* emulator-only call on a hardware handle */
     BISS_E_STOPPED = -33,        /* the PRU is stopped */
+    BISS_E_CD_BUSY = -34,        /* a control-communication program is still running */
+    BISS_E_CD_WAIT = -35,        /* the slave did not answer (no S): wrong ID, or no registers */
+    BISS_E_CD_FRAME = -36,       /* a frame failed while the program ran */
+    BISS_E_CD_STEPS = -37,       /* program length out of range (1..1024) */
+    BISS_E_CD_ANSWER = -38,      /* the slave's answer does not check (echo or CRC4) */
     /* the firmware refused the configuration (ST_CFG_ERROR = BISS_CFGERR_*) */
     BISS_E_FW_NSLAVES = -41,
     BISS_E_FW_HALF = -42,
@@ -235,6 +240,28 @@ int biss_read_sample(biss_t *h, struct biss_sample *s);
 int biss_wait_sample(biss_t *h, uint32_t after_frame, unsigned timeout_ms, struct biss_sample *s);
 /* The line delay of the latest frame that measured one. */
 int biss_line_delay(biss_t *h, struct biss_line_delay *d);
+
+/* ---- control communication (CDM/CDS, one bit per frame) ---------------- */
+/* A raw program for the firmware: ops[i] is one of 0 (send CDM 0), 1 (send
+ * CDM 1), 2 (wait: CDM 0 until a frame's CDS is 1, then the next step in
+ * that frame), 3 (end); at most 1024 steps. resp (at least (n + 7) / 8
+ * bytes) gets bit i (byte i / 8, bit i % 8) = the CDS that answered step
+ * i. A WAIT gives up after wait_limit frames. The firmware first sends 14
+ * frames with CDM 0. In host-trigger mode the call triggers the frames it
+ * needs. Blocks at most timeout_ms (emulator: simulated). */
+#define BISS_CD_OP_0    0
+#define BISS_CD_OP_1    1
+#define BISS_CD_OP_WAIT 2
+#define BISS_CD_OP_END  3
+int biss_cd_run(biss_t *h, const uint8_t *ops, unsigned n, unsigned wait_limit, unsigned timeout_ms,
+                uint8_t *resp);
+
+/* Register access of the slave with control-frame ID id (0..7), addresses
+ * 0x00..0x7F; n > 1 is a sequential access of n consecutive addresses (at
+ * most 64). Each byte's answer is checked (echo, CRC4). */
+#define BISS_REG_MAX_SEQ 64
+int biss_reg_read(biss_t *h, unsigned id, uint8_t addr, uint8_t *buf, unsigned n);
+int biss_reg_write(biss_t *h, unsigned id, uint8_t addr, const uint8_t *buf, unsigned n);
 
 /* ---- status and statistics --------------------------------------------- */
 enum biss_fw_state {
