@@ -8,7 +8,12 @@
  *
  * The slave echoes R and W, then answers each data bit (read: the
  * register, MSB first; write: the echo) and the inverted CRC4 of its
- * byte. All bits MSB first. */
+ * byte. All bits MSB first.
+ *
+ * A slave takes a new control frame only after 14 CDM = 0 following the
+ * end of the last one. The program ends with those 14 zeros itself: the
+ * firmware counts zeros sent inside a program towards its own 14-zero
+ * rule and would start the next program too early. */
 #include "biss_priv.h"
 
 #include "biss/biss_shm.h"
@@ -18,6 +23,8 @@
 
 /* Frames a register may take to answer (late S) before the firmware gives up. */
 #define REG_WAIT_LIMIT 64
+/* CDM = 0 frames a slave needs between two control frames. */
+#define REG_IDLE_ZEROS 14
 
 struct reg_prog {
     uint8_t ops[BISS_CD_MAX_STEPS];
@@ -54,6 +61,9 @@ static void build(struct reg_prog *p, unsigned id, uint8_t addr, bool write, con
         emit_bits(p, write ? biss_crc4_sent(data[k], 8) : 0, 4);
         emit(p, 0);         /* P */
         emit(p, k + 1 < n); /* S: sequential access goes on */
+    }
+    for (unsigned i = 0; i < REG_IDLE_ZEROS; i++) {
+        emit(p, 0);
     }
     emit(p, BISS_CD_OP_END);
 }

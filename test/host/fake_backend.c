@@ -85,6 +85,10 @@ static int fake_advance(void *ctx, unsigned us) {
         fake_set_dram32(f, BISS_ST_CFG_ERROR, f->cfg_error);
         fake_set_dram32(f, BISS_ST_CFG_ACK, fake_dram32(f, BISS_CFG_SEQ));
     }
+    if (f->cd_answers && fake_dram32(f, BISS_CD_CMD) != fake_dram32(f, BISS_ST_CD_SEQ)) {
+        fake_set_dram32(f, BISS_ST_CD_STATUS, f->cd_status);
+        fake_set_dram32(f, BISS_ST_CD_SEQ, fake_dram32(f, BISS_CD_CMD));
+    }
     for (unsigned i = 0; i < us * f->steps_per_us; i++) {
         firmware_step(f);
     }

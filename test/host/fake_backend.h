@@ -18,6 +18,8 @@ struct fake {
     bool acks;             /* answers CFG_SEQ in advance() */
     uint32_t cfg_error;    /* with this ST_CFG_ERROR */
     bool publishing;       /* publishes frames */
+    bool cd_answers;       /* ends a CD program in advance() ... */
+    uint16_t cd_status;    /* ... with this ST_CD_STATUS */
     unsigned max_steps;    /* before each host access: 0..max_steps words */
     bool fixed_steps;      /* ... or exactly max_steps */
     unsigned steps_per_us; /* in advance() */

@@ -1,0 +1,239 @@
+/* libbiss control communication: CRC4, the CDM program as bytes in data
+ * RAM, the firmware's verdicts, and register access end to end on the
+ * emulator against the slave model's register file. */
+#include "biss_crc.h"
+#include "biss_ctrl.h"
+#include "fake_backend.h"
+
+#include "bench.h"
+#include "biss/biss_shm.h"
+
+#include <check.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Cross-check with the slave model's own CRC4 (written from the protocol,
+ * not from this library). */
+START_TEST(test_crc4_matches_the_slave_model) {
+    for (uint32_t v = 0; v < (1u << 11); v++) {
+        ck_assert_uint_eq(biss_crc4_sent(v, 11), biss_ctrl_crc4_sent(v, 11));
+    }
+    for (uint32_t v = 0; v < 256; v++) {
+        ck_assert_uint_eq(biss_crc4_sent(v, 8), biss_ctrl_crc4_sent(v, 8));
+    }
+}
+END_TEST
+
+static struct biss_config one_slave(enum biss_trigger t) {
+    struct biss_config c;
+    biss_config_default(&c);
+    c.freq_hz = 10000000;
+    c.nslaves = 1;
+    c.trigger = t;
+    c.slave[0] = (struct biss_slave_config){
+        .data_bits = 14, .crc_bits = 6, .crc_poly = 0x43, .has_ew = true};
+    return c;
+}
+
+static biss_t *configured_fake(struct fake **f) {
+    biss_t *h = fake_handle(f);
+    (*f)->acks = true;
+    fake_set_dram32(*f, BISS_ST_MAGIC, BISS_MAGIC);
+    struct biss_config c = one_slave(BISS_TRIGGER_FREERUN);
+    ck_assert_int_eq(biss_configure(h, &c), BISS_OK);
+    return h;
+}
+
+static unsigned prog_step(const struct fake *f, unsigned i) {
+    return (f->mem[BISS_CD_PROG + i / 4] >> (2 * (i % 4))) & 3u;
+}
+
+/* A register read of ID 2, address 0x45, as the program's 2-bit steps. */
+START_TEST(test_register_read_program) {
+    struct fake *f;
+    biss_t *h = configured_fake(&f);
+    uint8_t b;
+    /* nobody runs it: the program stays in data RAM to look at */
+    ck_assert_int_eq(biss_reg_read(h, 2, 0x45, &b, 1), BISS_E_TIMEOUT);
+    uint32_t header = 1u << 10 | 2u << 7 | 0x45;
+    unsigned want[64], n = 0;
+    want[n++] = 1; /* S */
+    for (int i = 10; i >= 0; i--) {
+        want[n++] = (header >> i) & 1u;
+    }
+    uint8_t crc = biss_ctrl_crc4_sent(header, 11);
+    for (int i = 3; i >= 0; i--) {
+        want[n++] = (crc >> i) & 1u;
+    }
+    want[n++] = 1; /* R */
+    want[n++] = 0; /* W */
+    want[n++] = 1; /* S */
+    want[n++] = BISS_CDOP_WAIT;
+    for (int i = 0; i < 12; i++) {
+        want[n++] = 0; /* data and CRC slots */
+    }
+    want[n++] = 0; /* P */
+    want[n++] = 0; /* no next address */
+    for (int i = 0; i < 14; i++) {
+        want[n++] = 0; /* idle before the next control frame */
+    }
+    want[n++] = BISS_CDOP_END;
+    for (unsigned i = 0; i < n; i++) {
+        ck_assert_msg(prog_step(f, i) == want[i], "step %u: %u, want %u", i, prog_step(f, i),
+                      want[i]);
+    }
+    ck_assert_uint_eq(fake_dram32(f, BISS_CD_STEPS) & 0xffff, n);
+    ck_assert_uint_gt(fake_dram32(f, BISS_CD_STEPS) >> 16, 0); /* wait limit */
+    ck_assert_uint_eq(fake_dram32(f, BISS_CD_CMD), 1);
+    /* still running (no echo): a second program must wait */
+    ck_assert_int_eq(biss_reg_read(h, 2, 0x45, &b, 1), BISS_E_CD_BUSY);
+    biss_close(h);
+}
+END_TEST
+
+START_TEST(test_firmware_verdicts) {
+    struct fake *f;
+    biss_t *h = configured_fake(&f);
+    f->cd_answers = true;
+    uint8_t ops[3] = {BISS_CD_OP_1, BISS_CD_OP_0, BISS_CD_OP_END}, resp[1];
+    f->cd_status = BISS_CDST_DONE;
+    f->mem[BISS_CD_RESP] = 0x5;
+    ck_assert_int_eq(biss_cd_run(h, ops, 3, 10, 5, resp), BISS_OK);
+    ck_assert_uint_eq(resp[0], 0x5);
+    f->cd_status = BISS_CDST_ERR_WAIT;
+    ck_assert_int_eq(biss_cd_run(h, ops, 3, 10, 5, resp), BISS_E_CD_WAIT);
+    f->cd_status = BISS_CDST_ERR_FRAME;
+    ck_assert_int_eq(biss_cd_run(h, ops, 3, 10, 5, resp), BISS_E_CD_FRAME);
+    f->cd_status = BISS_CDST_ERR_STEPS;
+    ck_assert_int_eq(biss_cd_run(h, ops, 3, 10, 5, resp), BISS_E_CD_STEPS);
+    ck_assert_uint_eq(fake_dram32(f, BISS_CD_CMD), 4);
+    /* refused before the firmware sees them */
+    ck_assert_int_eq(biss_cd_run(h, ops, 0, 10, 5, resp), BISS_E_CD_STEPS);
+    ck_assert_int_eq(biss_cd_run(h, ops, BISS_CD_MAX_STEPS + 1, 10, 5, resp), BISS_E_CD_STEPS);
+    ck_assert_int_eq(biss_cd_run(h, ops, 3, 0, 5, resp), BISS_E_INVAL);
+    uint8_t bad[1] = {4};
+    ck_assert_int_eq(biss_cd_run(h, bad, 1, 10, 5, resp), BISS_E_INVAL);
+    uint8_t b[2];
+    ck_assert_int_eq(biss_reg_read(h, 8, 0x10, b, 1), BISS_E_INVAL);
+    ck_assert_int_eq(biss_reg_read(h, 0, 0x80, b, 1), BISS_E_INVAL);
+    ck_assert_int_eq(biss_reg_read(h, 0, 0x7f, b, 2), BISS_E_INVAL);
+    ck_assert_int_eq(biss_reg_read(h, 0, 0x10, b, 0), BISS_E_INVAL);
+    ck_assert_int_eq(biss_reg_read(h, 0, 0x00, b, BISS_REG_MAX_SEQ + 1), BISS_E_INVAL);
+    ck_assert_uint_eq(fake_dram32(f, BISS_CD_CMD), 4);
+    /* a done program whose answers are all zero: no R/W echo */
+    f->cd_status = BISS_CDST_DONE;
+    memset(f->mem + BISS_CD_RESP, 0, BISS_CD_MAX_STEPS / 8);
+    ck_assert_int_eq(biss_reg_read(h, 0, 0x10, b, 1), BISS_E_CD_ANSWER);
+    biss_close(h);
+}
+END_TEST
+
+START_TEST(test_needs_a_configuration) {
+    struct fake *f;
+    biss_t *h = fake_handle(&f);
+    uint8_t ops[1] = {BISS_CD_OP_END}, resp[1];
+    ck_assert_int_eq(biss_cd_run(h, ops, 1, 10, 5, resp), BISS_E_NOT_CONFIGURED);
+    biss_close(h);
+}
+END_TEST
+
+/* ---- end to end on the emulator ----------------------------------------- */
+static biss_t *emu(enum biss_trigger t) {
+    struct biss_open_params p;
+    biss_open_params_default(&p);
+    p.profile = "tidep0022-test-encoder";
+    p.cable_m = 2.0;
+    biss_t *h;
+    ck_assert_int_eq(biss_open(&p, &h), BISS_OK);
+    struct biss_config c;
+    biss_config_default(&c);
+    c.freq_hz = 10000000;
+    c.trigger = t;
+    ck_assert_int_eq(biss_config_from_emu(h, &c), BISS_OK);
+    ck_assert_int_eq(biss_configure(h, &c), BISS_OK);
+    return h;
+}
+
+static regfile *slave_regs(biss_t *h) {
+    return bench_link(biss_emu_bench(h))->biss.ctrl[0].regs;
+}
+
+START_TEST(test_emu_register_read) {
+    biss_t *h = emu(BISS_TRIGGER_FREERUN);
+    uint8_t b[8];
+    int rc = biss_reg_read(h, 0, 0x78, b, 8);
+    ck_assert_msg(rc == BISS_OK, "%s", biss_strerror(rc));
+    for (unsigned i = 0; i < 8; i++) {
+        ck_assert_uint_eq(b[i], regfile_read(slave_regs(h), 0x78 + i));
+    }
+    ck_assert_uint_eq(b[0], 0x46); /* the TIDEP0022 encoder's 0x78 */
+    /* position frames kept coming meanwhile, all right */
+    struct biss_stats st;
+    ck_assert_int_eq(biss_get_stats(h, &st), BISS_OK);
+    ck_assert_uint_eq(st.crc_errors, 0);
+    ck_assert_uint_gt(st.frames, 14 + 8 * 15);
+    biss_close(h);
+}
+END_TEST
+
+START_TEST(test_emu_register_write) {
+    biss_t *h = emu(BISS_TRIGGER_FREERUN);
+    uint8_t w[2] = {0x5a, 0xc3}, r[2] = {0};
+    int rc = biss_reg_write(h, 0, 0x60, w, 2);
+    ck_assert_msg(rc == BISS_OK, "%s", biss_strerror(rc));
+    ck_assert_uint_eq(regfile_read(slave_regs(h), 0x60), 0x5a);
+    ck_assert_uint_eq(regfile_read(slave_regs(h), 0x61), 0xc3);
+    ck_assert_int_eq(biss_reg_read(h, 0, 0x60, r, 2), BISS_OK);
+    ck_assert_mem_eq(r, w, 2);
+    /* back to back, as fast as the slave takes them */
+    for (uint8_t v = 0; v < 4; v++) {
+        ck_assert_int_eq(biss_reg_write(h, 0, 0x62, &v, 1), BISS_OK);
+        ck_assert_int_eq(biss_reg_read(h, 0, 0x62, r, 1), BISS_OK);
+        ck_assert_uint_eq(r[0], v);
+    }
+    biss_close(h);
+}
+END_TEST
+
+/* No slave with ID 5: nobody answers S, the firmware's WAIT gives up. */
+START_TEST(test_emu_wrong_id) {
+    biss_t *h = emu(BISS_TRIGGER_FREERUN);
+    uint8_t b;
+    ck_assert_int_eq(biss_reg_read(h, 5, 0x78, &b, 1), BISS_E_CD_WAIT);
+    /* and the next access works */
+    ck_assert_int_eq(biss_reg_read(h, 0, 0x78, &b, 1), BISS_OK);
+    ck_assert_uint_eq(b, 0x46);
+    biss_close(h);
+}
+END_TEST
+
+/* Host-trigger mode: the call triggers the frames the program needs. */
+START_TEST(test_emu_register_read_host_trigger) {
+    biss_t *h = emu(BISS_TRIGGER_HOST);
+    uint8_t b;
+    int rc = biss_reg_read(h, 0, 0x79, &b, 1);
+    ck_assert_msg(rc == BISS_OK, "%s", biss_strerror(rc));
+    ck_assert_uint_eq(b, regfile_read(slave_regs(h), 0x79));
+    biss_close(h);
+}
+END_TEST
+
+int main(void) {
+    Suite *s = suite_create("host_cd");
+    TCase *tc = tcase_create("cd");
+    tcase_set_timeout(tc, 120);
+    tcase_add_test(tc, test_crc4_matches_the_slave_model);
+    tcase_add_test(tc, test_register_read_program);
+    tcase_add_test(tc, test_firmware_verdicts);
+    tcase_add_test(tc, test_needs_a_configuration);
+    tcase_add_test(tc, test_emu_register_read);
+    tcase_add_test(tc, test_emu_register_write);
+    tcase_add_test(tc, test_emu_wrong_id);
+    tcase_add_test(tc, test_emu_register_read_host_trigger);
+    suite_add_tcase(s, tc);
+    SRunner *r = srunner_create(s);
+    srunner_run_all(r, CK_NORMAL);
+    int failed = srunner_ntests_failed(r);
+    srunner_free(r);
+    return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+}
