@@ -12,10 +12,11 @@ struct command {
 };
 
 static const struct command table[] = {
-    {"info", bissctl_info, true},       {"read", bissctl_read, true},
-    {"stats", bissctl_stats, true},     {"run", bissctl_run, true},
-    {"trigger", bissctl_trigger, true}, {"start", bissctl_start, true},
-    {"stop", bissctl_stop, false},
+    {"info", bissctl_info, true},           {"read", bissctl_read, true},
+    {"stats", bissctl_stats, true},         {"run", bissctl_run, true},
+    {"trigger", bissctl_trigger, true},     {"start", bissctl_start, true},
+    {"stop", bissctl_stop, false},          {"reg-read", bissctl_reg_read, true},
+    {"reg-write", bissctl_reg_write, true},
 };
 
 static const struct command *find(const char *name) {

@@ -17,6 +17,9 @@ struct bissctl_opts {
     unsigned count;      /* read -n */
     unsigned run_ms;     /* run --ms */
     unsigned timeout_ms; /* per sample */
+    unsigned id;         /* reg-read/reg-write: control-frame ID */
+    char **args;         /* words after the command */
+    int nargs;
     bool help;
 };
 
@@ -29,6 +32,8 @@ struct bissctl_opts {
  * BISSCTL_USAGE, else BISSCTL_OK. */
 int bissctl_parse(int argc, char **argv, struct bissctl_opts *o);
 void bissctl_usage(const char *command);
+/* A number 0..max (decimal, 0x hex); 0 or -1. */
+int bissctl_parse_byte(const char *s, unsigned max, uint8_t *v);
 
 /* Subcommands: each returns an exit code and reports its own errors. */
 int bissctl_info(biss_t *h, const struct bissctl_opts *o);
@@ -38,6 +43,8 @@ int bissctl_run(biss_t *h, const struct bissctl_opts *o);
 int bissctl_trigger(biss_t *h, const struct bissctl_opts *o);
 int bissctl_start(biss_t *h, const struct bissctl_opts *o);
 int bissctl_stop(biss_t *h, const struct bissctl_opts *o);
+int bissctl_reg_read(biss_t *h, const struct bissctl_opts *o);
+int bissctl_reg_write(biss_t *h, const struct bissctl_opts *o);
 
 /* "bissctl: <what>: <strerror>" on stderr; returns BISSCTL_FAIL. */
 int bissctl_fail(const char *what, int err);

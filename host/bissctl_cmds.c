@@ -144,3 +144,52 @@ int bissctl_stop(biss_t *h, const struct bissctl_opts *o) {
     int rc = biss_stop(h);
     return rc ? bissctl_fail("stop", rc) : BISSCTL_OK;
 }
+
+static int parse_addr(const struct bissctl_opts *o, uint8_t *addr) {
+    if (o->nargs < 1 || bissctl_parse_byte(o->args[0], 0x7f, addr)) {
+        fprintf(stderr, "bissctl: %s needs a register address 0x00..0x7f\n", o->command);
+        return BISSCTL_USAGE;
+    }
+    return BISSCTL_OK;
+}
+
+int bissctl_reg_read(biss_t *h, const struct bissctl_opts *o) {
+    uint8_t addr, buf[BISS_REG_MAX_SEQ];
+    int rc = parse_addr(o, &addr);
+    if (rc) {
+        return rc;
+    }
+    if (o->nargs > 1) {
+        fprintf(stderr, "bissctl: reg-read takes one address (-n N for more registers)\n");
+        return BISSCTL_USAGE;
+    }
+    rc = biss_reg_read(h, o->id, addr, buf, o->count);
+    if (rc) {
+        return bissctl_fail("reg-read", rc);
+    }
+    for (unsigned i = 0; i < o->count; i++) {
+        printf("id=%u addr=0x%02x value=0x%02x\n", o->id, addr + i, buf[i]);
+    }
+    return BISSCTL_OK;
+}
+
+int bissctl_reg_write(biss_t *h, const struct bissctl_opts *o) {
+    uint8_t addr, buf[BISS_REG_MAX_SEQ];
+    int rc = parse_addr(o, &addr);
+    if (rc) {
+        return rc;
+    }
+    unsigned n = (unsigned)o->nargs - 1;
+    if (n < 1 || n > BISS_REG_MAX_SEQ) {
+        fprintf(stderr, "bissctl: reg-write needs 1..64 bytes after the address\n");
+        return BISSCTL_USAGE;
+    }
+    for (unsigned i = 0; i < n; i++) {
+        if (bissctl_parse_byte(o->args[1 + i], 0xff, &buf[i])) {
+            fprintf(stderr, "bissctl: reg-write: '%s' is not a byte\n", o->args[1 + i]);
+            return BISSCTL_USAGE;
+        }
+    }
+    rc = biss_reg_write(h, o->id, addr, buf, n);
+    return rc ? bissctl_fail("reg-write", rc) : BISSCTL_OK;
+}

@@ -7,7 +7,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const char *const commands[] = {"info", "read", "stats", "run", "trigger", "start", "stop"};
+static const char *const commands[] = {"info",  "read", "stats",    "run",      "trigger",
+                                       "start", "stop", "reg-read", "reg-write"};
 
 static const char common_help[] =
     "Target:\n"
@@ -63,6 +64,16 @@ static const char *command_help(const char *command) {
     if (strcmp(command, "stop") == 0) {
         return "bissctl [options] stop\n  Halts the PRU.\n";
     }
+    if (strcmp(command, "reg-read") == 0) {
+        return "bissctl [options] reg-read [--id ID] ADDR [-n N]\n"
+               "  Reads N registers (default 1, at most 64) from ADDR (0x00..0x7F) of the\n"
+               "  slave with control-frame ID (default 0), through CDM/CDS.\n";
+    }
+    if (strcmp(command, "reg-write") == 0) {
+        return "bissctl [options] reg-write [--id ID] ADDR BYTE...\n"
+               "  Writes the bytes to ADDR, ADDR+1, ... of the slave with control-frame\n"
+               "  ID (default 0). A read-only register ignores it: read it back.\n";
+    }
     return NULL;
 }
 
@@ -74,7 +85,8 @@ void bissctl_usage(const char *command) {
     }
     printf("usage: bissctl [options] COMMAND [command options]\n"
            "BiSS-C master on a PRU (emulated or real) through libbiss.\n"
-           "Commands: info, read [-n N], stats, run [--ms MS], trigger, start, stop\n"
+           "Commands: info, read [-n N], stats, run [--ms MS], trigger, start, stop,\n"
+           "          reg-read ADDR [-n N], reg-write ADDR BYTE...\n"
            "          (bissctl COMMAND --help for each)\n\n%s",
            common_help);
 }
@@ -115,6 +127,15 @@ static int parse_unsigned(const char *s, unsigned *v) {
         return -1;
     }
     *v = x;
+    return 0;
+}
+
+int bissctl_parse_byte(const char *s, unsigned max, uint8_t *v) {
+    unsigned long long x;
+    if (parse_ulong(s, max, &x)) {
+        return -1;
+    }
+    *v = (uint8_t)x;
     return 0;
 }
 
@@ -165,6 +186,7 @@ enum {
     OPT_PROC,
     OPT_NOCONF,
     OPT_MS,
+    OPT_ID,
 };
 
 static const struct option long_opts[] = {
@@ -184,6 +206,7 @@ static const struct option long_opts[] = {
     {"proc-limit", required_argument, NULL, OPT_PROC},
     {"no-configure", no_argument, NULL, OPT_NOCONF},
     {"ms", required_argument, NULL, OPT_MS},
+    {"id", required_argument, NULL, OPT_ID},
     {"help", no_argument, NULL, 'h'},
     {NULL, 0, NULL, 0},
 };
@@ -290,6 +313,11 @@ static int take_command_opt(int c, const char *arg, struct bissctl_opts *o) {
         return 0;
     case OPT_MS:
         return parse_unsigned(arg, &o->run_ms) ? usage_error("--ms '%s': expected ms", arg) : 0;
+    case OPT_ID:
+        if (parse_unsigned(arg, &o->id) || o->id > 7) {
+            return usage_error("--id '%s': expected 0..7", arg);
+        }
+        return 0;
     case OPT_NOCONF:
         o->no_configure = true;
         return 0;
@@ -343,7 +371,10 @@ int bissctl_parse(int argc, char **argv, struct bissctl_opts *o) {
             return usage_error("unknown command '%s'", o->command);
         }
     }
-    if (optind < argc) {
+    o->args = argv + optind;
+    o->nargs = argc - optind;
+    bool takes_args = o->command && strncmp(o->command, "reg-", 4) == 0;
+    if (o->nargs > 0 && !takes_args) {
         return usage_error("unexpected argument '%s'", argv[optind]);
     }
     if (!o->command && !o->help) {

@@ -26,7 +26,8 @@ def run(*args, env=None):
 # help: the overview and each command's own, exit 0
 r = run("--help")
 check(r.returncode == 0 and "info" in r.stdout and "--target" in r.stdout, "--help: %r" % r.stdout)
-for cmd in ["info", "read", "stats", "run", "trigger", "start", "stop"]:
+for cmd in ["info", "read", "stats", "run", "trigger", "start", "stop", "reg-read",
+            "reg-write"]:
     r = run(cmd, "--help")
     check(r.returncode == 0 and r.stdout.startswith("bissctl [options] " + cmd),
           "%s --help: %r" % (cmd, r.stdout[:80]))
@@ -71,6 +72,19 @@ check(r.returncode == 0 and m and int(m.group(1)) > 50 and m.group(2) == "0", "r
 r = run("--freq", "10000000", "info")
 check(r.returncode == 0 and "firmware_running=yes" in r.stdout and "cfg_error=0" in r.stdout,
       "info: %r" % r.stdout)
+
+# registers through control communication (the TIDEP0022 encoder's 0x78..)
+r = run("--freq", "10000000", "reg-read", "0x78", "-n", "2")
+check(r.returncode == 0 and r.stdout.splitlines() ==
+      ["id=0 addr=0x78 value=0x46", "id=0 addr=0x79 value=0x3a"], "reg-read: %r %r" % (r.stdout, r.stderr))
+r = run("--freq", "10000000", "reg-write", "0x60", "0x12", "0x34")
+check(r.returncode == 0 and r.stdout == "", "reg-write: %r %r" % (r.stdout, r.stderr))
+r = run("--freq", "10000000", "--id", "3", "reg-read", "0x78")
+check(r.returncode == 1 and "did not answer" in r.stderr, "reg-read wrong id: %r" % r.stderr)
+for args in [["reg-read"], ["reg-read", "0x80"], ["reg-write", "0x60"], ["reg-write", "0x60", "0x100"],
+             ["--id", "8", "reg-read", "0"], ["info", "0x33"]]:
+    r = run(*args)
+    check(r.returncode == 2, "%r: rc %d %r" % (args, r.returncode, r.stderr))
 
 # the library's errors, in its words, exit 1
 for args, text in [(["--freq", "3000000", "read"], "not 100 MHz divided by a whole number"),
