@@ -5,8 +5,9 @@
  * A store watch on the firmware's publication counter (BISS_ST_SEQ) fires
  * at the instant of each publication; the frame it publishes is the one the
  * master began last (bench_current_frame), whose record the slave model
- * holds (closed, or still in its timeout). Every slave's data word must
- * equal the word the model put on the wire, and its CRC must be right.
+ * holds (closed, or still in its timeout). A data word the firmware passes
+ * as right (its CRC checked) must equal the word the model put on the wire;
+ * one whose CRC failed counts as a CRC error, not a mismatch.
  */
 #ifndef FW_CHECK_H
 #define FW_CHECK_H
@@ -20,7 +21,7 @@ struct fw_check {
     uint64_t publications; /* every publication */
     uint64_t frames;       /* valid frames, compared */
     uint64_t crc_errors;   /* frames flagged with a CRC error */
-    uint64_t mismatches;   /* valid frames with a data word unlike what was sent */
+    uint64_t mismatches;   /* frames with a word passed as right (CRC) but unlike what was sent */
     uint64_t no_slave, proc_errors, training;
     uint64_t unmatched; /* valid frames whose slave record was gone */
     uint32_t last_flags;
