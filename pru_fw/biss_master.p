@@ -569,25 +569,26 @@ FE_SLAVE:
     lbbo    r7, r11, 0, 16                  // mask lo, mask hi, residue, [w, n, ew, flags]
     and     r4, r4, r7
     and     r5, r5, r8
-    ldi     r0, 0                           // slave status
+    ldi     r0, 0                           // slave status in r0.b0 (r0.w2: calls)
     qbeq    FE_CRC_OK, r10.b0, 0            // no CRC
     qbeq    FE_CRC_OK, r6, r9
     or      r12, r12, BISS_RF_CRC_ERROR
     qba     FE_CRC_DONE
 FE_CRC_OK:
-    or      r0, r0, BISS_RS_CRC_OK
+    or      r0.b0, r0.b0, BISS_RS_CRC_OK
 FE_CRC_DONE:
     qbbc    FE_EW_DONE, r10.b3, 0           // no nE/nW
     mov     r6, r10.b2                      // nW's bit
-    jal     r0.w0, DATA_BIT
+    jal     r0.w2, DATA_BIT
     qbbc    FE_NW_LOW, r7, 0
-    or      r0, r0, BISS_RS_NW
+    or      r0.b0, r0.b0, BISS_RS_NW
 FE_NW_LOW:
     add     r6, r10.b2, 1                   // nE's bit
-    jal     r0.w0, DATA_BIT
+    jal     r0.w2, DATA_BIT
     qbbc    FE_EW_DONE, r7, 0
-    or      r0, r0, BISS_RS_NE
+    or      r0.b0, r0.b0, BISS_RS_NE
 FE_EW_DONE:
+    and     r0, r0, 0xff
     sbbo    r4, r3, BISS_R_S_DATA_LO, 8
     sbbo    r0, r3, BISS_R_S_STATUS, 4
     add     r3, r3, BISS_R_SLAVE_SIZE
@@ -642,10 +643,10 @@ FE_NO_SMA:
 DATA_BIT:
     qble    DATA_BIT_HI, r6, 32             // 32 <= bit
     lsr     r7, r4, r6
-    jmp     r0.w0
+    jmp     r0.w2
 DATA_BIT_HI:
     lsr     r7, r5, r6                      // the shift uses bit & 31
-    jmp     r0.w0
+    jmp     r0.w2
 
 // History r4.w0, r4.w2, r5.w0 and its sum + 2 (rounding) to P_HIST/P_HSUM.
 HIST_SAVE:

@@ -28,7 +28,8 @@ struct bench {
     int64_t prev_t;
     int64_t frame_start_t;
     bool have_frame_start;
-    int64_t pending_half; /* a half period ending in a falling edge, 0 none */
+    int64_t pending_half;   /* a half period ending in a falling edge, 0 none */
+    uint64_t current_frame; /* slave frame number of the last frame started, or UINT64_MAX */
 
     struct vcd_writer vcd;
     bool vcd_on;
@@ -57,11 +58,7 @@ static uint64_t slave_frames(const struct bench *b) {
     return link_frames(&b->link);
 }
 
-static bool slave_in_frame(const struct bench *b, uint64_t *frame) {
-    *frame = slave_frames(b);
-    if (*frame >= b->frame_limit) {
-        return false;
-    }
+static bool slave_active(const struct bench *b) {
     if (b->link.sc.protocol == SCENARIO_SSI) {
         return b->link.ssi.active;
     }
@@ -122,9 +119,13 @@ static void account_edge(struct bench *b, uint64_t frame, int64_t t, int level) 
 
 static void ma_reached_slave(struct bench *b, int level) {
     uint64_t idx = b->st.ma_edges_slave++;
-    uint64_t frame;
     bool timed = idx < b->st.ma_edges_master && b->st.ma_edges_master - idx <= MA_RING;
-    if (timed && slave_in_frame(b, &frame)) {
+    bool active = slave_active(b);
+    uint64_t frame = slave_frames(b); /* the open frame's number, when active */
+    if (active) {
+        b->current_frame = frame;
+    }
+    if (timed && active && frame < b->frame_limit) {
         account_edge(b, frame, b->ma_times[idx % MA_RING], level);
     } else {
         b->prev_frame = 0;
@@ -236,6 +237,7 @@ struct bench *bench_new(const struct bench_config *cfg, char *err, size_t errlen
     }
     b->cfg = *cfg;
     b->frame_limit = UINT64_MAX;
+    b->current_frame = UINT64_MAX;
     if (link_init(&b->link, &cfg->link, err, errlen) != 0) {
         free(b);
         return NULL;
@@ -342,6 +344,25 @@ const struct bench_stats *bench_stats(struct bench *b) {
     uint64_t n = slave_frames(b);
     b->st.frames = n < b->frame_limit ? n : b->frame_limit;
     return &b->st;
+}
+
+void bench_set_frame_limit(struct bench *b, uint64_t frames) {
+    b->frame_limit = frames;
+}
+
+void bench_reset_stats(struct bench *b) {
+    uint64_t edges_master = b->st.ma_edges_master, edges_slave = b->st.ma_edges_slave;
+    memset(&b->st, 0, sizeof(b->st));
+    b->st.ma_edges_master = edges_master; /* they index the edge ring */
+    b->st.ma_edges_slave = edges_slave;
+    /* a frame under way goes on being measured, but its start was before
+     * the reset: the first period is measured from the next frame's start */
+    b->have_frame_start = false;
+    b->pending_half = 0;
+}
+
+uint64_t bench_current_frame(const struct bench *b) {
+    return b->current_frame;
 }
 
 const struct bench_config *bench_config(const struct bench *b) {

@@ -80,7 +80,17 @@ enum pru_stop bench_run_frames(struct bench *b, uint64_t frames, int64_t max_ps,
                                void *ctx);
 
 const struct bench_stats *bench_stats(struct bench *b);
+
+/* Starts the measurements afresh (e.g. after a start-up phase). */
+void bench_reset_stats(struct bench *b);
+
+/* Frames the slave numbers `frames` and later are not measured. */
+void bench_set_frame_limit(struct bench *b, uint64_t frames);
 const struct bench_config *bench_config(const struct bench *b);
+
+/* The slave's number for the frame the master began last (its first MA
+ * edge has reached the slave), or UINT64_MAX before the first. */
+uint64_t bench_current_frame(const struct bench *b);
 
 /* Round trip the master sees from an MA edge to the SL answer, per the
  * models: MA line + slave output delay + SL line, nominal (no jitter). */

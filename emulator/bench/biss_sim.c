@@ -1,18 +1,22 @@
 /*
- * biss-sim - runs a PRU image against a simulated cable and encoder(s).
+ * biss-sim - runs the BiSS-C master firmware (or any PRU image) on the
+ * emulated PRU against a simulated cable and encoder(s).
  *
- * The image is a raw IRAM image (.bin) or pasm-dialect source (.p, .asm)
- * assembled in process with the rate and frame parameters as -D defines.
- * Without --image it runs the bench's clocking image, which drives BiSS
- * frames at the requested rate without decoding them.
+ * By default it runs the firmware built in this tree, configures it for the
+ * chosen encoder profile as a host would, and checks every frame it
+ * publishes against what the encoder models sent. With --image it runs any
+ * image as is: a raw IRAM image (.bin) or pasm-dialect source assembled in
+ * process with the rate and frame parameters as -D defines (the bench's
+ * clocking image test/bench/clock_frames.p takes them).
  */
 #include "bench.h"
-#include "frame_labels.h"
-#include "pruasm.h"
+#include "biss/biss_shm.h"
+#include "fw_check.h"
+#include "fw_config.h"
 #include "scenario_json.h"
-#include "svg_scope.h"
+#include "sim_image.h"
+#include "sim_report.h"
 
-#include <cjson/cJSON.h>
 #include <errno.h>
 #include <math.h>
 #include <stdarg.h>
@@ -22,8 +26,8 @@
 #include <time.h>
 #include <unistd.h>
 
-#ifndef BISS_SIM_CLOCK_IMAGE
-#define BISS_SIM_CLOCK_IMAGE "clock_frames.p"
+#ifndef BISS_SIM_FIRMWARE
+#define BISS_SIM_FIRMWARE "biss_master.bin"
 #endif
 
 struct options {
@@ -34,7 +38,8 @@ struct options {
     uint64_t frames;
     uint64_t seed;
     int seed_set;
-    const char *image;
+    const char *image;    /* any image, run as is */
+    const char *firmware; /* the BiSS master firmware (default: this tree's) */
     const char *soc;
     const char *vcd;
     const char *svg;
@@ -54,8 +59,10 @@ static void usage(FILE *f) {
                "  --cable-m M        cable length in metres, both directions (default: profile's)\n"
                "  --frames N         frames to run (default 100)\n"
                "  --seed S           random seed for noise and jitter (default: scenario's)\n"
-               "  --image FILE       PRU image: raw .bin, or .p source assembled here\n"
-               "                     (default: the bench's clocking image)\n"
+               "  --firmware FILE    BiSS master firmware, .bin or .p (default: this build's);\n"
+               "                     configured for the profile and checked frame by frame\n"
+               "  --image FILE       any PRU image (.bin, or .p assembled with -D HALF, CLOCKS,\n"
+               "                     GAP, FRAMES, MA_BIT), run as is: nothing is decoded\n"
                "  --soc NAME         am335x (default), am437x-icss0, am437x-icss1\n"
                "  --vcd FILE         write MA/SL at master and slave as VCD (scope bench)\n"
                "  --svg FILE         write a scope view of one frame as SVG\n"
@@ -105,9 +112,9 @@ static void list_profiles(void) {
 }
 
 /* Options that take a value. */
-static const char *const valued[] = {"--profile", "--scenario", "--freq",      "--cable-m",
-                                     "--frames",  "--seed",     "--image",     "--soc",
-                                     "--vcd",     "--svg",      "--svg-frame", "--max-ms"};
+static const char *const valued[] = {
+    "--profile", "--scenario", "--freq", "--cable-m",   "--frames", "--seed",    "--image",
+    "--soc",     "--vcd",      "--svg",  "--svg-frame", "--max-ms", "--firmware"};
 
 static int takes_value(const char *a) {
     for (size_t i = 0; i < sizeof(valued) / sizeof(valued[0]); i++) {
@@ -143,6 +150,8 @@ static int set_option(struct options *o, const char *a, const char *v) {
         o->seed_set = 1;
     } else if (!strcmp(a, "--image")) {
         o->image = v;
+    } else if (!strcmp(a, "--firmware")) {
+        o->firmware = v;
     } else if (!strcmp(a, "--soc")) {
         o->soc = v;
     } else if (!strcmp(a, "--vcd")) {
@@ -215,269 +224,63 @@ static int build_config(const struct options *o, struct bench_config *cfg) {
 /* MA half period in PRU cycles for the rate: 100 MHz / f, whole. */
 static int half_period_cycles(double freq_hz, unsigned *half) {
     double h = 100e6 / freq_hz;
-    if (fabs(h - round(h)) > 1e-9 || h < 5 || h > 258) {
+    if (fabs(h - round(h)) > 1e-9 || h < 5 || h > BISS_MAX_HALF) {
         return -1;
     }
     *half = (unsigned)round(h);
     return 0;
 }
 
-/* Clocks a frame needs at the master: to the ACK, the busy time, start,
- * CDS, every slave's bits, and the round trip in whole periods. */
-static unsigned frame_clocks(const struct bench_config *cfg, unsigned half, double round_trip_ps) {
-    const scenario *sc = &cfg->link;
-    double period_ps = 2.0 * half * 5000.0;
-    unsigned bits = 0;
-    if (sc->protocol == SCENARIO_SSI) {
-        bits = sc->ssi.bits + 1;
-    } else {
-        bits = 2 + 2 + sc->biss.busy_clocks + (unsigned)ceil((double)sc->biss.busy_ps / period_ps);
-        for (unsigned i = 0; i < sc->biss.n; i++) {
-            bits += biss_slave_cfg_bits(&sc->biss.s[i]);
-        }
-    }
-    return bits + (unsigned)ceil(round_trip_ps / period_ps) + 1;
-}
-
-/* Idle time after a frame: the slave's timeout and the round trip, with margin. */
-static unsigned frame_gap_cycles(const struct bench_config *cfg, unsigned half,
-                                 double round_trip_ps) {
-    const scenario *sc = &cfg->link;
-    double t_ps;
-    if (sc->protocol == SCENARIO_SSI) {
-        t_ps = (double)sc->ssi.monoflop_ps;
-    } else if (sc->biss.timeout_mode == BISS_TIMEOUT_FIXED) {
-        t_ps = (double)sc->biss.timeout_ps;
-    } else {
-        t_ps = sc->biss.adaptive_factor * 2.0 * half * 5000.0;
-        if (t_ps < (double)sc->biss.adaptive_min_ps) {
-            t_ps = (double)sc->biss.adaptive_min_ps;
-        }
-    }
-    unsigned gap = (unsigned)ceil((t_ps + 2 * round_trip_ps) / 5000.0) + 200;
-    return gap + (gap & 1); /* the image's wait loop takes 2 cycles a turn */
-}
-
-static int read_file(const char *path, uint8_t **buf, size_t *len) {
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        return -1;
-    }
-    size_t cap = 4096, n = 0;
-    uint8_t *b = malloc(cap);
-    size_t got;
-    while (b && (got = fread(b + n, 1, cap - n, f)) > 0) {
-        n += got;
-        if (n == cap) {
-            uint8_t *nb = cap < (1u << 20) ? realloc(b, cap * 2) : NULL;
-            if (!nb) {
-                free(b);
-                b = NULL;
-                break;
-            }
-            b = nb;
-            cap *= 2;
-        }
-    }
-    int bad = ferror(f) || !b;
-    fclose(f);
-    if (bad) {
-        free(b);
-        return -1;
-    }
-    *buf = b;
-    *len = n;
-    return 0;
-}
-
-static int ends_with(const char *s, const char *suffix) {
-    size_t n = strlen(s), m = strlen(suffix);
-    return n >= m && strcmp(s + n - m, suffix) == 0;
-}
-
-/* Loads the image into words: a .bin as is, source through pruasm. */
-static int load_image(const char *path, const struct bench_config *cfg, unsigned half,
-                      unsigned clocks, unsigned gap, uint64_t frames, struct pruasm_image *img) {
-    if (ends_with(path, ".bin")) {
-        uint8_t *buf;
-        size_t len;
-        if (read_file(path, &buf, &len) != 0) {
-            return die("cannot read image '%s'", path);
-        }
-        if (len == 0 || len % 4) {
-            free(buf);
-            return die("image '%s' is not a whole number of 32-bit words", path);
-        }
-        img->words = (uint32_t *)buf;
-        img->nwords = len / 4;
-        return 0;
-    }
-    char d[5][40];
-    snprintf(d[0], sizeof(d[0]), "HALF=%u", half);
-    snprintf(d[1], sizeof(d[1]), "CLOCKS=%u", clocks);
-    snprintf(d[2], sizeof(d[2]), "GAP=%u", gap);
-    snprintf(d[3], sizeof(d[3]), "FRAMES=%llu", (unsigned long long)(frames + 1));
-    snprintf(d[4], sizeof(d[4]), "MA_BIT=%u", cfg->ma_bit);
-    const char *defs[5] = {d[0], d[1], d[2], d[3], d[4]};
-    struct pruasm_options opt = {.core = 3, .defines = defs, .ndefines = 5};
-    struct pruasm_diag diag = {0};
-    if (pruasm_assemble_file(&opt, path, img, &diag) != 0) {
-        return die("%s", diag.first_error[0] ? diag.first_error : "assembly failed");
-    }
-    return 0;
-}
-
-static void progress(void *ctx, uint64_t done, uint64_t total) {
-    (void)ctx;
+static void progress(uint64_t done, uint64_t total) {
     fprintf(stderr, "\rbiss-sim: frame %llu/%llu", (unsigned long long)done,
             (unsigned long long)total);
     fflush(stderr);
-}
-
-static const char *stop_name(enum pru_stop why) {
-    switch (why) {
-    case PRU_STOP_LIMIT:
-        return "done";
-    case PRU_STOP_HALT:
-        return "halted";
-    case PRU_STOP_FAULT:
-        return "fault";
-    case PRU_STOP_DISABLED:
-        return "disabled";
-    case PRU_STOP_STEP:
-        return "step";
-    }
-    return "?";
-}
-
-/* The last frame the slave closed, per slave: what went over the wire. */
-static cJSON *slaves_json(struct bench *b) {
-    link_model *l = bench_link(b);
-    cJSON *arr = cJSON_CreateArray();
-    uint64_t n = link_frames(l);
-    if (n == 0) {
-        return arr;
-    }
-    if (l->sc.protocol == SCENARIO_SSI) {
-        const ssi_frame_record *r = ssi_slave_record(&l->ssi, n - 1);
-        cJSON *s = cJSON_CreateObject();
-        cJSON_AddNumberToObject(s, "position", r ? (double)r->position : 0);
-        cJSON_AddItemToArray(arr, s);
-        return arr;
-    }
-    const biss_frame_record *r = biss_slave_record(&l->biss, n - 1);
-    for (unsigned i = 0; r && i < l->sc.biss.n; i++) {
-        cJSON *s = cJSON_CreateObject();
-        cJSON_AddNumberToObject(s, "id", l->sc.biss.s[i].id);
-        cJSON_AddNumberToObject(s, "position", (double)r->s[i].position);
-        cJSON_AddNumberToObject(s, "nE", r->s[i].nE);
-        cJSON_AddNumberToObject(s, "nW", r->s[i].nW);
-        cJSON_AddNumberToObject(s, "crc", r->s[i].crc);
-        cJSON_AddItemToArray(arr, s);
-    }
-    return arr;
-}
-
-static void add_min_mean_max(cJSON *o, const char *key, double lo, double mean, double hi) {
-    cJSON *m = cJSON_AddObjectToObject(o, key);
-    cJSON_AddNumberToObject(m, "min", lo);
-    cJSON_AddNumberToObject(m, "mean", mean);
-    cJSON_AddNumberToObject(m, "max", hi);
-}
-
-static void print_json(struct bench *b, const struct options *o, enum pru_stop why, double secs) {
-    const struct bench_stats *st = bench_stats(b);
-    cJSON *j = cJSON_CreateObject();
-    cJSON_AddStringToObject(j, "profile", bench_link(b)->sc.profile);
-    cJSON_AddNumberToObject(j, "freq_hz", o->freq_hz);
-    cJSON_AddNumberToObject(j, "cable_m", bench_link(b)->sc.ma_line.length_m);
-    cJSON_AddStringToObject(j, "stop", stop_name(why));
-    cJSON_AddNumberToObject(j, "frames", (double)st->frames);
-    /* the clocking image decodes nothing: nothing to compare yet */
-    cJSON_AddNullToObject(j, "crc_errors");
-    cJSON_AddNullToObject(j, "position_mismatches");
-    cJSON_AddNumberToObject(j, "line_delay_ns", bench_round_trip_ps(b) / 1000.0);
-    double mean = st->periods ? st->period_sum_ps / (double)st->periods : 0;
-    add_min_mean_max(j, "frame_period_ns", (double)st->period_min_ps / 1000.0, mean / 1000.0,
-                     (double)st->period_max_ps / 1000.0);
-    cJSON *h = cJSON_AddObjectToObject(j, "ma_half_period_cycles");
-    cJSON_AddNumberToObject(h, "min", (double)st->half_min_ps / PRU_PS_PER_CYCLE);
-    cJSON_AddNumberToObject(h, "max", (double)st->half_max_ps / PRU_PS_PER_CYCLE);
-    cJSON_AddNumberToObject(j, "pru_cycles", (double)pru_cycles(bench_core(b)));
-    cJSON_AddNumberToObject(j, "host_seconds", secs);
-    cJSON_AddItemToObject(j, "slaves", slaves_json(b));
-    char *text = cJSON_Print(j);
-    printf("%s\n", text);
-    free(text);
-    cJSON_Delete(j);
-}
-
-/* What the encoder(s) sent in the last closed frame. */
-static void print_last_frame(link_model *l) {
-    uint64_t n = link_frames(l);
-    if (n == 0) {
-        return;
-    }
-    if (l->sc.protocol == SCENARIO_SSI) {
-        const ssi_frame_record *r = ssi_slave_record(&l->ssi, n - 1);
-        printf("last frame sent      position %llu\n", r ? (unsigned long long)r->position : 0);
-        return;
-    }
-    const biss_frame_record *r = biss_slave_record(&l->biss, n - 1);
-    for (unsigned i = 0; r && i < l->sc.biss.n; i++) {
-        printf("last frame sent      slave %u: position %llu (0x%llx) nE=%d nW=%d crc=0x%x\n", i,
-               (unsigned long long)r->s[i].position, (unsigned long long)r->s[i].position,
-               r->s[i].nE, r->s[i].nW, r->s[i].crc);
-    }
-}
-
-static void print_text(struct bench *b, const struct options *o, enum pru_stop why, double secs) {
-    const struct bench_stats *st = bench_stats(b);
-    link_model *l = bench_link(b);
-    printf("profile %s, %.3g MHz, %.1f m cable: %llu frames (%s)\n", l->sc.profile,
-           o->freq_hz / 1e6, l->sc.ma_line.length_m, (unsigned long long)st->frames,
-           stop_name(why));
-    printf("round trip (model)   %.1f ns\n", bench_round_trip_ps(b) / 1000.0);
-    printf("MA half period       %lld .. %lld cycles\n",
-           (long long)(st->half_min_ps / PRU_PS_PER_CYCLE),
-           (long long)(st->half_max_ps / PRU_PS_PER_CYCLE));
-    if (st->periods) {
-        printf("frame period         %.1f .. %.1f ns (mean %.1f)\n", st->period_min_ps / 1000.0,
-               st->period_max_ps / 1000.0, st->period_sum_ps / (double)st->periods / 1000.0);
-    }
-    printf("PRU cycles           %lld in %.3f s host time\n", (long long)pru_cycles(bench_core(b)),
-           secs);
-    print_last_frame(l);
-}
-
-static int write_svg(struct bench *b, const struct options *o) {
-    waveform *pins[4];
-    sim_ps t0, t1;
-    if (bench_capture_get(b, pins, &t0, &t1) != 0) {
-        return die("--svg: frame %llu was not captured whole (run more frames?)",
-                   (unsigned long long)o->svg_frame);
-    }
-    struct svg_label labels[FRAME_LABELS_MAX];
-    size_t n = frame_labels(bench_link(b), o->svg_frame, pins[2], labels, FRAME_LABELS_MAX);
-    static const char *const names[4] = {"MA master", "SL master", "MA slave", "SL slave"};
-    struct svg_trace tr[4];
-    for (int i = 0; i < 4; i++) {
-        tr[i] = (struct svg_trace){names[i], pins[i], i == 3 ? labels : NULL, i == 3 ? n : 0};
-    }
-    char title[160];
-    snprintf(title, sizeof(title), "%s, %.3g MHz, %.1f m: frame %llu", bench_link(b)->sc.profile,
-             o->freq_hz / 1e6, bench_link(b)->sc.ma_line.length_m,
-             (unsigned long long)o->svg_frame);
-    if (svg_scope_write(o->svg, title, tr, 4, t0, t1) != 0) {
-        return die("cannot write '%s'", o->svg);
-    }
-    return 0;
 }
 
 static double now_seconds(void) {
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
     return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
+}
+
+static uint32_t dram32(struct bench *b, uint32_t off) {
+    uint32_t v = 0;
+    pru_host_read(bench_core(b), pru_soc_base(bench_config(b)->soc) + off, &v, 4);
+    return v;
+}
+
+/* Runs until the firmware has published `frames` valid frames after its
+ * first one (whose training and start-up the statistics leave out). */
+static enum pru_stop run_firmware(struct bench *b, struct fw_check *fc, uint64_t frames,
+                                  int64_t max_ps, int show) {
+    const int64_t step = 100 * SIM_PS_PER_US;
+    int64_t end = pru_time_ps(bench_core(b)) + max_ps;
+    enum pru_stop why = PRU_STOP_LIMIT;
+    int started = 0;
+    while (pru_time_ps(bench_core(b)) < end) {
+        if (!started && fc->frames > 0) {
+            /* from here on, `frames` frames are checked and measured */
+            started = 1;
+            fw_check_restart(fc, frames);
+            bench_reset_stats(b);
+            bench_set_frame_limit(b, bench_current_frame(b) + frames + 1);
+        }
+        if (started && fc->frames >= frames) {
+            break;
+        }
+        if (dram32(b, BISS_ST_STATE) == BISS_STATE_CFG_ERROR) {
+            break;
+        }
+        int64_t next = pru_time_ps(bench_core(b)) + step;
+        why = bench_run_until(b, next < end ? next : end);
+        if (why != PRU_STOP_LIMIT) {
+            break;
+        }
+        if (show) {
+            progress(fc->frames, frames);
+        }
+    }
+    return why;
 }
 
 static int run(const struct options *o) {
@@ -487,25 +290,40 @@ static int run(const struct options *o) {
     }
     unsigned half;
     if (half_period_cycles(o->freq_hz, &half) != 0) {
-        return die("--freq %g: 100 MHz / f must be a whole number of PRU cycles, 5..258",
-                   o->freq_hz);
+        return die("--freq %g: 100 MHz / f must be a whole number of PRU cycles, 5..%d", o->freq_hz,
+                   BISS_MAX_HALF);
     }
-    char err[256];
+    char err[512];
     struct bench *b = bench_new(&cfg, err, sizeof(err));
     if (!b) {
         return die("%s", err);
     }
-    double rt = bench_round_trip_ps(b);
-    unsigned clocks = frame_clocks(&cfg, half, rt);
-    unsigned gap = frame_gap_cycles(&cfg, half, rt);
-    struct pruasm_image img = {0};
-    int rc = load_image(o->image ? o->image : BISS_SIM_CLOCK_IMAGE, &cfg, half, clocks, gap,
-                        o->frames, &img);
-    if (rc == 0 && bench_start_image(b, img.words, img.nwords * 4) != 0) {
-        rc = die("image of %zu words does not fit the IRAM of %s", img.nwords, o->soc);
+    int fw_mode = o->image == NULL;
+    struct sim_defines defs = {.n = 0};
+    if (!fw_mode) {
+        sim_clock_defines(b, half, o->frames, &defs);
     }
-    if (rc == 0 && o->vcd && bench_open_vcd(b, o->vcd) != 0) {
+    struct pruasm_image img;
+    int rc = 0;
+    const char *path = fw_mode ? (o->firmware ? o->firmware : BISS_SIM_FIRMWARE) : o->image;
+    if (sim_load_image(path, &defs, &img, err, sizeof(err)) != 0) {
+        bench_free(b);
+        return die("%s", err);
+    }
+    if (bench_start_image(b, img.words, img.nwords * 4) != 0) {
+        rc = die("image of %zu words does not fit the IRAM of %s", img.nwords, o->soc);
+    } else if (o->vcd && bench_open_vcd(b, o->vcd) != 0) {
         rc = die("cannot write '%s'", o->vcd);
+    }
+    struct fw_check fc;
+    if (rc == 0 && fw_mode) {
+        fw_check_attach(&fc, b);
+        struct fw_settings s = {.half = half, .trigger = BISS_TRIG_FREERUN, .proc_limit = 1000};
+        if (fw_config_write(b, &s) != 0) {
+            rc = die("profile '%s' is an SSI encoder: the firmware is a BiSS-C master "
+                     "(run an SSI image with --image)",
+                     cfg.link.profile);
+        }
     }
     if (rc != 0) {
         pruasm_image_free(&img);
@@ -516,14 +334,15 @@ static int run(const struct options *o) {
         bench_capture_frame(b, o->svg_frame);
     }
     /* ample time: every frame at its longest, twice, plus start-up */
-    double frame_ps = (2.0 * half * clocks + gap + 1000) * 5000.0;
-    int64_t max_ps = o->max_ms > 0
-                         ? (int64_t)(o->max_ms * 1e9)
-                         : (int64_t)(2 * frame_ps * (double)(o->frames + 2)) + SIM_PS_PER_MS;
+    int64_t max_ps =
+        o->max_ms > 0
+            ? (int64_t)(o->max_ms * 1e9)
+            : (int64_t)(2 * sim_clock_frame_ps(b, half) * (double)(o->frames + 4)) + SIM_PS_PER_MS;
     int tty = isatty(2);
     double t_start = now_seconds();
-    enum pru_stop why = bench_run_frames(b, o->frames, max_ps, tty ? progress : NULL, NULL);
-    double secs = now_seconds() - t_start;
+    enum pru_stop why = fw_mode ? run_firmware(b, &fc, o->frames, max_ps, tty)
+                                : bench_run_frames(b, o->frames, max_ps, NULL, NULL);
+    struct sim_result res = {b, fw_mode ? &fc : NULL, why, o->freq_hz, now_seconds() - t_start};
     if (tty) {
         fprintf(stderr, "\r%40s\r", "");
     }
@@ -531,16 +350,19 @@ static int run(const struct options *o) {
         pru_print_fault(bench_core(b), stderr);
         rc = 3;
     }
-    if (o->svg && write_svg(b, o) != 0) {
-        rc = 1;
+    if (fw_mode && dram32(b, BISS_ST_STATE) == BISS_STATE_CFG_ERROR) {
+        rc = die("the firmware refused the configuration (error %u)", dram32(b, BISS_ST_CFG_ERROR));
+    }
+    if (o->svg && sim_write_svg(&res, o->svg, o->svg_frame, err, sizeof(err)) != 0) {
+        rc = die("%s", err);
     }
     if (bench_close_vcd(b) != 0) {
         rc = die("error writing '%s'", o->vcd);
     }
     if (o->json) {
-        print_json(b, o, why, secs);
+        sim_print_json(&res);
     } else {
-        print_text(b, o, why, secs);
+        sim_print_text(&res);
         if (o->vcd) {
             printf("VCD written to %s\n", o->vcd);
         }
@@ -548,9 +370,10 @@ static int run(const struct options *o) {
             printf("SVG scope view written to %s\n", o->svg);
         }
     }
-    if (rc == 0 && bench_stats(b)->frames < o->frames) {
-        fprintf(stderr, "biss-sim: only %llu of %llu frames completed\n",
-                (unsigned long long)bench_stats(b)->frames, (unsigned long long)o->frames);
+    uint64_t done = fw_mode ? fc.frames : bench_stats(b)->frames;
+    if (rc == 0 && done < o->frames) {
+        fprintf(stderr, "biss-sim: only %llu of %llu frames completed\n", (unsigned long long)done,
+                (unsigned long long)o->frames);
         rc = 2;
     }
     pruasm_image_free(&img);

@@ -143,10 +143,14 @@
 // Line delay: DELAY_RAW and DELAY_AVG count bit/8 units (one unit = H/4
 // PRU cycles = one 8x sample) of the slave's ACK edge, from a fixed point
 // of the frame. The round trip from an MA rising edge at the master pin to
-// the slave's answer at the master pin (including the PRU input
-// synchronizer) is (DELAY - BISS_DELAY_ZERO_X2 / 2) bit/8, to within one
-// bit/8 (the phase of the 8x sample clock is not known to the firmware).
-#define BISS_DELAY_ZERO_X2      39      // 19.5 bit/8
+// the slave's answer at the master pin is
+//     (DELAY - BISS_DELAY_ZERO) * H / 4 - BISS_DELAY_ADJ_CYCLES  PRU cycles,
+// to within half a bit/8 (the phase of the 8x sample clock is not known to
+// the firmware). BISS_DELAY_ADJ_CYCLES is the firmware's read one cycle
+// after the period starts less the PRU's input synchronizer (2 cycles,
+// design/pru-facts.md section 3, an estimate).
+#define BISS_DELAY_ZERO         20
+#define BISS_DELAY_ADJ_CYCLES   1
 
 #define BISS_RF_VALID           0x01    // data of every slave received (CRC status per slave)
 #define BISS_RF_CRC_ERROR       0x02    // at least one slave's CRC failed

@@ -33,11 +33,16 @@ for p in ["tidep0022-test-encoder", "posital-kit", "hengstler-ad38", "generic", 
 
 KEYS = ["frames", "crc_errors", "position_mismatches", "line_delay_ns", "frame_period_ns",
         "ma_half_period_cycles", "pru_cycles", "host_seconds", "slaves"]
+CLOCK_IMAGE = os.path.join(os.path.dirname(__file__), "clock_frames.p")
 for profile in profiles:
+    # the BiSS-C master firmware reads BiSS encoders; an SSI encoder gets the
+    # bench's clocking image, which decodes nothing
+    firmware = profile != "ssi"
+    extra = [] if firmware else ["--image", CLOCK_IMAGE]
     for freq, cable in [(10e6, 2), (1e6, 100)]:
         vcd = os.path.join(tmp, "%s.vcd" % profile)
         r = run("--profile", profile, "--freq", str(int(freq)), "--cable-m", str(cable),
-                "--frames", "30", "--seed", "7", "--json", "--vcd", vcd)
+                "--frames", "30", "--seed", "7", "--json", "--vcd", vcd, *extra)
         name = "%s @ %g Hz, %d m" % (profile, freq, cable)
         check(r.returncode == 0, "%s: exit %d, %s" % (name, r.returncode, r.stderr))
         if r.returncode:
@@ -50,7 +55,19 @@ for profile in profiles:
         check(j["ma_half_period_cycles"] == {"min": half, "max": half},
               "%s: half period %s" % (name, j["ma_half_period_cycles"]))
         fp = j["frame_period_ns"]
-        check(fp["min"] == fp["max"] == fp["mean"] > 0, "%s: frame period %s" % (name, fp))
+        if firmware:
+            # free-running: the next frame starts when the slave's timeout ends,
+            # seen on the 8x samples (H/4 cycles apart) by a 4-cycle polling loop
+            jitter_ns = (100e6 / freq / 4 + 4) * 5
+            check(0 < fp["min"] <= fp["mean"] <= fp["max"] <= fp["min"] + jitter_ns,
+                  "%s: frame period %s" % (name, fp))
+            check(j["crc_errors"] == 0 and j["position_mismatches"] == 0,
+                  "%s: %s CRC errors, %s mismatches" % (name, j["crc_errors"], j["position_mismatches"]))
+            check(abs(j["firmware"]["line_delay_ns"] - j["line_delay_ns"]) <= 100e6 / freq / 4 * 5,
+                  "%s: firmware line delay %s vs %s" % (name, j["firmware"]["line_delay_ns"], j["line_delay_ns"]))
+        else:
+            check(fp["min"] == fp["max"] == fp["mean"] > 0, "%s: frame period %s" % (name, fp))
+            check(j["crc_errors"] is None, "%s: nothing decoded" % name)
         check(len(j["slaves"]) >= 1, "%s: slaves reported" % name)
         # line delay: at least the cable's propagation both ways
         check(j["line_delay_ns"] > 2 * 5 * cable, "%s: line delay %s" % (name, j["line_delay_ns"]))
@@ -62,6 +79,10 @@ for profile in profiles:
         falls = sum(1 for t, v in ma if v == "0")
         check(falls >= 30 * 10, "%s: MA clocked (%d falling edges)" % (name, falls))
 
+# the SSI profile and the firmware: a clear refusal
+r = run("--profile", "ssi", "--frames", "3")
+check(r.returncode == 1 and "SSI" in r.stderr, "ssi with the firmware: %r" % r.stderr)
+
 # same seed, same run
 a = run("--profile", "generic", "--frames", "10", "--seed", "3", "--json").stdout
 b = run("--profile", "generic", "--frames", "10", "--seed", "3", "--json").stdout
@@ -70,7 +91,7 @@ check(strip(a) == strip(b), "reproducible with the same seed")
 
 # the scope view
 svg = os.path.join(tmp, "frame.svg")
-r = run("--frames", "3", "--svg", svg, "--svg-frame", "1")
+r = run("--frames", "5", "--svg", svg, "--svg-frame", "2")
 check(r.returncode == 0 and open(svg).read().startswith("<svg"), "SVG written")
 check("CDS" in open(svg).read(), "SVG names the bits")
 

@@ -1,0 +1,47 @@
+/*
+ * fw_check.h - checks every frame the BiSS-C master firmware publishes
+ * (include/biss/biss_shm.h) against what the slave models sent in it.
+ *
+ * A store watch on the firmware's publication counter (BISS_ST_SEQ) fires
+ * at the instant of each publication; the frame it publishes is the one the
+ * master began last (bench_current_frame), whose record the slave model
+ * holds (closed, or still in its timeout). A data word the firmware passes
+ * as right (its CRC checked) must equal the word the model put on the wire;
+ * one whose CRC failed counts as a CRC error, not a mismatch.
+ */
+#ifndef FW_CHECK_H
+#define FW_CHECK_H
+
+#include "bench.h"
+
+#include <stdint.h>
+
+struct fw_check {
+    struct bench *b;
+    uint64_t publications; /* every publication */
+    uint64_t frames;       /* valid frames, compared */
+    uint64_t crc_errors;   /* frames flagged with a CRC error */
+    uint64_t mismatches;   /* frames with a word passed as right (CRC) but unlike what was sent */
+    uint64_t no_slave, proc_errors, training;
+    uint64_t unmatched; /* valid frames whose slave record was gone */
+    uint32_t last_flags;
+    unsigned delay_raw, delay_avg, sample_point, lag, half;
+    unsigned proc_clocks_max;
+    unsigned nslaves;
+    uint64_t data[8];              /* last valid frame: data word per slave */
+    uint32_t status[8];            /* and its status (BISS_RS_*) */
+    uint64_t first_mismatch_frame; /* publication number, 0 none */
+    uint64_t limit;                /* valid frames to check; later publications are ignored */
+};
+
+/* Starts checking the bench's publications from now on (no limit). */
+void fw_check_attach(struct fw_check *fc, struct bench *b);
+
+/* Starts counting afresh, checking at most `limit` more valid frames. */
+void fw_check_restart(struct fw_check *fc, uint64_t limit);
+
+/* The data word slave i sent in the frame record r: position, fill, nE,
+ * nW, life counter, as on the wire before the CRC. */
+uint64_t fw_check_sent_word(const biss_slave_cfg *s, const biss_slave_sent *sent);
+
+#endif

@@ -1,0 +1,22 @@
+/*
+ * fw_config.h - configures the BiSS-C master firmware running on the
+ * bench for the bench's own slave chain, through the shared-memory block
+ * of include/biss/biss_shm.h, as a host would.
+ */
+#ifndef FW_CONFIG_H
+#define FW_CONFIG_H
+
+#include "bench.h"
+
+struct fw_settings {
+    unsigned half;       /* MA half period in PRU cycles (f = 100 MHz / half) */
+    unsigned trigger;    /* BISS_TRIG_* */
+    uint32_t iep_period; /* IEP counts, for BISS_TRIG_IEP */
+    unsigned proc_limit; /* longest processing time accepted, MA clocks */
+};
+
+/* Writes the configuration for the bench's BiSS chain and increments
+ * CFG_SEQ. Returns 0, or -1 when the chain is no BiSS chain (SSI). */
+int fw_config_write(struct bench *b, const struct fw_settings *s);
+
+#endif

@@ -1,0 +1,123 @@
+/* sim_image.c - loading biss-sim's PRU image (see sim_image.h). */
+#include "sim_image.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static int read_file(const char *path, uint8_t **buf, size_t *len) {
+    FILE *f = fopen(path, "rb");
+    if (!f) {
+        return -1;
+    }
+    size_t cap = 4096, n = 0, got;
+    uint8_t *b = malloc(cap);
+    while (b && (got = fread(b + n, 1, cap - n, f)) > 0) {
+        n += got;
+        if (n == cap) {
+            uint8_t *nb = cap < (1u << 20) ? realloc(b, cap * 2) : NULL;
+            if (!nb) {
+                free(b);
+                b = NULL;
+                break;
+            }
+            b = nb;
+            cap *= 2;
+        }
+    }
+    int bad = ferror(f) || !b;
+    fclose(f);
+    if (bad) {
+        free(b);
+        return -1;
+    }
+    *buf = b;
+    *len = n;
+    return 0;
+}
+
+static int ends_with(const char *s, const char *suffix) {
+    size_t n = strlen(s), m = strlen(suffix);
+    return n >= m && strcmp(s + n - m, suffix) == 0;
+}
+
+int sim_load_image(const char *path, const struct sim_defines *d, struct pruasm_image *img,
+                   char *err, size_t errlen) {
+    memset(img, 0, sizeof(*img));
+    if (ends_with(path, ".bin")) {
+        uint8_t *buf;
+        size_t len;
+        if (read_file(path, &buf, &len) != 0) {
+            snprintf(err, errlen, "cannot read image '%s'", path);
+            return -1;
+        }
+        if (len == 0 || len % 4) {
+            free(buf);
+            snprintf(err, errlen, "image '%s' is not a whole number of 32-bit words", path);
+            return -1;
+        }
+        img->words = (uint32_t *)buf;
+        img->nwords = len / 4;
+        return 0;
+    }
+    const char *defs[SIM_MAX_DEFINES];
+    for (size_t i = 0; i < d->n; i++) {
+        defs[i] = d->text[i];
+    }
+    struct pruasm_options opt = {.core = 3, .defines = defs, .ndefines = d->n};
+    struct pruasm_diag diag = {0};
+    if (pruasm_assemble_file(&opt, path, img, &diag) != 0) {
+        snprintf(err, errlen, "%s", diag.first_error[0] ? diag.first_error : "assembly failed");
+        return -1;
+    }
+    return 0;
+}
+
+/* Clocks a frame needs at the master: to the ACK, the busy time, start,
+ * CDS, every slave's bits, and the round trip in whole periods. */
+static unsigned frame_clocks(struct bench *b, unsigned half) {
+    const scenario *sc = &bench_link(b)->sc;
+    double period_ps = 2.0 * half * 5000.0;
+    unsigned bits;
+    if (sc->protocol == SCENARIO_SSI) {
+        bits = sc->ssi.bits + 1;
+    } else {
+        bits = 2 + 2 + sc->biss.busy_clocks + (unsigned)ceil((double)sc->biss.busy_ps / period_ps);
+        for (unsigned i = 0; i < sc->biss.n; i++) {
+            bits += biss_slave_cfg_bits(&sc->biss.s[i]);
+        }
+    }
+    return bits + (unsigned)ceil(bench_round_trip_ps(b) / period_ps) + 1;
+}
+
+/* Idle time after a frame: the slave's timeout and the round trip, with margin. */
+static unsigned frame_gap_cycles(struct bench *b, unsigned half) {
+    const scenario *sc = &bench_link(b)->sc;
+    double t_ps;
+    if (sc->protocol == SCENARIO_SSI) {
+        t_ps = (double)sc->ssi.monoflop_ps;
+    } else if (sc->biss.timeout_mode == BISS_TIMEOUT_FIXED) {
+        t_ps = (double)sc->biss.timeout_ps;
+    } else {
+        t_ps = sc->biss.adaptive_factor * 2.0 * half * 5000.0;
+        if (t_ps < (double)sc->biss.adaptive_min_ps) {
+            t_ps = (double)sc->biss.adaptive_min_ps;
+        }
+    }
+    unsigned gap = (unsigned)ceil((t_ps + 2 * bench_round_trip_ps(b)) / 5000.0) + 200;
+    return gap + (gap & 1); /* the image's wait loop takes 2 cycles a turn */
+}
+
+void sim_clock_defines(struct bench *b, unsigned half, uint64_t frames, struct sim_defines *d) {
+    d->n = 5;
+    snprintf(d->text[0], sizeof(d->text[0]), "HALF=%u", half);
+    snprintf(d->text[1], sizeof(d->text[1]), "CLOCKS=%u", frame_clocks(b, half));
+    snprintf(d->text[2], sizeof(d->text[2]), "GAP=%u", frame_gap_cycles(b, half));
+    snprintf(d->text[3], sizeof(d->text[3]), "FRAMES=%llu", (unsigned long long)(frames + 1));
+    snprintf(d->text[4], sizeof(d->text[4]), "MA_BIT=%u", bench_config(b)->ma_bit);
+}
+
+double sim_clock_frame_ps(struct bench *b, unsigned half) {
+    return (2.0 * half * frame_clocks(b, half) + frame_gap_cycles(b, half) + 1000) * 5000.0;
+}

@@ -1,0 +1,209 @@
+/* sim_report.c - biss-sim's JSON, text and SVG output (see sim_report.h). */
+#include "sim_report.h"
+
+#include "biss/biss_shm.h"
+#include "frame_labels.h"
+#include "svg_scope.h"
+
+#include <cjson/cJSON.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+static const char *stop_name(enum pru_stop why) {
+    switch (why) {
+    case PRU_STOP_LIMIT:
+        return "done";
+    case PRU_STOP_HALT:
+        return "halted";
+    case PRU_STOP_FAULT:
+        return "fault";
+    case PRU_STOP_DISABLED:
+        return "disabled";
+    case PRU_STOP_STEP:
+        return "step";
+    }
+    return "?";
+}
+
+double sim_fw_line_delay_ns(const struct fw_check *fw) {
+    double cycles =
+        ((double)fw->delay_avg - BISS_DELAY_ZERO) * fw->half / 4.0 - BISS_DELAY_ADJ_CYCLES;
+    return cycles * 5.0;
+}
+
+/* The last closed frame, per slave: what went over the wire (and, with the
+ * firmware, what the master read). */
+static cJSON *slaves_json(const struct sim_result *r) {
+    link_model *l = bench_link(r->b);
+    cJSON *arr = cJSON_CreateArray();
+    uint64_t n = link_frames(l);
+    if (n == 0) {
+        return arr;
+    }
+    if (l->sc.protocol == SCENARIO_SSI) {
+        const ssi_frame_record *rec = ssi_slave_record(&l->ssi, n - 1);
+        cJSON *s = cJSON_CreateObject();
+        cJSON_AddNumberToObject(s, "position", rec ? (double)rec->position : 0);
+        cJSON_AddItemToArray(arr, s);
+        return arr;
+    }
+    const biss_frame_record *rec = biss_slave_record(&l->biss, n - 1);
+    for (unsigned i = 0; rec && i < l->sc.biss.n; i++) {
+        cJSON *s = cJSON_CreateObject();
+        cJSON_AddNumberToObject(s, "id", l->sc.biss.s[i].id);
+        cJSON_AddNumberToObject(s, "position", (double)rec->s[i].position);
+        cJSON_AddNumberToObject(s, "nE", rec->s[i].nE);
+        cJSON_AddNumberToObject(s, "nW", rec->s[i].nW);
+        cJSON_AddNumberToObject(s, "crc", rec->s[i].crc);
+        if (r->fw) {
+            cJSON_AddNumberToObject(s, "master_data", (double)r->fw->data[i]);
+            cJSON_AddBoolToObject(s, "master_crc_ok", r->fw->status[i] & BISS_RS_CRC_OK);
+        }
+        cJSON_AddItemToArray(arr, s);
+    }
+    return arr;
+}
+
+static void add_min_mean_max(cJSON *o, const char *key, double lo, double mean, double hi) {
+    cJSON *m = cJSON_AddObjectToObject(o, key);
+    cJSON_AddNumberToObject(m, "min", lo);
+    cJSON_AddNumberToObject(m, "mean", mean);
+    cJSON_AddNumberToObject(m, "max", hi);
+}
+
+static void add_counter(cJSON *j, const char *key, const struct fw_check *fw, uint64_t v) {
+    if (fw) {
+        cJSON_AddNumberToObject(j, key, (double)v);
+    } else {
+        cJSON_AddNullToObject(j, key); /* an image that is not the firmware decodes nothing */
+    }
+}
+
+static void add_firmware(cJSON *j, const struct fw_check *fw) {
+    cJSON *f = cJSON_AddObjectToObject(j, "firmware");
+    cJSON_AddNumberToObject(f, "publications", (double)fw->publications);
+    cJSON_AddNumberToObject(f, "no_slave", (double)fw->no_slave);
+    cJSON_AddNumberToObject(f, "processing_errors", (double)fw->proc_errors);
+    cJSON_AddNumberToObject(f, "training_frames", (double)fw->training);
+    cJSON_AddNumberToObject(f, "line_delay_ns", sim_fw_line_delay_ns(fw));
+    cJSON_AddNumberToObject(f, "delay_bit8_raw", fw->delay_raw);
+    cJSON_AddNumberToObject(f, "delay_bit8_avg", fw->delay_avg);
+    cJSON_AddNumberToObject(f, "sample_point", fw->sample_point);
+    cJSON_AddNumberToObject(f, "lag_periods", fw->lag);
+    cJSON_AddNumberToObject(f, "processing_clocks_max", fw->proc_clocks_max);
+    cJSON_AddNumberToObject(f, "last_flags", fw->last_flags);
+}
+
+void sim_print_json(const struct sim_result *r) {
+    struct bench *b = r->b;
+    const struct bench_stats *st = bench_stats(b);
+    const struct fw_check *fw = r->fw;
+    cJSON *j = cJSON_CreateObject();
+    cJSON_AddStringToObject(j, "profile", bench_link(b)->sc.profile);
+    cJSON_AddNumberToObject(j, "freq_hz", r->freq_hz);
+    cJSON_AddNumberToObject(j, "cable_m", bench_link(b)->sc.ma_line.length_m);
+    cJSON_AddStringToObject(j, "stop", stop_name(r->why));
+    cJSON_AddNumberToObject(j, "frames", (double)(fw ? fw->frames : st->frames));
+    add_counter(j, "crc_errors", fw, fw ? fw->crc_errors : 0);
+    add_counter(j, "position_mismatches", fw, fw ? fw->mismatches : 0);
+    cJSON_AddNumberToObject(j, "line_delay_ns", bench_round_trip_ps(b) / 1000.0);
+    double mean = st->periods ? st->period_sum_ps / (double)st->periods : 0;
+    add_min_mean_max(j, "frame_period_ns", (double)st->period_min_ps / 1000.0, mean / 1000.0,
+                     (double)st->period_max_ps / 1000.0);
+    cJSON *h = cJSON_AddObjectToObject(j, "ma_half_period_cycles");
+    cJSON_AddNumberToObject(h, "min", (double)st->half_min_ps / PRU_PS_PER_CYCLE);
+    cJSON_AddNumberToObject(h, "max", (double)st->half_max_ps / PRU_PS_PER_CYCLE);
+    cJSON_AddNumberToObject(j, "pru_cycles", (double)pru_cycles(bench_core(b)));
+    cJSON_AddNumberToObject(j, "host_seconds", r->host_seconds);
+    cJSON_AddItemToObject(j, "slaves", slaves_json(r));
+    if (fw) {
+        add_firmware(j, fw);
+    }
+    char *text = cJSON_Print(j);
+    printf("%s\n", text);
+    free(text);
+    cJSON_Delete(j);
+}
+
+/* What the encoder(s) sent in the last closed frame, and what the master read. */
+static void print_slaves(const struct sim_result *r) {
+    link_model *l = bench_link(r->b);
+    uint64_t n = link_frames(l);
+    if (n == 0) {
+        return;
+    }
+    if (l->sc.protocol == SCENARIO_SSI) {
+        const ssi_frame_record *rec = ssi_slave_record(&l->ssi, n - 1);
+        printf("last frame sent      position %llu\n", rec ? (unsigned long long)rec->position : 0);
+        return;
+    }
+    const biss_frame_record *rec = biss_slave_record(&l->biss, n - 1);
+    for (unsigned i = 0; rec && i < l->sc.biss.n; i++) {
+        printf("slave %u sent         position %llu (0x%llx) nE=%d nW=%d crc=0x%x\n", i,
+               (unsigned long long)rec->s[i].position, (unsigned long long)rec->s[i].position,
+               rec->s[i].nE, rec->s[i].nW, rec->s[i].crc);
+        if (r->fw) {
+            printf("slave %u read         data word 0x%llx, CRC %s (last published frame)\n", i,
+                   (unsigned long long)r->fw->data[i],
+                   (r->fw->status[i] & BISS_RS_CRC_OK) ? "ok" : "WRONG");
+        }
+    }
+}
+
+void sim_print_text(const struct sim_result *r) {
+    struct bench *b = r->b;
+    const struct bench_stats *st = bench_stats(b);
+    const struct fw_check *fw = r->fw;
+    link_model *l = bench_link(b);
+    printf("profile %s, %.3g MHz, %.1f m cable: %llu frames (%s)\n", l->sc.profile,
+           r->freq_hz / 1e6, l->sc.ma_line.length_m,
+           (unsigned long long)(fw ? fw->frames : st->frames), stop_name(r->why));
+    if (fw) {
+        printf("checked              %llu CRC errors, %llu position mismatches, %llu no-slave, "
+               "%llu processing-time errors\n",
+               (unsigned long long)fw->crc_errors, (unsigned long long)fw->mismatches,
+               (unsigned long long)fw->no_slave, (unsigned long long)fw->proc_errors);
+        printf("line delay           %.1f ns measured by the firmware (%.1f ns in the model), "
+               "sample point %u/8, lag %u periods\n",
+               sim_fw_line_delay_ns(fw), bench_round_trip_ps(b) / 1000.0, fw->sample_point,
+               fw->lag);
+    } else {
+        printf("round trip (model)   %.1f ns\n", bench_round_trip_ps(b) / 1000.0);
+    }
+    printf("MA half period       %lld .. %lld cycles\n",
+           (long long)(st->half_min_ps / PRU_PS_PER_CYCLE),
+           (long long)(st->half_max_ps / PRU_PS_PER_CYCLE));
+    if (st->periods) {
+        printf("frame period         %.1f .. %.1f ns (mean %.1f)\n", st->period_min_ps / 1000.0,
+               st->period_max_ps / 1000.0, st->period_sum_ps / (double)st->periods / 1000.0);
+    }
+    printf("PRU cycles           %lld in %.3f s host time\n", (long long)pru_cycles(bench_core(b)),
+           r->host_seconds);
+    print_slaves(r);
+}
+
+int sim_write_svg(const struct sim_result *r, const char *path, uint64_t k, char *err,
+                  size_t errlen) {
+    waveform *pins[4];
+    sim_ps t0, t1;
+    if (bench_capture_get(r->b, pins, &t0, &t1) != 0) {
+        snprintf(err, errlen, "--svg: frame %llu was not captured whole (run more frames?)",
+                 (unsigned long long)k);
+        return -1;
+    }
+    struct svg_label labels[FRAME_LABELS_MAX];
+    size_t n = frame_labels(bench_link(r->b), k, pins[2], labels, FRAME_LABELS_MAX);
+    static const char *const names[4] = {"MA master", "SL master", "MA slave", "SL slave"};
+    struct svg_trace tr[4];
+    for (int i = 0; i < 4; i++) {
+        tr[i] = (struct svg_trace){names[i], pins[i], i == 3 ? labels : NULL, i == 3 ? n : 0};
+    }
+    char title[160];
+    snprintf(title, sizeof(title), "%s, %.3g MHz, %.1f m: frame %llu", bench_link(r->b)->sc.profile,
+             r->freq_hz / 1e6, bench_link(r->b)->sc.ma_line.length_m, (unsigned long long)k);
+    if (svg_scope_write(path, title, tr, 4, t0, t1) != 0) {
+        snprintf(err, errlen, "cannot write '%s'", path);
+        return -1;
+    }
+    return 0;
+}

@@ -1,0 +1,30 @@
+/*
+ * sim_report.h - what biss-sim prints: one JSON object (--json) or a short
+ * text summary, and the SVG scope view of one frame.
+ */
+#ifndef SIM_REPORT_H
+#define SIM_REPORT_H
+
+#include "bench.h"
+#include "fw_check.h"
+
+struct sim_result {
+    struct bench *b;
+    const struct fw_check *fw; /* NULL: the image is not the BiSS master firmware */
+    enum pru_stop why;
+    double freq_hz;
+    double host_seconds;
+};
+
+void sim_print_json(const struct sim_result *r);
+void sim_print_text(const struct sim_result *r);
+
+/* The SVG of captured frame k; returns 0 or -1 (message in err). */
+int sim_write_svg(const struct sim_result *r, const char *path, uint64_t k, char *err,
+                  size_t errlen);
+
+/* The firmware's line delay in ns from its averaged ACK position
+ * (biss_shm.h: BISS_R_DELAY_AVG, BISS_DELAY_ZERO, BISS_DELAY_ADJ_CYCLES). */
+double sim_fw_line_delay_ns(const struct fw_check *fw);
+
+#endif

@@ -1,0 +1,94 @@
+/* e2e_util.c - see e2e_util.h. */
+#include "e2e_util.h"
+
+#include "biss/biss_shm.h"
+
+#include <check.h>
+#include <stdlib.h>
+#include <string.h>
+
+#ifndef FIRMWARE_IMAGE
+#error "FIRMWARE_IMAGE must name the built firmware"
+#endif
+
+static uint32_t *read_image(size_t *nwords) {
+    FILE *f = fopen(FIRMWARE_IMAGE, "rb");
+    ck_assert_msg(f != NULL, "cannot open %s", FIRMWARE_IMAGE);
+    static uint32_t words[4096];
+    *nwords = fread(words, 4, 4096, f);
+    fclose(f);
+    ck_assert_uint_gt(*nwords, 0);
+    return words;
+}
+
+struct bench *e2e_bench(struct e2e_run *r, const char *profile, double cable_m,
+                        const struct pru_params *params) {
+    struct bench_config cfg;
+    bench_config_default(&cfg);
+    if (params) {
+        cfg.pru = *params;
+    }
+    ck_assert_int_eq(profile_by_name(profile, &cfg.link), 0);
+    scenario_set_cable(&cfg.link, cable_m);
+    char err[256];
+    r->b = bench_new(&cfg, err, sizeof(err));
+    ck_assert_msg(r->b != NULL, "%s", err);
+    size_t n;
+    uint32_t *w = read_image(&n);
+    r->image_words = (uint32_t)n;
+    ck_assert_int_eq(bench_start_image(r->b, w, n * 4), 0);
+    fw_check_attach(&r->fc, r->b);
+    return r->b;
+}
+
+uint32_t e2e_dram32(struct bench *b, uint32_t off) {
+    uint32_t v = 0;
+    pru_host_read(bench_core(b), pru_soc_base(bench_config(b)->soc) + off, &v, 4);
+    return v;
+}
+
+void e2e_put(struct bench *b, uint32_t off, uint32_t v, unsigned bytes) {
+    pru_host_write(bench_core(b), pru_soc_base(bench_config(b)->soc) + off, &v, bytes);
+}
+
+void e2e_run_publications(struct e2e_run *r, uint64_t n, int64_t max_ps) {
+    uint64_t want = r->fc.publications + n;
+    int64_t end = pru_time_ps(bench_core(r->b)) + max_ps;
+    while (r->fc.publications < want && pru_time_ps(bench_core(r->b)) < end) {
+        ck_assert_int_eq(bench_run_until(r->b, pru_time_ps(bench_core(r->b)) + 20 * SIM_PS_PER_US),
+                         PRU_STOP_LIMIT);
+    }
+}
+
+uint64_t e2e_run_frames(struct e2e_run *r, unsigned half, unsigned proc_limit, uint64_t frames) {
+    struct fw_settings s = {.half = half, .trigger = BISS_TRIG_FREERUN, .proc_limit = proc_limit};
+    ck_assert_int_eq(fw_config_write(r->b, &s), 0);
+    /* start-up: training, then the first valid frame */
+    int64_t end = pru_time_ps(bench_core(r->b)) + 20 * SIM_PS_PER_MS;
+    while (r->fc.frames == 0 && pru_time_ps(bench_core(r->b)) < end) {
+        ck_assert_int_eq(bench_run_until(r->b, pru_time_ps(bench_core(r->b)) + 50 * SIM_PS_PER_US),
+                         PRU_STOP_LIMIT);
+    }
+    ck_assert_msg(r->fc.frames > 0, "no valid frame within 20 ms (state %u, error %u)",
+                  e2e_dram32(r->b, BISS_ST_STATE), e2e_dram32(r->b, BISS_ST_CFG_ERROR));
+    fw_check_restart(&r->fc, frames);
+    bench_reset_stats(r->b);
+    bench_set_frame_limit(r->b, bench_current_frame(r->b) + frames + 1);
+    /* every frame well under a millisecond at the slowest rate tested */
+    end = pru_time_ps(bench_core(r->b)) + (int64_t)frames * SIM_PS_PER_MS;
+    while (r->fc.frames < frames && pru_time_ps(bench_core(r->b)) < end) {
+        ck_assert_int_eq(bench_run_until(r->b, pru_time_ps(bench_core(r->b)) + SIM_PS_PER_MS),
+                         PRU_STOP_LIMIT);
+    }
+    return r->fc.frames;
+}
+
+uint64_t e2e_frames(uint64_t def) {
+    const char *e = getenv("E2E_FRAMES");
+    return e ? strtoull(e, NULL, 10) : def;
+}
+
+void e2e_free(struct e2e_run *r) {
+    bench_free(r->b);
+    r->b = NULL;
+}

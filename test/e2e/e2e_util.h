@@ -1,0 +1,40 @@
+/* e2e_util.h - the BiSS-C master firmware in the emulator against the
+ * encoder models, for the end-to-end suites. */
+#ifndef E2E_UTIL_H
+#define E2E_UTIL_H
+
+#include "bench.h"
+#include "fw_check.h"
+#include "fw_config.h"
+
+#include <stdint.h>
+
+struct e2e_run {
+    struct bench *b;
+    struct fw_check fc;
+    uint32_t image_words;
+};
+
+/* Bench for the profile and cable, with the pru params given (NULL:
+ * defaults), the firmware loaded and started; not yet configured. */
+struct bench *e2e_bench(struct e2e_run *r, const char *profile, double cable_m,
+                        const struct pru_params *params);
+
+/* Configures free-run at half period `half`, waits for the training and the
+ * first valid frame, then checks `frames` frames. Returns the number of
+ * valid frames checked (fewer if time ran out). */
+uint64_t e2e_run_frames(struct e2e_run *r, unsigned half, unsigned proc_limit, uint64_t frames);
+
+/* Simulated time until the firmware publishes `n` more frames of any kind,
+ * at most max_ps. */
+void e2e_run_publications(struct e2e_run *r, uint64_t n, int64_t max_ps);
+
+uint32_t e2e_dram32(struct bench *b, uint32_t off);
+void e2e_put(struct bench *b, uint32_t off, uint32_t v, unsigned bytes);
+
+/* Frames per cell: E2E_FRAMES from the environment, else def. */
+uint64_t e2e_frames(uint64_t def);
+
+void e2e_free(struct e2e_run *r);
+
+#endif
