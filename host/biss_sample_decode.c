@@ -6,20 +6,22 @@
 
 #include <string.h>
 
-void biss_delay_decode(uint16_t raw, uint16_t avg, unsigned half, struct biss_line_delay *d) {
-    /* biss_shm.h: round trip = DELAY - BISS_DELAY_ZERO_X2 / 2 bit/8, and one
-     * bit/8 is one 8x sample = H / 4 PRU cycles of 5 ns */
-    const double zero = BISS_DELAY_ZERO_X2 / 2.0;
+/* biss_shm.h: the round trip is (DELAY - BISS_DELAY_ZERO) * H / 4 -
+ * BISS_DELAY_ADJ_CYCLES PRU cycles of 5 ns; one bit/8 is H / 4 cycles. */
+static void delay_of(uint16_t counts, unsigned half, double *bit8, double *cycles, double *ns) {
     const double ns_per_cycle = 1e9 / BISS_PRU_HZ;
+    double unit = half / 4.0;
+    *cycles = ((double)counts - BISS_DELAY_ZERO) * unit - BISS_DELAY_ADJ_CYCLES;
+    *bit8 = half ? *cycles / unit : 0.0;
+    *ns = *cycles * ns_per_cycle;
+}
+
+void biss_delay_decode(uint16_t raw, uint16_t avg, unsigned half, struct biss_line_delay *d) {
     d->raw = raw;
     d->avg = avg;
     d->half = half;
-    d->bit8 = avg - zero;
-    d->cycles = d->bit8 * half / 4.0;
-    d->ns = d->cycles * ns_per_cycle;
-    d->raw_bit8 = raw - zero;
-    d->raw_cycles = d->raw_bit8 * half / 4.0;
-    d->raw_ns = d->raw_cycles * ns_per_cycle;
+    delay_of(avg, half, &d->bit8, &d->cycles, &d->ns);
+    delay_of(raw, half, &d->raw_bit8, &d->raw_cycles, &d->raw_ns);
 }
 
 static uint64_t low_mask(unsigned bits) {

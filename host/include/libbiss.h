@@ -196,10 +196,10 @@ int biss_trigger(biss_t *h);
 int biss_run_ms(biss_t *h, unsigned ms);
 
 /* ---- samples ----------------------------------------------------------- */
-/* Round trip MA edge -> slave answer at the master pin, PRU input
- * synchronizer included, from the firmware's ACK position (biss_shm.h):
- * bit8 = DELAY - BISS_DELAY_ZERO_X2 / 2 in 1/8 bit units, cycles = bit8 *
- * H / 4, ns = cycles * 5. Good to one bit/8. */
+/* Round trip from an MA rising edge at the master pin to the slave's
+ * answer at the master pin, from the firmware's ACK position (biss_shm.h):
+ * cycles = (DELAY - BISS_DELAY_ZERO) * H / 4 - BISS_DELAY_ADJ_CYCLES,
+ * bit8 = cycles / (H / 4), ns = cycles * 5. Good to half a bit/8. */
 struct biss_line_delay {
     uint16_t raw, avg;                   /* the firmware's DELAY_RAW / DELAY_AVG */
     unsigned half;                       /* H of the frame */

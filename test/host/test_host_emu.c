@@ -82,13 +82,10 @@ static void assert_matches_slave(biss_t *h, const struct biss_sample *s) {
     ck_assert_int_eq(r->warning, rec->s[0].nW == 0);
 }
 
-/* The header's round trip includes the PRU input synchronizer, which the
- * model's bench_round_trip_ps() (lines + slave output delay) does not:
- * add the core's gpi_delay_ps before comparing. */
+/* The model's round trip (lines + slave output delay), in bit/8 units:
+ * the header's conversion takes the PRU input synchronizer out. */
 static double expected_bit8(biss_t *h, unsigned half) {
-    struct bench *b = biss_emu_bench(h);
-    double rt_ps = bench_round_trip_ps(b) + (double)bench_config(b)->pru.gpi_delay_ps;
-    return rt_ps / (half / 4.0 * PRU_PS_PER_CYCLE);
+    return bench_round_trip_ps(biss_emu_bench(h)) / (half / 4.0 * PRU_PS_PER_CYCLE);
 }
 
 /* Reads n frames after the training frame in free-run; all must be data
@@ -149,23 +146,21 @@ START_TEST(test_free_run_10mhz_long_cable) {
 }
 END_TEST
 
-/* Lower rates decode every frame right; the line delay is checked more
- * loosely here (2.5 bit/8: at these rates it reads up to 2.3 bit/8 above
- * the model, see test_free_run_delay_claim). */
+/* Lower rates: every frame right, and the line delay within a bit/8. */
 START_TEST(test_free_run_rates) {
     static const uint32_t rates[] = {5000000, 4000000, 2000000, 1000000, 500000};
-    free_run(10.0, rates[_i], 20, 2.5);
+    free_run(10.0, rates[_i], 20, 1.0);
 }
 END_TEST
 
-/* The header's claim, one bit/8, at every rate and cable: the firmware
- * reads up to 2.3 bit/8 above the model (raw, 4 MHz, 2 m) and its errors
- * centre on about +0.4 bit/8 rather than 0. Registered with CTest as a
- * disabled test until the firmware meets it. */
+/* The header's claim, half a bit/8, at every rate and cable. The firmware
+ * misses it: e.g. +0.86 at 10 MHz / 10 m, -0.76 at 5 MHz / 2 m, and one
+ * raw reading +1.99 at 4 MHz / 2 m. Registered with CTest as a disabled
+ * test until the firmware (or the header) settles it. */
 START_TEST(test_free_run_delay_claim) {
-    static const uint32_t rates[] = {5000000, 4000000, 2000000, 1000000, 500000};
+    static const uint32_t rates[] = {10000000, 5000000, 4000000, 2000000, 1000000, 500000};
     static const double cables[] = {2.0, 10.0, 40.0};
-    free_run(cables[_i % 3], rates[_i / 3], 20, 1.0);
+    free_run(cables[_i % 3], rates[_i / 3], 20, 0.5);
 }
 END_TEST
 
@@ -283,7 +278,7 @@ int main(int argc, char **argv) {
     TCase *tc = tcase_create("emulator");
     if (argc > 1 && strcmp(argv[1], "--delay-claim") == 0) {
         tcase_set_timeout(tc, 120);
-        tcase_add_loop_test(tc, test_free_run_delay_claim, 0, 15);
+        tcase_add_loop_test(tc, test_free_run_delay_claim, 0, 18);
         suite_add_tcase(s, tc);
         SRunner *r = srunner_create(s);
         srunner_run_all(r, CK_NORMAL);

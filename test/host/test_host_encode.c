@@ -187,17 +187,22 @@ START_TEST(test_result_decode) {
 }
 END_TEST
 
-/* biss_shm.h: round trip = DELAY - 19.5 bit/8; a bit/8 is H/4 cycles. */
+/* biss_shm.h: round trip = (DELAY - BISS_DELAY_ZERO) * H / 4 -
+ * BISS_DELAY_ADJ_CYCLES PRU cycles; a bit/8 is H/4 cycles. */
 START_TEST(test_delay_decode) {
     struct biss_line_delay d;
     biss_delay_decode(27, 28, 10, &d);
-    ck_assert_double_eq_tol(d.bit8, 8.5, 1e-9);
-    ck_assert_double_eq_tol(d.cycles, 21.25, 1e-9);
-    ck_assert_double_eq_tol(d.ns, 106.25, 1e-9);
-    ck_assert_double_eq_tol(d.raw_bit8, 7.5, 1e-9);
-    ck_assert_double_eq_tol(d.raw_ns, 93.75, 1e-9);
+    double cycles = (28 - BISS_DELAY_ZERO) * 2.5 - BISS_DELAY_ADJ_CYCLES;
+    ck_assert_double_eq_tol(d.cycles, cycles, 1e-9);
+    ck_assert_double_eq_tol(d.bit8, cycles / 2.5, 1e-9);
+    ck_assert_double_eq_tol(d.ns, cycles * 5, 1e-9);
+    double raw_cycles = (27 - BISS_DELAY_ZERO) * 2.5 - BISS_DELAY_ADJ_CYCLES;
+    ck_assert_double_eq_tol(d.raw_cycles, raw_cycles, 1e-9);
+    ck_assert_double_eq_tol(d.raw_ns, raw_cycles * 5, 1e-9);
     biss_delay_decode(100, 100, 100, &d);
-    ck_assert_double_eq_tol(d.ns, 80.5 * 25 * 5, 1e-9);
+    ck_assert_double_eq_tol(d.ns, ((100 - BISS_DELAY_ZERO) * 25.0 - BISS_DELAY_ADJ_CYCLES) * 5,
+                            1e-9);
+    ck_assert_uint_eq(d.half, 100);
 }
 END_TEST
 
