@@ -131,8 +131,8 @@ int biss_cd_run(biss_t *h, const uint8_t *ops, unsigned n, unsigned wait_limit, 
             return BISS_E_INVAL;
         }
     }
-    pthread_mutex_lock(&h->lock);
+    biss_op_begin(h);
     int rc = cd_run_locked(h, ops, n, wait_limit, timeout_ms, resp);
-    pthread_mutex_unlock(&h->lock);
+    biss_op_end(h);
     return rc;
 }

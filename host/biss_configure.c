@@ -82,9 +82,9 @@ int biss_configure(biss_t *h, const struct biss_config *c) {
     if (rc) {
         return rc;
     }
-    pthread_mutex_lock(&h->lock);
+    biss_op_begin(h);
     rc = configure_locked(h, c);
-    pthread_mutex_unlock(&h->lock);
+    biss_op_end(h);
     return rc;
 }
 

@@ -75,6 +75,12 @@ int biss_handle_new(enum biss_target t, const struct biss_backend *be, unsigned 
         free(h);
         return BISS_E_NOMEM;
     }
+    if (pthread_mutex_init(&h->op_lock, NULL) != 0) {
+        pthread_mutex_destroy(&h->lock);
+        be->ops->close(be->ctx);
+        free(h);
+        return BISS_E_NOMEM;
+    }
     h->target = t;
     h->be = *be;
     h->timeout_ms = timeout_ms ? timeout_ms : DEFAULT_TIMEOUT_MS;
@@ -144,11 +150,22 @@ int biss_open(const struct biss_open_params *p, biss_t **out) {
     return BISS_OK;
 }
 
+void biss_op_begin(biss_t *h) {
+    pthread_mutex_lock(&h->op_lock);
+    pthread_mutex_lock(&h->lock);
+}
+
+void biss_op_end(biss_t *h) {
+    pthread_mutex_unlock(&h->lock);
+    pthread_mutex_unlock(&h->op_lock);
+}
+
 void biss_close(biss_t *h) {
     if (!h) {
         return;
     }
     h->be.ops->close(h->be.ctx);
+    pthread_mutex_destroy(&h->op_lock);
     pthread_mutex_destroy(&h->lock);
     free(h->image);
     free(h);

@@ -49,7 +49,11 @@ struct biss_backend {
 };
 
 struct biss {
+    /* lock guards the handle and the backend. op_lock serialises the long
+     * exchanges (configure, control communication, restart) whose waits
+     * may drop lock while sleeping; take op_lock first. */
     pthread_mutex_t lock;
+    pthread_mutex_t op_lock;
     enum biss_target target;
     struct biss_backend be;
     unsigned timeout_ms;
@@ -84,6 +88,10 @@ int biss_pru_load_and_start(biss_t *h);
  * of backend time passed; returns 0, BISS_E_TIMEOUT, or done's error if
  * it returned a negative value. */
 int biss_wait_for(biss_t *h, unsigned timeout_ms, int (*done)(biss_t *h, void *arg), void *arg);
+
+/* Both locks, in order, for a long exchange with the firmware. */
+void biss_op_begin(biss_t *h);
+void biss_op_end(biss_t *h);
 
 /* Re-sends the handle's configuration after a restart (handle locked). */
 int biss_reconfigure_locked(biss_t *h);

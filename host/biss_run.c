@@ -28,9 +28,9 @@ int biss_start(biss_t *h) {
     if (!h) {
         return BISS_E_INVAL;
     }
-    pthread_mutex_lock(&h->lock);
+    biss_op_begin(h);
     int rc = start_locked(h);
-    pthread_mutex_unlock(&h->lock);
+    biss_op_end(h);
     return rc;
 }
 

@@ -198,6 +198,20 @@ static void *virtual_firmware(void *arg) {
     return NULL;
 }
 
+struct configurer {
+    biss_t *h;
+    int failures;
+};
+
+static void *configure_often(void *arg) {
+    struct configurer *c = arg;
+    struct biss_config cfg = one_slave();
+    for (int i = 0; i < 5; i++) {
+        c->failures += biss_configure(c->h, &cfg) != BISS_OK;
+    }
+    return NULL;
+}
+
 START_TEST(test_virtual_board) {
     make_devmem(AM335X_BASE + WINDOW);
     make_image(64);
@@ -238,6 +252,20 @@ START_TEST(test_virtual_board) {
     ck_assert_int_eq(biss_get_status(h, &status), BISS_OK);
     ck_assert(status.firmware_running && status.pru_enabled);
     ck_assert_uint_eq(status.cfg_ack, 1);
+
+    /* two threads configuring at once: each waits for its own ack while
+     * the other's sleeps let it in, and no exchange spoils the other */
+    struct configurer cf[2] = {{.h = h}, {.h = h}};
+    pthread_t ct[2];
+    for (int i = 0; i < 2; i++) {
+        ck_assert_int_eq(pthread_create(&ct[i], NULL, configure_often, &cf[i]), 0);
+    }
+    for (int i = 0; i < 2; i++) {
+        pthread_join(ct[i], NULL);
+        ck_assert_int_eq(cf[i].failures, 0);
+    }
+    ck_assert_int_eq(biss_get_status(h, &status), BISS_OK);
+    ck_assert_uint_eq(status.cfg_ack, 11);
 
     /* a second process attaches: no reload, the running configuration */
     struct biss_open_params pa = params(BISS_TARGET_AM335X);
