@@ -15,6 +15,8 @@
  *                    byte: S=1, WAIT, D(8), CRC4(4), P=0; finally S=0
  *   BiSS command     S=1, CTS=0, IDS(8, first = ID 0), CMD(2), CRC4(4),
  *                    8 IDA slots (CDM 0), P=0
+ * and then BISS_CD_TAIL_ZEROS steps of CDM 0 that leave the slave ready
+ * for the next frame.
  * CRC4: polynomial 0x13 (x^4+x+1), start 0, sent inverted, over CTS and
  * the following 10 header bits, or over the 8 data bits. */
 #ifndef BISS_CD_H
@@ -30,6 +32,7 @@
 #define BISS_CD_PROG_BYTES (BISS_CD_MAX_STEPS / 4) /* 256: 4 steps a byte */
 #define BISS_CD_RESP_BYTES (BISS_CD_MAX_STEPS / 8) /* 128: 8 answers a byte */
 #define BISS_CD_IDLE_ZEROS 14                      /* CDM 0 frames before a frame's S */
+#define BISS_CD_TAIL_ZEROS 13 /* CDM 0 steps after a frame ends (biss_cd_build.c) */
 
 typedef enum {
     BISS_CD_OK = 0,
@@ -125,6 +128,9 @@ biss_cd_err biss_cd_build_write(biss_cd_prog *p, unsigned id, unsigned addr, con
 /* BiSS command cmd (0..3) to the slaves in ids (bit i = ID i; 0 = all,
  * broadcast without IDA). */
 biss_cd_err biss_cd_build_command(biss_cd_prog *p, uint8_t ids, unsigned cmd);
+/* frames (1..BISS_CD_MAX_STEPS) of CDM 0: lets a slave left inside a
+ * frame (after BISS_CD_E_NO_START or BISS_CD_E_FRAME) finish it and re-arm. */
+biss_cd_err biss_cd_build_idle(biss_cd_prog *p, unsigned frames);
 /* Any program: n (1..BISS_CD_MAX_STEPS) BISS_CDOP_* values. */
 biss_cd_err biss_cd_build_raw(biss_cd_prog *p, const uint8_t *ops, unsigned n);
 

@@ -5,11 +5,11 @@
 #include <string.h>
 
 /* Steps of a register access: S, header (15), R W, then per byte S WAIT
- * D(8) CRC(4) P, then the final S = 0. */
-#define REG_FIXED_STEPS 19u
+ * D(8) CRC(4) P, then the final S = 0 and the tail. */
+#define REG_FIXED_STEPS (19u + BISS_CD_TAIL_ZEROS)
 #define REG_BYTE_STEPS  15u
-/* Steps of a command: S, header (15), 8 IDA slots, P. */
-#define CMD_STEPS 25u
+/* Steps of a command: S, header (15), 8 IDA slots, P, the tail. */
+#define CMD_STEPS (25u + BISS_CD_TAIL_ZEROS)
 
 static void start(biss_cd_prog *p, biss_cd_kind kind) {
     memset(p, 0, sizeof *p);
@@ -27,10 +27,25 @@ static void put_bits(biss_cd_prog *p, uint32_t value, unsigned nbits) {
     }
 }
 
+static void put_zeros(biss_cd_prog *p, unsigned n) {
+    while (n--) {
+        put(p, BISS_CDOP_0);
+    }
+}
+
 static void put_header(biss_cd_prog *p, uint16_t header) {
     put(p, BISS_CDOP_1); /* S */
     put_bits(p, header, 11);
     put_bits(p, biss_cd_crc4_line(header, 11), 4);
+}
+
+/* After its frame ends (on a CDM 0) a slave wants 14 zeros in a row before
+ * the next S; the firmware counts every CDM 0 frame, those inside the frame
+ * just ended too, and may start the next program at once. The tail re-arms
+ * the slave inside the program itself, so programs can follow each other
+ * without the host waiting. */
+static void put_tail(biss_cd_prog *p) {
+    put_zeros(p, BISS_CD_TAIL_ZEROS);
 }
 
 /* One register byte after its master S: read sends zeros, write sends the
@@ -71,6 +86,7 @@ static biss_cd_err build_register(biss_cd_prog *p, bool write, unsigned id, unsi
         put_byte(p, &p->byte[i], write, write ? data[i] : 0u);
     }
     put(p, BISS_CDOP_0); /* S = 0: no further address */
+    put_tail(p);
     return BISS_CD_OK;
 }
 
@@ -96,6 +112,19 @@ biss_cd_err biss_cd_build_command(biss_cd_prog *p, uint8_t ids, unsigned cmd) {
     p->ida = (uint16_t)(p->len - 1);
     put_bits(p, 0, 8);   /* the IDA slots */
     put(p, BISS_CDOP_0); /* P: the slaves execute the command */
+    put_tail(p);
+    return BISS_CD_OK;
+}
+
+biss_cd_err biss_cd_build_idle(biss_cd_prog *p, unsigned frames) {
+    if (frames < 1) {
+        return BISS_CD_E_ARG;
+    }
+    if (frames > BISS_CD_MAX_STEPS) {
+        return BISS_CD_E_TOO_LONG;
+    }
+    start(p, BISS_CD_RAW);
+    put_zeros(p, frames);
     return BISS_CD_OK;
 }
 

@@ -59,7 +59,7 @@ START_TEST(table7_read_frames) {
         ck_assert_uint_eq(p.op[0], BISS_CDOP_1); /* S */
         ck_assert_uint_eq(cdm_word(&p, 1, 32), t7[i].hex);
         /* nothing follows the frame's final S = 0 */
-        ck_assert_uint_eq(p.len, 1 + 32 + 1); /* S, the 32 bits, one WAIT */
+        ck_assert_uint_eq(p.len, 1 + 32 + 1 + BISS_CD_TAIL_ZEROS); /* S, the 32 bits, WAIT */
     }
 }
 END_TEST
@@ -67,7 +67,7 @@ END_TEST
 START_TEST(read_layout) {
     biss_cd_prog p;
     ck_assert_int_eq(biss_cd_build_read(&p, 3, 0x7e, 3), BISS_CD_OK);
-    ck_assert_uint_eq(p.len, 19 + 15 * 3);
+    ck_assert_uint_eq(p.len, 19 + 15 * 3 + BISS_CD_TAIL_ZEROS);
     ck_assert_uint_eq(p.rw, 16);
     for (unsigned i = 0; i < 3; i++) {
         const biss_cd_byte_steps *b = &p.byte[i];
@@ -80,7 +80,7 @@ START_TEST(read_layout) {
         ck_assert_uint_eq(b->stop, b->crc + 4);
         ck_assert_uint_eq(p.op[b->stop], BISS_CDOP_0);
     }
-    ck_assert_uint_eq(p.op[p.len - 1], BISS_CDOP_0); /* final S */
+    ck_assert_uint_eq(p.op[p.len - 1 - BISS_CD_TAIL_ZEROS], BISS_CDOP_0); /* final S */
     /* the longest access fits one program */
     ck_assert_int_eq(biss_cd_build_read(&p, 7, 0, 64), BISS_CD_OK);
     ck_assert_uint_le(p.len, BISS_CD_MAX_STEPS);
@@ -104,7 +104,7 @@ END_TEST
 START_TEST(command_layout) {
     biss_cd_prog p;
     ck_assert_int_eq(biss_cd_build_command(&p, 0x01, 2), BISS_CD_OK);
-    ck_assert_uint_eq(p.len, 25);
+    ck_assert_uint_eq(p.len, 25 + BISS_CD_TAIL_ZEROS);
     ck_assert_uint_eq(p.op[1], 0); /* CTS */
     ck_assert_uint_eq(p.op[2], 1); /* IDS: ID 0 first */
     ck_assert_uint_eq(p.op[9], 0); /* ID 7 */
