@@ -88,6 +88,7 @@ static void rig_start(fw_rig *r, unsigned reg_proc_frames) {
     struct pruasm_diag d = {0};
     ck_assert_msg(pruasm_assemble_file(&opt, path, &img, &d) == 0, "%s", d.first_error);
     ck_assert_int_eq(bench_start_image(r->b, img.words, img.nwords * 4), 0);
+    pruasm_image_free(&img); /* the core has its copy */
     configure(r);
     bench_run_until(r->b, pru_time_ps(bench_core(r->b)) + 200 * SIM_PS_PER_US);
 }
