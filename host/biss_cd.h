@@ -70,6 +70,7 @@ typedef struct {
     uint16_t rw;                      /* register access: R step (W is rw + 1) */
     biss_cd_byte_steps byte[BISS_CD_MAX_BYTES];
     uint16_t ida; /* command: step whose answer is IDA slot 0 (slot i: ida + i) */
+    uint16_t end; /* the step ending the control frame: last S = 0, or a command's P */
 } biss_cd_prog;
 
 /* What the firmware reports for a program (the data RAM words). */

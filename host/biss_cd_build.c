@@ -85,6 +85,7 @@ static biss_cd_err build_register(biss_cd_prog *p, bool write, unsigned id, unsi
         }
         put_byte(p, &p->byte[i], write, write ? data[i] : 0u);
     }
+    p->end = p->len;
     put(p, BISS_CDOP_0); /* S = 0: no further address */
     put_tail(p);
     return BISS_CD_OK;
@@ -110,7 +111,8 @@ biss_cd_err biss_cd_build_command(biss_cd_prog *p, uint8_t ids, unsigned cmd) {
     put_header(p, biss_cd_cmd_header(ids, p->cmd));
     /* IDA slot 0 is the CDS right after the last CRC bit */
     p->ida = (uint16_t)(p->len - 1);
-    put_bits(p, 0, 8);   /* the IDA slots */
+    put_bits(p, 0, 8); /* the IDA slots */
+    p->end = p->len;
     put(p, BISS_CDOP_0); /* P: the slaves execute the command */
     put_tail(p);
     return BISS_CD_OK;

@@ -95,6 +95,12 @@ static bool rw_echoed(const biss_cd_prog *p, const biss_cd_answer *a, unsigned l
     return biss_cd_answer_bit(a, p->rw) == !write && biss_cd_answer_bit(a, p->rw + 1u) == write;
 }
 
+/* A failed BiSS frame matters up to the control frame's last step; one
+ * lost in the tail after it costs nothing. */
+static bool frame_ended(const biss_cd_prog *p, const biss_cd_answer *a, unsigned limit) {
+    return a->status != BISS_CDST_ERR_FRAME || limit > p->end;
+}
+
 static void parse_register(const biss_cd_prog *p, const biss_cd_answer *a, biss_cd_result *r) {
     unsigned limit = answered_limit(p, a);
     r->nbytes = p->count;
@@ -109,8 +115,7 @@ static void parse_register(const biss_cd_prog *p, const biss_cd_answer *a, biss_
             r->good_bytes += e == BISS_CD_OK;
         }
     }
-    /* all bytes came, but the frame end (S = 0) may not have gone out */
-    if (r->err == BISS_CD_OK && a->status == BISS_CDST_ERR_FRAME) {
+    if (r->err == BISS_CD_OK && !frame_ended(p, a, limit)) {
         r->err = BISS_CD_E_FRAME;
     }
 }
@@ -121,7 +126,7 @@ static void parse_command(const biss_cd_prog *p, const biss_cd_answer *a, biss_c
         return;
     }
     /* (a frame failing at P may or may not have let the command execute) */
-    if (a->status == BISS_CDST_ERR_FRAME) {
+    if (!frame_ended(p, a, answered_limit(p, a))) {
         r->err = BISS_CD_E_FRAME;
     }
     for (unsigned i = 0; i < 8; i++) {

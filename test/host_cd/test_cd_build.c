@@ -192,11 +192,16 @@ START_TEST(parse_by_hand) {
     ck_assert_int_eq(biss_cd_parse(&p, &a, &r), BISS_CD_E_REFUSED);
     a.status = BISS_CDST_BUSY;
     ck_assert_int_eq(biss_cd_parse(&p, &a, &r), BISS_CD_E_NOT_DONE);
-    /* a frame lost during the final S = 0: the byte came, the frame did not end */
+    /* a BiSS frame lost right after the final S = 0 went out: its answer is
+     * lost, the byte came but the control frame may not have ended */
+    ck_assert_uint_eq(p.end, p.byte[0].stop + 1);
     a.status = BISS_CDST_ERR_FRAME;
-    a.steps = (uint16_t)(p.len - 1);
+    a.steps = (uint16_t)(p.end + 1);
     ck_assert_int_eq(biss_cd_parse(&p, &a, &r), BISS_CD_E_FRAME);
     ck_assert_uint_eq(r.good_bytes, 1);
+    /* one lost in the tail costs nothing */
+    a.steps = (uint16_t)(p.end + 2);
+    ck_assert_int_eq(biss_cd_parse(&p, &a, &r), BISS_CD_OK);
     ck_assert_str_eq(biss_cd_strerror(BISS_CD_E_CRC), "register data CRC error");
     ck_assert_str_eq(biss_cd_strerror((biss_cd_err)99), "unknown error");
 }

@@ -357,6 +357,21 @@ START_TEST(command_addressed) {
 }
 END_TEST
 
+/* A BiSS frame failing at P stops the command; one failing in the tail
+ * after it does not matter. */
+START_TEST(command_frame_failure) {
+    add_chain();
+    biss_cd_result r;
+    g.sim.fail_frame = 24; /* S, 15 header, 8 IDA slots, then P */
+    ck_assert_int_eq(command(0x02, 1, &r), BISS_CD_E_FRAME);
+    ck_assert_uint_eq(r.ida, 0x02);
+    ck_assert_int_eq(chain[1].last_cmd, -1);
+    g.sim.fail_frame = 26;
+    ck_assert_int_eq(command(0x02, 2, &r), BISS_CD_OK);
+    ck_assert_int_eq(chain[1].last_cmd, 2);
+}
+END_TEST
+
 /* Register access to the middle slave of the chain. */
 START_TEST(chain_register_access) {
     add_chain();
@@ -389,6 +404,7 @@ int main(void) {
     tcase_add_test(tc, back_to_back_needs_the_tail);
     tcase_add_test(tc, command_broadcast);
     tcase_add_test(tc, command_addressed);
+    tcase_add_test(tc, command_frame_failure);
     tcase_add_test(tc, chain_register_access);
     suite_add_tcase(s, tc);
     SRunner *sr = srunner_create(s);
