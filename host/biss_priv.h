@@ -11,6 +11,8 @@
 
 #include "libbiss.h"
 
+#include "biss_cd.h"
+
 #include <pthread.h>
 #include <stddef.h>
 #include <stdint.h>
@@ -103,9 +105,14 @@ int biss_config_decode(const struct biss_shm_config *in, struct biss_config *c);
 /* Maps ST_CFG_ERROR to BISS_E_FW_* (0 stays 0). */
 int biss_fw_cfg_error(uint32_t cfgerr);
 
-/* Control communication: CRC4 (x^4 + x + 1, start 0) of the n low bits
- * of value, MSB first, inverted as sent on the line (biss_cd.c). */
-uint8_t biss_crc4_sent(uint32_t value, unsigned n);
+/* Control communication transport (biss_control.c): puts the program in
+ * data RAM, starts it, waits (triggering frames in host-trigger mode) and
+ * reads the firmware's answer back. The codec (biss_cd.h) builds programs
+ * and parses answers. */
+int biss_cd_exchange(biss_t *h, const biss_cd_prog *p, unsigned wait_limit, unsigned timeout_ms,
+                     biss_cd_answer *a);
+/* A codec verdict as a BISS_E_* code. */
+int biss_cd_error(biss_cd_err e);
 
 /* Sample decoding (biss_sample_decode.c). */
 struct biss_shm_result;

@@ -355,7 +355,8 @@ CFG_REPORT:
     lbco    r13, c28, P_RECORDS, 68         // slave records into r13..r29
     jmp     MAIN
 
-// reg = the result buffer being filled (P_BUF: 0 or 1).
+// reg = the result buffer being filled (P_BUF: 0 or 1). The same number of
+// cycles either way: it lies between an IEP trigger and the frame.
 .macro RESULT_BASE
 .mparam reg
     lbco    reg, c28, P_BUF, 4
@@ -364,6 +365,7 @@ CFG_REPORT:
     qba     RESULT_BASE_DONE
 RESULT_BASE_0:
     mov     reg, BISS_RES0
+    mov     reg, reg
 RESULT_BASE_DONE:
 .endm
 
@@ -396,7 +398,6 @@ FRAME:
     qbne    FRAME_GO, r2, 0
     jmp     NO_SLAVE_IDLE
 FRAME_GO:
-    jal     r0.w0, CD_PREPARE
     FRAME_SETUP
     // fall into the first period
 
@@ -635,6 +636,7 @@ FE_NO_SMA:
     sbco    r7, c28, P_NSLAVES, 4
     jal     r0.w0, HIST_SAVE
     jal     r0.w0, PUBLISH
+    jal     r0.w0, CD_PREPARE              // the next frame's CDM
     jal     r0.w0, SLAVE_IDLE              // the slave's timeout ends: SL high
     set     r30, r30, MA_BIT                // CDM done: MA idles high
     jmp     MAIN
@@ -681,10 +683,11 @@ PUBLISH:
     jmp     r0.w0
 
 // Wait for SL high through the last 8 samples (R31.b0 = 0xff: a whole MA
-// period), at most about 15 ms, so that a frame starting now finds no old
-// low sample to take for its ACK. r2 = 1 if it came, 0 if not.
+// period), at most 2 ms (slave timeouts are microseconds), so that a frame
+// starting now finds no old low sample to take for its ACK. r2 = 1 if it
+// came, 0 if not.
 SLAVE_IDLE:
-    mov     r3, 1000000
+    mov     r3, 100000                      // 4 cycles a turn
 SLAVE_IDLE_POLL:
     mov     r2, r31
     qbeq    SLAVE_IDLE_YES, r2.b0, 0xff
@@ -705,25 +708,34 @@ ABORT_FRAME:
     sbbo    r4, r3, 0, 4
     RESULT_BASE r2
     jal     r0.w0, PUBLISH
+    jal     r0.w0, CD_PREPARE
     jal     r0.w0, SLAVE_IDLE
     set     r30, r30, MA_BIT
     jmp     MAIN
 
+// No slave: the line delay is measured again once one answers (a slave
+// may come back on another cable, or in the middle of a frame).
 NO_ACK:                                     // after a rising edge: MA stays high
+NO_SLAVE_IDLE:                              // or SL low before a frame
+    lbco    r2, c28, P_PROC, 4
+    ldi     r2.b2, 1                        // training due
+    sbco    r2, c28, P_PROC, 4
     ldi     r12, BISS_RF_NO_SLAVE
     ldi     r3, BISS_ST_NO_SLAVE
     jmp     ABORT_FRAME
 
+// The ACK came but the start bit did not: this frame's ACK position is a
+// measurement all the same, and the average starts afresh from it (an
+// average gone wrong would make every frame miss its start bit).
 PROC_ERROR:                                 // after a rising edge: MA stays high
     RESULT_BASE r2
     sbbo    r6, r2, BISS_R_PROC_CLOCKS, 2
+    mov     r4.w0, r1.w2
+    mov     r4.w2, r1.w2
+    mov     r5.w0, r1.w2
+    jal     r0.w0, HIST_SAVE
     ldi     r12, BISS_RF_PROC_ERROR
     ldi     r3, BISS_ST_PROC_ERRORS
-    jmp     ABORT_FRAME
-
-NO_SLAVE_IDLE:                              // SL low before a frame
-    ldi     r12, BISS_RF_NO_SLAVE
-    ldi     r3, BISS_ST_NO_SLAVE
     jmp     ABORT_FRAME
 
 // ---- training: the line delay at a new rate -----------------------------------
@@ -763,8 +775,10 @@ TRAIN_ACK:                                  // t = 3
 
 // ============================================================================
 // Control communication: the CDM program (include/biss/biss_shm.h). Not
-// clocked: CD_PREPARE before a frame works out the CDM for either CDS, the
-// CDS period picks one, CD_COMMIT after the frame records the answers.
+// clocked: CD_PREPARE after a frame works out the next frame's CDM for
+// either CDS (so nothing of variable length lies between a trigger and the
+// frame), the CDS period picks one, CD_COMMIT after the frame records the
+// answers.
 // State in P_CD: r2 program run, r3.w0 step, r3.w2 answered step + 1,
 // r4.w0 zeros in a row, r4.w2 WAIT frames, r5.b0/b1 CDM edge, r5.w2 length.
 

@@ -66,10 +66,12 @@ enum biss_error {
     BISS_E_NOT_EMU = -32,        /* emulator-only call on a hardware handle */
     BISS_E_STOPPED = -33,        /* the PRU is stopped */
     BISS_E_CD_BUSY = -34,        /* a control-communication program is still running */
-    BISS_E_CD_WAIT = -35,        /* the slave did not answer (no S): wrong ID, or no registers */
+    BISS_E_CD_WAIT = -35,        /* the slave's S did not come within the wait limit */
     BISS_E_CD_FRAME = -36,       /* a frame failed while the program ran */
     BISS_E_CD_STEPS = -37,       /* program length out of range (1..1024) */
     BISS_E_CD_ANSWER = -38,      /* the slave's answer does not check (echo or CRC4) */
+    BISS_E_CD_NO_ECHO = -39,     /* no slave took the control frame (R/W not echoed) */
+    BISS_E_CD_IDA = -40,         /* command: IDA bits differ from the addressed IDs */
     /* the firmware refused the configuration (ST_CFG_ERROR = BISS_CFGERR_*) */
     BISS_E_FW_NSLAVES = -41,
     BISS_E_FW_HALF = -42,
@@ -258,10 +260,15 @@ int biss_cd_run(biss_t *h, const uint8_t *ops, unsigned n, unsigned wait_limit, 
 
 /* Register access of the slave with control-frame ID id (0..7), addresses
  * 0x00..0x7F; n > 1 is a sequential access of n consecutive addresses (at
- * most 64). Each byte's answer is checked (echo, CRC4). */
+ * most 64; the address wraps after 0x7F as the slave's does). Each byte's
+ * answer is checked (echo, CRC4); the codec is host/biss_cd.h. A slave
+ * does not tell a refused write (read-only register): read it back. */
 #define BISS_REG_MAX_SEQ 64
 int biss_reg_read(biss_t *h, unsigned id, uint8_t addr, uint8_t *buf, unsigned n);
 int biss_reg_write(biss_t *h, unsigned id, uint8_t addr, const uint8_t *buf, unsigned n);
+/* BiSS command cmd (0..3) to the slaves in ids (bit i = ID i; 0 = all,
+ * a broadcast without acknowledge). *ida, if set, gets the IDA answers. */
+int biss_command(biss_t *h, uint8_t ids, unsigned cmd, uint8_t *ida);
 
 /* ---- status and statistics --------------------------------------------- */
 enum biss_fw_state {

@@ -94,8 +94,8 @@ struct biss_shm_result {
     struct biss_shm_slave_result slave[BISS_MAX_SLAVES];
 };
 
-#define BISS_CD_PROG_BYTES (BISS_CD_MAX_STEPS / 4) /* 2 bits a step */
-#define BISS_CD_RESP_BYTES (BISS_CD_MAX_STEPS / 8) /* 1 bit a step */
+#define BISS_SHM_CD_PROG_BYTES (BISS_CD_MAX_STEPS / 4) /* 2 bits a step */
+#define BISS_SHM_CD_RESP_BYTES (BISS_CD_MAX_STEPS / 8) /* 1 bit a step */
 
 /* The whole shared area, from data RAM address 0 to the end of the
  * control-communication answers. */
@@ -111,9 +111,9 @@ struct biss_shm {
     uint8_t gap_res[BISS_PRIV - BISS_RES0 - 2 * BISS_RES_SIZE];
     uint8_t priv[BISS_PRIV_END - BISS_PRIV];
     uint8_t gap_priv[BISS_CD_PROG - BISS_PRIV_END];
-    uint8_t cd_prog[BISS_CD_PROG_BYTES];
-    uint8_t gap_prog[BISS_CD_RESP - BISS_CD_PROG - BISS_CD_PROG_BYTES];
-    uint8_t cd_resp[BISS_CD_RESP_BYTES];
+    uint8_t cd_prog[BISS_SHM_CD_PROG_BYTES];
+    uint8_t gap_prog[BISS_CD_RESP - BISS_CD_PROG - BISS_SHM_CD_PROG_BYTES];
+    uint8_t cd_resp[BISS_SHM_CD_RESP_BYTES];
 };
 
 /* ---- compile-time agreement with biss_shm.h ---------------------------- */
@@ -198,8 +198,9 @@ BISS_SHM_SLAVE_RESULT_AT(status, BISS_R_S_STATUS);
 BISS_SHM_AT(priv, BISS_PRIV);
 BISS_SHM_AT(cd_prog, BISS_CD_PROG);
 BISS_SHM_AT(cd_resp, BISS_CD_RESP);
-_Static_assert(BISS_CD_PROG + BISS_CD_PROG_BYTES <= BISS_CD_RESP, "CD program fits its area");
-_Static_assert(sizeof(struct biss_shm) == BISS_CD_RESP + BISS_CD_RESP_BYTES, "shared area size");
+_Static_assert(BISS_CD_PROG + BISS_SHM_CD_PROG_BYTES <= BISS_CD_RESP, "CD program fits its area");
+_Static_assert(sizeof(struct biss_shm) == BISS_CD_RESP + BISS_SHM_CD_RESP_BYTES,
+               "shared area size");
 _Static_assert(sizeof(struct biss_shm) <= BISS_DRAM_BYTES, "shared area fits the data RAM");
 
 #undef BISS_SHM_AT

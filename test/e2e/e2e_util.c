@@ -60,6 +60,17 @@ void e2e_run_publications(struct e2e_run *r, uint64_t n, int64_t max_ps) {
     }
 }
 
+void e2e_configure(struct e2e_run *r, const struct fw_settings *s) {
+    ck_assert_int_eq(fw_config_write(r->b, s), 0);
+    uint32_t seq = e2e_dram32(r->b, BISS_CFG_SEQ);
+    int64_t end = pru_time_ps(bench_core(r->b)) + 10 * SIM_PS_PER_MS;
+    while (e2e_dram32(r->b, BISS_ST_CFG_ACK) != seq && pru_time_ps(bench_core(r->b)) < end) {
+        ck_assert_int_eq(bench_run_until(r->b, pru_time_ps(bench_core(r->b)) + 5 * SIM_PS_PER_US),
+                         PRU_STOP_LIMIT);
+    }
+    ck_assert_uint_eq(e2e_dram32(r->b, BISS_ST_CFG_ACK), seq);
+}
+
 uint64_t e2e_run_frames(struct e2e_run *r, unsigned half, unsigned proc_limit, uint64_t frames) {
     struct fw_settings s = {.half = half, .trigger = BISS_TRIG_FREERUN, .proc_limit = proc_limit};
     ck_assert_int_eq(fw_config_write(r->b, &s), 0);

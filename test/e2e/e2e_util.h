@@ -25,6 +25,10 @@ struct bench *e2e_bench(struct e2e_run *r, const char *profile, double cable_m,
  * valid frames checked (fewer if time ran out). */
 uint64_t e2e_run_frames(struct e2e_run *r, unsigned half, unsigned proc_limit, uint64_t frames);
 
+/* Writes the configuration and runs until the firmware has taken it (its
+ * ST_CFG_ACK), at most 10 ms of simulated time. */
+void e2e_configure(struct e2e_run *r, const struct fw_settings *s);
+
 /* Simulated time until the firmware publishes `n` more frames of any kind,
  * at most max_ps. */
 void e2e_run_publications(struct e2e_run *r, uint64_t n, int64_t max_ps);

@@ -80,7 +80,7 @@ check(r.returncode == 0 and r.stdout.splitlines() ==
 r = run("--freq", "10000000", "reg-write", "0x60", "0x12", "0x34")
 check(r.returncode == 0 and r.stdout == "", "reg-write: %r %r" % (r.stdout, r.stderr))
 r = run("--freq", "10000000", "--id", "3", "reg-read", "0x78")
-check(r.returncode == 1 and "did not answer" in r.stderr, "reg-read wrong id: %r" % r.stderr)
+check(r.returncode == 1 and "no slave took" in r.stderr, "reg-read wrong id: %r" % r.stderr)
 for args in [["reg-read"], ["reg-read", "0x80"], ["reg-write", "0x60"], ["reg-write", "0x60", "0x100"],
              ["--id", "8", "reg-read", "0"], ["info", "0x33"]]:
     r = run(*args)

@@ -1,0 +1,160 @@
+/* biss_cd.h - host codec for BiSS-C control communication (register
+ * access, sequential access, BiSS commands) over the firmware's CDM
+ * program (include/biss/biss_shm.h, "control communication").
+ *
+ * The firmware runs a program of 2-bit steps, one per BiSS frame, and
+ * records as answer i the CDS of the frame after the one that sent step i.
+ * This module builds such programs for whole control frames, remembers
+ * which steps carry which protocol field, and turns the recorded answers
+ * back into register bytes and verdicts. It does no I/O: the caller moves
+ * the program and the answers between the data RAM and these structs
+ * (biss_cd_shm_put / biss_cd_shm_get work on a data RAM image).
+ *
+ * Frames as built here (CDM = master bit per frame, MSB first everywhere):
+ *   register access  S=1, CTS=1, ID(3), ADR(7), CRC4(4), R, W, then per
+ *                    byte: S=1, WAIT, D(8), CRC4(4), P=0; finally S=0
+ *   BiSS command     S=1, CTS=0, IDS(8, first = ID 0), CMD(2), CRC4(4),
+ *                    8 IDA slots (CDM 0), P=0
+ * and then BISS_CD_TAIL_ZEROS steps of CDM 0 that leave the slave ready
+ * for the next frame.
+ * CRC4: polynomial 0x13 (x^4+x+1), start 0, sent inverted, over CTS and
+ * the following 10 header bits, or over the 8 data bits. */
+#ifndef BISS_CD_H
+#define BISS_CD_H
+
+#include "biss/biss_shm.h"
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#define BISS_CD_MAX_BYTES  64                      /* bytes per register access */
+#define BISS_CD_PROG_BYTES (BISS_CD_MAX_STEPS / 4) /* 256: 4 steps a byte */
+#define BISS_CD_RESP_BYTES (BISS_CD_MAX_STEPS / 8) /* 128: 8 answers a byte */
+#define BISS_CD_IDLE_ZEROS 14                      /* CDM 0 frames before a frame's S */
+#define BISS_CD_TAIL_ZEROS 13 /* CDM 0 steps after a frame ends (biss_cd_build.c) */
+
+typedef enum {
+    BISS_CD_OK = 0,
+    BISS_CD_E_ARG,      /* builder argument out of range */
+    BISS_CD_E_TOO_LONG, /* more than BISS_CD_MAX_STEPS steps */
+    BISS_CD_E_REFUSED,  /* the firmware refused the program (CDST_ERR_STEPS) */
+    BISS_CD_E_NOT_DONE, /* no end status yet (CDST_IDLE / CDST_BUSY) */
+    BISS_CD_E_FRAME,    /* a BiSS frame failed mid-program (CDST_ERR_FRAME) */
+    BISS_CD_E_NO_ECHO,  /* R/W not echoed: no slave took the header (ID, header CRC) */
+    BISS_CD_E_NO_START, /* the slave's S did not come within the wait limit (nDELAYERR) */
+    BISS_CD_E_CRC,      /* read: CRC4 of a data byte wrong */
+    BISS_CD_E_ECHO,     /* write: data or CRC4 not echoed as sent */
+    BISS_CD_E_IDA,      /* command: IDA bits differ from the addressed IDs */
+} biss_cd_err;
+
+typedef enum { BISS_CD_RAW, BISS_CD_READ, BISS_CD_WRITE, BISS_CD_COMMAND } biss_cd_kind;
+
+/* Steps that carry one register byte. */
+typedef struct {
+    uint16_t start; /* master S; its answer is 1 if the slave's S came in time */
+    uint16_t wait;  /* WAIT for a late slave S */
+    uint16_t data;  /* first of 8 data steps; answers: register bits or echo */
+    uint16_t crc;   /* first of 4 CRC steps; answers: the slave's CRC4, inverted */
+    uint16_t stop;  /* P */
+} biss_cd_byte_steps;
+
+/* A program and where its fields are. Build it with a biss_cd_build_*. */
+typedef struct {
+    uint8_t op[BISS_CD_MAX_STEPS]; /* BISS_CDOP_* per step */
+    uint16_t len;                  /* steps, 1..BISS_CD_MAX_STEPS */
+    biss_cd_kind kind;
+    uint8_t id, addr, count;          /* register access */
+    uint8_t wdata[BISS_CD_MAX_BYTES]; /* write: the bytes sent */
+    uint8_t ids, cmd;                 /* command: ids bit i = slave ID i */
+    uint16_t rw;                      /* register access: R step (W is rw + 1) */
+    biss_cd_byte_steps byte[BISS_CD_MAX_BYTES];
+    uint16_t ida; /* command: step whose answer is IDA slot 0 (slot i: ida + i) */
+    uint16_t end; /* the step ending the control frame: last S = 0, or a command's P */
+} biss_cd_prog;
+
+/* What the firmware reports for a program (the data RAM words). */
+typedef struct {
+    uint32_t seq;    /* ST_CD_SEQ: CD_CMD of the program ended */
+    uint16_t status; /* BISS_CDST_* */
+    uint16_t steps;  /* steps executed */
+    uint8_t resp[BISS_CD_RESP_BYTES];
+} biss_cd_answer;
+
+/* How the slave's start bit S of a register byte came. */
+typedef enum {
+    BISS_CD_S_NOT_REACHED, /* the program stopped before it */
+    BISS_CD_S_IN_TIME,     /* in the frame right after the master's S */
+    BISS_CD_S_LATE,        /* after register processing frames (WAIT passed) */
+    BISS_CD_S_MISSING,     /* not within the wait limit */
+} biss_cd_start;
+
+typedef struct {
+    biss_cd_start start;
+    bool answered; /* all 12 data and CRC answers were recorded */
+    uint8_t data;  /* read: the register; write: the slave's echo */
+    uint8_t crc;   /* the 4 CRC answers as on the line (inverted CRC4) */
+    bool crc_ok;   /* crc is the line CRC4 of data */
+    bool echo_ok;  /* write: data and CRC came back as sent (read: false) */
+} biss_cd_byte;
+
+typedef struct {
+    biss_cd_err err;     /* the first error in line order, BISS_CD_OK if none */
+    unsigned good_bytes; /* bytes transferred correctly before the first error (REGBYTES) */
+    unsigned nbytes;     /* entries of byte[] filled (the program's count) */
+    bool rw_echo_ok;     /* register access: R and W echoed */
+    biss_cd_byte byte[BISS_CD_MAX_BYTES];
+    uint8_t ida;          /* command: IDA slot answers, bit i = ID i */
+    uint8_t ida_expected; /* command: the addressed IDs (0 for a broadcast) */
+} biss_cd_result;
+
+/* ---- CRC and header bits (biss_cd_crc.c) ---- */
+
+/* CRC4 (0x13, start 0) over the low nbits of bits, MSB first; as computed. */
+uint8_t biss_cd_crc4(uint32_t bits, unsigned nbits);
+/* The same as sent on the line: inverted. */
+uint8_t biss_cd_crc4_line(uint32_t bits, unsigned nbits);
+/* The 11 header bits the header CRC covers, CTS first. */
+uint16_t biss_cd_reg_header(uint8_t id, uint8_t addr);
+uint16_t biss_cd_cmd_header(uint8_t ids, uint8_t cmd);
+
+/* ---- builders (biss_cd_build.c) ---- */
+
+/* Sequential read of count (1..64) registers of slave id (0..7) from addr
+ * (0..0x7F; the address wraps after 0x7F as the slave's does). */
+biss_cd_err biss_cd_build_read(biss_cd_prog *p, unsigned id, unsigned addr, unsigned count);
+/* Sequential write of count bytes of data. */
+biss_cd_err biss_cd_build_write(biss_cd_prog *p, unsigned id, unsigned addr, const uint8_t *data,
+                                unsigned count);
+/* BiSS command cmd (0..3) to the slaves in ids (bit i = ID i; 0 = all,
+ * broadcast without IDA). */
+biss_cd_err biss_cd_build_command(biss_cd_prog *p, uint8_t ids, unsigned cmd);
+/* frames (1..BISS_CD_MAX_STEPS) of CDM 0: lets a slave left inside a
+ * frame (after BISS_CD_E_NO_START or BISS_CD_E_FRAME) finish it and re-arm. */
+biss_cd_err biss_cd_build_idle(biss_cd_prog *p, unsigned frames);
+/* Any program: n (1..BISS_CD_MAX_STEPS) BISS_CDOP_* values. */
+biss_cd_err biss_cd_build_raw(biss_cd_prog *p, const uint8_t *ops, unsigned n);
+
+/* ---- answers (biss_cd_parse.c) ---- */
+
+/* Answer bit i as recorded (meaningful only for steps the firmware ran). */
+int biss_cd_answer_bit(const biss_cd_answer *a, unsigned step);
+/* Decodes the answers to a built program. Returns r->err. */
+biss_cd_err biss_cd_parse(const biss_cd_prog *p, const biss_cd_answer *a, biss_cd_result *r);
+const char *biss_cd_strerror(biss_cd_err e);
+
+/* ---- data RAM words (biss_cd_shm.c) ---- */
+
+/* The program as BISS_CD_PROG holds it: step i in bits 2(i%4)+1..2(i%4) of
+ * byte i/4; steps past the length are END. */
+void biss_cd_pack(const biss_cd_prog *p, uint8_t prog[BISS_CD_PROG_BYTES]);
+/* Writes BISS_CD_PROG, BISS_CD_STEPS and BISS_CD_WAIT_LIMIT into a data RAM
+ * image (at least BISS_CD_RESP bytes). CD_CMD is the caller's to increment
+ * afterwards, so the firmware never starts half a program. */
+biss_cd_err biss_cd_shm_put(const biss_cd_prog *p, uint16_t wait_limit, uint8_t *dram,
+                            size_t dram_len);
+/* Reads ST_CD_SEQ, ST_CD_STATUS and BISS_CD_RESP from a data RAM image
+ * (at least BISS_CD_RESP + BISS_CD_RESP_BYTES bytes). */
+biss_cd_err biss_cd_shm_get(const uint8_t *dram, size_t dram_len, biss_cd_answer *a);
+
+#endif

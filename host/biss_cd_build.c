@@ -1,0 +1,148 @@
+/* Builders: whole control frames as CDM programs, with the step index of
+ * every field kept for the parser. */
+#include "biss_cd.h"
+
+#include <string.h>
+
+/* Steps of a register access: S, header (15), R W, then per byte S WAIT
+ * D(8) CRC(4) P, then the final S = 0 and the tail. */
+#define REG_FIXED_STEPS (19u + BISS_CD_TAIL_ZEROS)
+#define REG_BYTE_STEPS  15u
+/* Steps of a command: S, header (15), 8 IDA slots, P, the tail. */
+#define CMD_STEPS (25u + BISS_CD_TAIL_ZEROS)
+
+static void start(biss_cd_prog *p, biss_cd_kind kind) {
+    memset(p, 0, sizeof *p);
+    p->kind = kind;
+}
+
+/* Callers size the program before putting steps, so this cannot overflow. */
+static void put(biss_cd_prog *p, unsigned op) {
+    p->op[p->len++] = (uint8_t)op;
+}
+
+static void put_bits(biss_cd_prog *p, uint32_t value, unsigned nbits) {
+    for (unsigned i = nbits; i-- > 0;) {
+        put(p, (value >> i) & 1u);
+    }
+}
+
+static void put_zeros(biss_cd_prog *p, unsigned n) {
+    while (n--) {
+        put(p, BISS_CDOP_0);
+    }
+}
+
+static void put_header(biss_cd_prog *p, uint16_t header) {
+    put(p, BISS_CDOP_1); /* S */
+    put_bits(p, header, 11);
+    put_bits(p, biss_cd_crc4_line(header, 11), 4);
+}
+
+/* After its frame ends (on a CDM 0) a slave wants 14 zeros in a row before
+ * the next S; the firmware counts every CDM 0 frame, those inside the frame
+ * just ended too, and may start the next program at once. The tail re-arms
+ * the slave inside the program itself, so programs can follow each other
+ * without the host waiting. */
+static void put_tail(biss_cd_prog *p) {
+    put_zeros(p, BISS_CD_TAIL_ZEROS);
+}
+
+/* One register byte after its master S: read sends zeros, write sends the
+ * byte and its line CRC. */
+static void put_byte(biss_cd_prog *p, biss_cd_byte_steps *at, bool write, uint8_t value) {
+    at->start = p->len;
+    put(p, BISS_CDOP_1);
+    at->wait = p->len;
+    put(p, BISS_CDOP_WAIT);
+    at->data = p->len;
+    put_bits(p, write ? value : 0u, 8);
+    at->crc = p->len;
+    put_bits(p, write ? biss_cd_crc4_line(value, 8) : 0u, 4);
+    at->stop = p->len;
+    put(p, BISS_CDOP_0);
+}
+
+static biss_cd_err build_register(biss_cd_prog *p, bool write, unsigned id, unsigned addr,
+                                  const uint8_t *data, unsigned count) {
+    if (id > 7 || addr > 0x7f || count < 1 || count > BISS_CD_MAX_BYTES || (write && !data)) {
+        return BISS_CD_E_ARG;
+    }
+    if (REG_FIXED_STEPS + REG_BYTE_STEPS * count > BISS_CD_MAX_STEPS) {
+        return BISS_CD_E_TOO_LONG;
+    }
+    start(p, write ? BISS_CD_WRITE : BISS_CD_READ);
+    p->id = (uint8_t)id;
+    p->addr = (uint8_t)addr;
+    p->count = (uint8_t)count;
+    put_header(p, biss_cd_reg_header(p->id, p->addr));
+    p->rw = p->len;
+    put(p, write ? BISS_CDOP_0 : BISS_CDOP_1); /* R */
+    put(p, write ? BISS_CDOP_1 : BISS_CDOP_0); /* W */
+    for (unsigned i = 0; i < count; i++) {
+        if (write) {
+            p->wdata[i] = data[i];
+        }
+        put_byte(p, &p->byte[i], write, write ? data[i] : 0u);
+    }
+    p->end = p->len;
+    put(p, BISS_CDOP_0); /* S = 0: no further address */
+    put_tail(p);
+    return BISS_CD_OK;
+}
+
+biss_cd_err biss_cd_build_read(biss_cd_prog *p, unsigned id, unsigned addr, unsigned count) {
+    return build_register(p, false, id, addr, NULL, count);
+}
+
+biss_cd_err biss_cd_build_write(biss_cd_prog *p, unsigned id, unsigned addr, const uint8_t *data,
+                                unsigned count) {
+    return build_register(p, true, id, addr, data, count);
+}
+
+biss_cd_err biss_cd_build_command(biss_cd_prog *p, uint8_t ids, unsigned cmd) {
+    if (cmd > 3) {
+        return BISS_CD_E_ARG;
+    }
+    _Static_assert(CMD_STEPS <= BISS_CD_MAX_STEPS, "a command fits a program");
+    start(p, BISS_CD_COMMAND);
+    p->ids = ids;
+    p->cmd = (uint8_t)cmd;
+    put_header(p, biss_cd_cmd_header(ids, p->cmd));
+    /* IDA slot 0 is the CDS right after the last CRC bit */
+    p->ida = (uint16_t)(p->len - 1);
+    put_bits(p, 0, 8); /* the IDA slots */
+    p->end = p->len;
+    put(p, BISS_CDOP_0); /* P: the slaves execute the command */
+    put_tail(p);
+    return BISS_CD_OK;
+}
+
+biss_cd_err biss_cd_build_idle(biss_cd_prog *p, unsigned frames) {
+    if (frames < 1) {
+        return BISS_CD_E_ARG;
+    }
+    if (frames > BISS_CD_MAX_STEPS) {
+        return BISS_CD_E_TOO_LONG;
+    }
+    start(p, BISS_CD_RAW);
+    put_zeros(p, frames);
+    return BISS_CD_OK;
+}
+
+biss_cd_err biss_cd_build_raw(biss_cd_prog *p, const uint8_t *ops, unsigned n) {
+    if (!ops || n < 1) {
+        return BISS_CD_E_ARG;
+    }
+    if (n > BISS_CD_MAX_STEPS) {
+        return BISS_CD_E_TOO_LONG;
+    }
+    start(p, BISS_CD_RAW);
+    for (unsigned i = 0; i < n; i++) {
+        if (ops[i] > BISS_CDOP_END) {
+            return BISS_CD_E_ARG;
+        }
+        put(p, ops[i]);
+    }
+    return BISS_CD_OK;
+}

@@ -1,0 +1,253 @@
+/* Check suite for the codec through the real firmware: pru_fw/biss_master.p
+ * assembled and run on the emulated PRU, wired to the slave model of a
+ * profile. Programs go in and answers come out through the data RAM, as a
+ * host would move them. */
+#include "bench.h"
+#include "biss_cd.h"
+#include "pruasm.h"
+#include "scenario.h"
+
+#include <check.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Frames of a register access of n bytes, every slave S in time (see
+ * test_cd_sim.c); late S adds the slave's processing frames per byte. */
+#define REG_FRAMES(n) (20u + BISS_CD_TAIL_ZEROS + 14u * (n))
+
+typedef struct {
+    struct bench *b;
+    uint32_t base; /* global address of the data RAM */
+    uint32_t cmd;
+    uint64_t frames; /* frames the last program took, from CD_CMD to its end */
+} fw_rig;
+
+static void put(fw_rig *r, uint32_t off, const void *p, size_t n) {
+    pru_host_write(bench_core(r->b), r->base + off, p, n);
+}
+
+static void get(fw_rig *r, uint32_t off, void *p, size_t n) {
+    pru_host_read(bench_core(r->b), r->base + off, p, n);
+}
+
+static unsigned crc_width(uint32_t poly) {
+    unsigned w = 0;
+    while (poly >> (w + 1)) {
+        w++;
+    }
+    return w;
+}
+
+/* One slave's block of the firmware configuration, from its model. */
+static void configure_slave(fw_rig *r, unsigned i, const biss_slave_cfg *s) {
+    unsigned w = crc_width(s->crc_poly);
+    uint16_t poly = (uint16_t)(s->crc_poly & ((1u << w) - 1u));
+    uint16_t start = (uint16_t)s->crc_start;
+    uint8_t blk[BISS_CFG_SLAVE_SIZE] = {
+        (uint8_t)(s->pos_bits + s->fill_bits + s->has_err + s->has_warn + s->lc_bits), (uint8_t)w,
+        (uint8_t)s->lc_bits, (uint8_t)(s->has_err && s->has_warn ? BISS_SF_EW : 0)};
+    memcpy(blk + BISS_CFG_S_CRC_POLY, &poly, 2);
+    memcpy(blk + BISS_CFG_S_CRC_START, &start, 2);
+    put(r, BISS_CFG_SLAVE0 + BISS_CFG_SLAVE_SIZE * i, blk, sizeof blk);
+}
+
+static void configure(fw_rig *r) {
+    const biss_chain_cfg *chain = &bench_link(r->b)->sc.biss;
+    uint16_t half = 10, proc_limit = 200;
+    uint8_t n = (uint8_t)chain->n, trig = BISS_TRIG_FREERUN;
+    put(r, BISS_CFG_HALF, &half, 2);
+    put(r, BISS_CFG_NSLAVES, &n, 1);
+    put(r, BISS_CFG_TRIGGER, &trig, 1);
+    put(r, BISS_CFG_PROC_LIMIT, &proc_limit, 2);
+    for (unsigned i = 0; i < chain->n; i++) {
+        configure_slave(r, i, &chain->s[i]);
+    }
+    uint32_t seq = 1;
+    put(r, BISS_CFG_SEQ, &seq, 4);
+}
+
+static void rig_start(fw_rig *r, unsigned reg_proc_frames) {
+    struct bench_config cfg;
+    bench_config_default(&cfg);
+    cfg.pru.fast_forward = 1;
+    ck_assert_int_eq(profile_by_name("tidep0022-test-encoder", &cfg.link), 0);
+    cfg.link.biss.s[0].reg_proc_frames = reg_proc_frames;
+    char err[200], path[600], inc[600];
+    r->b = bench_new(&cfg, err, sizeof err);
+    ck_assert_msg(r->b != NULL, "%s", err);
+    r->base = pru_soc_base(cfg.soc);
+    r->cmd = 0;
+    const char *src = getenv("TEST_SRC_DIR");
+    ck_assert_ptr_nonnull(src);
+    snprintf(path, sizeof path, "%s/pru_fw/biss_master.p", src);
+    snprintf(inc, sizeof inc, "%s/include/biss", src);
+    const char *incs[] = {inc};
+    struct pruasm_options opt = {.core = 3, .include_dirs = incs, .ninclude_dirs = 1};
+    struct pruasm_image img;
+    struct pruasm_diag d = {0};
+    ck_assert_msg(pruasm_assemble_file(&opt, path, &img, &d) == 0, "%s", d.first_error);
+    ck_assert_int_eq(bench_start_image(r->b, img.words, img.nwords * 4), 0);
+    pruasm_image_free(&img); /* the core has its copy */
+    configure(r);
+    bench_run_until(r->b, pru_time_ps(bench_core(r->b)) + 200 * SIM_PS_PER_US);
+}
+
+/* Hands p to the firmware, runs until it reports the end, parses. */
+static biss_cd_err rig_run(fw_rig *r, const biss_cd_prog *p, uint16_t wait_limit,
+                           biss_cd_result *res) {
+    static uint8_t dram[BISS_DRAM_BYTES];
+    ck_assert_int_eq(biss_cd_shm_put(p, wait_limit, dram, sizeof dram), BISS_CD_OK);
+    put(r, BISS_CD_PROG, dram + BISS_CD_PROG, BISS_CD_PROG_BYTES);
+    put(r, BISS_CD_STEPS, dram + BISS_CD_STEPS, 4); /* length and wait limit */
+    r->cmd++;
+    put(r, BISS_CD_CMD, &r->cmd, 4);
+    struct pru_core *core = bench_core(r->b);
+    uint64_t f0 = link_frames(bench_link(r->b));
+    int64_t give_up = pru_time_ps(core) + 100 * SIM_PS_PER_MS;
+    uint32_t seq = 0;
+    while (seq != r->cmd) {
+        ck_assert_int_lt(pru_time_ps(core), give_up);
+        bench_run_until(r->b, pru_time_ps(core) + SIM_PS_PER_US);
+        get(r, BISS_ST_CD_SEQ, &seq, 4);
+    }
+    r->frames = link_frames(bench_link(r->b)) - f0;
+    get(r, 0, dram, sizeof dram);
+    biss_cd_answer a;
+    ck_assert_int_eq(biss_cd_shm_get(dram, sizeof dram, &a), BISS_CD_OK);
+    return biss_cd_parse(p, &a, res);
+}
+
+static biss_cd_err rig_read(fw_rig *r, unsigned addr, unsigned n, uint16_t wait_limit,
+                            biss_cd_result *res) {
+    static biss_cd_prog p;
+    ck_assert_int_eq(biss_cd_build_read(&p, 0, addr, n), BISS_CD_OK);
+    return rig_run(r, &p, wait_limit, res);
+}
+
+static void assert_bytes(const biss_cd_result *res, const uint8_t *want, unsigned n) {
+    ck_assert_uint_eq(res->good_bytes, n);
+    for (unsigned i = 0; i < n; i++) {
+        ck_assert_uint_eq(res->byte[i].data, want[i]);
+        ck_assert(res->byte[i].crc_ok);
+    }
+}
+
+/* The frame count from CD_CMD to the end: the program's frames, and at
+ * most one frame before the firmware picks it up. */
+static void assert_frames(const fw_rig *r, unsigned want) {
+    ck_assert_uint_ge(r->frames, want);
+    ck_assert_uint_le(r->frames, want + 1);
+}
+
+START_TEST(fw_reads_table11) {
+    fw_rig r;
+    rig_start(&r, 0);
+    biss_cd_result res;
+    const uint8_t temp = 0x5f;
+    ck_assert_int_eq(rig_read(&r, 0x67, 1, 10, &res), BISS_CD_OK);
+    assert_bytes(&res, &temp, 1);
+    ck_assert_int_eq(res.byte[0].start, BISS_CD_S_IN_TIME);
+    /* back to back: the firmware starts each at once */
+    ck_assert_int_eq(rig_read(&r, 0x67, 1, 10, &res), BISS_CD_OK);
+    assert_frames(&r, REG_FRAMES(1));
+    static const uint8_t serial[] = {0x00, 0xd9, 0x01, 0x32};
+    ck_assert_int_eq(rig_read(&r, 0x44, 4, 10, &res), BISS_CD_OK);
+    assert_bytes(&res, serial, 4);
+    assert_frames(&r, REG_FRAMES(4));
+    static const uint8_t ident[] = {0x46, 0x3a, 0xc0, 0x0c, 0x00, 0x01, 0x57, 0x41};
+    ck_assert_int_eq(rig_read(&r, 0x78, 8, 10, &res), BISS_CD_OK);
+    assert_bytes(&res, ident, 8);
+    assert_frames(&r, REG_FRAMES(8));
+    ck_assert_int_eq(rig_read(&r, 0x40, 64, 10, &res), BISS_CD_OK);
+    ck_assert_uint_eq(res.good_bytes, 64);
+    ck_assert_uint_eq(res.byte[0x47 - 0x40].data, 0x32);
+    ck_assert_uint_eq(res.byte[0x7f - 0x40].data, 0x41);
+    assert_frames(&r, REG_FRAMES(64));
+    bench_free(r.b);
+}
+END_TEST
+
+START_TEST(fw_write_read_back) {
+    fw_rig r;
+    rig_start(&r, 0);
+    static biss_cd_prog p;
+    const uint8_t d[] = {0x3c, 0xa5};
+    ck_assert_int_eq(biss_cd_build_write(&p, 0, 0x10, d, 2), BISS_CD_OK);
+    biss_cd_result res;
+    ck_assert_int_eq(rig_run(&r, &p, 10, &res), BISS_CD_OK);
+    ck_assert(res.byte[0].echo_ok && res.byte[1].echo_ok);
+    ck_assert_int_eq(rig_read(&r, 0x10, 2, 10, &res), BISS_CD_OK);
+    assert_bytes(&res, d, 2);
+    bench_free(r.b);
+}
+END_TEST
+
+START_TEST(fw_late_start) {
+    fw_rig r;
+    rig_start(&r, 3);
+    biss_cd_result res;
+    static const uint8_t serial[] = {0x00, 0xd9, 0x01, 0x32};
+    ck_assert_int_eq(rig_read(&r, 0x44, 4, 10, &res), BISS_CD_OK);
+    ck_assert_int_eq(rig_read(&r, 0x44, 4, 3, &res), BISS_CD_OK); /* just enough */
+    assert_bytes(&res, serial, 4);
+    ck_assert_int_eq(res.byte[3].start, BISS_CD_S_LATE);
+    assert_frames(&r, REG_FRAMES(4) + 4 * 3);
+    ck_assert_int_eq(rig_read(&r, 0x44, 4, 2, &res), BISS_CD_E_NO_START);
+    ck_assert_int_eq(res.byte[0].start, BISS_CD_S_MISSING);
+    ck_assert_uint_eq(res.good_bytes, 0);
+    bench_free(r.b);
+}
+END_TEST
+
+START_TEST(fw_commands) {
+    fw_rig r;
+    rig_start(&r, 0);
+    static biss_cd_prog p;
+    biss_cd_result res;
+    ck_assert_int_eq(biss_cd_build_command(&p, 0, 2), BISS_CD_OK);
+    ck_assert_int_eq(rig_run(&r, &p, 0, &res), BISS_CD_OK);
+    ck_assert_uint_eq(res.ida, 0);
+    ck_assert_int_eq(bench_link(r.b)->biss.ctrl[0].last_cmd, 2);
+    ck_assert_int_eq(biss_cd_build_command(&p, 0x01, 1), BISS_CD_OK); /* ID 0 */
+    ck_assert_int_eq(rig_run(&r, &p, 0, &res), BISS_CD_OK);
+    ck_assert_uint_eq(res.ida, 0x01);
+    ck_assert_int_eq(bench_link(r.b)->biss.ctrl[0].last_cmd, 1);
+    ck_assert_int_eq(biss_cd_build_command(&p, 0x08, 3), BISS_CD_OK); /* ID 3: none */
+    ck_assert_int_eq(rig_run(&r, &p, 0, &res), BISS_CD_E_IDA);
+    ck_assert_uint_eq(res.ida, 0);
+    bench_free(r.b);
+}
+END_TEST
+
+/* The firmware counts the CDM 0 frames inside the last control frame
+ * towards the 14 before the next program; the slave model counts from its
+ * frame end. Without the tail the second program is not taken. */
+START_TEST(fw_back_to_back_without_tail) {
+    fw_rig r;
+    rig_start(&r, 0);
+    static biss_cd_prog p;
+    ck_assert_int_eq(biss_cd_build_read(&p, 0, 0x67, 1), BISS_CD_OK);
+    p.len -= BISS_CD_TAIL_ZEROS;
+    biss_cd_result res;
+    ck_assert_int_eq(rig_run(&r, &p, 10, &res), BISS_CD_OK);
+    ck_assert_int_eq(rig_run(&r, &p, 10, &res), BISS_CD_E_NO_ECHO);
+    bench_free(r.b);
+}
+END_TEST
+
+int main(void) {
+    Suite *s = suite_create("host_cd_fw");
+    TCase *tc = tcase_create("fw");
+    tcase_add_test(tc, fw_reads_table11);
+    tcase_add_test(tc, fw_write_read_back);
+    tcase_add_test(tc, fw_late_start);
+    tcase_add_test(tc, fw_commands);
+    tcase_add_test(tc, fw_back_to_back_without_tail);
+    suite_add_tcase(s, tc);
+    SRunner *sr = srunner_create(s);
+    srunner_run_all(sr, CK_NORMAL);
+    int failed = srunner_ntests_failed(sr);
+    srunner_free(sr);
+    return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+}
