@@ -16,7 +16,7 @@ static const struct command table[] = {
     {"stats", bissctl_stats, true},         {"run", bissctl_run, true},
     {"trigger", bissctl_trigger, true},     {"start", bissctl_start, true},
     {"stop", bissctl_stop, false},          {"reg-read", bissctl_reg_read, true},
-    {"reg-write", bissctl_reg_write, true},
+    {"reg-write", bissctl_reg_write, true}, {"command", bissctl_command, true},
 };
 
 static const struct command *find(const char *name) {

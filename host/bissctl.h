@@ -45,6 +45,7 @@ int bissctl_start(biss_t *h, const struct bissctl_opts *o);
 int bissctl_stop(biss_t *h, const struct bissctl_opts *o);
 int bissctl_reg_read(biss_t *h, const struct bissctl_opts *o);
 int bissctl_reg_write(biss_t *h, const struct bissctl_opts *o);
+int bissctl_command(biss_t *h, const struct bissctl_opts *o);
 
 /* "bissctl: <what>: <strerror>" on stderr; returns BISSCTL_FAIL. */
 int bissctl_fail(const char *what, int err);

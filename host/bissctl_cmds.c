@@ -193,3 +193,18 @@ int bissctl_reg_write(biss_t *h, const struct bissctl_opts *o) {
     rc = biss_reg_write(h, o->id, addr, buf, n);
     return rc ? bissctl_fail("reg-write", rc) : BISSCTL_OK;
 }
+
+int bissctl_command(biss_t *h, const struct bissctl_opts *o) {
+    uint8_t ids, cmd, ida = 0;
+    if (o->nargs != 2 || bissctl_parse_byte(o->args[0], 0xff, &ids) ||
+        bissctl_parse_byte(o->args[1], 3, &cmd)) {
+        fprintf(stderr, "bissctl: command needs an ID mask 0..0xff and a command 0..3\n");
+        return BISSCTL_USAGE;
+    }
+    int rc = biss_command(h, ids, cmd, &ida);
+    if (rc) {
+        return bissctl_fail("command", rc);
+    }
+    printf("ids=0x%02x cmd=%u ida=0x%02x\n", ids, cmd, ida);
+    return BISSCTL_OK;
+}

@@ -7,8 +7,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const char *const commands[] = {"info",  "read", "stats",    "run",      "trigger",
-                                       "start", "stop", "reg-read", "reg-write"};
+static const char *const commands[] = {"info",  "read", "stats",    "run",       "trigger",
+                                       "start", "stop", "reg-read", "reg-write", "command"};
 
 static const char common_help[] =
     "Target:\n"
@@ -69,6 +69,11 @@ static const char *command_help(const char *command) {
                "  Reads N registers (default 1, at most 64) from ADDR (0x00..0x7F) of the\n"
                "  slave with control-frame ID (default 0), through CDM/CDS.\n";
     }
+    if (strcmp(command, "command") == 0) {
+        return "bissctl [options] command IDS CMD\n"
+               "  Sends BiSS command CMD (0..3) to the slaves in the ID mask IDS (bit i =\n"
+               "  ID i; 0 = all, a broadcast without acknowledge); prints the IDA answers.\n";
+    }
     if (strcmp(command, "reg-write") == 0) {
         return "bissctl [options] reg-write [--id ID] ADDR BYTE...\n"
                "  Writes the bytes to ADDR, ADDR+1, ... of the slave with control-frame\n"
@@ -86,7 +91,7 @@ void bissctl_usage(const char *command) {
     printf("usage: bissctl [options] COMMAND [command options]\n"
            "BiSS-C master on a PRU (emulated or real) through libbiss.\n"
            "Commands: info, read [-n N], stats, run [--ms MS], trigger, start, stop,\n"
-           "          reg-read ADDR [-n N], reg-write ADDR BYTE...\n"
+           "          reg-read ADDR [-n N], reg-write ADDR BYTE..., command IDS CMD\n"
            "          (bissctl COMMAND --help for each)\n\n%s",
            common_help);
 }
@@ -373,7 +378,8 @@ int bissctl_parse(int argc, char **argv, struct bissctl_opts *o) {
     }
     o->args = argv + optind;
     o->nargs = argc - optind;
-    bool takes_args = o->command && strncmp(o->command, "reg-", 4) == 0;
+    bool takes_args =
+        o->command && (strncmp(o->command, "reg-", 4) == 0 || strcmp(o->command, "command") == 0);
     if (o->nargs > 0 && !takes_args) {
         return usage_error("unexpected argument '%s'", argv[optind]);
     }

@@ -27,7 +27,7 @@ def run(*args, env=None):
 r = run("--help")
 check(r.returncode == 0 and "info" in r.stdout and "--target" in r.stdout, "--help: %r" % r.stdout)
 for cmd in ["info", "read", "stats", "run", "trigger", "start", "stop", "reg-read",
-            "reg-write"]:
+            "reg-write", "command"]:
     r = run(cmd, "--help")
     check(r.returncode == 0 and r.stdout.startswith("bissctl [options] " + cmd),
           "%s --help: %r" % (cmd, r.stdout[:80]))
@@ -81,7 +81,9 @@ r = run("--freq", "10000000", "reg-write", "0x60", "0x12", "0x34")
 check(r.returncode == 0 and r.stdout == "", "reg-write: %r %r" % (r.stdout, r.stderr))
 r = run("--freq", "10000000", "--id", "3", "reg-read", "0x78")
 check(r.returncode == 1 and "no slave took" in r.stderr, "reg-read wrong id: %r" % r.stderr)
-for args in [["reg-read"], ["reg-read", "0x80"], ["reg-write", "0x60"], ["reg-write", "0x60", "0x100"],
+r = run("--freq", "10000000", "command", "1", "0")
+check(r.returncode == 0 and r.stdout == "ids=0x01 cmd=0 ida=0x01\n", "command: %r %r" % (r.stdout, r.stderr))
+for args in [["command", "1", "4"], ["command", "1"], ["reg-read"], ["reg-read", "0x80"], ["reg-write", "0x60"], ["reg-write", "0x60", "0x100"],
              ["--id", "8", "reg-read", "0"], ["info", "0x33"]]:
     r = run(*args)
     check(r.returncode == 2, "%r: rc %d %r" % (args, r.returncode, r.stderr))
