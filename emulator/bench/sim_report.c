@@ -79,7 +79,28 @@ static void add_counter(cJSON *j, const char *key, const struct fw_check *fw, ui
     }
 }
 
-static void add_firmware(cJSON *j, const struct fw_check *fw) {
+double sim_frame_minimum_ps(struct bench *b, const struct fw_check *fw) {
+    const biss_chain_cfg *c = &bench_link(b)->sc.biss;
+    double period = 2.0 * fw->half * PRU_PS_PER_CYCLE;
+    unsigned bits = 0;
+    for (unsigned i = 0; i < c->n; i++) {
+        bits += biss_slave_cfg_bits(&c->s[i]);
+    }
+    /* clocks: two to the ACK, the busy ones, start, CDS, the bits, and the
+     * one on which the slave starts its timeout */
+    unsigned clocks = 2 + fw->proc_clocks_max + 2 + bits + 1;
+    double timeout = (double)c->timeout_ps;
+    if (c->timeout_mode == BISS_TIMEOUT_ADAPTIVE) {
+        timeout = c->adaptive_factor * period;
+        timeout = timeout < (double)c->adaptive_min_ps ? (double)c->adaptive_min_ps : timeout;
+        timeout = timeout > (double)c->adaptive_max_ps ? (double)c->adaptive_max_ps : timeout;
+    }
+    /* the last rising edge comes half a period before the clocks' end; the
+     * slave's timeout runs from it; its end travels back over the line */
+    return (clocks - 0.5) * period + timeout + bench_round_trip_ps(b);
+}
+
+static void add_firmware(cJSON *j, struct bench *b, const struct fw_check *fw) {
     cJSON *f = cJSON_AddObjectToObject(j, "firmware");
     cJSON_AddNumberToObject(f, "publications", (double)fw->publications);
     cJSON_AddNumberToObject(f, "no_slave", (double)fw->no_slave);
@@ -92,6 +113,11 @@ static void add_firmware(cJSON *j, const struct fw_check *fw) {
     cJSON_AddNumberToObject(f, "lag_periods", fw->lag);
     cJSON_AddNumberToObject(f, "processing_clocks_max", fw->proc_clocks_max);
     cJSON_AddNumberToObject(f, "last_flags", fw->last_flags);
+    const struct bench_stats *st = bench_stats(b);
+    double minimum = sim_frame_minimum_ps(b, fw);
+    double mean = st->periods ? st->period_sum_ps / (double)st->periods : 0;
+    cJSON_AddNumberToObject(f, "frame_minimum_ns", minimum / 1000.0);
+    cJSON_AddNumberToObject(f, "master_overhead_cycles", (mean - minimum) / PRU_PS_PER_CYCLE);
 }
 
 void sim_print_json(const struct sim_result *r) {
@@ -117,7 +143,7 @@ void sim_print_json(const struct sim_result *r) {
     cJSON_AddNumberToObject(j, "host_seconds", r->host_seconds);
     cJSON_AddItemToObject(j, "slaves", slaves_json(r));
     if (fw) {
-        add_firmware(j, fw);
+        add_firmware(j, b, fw);
     }
     char *text = cJSON_Print(j);
     printf("%s\n", text);

@@ -27,4 +27,9 @@ int sim_write_svg(const struct sim_result *r, const char *path, uint64_t k, char
  * (biss_shm.h: BISS_R_DELAY_AVG, BISS_DELAY_ZERO, BISS_DELAY_ADJ_CYCLES). */
 double sim_fw_line_delay_ns(const struct fw_check *fw);
 
+/* The shortest frame period the encoders and the line allow for what the
+ * firmware configured: its clocks (with the busy ones seen), the slave's
+ * timeout and the round trip, in ps. */
+double sim_frame_minimum_ps(struct bench *b, const struct fw_check *fw);
+
 #endif
