@@ -120,6 +120,21 @@ static void add_firmware(cJSON *j, struct bench *b, const struct fw_check *fw) {
     cJSON_AddNumberToObject(f, "master_overhead_cycles", (mean - minimum) / PRU_PS_PER_CYCLE);
 }
 
+static void add_control(cJSON *j, const struct fw_cd *cd) {
+    cJSON *c = cJSON_AddObjectToObject(j, "control");
+    const biss_cd_result *res = &cd->result;
+    cJSON_AddStringToObject(c, "result", biss_cd_strerror(cd->err));
+    cJSON_AddNumberToObject(c, "frames", (double)cd->frames);
+    cJSON_AddNumberToObject(c, "good_bytes", res->good_bytes);
+    cJSON *bytes = cJSON_AddArrayToObject(c, "bytes");
+    for (unsigned i = 0; i < res->good_bytes; i++) {
+        cJSON_AddItemToArray(bytes, cJSON_CreateNumber(res->byte[i].data));
+    }
+    if (cd->prog->kind == BISS_CD_COMMAND) {
+        cJSON_AddNumberToObject(c, "ida", res->ida);
+    }
+}
+
 void sim_print_json(const struct sim_result *r) {
     struct bench *b = r->b;
     const struct bench_stats *st = bench_stats(b);
@@ -144,6 +159,9 @@ void sim_print_json(const struct sim_result *r) {
     cJSON_AddItemToObject(j, "slaves", slaves_json(r));
     if (fw) {
         add_firmware(j, b, fw);
+    }
+    if (r->cd) {
+        add_control(j, r->cd);
     }
     char *text = cJSON_Print(j);
     printf("%s\n", text);
@@ -173,6 +191,26 @@ static void print_slaves(const struct sim_result *r) {
                    (unsigned long long)r->fw->data[i],
                    (r->fw->status[i] & BISS_RS_CRC_OK) ? "ok" : "WRONG");
         }
+    }
+}
+
+/* A register dump: address, hex bytes, 16 to a line. */
+static void print_control(const struct fw_cd *cd) {
+    const biss_cd_result *res = &cd->result;
+    printf("control frame        %s in %llu frames, %u bytes right\n", biss_cd_strerror(cd->err),
+           (unsigned long long)cd->frames, res->good_bytes);
+    if (cd->prog->kind == BISS_CD_COMMAND) {
+        printf("IDA                  0x%02x\n", res->ida);
+        return;
+    }
+    for (unsigned i = 0; i < res->good_bytes; i++) {
+        if (i % 16 == 0) {
+            printf("%s  0x%02x:", i ? "\n" : "", (cd->prog->addr + i) & 0x7f);
+        }
+        printf(" %02x", res->byte[i].data);
+    }
+    if (res->good_bytes) {
+        printf("\n");
     }
 }
 
@@ -206,6 +244,9 @@ void sim_print_text(const struct sim_result *r) {
     printf("PRU cycles           %lld in %.3f s host time\n", (long long)pru_cycles(bench_core(b)),
            r->host_seconds);
     print_slaves(r);
+    if (r->cd) {
+        print_control(r->cd);
+    }
 }
 
 int sim_write_svg(const struct sim_result *r, const char *path, uint64_t k, char *err,

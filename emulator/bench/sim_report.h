@@ -6,6 +6,7 @@
 #define SIM_REPORT_H
 
 #include "bench.h"
+#include "fw_cd.h"
 #include "fw_check.h"
 
 struct sim_result {
@@ -14,6 +15,7 @@ struct sim_result {
     enum pru_stop why;
     double freq_hz;
     double host_seconds;
+    const struct fw_cd *cd; /* a control frame that ran, or NULL */
 };
 
 void sim_print_json(const struct sim_result *r);
