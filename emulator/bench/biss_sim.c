@@ -46,8 +46,8 @@ struct options {
     const char *svg;
     uint64_t svg_frame;
     int json;
-    double max_ms;      /* simulated time limit, 0: derived */
-    biss_cd_prog cd;    /* a control frame to send, when cd_set */
+    double max_ms;   /* simulated time limit, 0: derived */
+    biss_cd_prog cd; /* a control frame to send, when cd_set */
     int cd_set;
     const char *cd_what; /* the option that asked for it */
 };
@@ -121,10 +121,10 @@ static void list_profiles(void) {
 }
 
 /* Options that take a value. */
-static const char *const valued[] = {
-    "--profile", "--scenario", "--freq", "--cable-m",   "--frames", "--seed",    "--image",
-    "--soc",     "--vcd",      "--svg",  "--svg-frame", "--max-ms", "--firmware",
-    "--reg-read", "--reg-write", "--command"};
+static const char *const valued[] = {"--profile",  "--scenario", "--freq",      "--cable-m",
+                                     "--frames",   "--seed",     "--image",     "--soc",
+                                     "--vcd",      "--svg",      "--svg-frame", "--max-ms",
+                                     "--firmware", "--reg-read", "--reg-write", "--command"};
 
 static int takes_value(const char *a) {
     for (size_t i = 0; i < sizeof(valued) / sizeof(valued[0]); i++) {
@@ -218,8 +218,7 @@ static int set_option(struct options *o, const char *a, const char *v) {
         o->image = v;
     } else if (!strcmp(a, "--firmware")) {
         o->firmware = v;
-    } else if (!strcmp(a, "--reg-read") || !strcmp(a, "--reg-write") ||
-               !strcmp(a, "--command")) {
+    } else if (!strcmp(a, "--reg-read") || !strcmp(a, "--reg-write") || !strcmp(a, "--command")) {
         return set_control(o, a, v);
     } else if (!strcmp(a, "--soc")) {
         o->soc = v;
@@ -424,8 +423,8 @@ static int run(const struct options *o) {
     enum pru_stop why =
         fw_mode ? run_firmware(b, &fc, o->frames, max_ps, tty, &cd, o->cd_set ? &o->cd : NULL)
                 : bench_run_frames(b, o->frames, max_ps, NULL, NULL);
-    struct sim_result res = {b,         fw_mode ? &fc : NULL,  why, o->freq_hz,
-                             now_seconds() - t_start, cd.done ? &cd : NULL};
+    struct sim_result res = {b,          fw_mode ? &fc : NULL,    why,
+                             o->freq_hz, now_seconds() - t_start, cd.done ? &cd : NULL};
     if (tty) {
         fprintf(stderr, "\r%40s\r", "");
     }

@@ -13,9 +13,9 @@
 struct fw_cd {
     struct bench *b;
     const biss_cd_prog *prog;
-    uint32_t cmd;        /* CD_CMD written for it */
-    uint64_t frame0;     /* slave frames when it was issued */
-    uint64_t frames;     /* frames it took, once done */
+    uint32_t cmd;    /* CD_CMD written for it */
+    uint64_t frame0; /* slave frames when it was issued */
+    uint64_t frames; /* frames it took, once done */
     int done;
     biss_cd_err err;
     biss_cd_result result;
