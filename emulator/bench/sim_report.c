@@ -169,8 +169,8 @@ void sim_print_json(const struct sim_result *r) {
     cJSON_Delete(j);
 }
 
-/* What the encoder(s) sent in the last closed frame, and what the master read. */
-static void print_slaves(const struct sim_result *r) {
+/* Without the firmware: what the encoder(s) sent in the last closed frame. */
+static void print_sent(const struct sim_result *r) {
     link_model *l = bench_link(r->b);
     uint64_t n = link_frames(l);
     if (n == 0) {
@@ -178,7 +178,7 @@ static void print_slaves(const struct sim_result *r) {
     }
     if (l->sc.protocol == SCENARIO_SSI) {
         const ssi_frame_record *rec = ssi_slave_record(&l->ssi, n - 1);
-        printf("last frame sent      position %llu\n", rec ? (unsigned long long)rec->position : 0);
+        printf("encoder sent         position %llu\n", rec ? (unsigned long long)rec->position : 0);
         return;
     }
     const biss_frame_record *rec = biss_slave_record(&l->biss, n - 1);
@@ -186,12 +186,32 @@ static void print_slaves(const struct sim_result *r) {
         printf("slave %u sent         position %llu (0x%llx) nE=%d nW=%d crc=0x%x\n", i,
                (unsigned long long)rec->s[i].position, (unsigned long long)rec->s[i].position,
                rec->s[i].nE, rec->s[i].nW, rec->s[i].crc);
-        if (r->fw) {
-            printf("slave %u read         data word 0x%llx, CRC %s (last published frame)\n", i,
-                   (unsigned long long)r->fw->data[i],
-                   (r->fw->status[i] & BISS_RS_CRC_OK) ? "ok" : "WRONG");
+    }
+}
+
+/* With the firmware: what the master read in the last frame it published. */
+static void print_read(const struct sim_result *r) {
+    const struct fw_check *fw = r->fw;
+    const biss_chain_cfg *c = &bench_link(r->b)->sc.biss;
+    for (unsigned i = 0; i < c->n && i < 8; i++) {
+        uint64_t pos;
+        int nE, nW;
+        fw_check_split(&c->s[i], fw->data[i], &pos, &nE, &nW);
+        printf("slave %u              position %llu (0x%llx), error %s, warning %s, CRC %s "
+               "(encoder sent %llu)\n",
+               i, (unsigned long long)pos, (unsigned long long)pos, nE ? "no" : "YES",
+               nW ? "no" : "YES", (fw->status[i] & BISS_RS_CRC_OK) ? "ok" : "WRONG",
+               (unsigned long long)fw->sent[i]);
+    }
+    static const char *const names[] = {"valid", "CRC error", "no slave", "processing time",
+                                        "training", "average ready"};
+    printf("flags                0x%02x:", fw->last_flags);
+    for (unsigned b = 0; b < sizeof(names) / sizeof(names[0]); b++) {
+        if (fw->last_flags & (1u << b)) {
+            printf(" %s", names[b]);
         }
     }
+    printf("\n");
 }
 
 /* A register dump: address, hex bytes, 16 to a line. */
@@ -243,7 +263,11 @@ void sim_print_text(const struct sim_result *r) {
     }
     printf("PRU cycles           %lld in %.3f s host time\n", (long long)pru_cycles(bench_core(b)),
            r->host_seconds);
-    print_slaves(r);
+    if (fw) {
+        print_read(r);
+    } else {
+        print_sent(r);
+    }
     if (r->cd) {
         print_control(r->cd);
     }
