@@ -147,7 +147,7 @@
 // of the frame. The round trip from an MA rising edge at the master pin to
 // the slave's answer at the master pin is
 //     (DELAY - BISS_DELAY_ZERO) * H / 4 - BISS_DELAY_ADJ_CYCLES  PRU cycles,
-// to within half a bit/8 (the phase of the 8x sample clock is not known to
+// to within one bit/8 (the phase of the 8x sample clock is not known to
 // the firmware). BISS_DELAY_ADJ_CYCLES is the firmware's read one cycle
 // after the period starts less the PRU's input synchronizer (2 cycles,
 // design/pru-facts.md section 3, an estimate).
