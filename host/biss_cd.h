@@ -15,8 +15,8 @@
  *                    byte: S=1, WAIT, D(8), CRC4(4), P=0; finally S=0
  *   BiSS command     S=1, CTS=0, IDS(8, first = ID 0), CMD(2), CRC4(4),
  *                    8 IDA slots (CDM 0), P=0
- * and then BISS_CD_TAIL_ZEROS steps of CDM 0 that leave the slave ready
- * for the next frame.
+ * and then BISS_CD_TAIL_ZEROS steps of CDM 0 (none: the firmware itself
+ * sends 14 frames of CDM 0 after a program before it starts the next).
  * CRC4: polynomial 0x13 (x^4+x+1), start 0, sent inverted, over CTS and
  * the following 10 header bits, or over the 8 data bits. */
 #ifndef BISS_CD_H
@@ -32,7 +32,7 @@
 #define BISS_CD_PROG_BYTES (BISS_CD_MAX_STEPS / 4) /* 256: 4 steps a byte */
 #define BISS_CD_RESP_BYTES (BISS_CD_MAX_STEPS / 8) /* 128: 8 answers a byte */
 #define BISS_CD_IDLE_ZEROS 14                      /* CDM 0 frames before a frame's S */
-#define BISS_CD_TAIL_ZEROS 13 /* CDM 0 steps after a frame ends (biss_cd_build.c) */
+#define BISS_CD_TAIL_ZEROS 0 /* CDM 0 steps after a frame ends (biss_cd_build.c) */
 
 typedef enum {
     BISS_CD_OK = 0,

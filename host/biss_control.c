@@ -89,7 +89,7 @@ static int exchange_locked(biss_t *h, const biss_cd_prog *p, unsigned wait_limit
 
 int biss_cd_exchange(biss_t *h, const biss_cd_prog *p, unsigned wait_limit, unsigned timeout_ms,
                      biss_cd_answer *a) {
-    if (wait_limit == 0 || wait_limit > 0xffff) {
+    if (wait_limit > 0xffff) {
         return BISS_E_INVAL;
     }
     memset(a, 0, sizeof *a);
@@ -148,6 +148,13 @@ int biss_cd_run(biss_t *h, const uint8_t *ops, unsigned n, unsigned wait_limit, 
     }
     if (n < 1 || n > BISS_CD_MAX_STEPS) {
         return BISS_E_CD_STEPS;
+    }
+    for (unsigned i = 0; i < n; i++) {
+        /* biss_shm.h: a WAIT is never followed by another WAIT */
+        if (ops[i] > BISS_CD_OP_END ||
+            (i > 0 && ops[i] == BISS_CD_OP_WAIT && ops[i - 1] == BISS_CD_OP_WAIT)) {
+            return BISS_E_INVAL;
+        }
     }
     biss_cd_prog *p = malloc(sizeof *p); /* ~2 KB */
     biss_cd_answer *a = malloc(sizeof *a);

@@ -408,6 +408,18 @@ FRAME_GO:
 // after two clocks; a normal frame clocks on until its start bit is seen.
 .macro WAIT_ACK_PERIOD
 .mparam found
+    // Period 0 looks at nothing: its samples date from before the frame
+    // (the ACK cannot come before the second rising edge), so the frame may
+    // start as soon as SL is high.
+    MA_FALL
+    add     r3, r3, 8                       // 1
+    PADS    7                               // 2..8
+    DELAY_A
+    MA_RISE
+    NEXT_CLOCK                              // 1..4
+    PADS    3                               // 5..7
+    DELAY_B
+    PAD
 WA_TOP:
     MA_FALL
     mov     r2, r31                         // 1
@@ -682,15 +694,13 @@ PUBLISH:
     sbco    r3, c24, BISS_ST_STATE, 4
     jmp     r0.w0
 
-// Wait for SL high through the last 8 samples (R31.b0 = 0xff: a whole MA
-// period), at most 2 ms (slave timeouts are microseconds), so that a frame
-// starting now finds no old low sample to take for its ACK. r2 = 1 if it
+// Wait for SL high (the newest 8x sample, R31 bit 0): the slave's timeout
+// has ended. At most 2 ms (slave timeouts are microseconds). r2 = 1 if it
 // came, 0 if not.
 SLAVE_IDLE:
-    mov     r3, 100000                      // 4 cycles a turn
+    mov     r3, 100000                      // 3 cycles a turn
 SLAVE_IDLE_POLL:
-    mov     r2, r31
-    qbeq    SLAVE_IDLE_YES, r2.b0, 0xff
+    qbbs    SLAVE_IDLE_YES, r31, 0
     sub     r3, r3, 1
     qbne    SLAVE_IDLE_POLL, r3, 0
     ldi     r2, 0
@@ -887,6 +897,7 @@ CDC_STOP:
     sbco    r6, c24, BISS_ST_CD_STATUS, 4
     sbco    r2, c24, BISS_ST_CD_SEQ, 4
     ldi     r2, 0
+    ldi     r4.w0, 0                        // the slaves count 14 zeros afresh after a frame
 CDC_ZEROS:
     add     r4.w0, r4.w0, 1                 // frames with CDM 0 in a row
     min     r4.w0, r4.w0, 255

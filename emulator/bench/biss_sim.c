@@ -11,6 +11,7 @@
  */
 #include "bench.h"
 #include "biss/biss_shm.h"
+#include "fw_cd.h"
 #include "fw_check.h"
 #include "fw_config.h"
 #include "scenario_json.h"
@@ -45,7 +46,10 @@ struct options {
     const char *svg;
     uint64_t svg_frame;
     int json;
-    double max_ms; /* simulated time limit, 0: derived */
+    double max_ms;   /* simulated time limit, 0: derived */
+    biss_cd_prog cd; /* a control frame to send, when cd_set */
+    int cd_set;
+    const char *cd_what; /* the option that asked for it */
 };
 
 static void usage(FILE *f) {
@@ -69,6 +73,11 @@ static void usage(FILE *f) {
                "  --svg-frame K      which frame the SVG shows (default 1)\n"
                "  --json             print the results as one JSON object\n"
                "  --max-ms T         stop after T ms of simulated time (default: ample)\n"
+               "  --reg-read ID:ADDR[:N]       read N (1..64) registers of slave ID through\n"
+               "                               control frames, while positions go on\n"
+               "  --reg-write ID:ADDR:B[,B..]  write bytes (hex) to consecutive registers\n"
+               "  --command IDS:CMD            BiSS command CMD (0..3) to the slaves in the\n"
+               "                               hex ID mask IDS (0: all, broadcast)\n"
                "  -h, --help         this text\n");
 }
 
@@ -112,9 +121,10 @@ static void list_profiles(void) {
 }
 
 /* Options that take a value. */
-static const char *const valued[] = {
-    "--profile", "--scenario", "--freq", "--cable-m",   "--frames", "--seed",    "--image",
-    "--soc",     "--vcd",      "--svg",  "--svg-frame", "--max-ms", "--firmware"};
+static const char *const valued[] = {"--profile",  "--scenario", "--freq",      "--cable-m",
+                                     "--frames",   "--seed",     "--image",     "--soc",
+                                     "--vcd",      "--svg",      "--svg-frame", "--max-ms",
+                                     "--firmware", "--reg-read", "--reg-write", "--command"};
 
 static int takes_value(const char *a) {
     for (size_t i = 0; i < sizeof(valued) / sizeof(valued[0]); i++) {
@@ -122,6 +132,62 @@ static int takes_value(const char *a) {
             return 1;
         }
     }
+    return 0;
+}
+
+/* "a:b:c,d,..." into numbers (base 16 after the second field for writes). */
+static int parse_fields(const char *v, unsigned *f, unsigned max, int hex_from) {
+    unsigned n = 0;
+    const char *p = v;
+    while (n < max) {
+        char *end;
+        errno = 0;
+        unsigned long x = strtoul(p, &end, (int)n >= hex_from ? 16 : 0);
+        if (errno || end == p || x > 0xffff) {
+            return -1;
+        }
+        f[n++] = (unsigned)x;
+        if (*end == '\0') {
+            return (int)n;
+        }
+        if (*end != ':' && *end != ',') {
+            return -1;
+        }
+        p = end + 1;
+    }
+    return -1;
+}
+
+/* --reg-read, --reg-write, --command into a CDM program. */
+static int set_control(struct options *o, const char *a, const char *v) {
+    unsigned f[2 + BISS_CD_MAX_BYTES];
+    int n;
+    biss_cd_err e = BISS_CD_E_ARG;
+    if (!strcmp(a, "--reg-read")) {
+        n = parse_fields(v, f, 3, 99);
+        if (n >= 2) {
+            e = biss_cd_build_read(&o->cd, f[0], f[1], n == 3 ? f[2] : 1);
+        }
+    } else if (!strcmp(a, "--reg-write")) {
+        n = parse_fields(v, f, 2 + BISS_CD_MAX_BYTES, 2);
+        if (n >= 3) {
+            uint8_t bytes[BISS_CD_MAX_BYTES];
+            for (int i = 2; i < n; i++) {
+                bytes[i - 2] = (uint8_t)f[i];
+            }
+            e = f[2] <= 0xff ? biss_cd_build_write(&o->cd, f[0], f[1], bytes, (unsigned)n - 2) : e;
+        }
+    } else {
+        n = parse_fields(v, f, 2, 0);
+        if (n == 2 && f[0] <= 0xff) {
+            e = biss_cd_build_command(&o->cd, (uint8_t)f[0], f[1]);
+        }
+    }
+    if (e != BISS_CD_OK) {
+        return die("%s: '%s' is not valid (%s; see --help)", a, v, biss_cd_strerror(e));
+    }
+    o->cd_set = 1;
+    o->cd_what = a;
     return 0;
 }
 
@@ -152,6 +218,8 @@ static int set_option(struct options *o, const char *a, const char *v) {
         o->image = v;
     } else if (!strcmp(a, "--firmware")) {
         o->firmware = v;
+    } else if (!strcmp(a, "--reg-read") || !strcmp(a, "--reg-write") || !strcmp(a, "--command")) {
+        return set_control(o, a, v);
     } else if (!strcmp(a, "--soc")) {
         o->soc = v;
     } else if (!strcmp(a, "--vcd")) {
@@ -252,7 +320,8 @@ static uint32_t dram32(struct bench *b, uint32_t off) {
 /* Runs until the firmware has published `frames` valid frames after its
  * first one (whose training and start-up the statistics leave out). */
 static enum pru_stop run_firmware(struct bench *b, struct fw_check *fc, uint64_t frames,
-                                  int64_t max_ps, int show) {
+                                  int64_t max_ps, int show, struct fw_cd *cd,
+                                  const biss_cd_prog *prog) {
     const int64_t step = 100 * SIM_PS_PER_US;
     int64_t end = pru_time_ps(bench_core(b)) + max_ps;
     enum pru_stop why = PRU_STOP_LIMIT;
@@ -265,7 +334,10 @@ static enum pru_stop run_firmware(struct bench *b, struct fw_check *fc, uint64_t
             bench_reset_stats(b);
             bench_set_frame_limit(b, bench_current_frame(b) + frames + 1);
         }
-        if (started && fc->frames >= frames) {
+        if (started && prog && !cd->b) {
+            fw_cd_issue(cd, b, prog, 100); /* a late S may take 100 frames */
+        }
+        if (started && fc->frames >= frames && (!prog || fw_cd_poll(cd))) {
             break;
         }
         if (dram32(b, BISS_ST_STATE) == BISS_STATE_CFG_ERROR) {
@@ -302,6 +374,10 @@ static int run(const struct options *o) {
     struct sim_defines defs = {.n = 0};
     if (!fw_mode) {
         sim_clock_defines(b, half, o->frames, &defs);
+        if (o->cd_set) {
+            bench_free(b);
+            return die("%s needs the firmware (not --image)", o->cd_what);
+        }
     }
     struct pruasm_image img;
     int rc = 0;
@@ -340,9 +416,15 @@ static int run(const struct options *o) {
             : (int64_t)(2 * sim_clock_frame_ps(b, half) * (double)(o->frames + 4)) + SIM_PS_PER_MS;
     int tty = isatty(2);
     double t_start = now_seconds();
-    enum pru_stop why = fw_mode ? run_firmware(b, &fc, o->frames, max_ps, tty)
-                                : bench_run_frames(b, o->frames, max_ps, NULL, NULL);
-    struct sim_result res = {b, fw_mode ? &fc : NULL, why, o->freq_hz, now_seconds() - t_start};
+    struct fw_cd cd = {0};
+    if (o->cd_set) {
+        max_ps += (int64_t)(2 * sim_clock_frame_ps(b, half) * (o->cd.len + 20));
+    }
+    enum pru_stop why =
+        fw_mode ? run_firmware(b, &fc, o->frames, max_ps, tty, &cd, o->cd_set ? &o->cd : NULL)
+                : bench_run_frames(b, o->frames, max_ps, NULL, NULL);
+    struct sim_result res = {b,          fw_mode ? &fc : NULL,    why,
+                             o->freq_hz, now_seconds() - t_start, cd.done ? &cd : NULL};
     if (tty) {
         fprintf(stderr, "\r%40s\r", "");
     }
@@ -369,6 +451,12 @@ static int run(const struct options *o) {
         if (o->svg) {
             printf("SVG scope view written to %s\n", o->svg);
         }
+    }
+    if (rc == 0 && o->cd_set && !cd.done) {
+        rc = die("%s: the control frame did not end in time", o->cd_what);
+    } else if (rc == 0 && o->cd_set && cd.err != BISS_CD_OK) {
+        fprintf(stderr, "biss-sim: %s: %s\n", o->cd_what, biss_cd_strerror(cd.err));
+        rc = 4;
     }
     uint64_t done = fw_mode ? fc.frames : bench_stats(b)->frames;
     if (rc == 0 && done < o->frames) {

@@ -19,6 +19,15 @@ uint64_t fw_check_sent_word(const biss_slave_cfg *s, const biss_slave_sent *sent
     return v;
 }
 
+void fw_check_split(const biss_slave_cfg *s, uint64_t word, uint64_t *position, int *nE, int *nW) {
+    word >>= s->lc_bits;
+    *nW = s->has_warn ? (int)(word & 1) : 1;
+    word >>= s->has_warn;
+    *nE = s->has_err ? (int)(word & 1) : 1;
+    word >>= s->has_err;
+    *position = word >> s->fill_bits;
+}
+
 static void read_dram(struct fw_check *fc, uint32_t off, void *buf, size_t n) {
     struct pru_core *c = bench_core(fc->b);
     pru_host_read(c, pru_soc_base(bench_config(fc->b)->soc) + off, buf, n);
@@ -54,6 +63,7 @@ static void compare(struct fw_check *fc, const uint8_t *res) {
         fc->data[i] = (uint64_t)hi << 32 | lo;
         fc->status[i] = st;
         uint64_t want = fw_check_sent_word(&l->sc.biss.s[i], &r->s[i]);
+        fc->sent[i] = r->s[i].position;
         /* a word whose CRC failed is reported as such; only a word passed
          * as right must be what was sent */
         same = same && (fc->data[i] == want || !(st & BISS_RS_CRC_OK));

@@ -30,6 +30,7 @@ struct fw_check {
     unsigned nslaves;
     uint64_t data[8];              /* last valid frame: data word per slave */
     uint32_t status[8];            /* and its status (BISS_RS_*) */
+    uint64_t sent[8];              /* and the position the encoder sent in it */
     uint64_t first_mismatch_frame; /* publication number, 0 none */
     uint64_t limit;                /* valid frames to check; later publications are ignored */
 };
@@ -39,6 +40,10 @@ void fw_check_attach(struct fw_check *fc, struct bench *b);
 
 /* Starts counting afresh, checking at most `limit` more valid frames. */
 void fw_check_restart(struct fw_check *fc, uint64_t limit);
+
+/* A data word split as slave s lays it out: position (fill dropped), nE,
+ * nW (1 = no error / no warning; 1 when the slave has none). */
+void fw_check_split(const biss_slave_cfg *s, uint64_t word, uint64_t *position, int *nE, int *nW);
 
 /* The data word slave i sent in the frame record r: position, fill, nE,
  * nW, life counter, as on the wire before the CRC. */

@@ -79,7 +79,28 @@ static void add_counter(cJSON *j, const char *key, const struct fw_check *fw, ui
     }
 }
 
-static void add_firmware(cJSON *j, const struct fw_check *fw) {
+double sim_frame_minimum_ps(struct bench *b, const struct fw_check *fw) {
+    const biss_chain_cfg *c = &bench_link(b)->sc.biss;
+    double period = 2.0 * fw->half * PRU_PS_PER_CYCLE;
+    unsigned bits = 0;
+    for (unsigned i = 0; i < c->n; i++) {
+        bits += biss_slave_cfg_bits(&c->s[i]);
+    }
+    /* clocks: two to the ACK, the busy ones, start, CDS, the bits, and the
+     * one on which the slave starts its timeout */
+    unsigned clocks = 2 + fw->proc_clocks_max + 2 + bits + 1;
+    double timeout = (double)c->timeout_ps;
+    if (c->timeout_mode == BISS_TIMEOUT_ADAPTIVE) {
+        timeout = c->adaptive_factor * period;
+        timeout = timeout < (double)c->adaptive_min_ps ? (double)c->adaptive_min_ps : timeout;
+        timeout = timeout > (double)c->adaptive_max_ps ? (double)c->adaptive_max_ps : timeout;
+    }
+    /* the last rising edge comes half a period before the clocks' end; the
+     * slave's timeout runs from it; its end travels back over the line */
+    return (clocks - 0.5) * period + timeout + bench_round_trip_ps(b);
+}
+
+static void add_firmware(cJSON *j, struct bench *b, const struct fw_check *fw) {
     cJSON *f = cJSON_AddObjectToObject(j, "firmware");
     cJSON_AddNumberToObject(f, "publications", (double)fw->publications);
     cJSON_AddNumberToObject(f, "no_slave", (double)fw->no_slave);
@@ -92,6 +113,26 @@ static void add_firmware(cJSON *j, const struct fw_check *fw) {
     cJSON_AddNumberToObject(f, "lag_periods", fw->lag);
     cJSON_AddNumberToObject(f, "processing_clocks_max", fw->proc_clocks_max);
     cJSON_AddNumberToObject(f, "last_flags", fw->last_flags);
+    const struct bench_stats *st = bench_stats(b);
+    double minimum = sim_frame_minimum_ps(b, fw);
+    double mean = st->periods ? st->period_sum_ps / (double)st->periods : 0;
+    cJSON_AddNumberToObject(f, "frame_minimum_ns", minimum / 1000.0);
+    cJSON_AddNumberToObject(f, "master_overhead_cycles", (mean - minimum) / PRU_PS_PER_CYCLE);
+}
+
+static void add_control(cJSON *j, const struct fw_cd *cd) {
+    cJSON *c = cJSON_AddObjectToObject(j, "control");
+    const biss_cd_result *res = &cd->result;
+    cJSON_AddStringToObject(c, "result", biss_cd_strerror(cd->err));
+    cJSON_AddNumberToObject(c, "frames", (double)cd->frames);
+    cJSON_AddNumberToObject(c, "good_bytes", res->good_bytes);
+    cJSON *bytes = cJSON_AddArrayToObject(c, "bytes");
+    for (unsigned i = 0; i < res->good_bytes; i++) {
+        cJSON_AddItemToArray(bytes, cJSON_CreateNumber(res->byte[i].data));
+    }
+    if (cd->prog->kind == BISS_CD_COMMAND) {
+        cJSON_AddNumberToObject(c, "ida", res->ida);
+    }
 }
 
 void sim_print_json(const struct sim_result *r) {
@@ -117,7 +158,10 @@ void sim_print_json(const struct sim_result *r) {
     cJSON_AddNumberToObject(j, "host_seconds", r->host_seconds);
     cJSON_AddItemToObject(j, "slaves", slaves_json(r));
     if (fw) {
-        add_firmware(j, fw);
+        add_firmware(j, b, fw);
+    }
+    if (r->cd) {
+        add_control(j, r->cd);
     }
     char *text = cJSON_Print(j);
     printf("%s\n", text);
@@ -125,8 +169,8 @@ void sim_print_json(const struct sim_result *r) {
     cJSON_Delete(j);
 }
 
-/* What the encoder(s) sent in the last closed frame, and what the master read. */
-static void print_slaves(const struct sim_result *r) {
+/* Without the firmware: what the encoder(s) sent in the last closed frame. */
+static void print_sent(const struct sim_result *r) {
     link_model *l = bench_link(r->b);
     uint64_t n = link_frames(l);
     if (n == 0) {
@@ -134,7 +178,7 @@ static void print_slaves(const struct sim_result *r) {
     }
     if (l->sc.protocol == SCENARIO_SSI) {
         const ssi_frame_record *rec = ssi_slave_record(&l->ssi, n - 1);
-        printf("last frame sent      position %llu\n", rec ? (unsigned long long)rec->position : 0);
+        printf("encoder sent         position %llu\n", rec ? (unsigned long long)rec->position : 0);
         return;
     }
     const biss_frame_record *rec = biss_slave_record(&l->biss, n - 1);
@@ -142,11 +186,51 @@ static void print_slaves(const struct sim_result *r) {
         printf("slave %u sent         position %llu (0x%llx) nE=%d nW=%d crc=0x%x\n", i,
                (unsigned long long)rec->s[i].position, (unsigned long long)rec->s[i].position,
                rec->s[i].nE, rec->s[i].nW, rec->s[i].crc);
-        if (r->fw) {
-            printf("slave %u read         data word 0x%llx, CRC %s (last published frame)\n", i,
-                   (unsigned long long)r->fw->data[i],
-                   (r->fw->status[i] & BISS_RS_CRC_OK) ? "ok" : "WRONG");
+    }
+}
+
+/* With the firmware: what the master read in the last frame it published. */
+static void print_read(const struct sim_result *r) {
+    const struct fw_check *fw = r->fw;
+    const biss_chain_cfg *c = &bench_link(r->b)->sc.biss;
+    for (unsigned i = 0; i < c->n && i < 8; i++) {
+        uint64_t pos;
+        int nE, nW;
+        fw_check_split(&c->s[i], fw->data[i], &pos, &nE, &nW);
+        printf("slave %u              position %llu (0x%llx), error %s, warning %s, CRC %s "
+               "(encoder sent %llu)\n",
+               i, (unsigned long long)pos, (unsigned long long)pos, nE ? "no" : "YES",
+               nW ? "no" : "YES", (fw->status[i] & BISS_RS_CRC_OK) ? "ok" : "WRONG",
+               (unsigned long long)fw->sent[i]);
+    }
+    static const char *const names[] = {"valid", "CRC error", "no slave", "processing time",
+                                        "training", "average ready"};
+    printf("flags                0x%02x:", fw->last_flags);
+    for (unsigned b = 0; b < sizeof(names) / sizeof(names[0]); b++) {
+        if (fw->last_flags & (1u << b)) {
+            printf(" %s", names[b]);
         }
+    }
+    printf("\n");
+}
+
+/* A register dump: address, hex bytes, 16 to a line. */
+static void print_control(const struct fw_cd *cd) {
+    const biss_cd_result *res = &cd->result;
+    printf("control frame        %s in %llu frames, %u bytes right\n", biss_cd_strerror(cd->err),
+           (unsigned long long)cd->frames, res->good_bytes);
+    if (cd->prog->kind == BISS_CD_COMMAND) {
+        printf("IDA                  0x%02x\n", res->ida);
+        return;
+    }
+    for (unsigned i = 0; i < res->good_bytes; i++) {
+        if (i % 16 == 0) {
+            printf("%s  0x%02x:", i ? "\n" : "", (cd->prog->addr + i) & 0x7f);
+        }
+        printf(" %02x", res->byte[i].data);
+    }
+    if (res->good_bytes) {
+        printf("\n");
     }
 }
 
@@ -179,7 +263,14 @@ void sim_print_text(const struct sim_result *r) {
     }
     printf("PRU cycles           %lld in %.3f s host time\n", (long long)pru_cycles(bench_core(b)),
            r->host_seconds);
-    print_slaves(r);
+    if (fw) {
+        print_read(r);
+    } else {
+        print_sent(r);
+    }
+    if (r->cd) {
+        print_control(r->cd);
+    }
 }
 
 int sim_write_svg(const struct sim_result *r, const char *path, uint64_t k, char *err,

@@ -6,6 +6,7 @@
 #define SIM_REPORT_H
 
 #include "bench.h"
+#include "fw_cd.h"
 #include "fw_check.h"
 
 struct sim_result {
@@ -14,6 +15,7 @@ struct sim_result {
     enum pru_stop why;
     double freq_hz;
     double host_seconds;
+    const struct fw_cd *cd; /* a control frame that ran, or NULL */
 };
 
 void sim_print_json(const struct sim_result *r);
@@ -26,5 +28,10 @@ int sim_write_svg(const struct sim_result *r, const char *path, uint64_t k, char
 /* The firmware's line delay in ns from its averaged ACK position
  * (biss_shm.h: BISS_R_DELAY_AVG, BISS_DELAY_ZERO, BISS_DELAY_ADJ_CYCLES). */
 double sim_fw_line_delay_ns(const struct fw_check *fw);
+
+/* The shortest frame period the encoders and the line allow for what the
+ * firmware configured: its clocks (with the busy ones seen), the slave's
+ * timeout and the round trip, in ps. */
+double sim_frame_minimum_ps(struct bench *b, const struct fw_check *fw);
 
 #endif

@@ -248,7 +248,8 @@ int biss_line_delay(biss_t *h, struct biss_line_delay *d);
  * CDM 1), 2 (wait: CDM 0 until a frame's CDS is 1, then the next step in
  * that frame), 3 (end); at most 1024 steps. resp (at least (n + 7) / 8
  * bytes) gets bit i (byte i / 8, bit i % 8) = the CDS that answered step
- * i. A WAIT gives up after wait_limit frames. The firmware first sends 14
+ * i. A WAIT gives up after wait_limit frames with CDS 0 (0: at once; at
+ * most 65535); a WAIT may not follow a WAIT. The firmware first sends 14
  * frames with CDM 0. In host-trigger mode the call triggers the frames it
  * needs. Blocks at most timeout_ms (emulator: simulated). */
 #define BISS_CD_OP_0    0

@@ -82,14 +82,15 @@
 // The host writes the program (BISS_CD_PROG, 2 bits a step, step i in bits
 // 2(i%4)+1..2(i%4) of byte i/4), its length and the wait limit, then
 // increments CD_CMD. The firmware starts it once at least 14 frames in a
-// row went out with CDM = 0 (and keeps sending 0 until then), executes one
+// row went out with CDM = 0 since the last program ended (and keeps sending
+// 0 until then), executes one
 // step per frame, and stores in BISS_CD_RESP bit i (byte i/8, bit i%8) the
 // CDS of the frame after the one that sent step i. When the program ends it
 // sets ST_CD_STATUS and echoes CD_CMD in ST_CD_SEQ. Frames keep coming as
 // usual throughout: control data never stops position data.
 #define BISS_CD_CMD             0x0B0   // u32 (host): incremented to run the program
 #define BISS_CD_STEPS           0x0B4   // u16 (host): program length, 1..BISS_CD_MAX_STEPS
-#define BISS_CD_WAIT_LIMIT      0x0B6   // u16 (host): frames a WAIT step may take
+#define BISS_CD_WAIT_LIMIT      0x0B6   // u16 (host): frames with CDS 0 a WAIT may see (0: at once)
 #define BISS_ST_CD_SEQ          0x0B8   // u32: CD_CMD of the program last ended (or refused)
 #define BISS_ST_CD_STATUS       0x0BC   // u16: BISS_CDST_*; u16 at +2: steps executed
 #define BISS_ST_CD_END          0x0C0
@@ -99,7 +100,8 @@
 
 #define BISS_CDOP_0             0       // send CDM 0
 #define BISS_CDOP_1             1       // send CDM 1
-#define BISS_CDOP_WAIT          2       // CDM 0 until a frame's CDS is 1, then the next step in that frame
+#define BISS_CDOP_WAIT          2       // CDM 0 until a frame's CDS is 1, then the next step in that
+                                        // frame (never followed by another WAIT)
 #define BISS_CDOP_END           3       // end of the program (also: CD_STEPS reached)
 
 #define BISS_CDST_IDLE          0       // no program since start
@@ -145,7 +147,7 @@
 // of the frame. The round trip from an MA rising edge at the master pin to
 // the slave's answer at the master pin is
 //     (DELAY - BISS_DELAY_ZERO) * H / 4 - BISS_DELAY_ADJ_CYCLES  PRU cycles,
-// to within half a bit/8 (the phase of the 8x sample clock is not known to
+// to within one bit/8 (the phase of the 8x sample clock is not known to
 // the firmware). BISS_DELAY_ADJ_CYCLES is the firmware's read one cycle
 // after the period starts less the PRU's input synchronizer (2 cycles,
 // design/pru-facts.md section 3, an estimate).

@@ -72,7 +72,9 @@ START_TEST(test_firmware_verdicts) {
     /* refused before the firmware sees them */
     ck_assert_int_eq(biss_cd_run(h, ops, 0, 10, 5, resp), BISS_E_CD_STEPS);
     ck_assert_int_eq(biss_cd_run(h, ops, BISS_CD_MAX_STEPS + 1, 10, 5, resp), BISS_E_CD_STEPS);
-    ck_assert_int_eq(biss_cd_run(h, ops, 3, 0, 5, resp), BISS_E_INVAL);
+    ck_assert_int_eq(biss_cd_run(h, ops, 3, 0x10000, 5, resp), BISS_E_INVAL);
+    uint8_t waits[3] = {BISS_CD_OP_WAIT, BISS_CD_OP_WAIT, BISS_CD_OP_END};
+    ck_assert_int_eq(biss_cd_run(h, waits, 3, 10, 5, resp), BISS_E_INVAL);
     uint8_t bad[1] = {4};
     ck_assert_int_eq(biss_cd_run(h, bad, 1, 10, 5, resp), BISS_E_INVAL);
     uint8_t b[2];

@@ -93,6 +93,7 @@ void cd_sim_run(cd_sim *s, uint8_t *dram) {
                 frame(s, 0);
                 if (++waited > limit) {
                     finish(dram, BISS_CDST_ERR_WAIT, step);
+                    s->zeros = 1;
                     break;
                 }
                 continue;
@@ -103,6 +104,7 @@ void cd_sim_run(cd_sim *s, uint8_t *dram) {
         if (op == BISS_CDOP_END) {
             frame(s, 0);
             finish(dram, BISS_CDST_DONE, step);
+            s->zeros = 1; /* the slaves count 14 zeros afresh from a frame's end */
             break;
         }
         frame(s, op == BISS_CDOP_1);

@@ -289,26 +289,21 @@ START_TEST(refused_program) {
 }
 END_TEST
 
-/* The firmware counts every CDM 0 frame towards the 14 before a program,
- * those inside the last control frame too; the slave counts from its frame
- * end. Without the tail, a program right after a read finds the slave not
- * re-armed. */
-START_TEST(back_to_back_needs_the_tail) {
+/* Like the slaves, the firmware counts the 14 CDM 0 frames before a program
+ * from the end of the last one, so programs back to back both work, the
+ * second after 13 more frames of CDM 0 (the last frame's END is the first). */
+START_TEST(back_to_back_waits_for_the_zeros) {
     biss_ctrl c;
     biss_ctrl_init(&c, 0, &sc.biss.s[0].regs, 0);
     cd_sim_add(&g.sim, &c);
     static biss_cd_prog p;
     ck_assert_int_eq(biss_cd_build_read(&p, 0, 0x67, 1), BISS_CD_OK);
-    p.len -= BISS_CD_TAIL_ZEROS;
     biss_cd_result r;
     ck_assert_int_eq(run(&p, 10, &r), BISS_CD_OK);
     unsigned long before = g.sim.frames;
-    ck_assert_int_eq(run(&p, 10, &r), BISS_CD_E_NO_ECHO);
-    ck_assert_uint_eq(g.sim.frames - before, g.sim.prog_frames); /* started at once */
-    /* with the tail, back to back works */
-    ck_assert_int_eq(read_regs(0, 0x67, 1, 10, &r), BISS_CD_OK);
-    ck_assert_int_eq(read_regs(0, 0x67, 1, 10, &r), BISS_CD_OK);
+    ck_assert_int_eq(run(&p, 10, &r), BISS_CD_OK);
     ck_assert_uint_eq(r.byte[0].data, 0x5f);
+    ck_assert_uint_eq(g.sim.frames - before, BISS_CD_IDLE_ZEROS - 1 + g.sim.prog_frames);
 }
 END_TEST
 
@@ -401,7 +396,7 @@ int main(void) {
     tcase_add_test(tc, other_id_answers_nothing);
     tcase_add_test(tc, frame_failure_mid_program);
     tcase_add_test(tc, refused_program);
-    tcase_add_test(tc, back_to_back_needs_the_tail);
+    tcase_add_test(tc, back_to_back_waits_for_the_zeros);
     tcase_add_test(tc, command_broadcast);
     tcase_add_test(tc, command_addressed);
     tcase_add_test(tc, command_frame_failure);
