@@ -68,6 +68,8 @@
                                             //   u8 CDM edge for CDS 0, u8 its change for CDS 1,
                                             //   u16 program length
 #define P_CDM           (P_CD + 12)
+#define P_SSI           0x78                // u16 the ACK position an SSI frame reads by
+                                            //   (0: BiSS-C), u16 MA edges after period 0
 #define P_SLAVES        0x80                // 8 x 16: mask lo, mask hi, residue, [w, n, ew, flags]
 #define PRU0_CTPPR0     0x22028             // C28 = 0x00nnnn00 with nnnn = CTPPR0[15:0]
 
@@ -282,6 +284,8 @@ CFG_RESIDUE_DONE:
     ldi     r4, 0
     ldi     r4.w2, FRAME_END
     sbbo    r4, r26, 0, 4
+    jal     r0.w0, CFG_SSI                  // r27 = P_SSI word (0: BiSS-C)
+    qbne    CFG_FAIL, r28, BISS_CFGERR_NONE
 
     // IEP period: at least 2H (N + 8) cycles
     qbne    CFG_IEP_OK, r20.b3, BISS_TRIG_IEP
@@ -336,8 +340,20 @@ CFG_ACKLIM_DONE:
     mov     r2.w2, r3.w0
     sbco    r2, c28, P_HALF, 4
     mov     r2.w0, r22.w0                   // processing-time limit
-    ldi     r2.b2, 1                        // training due
+    ldi     r2.b2, 1                        // training due (BiSS-C)
     ldi     r2.b3, 1                        // running
+    qbeq    CFG_PROC, r27.w0, 0
+    ldi     r2.b2, 0                        // SSI: the delay is given, nothing to train
+    mov     r3.w0, r27.w0                   // and the history holds it
+    mov     r3.w2, r27.w0
+    mov     r4.w0, r27.w0
+    sbco    r3, c28, P_HIST, 6
+    add     r4, r27.w0, r27.w0
+    add     r4, r4, r27.w0
+    add     r4, r4, 2
+    sbco    r4, c28, P_HSUM, 4
+CFG_PROC:
+    sbco    r27, c28, P_SSI, 4
     sbco    r2, c28, P_PROC, 4
     lbco    r2, c28, P_GPCFG, 4
     sbco    r2, c4, GPCFG0, 4               // shift mode at 8x the new rate
@@ -398,6 +414,10 @@ FRAME:
     qbne    FRAME_GO, r2, 0
     jmp     NO_SLAVE_IDLE
 FRAME_GO:
+    lbco    r2, c28, P_SSI, 2
+    qbeq    FRAME_BISS, r2.w0, 0
+    jmp     SSI_FRAME
+FRAME_BISS:
     FRAME_SETUP
     // fall into the first period
 
@@ -922,3 +942,73 @@ CD_ABORT:
     sbco    r6, c24, BISS_ST_CD_STATUS, 4
 CDA_DONE:
     jmp     r0.w0
+
+// ============================================================================
+// SSI: no ACK to measure the line by, no start bit, CDS or CRC. The slave
+// shifts its word out on the rising edges from the first one; the master
+// reads bit j (rise j) m + LAG periods later at the sample point the
+// configured round trip gives (P_SSI), exactly as a BiSS-C frame's bits.
+
+// Config: an SSI slave (slave 0's BISS_SF_SSI) must be alone and without
+// CRC. Returns r27.w0 = the ACK position a BiSS-C slave at this line delay
+// would show (Q' = 4 (rt + 1) / H + 20, rt in cycles), r27.w2 = MA edges
+// after period 0 (2n, times MA_MASK); r27 = 0 for BiSS-C. r28 = error.
+CFG_SSI:
+    ldi     r27, 0
+    ldi     r28, BISS_CFGERR_NONE
+    mov     r2, BISS_CFG_SLAVE0
+    lbbo    r2, r2, 0, 4                    // n, w, ew, flags of slave 0
+    qbbc    CFG_SSI_DONE, r2.b3, 1
+    ldi     r28, BISS_CFGERR_SSI
+    qbne    CFG_SSI_DONE, r20.b2, 1         // one slave
+    qbne    CFG_SSI_DONE, r2.b1, 0          // no CRC
+    ldi     r28, BISS_CFGERR_NONE
+    lbco    r3, c24, BISS_CFG_SSI_DELAY_NS, 2
+    ldi     r4, 0                           // rt = ns / 5 cycles
+CFG_SSI_DIV5:
+    qbgt    CFG_SSI_RT, r3.w0, 5
+    sub     r3.w0, r3.w0, 5
+    add     r4, r4, 1
+    qba     CFG_SSI_DIV5
+CFG_SSI_RT:
+    add     r4, r4, 1
+    lsl     r4, r4, 2                       // 4 (rt + 1) ...
+    ldi     r27.w0, 20
+CFG_SSI_DIVH:
+    qbgt    CFG_SSI_Q, r4, r20.w0           // ... / H
+    sub     r4, r4, r20.w0
+    add     r27.w0, r27.w0, 1
+    qba     CFG_SSI_DIVH
+CFG_SSI_Q:
+    // n + 1 clocks: the one after the last bit makes the slave send 0 until
+    // its monoflop ends (SL high again: ready), 2n edges after period 0's
+    lsl     r27.w2, r2.b0, MA_BIT + 1
+CFG_SSI_DONE:
+    jmp     r0.w0
+
+SSI_FRAME:
+    FRAME_SETUP
+    lbco    r1.w2, c28, P_SSI, 2            // Q' (and r1.w2 is what FRAME_END records)
+    lbco    r12, c28, P_SSI + 2, 4          // the clocks (the next word is 0)
+    sub     r2, r1.w2, 4                    // sample point and lag as LAG1 derives them
+    and     r10, r2, 7
+    add     r10, r10, 8
+    lsr     r3, r2, 3
+    add     r3, r3, LAG                     // periods before bit 0 is read: m + LAG
+    ldi     r8, 0
+    LOAD_RECORD                             // the slave's data bits, no CRC
+SSI_IDLE:
+    MA_FALL
+    PADS    8                               // 1..8
+    DELAY_A
+    MA_RISE
+    sub     r3, r3, 1                       // 1
+    NEXT_CLOCK                              // 2..5
+    qbeq    SSI_IDLE_LAST, r3, 0            // 6
+    PAD                                     // 7
+    DELAY_B
+    qba     SSI_IDLE
+SSI_IDLE_LAST:
+    PAD                                     // 7
+    DELAY_B
+    jmp     r7.w2

@@ -395,10 +395,9 @@ static int run(const struct options *o) {
     if (rc == 0 && fw_mode) {
         fw_check_attach(&fc, b);
         struct fw_settings s = {.half = half, .trigger = BISS_TRIG_FREERUN, .proc_limit = 1000};
-        if (fw_config_write(b, &s) != 0) {
-            rc = die("profile '%s' is an SSI encoder: the firmware is a BiSS-C master "
-                     "(run an SSI image with --image)",
-                     cfg.link.profile);
+        fw_config_write(b, &s);
+        if (o->cd_set && cfg.link.protocol == SCENARIO_SSI) {
+            rc = die("%s: an SSI encoder has no control communication", o->cd_what);
         }
     }
     if (rc != 0) {

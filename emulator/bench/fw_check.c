@@ -46,8 +46,37 @@ static const biss_frame_record *frame_record(struct fw_check *fc) {
     return n == l->biss.frames ? &l->biss.cur : NULL;
 }
 
+/* An SSI frame: the code word as the encoder sent it (Gray or binary). */
+static void compare_ssi(struct fw_check *fc, const uint8_t *res) {
+    link_model *l = bench_link(fc->b);
+    uint64_t n = bench_current_frame(fc->b);
+    const ssi_frame_record *r = n < l->ssi.frames    ? ssi_slave_record(&l->ssi, n)
+                                : n == l->ssi.frames ? &l->ssi.cur
+                                                     : NULL;
+    if (!r) {
+        fc->unmatched++;
+        return;
+    }
+    uint32_t lo, hi;
+    memcpy(&lo, res + BISS_R_SLAVE0 + BISS_R_S_DATA_LO, 4);
+    memcpy(&hi, res + BISS_R_SLAVE0 + BISS_R_S_DATA_HI, 4);
+    memcpy(&fc->status[0], res + BISS_R_SLAVE0 + BISS_R_S_STATUS, 4);
+    fc->data[0] = (uint64_t)hi << 32 | lo;
+    fc->sent[0] = r->position;
+    if (fc->data[0] != r->code) {
+        fc->mismatches++;
+        if (!fc->first_mismatch_frame) {
+            fc->first_mismatch_frame = fc->publications;
+        }
+    }
+}
+
 static void compare(struct fw_check *fc, const uint8_t *res) {
     link_model *l = bench_link(fc->b);
+    if (l->sc.protocol == SCENARIO_SSI) {
+        compare_ssi(fc, res);
+        return;
+    }
     const biss_frame_record *r = frame_record(fc);
     if (!r) {
         fc->unmatched++;

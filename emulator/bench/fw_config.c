@@ -29,18 +29,34 @@ static void put_slave(struct bench *b, unsigned i, const biss_slave_cfg *s) {
     put(b, o + BISS_CFG_S_CRC_START, s->crc_start, 2);
 }
 
+/* An SSI encoder: its code word, no CRC; the line delay from the model
+ * (an SSI slave gives no ACK to measure it by). */
+static void put_ssi(struct bench *b, const ssi_cfg *s) {
+    uint32_t o = BISS_CFG_SLAVE0;
+    put(b, o + BISS_CFG_S_DATA_BITS, s->bits, 1);
+    put(b, o + BISS_CFG_S_CRC_BITS, 0, 1);
+    put(b, o + BISS_CFG_S_EW_SHIFT, 0, 1);
+    put(b, o + BISS_CFG_S_FLAGS, BISS_SF_SSI, 1);
+    put(b, o + BISS_CFG_S_CRC_POLY, 0, 2);
+    put(b, o + BISS_CFG_S_CRC_START, 0, 2);
+    put(b, BISS_CFG_SSI_DELAY_NS, (uint32_t)(bench_round_trip_ps(b) / 1000.0 + 0.5), 2);
+}
+
 int fw_config_write(struct bench *b, const struct fw_settings *s) {
     link_model *l = bench_link(b);
-    if (l->sc.protocol != SCENARIO_BISS) {
-        return -1;
-    }
+    int ssi = l->sc.protocol == SCENARIO_SSI;
     put(b, BISS_CFG_HALF, s->half, 2);
-    put(b, BISS_CFG_NSLAVES, l->sc.biss.n, 1);
+    put(b, BISS_CFG_NSLAVES, ssi ? 1 : l->sc.biss.n, 1);
     put(b, BISS_CFG_TRIGGER, s->trigger, 1);
     put(b, BISS_CFG_IEP_PERIOD, s->iep_period, 4);
     put(b, BISS_CFG_PROC_LIMIT, s->proc_limit, 2);
-    for (unsigned i = 0; i < l->sc.biss.n; i++) {
-        put_slave(b, i, &l->sc.biss.s[i]);
+    if (ssi) {
+        put_ssi(b, &l->sc.ssi);
+    } else {
+        put(b, BISS_CFG_SSI_DELAY_NS, 0, 2);
+        for (unsigned i = 0; i < l->sc.biss.n; i++) {
+            put_slave(b, i, &l->sc.biss.s[i]);
+        }
     }
     put(b, BISS_CFG_SEQ, get32(b, BISS_CFG_SEQ) + 1, 4);
     return 0;

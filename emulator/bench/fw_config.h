@@ -15,8 +15,8 @@ struct fw_settings {
     unsigned proc_limit; /* longest processing time accepted, MA clocks */
 };
 
-/* Writes the configuration for the bench's BiSS chain and increments
- * CFG_SEQ. Returns 0, or -1 when the chain is no BiSS chain (SSI). */
+/* Writes the configuration for the bench's BiSS chain or SSI encoder (its
+ * round trip from the model) and increments CFG_SEQ. Returns 0. */
 int fw_config_write(struct bench *b, const struct fw_settings *s);
 
 #endif

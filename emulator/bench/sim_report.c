@@ -203,8 +203,8 @@ static void print_read(const struct sim_result *r) {
                nW ? "no" : "YES", (fw->status[i] & BISS_RS_CRC_OK) ? "ok" : "WRONG",
                (unsigned long long)fw->sent[i]);
     }
-    static const char *const names[] = {"valid", "CRC error", "no slave", "processing time",
-                                        "training", "average ready"};
+    static const char *const names[] = {"valid",           "CRC error", "no slave",
+                                        "processing time", "training",  "average ready"};
     printf("flags                0x%02x:", fw->last_flags);
     for (unsigned b = 0; b < sizeof(names) / sizeof(names[0]); b++) {
         if (fw->last_flags & (1u << b)) {

@@ -42,8 +42,8 @@
 #define BISS_CFG_TRIGGER        0x007   // u8:  BISS_TRIG_*
 #define BISS_CFG_IEP_PERIOD     0x008   // u32: frame period in IEP counts (5 ns) for BISS_TRIG_IEP
 #define BISS_CFG_PROC_LIMIT     0x00C   // u16: longest processing time (busy) accepted, MA clocks
-#define BISS_CFG_RESERVED1      0x00E   // u8
-#define BISS_CFG_RESERVED0      0x00F   // u8
+#define BISS_CFG_SSI_DELAY_NS   0x00E   // u16: SSI only: the line's round trip in ns (an SSI
+                                        //      slave gives no ACK to measure it by)
 #define BISS_CFG_SLAVE0         0x010   // first of BISS_MAX_SLAVES slave blocks
 #define BISS_CFG_SLAVE_SIZE     8
 // per slave block, offsets within the block:
@@ -56,6 +56,8 @@
 #define BISS_CFG_END            0x050
 
 #define BISS_SF_EW              0x01    // the slave sends nE and nW (at EW_SHIFT)
+#define BISS_SF_SSI             0x02    // slave 0 only: an SSI encoder (no ACK, start, CDS, CRC;
+                                        // its data word on the rising edges from the first one)
 
 #define BISS_TRIG_HOST          0       // one frame per write of CMD_TRIGGER
 #define BISS_TRIG_IEP           1       // one frame every CFG_IEP_PERIOD IEP counts (IEP CMP0)
@@ -174,6 +176,7 @@
 #define BISS_CFGERR_TRIGGER     5       // unknown trigger mode
 #define BISS_CFGERR_EW          6       // nE/nW position outside the data word
 #define BISS_CFGERR_IEP_PERIOD  7       // IEP period shorter than a frame can be
+#define BISS_CFGERR_SSI         8       // SSI: one slave, no CRC
 
 // ---- firmware-private area (the host must not write it) -------------------
 #define BISS_PRIV               0x300

@@ -34,10 +34,10 @@ for p in ["tidep0022-test-encoder", "posital-kit", "hengstler-ad38", "generic", 
 KEYS = ["frames", "crc_errors", "position_mismatches", "line_delay_ns", "frame_period_ns",
         "ma_half_period_cycles", "pru_cycles", "host_seconds", "slaves"]
 CLOCK_IMAGE = os.path.join(os.path.dirname(__file__), "clock_frames.p")
-for profile in profiles:
-    # the BiSS-C master firmware reads BiSS encoders; an SSI encoder gets the
-    # bench's clocking image, which decodes nothing
-    firmware = profile != "ssi"
+# every profile with the firmware; and, once, the bench's clocking image,
+# which decodes nothing
+runs = [(p, True) for p in profiles] + [("generic", False)]
+for profile, firmware in runs:
     extra = [] if firmware else ["--image", CLOCK_IMAGE]
     for freq, cable in [(10e6, 2), (1e6, 100)]:
         vcd = os.path.join(tmp, "%s.vcd" % profile)
@@ -79,9 +79,9 @@ for profile in profiles:
         falls = sum(1 for t, v in ma if v == "0")
         check(falls >= 30 * 10, "%s: MA clocked (%d falling edges)" % (name, falls))
 
-# the SSI profile and the firmware: a clear refusal
-r = run("--profile", "ssi", "--frames", "3")
-check(r.returncode == 1 and "SSI" in r.stderr, "ssi with the firmware: %r" % r.stderr)
+# an SSI encoder has no control communication: a clear refusal
+r = run("--profile", "ssi", "--frames", "3", "--reg-read", "0:0x44")
+check(r.returncode == 1 and "SSI" in r.stderr, "ssi with a register read: %r" % r.stderr)
 
 # same seed, same run
 a = run("--profile", "generic", "--frames", "10", "--seed", "3", "--json").stdout

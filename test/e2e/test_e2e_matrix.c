@@ -1,11 +1,12 @@
 /*
- * End-to-end: the firmware image in the emulator reads every BiSS profile
- * at 1, 2, 5 and 10 MHz over 0..100 m of cable. Where the line model says
+ * End-to-end: the firmware image in the emulator reads every encoder
+ * profile (BiSS-C, and SSI with the line delay given) at 1, 2, 5 and 10 MHz
+ * over 0..100 m of cable. Where the line model says
  * the link carries the rate (line_usable), every frame must be right:
  * positions equal to what the encoders sent, no CRC error, MA half periods
  * exactly H, the line delay within one bit/8 of the model's. Where it does
  * not, the firmware may fail frames but must never pass a wrong word as
- * right. Frames per cell: E2E_FRAMES (default 10000).
+ * right (an SSI word, which has no CRC, excepted). Frames per cell: E2E_FRAMES (default 10000).
  */
 #include "e2e_util.h"
 
@@ -18,7 +19,7 @@
 #include <stdlib.h>
 
 static const char *const profiles[] = {"tidep0022-test-encoder", "posital-kit", "hengstler-ad38",
-                                       "generic"};
+                                       "generic", "ssi"};
 static const unsigned halves[] = {10, 20, 50, 100}; /* 10, 5, 2, 1 MHz */
 static const double cables[] = {0, 2, 15, 25, 40, 65, 100};
 #define NP (sizeof(profiles) / sizeof(profiles[0]))
@@ -39,7 +40,12 @@ START_TEST(test_cell) {
     struct bench *b = e2e_bench(&r, profile, cable, NULL);
     uint64_t want = e2e_frames(10000);
     if (!usable(b, half)) {
-        /* not a link: whatever happens, no wrong word is passed as right */
+        /* not a link: whatever happens, no wrong word is passed as right;
+         * except from an SSI encoder: without a CRC nobody can tell */
+        if (bench_link(b)->sc.protocol == SCENARIO_SSI) {
+            e2e_free(&r);
+            return;
+        }
         struct fw_settings s = {.half = half, .trigger = BISS_TRIG_FREERUN, .proc_limit = 1000};
         ck_assert_int_eq(fw_config_write(b, &s), 0);
         e2e_run_publications(&r, 200, 50 * SIM_PS_PER_MS);
