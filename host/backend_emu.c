@@ -129,8 +129,12 @@ int biss_config_from_emu(biss_t *h, struct biss_config *c) {
     pthread_mutex_lock(&h->lock);
     const scenario *sc = &bench_link(h->be.bench)->sc;
     int rc = BISS_OK;
-    if (sc->protocol != SCENARIO_BISS) {
-        rc = BISS_E_SCENARIO; /* an SSI encoder has no BiSS layout */
+    if (sc->protocol == SCENARIO_SSI) {
+        /* the round trip the bench's line gives, as a user would measure it */
+        c->nslaves = 1;
+        c->slave[0] = (struct biss_slave_config){
+            .data_bits = sc->ssi.bits, .ssi = true, .gray = sc->ssi.gray};
+        c->ssi_delay_ns = (uint32_t)(bench_round_trip_ps(h->be.bench) / 1000.0 + 0.5);
     } else {
         c->nslaves = sc->biss.n;
         for (unsigned i = 0; i < sc->biss.n && i < BISS_API_MAX_SLAVES; i++) {

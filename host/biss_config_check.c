@@ -67,6 +67,24 @@ static int check_slave(const struct biss_slave_config *s) {
     return BISS_OK;
 }
 
+/* SSI is slave[0] alone: no ACK, start bit, CDS or CRC on its wire, and
+ * nE/nW are not the firmware's business there. */
+static int check_ssi(const struct biss_config *c) {
+    for (unsigned i = 1; i < c->nslaves; i++) {
+        if (c->slave[i].ssi || c->slave[i].gray) {
+            return BISS_E_SSI;
+        }
+    }
+    const struct biss_slave_config *s = &c->slave[0];
+    if (!s->ssi) {
+        return s->gray ? BISS_E_SSI : BISS_OK;
+    }
+    if (c->nslaves != 1 || s->crc_bits || s->crc_poly || s->has_ew || c->ssi_delay_ns > 0xffff) {
+        return BISS_E_SSI;
+    }
+    return BISS_OK;
+}
+
 /* The firmware's own rule: an IEP period (counts of 5 ns = PRU cycles) of
  * at least 2H (N + 8), N = all data and CRC bits of the chain. */
 static int check_iep(const struct biss_config *c, unsigned half) {
@@ -102,6 +120,10 @@ int biss_config_check(const struct biss_config *c) {
     }
     if (c->proc_limit > 0xffff) {
         return BISS_E_PROC_LIMIT;
+    }
+    rc = check_ssi(c);
+    if (rc) {
+        return rc;
     }
     for (unsigned i = 0; i < c->nslaves; i++) {
         rc = check_slave(&c->slave[i]);

@@ -15,7 +15,7 @@ static void encode_slave(const struct biss_slave_config *s, struct biss_shm_slav
     o->data_bits = (uint8_t)s->data_bits;
     o->crc_bits = (uint8_t)s->crc_bits;
     o->ew_shift = s->has_ew ? (uint8_t)s->ew_shift : 0;
-    o->flags = s->has_ew ? BISS_SF_EW : 0;
+    o->flags = (uint8_t)((s->has_ew ? BISS_SF_EW : 0) | (s->ssi ? BISS_SF_SSI : 0));
     /* the firmware keeps the polynomial without its top term */
     o->crc_poly = s->crc_bits ? (uint16_t)(s->crc_poly & ((1u << s->crc_bits) - 1u)) : 0;
     o->crc_start = (uint16_t)s->crc_start;
@@ -31,6 +31,7 @@ void biss_config_encode(const struct biss_config *c, struct biss_shm_config *out
     out->trigger = (uint8_t)c->trigger;
     out->iep_period = c->trigger == BISS_TRIGGER_IEP ? c->iep_period_ns / 5 : 0;
     out->proc_limit = (uint16_t)c->proc_limit;
+    out->ssi_delay_ns = c->slave[0].ssi ? (uint16_t)c->ssi_delay_ns : 0;
     for (unsigned i = 0; i < c->nslaves && i < BISS_MAX_SLAVES; i++) {
         encode_slave(&c->slave[i], &out->slave[i]);
     }
@@ -48,6 +49,7 @@ int biss_config_decode(const struct biss_shm_config *in, struct biss_config *c) 
     c->trigger = (enum biss_trigger)in->trigger;
     c->iep_period_ns = in->iep_period * 5u;
     c->proc_limit = in->proc_limit;
+    c->ssi_delay_ns = in->ssi_delay_ns;
     for (unsigned i = 0; i < c->nslaves; i++) {
         const struct biss_shm_slave_cfg *s = &in->slave[i];
         struct biss_slave_config *o = &c->slave[i];
@@ -58,6 +60,7 @@ int biss_config_decode(const struct biss_shm_config *in, struct biss_config *c) 
         o->has_ew = (s->flags & BISS_SF_EW) != 0;
         o->ew_shift = o->has_ew ? s->ew_shift : 0;
         o->pos_bits = 0;
+        o->ssi = (s->flags & BISS_SF_SSI) != 0; /* Gray or not is not in the block */
     }
     return BISS_OK;
 }
@@ -80,6 +83,8 @@ int biss_fw_cfg_error(uint32_t cfgerr) {
         return BISS_E_FW_EW;
     case BISS_CFGERR_IEP_PERIOD:
         return BISS_E_FW_IEP_PERIOD;
+    case BISS_CFGERR_SSI:
+        return BISS_E_FW_SSI;
     default:
         return BISS_E_FW_UNKNOWN;
     }

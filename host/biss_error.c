@@ -37,6 +37,7 @@ static const struct err_text errors[] = {
     {BISS_E_TRIGGER, "unknown trigger mode (host, iep, free)"},
     {BISS_E_IEP_PERIOD, "IEP period not a multiple of 5 ns or shorter than one frame"},
     {BISS_E_PROC_LIMIT, "processing-time limit above 65535 MA clocks"},
+    {BISS_E_SSI, "SSI: one slave only, without CRC or nE/nW, delay at most 65535 ns"},
     {BISS_E_TIMEOUT, "timed out waiting for the firmware"},
     {BISS_E_NOT_RUNNING, "firmware not running (no magic in data RAM)"},
     {BISS_E_NO_SAMPLE, "no frame published yet"},
@@ -61,6 +62,7 @@ static const struct err_text errors[] = {
     {BISS_E_FW_TRIGGER, "firmware refused the configuration: trigger mode"},
     {BISS_E_FW_EW, "firmware refused the configuration: nE/nW position"},
     {BISS_E_FW_IEP_PERIOD, "firmware refused the configuration: IEP period"},
+    {BISS_E_FW_SSI, "firmware refused the configuration: SSI"},
     {BISS_E_FW_UNKNOWN, "firmware refused the configuration (unknown reason)"},
 };
 

@@ -35,9 +35,13 @@ static int apply_config(biss_t *h, struct bissctl_opts *o) {
         return BISSCTL_OK;
     }
     if (!o->slaves_given) {
+        uint32_t ssi_delay = o->cfg.ssi_delay_ns; /* --ssi-delay-ns wins over the bench's */
         int rc = biss_config_from_emu(h, &o->cfg);
+        if (ssi_delay) {
+            o->cfg.ssi_delay_ns = ssi_delay;
+        }
         if (rc == BISS_E_NOT_EMU) {
-            fprintf(stderr, "bissctl: a real target needs --slave (the slave layout)\n");
+            fprintf(stderr, "bissctl: a real target needs --slave or --ssi (the slave layout)\n");
             return BISSCTL_USAGE;
         }
         if (rc) {

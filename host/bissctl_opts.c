@@ -28,6 +28,8 @@ static const char common_help[] =
     "                     one slave (repeat, nearest first): data bits, CRC bits,\n"
     "                     CRC polynomial with its top term (0x43), CRC start, nW bit\n"
     "                     (if the slave has nE/nW), position bits\n"
+    "  --ssi BITS[,gray]  an SSI encoder instead: its word length, Gray-coded or not\n"
+    "  --ssi-delay-ns NS  SSI: the line's round trip (no ACK to measure it by)\n"
     "  --trigger MODE     host, iep, free (default free)\n"
     "  --iep-period-ns NS frame period for --trigger iep\n"
     "  --proc-limit N     longest processing time accepted, MA clocks (default 1000)\n"
@@ -186,6 +188,8 @@ enum {
     OPT_SEED,
     OPT_FREQ,
     OPT_SLAVE,
+    OPT_SSI,
+    OPT_SSI_DELAY,
     OPT_TRIGGER,
     OPT_IEP,
     OPT_PROC,
@@ -206,6 +210,8 @@ static const struct option long_opts[] = {
     {"seed", required_argument, NULL, OPT_SEED},
     {"freq", required_argument, NULL, OPT_FREQ},
     {"slave", required_argument, NULL, OPT_SLAVE},
+    {"ssi", required_argument, NULL, OPT_SSI},
+    {"ssi-delay-ns", required_argument, NULL, OPT_SSI_DELAY},
     {"trigger", required_argument, NULL, OPT_TRIGGER},
     {"iep-period-ns", required_argument, NULL, OPT_IEP},
     {"proc-limit", required_argument, NULL, OPT_PROC},
@@ -224,6 +230,29 @@ static int parse_cable(const char *arg, double *m) {
         return -1;
     }
     *m = v;
+    return 0;
+}
+
+/* BITS[,gray] */
+static int parse_ssi(const char *arg, struct biss_slave_config *s) {
+    char buf[32];
+    if (snprintf(buf, sizeof buf, "%s", arg) >= (int)sizeof buf) {
+        return -1;
+    }
+    char *comma = strchr(buf, ',');
+    bool gray = false;
+    if (comma) {
+        *comma = '\0';
+        if (strcmp(comma + 1, "gray")) {
+            return -1;
+        }
+        gray = true;
+    }
+    uint32_t bits;
+    if (parse_u32(buf, &bits)) {
+        return -1;
+    }
+    *s = (struct biss_slave_config){.data_bits = bits, .ssi = true, .gray = gray};
     return 0;
 }
 
@@ -292,6 +321,18 @@ static int take_config_opt(int c, const char *arg, struct bissctl_opts *o) {
         }
         return parse_slave(arg, &cfg->slave[cfg->nslaves++])
                    ? usage_error("--slave '%s': expected D,C,POLY,START[,EW[,POS]]", arg)
+                   : 0;
+    case OPT_SSI:
+        if (o->slaves_given) {
+            return usage_error("--ssi %s: an SSI encoder is alone on its line (no --slave)", arg);
+        }
+        o->slaves_given = true;
+        cfg->nslaves = 1;
+        return parse_ssi(arg, &cfg->slave[0]) ? usage_error("--ssi '%s': expected BITS[,gray]", arg)
+                                              : 0;
+    case OPT_SSI_DELAY:
+        return parse_u32(arg, &cfg->ssi_delay_ns)
+                   ? usage_error("--ssi-delay-ns '%s': expected ns", arg)
                    : 0;
     case OPT_TRIGGER:
         return biss_trigger_from_name(arg, &cfg->trigger)

@@ -32,29 +32,29 @@ extern "C" {
 /* ---- errors ------------------------------------------------------------ */
 enum biss_error {
     BISS_OK = 0,
-    BISS_E_INVAL = -1,         /* NULL pointer or argument out of its domain */
-    BISS_E_NOMEM = -2,         /* out of memory */
-    BISS_E_TARGET = -3,        /* unknown target name */
-    BISS_E_FIRMWARE_IO = -4,   /* firmware image cannot be read */
-    BISS_E_FIRMWARE_SIZE = -5, /* image empty, not whole words, or larger than IRAM */
-    BISS_E_DEVMEM = -6,        /* devmem cannot be opened or mapped */
-    BISS_E_PROFILE = -7,       /* unknown emulator profile */
-    BISS_E_SCENARIO = -8,      /* scenario file unreadable or invalid */
-    BISS_E_EMU = -9,           /* emulator bench cannot be built */
-    BISS_E_RATE_RANGE = -10,   /* MA rate gives H outside 10..1024 (97.7 kHz..10 MHz) */
-    BISS_E_RATE_INEXACT = -11, /* 100 MHz / f is not a whole number of PRU cycles */
-    BISS_E_RATE_SHIFT = -12,   /* H has no exact 8x shift clock (H = a*b, 2 <= a,b <= 32) */
-    BISS_E_NSLAVES = -13,      /* slave count outside 1..8 */
-    BISS_E_DATA_BITS = -14,    /* data bits outside 1..64 */
-    BISS_E_CRC_BITS = -15,     /* CRC bits outside 0..16 */
-    BISS_E_CRC_POLY = -16,     /* polynomial degree is not crc_bits (or a poly without CRC) */
-    BISS_E_CRC_START = -17,    /* CRC start value wider than crc_bits */
-    BISS_E_EW = -18,           /* nE/nW position outside the data word */
-    BISS_E_POS_BITS = -19,     /* position bits do not fit above nE/nW */
-    BISS_E_TRIGGER = -20,      /* unknown trigger mode */
-    BISS_E_IEP_PERIOD = -21,   /* IEP period not a multiple of 5 ns or shorter than a frame */
-    BISS_E_PROC_LIMIT = -22,   /* processing-time limit above 65535 MA clocks */
-    /* -23: unused */
+    BISS_E_INVAL = -1,           /* NULL pointer or argument out of its domain */
+    BISS_E_NOMEM = -2,           /* out of memory */
+    BISS_E_TARGET = -3,          /* unknown target name */
+    BISS_E_FIRMWARE_IO = -4,     /* firmware image cannot be read */
+    BISS_E_FIRMWARE_SIZE = -5,   /* image empty, not whole words, or larger than IRAM */
+    BISS_E_DEVMEM = -6,          /* devmem cannot be opened or mapped */
+    BISS_E_PROFILE = -7,         /* unknown emulator profile */
+    BISS_E_SCENARIO = -8,        /* scenario file unreadable or invalid */
+    BISS_E_EMU = -9,             /* emulator bench cannot be built */
+    BISS_E_RATE_RANGE = -10,     /* MA rate gives H outside 10..1024 (97.7 kHz..10 MHz) */
+    BISS_E_RATE_INEXACT = -11,   /* 100 MHz / f is not a whole number of PRU cycles */
+    BISS_E_RATE_SHIFT = -12,     /* H has no exact 8x shift clock (H = a*b, 2 <= a,b <= 32) */
+    BISS_E_NSLAVES = -13,        /* slave count outside 1..8 */
+    BISS_E_DATA_BITS = -14,      /* data bits outside 1..64 */
+    BISS_E_CRC_BITS = -15,       /* CRC bits outside 0..16 */
+    BISS_E_CRC_POLY = -16,       /* polynomial degree is not crc_bits (or a poly without CRC) */
+    BISS_E_CRC_START = -17,      /* CRC start value wider than crc_bits */
+    BISS_E_EW = -18,             /* nE/nW position outside the data word */
+    BISS_E_POS_BITS = -19,       /* position bits do not fit above nE/nW */
+    BISS_E_TRIGGER = -20,        /* unknown trigger mode */
+    BISS_E_IEP_PERIOD = -21,     /* IEP period not a multiple of 5 ns or shorter than a frame */
+    BISS_E_PROC_LIMIT = -22,     /* processing-time limit above 65535 MA clocks */
+    BISS_E_SSI = -23,            /* SSI: not one slave, or with CRC or nE/nW, or delay > 65535 ns */
     BISS_E_TIMEOUT = -24,        /* the firmware did not answer in time */
     BISS_E_NOT_RUNNING = -25,    /* firmware not running (no magic in data RAM) */
     BISS_E_NO_SAMPLE = -26,      /* nothing published yet */
@@ -80,6 +80,7 @@ enum biss_error {
     BISS_E_FW_TRIGGER = -45,
     BISS_E_FW_EW = -46,
     BISS_E_FW_IEP_PERIOD = -47,
+    BISS_E_FW_SSI = -48,
     BISS_E_FW_UNKNOWN = -49, /* an ST_CFG_ERROR code this library does not know */
 };
 
@@ -155,6 +156,10 @@ struct biss_slave_config {
     /* Position bits at the top of the data word; 0 = everything above nE
      * (or the whole word without nE/nW). Only used for decoding. */
     unsigned pos_bits;
+    /* An SSI encoder (slave[0] only, alone, no CRC, no nE/nW): its code
+     * word from the first rising edge, read with ssi_delay_ns below. */
+    bool ssi;
+    bool gray; /* SSI: the word is Gray code; positions are decoded to binary */
 };
 
 struct biss_config {
@@ -164,6 +169,8 @@ struct biss_config {
     enum biss_trigger trigger;
     uint32_t iep_period_ns; /* BISS_TRIGGER_IEP: frame period, multiple of 5 ns */
     uint32_t proc_limit;    /* longest processing time (busy) accepted, MA clocks, <= 65535 */
+    uint32_t ssi_delay_ns;  /* SSI only: the line's round trip in ns (<= 65535); an SSI
+                               slave sends no ACK the firmware could measure it by */
 };
 
 /* 1 MHz, no slaves, free-run, processing-time limit 1000 clocks. */
@@ -177,7 +184,8 @@ int biss_rate_half(uint32_t freq_hz, unsigned *half);
 int biss_config_check(const struct biss_config *c);
 
 /* Emulator only: the slave layout of the bench's encoder(s), into
- * c->nslaves and c->slave[] (the rest of c is left alone). */
+ * c->nslaves and c->slave[] (and, for an SSI encoder, c->ssi_delay_ns: the
+ * bench line's round trip); the rest of c is left alone. */
 int biss_config_from_emu(biss_t *h, struct biss_config *c);
 
 /* Validates, writes the block, bumps CFG_SEQ and waits for the firmware's

@@ -37,8 +37,7 @@ struct biss_shm_config {
     uint8_t trigger;
     uint32_t iep_period;
     uint16_t proc_limit;
-    uint8_t reserved1;
-    uint8_t reserved0;
+    uint16_t ssi_delay_ns;
     struct biss_shm_slave_cfg slave[BISS_MAX_SLAVES];
 };
 
@@ -135,8 +134,7 @@ BISS_SHM_AT(cfg.nslaves, BISS_CFG_NSLAVES);
 BISS_SHM_AT(cfg.trigger, BISS_CFG_TRIGGER);
 BISS_SHM_AT(cfg.iep_period, BISS_CFG_IEP_PERIOD);
 BISS_SHM_AT(cfg.proc_limit, BISS_CFG_PROC_LIMIT);
-BISS_SHM_AT(cfg.reserved1, BISS_CFG_RESERVED1);
-BISS_SHM_AT(cfg.reserved0, BISS_CFG_RESERVED0);
+BISS_SHM_AT(cfg.ssi_delay_ns, BISS_CFG_SSI_DELAY_NS);
 BISS_SHM_AT(cfg.slave, BISS_CFG_SLAVE0);
 BISS_SHM_AT(cfg.slave[1], BISS_CFG_SLAVE0 + BISS_CFG_SLAVE_SIZE);
 _Static_assert(sizeof(struct biss_shm_config) == BISS_CFG_END, "config block size");

@@ -88,6 +88,18 @@ for args in [["command", "1", "4"], ["command", "1"], ["reg-read"], ["reg-read",
     r = run(*args)
     check(r.returncode == 2, "%r: rc %d %r" % (args, r.returncode, r.stderr))
 
+# an SSI encoder: the layout from the profile, or given (the delay given too)
+r = run("--profile", "ssi", "--freq", "2000000", "read", "-n", "3")
+pos = [int(x) for x in re.findall(r"s0.pos=(\d+)", r.stdout)]
+check(r.returncode == 0 and len(pos) == 3 and pos[0] < pos[2] and "valid" in r.stdout,
+      "ssi read: %r %r" % (r.stdout, r.stderr))
+r = run("--profile", "ssi", "--ssi", "13", "--ssi-delay-ns", "60", "--freq", "2000000", "read", "-n", "2")
+check(r.returncode == 0 and r.stdout.count("valid") == 2, "ssi given: %r %r" % (r.stdout, r.stderr))
+r = run("--ssi", "13,grey", "read")
+check(r.returncode == 2 and "BITS[,gray]" in r.stderr, "ssi bad: %r" % r.stderr)
+r = run("--profile", "ssi", "--ssi", "13", "--slave", "13,0,0,0", "read")
+check(r.returncode == 1 and "SSI: one slave only" in r.stderr, "ssi chain: %r" % r.stderr)
+
 # the library's errors, in its words, exit 1
 for args, text in [(["--freq", "3000000", "read"], "not 100 MHz divided by a whole number"),
                    (["--freq", "100000", "read"], "no exact 8x shift clock"),
@@ -106,7 +118,7 @@ with tempfile.TemporaryDirectory() as tmp:
     with open(mem, "wb") as f:
         f.truncate(0x4A300000 + 0x80000)
     r = run("--target", "am335x", "--devmem", mem, "--timeout-ms", "20", "info")
-    check(r.returncode == 2 and "--slave" in r.stderr, "real target without layout: %r" % r.stderr)
+    check(r.returncode == 2 and "--slave or --ssi" in r.stderr, "real target without layout: %r" % r.stderr)
     r = run("--target", "am335x", "--devmem", mem, "--timeout-ms", "20",
             "--slave", "14,6,0x43,0,0", "--freq", "10000000", "info")
     check(r.returncode == 1 and "not running" in r.stderr, "file target: %r" % r.stderr)
