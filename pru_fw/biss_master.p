@@ -84,8 +84,6 @@ START:
     ldi     r3, BISS_PRIV >> 8
     sbbo    r3, r2, 0, 4                    // C28 -> the private area
     set     r30, r30, MA_BIT                // MA idles high
-    mov     r2, BISS_MAGIC
-    sbco    r2, c24, BISS_ST_MAGIC, 4
     ldi     r2, 0                           // status and private areas start clear
     ldi     r3, 0
     ldi     r4, 0
@@ -103,6 +101,8 @@ CLEAR_PRIV:
     qbgt    CLEAR_PRIV, r6, r7
     mov     r2, 0xffffffff                  // no configuration applied yet
     sbco    r2, c24, BISS_ST_CFG_ACK, 4
+    mov     r2, BISS_MAGIC                  // last: a host that sees it sees a clear status
+    sbco    r2, c24, BISS_ST_MAGIC, 4
     // IEP: count PRU cycles (increment 1), free running
     ldi     r2, 0x0111
     sbco    r2, c26, IEP_GLOBAL_CFG, 4
