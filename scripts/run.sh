@@ -13,3 +13,11 @@ cmake --build build -j "$jobs" >/dev/null
 
 build/emulator/bench/biss-sim --profile tidep0022-test-encoder --freq 10000000 --cable-m 10 \
     --frames 1000 --vcd build/demo.vcd --svg build/demo.svg "$@"
+
+# The same firmware and encoder through libbiss, as a host program reads it:
+# the first frames one by one (the first is the training frame).
+if [ "$#" -eq 0 ]; then
+    echo
+    echo "first frames through libbiss (build/host/bissctl read -n 6):"
+    build/host/bissctl --profile tidep0022-test-encoder --freq 10000000 --cable-m 10 read -n 6
+fi
