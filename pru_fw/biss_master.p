@@ -457,16 +457,23 @@ WA_TOP:
 
 // The ones before the ACK edge in r2.b0 (a constant-time count: a glitch
 // moves it by one, not to another bit), as Q' = 8p + ones in r1.w2.
-// Split over the two halves: 6 cycles, then 5.
+// A one-period ACK reaches the master shortened by the line's rise/fall
+// skew, so when its edge lies just before the oldest sample the newest
+// sample already reads the start bit (0x01 would count 1, not 0). Such
+// trailing ones come after the ACK, not before it: b0 & (b0 + 1) clears
+// them; an ACK pattern (ones, then zeros) ends in a 0 and keeps every bit.
+// Split over the two halves: 6 cycles, then 7.
 .macro ONES_A
+    add     r8, r2.b0, 1
+    and     r2.b0, r2.b0, r8.b0             // no trailing ones (start bit)
     lsr     r6, r2.b0, 1
     and     r6, r6, 0x55
     sub     r6, r2.b0, r6                   // 2-bit sums
     lsr     r8, r6, 2
-    and     r8, r8, 0x33
-    and     r6, r6, 0x33
 .endm
 .macro ONES_B
+    and     r8, r8, 0x33
+    and     r6, r6, 0x33
     add     r6, r6, r8                      // 4-bit sums
     lsr     r8, r6, 4
     add     r6, r6, r8
@@ -482,8 +489,7 @@ ACK_FOUND:                                  // t = 3
     ONES_A                                  // 3..8
     DELAY_A
     MA_RISE
-    ONES_B                                  // 1..5
-    PADS    2                               // 6..7
+    ONES_B                                  // 1..7
     DELAY_B
     PAD
 

@@ -139,6 +139,12 @@ static void on_publish(void *ctx, uint32_t addr) {
     if (!(flags & BISS_RF_VALID)) {
         return;
     }
+    if (fc->frames == 0 || fc->delay_raw < fc->delay_raw_min) {
+        fc->delay_raw_min = fc->delay_raw;
+    }
+    if (fc->delay_raw > fc->delay_raw_max) {
+        fc->delay_raw_max = fc->delay_raw;
+    }
     fc->frames++;
     fc->crc_errors += !!(flags & BISS_RF_CRC_ERROR);
     compare(fc, res);

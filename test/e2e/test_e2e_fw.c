@@ -41,6 +41,28 @@ START_TEST(test_uncertain_parameters) {
 }
 END_TEST
 
+/* ---- the raw line delay at 4 MHz: 6.25 cycles per sample, so the frame
+ * start takes 25 phases against the shift clock. The ACK edge lies at the
+ * same time in every frame, so the raw ACK position of every frame is one
+ * of two neighbours, whatever the phase: also when the edge falls just
+ * before a window's oldest sample and the one-period ACK (shortened by the
+ * line's rise/fall skew) ends before its newest, which then reads the start
+ * bit ---- */
+START_TEST(test_raw_delay_every_shift_phase) {
+    struct pru_params p;
+    pru_params_default(&p);
+    p.shift_phase_ps = (int64_t)_i * 1250;
+    struct e2e_run r;
+    e2e_bench(&r, "tidep0022-test-encoder", 2, &p);
+    ck_assert_uint_eq(e2e_run_frames(&r, 25, 1000, 10), 10);
+    ck_assert_uint_eq(r.fc.mismatches, 0);
+    ck_assert_msg(r.fc.delay_raw_max - r.fc.delay_raw_min <= 1,
+                  "shift phase %d ps: raw ACK positions %u..%u", _i * 1250, r.fc.delay_raw_min,
+                  r.fc.delay_raw_max);
+    e2e_free(&r);
+}
+END_TEST
+
 /* ---- configurations the host library would refuse, written raw ---- */
 struct bad_cfg {
     uint32_t off, value, bytes;
@@ -202,6 +224,7 @@ int main(void) {
     TCase *tc = tcase_create("fw");
     tcase_set_timeout(tc, 600);
     tcase_add_loop_test(tc, test_uncertain_parameters, 0, 160);
+    tcase_add_loop_test(tc, test_raw_delay_every_shift_phase, 0, 25);
     tcase_add_loop_test(tc, test_bad_config_is_flagged, 0, (int)(sizeof(bad) / sizeof(bad[0])));
     tcase_add_test(tc, test_processing_time_limit);
     tcase_add_loop_test(tc, test_disconnect_and_reconnect, 0, 3);
