@@ -212,7 +212,8 @@ int biss_run_ms(biss_t *h, unsigned ms);
 /* Round trip from an MA rising edge at the master pin to the slave's
  * answer at the master pin, from the firmware's ACK position (biss_shm.h):
  * cycles = (DELAY - BISS_DELAY_ZERO) * H / 4 - BISS_DELAY_ADJ_CYCLES,
- * bit8 = cycles / (H / 4), ns = cycles * 5. Good to half a bit/8. */
+ * bit8 = cycles / (H / 4), ns = cycles * 5. Within one bit/8 and one PRU
+ * cycle of the true round trip. */
 struct biss_line_delay {
     uint16_t raw, avg;                   /* the firmware's DELAY_RAW / DELAY_AVG */
     unsigned half;                       /* H of the frame */

@@ -149,8 +149,9 @@
 // of the frame. The round trip from an MA rising edge at the master pin to
 // the slave's answer at the master pin is
 //     (DELAY - BISS_DELAY_ZERO) * H / 4 - BISS_DELAY_ADJ_CYCLES  PRU cycles,
-// to within one bit/8 (the phase of the 8x sample clock is not known to
-// the firmware). BISS_DELAY_ADJ_CYCLES is the firmware's read one cycle
+// to within one bit/8 and one PRU cycle (the phase of the 8x sample clock
+// is not known to the firmware, and R31 is read on whole cycles while the
+// samples may fall between them). BISS_DELAY_ADJ_CYCLES is the firmware's read one cycle
 // after the period starts less the PRU's input synchronizer (2 cycles,
 // design/pru-facts.md section 3, an estimate).
 #define BISS_DELAY_ZERO         20
