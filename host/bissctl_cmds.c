@@ -1,6 +1,7 @@
 /* bissctl_cmds.c - bissctl's subcommands on an open, configured handle. */
 #include "bissctl.h"
 
+#include <stdbool.h>
 #include <stdio.h>
 
 int bissctl_fail(const char *what, int err) {
@@ -12,7 +13,28 @@ static void print_delay(const struct biss_line_delay *d) {
     printf("delay_bit8=%.1f delay_cycles=%.1f delay_ns=%.1f", d->bit8, d->cycles, d->ns);
 }
 
-static void print_sample(const struct biss_sample *s) {
+/* nE/nW and the CRC verdict, or "none" where the layout (c, when known)
+ * has no such field: a slave without CRC (or an SSI encoder) is not "ok". */
+static void print_slave(unsigned i, const struct biss_slave_result *r,
+                        const struct biss_slave_config *c) {
+    bool ew = !c || c->has_ew;
+    bool crc = !c || c->crc_bits;
+    printf(" s%u.pos=%llu s%u.data=0x%llx s%u.nE=%s s%u.nW=%s s%u.crc=%s", i,
+           (unsigned long long)r->position, i, (unsigned long long)r->data, i,
+           !ew        ? "none"
+           : r->error ? "error"
+                      : "ok",
+           i,
+           !ew          ? "none"
+           : r->warning ? "warning"
+                        : "ok",
+           i,
+           !crc        ? "none"
+           : r->crc_ok ? "ok"
+                       : "bad");
+}
+
+static void print_sample(const struct biss_sample *s, const struct biss_config *c) {
     printf("frame=%u flags=0x%02x %s", s->frame, s->flags,
            s->valid        ? (s->crc_error ? "crc-error" : "valid")
            : s->training   ? "training"
@@ -21,18 +43,17 @@ static void print_sample(const struct biss_sample *s) {
                            : "invalid");
     if (s->valid) {
         for (unsigned i = 0; i < s->nslaves; i++) {
-            const struct biss_slave_result *r = &s->slave[i];
-            printf(" s%u.pos=%llu s%u.data=0x%llx s%u.nE=%s s%u.nW=%s s%u.crc=%s", i,
-                   (unsigned long long)r->position, i, (unsigned long long)r->data, i,
-                   r->error ? "error" : "ok", i, r->warning ? "warning" : "ok", i,
-                   r->crc_ok ? "ok" : "bad");
+            print_slave(i, &s->slave[i], c && i < c->nslaves ? &c->slave[i] : NULL);
         }
     }
     if (s->valid || s->training) {
         printf(" ");
         print_delay(&s->delay);
     }
-    printf("\n");
+    if (s->valid) { /* the sample point (1/8 bit) and lag a data frame was read with */
+        printf(" sample_point=%u lag=%u", s->sample_point, s->lag_periods);
+    }
+    printf(" timestamp=%u\n", s->timestamp);
 }
 
 static void print_stats(const struct biss_stats *st) {
@@ -95,6 +116,8 @@ int bissctl_read(biss_t *h, const struct bissctl_opts *o) {
     struct biss_sample s;
     /* start after what is already published: every line is a new frame */
     uint32_t after = 0;
+    struct biss_config c;
+    bool layout = biss_get_config(h, &c) == BISS_OK;
     if (biss_read_sample(h, &s) == BISS_OK) {
         after = s.frame;
     }
@@ -103,7 +126,7 @@ int bissctl_read(biss_t *h, const struct bissctl_opts *o) {
         if (rc) {
             return bissctl_fail("read", rc);
         }
-        print_sample(&s);
+        print_sample(&s, layout ? &c : NULL);
         after = s.frame;
     }
     return BISSCTL_OK;

@@ -43,8 +43,9 @@ static const char *command_help(const char *command) {
     if (strcmp(command, "read") == 0) {
         return "bissctl [options] read [-n N]\n"
                "  Prints N published frames (default 1), one line each: frame, flags,\n"
-               "  per slave position, data, nE/nW, CRC; line delay. In host-trigger mode\n"
-               "  each frame is triggered first.\n";
+               "  per slave position, data, nE/nW, CRC (\"none\" where the layout has\n"
+               "  none); line delay, sample point (1/8 bit), lag (periods), IEP timestamp.\n"
+               "  In host-trigger mode each frame is triggered first.\n";
     }
     if (strcmp(command, "stats") == 0) {
         return "bissctl [options] stats\n"

@@ -53,7 +53,8 @@ check(frames == list(range(frames[0], frames[0] + 5)) if frames else False, "fra
 data = [l for l in lines if " valid " in l]
 check(len(data) >= 4, "at least 4 data frames: %r" % lines)
 for l in data:
-    check("s0.crc=ok" in l and "s0.nE=ok" in l and "s0.nW=ok" in l and "delay_ns=" in l, l)
+    check("s0.crc=ok" in l and "s0.nE=ok" in l and "s0.nW=ok" in l and "delay_ns=" in l
+          and re.search(r" sample_point=[0-7] lag=\d+ timestamp=\d+$", l), l)
 
 # an explicit slave layout (the profile's own: 14 data bits, CRC6 0x43, nE/nW at 0)
 r = run("--freq", "10000000", "--slave", "14,6,0x43,0,0", "read", "-n", "3")
@@ -95,6 +96,7 @@ check(r.returncode == 0 and len(pos) == 3 and pos[0] < pos[2] and "valid" in r.s
       "ssi read: %r %r" % (r.stdout, r.stderr))
 r = run("--profile", "ssi", "--ssi", "13", "--ssi-delay-ns", "60", "--freq", "2000000", "read", "-n", "2")
 check(r.returncode == 0 and r.stdout.count("valid") == 2, "ssi given: %r %r" % (r.stdout, r.stderr))
+check("s0.crc=none" in r.stdout and "s0.nE=none" in r.stdout, "ssi fields: %r" % r.stdout)
 r = run("--ssi", "13,grey", "read")
 check(r.returncode == 2 and "BITS[,gray]" in r.stderr, "ssi bad: %r" % r.stderr)
 r = run("--profile", "ssi", "--ssi", "13", "--slave", "13,0,0,0", "read")
