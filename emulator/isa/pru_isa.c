@@ -267,8 +267,7 @@ uint32_t pru_encode(const struct pru_insn *in) {
     return 0;
 }
 
-int pru_op_lookup(const char *name)
-{
+int pru_op_lookup(const char *name) {
     char low[8];
     size_t n = 0;
     for (; name[n] != '\0'; n++) {

@@ -7,6 +7,8 @@
 // struct view in biss_shm_struct.h checks every offset at compile time).
 // All values are little-endian; offsets are from the start of PRU0's data
 // RAM (local address 0, constant table entry C24).
+// (Laid out by hand, in columns: clang-format leaves it alone.)
+// clang-format off
 //
 // Protocol:
 //  - The host writes the configuration block, then increments CFG_SEQ.
