@@ -57,7 +57,8 @@
 #define P_HIST          0x48                // u16 h0, h1, h2 (last ACK positions), u16 K
 #define P_HSUM          0x50                // u32: h0 + h1 + h2 + 2
 #define P_BUF           0x54                // u32: result buffer being filled (0/1)
-#define P_NSLAVES       0x58                // u8 slaves, u8 trigger, -, u8 frames in the average
+#define P_NSLAVES       0x58                // u8 slaves, u8 trigger, u8 REC_BASE + 8 slaves,
+                                            //   u8 frames in the average
 #define P_HALF          0x5c                // u16 H, u16 ACK limit (periods x 8)
 #define P_PROC          0x60                // u16 processing-time limit, u8 training due, u8 running
 #define P_GPCFG         0x64                // u32: GPCFG0 value
@@ -203,6 +204,7 @@ FACTOR_FOUND:
     mov     r25, BISS_CFG_SLAVE0            // host block
     mov     r26, BISS_PRIV + P_RECORDS
     mov     r27, BISS_PRIV + P_SLAVES
+    ldi     r11, FRAME_END                  // the end record's entry
 CFG_SLAVE:
     lbbo    r2, r25, 0, 8                   // r2.b0 n, r2.b1 w, r2.b2 ew, r2.b3 flags, r3 poly|start
     ldi     r28, BISS_CFGERR_DATA_BITS
@@ -240,6 +242,35 @@ CFG_REC:
     qbne    CFG_REC_STORE, r2.b1, 0
     ldi     r5, 0                           // no CRC: no polynomial
 CFG_REC_STORE:
+    // The last slave's last bits are read with the one before them, from
+    // the same R31 snapshot (FINAL_CRC, FINAL_PLAIN): its chain is up to
+    // two bits shorter, and the frame ends as many periods earlier. Only
+    // bits of the switch's kind: none where the bit before the last is a
+    // data bit with CRC (w = 1) or another slave's (n = 1, w = 0).
+    add     r6, r23, 1
+    qbne    CFG_LAST_DONE, r6, r20.b2       // not the last slave
+    qbeq    CFG_LAST_PLAIN, r2.b1, 0
+    qbeq    CFG_LAST_DONE, r2.b1, 1
+    ldi     r11.w0, FINAL_CRC               // w = 2: one bit after the switch
+    sub     r4.b1, r4.b1, 1
+    qbeq    CFG_LAST_CRC1, r4.b1, 0
+    ldi     r11.w0, FINAL_CRC2              // w >= 3: two
+    sub     r4.b1, r4.b1, 1                 // w - 3 CRC bits before the switch
+    qbne    CFG_LAST_DONE, r4.b1, 0
+CFG_LAST_CRC1:
+    ldi     r4.w2, ENTRY_CRC1
+    qba     CFG_LAST_DONE
+CFG_LAST_PLAIN:
+    qbeq    CFG_LAST_DONE, r2.b0, 1
+    ldi     r11.w0, FINAL_PLAIN             // n = 2: one bit after the switch
+    sub     r4.b0, r4.b0, 1
+    qbeq    CFG_LAST_PLAIN1, r4.b0, 0
+    ldi     r11.w0, FINAL_PLAIN2            // n >= 3: two
+    sub     r4.b0, r4.b0, 1                 // n - 3 data bits before the switch
+    qbne    CFG_LAST_DONE, r4.b0, 0
+CFG_LAST_PLAIN1:
+    ldi     r4.w2, ENTRY_PLAIN1
+CFG_LAST_DONE:
     sbbo    r4, r26, 0, 8
     add     r26, r26, 8
     // data mask: n ones
@@ -282,7 +313,7 @@ CFG_RESIDUE_DONE:
     qbgt    CFG_SLAVE, r23, r20.b2          // while index < slaves
     // after the last slave: the end of the frame
     ldi     r4, 0
-    ldi     r4.w2, FRAME_END
+    mov     r4.w2, r11.w0
     sbbo    r4, r26, 0, 4
     jal     r0.w0, CFG_SSI                  // r27 = P_SSI word (0: BiSS-C)
     qbne    CFG_FAIL, r28, BISS_CFGERR_NONE
@@ -323,7 +354,8 @@ CFG_IEP_OK:
     sbco    r3, c28, P_HIST, 8
     mov     r2.b0, r20.b2                   // slaves, trigger, -, frames in the average
     mov     r2.b1, r20.b3
-    ldi     r2.b2, 0
+    lsl     r2.b2, r20.b2, 3                // the end record's register-file address
+    add     r2.b2, r2.b2, REC_BASE
     ldi     r2.b3, 0
     sbco    r2, c28, P_NSLAVES, 4
     // ACK limit in periods x 8: (BISS_MAX_DELAY_NS / 10 / H + 4) x 8
@@ -376,37 +408,48 @@ CFG_REPORT:
 .macro RESULT_BASE
 .mparam reg
     lbco    reg, c28, P_BUF, 4
-    qbeq    RESULT_BASE_0, reg, 0
-    mov     reg, BISS_RES0 + BISS_RES_SIZE
-    qba     RESULT_BASE_DONE
-RESULT_BASE_0:
-    mov     reg, BISS_RES0
-    mov     reg, reg
-RESULT_BASE_DONE:
+    rsb     reg, reg, 0                     // 0 or ~0
+    and     reg, reg, BISS_RES_SIZE
+    set     reg, reg, 8                     // + BISS_RES0 (0x100)
 .endm
 
 // ============================================================================
 // Before a frame: the slave must be idle (SL high); then the registers the
-// clocked code starts from, and the frame's timestamp.
+// clocked code starts from (FRAME_REGS), and the frame's timestamp.
 //   r3 = 8p (ACK position base), r4.w0/w2, r5.w0 = history, r5.w2 = K,
 //   r7.w0 = ACK limit, r7.w2 = processing-time limit, r10 = history sum.
-.macro FRAME_SETUP
-    lbco    r0, c28, P_DELAYS, 4
-    RESULT_BASE r9
-    lbco    r4, c28, P_HIST, 8              // r5.w2 = K (the history itself is not needed)
+// A subroutine (returns through r12.w0; r2 it leaves alone) so that a
+// free-run frame can have it done before SL is high (FE_NEXT).
+FRAME_REGS:
+    lbco    r3, c28, P_DELAYS, 32           // r3 delays, r4 r5 history (r5.w2 = K), r6 its
+                                            // sum, r7 P_BUF, r8 P_NSLAVES, r9 P_HALF, r10 P_PROC
+    mov     r0, r3
+    ldi     r11, MA_MASK | (MA_MASK << 8)   // period 0 clocks
+    mov     r11.b2, r8.b2                   // the end record (SWITCH_SHORT)
+    rsb     r8, r7, 0                       // the result buffer, as RESULT_BASE
+    and     r8, r8, BISS_RES_SIZE
+    set     r8, r8, 8
+    mov     r7.w0, r9.w2                    // ACK limit
+    mov     r7.w2, r10.w0                   // processing-time limit
+    mov     r9, r8
+    mov     r10, r6
     lbco    r4.w0, c28, P_CDM, 2            // the CDM edge for either CDS
-    lbco    r10, c28, P_HSUM, 4
-    lbco    r7.w0, c28, P_HALF + 2, 2
-    lbco    r7.w2, c28, P_PROC, 2
-    ldi     r1.b0, REC_BASE
-    ldi     r1.b1, 0
-    ldi     r3, 0
+    ldi     r1.w0, REC_BASE                 // r1.b1 = 0
     ldi     r6, 0
     ldi     r8, 0
-    ldi     r11, MA_MASK | (MA_MASK << 8)   // period 0 clocks
+    jmp     r12.w0
+
+// The timestamp, then the first period.
+.macro FRAME_STAMP
+    ldi     r3, 0
     mov     r12, CLOCK_FOREVER
     lbco    r2, c26, IEP_COUNT, 4
     sbbo    r2, r9, BISS_R_TIMESTAMP, 4
+.endm
+
+.macro FRAME_SETUP
+    jal     r12.w0, FRAME_REGS
+    FRAME_STAMP
 .endm
 
 FRAME:
@@ -418,7 +461,9 @@ FRAME_GO:
     qbeq    FRAME_BISS, r2.w0, 0
     jmp     SSI_FRAME
 FRAME_BISS:
-    FRAME_SETUP
+    jal     r12.w0, FRAME_REGS
+FRAME_STAMPED:                              // FE_NEXT comes in here
+    FRAME_STAMP
     // fall into the first period
 
 // ---- WAIT_ACK ---------------------------------------------------------------
@@ -590,12 +635,50 @@ ENTRY_PLAIN1:                               // w = 0, n = 1
 // After the last bit. MA is high: the clocks ran out before the last reads.
 // Nothing below is clocked.
 
+// The last slave's last one or two bits, when its switch read the bit
+// before them (CFG_LAST_DONE). That switch's R31 snapshot (r2, shifted to
+// put its sample at bit 31) holds them 8 and 16 samples newer, at bits 23
+// and 15 (indices 8 (LAG - 1) + s and 8 (LAG - 2) + s: sampled, and the
+// same samples as reads one and two periods later would take at 8 LAG + s,
+// 16 shift edges falling in every 2 periods). The switch has moved r9 to
+// the next slave's result and loaded the end record. Not clocked: this
+// comes at t = 0 of the period after the switch, whose MA edge (the CDM,
+// if the line delay is under two periods: m = 1) is made here; otherwise
+// r11.b0 = 0, and SWITCH_SHORT may have cut the switch short.
+FINAL_PLAIN2:
+    MA_FALL
+    lsl     r2, r2, 8
+    SHIFT_IN
+FINAL_PLAIN:
+    lsl     r2, r2, 8
+    SHIFT_IN
+    sbbo    r4, r9, RES_DATA_LO - BISS_R_SLAVE_SIZE, 8
+    qba     FRAME_END
+FINAL_CRC2:
+    MA_FALL
+    ldi     r7.b0, 2
+    qba     FINAL_CRC_GO
+FINAL_CRC:
+    ldi     r7.b0, 1
+FINAL_CRC_GO:
+    lbbo    r6, r9, RES_CRC - BISS_R_SLAVE_SIZE, 4
+    sub     r1.b0, r1.b0, 12                // the last slave's polynomial
+    mviw    r8.w2, *r1.b0++
+FINAL_CRC_BIT:
+    lsl     r2, r2, 8
+    CRC_STEP
+    sub     r7.b0, r7.b0, 1
+    qbne    FINAL_CRC_BIT, r7.b0, 0
+    sbbo    r6, r9, RES_CRC - BISS_R_SLAVE_SIZE, 4
+
 FRAME_END:
     jal     r0.w0, CD_COMMIT               // r1.b1 = CDS; r2.b0 = the CDM sent
-    lbco    r3, c28, P_NSLAVES, 4
-    mov     r1.b0, r3.b0                    // slaves to check
+    lbco    r4, c28, P_BUF, 8               // r4 P_BUF, r5 P_NSLAVES
+    mov     r1.b0, r5.b0                    // slaves to check
     mov     r3.b0, r2.b0
-    RESULT_BASE r2
+    rsb     r2, r4, 0                       // the result buffer, as RESULT_BASE
+    and     r2, r2, BISS_RES_SIZE
+    set     r2, r2, 8
     sbbo    r3.b0, r2, BISS_R_CDM, 1
     rsb     r3, r10, 31 - 8 * LAG           // sample point 0..7 within the bit
     sbbo    r3.b0, r2, BISS_R_SAMPLE_POINT, 1
@@ -608,7 +691,7 @@ FE_SLAVE:
     lbbo    r7, r11, 0, 16                  // mask lo, mask hi, residue, [w, n, ew, flags]
     and     r4, r4, r7
     and     r5, r5, r8
-    ldi     r0, 0                           // slave status in r0.b0 (r0.w2: calls)
+    ldi     r0, 0                           // slave status
     qbeq    FE_CRC_OK, r10.b0, 0            // no CRC
     qbeq    FE_CRC_OK, r6, r9
     or      r12, r12, BISS_RF_CRC_ERROR
@@ -617,17 +700,22 @@ FE_CRC_OK:
     or      r0.b0, r0.b0, BISS_RS_CRC_OK
 FE_CRC_DONE:
     qbbc    FE_EW_DONE, r10.b3, 0           // no nE/nW
-    mov     r6, r10.b2                      // nW's bit
-    jal     r0.w2, DATA_BIT
-    qbbc    FE_NW_LOW, r7, 0
-    or      r0.b0, r0.b0, BISS_RS_NW
-FE_NW_LOW:
-    add     r6, r10.b2, 1                   // nE's bit
-    jal     r0.w2, DATA_BIT
-    qbbc    FE_EW_DONE, r7, 0
-    or      r0.b0, r0.b0, BISS_RS_NE
+    // nW (data bit ew) to r7 bit 0, nE (bit ew + 1) to bit 1
+    qble    FE_EW_HI, r10.b2, 32            // 32 <= ew
+    lsr     r7, r4, r10.b2
+    qbne    FE_EW_GOT, r10.b2, 31
+    lsl     r6, r5, 1                       // ew = 31: nE is bit 0 of the high word
+    or      r7, r7, r6
+    qba     FE_EW_GOT
+FE_EW_HI:
+    lsr     r7, r5, r10.b2                  // the shift uses ew & 31
+FE_EW_GOT:
+    and     r6, r7, BISS_RS_NE              // nE: bit 1 already
+    or      r0.b0, r0.b0, r6
+    and     r7, r7, 1
+    lsl     r7, r7, 2                       // nW: bit 2 (BISS_RS_NW)
+    or      r0.b0, r0.b0, r7
 FE_EW_DONE:
-    and     r0, r0, 0xff
     sbbo    r4, r3, BISS_R_S_DATA_LO, 8
     sbbo    r0, r3, BISS_R_S_STATUS, 4
     add     r3, r3, BISS_R_SLAVE_SIZE
@@ -641,9 +729,8 @@ FE_EW_DONE:
     sbco    r3, c24, BISS_ST_CRC_ERRORS, 4
 FE_NO_CRC_ERR:
     // line delay: this frame's ACK position and the average it was read with
-    lbco    r4, c28, P_HIST, 8
-    lbco    r3, c28, P_HSUM, 4
-    add     r3, r3, r1.w2
+    lbco    r4, c28, P_HIST, 20             // r4 r5 history, r6 its sum, r8 P_NSLAVES
+    add     r3, r6, r1.w2
     lsr     r3, r3, 2                       // Qf'
     sbbo    r1.w2, r2, BISS_R_DELAY_RAW, 2
     sbbo    r3.w0, r2, BISS_R_DELAY_AVG, 2
@@ -654,39 +741,54 @@ FE_NO_CRC_ERR:
     // history: a jump of more than half a bit starts the average afresh
     sub     r6, r1.w2, r3                   // Q' - Qf' + 4 in 0..8: no jump
     add     r6, r6, 4
-    lbco    r7, c28, P_NSLAVES, 4
     qblt    FE_HIST_RESET, r6, 8
     mov     r5.w0, r4.w2                    // h2 = h1
     mov     r4.w2, r4.w0                    // h1 = h0
     mov     r4.w0, r1.w2                    // h0 = Q'
-    qble    FE_HIST_SAVE, r7.b3, 3          // 3 <= frames in the average: full
-    add     r7.b3, r7.b3, 1
+    qble    FE_HIST_SAVE, r8.b3, 3          // 3 <= frames in the average: full
+    add     r8.b3, r8.b3, 1
     qba     FE_HIST_SAVE
 FE_HIST_RESET:
     mov     r4.w0, r1.w2
     mov     r4.w2, r1.w2
     mov     r5.w0, r1.w2
-    ldi     r7.b3, 0
+    ldi     r8.b3, 0
 FE_HIST_SAVE:
-    qbgt    FE_NO_SMA, r7.b3, 3
+    qbgt    FE_NO_SMA, r8.b3, 3
     or      r12, r12, BISS_RF_SMA
 FE_NO_SMA:
-    sbco    r7, c28, P_NSLAVES, 4
+    sbco    r8, c28, P_NSLAVES, 4
     jal     r0.w0, HIST_SAVE
     jal     r0.w0, PUBLISH
     jal     r0.w0, CD_PREPARE              // the next frame's CDM
+    // The next frame, when it is a free-run BiSS-C one with no training due,
+    // is set up now, while the slave's timeout runs: all MAIN and FRAME look
+    // at changes only with a configuration, so once SL is high only a new
+    // one is checked for (MAIN applies it), and the frame starts at once.
+    // (No training can be due here: only a refused configuration or a
+    // missing slave asks for one, and both go through MAIN.)
+    lbco    r3, c28, P_NSLAVES, 4
+    qbne    FE_SLOW, r3.b1, BISS_TRIG_FREERUN
+    lbco    r3, c28, P_SSI, 2
+    qbne    FE_SLOW, r3.w0, 0
+    jal     r12.w0, FRAME_REGS
+    mov     r2, 100000                      // as SLAVE_IDLE: 3 cycles a turn
+FE_IDLE_POLL:
+    qbbs    FE_IDLE_YES, r31, 0             // the slave's timeout ends: SL high
+    sub     r2, r2, 1
+    qbne    FE_IDLE_POLL, r2, 0
+    qba     FE_MAIN                         // not within 2 ms: MAIN and FRAME find it so again
+FE_IDLE_YES:
+    set     r30, r30, MA_BIT                // CDM done: MA idles high
+    lbco    r2, c24, BISS_CFG_SEQ, 4
+    lbco    r3, c24, BISS_ST_CFG_ACK, 4
+    qbne    FE_MAIN, r2, r3                 // a new configuration: MAIN applies it
+    jmp     FRAME_STAMPED
+FE_SLOW:
     jal     r0.w0, SLAVE_IDLE              // the slave's timeout ends: SL high
+FE_MAIN:
     set     r30, r30, MA_BIT                // CDM done: MA idles high
     jmp     MAIN
-
-// The data bit numbered r6 (0..63) of r4:r5, in r7 bit 0.
-DATA_BIT:
-    qble    DATA_BIT_HI, r6, 32             // 32 <= bit
-    lsr     r7, r4, r6
-    jmp     r0.w2
-DATA_BIT_HI:
-    lsr     r7, r5, r6                      // the shift uses bit & 31
-    jmp     r0.w2
 
 // History r4.w0, r4.w2, r5.w0 and its sum + 2 (rounding) to P_HIST/P_HSUM.
 HIST_SAVE:
@@ -705,11 +807,9 @@ PUBLISH:
     sbco    r3, c24, BISS_ST_FRAMES, 4
     sbbo    r3, r2, BISS_R_FRAME, 4
     sbbo    r12, r2, BISS_R_FLAGS, 4
-    lbco    r4, c28, P_NSLAVES, 1
-    sbbo    r4.b0, r2, BISS_R_NSLAVES, 1
-    lbco    r4, c28, P_HALF, 2
-    sbbo    r4.w0, r2, BISS_R_HALF, 2
-    lbco    r4, c28, P_BUF, 4
+    lbco    r4, c28, P_BUF, 12              // r4 P_BUF, r5 P_NSLAVES, r6 P_HALF
+    sbbo    r5.b0, r2, BISS_R_NSLAVES, 1
+    sbbo    r6.w0, r2, BISS_R_HALF, 2
     sbco    r4, c24, BISS_ST_BUF, 4
     lbco    r3, c24, BISS_ST_SEQ, 4
     add     r3, r3, 1                       // odd seq: buffer 1, even: buffer 0
