@@ -277,8 +277,8 @@ CFG_LAST_DONE:
     mov     r6, 0xffffffff
     mov     r7, 0xffffffff
     qbeq    CFG_MASK_DONE, r2.b0, 64
-    qble    CFG_MASK_HI, r2.b0, 32          // 32 <= n
-    rsb     r8, r2.b0, 32
+    qblt    CFG_MASK_HI, r2.b0, 32          // 32 < n (n = 32 here: a shift by 0,
+    rsb     r8, r2.b0, 32                   // as the high word's by 32 would be by 0 too)
     lsr     r6, r6, r8
     ldi     r7, 0
     qba     CFG_MASK_DONE

@@ -23,13 +23,20 @@ static uint32_t *read_image(size_t *nwords) {
 
 struct bench *e2e_bench(struct e2e_run *r, const char *profile, double cable_m,
                         const struct pru_params *params) {
+    scenario sc;
+    ck_assert_int_eq(profile_by_name(profile, &sc), 0);
+    scenario_set_cable(&sc, cable_m);
+    return e2e_bench_scenario(r, &sc, params);
+}
+
+struct bench *e2e_bench_scenario(struct e2e_run *r, const scenario *sc,
+                                 const struct pru_params *params) {
     struct bench_config cfg;
     bench_config_default(&cfg);
     if (params) {
         cfg.pru = *params;
     }
-    ck_assert_int_eq(profile_by_name(profile, &cfg.link), 0);
-    scenario_set_cable(&cfg.link, cable_m);
+    cfg.link = *sc;
     char err[256];
     r->b = bench_new(&cfg, err, sizeof(err));
     ck_assert_msg(r->b != NULL, "%s", err);

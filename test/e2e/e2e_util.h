@@ -20,6 +20,10 @@ struct e2e_run {
 struct bench *e2e_bench(struct e2e_run *r, const char *profile, double cable_m,
                         const struct pru_params *params);
 
+/* The same for any scenario (a profile changed by the test). */
+struct bench *e2e_bench_scenario(struct e2e_run *r, const scenario *sc,
+                                 const struct pru_params *params);
+
 /* Configures free-run at half period `half`, waits for the training and the
  * first valid frame, then checks `frames` frames. Returns the number of
  * valid frames checked (fewer if time ran out). */

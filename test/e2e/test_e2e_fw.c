@@ -63,6 +63,42 @@ START_TEST(test_raw_delay_every_shift_phase) {
 }
 END_TEST
 
+/* ---- data words of every awkward width: 1, 31, 32, 33, 63 and 64 bits,
+ * with and without nE/nW, the position starting just below its top so the
+ * high bits move. Every word as sent, CRC right, nE/nW as sent. ---- */
+static const struct {
+    unsigned pos_bits;
+    bool ew;
+} widths[] = {{1, false},  {29, true}, {30, true}, {32, false}, {31, true},
+              {33, false}, {61, true}, {62, true}, {63, false}, {64, false}};
+
+START_TEST(test_data_word_widths) {
+    scenario sc;
+    ck_assert_int_eq(profile_by_name("generic", &sc), 0);
+    scenario_set_cable(&sc, 10.0);
+    biss_slave_cfg *c = &sc.biss.s[0];
+    c->pos_bits = widths[_i].pos_bits;
+    c->has_err = c->has_warn = widths[_i].ew;
+    c->warning = widths[_i].ew; /* nW active: a 0 among the ones */
+    uint64_t top = c->pos_bits >= 64 ? ~0ull : (1ull << c->pos_bits) - 1u;
+    c->pos0 = top - 20; /* wraps through all ones to zero during the run */
+    c->speed_cps = 1e6;
+    struct e2e_run r;
+    e2e_bench_scenario(&r, &sc, NULL);
+    ck_assert_uint_eq(e2e_run_frames(&r, 20, 1000, 100), 100);
+    ck_assert_msg(r.fc.mismatches == 0 && r.fc.crc_errors == 0,
+                  "%u position bits%s: %llu mismatches, %llu CRC errors", c->pos_bits,
+                  widths[_i].ew ? " + nE/nW" : "", (unsigned long long)r.fc.mismatches,
+                  (unsigned long long)r.fc.crc_errors);
+    ck_assert_uint_eq(r.fc.unmatched, 0);
+    if (widths[_i].ew) { /* nE high (no error), nW low (warning) in the last frame */
+        ck_assert(r.fc.status[0] & BISS_RS_NE);
+        ck_assert(!(r.fc.status[0] & BISS_RS_NW));
+    }
+    e2e_free(&r);
+}
+END_TEST
+
 /* ---- configurations the host library would refuse, written raw ---- */
 struct bad_cfg {
     uint32_t off, value, bytes;
@@ -225,6 +261,7 @@ int main(void) {
     tcase_set_timeout(tc, 600);
     tcase_add_loop_test(tc, test_uncertain_parameters, 0, 160);
     tcase_add_loop_test(tc, test_raw_delay_every_shift_phase, 0, 25);
+    tcase_add_loop_test(tc, test_data_word_widths, 0, (int)(sizeof(widths) / sizeof(widths[0])));
     tcase_add_loop_test(tc, test_bad_config_is_flagged, 0, (int)(sizeof(bad) / sizeof(bad[0])));
     tcase_add_test(tc, test_processing_time_limit);
     tcase_add_loop_test(tc, test_disconnect_and_reconnect, 0, 3);
