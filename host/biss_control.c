@@ -99,6 +99,31 @@ int biss_cd_exchange(biss_t *h, const biss_cd_prog *p, unsigned wait_limit, unsi
     return rc;
 }
 
+int biss_cd_begin(biss_t *h, const biss_cd_prog *p, unsigned wait_limit, uint32_t *cmd) {
+    if (wait_limit > 0xffff) {
+        return BISS_E_INVAL;
+    }
+    biss_op_begin(h);
+    int rc = h->configured ? put_program(h, p, wait_limit, cmd) : BISS_E_NOT_CONFIGURED;
+    biss_op_end(h);
+    return rc;
+}
+
+int biss_cd_check(biss_t *h, uint32_t cmd, biss_cd_answer *a) {
+    struct cd_wait w = {.cmd = cmd};
+    biss_op_begin(h);
+    w.host_trigger = h->cfg.trigger == BISS_TRIGGER_HOST;
+    int rc = cd_ended(h, &w);
+    if (rc == 0) {
+        rc = BISS_E_CD_BUSY;
+    } else if (rc == 1) {
+        memset(a, 0, sizeof *a);
+        rc = get_answer(h, a);
+    }
+    biss_op_end(h);
+    return rc;
+}
+
 int biss_cd_error(biss_cd_err e) {
     switch (e) {
     case BISS_CD_OK:

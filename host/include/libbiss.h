@@ -282,6 +282,25 @@ int biss_reg_write(biss_t *h, unsigned id, uint8_t addr, const uint8_t *buf, uns
 /* BiSS command cmd (0..3) to the slaves in ids (bit i = ID i; 0 = all,
  * a broadcast without acknowledge). *ida, if set, gets the IDA answers. */
 int biss_command(biss_t *h, uint8_t ids, unsigned cmd, uint8_t *ida);
+/* The calls above block for at most the handle's timeout (open params
+ * timeout_ms). The same accesses without blocking: *_start puts the
+ * program into data RAM and returns at once with a job (NULL on error);
+ * biss_cd_poll returns BISS_E_CD_BUSY while the firmware runs it, then the
+ * verdict the blocking form would give (and keeps giving it). On the
+ * emulator time passes only inside blocking calls: poll between
+ * biss_run_ms or biss_wait_sample calls. One program runs at a time: a
+ * start while one runs returns BISS_E_CD_BUSY. Freeing a running job does
+ * not stop the firmware's program. */
+typedef struct biss_cd_job biss_cd_job;
+int biss_reg_read_start(biss_t *h, unsigned id, uint8_t addr, unsigned n, biss_cd_job **job);
+int biss_reg_write_start(biss_t *h, unsigned id, uint8_t addr, const uint8_t *buf, unsigned n,
+                         biss_cd_job **job);
+int biss_command_start(biss_t *h, uint8_t ids, unsigned cmd, biss_cd_job **job);
+int biss_cd_poll(biss_t *h, biss_cd_job *job);
+/* After a successful poll: the n bytes a register read got, the IDA answers. */
+int biss_cd_job_bytes(const biss_cd_job *job, uint8_t *buf);
+int biss_cd_job_ida(const biss_cd_job *job, uint8_t *ida);
+void biss_cd_job_free(biss_cd_job *job);
 
 /* ---- status and statistics --------------------------------------------- */
 enum biss_fw_state {

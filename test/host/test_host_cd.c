@@ -195,6 +195,67 @@ START_TEST(test_emu_command) {
 }
 END_TEST
 
+/* The non-blocking forms: start, poll while simulated time passes, then
+ * the same bytes and verdicts as the blocking calls; one program at a time. */
+START_TEST(test_emu_nonblocking) {
+    biss_t *h = emu(BISS_TRIGGER_FREERUN);
+    biss_cd_job *j = NULL;
+    ck_assert_int_eq(biss_reg_read_start(h, 0, 0x78, 8, &j), BISS_OK);
+    ck_assert_ptr_nonnull(j);
+    biss_cd_job *other = (biss_cd_job *)1;
+    ck_assert_int_eq(biss_command_start(h, 0x01, 0, &other), BISS_E_CD_BUSY);
+    ck_assert_ptr_null(other);
+    uint8_t b[8];
+    ck_assert_int_eq(biss_cd_job_bytes(j, b), BISS_E_CD_BUSY);
+    unsigned polls = 0;
+    int rc;
+    while ((rc = biss_cd_poll(h, j)) == BISS_E_CD_BUSY) {
+        polls++;
+        ck_assert_uint_lt(polls, 1000);
+        ck_assert_int_eq(biss_run_ms(h, 1), BISS_OK);
+    }
+    ck_assert_msg(rc == BISS_OK, "%s", biss_strerror(rc));
+    ck_assert_uint_gt(polls, 0); /* 8 bytes take a few ms at 10 MHz */
+    ck_assert_int_eq(biss_cd_job_bytes(j, b), BISS_OK);
+    for (unsigned i = 0; i < 8; i++) {
+        ck_assert_uint_eq(b[i], regfile_read(slave_regs(h), 0x78 + i));
+    }
+    ck_assert_int_eq(biss_cd_poll(h, j), BISS_OK); /* the verdict stays */
+    biss_cd_job_free(j);
+
+    static const uint8_t w[2] = {0x5a, 0xa5};
+    ck_assert_int_eq(biss_reg_write_start(h, 0, 0x60, w, 2, &j), BISS_OK);
+    while ((rc = biss_cd_poll(h, j)) == BISS_E_CD_BUSY) {
+        ck_assert_int_eq(biss_run_ms(h, 1), BISS_OK);
+    }
+    ck_assert_int_eq(rc, BISS_OK);
+    biss_cd_job_free(j);
+    ck_assert_uint_eq(regfile_read(slave_regs(h), 0x60), 0x5a);
+
+    ck_assert_int_eq(biss_command_start(h, 0x01, 0, &j), BISS_OK);
+    while ((rc = biss_cd_poll(h, j)) == BISS_E_CD_BUSY) {
+        ck_assert_int_eq(biss_run_ms(h, 1), BISS_OK);
+    }
+    uint8_t ida = 0;
+    ck_assert_int_eq(rc, BISS_OK);
+    ck_assert_int_eq(biss_cd_job_ida(j, &ida), BISS_OK);
+    ck_assert_uint_eq(ida, 0x01);
+    biss_cd_job_free(j);
+
+    /* an error comes back from poll as the blocking call returns it */
+    ck_assert_int_eq(biss_reg_read_start(h, 5, 0x78, 1, &j), BISS_OK);
+    while ((rc = biss_cd_poll(h, j)) == BISS_E_CD_BUSY) {
+        ck_assert_int_eq(biss_run_ms(h, 1), BISS_OK);
+    }
+    ck_assert_int_eq(rc, BISS_E_CD_NO_ECHO);
+    ck_assert_int_eq(biss_cd_job_bytes(j, b), BISS_E_CD_NO_ECHO);
+    biss_cd_job_free(j);
+    ck_assert_int_eq(biss_reg_read_start(h, 8, 0x78, 1, &j), BISS_E_INVAL);
+    ck_assert_int_eq(biss_reg_read_start(h, 0, 0x78, 0, &j), BISS_E_INVAL);
+    biss_close(h);
+}
+END_TEST
+
 int main(void) {
     Suite *s = suite_create("host_cd");
     TCase *tc = tcase_create("cd");
@@ -207,6 +268,7 @@ int main(void) {
     tcase_add_test(tc, test_emu_wrong_id);
     tcase_add_test(tc, test_emu_register_read_host_trigger);
     tcase_add_test(tc, test_emu_command);
+    tcase_add_test(tc, test_emu_nonblocking);
     suite_add_tcase(s, tc);
     SRunner *r = srunner_create(s);
     srunner_run_all(r, CK_NORMAL);
