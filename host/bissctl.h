@@ -13,6 +13,7 @@ struct bissctl_opts {
     bool slaves_given; /* --slave: layout from the command line, not the profile */
     bool config_given; /* any configuration option */
     bool no_configure; /* --no-configure: use what the firmware runs */
+    bool dump;         /* reg-read --dump: a hex dump */
     const char *command;
     unsigned count;      /* read -n */
     unsigned run_ms;     /* run --ms */

@@ -176,6 +176,24 @@ static int parse_addr(const struct bissctl_opts *o, uint8_t *addr) {
     return BISSCTL_OK;
 }
 
+/* 16 registers a line from addr (wrapping after 0x7F as the slave does),
+ * printable bytes as ASCII after them. */
+static void print_dump(uint8_t addr, const uint8_t *buf, unsigned n) {
+    for (unsigned line = 0; line < n; line += 16) {
+        unsigned k = n - line < 16 ? n - line : 16;
+        printf("0x%02x:", (addr + line) & 0x7f);
+        for (unsigned i = 0; i < 16; i++) {
+            printf(i < k ? " %02x" : "   ", buf[line + i < n ? line + i : 0]);
+        }
+        printf("  ");
+        for (unsigned i = 0; i < k; i++) {
+            uint8_t c = buf[line + i];
+            putchar(c >= 0x20 && c < 0x7f ? c : '.');
+        }
+        printf("\n");
+    }
+}
+
 int bissctl_reg_read(biss_t *h, const struct bissctl_opts *o) {
     uint8_t addr, buf[BISS_REG_MAX_SEQ];
     int rc = parse_addr(o, &addr);
@@ -190,8 +208,12 @@ int bissctl_reg_read(biss_t *h, const struct bissctl_opts *o) {
     if (rc) {
         return bissctl_fail("reg-read", rc);
     }
+    if (o->dump) {
+        print_dump(addr, buf, o->count);
+        return BISSCTL_OK;
+    }
     for (unsigned i = 0; i < o->count; i++) {
-        printf("id=%u addr=0x%02x value=0x%02x\n", o->id, addr + i, buf[i]);
+        printf("id=%u addr=0x%02x value=0x%02x\n", o->id, (addr + i) & 0x7f, buf[i]);
     }
     return BISSCTL_OK;
 }

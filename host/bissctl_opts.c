@@ -68,9 +68,10 @@ static const char *command_help(const char *command) {
         return "bissctl [options] stop\n  Halts the PRU.\n";
     }
     if (strcmp(command, "reg-read") == 0) {
-        return "bissctl [options] reg-read [--id ID] ADDR [-n N]\n"
+        return "bissctl [options] reg-read [--id ID] ADDR [-n N] [--dump]\n"
                "  Reads N registers (default 1, at most 64) from ADDR (0x00..0x7F) of the\n"
-               "  slave with control-frame ID (default 0), through CDM/CDS.\n";
+               "  slave with control-frame ID (default 0), through CDM/CDS: one line per\n"
+               "  register, or with --dump a hex dump (16 a line, with ASCII).\n";
     }
     if (strcmp(command, "command") == 0) {
         return "bissctl [options] command IDS CMD\n"
@@ -197,6 +198,7 @@ enum {
     OPT_NOCONF,
     OPT_MS,
     OPT_ID,
+    OPT_DUMP,
 };
 
 static const struct option long_opts[] = {
@@ -219,6 +221,7 @@ static const struct option long_opts[] = {
     {"no-configure", no_argument, NULL, OPT_NOCONF},
     {"ms", required_argument, NULL, OPT_MS},
     {"id", required_argument, NULL, OPT_ID},
+    {"dump", no_argument, NULL, OPT_DUMP},
     {"help", no_argument, NULL, 'h'},
     {NULL, 0, NULL, 0},
 };
@@ -367,6 +370,9 @@ static int take_command_opt(int c, const char *arg, struct bissctl_opts *o) {
         return 0;
     case OPT_NOCONF:
         o->no_configure = true;
+        return 0;
+    case OPT_DUMP:
+        o->dump = true;
         return 0;
     case 'h':
         o->help = true;

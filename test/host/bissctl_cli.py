@@ -78,6 +78,9 @@ check(r.returncode == 0 and "firmware_running=yes" in r.stdout and "cfg_error=0"
 r = run("--freq", "10000000", "reg-read", "0x78", "-n", "2")
 check(r.returncode == 0 and r.stdout.splitlines() ==
       ["id=0 addr=0x78 value=0x46", "id=0 addr=0x79 value=0x3a"], "reg-read: %r %r" % (r.stdout, r.stderr))
+r = run("--freq", "10000000", "reg-read", "0x78", "-n", "8", "--dump")
+check(r.returncode == 0 and r.stdout == "0x78: 46 3a c0 0c 00 01 57 41" + " " * 24 + "  F:....WA\n",
+      "reg-read --dump: %r %r" % (r.stdout, r.stderr))
 r = run("--freq", "10000000", "reg-write", "0x60", "0x12", "0x34")
 check(r.returncode == 0 and r.stdout == "", "reg-write: %r %r" % (r.stdout, r.stderr))
 r = run("--freq", "10000000", "--id", "3", "reg-read", "0x78")
