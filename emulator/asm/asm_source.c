@@ -4,6 +4,7 @@
  * #include, in the order pasm applies them.
  */
 #include "asm_ctx.h"
+#include "read_file.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -36,40 +37,6 @@ static int split_path(const char *path, char *dir, size_t dmax, char *base, size
     memcpy(dir, path, dlen);
     dir[dlen] = 0;
     return 0;
-}
-
-static char *read_whole_file(const char *path, size_t *len, int *too_big) {
-    *too_big = 0;
-    FILE *fp = fopen(path, "rb");
-    if (!fp)
-        return NULL;
-    size_t cap = 4096, n = 0;
-    char *buf = malloc(cap);
-    while (buf) {
-        if (n == cap) {
-            if (cap >= ASM_FILE_MAX) {
-                *too_big = 1;
-                free(buf);
-                buf = NULL;
-                break;
-            }
-            char *p = realloc(buf, cap * 2);
-            if (!p) {
-                free(buf);
-                buf = NULL;
-                break;
-            }
-            buf = p;
-            cap *= 2;
-        }
-        size_t got = fread(buf + n, 1, cap - n, fp);
-        n += got;
-        if (got == 0)
-            break;
-    }
-    fclose(fp);
-    *len = n;
-    return buf;
 }
 
 /* Resolve #include <name> against the -I directories (pasm: first readable). */
@@ -157,9 +124,7 @@ struct asm_file *asm_file_open(struct asm_ctx *c, struct asm_file *parent, const
             if (f->text)
                 memcpy(f->text, c->main_text, f->len + 1);
         } else {
-            int too_big;
-            f->text = read_whole_file(path, &f->len, &too_big);
-            if (!f->text && too_big) {
+            if (read_file(path, ASM_FILE_MAX, &f->text, &f->len) == READ_FILE_TOO_BIG) {
                 asm_report(c, parent, REP_FATAL, "Source file '%s' is too large", path);
                 return NULL;
             }

@@ -1,41 +1,12 @@
 /* sim_image.c - loading biss-sim's PRU image (see sim_image.h). */
 #include "sim_image.h"
 
+#include "read_file.h"
+
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-static int read_file(const char *path, uint8_t **buf, size_t *len) {
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        return -1;
-    }
-    size_t cap = 4096, n = 0, got;
-    uint8_t *b = malloc(cap);
-    while (b && (got = fread(b + n, 1, cap - n, f)) > 0) {
-        n += got;
-        if (n == cap) {
-            uint8_t *nb = cap < (1u << 20) ? realloc(b, cap * 2) : NULL;
-            if (!nb) {
-                free(b);
-                b = NULL;
-                break;
-            }
-            b = nb;
-            cap *= 2;
-        }
-    }
-    int bad = ferror(f) || !b;
-    fclose(f);
-    if (bad) {
-        free(b);
-        return -1;
-    }
-    *buf = b;
-    *len = n;
-    return 0;
-}
 
 static int ends_with(const char *s, const char *suffix) {
     size_t n = strlen(s), m = strlen(suffix);
@@ -46,9 +17,9 @@ int sim_load_image(const char *path, const struct sim_defines *d, struct pruasm_
                    char *err, size_t errlen) {
     memset(img, 0, sizeof(*img));
     if (ends_with(path, ".bin")) {
-        uint8_t *buf;
+        char *buf;
         size_t len;
-        if (read_file(path, &buf, &len) != 0) {
+        if (read_file(path, 1u << 20, &buf, &len) != READ_FILE_OK) {
             snprintf(err, errlen, "cannot read image '%s'", path);
             return -1;
         }

@@ -5,6 +5,7 @@
  * 1 bad usage or unreadable file.
  */
 #include "pru_core.h"
+#include "read_file.h"
 
 #include <errno.h>
 #include <inttypes.h>
@@ -104,45 +105,27 @@ static int parse_args(int argc, char **argv, struct opts *o) {
     return 0;
 }
 
-/* Read a whole file; returns 0 or -1 (message printed). */
-static int read_file(const char *path, uint8_t **buf, size_t *len) {
-    FILE *f = fopen(path, "rb");
-    if (!f) {
+/* Read a whole input file (image or data, shorter than 32 MB); returns 0 or
+ * -1 (message printed). */
+static int read_input(const char *path, uint8_t **buf, size_t *len) {
+    char *b;
+    read_file_err e = read_file(path, 32u << 20, &b, len);
+    if (e == READ_FILE_OPEN) {
         fprintf(stderr, "pru-run: cannot open %s: %s\n", path, strerror(errno));
         return -1;
     }
-    size_t cap = 4096, n = 0;
-    uint8_t *b = malloc(cap);
-    size_t got;
-    while (b && (got = fread(b + n, 1, cap - n, f)) > 0) {
-        n += got;
-        if (n == cap) {
-            uint8_t *nb = cap > (1u << 24) ? NULL : realloc(b, cap * 2);
-            if (!nb) {
-                free(b);
-                b = NULL;
-                break;
-            }
-            b = nb;
-            cap *= 2;
-        }
-    }
-    int err = ferror(f);
-    fclose(f);
-    if (!b || err) {
-        free(b);
+    if (e) {
         fprintf(stderr, "pru-run: cannot read %s\n", path);
         return -1;
     }
-    *buf = b;
-    *len = n;
+    *buf = (uint8_t *)b;
     return 0;
 }
 
 static int load(struct pru_core *c, const struct opts *o) {
     uint8_t *buf;
     size_t len;
-    if (read_file(o->image, &buf, &len))
+    if (read_input(o->image, &buf, &len))
         return -1;
     int rc = 0;
     if (len % 4 != 0) {
@@ -156,7 +139,7 @@ static int load(struct pru_core *c, const struct opts *o) {
     free(buf);
     if (rc || !o->data)
         return rc;
-    if (read_file(o->data, &buf, &len))
+    if (read_input(o->data, &buf, &len))
         return -1;
     if (len > pru_dram_bytes(c) ||
         pru_host_write(c, pru_soc_base(o->soc) + PRU_OFS_DRAM0, buf, len) != 0) {

@@ -1,9 +1,12 @@
 #include "scenario_json.h"
 
+#include "read_file.h"
+
 #include <cJSON.h>
 #include <errno.h>
 #include <math.h>
 #include <stdarg.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -498,39 +501,21 @@ int scenario_from_json(const char *text, scenario *s, char *err, size_t errlen) 
 }
 
 int scenario_load_file(const char *path, scenario *s, char *err, size_t errlen) {
-    FILE *f = fopen(path, "rb");
-    if (!f) {
+    char *buf;
+    size_t len;
+    switch (read_file(path, SIZE_MAX, &buf, &len)) {
+    case READ_FILE_OK:
+        break;
+    case READ_FILE_OPEN:
         snprintf(err, errlen, "%s: %s", path, strerror(errno));
         return -1;
-    }
-    char *buf = NULL;
-    size_t len = 0, cap = 0;
-    for (;;) {
-        if (len + 4096 + 1 > cap) {
-            cap = cap ? cap * 2 : 8192;
-            char *nb = realloc(buf, cap);
-            if (!nb) {
-                free(buf);
-                fclose(f);
-                snprintf(err, errlen, "%s: out of memory", path);
-                return -1;
-            }
-            buf = nb;
-        }
-        size_t n = fread(buf + len, 1, 4096, f);
-        len += n;
-        if (n < 4096) {
-            break;
-        }
-    }
-    int bad = ferror(f);
-    fclose(f);
-    if (bad) {
-        free(buf);
+    case READ_FILE_NOMEM:
+        snprintf(err, errlen, "%s: out of memory", path);
+        return -1;
+    default:
         snprintf(err, errlen, "%s: read error", path);
         return -1;
     }
-    buf[len] = '\0';
     char inner[256];
     int r = scenario_from_json(buf, s, inner, sizeof inner);
     free(buf);
