@@ -3,6 +3,7 @@
 #include "biss_priv.h"
 
 #include "biss/biss_shm_struct.h"
+#include "read_file.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -36,28 +37,23 @@ static const char *firmware_path(const struct biss_open_params *p) {
 }
 
 static int read_image(biss_t *h, const char *path) {
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        return BISS_E_FIRMWARE_IO;
-    }
-    size_t cap = h->be.iram_bytes + 1; /* one byte more tells "too big" */
-    uint8_t *buf = malloc(cap);
-    if (!buf) {
-        fclose(f);
+    char *buf;
+    size_t n;
+    switch (read_file(path, h->be.iram_bytes + 1u, &buf, &n)) {
+    case READ_FILE_OK:
+        break;
+    case READ_FILE_TOO_BIG:
+        return BISS_E_FIRMWARE_SIZE;
+    case READ_FILE_NOMEM:
         return BISS_E_NOMEM;
-    }
-    size_t n = fread(buf, 1, cap, f);
-    int bad = ferror(f);
-    fclose(f);
-    if (bad) {
-        free(buf);
+    default:
         return BISS_E_FIRMWARE_IO;
     }
-    if (n == 0 || n % 4 != 0 || n > h->be.iram_bytes) {
+    if (n == 0 || n % 4 != 0) {
         free(buf);
         return BISS_E_FIRMWARE_SIZE;
     }
-    h->image = buf;
+    h->image = (uint8_t *)buf;
     h->image_bytes = n;
     snprintf(h->firmware, sizeof h->firmware, "%s", path);
     return BISS_OK;
