@@ -4,6 +4,8 @@
  * first error against its "// expect-error:" line. The expectations were
  * checked against pasm 0.87, so CI without pasm still checks real bytes.
  */
+#include "check_run.h"
+
 #include <check.h>
 #include <dirent.h>
 #include <stdio.h>
@@ -101,9 +103,5 @@ static Suite *suite(void) {
 }
 
 int main(void) {
-    SRunner *sr = srunner_create(suite());
-    srunner_run_all(sr, CK_NORMAL);
-    int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+    return check_run(suite());
 }

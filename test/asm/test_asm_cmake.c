@@ -3,6 +3,8 @@
  * (cmake/PruAssemble.cmake) holds exactly the words the case file expects
  * (little-endian, 4 bytes per word), whichever assembler built it.
  */
+#include "check_run.h"
+
 #include <check.h>
 #include <stdlib.h>
 #include <string.h>
@@ -45,9 +47,5 @@ int main(void) {
     TCase *tc = tcase_create("image");
     tcase_add_test(tc, image_matches_case);
     suite_add_tcase(s, tc);
-    SRunner *sr = srunner_create(s);
-    srunner_run_all(sr, CK_NORMAL);
-    int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+    return check_run(s);
 }

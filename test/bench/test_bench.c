@@ -4,6 +4,8 @@
 #include "bench.h"
 #include "pruasm.h"
 
+#include "check_run.h"
+
 #include <check.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -118,9 +120,5 @@ int main(void) {
     tcase_add_test(tc, test_round_trip_on_long_cable);
     tcase_add_test(tc, test_bad_config_is_refused);
     suite_add_tcase(s, tc);
-    SRunner *sr = srunner_create(s);
-    srunner_run_all(sr, CK_NORMAL);
-    int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+    return check_run(s);
 }

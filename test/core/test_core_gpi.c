@@ -7,6 +7,7 @@
  * start bit, Cnt_16, clearing through GPCFG0 bit 13, reads by instructions,
  * direct mode, and fast-forward of a poll loop.
  */
+#include "check_run.h"
 #include "core_test_util.h"
 
 #include <stdlib.h>
@@ -338,9 +339,5 @@ Suite *gpi_suite(void) {
 }
 
 int main(void) {
-    SRunner *sr = srunner_create(gpi_suite());
-    srunner_run_all(sr, CK_NORMAL);
-    int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+    return check_run(gpi_suite());
 }

@@ -3,6 +3,7 @@
  * on CMP0, status write-1-to-clear, overflow) and its event to R31[30],
  * against exact cycles and against a plain per-tick reference model.
  */
+#include "check_run.h"
 #include "core_test_util.h"
 
 #include <stdlib.h>
@@ -279,9 +280,5 @@ Suite *iep_suite(void) {
 }
 
 int main(void) {
-    SRunner *sr = srunner_create(iep_suite());
-    srunner_run_all(sr, CK_NORMAL);
-    int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+    return check_run(iep_suite());
 }

@@ -2,6 +2,7 @@
  * Check suite: semantics and cycle cost of every PRU instruction in the
  * core emulator (pru-facts sections 1 and 3).
  */
+#include "check_run.h"
 #include "core_test_util.h"
 
 #include <stdlib.h>
@@ -455,9 +456,5 @@ Suite *insn_suite(void) {
 }
 
 int main(void) {
-    SRunner *sr = srunner_create(insn_suite());
-    srunner_run_all(sr, CK_NORMAL);
-    int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+    return check_run(insn_suite());
 }

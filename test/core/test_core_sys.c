@@ -3,6 +3,7 @@
  * single step, halt), CYCLE/STALL, faults, SLP, pins (R30 out, R31 in) and
  * R31 system events through the INTC to R31[31:30].
  */
+#include "check_run.h"
 #include "core_test_util.h"
 
 #include <stdlib.h>
@@ -502,9 +503,5 @@ Suite *sys_suite(void) {
 }
 
 int main(void) {
-    SRunner *sr = srunner_create(sys_suite());
-    srunner_run_all(sr, CK_NORMAL);
-    int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+    return check_run(sys_suite());
 }

@@ -3,6 +3,7 @@
  * (0 halted, 2 no HALT within --max-cycles, 3 fault, non-zero for bad
  * usage), --data, --soc, --help.
  */
+#include "check_run.h"
 #include "core_test_util.h"
 
 #include <stdio.h>
@@ -169,9 +170,5 @@ Suite *cli_suite(void) {
 }
 
 int main(void) {
-    SRunner *sr = srunner_create(cli_suite());
-    srunner_run_all(sr, CK_NORMAL);
-    int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+    return check_run(cli_suite());
 }

@@ -9,6 +9,8 @@
 #include "biss/biss_shm.h"
 #include "fw_cd.h"
 
+#include "check_run.h"
+
 #include <check.h>
 #include <stdlib.h>
 
@@ -207,9 +209,5 @@ int main(void) {
     tcase_add_test(tc, test_late_start_bit);
     tcase_add_test(tc, test_corrupted_cds_fails_crc);
     suite_add_tcase(s, tc);
-    SRunner *sr = srunner_create(s);
-    srunner_run_all(sr, CK_NORMAL);
-    int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+    return check_run(s);
 }

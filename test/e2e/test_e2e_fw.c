@@ -8,6 +8,8 @@
 
 #include "biss/biss_shm.h"
 
+#include "check_run.h"
+
 #include <check.h>
 #include <stdlib.h>
 
@@ -269,9 +271,5 @@ int main(void) {
     tcase_add_test(tc, test_iep_trigger_period);
     tcase_add_test(tc, test_rate_change);
     suite_add_tcase(s, tc);
-    SRunner *sr = srunner_create(s);
-    srunner_run_all(sr, CK_NORMAL);
-    int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+    return check_run(s);
 }

@@ -6,6 +6,8 @@
 #include "bench.h"
 #include "biss/biss_shm.h"
 
+#include "check_run.h"
+
 #include <check.h>
 #include <stdlib.h>
 #include <string.h>
@@ -270,9 +272,5 @@ int main(void) {
     tcase_add_test(tc, test_emu_command);
     tcase_add_test(tc, test_emu_nonblocking);
     suite_add_tcase(s, tc);
-    SRunner *r = srunner_create(s);
-    srunner_run_all(r, CK_NORMAL);
-    int failed = srunner_ntests_failed(r);
-    srunner_free(r);
-    return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+    return check_run(s);
 }

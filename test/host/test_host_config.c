@@ -2,6 +2,8 @@
  * biss_rate_half, found on the field that causes it. */
 #include "libbiss.h"
 
+#include "check_run.h"
+
 #include <check.h>
 #include <stdlib.h>
 #include <string.h>
@@ -260,9 +262,5 @@ int main(void) {
     tcase_add_test(tc, test_iep_period);
     tcase_add_test(tc, test_names_and_texts);
     suite_add_tcase(s, tc);
-    SRunner *r = srunner_create(s);
-    srunner_run_all(r, CK_NORMAL);
-    int failed = srunner_ntests_failed(r);
-    srunner_free(r);
-    return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+    return check_run(s);
 }

@@ -5,6 +5,8 @@
 
 #include "bench.h"
 
+#include "check_run.h"
+
 #include <check.h>
 #include <math.h>
 #include <stdlib.h>
@@ -366,11 +368,7 @@ int main(int argc, char **argv) {
         tcase_set_timeout(tc, 120);
         tcase_add_loop_test(tc, test_free_run_delay_claim, 0, 18);
         suite_add_tcase(s, tc);
-        SRunner *r = srunner_create(s);
-        srunner_run_all(r, CK_NORMAL);
-        int failed = srunner_ntests_failed(r);
-        srunner_free(r);
-        return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+        return check_run(s);
     }
     tcase_set_timeout(tc, 120);
     tcase_add_test(tc, test_free_run_10mhz_50_frames);
@@ -384,9 +382,5 @@ int main(int argc, char **argv) {
     tcase_add_test(tc, test_ssi_gray);
     tcase_add_test(tc, test_ssi_config_errors);
     suite_add_tcase(s, tc);
-    SRunner *r = srunner_create(s);
-    srunner_run_all(r, CK_NORMAL);
-    int failed = srunner_ntests_failed(r);
-    srunner_free(r);
-    return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+    return check_run(s);
 }

@@ -7,6 +7,8 @@
 
 #include "biss/biss_shm.h"
 
+#include "check_run.h"
+
 #include <check.h>
 #include <fcntl.h>
 #include <pthread.h>
@@ -358,9 +360,5 @@ int main(void) {
     tcase_add_test(tc, test_am437x_bases_and_iram_sizes);
     tcase_add_test(tc, test_open_errors);
     suite_add_tcase(s, tc);
-    SRunner *r = srunner_create(s);
-    srunner_run_all(r, CK_NORMAL);
-    int failed = srunner_ntests_failed(r);
-    srunner_free(r);
-    return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+    return check_run(s);
 }

@@ -5,6 +5,8 @@
 
 #include "biss/biss_shm.h"
 
+#include "check_run.h"
+
 #include <check.h>
 #include <pthread.h>
 #include <stdlib.h>
@@ -247,9 +249,5 @@ int main(void) {
     tcase_add_test(tc, test_trigger_modes);
     tcase_add_test(tc, test_threads_share_a_handle);
     suite_add_tcase(s, tc);
-    SRunner *r = srunner_create(s);
-    srunner_run_all(r, CK_NORMAL);
-    int failed = srunner_ntests_failed(r);
-    srunner_free(r);
-    return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+    return check_run(s);
 }

@@ -3,6 +3,8 @@
  * answers written by hand. */
 #include "biss_cd.h"
 
+#include "check_run.h"
+
 #include <check.h>
 #include <stdlib.h>
 #include <string.h>
@@ -220,9 +222,5 @@ int main(void) {
     tcase_add_test(tc, pack_and_shm_words);
     tcase_add_test(tc, parse_by_hand);
     suite_add_tcase(s, tc);
-    SRunner *sr = srunner_create(s);
-    srunner_run_all(sr, CK_NORMAL);
-    int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+    return check_run(s);
 }

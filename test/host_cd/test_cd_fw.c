@@ -7,6 +7,8 @@
 #include "pruasm.h"
 #include "scenario.h"
 
+#include "check_run.h"
+
 #include <check.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -245,9 +247,5 @@ int main(void) {
     tcase_add_test(tc, fw_commands);
     tcase_add_test(tc, fw_back_to_back);
     suite_add_tcase(s, tc);
-    SRunner *sr = srunner_create(s);
-    srunner_run_all(sr, CK_NORMAL);
-    int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+    return check_run(s);
 }

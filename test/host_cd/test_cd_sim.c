@@ -4,6 +4,8 @@
 #include "cd_sim.h"
 #include "scenario.h"
 
+#include "check_run.h"
+
 #include <check.h>
 #include <stdlib.h>
 #include <string.h>
@@ -402,9 +404,5 @@ int main(void) {
     tcase_add_test(tc, command_frame_failure);
     tcase_add_test(tc, chain_register_access);
     suite_add_tcase(s, tc);
-    SRunner *sr = srunner_create(s);
-    srunner_run_all(sr, CK_NORMAL);
-    int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+    return check_run(s);
 }

@@ -2,6 +2,8 @@
  * round trip over the word space, invalid words, disassembly text. */
 #include "pru_isa.h"
 
+#include "check_run.h"
+
 #include <check.h>
 #include <stdlib.h>
 #include <string.h>
@@ -214,9 +216,5 @@ int main(void) {
     tcase_add_test(tc, test_round_trip);
     tcase_add_test(tc, test_lookup_and_helpers);
     suite_add_tcase(s, tc);
-    SRunner *sr = srunner_create(s);
-    srunner_run_all(sr, CK_NORMAL);
-    int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+    return check_run(s);
 }

@@ -3,6 +3,8 @@
 #include "line_model.h"
 #include "waveform.h"
 
+#include "check_run.h"
+
 #include <check.h>
 #include <math.h>
 #include <stdlib.h>
@@ -303,9 +305,5 @@ int main(void) {
     tcase_add_test(tc, open_line_reads_high);
     tcase_add_test(tc, usable_rate_follows_cable_length);
     suite_add_tcase(s, tc);
-    SRunner *sr = srunner_create(s);
-    srunner_run_all(sr, CK_NORMAL);
-    int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+    return check_run(s);
 }

@@ -3,6 +3,8 @@
 #include "sim_rng.h"
 #include "waveform.h"
 
+#include "check_run.h"
+
 #include <check.h>
 #include <math.h>
 #include <stdlib.h>
@@ -165,9 +167,5 @@ int main(void) {
     tcase_add_test(tc, waveform_many_edges_binary_search);
     tcase_add_test(tc, rng_reproducible_and_sane);
     suite_add_tcase(s, tc);
-    SRunner *sr = srunner_create(s);
-    srunner_run_all(sr, CK_NORMAL);
-    int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+    return check_run(s);
 }

@@ -4,6 +4,8 @@
 #include "biss_slave.h"
 #include "slave_rig.h"
 
+#include "check_run.h"
+
 #include <check.h>
 #include <stdlib.h>
 #include <string.h>
@@ -435,9 +437,5 @@ int main(void) {
     tcase_add_test(tc, command_in_chain_over_frames);
     tcase_add_test(tc, config_check_messages);
     suite_add_tcase(s, tc);
-    SRunner *sr = srunner_create(s);
-    srunner_run_all(sr, CK_NORMAL);
-    int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+    return check_run(s);
 }

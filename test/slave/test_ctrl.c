@@ -4,6 +4,8 @@
 #include "biss_crc.h"
 #include "biss_ctrl.h"
 
+#include "check_run.h"
+
 #include <check.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -357,9 +359,5 @@ int main(void) {
     tcase_add_test(tc, broadcast_command);
     tcase_add_test(tc, fourteen_zeros_cancel_a_header);
     suite_add_tcase(s, tc);
-    SRunner *sr = srunner_create(s);
-    srunner_run_all(sr, CK_NORMAL);
-    int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+    return check_run(s);
 }

@@ -3,6 +3,8 @@
 #include "biss_crc.h"
 #include "link_model.h"
 
+#include "check_run.h"
+
 #include <check.h>
 #include <math.h>
 #include <stdlib.h>
@@ -193,9 +195,5 @@ int main(void) {
     tcase_add_test(tc, sl_disconnect_reads_stuck);
     tcase_add_test(tc, bad_scenario_is_refused);
     suite_add_tcase(s, tc);
-    SRunner *sr = srunner_create(s);
-    srunner_run_all(sr, CK_NORMAL);
-    int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+    return check_run(s);
 }

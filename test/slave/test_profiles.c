@@ -2,6 +2,8 @@
 #include "biss_ctrl.h"
 #include "scenario_json.h"
 
+#include "check_run.h"
+
 #include <check.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -169,9 +171,5 @@ int main(void) {
     tcase_add_test(tc, json_errors_name_the_field);
     tcase_add_test(tc, json_ssi_scenario);
     suite_add_tcase(s, tc);
-    SRunner *sr = srunner_create(s);
-    srunner_run_all(sr, CK_NORMAL);
-    int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+    return check_run(s);
 }

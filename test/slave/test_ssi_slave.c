@@ -2,6 +2,8 @@
 #include "slave_rig.h"
 #include "ssi_slave.h"
 
+#include "check_run.h"
+
 #include <check.h>
 #include <stdlib.h>
 
@@ -66,9 +68,5 @@ int main(void) {
     tcase_add_test(tc, binary_frame);
     tcase_add_test(tc, gray_frame);
     suite_add_tcase(s, tc);
-    SRunner *sr = srunner_create(s);
-    srunner_run_all(sr, CK_NORMAL);
-    int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+    return check_run(s);
 }
