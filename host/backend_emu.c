@@ -134,7 +134,7 @@ int biss_config_from_emu(biss_t *h, struct biss_config *c) {
         c->nslaves = 1;
         c->slave[0] = (struct biss_slave_config){
             .data_bits = sc->ssi.bits, .ssi = true, .gray = sc->ssi.gray};
-        c->ssi_delay_ns = (uint32_t)(bench_round_trip_ps(h->be.bench) / 1000.0 + 0.5);
+        c->ssi_delay_ns = bench_ssi_delay_ns(h->be.bench);
     } else {
         c->nslaves = sc->biss.n;
         for (unsigned i = 0; i < sc->biss.n && i < BISS_API_MAX_SLAVES; i++) {

@@ -375,6 +375,10 @@ double bench_round_trip_ps(const struct bench *b) {
     return line_nominal_delay_ps(&sc->ma_line) + (double)out + line_nominal_delay_ps(&sc->sl_line);
 }
 
+uint32_t bench_ssi_delay_ns(const struct bench *b) {
+    return (uint32_t)(bench_round_trip_ps(b) / 1000.0 + 0.5);
+}
+
 void bench_capture_frame(struct bench *b, uint64_t k) {
     capture_free(b);
     b->cap_state = CAP_ARMED;

@@ -95,6 +95,9 @@ uint64_t bench_current_frame(const struct bench *b);
 /* Round trip the master sees from an MA edge to the SL answer, per the
  * models: MA line + slave output delay + SL line, nominal (no jitter). */
 double bench_round_trip_ps(const struct bench *b);
+/* The same to the nearest ns: what a user measures and configures as an SSI
+ * encoder's line delay (BISS_CFG_SSI_DELAY_NS). */
+uint32_t bench_ssi_delay_ns(const struct bench *b);
 
 /* Arms a capture of all four pins around frame k (k counts the frames the
  * slave sees, from 0) for a scope picture. */

@@ -39,7 +39,7 @@ static void put_ssi(struct bench *b, const ssi_cfg *s) {
     put(b, o + BISS_CFG_S_FLAGS, BISS_SF_SSI, 1);
     put(b, o + BISS_CFG_S_CRC_POLY, 0, 2);
     put(b, o + BISS_CFG_S_CRC_START, 0, 2);
-    put(b, BISS_CFG_SSI_DELAY_NS, (uint32_t)(bench_round_trip_ps(b) / 1000.0 + 0.5), 2);
+    put(b, BISS_CFG_SSI_DELAY_NS, bench_ssi_delay_ns(b), 2);
 }
 
 int fw_config_write(struct bench *b, const struct fw_settings *s) {
