@@ -52,6 +52,15 @@ static void configure(biss_t *h, uint32_t freq, enum biss_trigger t, uint32_t ie
  * at every period from a phase set at configuration time, so only the
  * count is used there (frames 100 us apart, the position moves 5 counts
  * per frame: a miscount shows as a wrong position). */
+/* A record that starts less than 2 us after the frame's timestamp. */
+static void assert_starts_after(const struct biss_sample *s, sim_ps start_ps) {
+    sim_ps ts = (sim_ps)s->timestamp * PRU_PS_PER_CYCLE;
+    sim_ps lead = start_ps - ts;
+    ck_assert_msg(lead >= 0 && lead < 2 * SIM_PS_PER_US,
+                  "frame %u at %lld ps, record starts at %lld ps", s->frame, (long long)ts,
+                  (long long)start_ps);
+}
+
 static const biss_frame_record *sent_for(biss_t *h, const struct biss_sample *s) {
     link_model *l = bench_link(biss_emu_bench(h));
     ck_assert_uint_ge(s->frame, 1);
@@ -62,11 +71,7 @@ static const biss_frame_record *sent_for(biss_t *h, const struct biss_sample *s)
     if (c.trigger == BISS_TRIGGER_IEP) {
         return rec;
     }
-    sim_ps ts = (sim_ps)s->timestamp * PRU_PS_PER_CYCLE;
-    sim_ps lead = rec->start_ps - ts;
-    ck_assert_msg(lead >= 0 && lead < 2 * SIM_PS_PER_US,
-                  "frame %u at %lld ps, record %llu starts at %lld ps", s->frame, (long long)ts,
-                  (unsigned long long)rec->frame, (long long)rec->start_ps);
+    assert_starts_after(s, rec->start_ps);
     return rec;
 }
 
@@ -278,8 +283,7 @@ static void ssi_run(const char *scenario_file, bool gray) {
         ck_assert_msg(s[i].valid && !s[i].training, "frame %u flags 0x%x", s[i].frame, s[i].flags);
         const ssi_frame_record *rec = ssi_slave_record(m, s[i].frame - 1);
         ck_assert_ptr_nonnull(rec);
-        sim_ps lead = rec->start_ps - (sim_ps)s[i].timestamp * PRU_PS_PER_CYCLE;
-        ck_assert(lead >= 0 && lead < 2 * SIM_PS_PER_US);
+        assert_starts_after(&s[i], rec->start_ps);
         ck_assert_uint_eq(s[i].slave[0].data, rec->code);
         ck_assert_msg(s[i].slave[0].position == rec->position, "frame %u: %llu, sent %llu",
                       s[i].frame, (unsigned long long)s[i].slave[0].position,
