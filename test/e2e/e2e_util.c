@@ -2,6 +2,7 @@
 #include "e2e_util.h"
 
 #include "biss/biss_shm.h"
+#include "read_file.h"
 
 #include <check.h>
 #include <stdlib.h>
@@ -11,14 +12,16 @@
 #error "FIRMWARE_IMAGE must name the built firmware"
 #endif
 
-static uint32_t *read_image(size_t *nwords) {
-    FILE *f = fopen(FIRMWARE_IMAGE, "rb");
-    ck_assert_msg(f != NULL, "cannot open %s", FIRMWARE_IMAGE);
-    static uint32_t words[4096];
-    *nwords = fread(words, 4, 4096, f);
-    fclose(f);
-    ck_assert_uint_gt(*nwords, 0);
-    return words;
+/* The built firmware into the bench's IRAM, and the PRU started. */
+static void start_image(struct e2e_run *r) {
+    char *image;
+    size_t n;
+    ck_assert_msg(read_file(FIRMWARE_IMAGE, 1u << 16, &image, &n) == READ_FILE_OK, "cannot read %s",
+                  FIRMWARE_IMAGE);
+    ck_assert_uint_gt(n, 0);
+    r->image_words = (uint32_t)(n / 4);
+    ck_assert_int_eq(bench_start_image(r->b, image, n), 0);
+    free(image);
 }
 
 struct bench *e2e_bench(struct e2e_run *r, const char *profile, double cable_m,
@@ -40,10 +43,7 @@ struct bench *e2e_bench_scenario(struct e2e_run *r, const scenario *sc,
     char err[256];
     r->b = bench_new(&cfg, err, sizeof(err));
     ck_assert_msg(r->b != NULL, "%s", err);
-    size_t n;
-    uint32_t *w = read_image(&n);
-    r->image_words = (uint32_t)n;
-    ck_assert_int_eq(bench_start_image(r->b, w, n * 4), 0);
+    start_image(r);
     fw_check_attach(&r->fc, r->b);
     return r->b;
 }
