@@ -43,21 +43,26 @@ int waveform_append(waveform *w, sim_ps t, int level) {
     return 0;
 }
 
+/* Binary search: the first index in [lo, hi) whose edge comes after t (hi
+ * if none); the edges before lo are known to be at or before t. */
+static size_t first_after(const waveform *w, size_t lo, size_t hi, sim_ps t) {
+    while (lo < hi) {
+        size_t mid = lo + (hi - lo) / 2;
+        if (w->edges[mid].t <= t) {
+            lo = mid + 1;
+        } else {
+            hi = mid;
+        }
+    }
+    return lo;
+}
+
 /* Number of transitions with time <= t. Starts from the last answer and
  * walks, falling back to a binary search for long jumps. */
 static size_t count_upto(waveform *w, sim_ps t) {
     size_t i = w->hint > w->len ? w->len : w->hint;
     if (i > 0 && w->edges[i - 1].t > t) {
-        size_t lo = 0, hi = i; /* answer in [lo, hi) */
-        while (lo < hi) {
-            size_t mid = lo + (hi - lo) / 2;
-            if (w->edges[mid].t <= t) {
-                lo = mid + 1;
-            } else {
-                hi = mid;
-            }
-        }
-        i = lo;
+        i = first_after(w, 0, i, t);
     } else {
         size_t steps = 0;
         while (i < w->len && w->edges[i].t <= t && steps < 16) {
@@ -65,16 +70,7 @@ static size_t count_upto(waveform *w, sim_ps t) {
             steps++;
         }
         if (i < w->len && w->edges[i].t <= t) {
-            size_t lo = i, hi = w->len;
-            while (lo < hi) {
-                size_t mid = lo + (hi - lo) / 2;
-                if (w->edges[mid].t <= t) {
-                    lo = mid + 1;
-                } else {
-                    hi = mid;
-                }
-            }
-            i = lo;
+            i = first_after(w, i, w->len, t);
         }
     }
     w->hint = i;
