@@ -405,12 +405,20 @@ CFG_REPORT:
 
 // reg = the result buffer being filled (P_BUF: 0 or 1). The same number of
 // cycles either way: it lies between an IEP trigger and the frame.
+// The result buffer's address for the buffer number (0/1) in buf, to reg:
+// BISS_RES0 (0x100, bit 8) + buf * BISS_RES_SIZE (< 0x100), branch-free.
+// biss_shm_struct.h asserts that layout.
+.macro RESULT_ADDR
+.mparam reg, buf
+    rsb     reg, buf, 0                     // 0 or ~0
+    and     reg, reg, BISS_RES_SIZE
+    set     reg, reg, 8                     // + BISS_RES0 (0x100)
+.endm
+
 .macro RESULT_BASE
 .mparam reg
     lbco    reg, c28, P_BUF, 4
-    rsb     reg, reg, 0                     // 0 or ~0
-    and     reg, reg, BISS_RES_SIZE
-    set     reg, reg, 8                     // + BISS_RES0 (0x100)
+    RESULT_ADDR reg, reg
 .endm
 
 // ============================================================================
@@ -426,9 +434,7 @@ FRAME_REGS:
     mov     r0, r3
     ldi     r11, MA_MASK | (MA_MASK << 8)   // period 0 clocks
     mov     r11.b2, r8.b2                   // the end record (SWITCH_SHORT)
-    rsb     r8, r7, 0                       // the result buffer, as RESULT_BASE
-    and     r8, r8, BISS_RES_SIZE
-    set     r8, r8, 8
+    RESULT_ADDR r8, r7                      // the result buffer (r7 = P_BUF)
     mov     r7.w0, r9.w2                    // ACK limit
     mov     r7.w2, r10.w0                   // processing-time limit
     mov     r9, r8
