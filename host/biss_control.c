@@ -74,13 +74,18 @@ static int get_answer(biss_t *h, biss_cd_answer *a) {
     return rc;
 }
 
+/* Checks and puts a program (handle locked); *cmd is the CD_CMD it runs as. */
+static int begin_locked(biss_t *h, const biss_cd_prog *p, unsigned wait_limit, uint32_t *cmd) {
+    if (wait_limit > 0xffff) {
+        return BISS_E_INVAL;
+    }
+    return h->configured ? put_program(h, p, wait_limit, cmd) : BISS_E_NOT_CONFIGURED;
+}
+
 static int exchange_locked(biss_t *h, const biss_cd_prog *p, unsigned wait_limit,
                            unsigned timeout_ms, biss_cd_answer *a) {
-    if (!h->configured) {
-        return BISS_E_NOT_CONFIGURED;
-    }
     struct cd_wait w = {.host_trigger = h->cfg.trigger == BISS_TRIGGER_HOST};
-    int rc = put_program(h, p, wait_limit, &w.cmd);
+    int rc = begin_locked(h, p, wait_limit, &w.cmd);
     if (!rc) {
         rc = biss_wait_for(h, timeout_ms, cd_ended, &w);
     }
@@ -89,9 +94,6 @@ static int exchange_locked(biss_t *h, const biss_cd_prog *p, unsigned wait_limit
 
 int biss_cd_exchange(biss_t *h, const biss_cd_prog *p, unsigned wait_limit, unsigned timeout_ms,
                      biss_cd_answer *a) {
-    if (wait_limit > 0xffff) {
-        return BISS_E_INVAL;
-    }
     memset(a, 0, sizeof *a);
     biss_op_begin(h);
     int rc = exchange_locked(h, p, wait_limit, timeout_ms, a);
@@ -100,11 +102,8 @@ int biss_cd_exchange(biss_t *h, const biss_cd_prog *p, unsigned wait_limit, unsi
 }
 
 int biss_cd_begin(biss_t *h, const biss_cd_prog *p, unsigned wait_limit, uint32_t *cmd) {
-    if (wait_limit > 0xffff) {
-        return BISS_E_INVAL;
-    }
     biss_op_begin(h);
-    int rc = h->configured ? put_program(h, p, wait_limit, cmd) : BISS_E_NOT_CONFIGURED;
+    int rc = begin_locked(h, p, wait_limit, cmd);
     biss_op_end(h);
     return rc;
 }
