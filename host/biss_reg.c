@@ -21,9 +21,8 @@ struct biss_cd_job {
     int rc; /* the verdict, once done */
 };
 
-static int valid_access(const biss_t *h, unsigned id, uint8_t addr, const uint8_t *buf,
-                        unsigned n) {
-    return h && buf && id <= 7 && addr <= 0x7f && n >= 1 && n <= BISS_REG_MAX_SEQ;
+static int valid_access(const biss_t *h, unsigned id, uint8_t addr, unsigned n) {
+    return h && id <= 7 && addr <= 0x7f && n >= 1 && n <= BISS_REG_MAX_SEQ;
 }
 
 static int build_read(biss_cd_job *j, unsigned id, uint8_t addr, unsigned n) {
@@ -59,7 +58,7 @@ static void copy_bytes(const biss_cd_job *j, uint8_t *buf) {
 }
 
 int biss_reg_read(biss_t *h, unsigned id, uint8_t addr, uint8_t *buf, unsigned n) {
-    if (!valid_access(h, id, addr, buf, n)) {
+    if (!buf || !valid_access(h, id, addr, n)) {
         return BISS_E_INVAL;
     }
     biss_cd_job *j = calloc(1, sizeof *j);
@@ -75,7 +74,7 @@ int biss_reg_read(biss_t *h, unsigned id, uint8_t addr, uint8_t *buf, unsigned n
 }
 
 int biss_reg_write(biss_t *h, unsigned id, uint8_t addr, const uint8_t *buf, unsigned n) {
-    if (!valid_access(h, id, addr, buf, n)) {
+    if (!buf || !valid_access(h, id, addr, n)) {
         return BISS_E_INVAL;
     }
     biss_cd_job *j = calloc(1, sizeof *j);
@@ -119,8 +118,7 @@ static int start_job(biss_t *h, biss_cd_job *j, int rc, biss_cd_job **out) {
 }
 
 int biss_reg_read_start(biss_t *h, unsigned id, uint8_t addr, unsigned n, biss_cd_job **job) {
-    static const uint8_t any = 0; /* a read has no bytes to check */
-    if (!job || !valid_access(h, id, addr, &any, n)) {
+    if (!job || !valid_access(h, id, addr, n)) {
         return BISS_E_INVAL;
     }
     biss_cd_job *j = calloc(1, sizeof *j);
@@ -133,7 +131,7 @@ int biss_reg_read_start(biss_t *h, unsigned id, uint8_t addr, unsigned n, biss_c
 
 int biss_reg_write_start(biss_t *h, unsigned id, uint8_t addr, const uint8_t *buf, unsigned n,
                          biss_cd_job **job) {
-    if (!job || !valid_access(h, id, addr, buf, n)) {
+    if (!job || !buf || !valid_access(h, id, addr, n)) {
         return BISS_E_INVAL;
     }
     biss_cd_job *j = calloc(1, sizeof *j);
