@@ -376,14 +376,8 @@ CFG_ACKLIM_DONE:
     ldi     r2.b3, 1                        // running
     qbeq    CFG_PROC, r27.w0, 0
     ldi     r2.b2, 0                        // SSI: the delay is given, nothing to train
-    mov     r3.w0, r27.w0                   // and the history holds it
-    mov     r3.w2, r27.w0
-    mov     r4.w0, r27.w0
-    sbco    r3, c28, P_HIST, 6
-    add     r4, r27.w0, r27.w0
-    add     r4, r4, r27.w0
-    add     r4, r4, 2
-    sbco    r4, c28, P_HSUM, 4
+    mov     r1.w2, r27.w0                   // and the history holds it (r0, r1 are
+    jal     r0.w0, HIST_FILL                // set up anew by every frame)
 CFG_PROC:
     sbco    r27, c28, P_SSI, 4
     sbco    r2, c28, P_PROC, 4
@@ -448,14 +442,8 @@ FRAME_REGS:
 // The timestamp, then the first period.
 .macro FRAME_STAMP
     ldi     r3, 0
-    mov     r12, CLOCK_FOREVER
     lbco    r2, c26, IEP_COUNT, 4
     sbbo    r2, r9, BISS_R_TIMESTAMP, 4
-.endm
-
-.macro FRAME_SETUP
-    jal     r12.w0, FRAME_REGS
-    FRAME_STAMP
 .endm
 
 FRAME:
@@ -469,16 +457,16 @@ FRAME_GO:
 FRAME_BISS:
     jal     r12.w0, FRAME_REGS
 FRAME_STAMPED:                              // FE_NEXT comes in here
+    mov     r12, CLOCK_FOREVER
+FRAME_CLOCKED:                              // TRAIN comes in here, r12 its two clocks
     FRAME_STAMP
     // fall into the first period
 
 // ---- WAIT_ACK ---------------------------------------------------------------
 // Clock until the newest 8 samples hold the ACK edge (a 0), then go to
-// `found` at t = 3 with the samples in r2.b0 and 8p in r3. The only
+// ACK_FOUND at t = 3 with the samples in r2.b0 and 8p in r3. The only
 // pre-data period that counts MA edges down (r12): a training frame stops
 // after two clocks; a normal frame clocks on until its start bit is seen.
-.macro WAIT_ACK_PERIOD
-.mparam found
     // Period 0 looks at nothing: its samples date from before the frame
     // (the ACK cannot come before the second rising edge), so the frame may
     // start as soon as SL is high.
@@ -494,7 +482,7 @@ FRAME_STAMPED:                              // FE_NEXT comes in here
 WA_TOP:
     MA_FALL
     mov     r2, r31                         // 1
-    qbne    found, r2.b0, 0xff              // 2
+    qbne    ACK_FOUND, r2.b0, 0xff          // 2
     add     r3, r3, 8                       // 3
     PADS    5                               // 4..8
     DELAY_A
@@ -504,7 +492,6 @@ WA_TOP:
     PADS    2                               // 6..7
     DELAY_B
     qba     WA_TOP
-.endm
 
 // The ones before the ACK edge in r2.b0 (a constant-time count: a glitch
 // moves it by one, not to another bit), as Q' = 8p + ones in r1.w2.
@@ -532,17 +519,18 @@ WA_TOP:
     add     r1.w2, r3, r6                   // Q'
 .endm
 
-    WAIT_ACK_PERIOD ACK_FOUND
-
 // From here to the start bit MA clocks on (r11 stays MA_MASK both ways), so
-// these periods leave r12 alone.
+// these periods leave r12 alone; a training frame made its two clocks
+// (r11 = 0) and ends after this period. Its r12 is 0 here, a normal frame's
+// CLOCK_FOREVER less 2 MA_MASK a period: bit 30 stays set, since the ACK
+// limit is some 400 periods.
 ACK_FOUND:                                  // t = 3
     ONES_A                                  // 3..8
     DELAY_A
     MA_RISE
     ONES_B                                  // 1..7
     DELAY_B
-    PAD
+    qbbc    TRAIN_DONE, r12, 30             // training: no more periods
 
 // ---- LAG: sample point and lag from the averaged ACK position ------------------
 LAG1:
@@ -796,7 +784,12 @@ FE_MAIN:
     set     r30, r30, MA_BIT                // CDM done: MA idles high
     jmp     MAIN
 
-// History r4.w0, r4.w2, r5.w0 and its sum + 2 (rounding) to P_HIST/P_HSUM.
+// History r4.w0, r4.w2, r5.w0 and its sum + 2 (rounding) to P_HIST/P_HSUM;
+// HIST_FILL: all three r1.w2 (a history started afresh from one position).
+HIST_FILL:
+    mov     r4.w0, r1.w2
+    mov     r4.w2, r1.w2
+    mov     r5.w0, r1.w2
 HIST_SAVE:
     sbco    r4, c28, P_HIST, 6
     add     r3, r4.w0, r4.w2
@@ -859,9 +852,8 @@ ABORT_FRAME:
 // may come back on another cable, or in the middle of a frame).
 NO_ACK:                                     // after a rising edge: MA stays high
 NO_SLAVE_IDLE:                              // or SL low before a frame
-    lbco    r2, c28, P_PROC, 4
-    ldi     r2.b2, 1                        // training due
-    sbco    r2, c28, P_PROC, 4
+    ldi     r2, 1
+    sbco    r2.b0, c28, P_PROC + 2, 1       // training due
     ldi     r12, BISS_RF_NO_SLAVE
     ldi     r3, BISS_ST_NO_SLAVE
     jmp     ABORT_FRAME
@@ -870,12 +862,8 @@ NO_SLAVE_IDLE:                              // or SL low before a frame
 // measurement all the same, and the average starts afresh from it (an
 // average gone wrong would make every frame miss its start bit).
 PROC_ERROR:                                 // after a rising edge: MA stays high
-    RESULT_BASE r2
-    sbbo    r6, r2, BISS_R_PROC_CLOCKS, 2
-    mov     r4.w0, r1.w2
-    mov     r4.w2, r1.w2
-    mov     r5.w0, r1.w2
-    jal     r0.w0, HIST_SAVE
+    sbbo    r6, r9, BISS_R_PROC_CLOCKS, 2   // r9: the result buffer (no slave moved it)
+    jal     r0.w0, HIST_FILL
     ldi     r12, BISS_RF_PROC_ERROR
     ldi     r3, BISS_ST_PROC_ERRORS
     jmp     ABORT_FRAME
@@ -885,32 +873,22 @@ PROC_ERROR:                                 // after a rising edge: MA stays hig
 // ACK and, clocked no further, holds SL low until its timeout. The periods
 // go on without clocks until the ACK edge is seen; its position fills the
 // history, so the next frame samples at the right point from its first bit.
+// The frame's own WAIT_ACK and ACK periods make them: ACK_FOUND comes back
+// to TRAIN_DONE.
 TRAIN:
     jal     r0.w0, SLAVE_IDLE
     qbne    TRAIN_GO, r2, 0
     jmp     NO_SLAVE_IDLE
 TRAIN_GO:
-    FRAME_SETUP
+    jal     r12.w0, FRAME_REGS
     ldi     r12, 2 * MA_MASK                // one clock after period 0's
-    WAIT_ACK_PERIOD TRAIN_ACK
-TRAIN_ACK:                                  // t = 3
-    ONES_A                                  // 3..8
-    DELAY_A
-    MA_RISE
-    ONES_B
-    mov     r4.w0, r1.w2
-    mov     r4.w2, r1.w2
-    mov     r5.w0, r1.w2
-    jal     r0.w0, HIST_SAVE
-    lbco    r2, c28, P_PROC, 4
-    ldi     r2.b2, 0                        // training done
-    sbco    r2, c28, P_PROC, 4
-    lbco    r2, c28, P_NSLAVES, 4
-    ldi     r2.b3, 0                        // the average starts at this frame
-    sbco    r2, c28, P_NSLAVES, 4
-    RESULT_BASE r2
-    sbbo    r1.w2, r2, BISS_R_DELAY_RAW, 2
-    sbbo    r1.w2, r2, BISS_R_DELAY_AVG, 2
+    jmp     FRAME_CLOCKED
+TRAIN_DONE:                                 // r9: the result buffer (no slave moved it)
+    jal     r0.w0, HIST_FILL                // r4.w0, r4.w2 = Q' too
+    sbbo    r4, r9, BISS_R_DELAY_RAW, 4     // and DELAY_AVG
+    ldi     r2, 0
+    sbco    r2.b0, c28, P_PROC + 2, 1       // training done
+    sbco    r2.b0, c28, P_NSLAVES + 3, 1    // the average starts at this frame
     ldi     r12, BISS_RF_TRAINING
     ldi     r3, BISS_ST_TRAINING
     jmp     ABORT_FRAME
@@ -1099,7 +1077,8 @@ CFG_SSI_DONE:
     jmp     r0.w0
 
 SSI_FRAME:
-    FRAME_SETUP
+    jal     r12.w0, FRAME_REGS
+    FRAME_STAMP
     lbco    r1.w2, c28, P_SSI, 2            // Q' (and r1.w2 is what FRAME_END records)
     lbco    r12, c28, P_SSI + 2, 4          // the clocks (the next word is 0)
     sub     r2, r1.w2, 4                    // sample point and lag as LAG1 derives them
