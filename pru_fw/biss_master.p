@@ -519,11 +519,11 @@ WA_TOP:
     add     r1.w2, r3, r6                   // Q'
 .endm
 
-// From here to the start bit MA clocks on (r11 stays MA_MASK both ways), so
-// these periods leave r12 alone; a training frame made its two clocks
-// (r11 = 0) and ends after this period. Its r12 is 0 here, a normal frame's
-// CLOCK_FOREVER less 2 MA_MASK a period: bit 30 stays set, since the ACK
-// limit is some 400 periods.
+// From here to the start bit MA clocks on (r11 stays MA_MASK both ways): r12
+// is CLOCK_FOREVER less 2 MA_MASK for each period that counted it down, a
+// few hundred at most (the ACK limit is some 400 periods, the lag as many),
+// so its bit 30 stays set. A training frame has made its two clocks (r11 =
+// 0, r12 = 0) and ends after this period.
 ACK_FOUND:                                  // t = 3
     ONES_A                                  // 3..8
     DELAY_A
@@ -542,24 +542,34 @@ LAG1:
     add     r10, r10, 8                     // 5  r10 = 31 - (8 (m + LAG) - Qf)
     lsr     r8, r2, 3                       // 6  m = (Qf' - 4) / 8
     lsr     r6, r3, 3                       // 7  p (this frame's ACK period)
-    add     r7.w0, r8, 2                    // 8
+    add     r3, r8, 2                       // 8
     DELAY_A
     MA_RISE
-    max     r7.w0, r7.w0, r6                // 1
-    sub     r7.w0, r7.w0, r6                // 2  idle periods before the first read
+    max     r3, r3, r6                      // 1
+    sub     r3, r3, r6                      // 2  idle periods before the first read
     ldi     r6, 0                           // 3  busy clocks
     PADS    4                               // 4..7
     DELAY_B
-    qbeq    SW_TOP, r7.w0, 0
+    qbeq    SW_TOP, r3, 0
+
+// r3 >= 1 idle periods. An SSI frame's come here too (SSI_FRAME) and go on
+// to its slave's entry; they count MA edges down for its sake (a BiSS-C
+// frame's r12 keeps bit 30 set, see ACK_FOUND).
 LAG_TOP:
     MA_FALL
     PADS    8                               // 1..8
     DELAY_A
     MA_RISE
-    sub     r7.w0, r7.w0, 1                 // 1
-    PADS    6                               // 2..7
+    sub     r3, r3, 1                       // 1
+    NEXT_CLOCK                              // 2..5
+    qbeq    LAG_LAST, r3, 0                 // 6
+    PAD                                     // 7
     DELAY_B
-    qbne    LAG_TOP, r7.w0, 0
+    qba     LAG_TOP
+LAG_LAST:
+    qbbc    SSI_LAG_LAST, r12, 30           // 7
+    DELAY_B
+    PAD
 
 // ---- START_WAIT: ACK and busy read 0, the start bit 1 ------------------------
 SW_TOP:
@@ -574,6 +584,10 @@ SW_TOP:
     PADS    6                               // 2..7
     DELAY_B
     qba     SW_TOP
+
+SSI_LAG_LAST:                               // t = H + 8
+    DELAY_B
+    jmp     r7.w2
 
 START_FOUND:                                // t = 3
     sbbo    r6, r9, BISS_R_PROC_CLOCKS, 2   // 3  busy clocks before the start bit
@@ -1088,18 +1102,4 @@ SSI_FRAME:
     add     r3, r3, LAG                     // periods before bit 0 is read: m + LAG
     ldi     r8, 0
     LOAD_RECORD                             // the slave's data bits, no CRC
-SSI_IDLE:
-    MA_FALL
-    PADS    8                               // 1..8
-    DELAY_A
-    MA_RISE
-    sub     r3, r3, 1                       // 1
-    NEXT_CLOCK                              // 2..5
-    qbeq    SSI_IDLE_LAST, r3, 0            // 6
-    PAD                                     // 7
-    DELAY_B
-    qba     SSI_IDLE
-SSI_IDLE_LAST:
-    PAD                                     // 7
-    DELAY_B
-    jmp     r7.w2
+    jmp     LAG_TOP                         // the idle periods, then r7.w2
