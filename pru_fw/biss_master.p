@@ -71,7 +71,7 @@
 #define P_CDM           (P_CD + 12)
 #define P_SSI           0x78                // u16 the ACK position an SSI frame reads by
                                             //   (0: BiSS-C), u16 MA edges after period 0
-#define P_SLAVES        0x80                // 8 x 16: mask lo, mask hi, residue, [w, n, ew, flags]
+#define P_SLAVES        0x80                // 8 x 16: mask lo, mask hi, residue, [n, w, ew, flags]
 #define PRU0_CTPPR0     0x22028             // C28 = 0x00nnnn00 with nnnn = CTPPR0[15:0]
 
 // (after the equates: macro bodies take equates as they are read)
@@ -81,26 +81,18 @@
 // ============================================================================
 START:
     zero    &r0, 120                        // r0..r29
-    mov     r2, PRU0_CTPPR0
-    ldi     r3, BISS_PRIV >> 8
-    sbbo    r3, r2, 0, 4                    // C28 -> the private area
+    mov     r28, PRU0_CTPPR0
+    ldi     r29, BISS_PRIV >> 8
+    sbbo    r29, r28, 0, 4                  // C28 -> the private area
     set     r30, r30, MA_BIT                // MA idles high
-    ldi     r2, 0                           // status and private areas start clear
-    ldi     r3, 0
-    ldi     r4, 0
-    ldi     r5, 0
-    ldi     r6, BISS_ST_SEQ
-CLEAR_ST:
-    sbbo    r2, r6, 0, 4
-    add     r6, r6, 4
-    qbgt    CLEAR_ST, r6, BISS_ST_END       // while r6 < END
-    mov     r6, BISS_PRIV
-    mov     r7, BISS_PRIV_END
+    // status and private areas start clear: stores of r0.. (zero)
+    sbco    r0, c24, BISS_ST_SEQ, BISS_ST_END - BISS_ST_SEQ
+    ldi     r28, BISS_PRIV
+    loop    CLEAR_PRIV, (BISS_PRIV_END - BISS_PRIV) / 64
+    sbbo    r0, r28, 0, 64
+    add     r28, r28, 64
 CLEAR_PRIV:
-    sbbo    r2, r6, 0, 16
-    add     r6, r6, 16
-    qbgt    CLEAR_PRIV, r6, r7
-    mov     r2, 0xffffffff                  // no configuration applied yet
+    not     r2, r0                          // ~0: no configuration applied yet
     sbco    r2, c24, BISS_ST_CFG_ACK, 4
     mov     r2, BISS_MAGIC                  // last: a host that sees it sees a clear status
     sbco    r2, c24, BISS_ST_MAGIC, 4
@@ -113,8 +105,7 @@ MAIN:
     lbco    r2, c24, BISS_CFG_SEQ, 4
     lbco    r3, c24, BISS_ST_CFG_ACK, 4
     qbeq    MAIN_CFG_OK, r2, r3
-    qbeq    MAIN_CFG_OK, r2, 0              // the host has written none yet
-    jmp     APPLY_CONFIG
+    qbne    APPLY_CONFIG, r2, 0             // (0: the host has written none yet)
 MAIN_CFG_OK:
     lbco    r2, c28, P_PROC, 4
     qbeq    MAIN, r2.b3, 0                  // not running (no or a refused configuration)
@@ -152,7 +143,8 @@ IEP_ALIGNED:
 APPLY_CONFIG:
     mov     r29, r2                         // the sequence number being applied
     lbco    r20, c24, BISS_CFG_HALF, 12     // r20.w0 H, r20.b2 slaves, r20.b3 trigger,
-                                            // r21 IEP period, r22.w0 proc limit
+                                            // r21 IEP period, r22.w0 proc limit,
+                                            // r22.w2 SSI round trip
     ldi     r28, BISS_CFGERR_NSLAVES
     qbeq    CFG_FAIL, r20.b2, 0
     qblt    CFG_FAIL, r20.b2, BISS_MAX_SLAVES   // 8 < slaves
@@ -167,34 +159,29 @@ APPLY_CONFIG:
     // a/2 and b/2, 2 <= a, b <= 32. Prefer two whole ratios (even a and b).
     ldi     r27, 1                          // pass 1: whole ratios only
 FACTOR_PASS:
-    ldi     r23, 2                          // a
+    ldi     r6, 2                           // a
 FACTOR_A:
-    mov     r24, r20.w0                     // r24 = H mod a, r25 = H / a
-    ldi     r25, 0
-FACTOR_DIV:
-    qbgt    FACTOR_DIVIDED, r24, r23        // r24 < a
-    sub     r24, r24, r23
-    add     r25, r25, 1
-    qba     FACTOR_DIV
-FACTOR_DIVIDED:
-    qbne    FACTOR_NEXT, r24, 0
-    qbgt    FACTOR_NEXT, r25, 2             // b < 2
-    qblt    FACTOR_NEXT, r25, 32            // b > 32
+    mov     r5, r20.w0                      // r5 = H mod a, r7 = H / a = b
+    ldi     r7, 0
+    jal     r0.w2, DIVIDE
+    qbne    FACTOR_NEXT, r5, 0
+    qbgt    FACTOR_NEXT, r7, 2              // b < 2
+    qblt    FACTOR_NEXT, r7, 32             // b > 32
     qbne    FACTOR_FOUND, r27, 1
-    qbbs    FACTOR_NEXT, r23, 0
-    qbbc    FACTOR_FOUND, r25, 0
+    qbbs    FACTOR_NEXT, r6, 0
+    qbbc    FACTOR_FOUND, r7, 0
 FACTOR_NEXT:
-    add     r23, r23, 1
-    qbge    FACTOR_A, r23, 32               // a <= 32
+    add     r6, r6, 1
+    qbge    FACTOR_A, r6, 32                // a <= 32
     add     r27, r27, 1
     qbeq    FACTOR_PASS, r27, 2
     jmp     CFG_FAIL                        // r28 is still CFGERR_HALF
 FACTOR_FOUND:
-    sub     r23, r23, 2                     // divisor codes: ratio = 1 + code / 2
-    sub     r25, r25, 2
-    lsl     r23, r23, 3
-    lsl     r25, r25, 8
-    or      r26, r23, r25
+    // divisor codes (ratio = 1 + code / 2): a - 2 at bit 3, b - 2 at bit 8
+    lsl     r7, r7, 5
+    add     r26, r6, r7
+    sub     r26, r26, 2 + (2 << 5)
+    lsl     r26, r26, 3
     or      r26, r26, SHIFT_MODE
     sbco    r26, c28, P_GPCFG, 4
 
@@ -274,8 +261,7 @@ CFG_LAST_DONE:
     sbbo    r4, r26, 0, 8
     add     r26, r26, 8
     // data mask: n ones
-    mov     r6, 0xffffffff
-    mov     r7, 0xffffffff
+    fill    &r6, 8
     qbeq    CFG_MASK_DONE, r2.b0, 64
     qblt    CFG_MASK_HI, r2.b0, 32          // 32 < n (n = 32 here: a shift by 0,
     rsb     r8, r2.b0, 32                   // as the high word's by 32 would be by 0 too)
@@ -289,31 +275,24 @@ CFG_MASK_DONE:
     // residue: the CRC register after w inverted CRC bits of a right frame
     // = w ones fed to a zero register (linearity)
     ldi     r8, 0
-    lsl     r9, r5.w0, 16                   // polynomial, left-aligned to bit 31
+    lsl     r10, r5.w0, 16                  // polynomial, left-aligned to bit 31
     qbeq    CFG_RESIDUE_DONE, r2.b1, 0
     loop    CFG_RESIDUE_DONE, r2.b1
-    lsl     r10, r8, 0                      // keep bit 31 (feedback = bit31 ^ 1)
+    lsl     r9, r8, 0                       // keep bit 31 (feedback = bit31 ^ 1)
     lsl     r8, r8, 1
-    qbbs    CFG_RESIDUE_STEP, r10, 31
-    xor     r8, r8, r9
+    qbbs    CFG_RESIDUE_STEP, r9, 31
+    xor     r8, r8, r10
 CFG_RESIDUE_STEP:
     mov     r0, r0
 CFG_RESIDUE_DONE:
-    mov     r10.b0, r2.b1                   // w
-    mov     r10.b1, r2.b0                   // n
-    mov     r10.b2, r2.b2                   // ew shift
-    mov     r10.b3, r2.b3                   // flags
-    sbbo    r6, r27, 0, 4
-    sbbo    r7, r27, 4, 4
-    sbbo    r8, r27, 8, 4
-    sbbo    r10, r27, 12, 4
+    mov     r9, r2                          // n, w, ew shift, flags
+    sbbo    r6, r27, 0, 16                  // r6..r9
     add     r27, r27, 16
     add     r25, r25, BISS_CFG_SLAVE_SIZE
     add     r23, r23, 1
     qbgt    CFG_SLAVE, r23, r20.b2          // while index < slaves
     // after the last slave: the end of the frame
-    ldi     r4, 0
-    mov     r4.w2, r11.w0
+    lsl     r4, r11, 16                     // entry r11.w0 (r11.w2 = 0), counts 0
     sbbo    r4, r26, 0, 4
     jal     r0.w0, CFG_SSI                  // r27 = P_SSI word (0: BiSS-C)
     qbne    CFG_FAIL, r28, BISS_CFGERR_NONE
@@ -323,10 +302,9 @@ CFG_RESIDUE_DONE:
     add     r2, r24, 8
     ldi     r3, 0
     lsl     r4, r20.w0, 1                   // 2H
-CFG_IEP_MIN:
+    loop    CFG_IEP_MIN, r2
     add     r3, r3, r4
-    sub     r2, r2, 1
-    qbne    CFG_IEP_MIN, r2, 0
+CFG_IEP_MIN:
     ldi     r28, BISS_CFGERR_IEP_PERIOD
     qbgt    CFG_FAIL, r21, r3               // period < minimum
     sub     r2, r21, 1                      // CMP0 = period - 1 (the count resets after it)
@@ -340,40 +318,30 @@ CFG_IEP_MIN:
 CFG_IEP_OK:
 
     // Accepted: commit everything.
-    sub     r2, r20.w0, 10                  // delay counts of both halves: H - 10
-    mov     r0.w0, r2.w0
-    mov     r0.w2, r2.w0
+    sub     r0.w0, r20.w0, 10               // delay counts of both halves: H - 10
+    mov     r0.w2, r0.w0
     sbco    r0, c28, P_DELAYS, 4
     // K = N + 2 - LAG: the clocks after the start bit's period are the CDS,
     // the N bits and one more, on which the slave starts its timeout (SL
     // low); LAG of them are already out when the start bit is seen.
-    sub     r2, r24, LAG - 2
-    ldi     r3, 0
-    ldi     r4, 0
-    mov     r4.w2, r2.w0                    // history empty (training fills it), K
+    ldi     r3, 0                           // history empty (training fills it)
+    sub     r4, r24, LAG - 2
+    lsl     r4, r4, 16                      // and K
     sbco    r3, c28, P_HIST, 8
-    mov     r2.b0, r20.b2                   // slaves, trigger, -, frames in the average
-    mov     r2.b1, r20.b3
+    mov     r2, r20.w2                      // slaves, trigger, -, frames in the average (0)
     lsl     r2.b2, r20.b2, 3                // the end record's register-file address
     add     r2.b2, r2.b2, REC_BASE
-    ldi     r2.b3, 0
     sbco    r2, c28, P_NSLAVES, 4
     // ACK limit in periods x 8: (BISS_MAX_DELAY_NS / 10 / H + 4) x 8
-    mov     r2, BISS_MAX_DELAY_NS / 10
-    ldi     r3, 4
-CFG_ACKLIM:
-    qbgt    CFG_ACKLIM_DONE, r2, r20.w0
-    sub     r2, r2, r20.w0
-    add     r3, r3, 1
-    qba     CFG_ACKLIM
-CFG_ACKLIM_DONE:
-    lsl     r3, r3, 3
-    mov     r2.w0, r20.w0
-    mov     r2.w2, r3.w0
-    sbco    r2, c28, P_HALF, 4
+    mov     r5, BISS_MAX_DELAY_NS / 10
+    mov     r6, r20.w0
+    ldi     r7, 4
+    jal     r0.w2, DIVIDE
+    lsl     r7, r7, 16 + 3                  // to w2
+    mov     r7.w0, r20.w0
+    sbco    r7, c28, P_HALF, 4
     mov     r2.w0, r22.w0                   // processing-time limit
-    ldi     r2.b2, 1                        // training due (BiSS-C)
-    ldi     r2.b3, 1                        // running
+    ldi     r2.w2, 0x0101                   // running, training due (BiSS-C)
     qbeq    CFG_PROC, r27.w0, 0
     ldi     r2.b2, 0                        // SSI: the delay is given, nothing to train
     mov     r1.w2, r27.w0                   // and the history holds it (r0, r1 are
@@ -396,6 +364,16 @@ CFG_REPORT:
     sbco    r29, c24, BISS_ST_CFG_ACK, 4
     lbco    r13, c28, P_RECORDS, 68         // slave records into r13..r29
     jmp     MAIN
+
+// r7 += r5 / r6, r5 = r5 mod r6: repeated subtraction (configuration only).
+// Returns through r0.w2.
+DIVIDE:
+    qbgt    DIVIDE_DONE, r5, r6
+    sub     r5, r5, r6
+    add     r7, r7, 1
+    qba     DIVIDE
+DIVIDE_DONE:
+    jmp     r0.w2
 
 // reg = the result buffer being filled (P_BUF: 0 or 1). The same number of
 // cycles either way: it lies between an IEP trigger and the frame.
@@ -448,7 +426,7 @@ FRAME_REGS:
 
 FRAME:
     jal     r0.w0, SLAVE_IDLE
-    qbne    FRAME_GO, r2, 0
+    qbne    FRAME_GO, r3, 0
     jmp     NO_SLAVE_IDLE
 FRAME_GO:
     lbco    r2, c28, P_SSI, 2
@@ -696,11 +674,11 @@ FRAME_END:
     mov     r11, BISS_PRIV + P_SLAVES       // slave check data
 FE_SLAVE:
     lbbo    r4, r3, 0, 12                   // data lo, data hi, CRC register
-    lbbo    r7, r11, 0, 16                  // mask lo, mask hi, residue, [w, n, ew, flags]
+    lbbo    r7, r11, 0, 16                  // mask lo, mask hi, residue, [n, w, ew, flags]
     and     r4, r4, r7
     and     r5, r5, r8
     ldi     r0, 0                           // slave status
-    qbeq    FE_CRC_OK, r10.b0, 0            // no CRC
+    qbeq    FE_CRC_OK, r10.b1, 0            // no CRC
     qbeq    FE_CRC_OK, r6, r9
     or      r12, r12, BISS_RF_CRC_ERROR
     qba     FE_CRC_DONE
@@ -834,18 +812,15 @@ PUBLISH:
     jmp     r0.w0
 
 // Wait for SL high (the newest 8x sample, R31 bit 0): the slave's timeout
-// has ended. At most 2 ms (slave timeouts are microseconds). r2 = 1 if it
-// came, 0 if not.
+// has ended. At most 2 ms (slave timeouts are microseconds). r3 = 0 if it
+// did not come (the turns left if it did).
 SLAVE_IDLE:
     mov     r3, 100000                      // 3 cycles a turn
 SLAVE_IDLE_POLL:
     qbbs    SLAVE_IDLE_YES, r31, 0
     sub     r3, r3, 1
     qbne    SLAVE_IDLE_POLL, r3, 0
-    ldi     r2, 0
-    jmp     r0.w0
 SLAVE_IDLE_YES:
-    ldi     r2, 1
     jmp     r0.w0
 
 // ---- frames that end early ---------------------------------------------------
@@ -858,9 +833,7 @@ ABORT_FRAME:
     RESULT_BASE r2
     jal     r0.w0, PUBLISH
     jal     r0.w0, CD_PREPARE
-    jal     r0.w0, SLAVE_IDLE
-    set     r30, r30, MA_BIT
-    jmp     MAIN
+    jmp     FE_SLOW                         // wait for the slave, MA high, MAIN
 
 // No slave: the line delay is measured again once one answers (a slave
 // may come back on another cable, or in the middle of a frame).
@@ -891,7 +864,7 @@ PROC_ERROR:                                 // after a rising edge: MA stays hig
 // to TRAIN_DONE.
 TRAIN:
     jal     r0.w0, SLAVE_IDLE
-    qbne    TRAIN_GO, r2, 0
+    qbne    TRAIN_GO, r3, 0
     jmp     NO_SLAVE_IDLE
 TRAIN_GO:
     jal     r12.w0, FRAME_REGS
@@ -1067,23 +1040,16 @@ CFG_SSI:
     qbne    CFG_SSI_DONE, r20.b2, 1         // one slave
     qbne    CFG_SSI_DONE, r2.b1, 0          // no CRC
     ldi     r28, BISS_CFGERR_NONE
-    lbco    r3, c24, BISS_CFG_SSI_DELAY_NS, 2
-    ldi     r4, 0                           // rt = ns / 5 cycles
-CFG_SSI_DIV5:
-    qbgt    CFG_SSI_RT, r3.w0, 5
-    sub     r3.w0, r3.w0, 5
-    add     r4, r4, 1
-    qba     CFG_SSI_DIV5
-CFG_SSI_RT:
-    add     r4, r4, 1
-    lsl     r4, r4, 2                       // 4 (rt + 1) ...
-    ldi     r27.w0, 20
-CFG_SSI_DIVH:
-    qbgt    CFG_SSI_Q, r4, r20.w0           // ... / H
-    sub     r4, r4, r20.w0
-    add     r27.w0, r27.w0, 1
-    qba     CFG_SSI_DIVH
-CFG_SSI_Q:
+    mov     r5, r22.w2                      // CFG_SSI_DELAY_NS
+    ldi     r6, 5
+    ldi     r7, 0
+    jal     r0.w2, DIVIDE                   // rt = ns / 5 cycles
+    add     r5, r7, 1
+    lsl     r5, r5, 2                       // 4 (rt + 1) ...
+    mov     r6, r20.w0
+    ldi     r7, 20
+    jal     r0.w2, DIVIDE                   // ... / H + 20
+    mov     r27.w0, r7.w0
     // n + 1 clocks: the one after the last bit makes the slave send 0 until
     // its monoflop ends (SL high again: ready), 2n edges after period 0's
     lsl     r27.w2, r2.b0, MA_BIT + 1
