@@ -375,11 +375,10 @@ DIVIDE:
 DIVIDE_DONE:
     jmp     r0.w2
 
-// reg = the result buffer being filled (P_BUF: 0 or 1). The same number of
-// cycles either way: it lies between an IEP trigger and the frame.
 // The result buffer's address for the buffer number (0/1) in buf, to reg:
-// BISS_RES0 (0x100, bit 8) + buf * BISS_RES_SIZE (< 0x100), branch-free.
-// biss_shm_struct.h asserts that layout.
+// BISS_RES0 (0x100, bit 8) + buf * BISS_RES_SIZE (< 0x100), branch-free (the
+// same number of cycles either way: FRAME_REGS lies between an IEP trigger
+// and the frame). biss_shm_struct.h asserts that layout.
 .macro RESULT_ADDR
 .mparam reg, buf
     rsb     reg, buf, 0                     // 0 or ~0
@@ -387,6 +386,7 @@ DIVIDE_DONE:
     set     reg, reg, 8                     // + BISS_RES0 (0x100)
 .endm
 
+// reg = the result buffer being filled (P_BUF).
 .macro RESULT_BASE
 .mparam reg
     lbco    reg, c28, P_BUF, 4
@@ -662,9 +662,7 @@ FRAME_END:
     lbco    r4, c28, P_BUF, 8               // r4 P_BUF, r5 P_NSLAVES
     mov     r1.b0, r5.b0                    // slaves to check
     mov     r3.b0, r2.b0
-    rsb     r2, r4, 0                       // the result buffer, as RESULT_BASE
-    and     r2, r2, BISS_RES_SIZE
-    set     r2, r2, 8
+    RESULT_ADDR r2, r4                      // the result buffer
     sbbo    r3.b0, r2, BISS_R_CDM, 1
     rsb     r3, r10, 31 - 8 * LAG           // sample point 0..7 within the bit
     sbbo    r3.b0, r2, BISS_R_SAMPLE_POINT, 1
