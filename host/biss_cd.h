@@ -2,19 +2,25 @@
  * access, sequential access, BiSS commands) over the firmware's CDM
  * program (include/biss/biss_shm.h, "control communication").
  *
- * The firmware runs a program of 2-bit steps, one per BiSS frame, and
- * records as answer i the CDS of the frame after the one that sent step i.
- * This module builds such programs for whole control frames, remembers
- * which steps carry which protocol field, and turns the recorded answers
- * back into register bytes and verdicts. It does no I/O: the caller moves
+ * The firmware runs a program of 4-bit steps (op and class), one per BiSS
+ * frame, records as answer i the CDS of the frame after the one that sent
+ * step i, computes the CRC4 of what it sends, and checks CRC4, echo and
+ * IDA of what comes back. This module builds such programs for whole
+ * control frames, remembers which steps carry which protocol field, and
+ * turns the recorded answers and the firmware's verdict back into register
+ * bytes and errors. It does no I/O: the caller moves
  * the program and the answers between the data RAM and these structs
  * (biss_cd_shm_put / biss_cd_shm_get work on a data RAM image).
  *
- * Frames as built here (CDM = master bit per frame, MSB first everywhere):
- *   register access  S=1, CTS=1, ID(3), ADR(7), CRC4(4), R, W, then per
- *                    byte: S=1, WAIT, D(8), CRC4(4), P=0; finally S=0
- *   BiSS command     S=1, CTS=0, IDS(8, first = ID 0), CMD(2), CRC4(4),
- *                    8 IDA slots (CDM 0), P=0
+ * Frames as built here (CDM = master bit per frame, MSB first everywhere;
+ * classes in brackets, CRC = the firmware's CRC4 bits):
+ *   register access  S=1, CTS=1 ID(3) ADR(7) [DATA], CRC, R W [ECHO], then
+ *                    per byte: S=1, WAIT, D(8), CRC4(4), P=0 (read: D 0s
+ *                    [DATA], CRC 0s [CHECK]; write: D [ECHO], CRC [ECHO]);
+ *                    finally S=0
+ *   BiSS command     S=1, CTS=0 IDS(8, first = ID 0) CMD(2) [DATA], CRC,
+ *                    8 IDA slots (CDM 0), P=0 (IDA test: inverted if the
+ *                    IDA answers differ from the IDs addressed)
  * and then BISS_CD_TAIL_ZEROS steps of CDM 0 (none: the firmware itself
  * sends 14 frames of CDM 0 after a program before it starts the next).
  * CRC4: polynomial 0x13 (x^4+x+1), start 0, sent inverted, over CTS and
@@ -29,10 +35,14 @@
 #include <stdint.h>
 
 #define BISS_CD_MAX_BYTES  64                      /* bytes per register access */
-#define BISS_CD_PROG_BYTES (BISS_CD_MAX_STEPS / 4) /* 256: 4 steps a byte */
+#define BISS_CD_PROG_BYTES (BISS_CD_MAX_STEPS / 2) /* 512: 2 steps a byte */
 #define BISS_CD_RESP_BYTES (BISS_CD_MAX_STEPS / 8) /* 128: 8 answers a byte */
 #define BISS_CD_IDLE_ZEROS 14                      /* CDM 0 frames before a frame's S */
 #define BISS_CD_TAIL_ZEROS 0 /* CDM 0 steps after a frame ends (biss_cd_build.c) */
+/* A program step: op BISS_CDOP_* and class BISS_CDCL_* (biss_shm.h). */
+#define BISS_CD_STEP(op, cl) ((uint8_t)((op) | (cl) << 2))
+#define BISS_CD_STEP_OP(s)   ((s)&3u)
+#define BISS_CD_STEP_CL(s)   ((s) >> 2 & 3u)
 
 typedef enum {
     BISS_CD_OK = 0,
@@ -46,6 +56,7 @@ typedef enum {
     BISS_CD_E_CRC,      /* read: CRC4 of a data byte wrong */
     BISS_CD_E_ECHO,     /* write: data or CRC4 not echoed as sent */
     BISS_CD_E_IDA,      /* command: IDA bits differ from the addressed IDs */
+    BISS_CD_E_WITHHELD, /* command: IDA test failed, P sent inverted: not executed */
 } biss_cd_err;
 
 typedef enum { BISS_CD_RAW, BISS_CD_READ, BISS_CD_WRITE, BISS_CD_COMMAND } biss_cd_kind;
@@ -61,7 +72,7 @@ typedef struct {
 
 /* A program and where its fields are. Build it with a biss_cd_build_*. */
 typedef struct {
-    uint8_t op[BISS_CD_MAX_STEPS]; /* BISS_CDOP_* per step */
+    uint8_t op[BISS_CD_MAX_STEPS]; /* BISS_CD_STEP(op, class) per step */
     uint16_t len;                  /* steps, 1..BISS_CD_MAX_STEPS */
     biss_cd_kind kind;
     uint8_t id, addr, count;          /* register access */
@@ -69,15 +80,17 @@ typedef struct {
     uint8_t ids, cmd;                 /* command: ids bit i = slave ID i */
     uint16_t rw;                      /* register access: R step (W is rw + 1) */
     biss_cd_byte_steps byte[BISS_CD_MAX_BYTES];
-    uint16_t ida; /* command: step whose answer is IDA slot 0 (slot i: ida + i) */
-    uint16_t end; /* the step ending the control frame: last S = 0, or a command's P */
+    uint16_t ida;  /* command: step whose answer is IDA slot 0 (slot i: ida + i) */
+    bool ida_test; /* command: the firmware withholds P unless the IDA answers are ids */
+    uint16_t end;  /* the step ending the control frame: last S = 0, or a command's P */
 } biss_cd_prog;
 
 /* What the firmware reports for a program (the data RAM words). */
 typedef struct {
-    uint32_t seq;    /* ST_CD_SEQ: CD_CMD of the program ended */
-    uint16_t status; /* BISS_CDST_* */
-    uint16_t steps;  /* steps executed */
+    uint32_t seq;   /* ST_CD_SEQ: CD_CMD of the program ended */
+    uint8_t status; /* BISS_CDST_* */
+    uint8_t bytes;  /* register bytes transferred correctly (the firmware's count) */
+    uint16_t steps; /* steps executed: answers are recorded below it */
     uint8_t resp[BISS_CD_RESP_BYTES];
 } biss_cd_answer;
 
@@ -127,12 +140,13 @@ biss_cd_err biss_cd_build_read(biss_cd_prog *p, unsigned id, unsigned addr, unsi
 biss_cd_err biss_cd_build_write(biss_cd_prog *p, unsigned id, unsigned addr, const uint8_t *data,
                                 unsigned count);
 /* BiSS command cmd (0..3) to the slaves in ids (bit i = ID i; 0 = all,
- * broadcast without IDA). */
-biss_cd_err biss_cd_build_command(biss_cd_prog *p, uint8_t ids, unsigned cmd);
+ * broadcast without IDA). ida_test: the firmware checks the IDA answers
+ * before P and withholds the command (P inverted) if they are not ids. */
+biss_cd_err biss_cd_build_command(biss_cd_prog *p, uint8_t ids, unsigned cmd, bool ida_test);
 /* frames (1..BISS_CD_MAX_STEPS) of CDM 0: lets a slave left inside a
  * frame (after BISS_CD_E_NO_START or BISS_CD_E_FRAME) finish it and re-arm. */
 biss_cd_err biss_cd_build_idle(biss_cd_prog *p, unsigned frames);
-/* Any program: n (1..BISS_CD_MAX_STEPS) BISS_CDOP_* values. */
+/* Any program: n (1..BISS_CD_MAX_STEPS) BISS_CD_STEP values. */
 biss_cd_err biss_cd_build_raw(biss_cd_prog *p, const uint8_t *ops, unsigned n);
 
 /* ---- answers (biss_cd_parse.c) ---- */
@@ -145,10 +159,14 @@ const char *biss_cd_strerror(biss_cd_err e);
 
 /* ---- data RAM words (biss_cd_shm.c) ---- */
 
-/* The program as BISS_CD_PROG holds it: step i in bits 2(i%4)+1..2(i%4) of
- * byte i/4; steps past the length are END. */
+/* The program as BISS_CD_PROG holds it: step i in the low nibble of byte
+ * i/2 if i is even, the high nibble if odd; steps past the length are 0. */
 void biss_cd_pack(const biss_cd_prog *p, uint8_t prog[BISS_CD_PROG_BYTES]);
-/* Writes BISS_CD_PROG, BISS_CD_STEPS and BISS_CD_WAIT_LIMIT into a data RAM
+/* The word at BISS_CD_IDA_STEP: P's step | the IDs expected << 16 for a
+ * command with IDA test, else 0. */
+uint32_t biss_cd_ida_word(const biss_cd_prog *p);
+/* Writes BISS_CD_PROG, BISS_CD_STEPS, BISS_CD_WAIT_LIMIT and the IDA test
+ * (BISS_CD_IDA_STEP, BISS_CD_IDA_EXPECT) into a data RAM
  * image (at least BISS_CD_RESP bytes). CD_CMD is the caller's to increment
  * afterwards, so the firmware never starts half a program. */
 biss_cd_err biss_cd_shm_put(const biss_cd_prog *p, uint16_t wait_limit, uint8_t *dram,

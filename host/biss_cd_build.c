@@ -17,13 +17,21 @@ static void start(biss_cd_prog *p, biss_cd_kind kind) {
 }
 
 /* Callers size the program before putting steps, so this cannot overflow. */
-static void put(biss_cd_prog *p, unsigned op) {
-    p->op[p->len++] = (uint8_t)op;
+static void put(biss_cd_prog *p, unsigned step) {
+    p->op[p->len++] = (uint8_t)step;
 }
 
-static void put_bits(biss_cd_prog *p, uint32_t value, unsigned nbits) {
+/* nbits of value, MSB first, as steps of class cl. */
+static void put_bits(biss_cd_prog *p, uint32_t value, unsigned nbits, unsigned cl) {
     for (unsigned i = nbits; i-- > 0;) {
-        put(p, (value >> i) & 1u);
+        put(p, BISS_CD_STEP((value >> i) & 1u, cl));
+    }
+}
+
+/* The 4 CRC4 bits of the CDM fed so far, computed and sent by the firmware. */
+static void put_crc(biss_cd_prog *p, unsigned cl) {
+    for (unsigned i = 0; i < 4; i++) {
+        put(p, BISS_CD_STEP(BISS_CDOP_CRC, cl));
     }
 }
 
@@ -33,10 +41,11 @@ static void put_zeros(biss_cd_prog *p, unsigned n) {
     }
 }
 
+/* S, then the 11 header bits the firmware's CRC4 covers, then that CRC. */
 static void put_header(biss_cd_prog *p, uint16_t header) {
     put(p, BISS_CDOP_1); /* S */
-    put_bits(p, header, 11);
-    put_bits(p, biss_cd_crc4_line(header, 11), 4);
+    put_bits(p, header, 11, BISS_CDCL_DATA);
+    put_crc(p, BISS_CDCL_NONE);
 }
 
 /* After its frame ends (on a CDM 0) a slave wants 14 zeros in a row before
@@ -48,17 +57,24 @@ static void put_tail(biss_cd_prog *p) {
     put_zeros(p, BISS_CD_TAIL_ZEROS);
 }
 
-/* One register byte after its master S: read sends zeros, write sends the
- * byte and its line CRC. */
+/* One register byte with its master S. Read: zeros out, the data into
+ * CRC_S, the slave's CRC checked against it. Write: the byte and the
+ * firmware's CRC of it out, each bit's echo checked. The WAIT restarts
+ * both CRC registers. */
 static void put_byte(biss_cd_prog *p, biss_cd_byte_steps *at, bool write, uint8_t value) {
     at->start = p->len;
     put(p, BISS_CDOP_1);
     at->wait = p->len;
     put(p, BISS_CDOP_WAIT);
     at->data = p->len;
-    put_bits(p, write ? value : 0u, 8);
-    at->crc = p->len;
-    put_bits(p, write ? biss_cd_crc4_line(value, 8) : 0u, 4);
+    at->crc = (uint16_t)(p->len + 8u);
+    if (write) {
+        put_bits(p, value, 8, BISS_CDCL_ECHO);
+        put_crc(p, BISS_CDCL_ECHO);
+    } else {
+        put_bits(p, 0, 8, BISS_CDCL_DATA);
+        put_bits(p, 0, 4, BISS_CDCL_CHECK);
+    }
     at->stop = p->len;
     put(p, BISS_CDOP_0);
 }
@@ -77,8 +93,7 @@ static biss_cd_err build_register(biss_cd_prog *p, bool write, unsigned id, unsi
     p->count = (uint8_t)count;
     put_header(p, biss_cd_reg_header(p->id, p->addr));
     p->rw = p->len;
-    put(p, write ? BISS_CDOP_0 : BISS_CDOP_1); /* R */
-    put(p, write ? BISS_CDOP_1 : BISS_CDOP_0); /* W */
+    put_bits(p, write ? 1u : 2u, 2, BISS_CDCL_ECHO); /* R W, echoed by the slave */
     for (unsigned i = 0; i < count; i++) {
         if (write) {
             p->wdata[i] = data[i];
@@ -100,7 +115,7 @@ biss_cd_err biss_cd_build_write(biss_cd_prog *p, unsigned id, unsigned addr, con
     return build_register(p, true, id, addr, data, count);
 }
 
-biss_cd_err biss_cd_build_command(biss_cd_prog *p, uint8_t ids, unsigned cmd) {
+biss_cd_err biss_cd_build_command(biss_cd_prog *p, uint8_t ids, unsigned cmd, bool ida_test) {
     if (cmd > 3) {
         return BISS_CD_E_ARG;
     }
@@ -111,8 +126,9 @@ biss_cd_err biss_cd_build_command(biss_cd_prog *p, uint8_t ids, unsigned cmd) {
     put_header(p, biss_cd_cmd_header(ids, p->cmd));
     /* IDA slot 0 is the CDS right after the last CRC bit */
     p->ida = (uint16_t)(p->len - 1);
-    put_bits(p, 0, 8); /* the IDA slots */
+    put_bits(p, 0, 8, BISS_CDCL_NONE); /* the IDA slots */
     p->end = p->len;
+    p->ida_test = ida_test;
     put(p, BISS_CDOP_0); /* P: the slaves execute the command */
     put_tail(p);
     return BISS_CD_OK;
@@ -139,7 +155,7 @@ biss_cd_err biss_cd_build_raw(biss_cd_prog *p, const uint8_t *ops, unsigned n) {
     }
     start(p, BISS_CD_RAW);
     for (unsigned i = 0; i < n; i++) {
-        if (ops[i] > BISS_CDOP_END) {
+        if (ops[i] > 15) {
             return BISS_CD_E_ARG;
         }
         put(p, ops[i]);

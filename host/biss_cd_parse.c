@@ -19,14 +19,37 @@ static unsigned answer_bits(const biss_cd_answer *a, unsigned step, unsigned nbi
     return v;
 }
 
+/* The firmware's verdict alone (a raw program has no fields to parse). */
+static biss_cd_err fw_error(const biss_cd_answer *a) {
+    switch (a->status) {
+    case BISS_CDST_ERR_WAIT:
+        return BISS_CD_E_NO_START;
+    case BISS_CDST_ERR_FRAME:
+        return BISS_CD_E_FRAME;
+    case BISS_CDST_ERR_CRC:
+        return BISS_CD_E_CRC;
+    case BISS_CDST_ERR_ECHO:
+        return BISS_CD_E_ECHO;
+    case BISS_CDST_ERR_IDA:
+        return BISS_CD_E_WITHHELD;
+    default:
+        return BISS_CD_OK;
+    }
+}
+
 /* Steps below the result have their answers recorded. A WAIT that timed
  * out stops at the WAIT itself (the S before it was answered in the first
- * WAIT frame). A failed frame loses the answer of the step sent last. */
+ * WAIT frame); an error ends the control frame at a master S, sent as 0,
+ * whose frame records the answer before it. A failed frame loses the
+ * answer of the step sent last. */
 static unsigned answered_limit(const biss_cd_prog *p, const biss_cd_answer *a) {
     switch (a->status) {
     case BISS_CDST_DONE:
         return p->len;
     case BISS_CDST_ERR_WAIT:
+    case BISS_CDST_ERR_CRC:
+    case BISS_CDST_ERR_ECHO:
+    case BISS_CDST_ERR_IDA:
         return a->steps;
     case BISS_CDST_ERR_FRAME:
         return a->steps > 0 ? a->steps - 1u : 0u;
@@ -41,6 +64,9 @@ static biss_cd_err status_error(const biss_cd_answer *a) {
     case BISS_CDST_DONE:
     case BISS_CDST_ERR_WAIT:  /* placed at its byte by parse_byte */
     case BISS_CDST_ERR_FRAME: /* placed after the bytes that made it */
+    case BISS_CDST_ERR_CRC:   /* these three: found again in the answers */
+    case BISS_CDST_ERR_ECHO:
+    case BISS_CDST_ERR_IDA:
         return BISS_CD_OK;
     case BISS_CDST_ERR_STEPS:
         return BISS_CD_E_REFUSED;
@@ -112,12 +138,16 @@ static void parse_register(const biss_cd_prog *p, const biss_cd_answer *a, biss_
         biss_cd_err e = parse_byte(p, a, limit, i, &r->byte[i]);
         if (r->err == BISS_CD_OK) {
             r->err = e;
-            r->good_bytes += e == BISS_CD_OK;
         }
     }
     if (r->err == BISS_CD_OK && !frame_ended(p, a, limit)) {
         r->err = BISS_CD_E_FRAME;
     }
+    bool checked = a->status == BISS_CDST_ERR_CRC || a->status == BISS_CDST_ERR_ECHO;
+    if (r->err == BISS_CD_OK && checked) {
+        r->err = fw_error(a); /* the firmware saw what the answers do not show */
+    }
+    r->good_bytes = a->bytes;
 }
 
 static void parse_command(const biss_cd_prog *p, const biss_cd_answer *a, biss_cd_result *r) {
@@ -135,17 +165,8 @@ static void parse_command(const biss_cd_prog *p, const biss_cd_answer *a, biss_c
     if (r->err == BISS_CD_OK && r->ida != r->ida_expected) {
         r->err = BISS_CD_E_IDA;
     }
-}
-
-/* A raw program has no fields: only the firmware's verdict. */
-static biss_cd_err raw_error(const biss_cd_answer *a) {
-    switch (a->status) {
-    case BISS_CDST_ERR_WAIT:
-        return BISS_CD_E_NO_START;
-    case BISS_CDST_ERR_FRAME:
-        return BISS_CD_E_FRAME;
-    default:
-        return BISS_CD_OK;
+    if (r->err == BISS_CD_E_IDA && a->status == BISS_CDST_ERR_IDA) {
+        r->err = BISS_CD_E_WITHHELD;
     }
 }
 
@@ -168,7 +189,8 @@ biss_cd_err biss_cd_parse(const biss_cd_prog *p, const biss_cd_answer *a, biss_c
         parse_command(p, a, r);
         break;
     case BISS_CD_RAW:
-        r->err = raw_error(a);
+        r->err = fw_error(a);
+        r->good_bytes = a->bytes;
         break;
     }
     return r->err;
@@ -187,6 +209,7 @@ const char *biss_cd_strerror(biss_cd_err e) {
         [BISS_CD_E_CRC] = "register data CRC error",
         [BISS_CD_E_ECHO] = "write not echoed as sent",
         [BISS_CD_E_IDA] = "IDA bits differ from the addressed slaves",
+        [BISS_CD_E_WITHHELD] = "IDA test failed: command withheld",
     };
     if ((unsigned)e >= sizeof text / sizeof text[0] || !text[e]) {
         return "unknown error";

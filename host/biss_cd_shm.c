@@ -18,12 +18,17 @@ static uint32_t get32(const uint8_t *at) {
 }
 
 void biss_cd_pack(const biss_cd_prog *p, uint8_t prog[BISS_CD_PROG_BYTES]) {
-    /* all ones: every step past the length reads as END */
-    memset(prog, 0xff, BISS_CD_PROG_BYTES);
+    memset(prog, 0, BISS_CD_PROG_BYTES);
     for (unsigned i = 0; i < p->len && i < BISS_CD_MAX_STEPS; i++) {
-        unsigned shift = 2u * (i % 4u);
-        prog[i / 4] = (uint8_t)((prog[i / 4] & ~(3u << shift)) | (p->op[i] & 3u) << shift);
+        prog[i / 2] |= (uint8_t)((p->op[i] & 15u) << 4 * (i % 2));
     }
+}
+
+uint32_t biss_cd_ida_word(const biss_cd_prog *p) {
+    if (p->kind != BISS_CD_COMMAND || !p->ida_test) {
+        return 0;
+    }
+    return p->end | (uint32_t)p->ids << 16;
 }
 
 biss_cd_err biss_cd_shm_put(const biss_cd_prog *p, uint16_t wait_limit, uint8_t *dram,
@@ -37,6 +42,9 @@ biss_cd_err biss_cd_shm_put(const biss_cd_prog *p, uint16_t wait_limit, uint8_t 
     biss_cd_pack(p, dram + BISS_CD_PROG);
     put16(dram + BISS_CD_STEPS, p->len);
     put16(dram + BISS_CD_WAIT_LIMIT, wait_limit);
+    uint32_t ida = biss_cd_ida_word(p);
+    put16(dram + BISS_CD_IDA_STEP, (uint16_t)ida);
+    put16(dram + BISS_CD_IDA_EXPECT, (uint16_t)(ida >> 16));
     return BISS_CD_OK;
 }
 
@@ -45,7 +53,8 @@ biss_cd_err biss_cd_shm_get(const uint8_t *dram, size_t dram_len, biss_cd_answer
         return BISS_CD_E_ARG;
     }
     a->seq = get32(dram + BISS_ST_CD_SEQ);
-    a->status = get16(dram + BISS_ST_CD_STATUS);
+    a->status = dram[BISS_ST_CD_STATUS];
+    a->bytes = dram[BISS_ST_CD_STATUS + 1];
     a->steps = get16(dram + BISS_ST_CD_STATUS + 2);
     memcpy(a->resp, dram + BISS_CD_RESP, BISS_CD_RESP_BYTES);
     return BISS_CD_OK;

@@ -10,8 +10,11 @@
 #include <string.h>
 
 _Static_assert(BISS_CD_OP_0 == BISS_CDOP_0 && BISS_CD_OP_1 == BISS_CDOP_1 &&
-                   BISS_CD_OP_WAIT == BISS_CDOP_WAIT && BISS_CD_OP_END == BISS_CDOP_END,
+                   BISS_CD_OP_WAIT == BISS_CDOP_WAIT && BISS_CD_OP_CRC == BISS_CDOP_CRC,
                "program ops match the shm codes");
+_Static_assert(BISS_CD_CL_DATA == BISS_CDCL_DATA << 2 && BISS_CD_CL_CHECK == BISS_CDCL_CHECK << 2 &&
+                   BISS_CD_CL_ECHO == BISS_CDCL_ECHO << 2,
+               "program classes match the shm codes");
 
 struct cd_wait {
     uint32_t cmd;
@@ -49,9 +52,12 @@ static int put_program(biss_t *h, const biss_cd_prog *p, unsigned wait_limit, ui
     }
     uint8_t prog[BISS_CD_PROG_BYTES];
     biss_cd_pack(p, prog);
-    rc = biss_dram_write(h, BISS_CD_PROG, prog, (p->len + 15u) / 16u * 4u);
+    rc = biss_dram_write(h, BISS_CD_PROG, prog, (p->len + 7u) / 8u * 4u);
     if (!rc) {
         rc = biss_dram_write32(h, BISS_CD_STEPS, p->len | (uint32_t)wait_limit << 16);
+    }
+    if (!rc) {
+        rc = biss_dram_write32(h, BISS_CD_IDA_STEP, biss_cd_ida_word(p));
     }
     atomic_thread_fence(memory_order_seq_cst);
     *cmd = cd.cmd + 1;
@@ -70,6 +76,7 @@ static int get_answer(biss_t *h, biss_cd_answer *a) {
     }
     a->seq = cd.seq;
     a->status = cd.status;
+    a->bytes = cd.bytes;
     a->steps = cd.steps_done;
     return rc;
 }
@@ -141,12 +148,15 @@ int biss_cd_error(biss_cd_err e) {
     case BISS_CD_E_NO_START:
         return BISS_E_CD_WAIT;
     case BISS_CD_E_CRC:
+        return BISS_E_CD_CRC;
     case BISS_CD_E_ECHO:
-        return BISS_E_CD_ANSWER;
+        return BISS_E_CD_ECHO;
     case BISS_CD_E_IDA:
         return BISS_E_CD_IDA;
+    case BISS_CD_E_WITHHELD:
+        return BISS_E_CD_WITHHELD;
     }
-    return BISS_E_CD_ANSWER;
+    return BISS_E_CD_CRC;
 }
 
 /* The firmware's verdict on a raw program (no fields to parse). */
@@ -160,6 +170,12 @@ static int status_error(unsigned status) {
         return BISS_E_CD_STEPS;
     case BISS_CDST_ERR_FRAME:
         return BISS_E_CD_FRAME;
+    case BISS_CDST_ERR_CRC:
+        return BISS_E_CD_CRC;
+    case BISS_CDST_ERR_ECHO:
+        return BISS_E_CD_ECHO;
+    case BISS_CDST_ERR_IDA:
+        return BISS_E_CD_WITHHELD;
     default:
         return BISS_E_TIMEOUT; /* still busy or idle: no verdict */
     }
@@ -174,9 +190,11 @@ int biss_cd_run(biss_t *h, const uint8_t *ops, unsigned n, unsigned wait_limit, 
         return BISS_E_CD_STEPS;
     }
     for (unsigned i = 0; i < n; i++) {
-        /* biss_shm.h: a WAIT is never followed by another WAIT */
-        if (ops[i] > BISS_CD_OP_END ||
-            (i > 0 && ops[i] == BISS_CD_OP_WAIT && ops[i - 1] == BISS_CD_OP_WAIT)) {
+        /* biss_shm.h: a WAIT (class NONE) is never followed by a WAIT or a CRC bit */
+        bool wait = (ops[i] & 3u) == BISS_CD_OP_WAIT;
+        bool after_wait = i > 0 && ops[i - 1] == BISS_CD_OP_WAIT;
+        if (ops[i] > 15 || (wait && ops[i] != BISS_CD_OP_WAIT) ||
+            (after_wait && (wait || (ops[i] & 3u) == BISS_CD_OP_CRC))) {
             return BISS_E_INVAL;
         }
     }

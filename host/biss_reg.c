@@ -35,8 +35,8 @@ static int build_write(biss_cd_job *j, unsigned id, uint8_t addr, const uint8_t 
     return biss_cd_error(biss_cd_build_write(&j->prog, id, addr, buf, n));
 }
 
-static int build_command(biss_cd_job *j, uint8_t ids, unsigned cmd) {
-    return biss_cd_error(biss_cd_build_command(&j->prog, ids, cmd));
+static int build_command(biss_cd_job *j, uint8_t ids, unsigned cmd, bool check_ida) {
+    return biss_cd_error(biss_cd_build_command(&j->prog, ids, cmd, check_ida));
 }
 
 static int parse(biss_cd_job *j) {
@@ -86,7 +86,7 @@ int biss_reg_write(biss_t *h, unsigned id, uint8_t addr, const uint8_t *buf, uns
     return rc;
 }
 
-int biss_command(biss_t *h, uint8_t ids, unsigned cmd, uint8_t *ida) {
+int biss_command(biss_t *h, uint8_t ids, unsigned cmd, bool check_ida, uint8_t *ida) {
     if (!h || cmd > 3) {
         return BISS_E_INVAL;
     }
@@ -94,7 +94,7 @@ int biss_command(biss_t *h, uint8_t ids, unsigned cmd, uint8_t *ida) {
     if (!j) {
         return BISS_E_NOMEM;
     }
-    int rc = run_job(h, j, build_command(j, ids, cmd));
+    int rc = run_job(h, j, build_command(j, ids, cmd, check_ida));
     if (ida) {
         *ida = j->result.ida;
     }
@@ -142,7 +142,7 @@ int biss_reg_write_start(biss_t *h, unsigned id, uint8_t addr, const uint8_t *bu
     return start_job(h, j, build_write(j, id, addr, buf, n), job);
 }
 
-int biss_command_start(biss_t *h, uint8_t ids, unsigned cmd, biss_cd_job **job) {
+int biss_command_start(biss_t *h, uint8_t ids, unsigned cmd, bool check_ida, biss_cd_job **job) {
     if (!h || !job || cmd > 3) {
         return BISS_E_INVAL;
     }
@@ -151,7 +151,7 @@ int biss_command_start(biss_t *h, uint8_t ids, unsigned cmd, biss_cd_job **job) 
         *job = NULL;
         return BISS_E_NOMEM;
     }
-    return start_job(h, j, build_command(j, ids, cmd), job);
+    return start_job(h, j, build_command(j, ids, cmd, check_ida), job);
 }
 
 int biss_cd_poll(biss_t *h, biss_cd_job *j) {

@@ -14,6 +14,7 @@ struct bissctl_opts {
     bool config_given; /* any configuration option */
     bool no_configure; /* --no-configure: use what the firmware runs */
     bool dump;         /* reg-read --dump: a hex dump */
+    bool ida_test;     /* command --ida-test: withhold the command unless IDA = IDS */
     const char *command;
     unsigned count;      /* read -n */
     unsigned run_ms;     /* run --ms */

@@ -246,7 +246,7 @@ int bissctl_command(biss_t *h, const struct bissctl_opts *o) {
         fprintf(stderr, "bissctl: command needs an ID mask 0..0xff and a command 0..3\n");
         return BISSCTL_USAGE;
     }
-    int rc = biss_command(h, ids, cmd, &ida);
+    int rc = biss_command(h, ids, cmd, o->ida_test, &ida);
     if (rc) {
         return bissctl_fail("command", rc);
     }

@@ -74,9 +74,11 @@ static const char *command_help(const char *command) {
                "  register, or with --dump a hex dump (16 a line, with ASCII).\n";
     }
     if (strcmp(command, "command") == 0) {
-        return "bissctl [options] command IDS CMD\n"
+        return "bissctl [options] command IDS CMD [--ida-test]\n"
                "  Sends BiSS command CMD (0..3) to the slaves in the ID mask IDS (bit i =\n"
-               "  ID i; 0 = all, a broadcast without acknowledge); prints the IDA answers.\n";
+               "  ID i; 0 = all, a broadcast without acknowledge); prints the IDA answers.\n"
+               "  --ida-test: the firmware checks them before the stop bit and withholds\n"
+               "  the command unless they equal IDS (exit status 1, 'withheld').\n";
     }
     if (strcmp(command, "reg-write") == 0) {
         return "bissctl [options] reg-write [--id ID] ADDR BYTE...\n"
@@ -199,6 +201,7 @@ enum {
     OPT_MS,
     OPT_ID,
     OPT_DUMP,
+    OPT_IDA_TEST,
 };
 
 static const struct option long_opts[] = {
@@ -222,6 +225,7 @@ static const struct option long_opts[] = {
     {"ms", required_argument, NULL, OPT_MS},
     {"id", required_argument, NULL, OPT_ID},
     {"dump", no_argument, NULL, OPT_DUMP},
+    {"ida-test", no_argument, NULL, OPT_IDA_TEST},
     {"help", no_argument, NULL, 'h'},
     {NULL, 0, NULL, 0},
 };
@@ -373,6 +377,9 @@ static int take_command_opt(int c, const char *arg, struct bissctl_opts *o) {
         return 0;
     case OPT_DUMP:
         o->dump = true;
+        return 0;
+    case OPT_IDA_TEST:
+        o->ida_test = true;
         return 0;
     case 'h':
         o->help = true;

@@ -76,8 +76,9 @@ static void usage(FILE *f) {
                "  --reg-read ID:ADDR[:N]       read N (1..64) registers of slave ID through\n"
                "                               control frames, while positions go on\n"
                "  --reg-write ID:ADDR:B[,B..]  write bytes (hex) to consecutive registers\n"
-               "  --command IDS:CMD            BiSS command CMD (0..3) to the slaves in the\n"
-               "                               hex ID mask IDS (0: all, broadcast)\n"
+               "  --command IDS:CMD[:T]        BiSS command CMD (0..3) to the slaves in the\n"
+               "                               hex ID mask IDS (0: all, broadcast); T = 1:\n"
+               "                               IDA test (withheld unless IDA = IDS)\n"
                "  -h, --help         this text\n");
 }
 
@@ -178,9 +179,9 @@ static int set_control(struct options *o, const char *a, const char *v) {
             e = f[2] <= 0xff ? biss_cd_build_write(&o->cd, f[0], f[1], bytes, (unsigned)n - 2) : e;
         }
     } else {
-        n = parse_fields(v, f, 2, 0);
-        if (n == 2 && f[0] <= 0xff) {
-            e = biss_cd_build_command(&o->cd, (uint8_t)f[0], f[1]);
+        n = parse_fields(v, f, 3, 0);
+        if (n >= 2 && f[0] <= 0xff && (n == 2 || f[2] <= 1)) {
+            e = biss_cd_build_command(&o->cd, (uint8_t)f[0], f[1], n == 3 && f[2]);
         }
     }
     if (e != BISS_CD_OK) {

@@ -19,6 +19,7 @@ void fw_cd_issue(struct fw_cd *cd, struct bench *b, const biss_cd_prog *p, uint1
     biss_cd_shm_put(p, wait_limit, dram, sizeof dram);
     pru_host_write(c, base(b) + BISS_CD_PROG, dram + BISS_CD_PROG, BISS_CD_PROG_BYTES);
     pru_host_write(c, base(b) + BISS_CD_STEPS, dram + BISS_CD_STEPS, 4); /* length, limit */
+    pru_host_write(c, base(b) + BISS_CD_IDA_STEP, dram + BISS_CD_IDA_STEP, 4);
     pru_host_read(c, base(b) + BISS_CD_CMD, &cd->cmd, 4);
     cd->cmd++;
     pru_host_write(c, base(b) + BISS_CD_CMD, &cd->cmd, 4);
@@ -40,6 +41,7 @@ int fw_cd_poll(struct fw_cd *cd) {
     biss_cd_answer a;
     biss_cd_shm_get(dram, sizeof dram, &a);
     cd->err = biss_cd_parse(cd->prog, &a, &cd->result);
+    cd->status = a.status;
     cd->frames = link_frames(bench_link(cd->b)) - cd->frame0;
     cd->done = 1;
     return 1;

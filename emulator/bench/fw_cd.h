@@ -19,6 +19,7 @@ struct fw_cd {
     int done;
     biss_cd_err err;
     biss_cd_result result;
+    unsigned status; /* the firmware's BISS_CDST_* */
 };
 
 /* Hands the program to the firmware (it starts after 14 frames of CDM 0). */

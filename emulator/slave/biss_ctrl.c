@@ -212,7 +212,9 @@ int biss_ctrl_cdm(biss_ctrl *c, int cdm) {
         }
         break;
     case CTRL_CMD_STOP:
-        if (c->addressed) {
+        if (cdm) {
+            c->commands_dropped += c->addressed;
+        } else if (c->addressed) {
             c->commands++;
             c->last_cmd = c->cmd;
         }

@@ -29,8 +29,11 @@
  *               above), 0 = end of the frame
  *   command     after the CRC, 8 IDA slots: CDS after the CRC and after each
  *               of the first 7 slots is 1 in slot i if this slave has ID i and
- *               was addressed (never for a broadcast, IDS = 0); then P; the
- *               command is executed (recorded) when P arrives
+ *               was addressed (never for a broadcast, IDS = 0); then P = 0,
+ *               on which the command is executed (recorded). A 1 where P
+ *               belongs breaks the frame: the command is dropped (counted).
+ *               (TIDEP0022 and the Posital manual give the stop bit as 0;
+ *               a master's IDA test withholds a command by inverting it.)
  *
  * After a frame ends the slave needs 14 zero CDMs again before a new S. */
 #ifndef BISS_CTRL_H
@@ -76,7 +79,7 @@ typedef struct {
     bool addressed, broadcast;
 
     /* what happened, for the bench and tests */
-    unsigned long crc_errors, reads, writes, write_refused, commands, frames;
+    unsigned long crc_errors, reads, writes, write_refused, commands, commands_dropped, frames;
     int last_cmd; /* -1 until a command executes */
     int last_addr, last_value;
 } biss_ctrl;

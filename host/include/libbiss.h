@@ -69,7 +69,7 @@ enum biss_error {
     BISS_E_CD_WAIT = -35,        /* the slave's S did not come within the wait limit */
     BISS_E_CD_FRAME = -36,       /* a frame failed while the program ran */
     BISS_E_CD_STEPS = -37,       /* program length out of range (1..1024) */
-    BISS_E_CD_ANSWER = -38,      /* the slave's answer does not check (echo or CRC4) */
+    BISS_E_CD_CRC = -38,         /* register data came back with a wrong CRC4 */
     BISS_E_CD_NO_ECHO = -39,     /* no slave took the control frame (R/W not echoed) */
     BISS_E_CD_IDA = -40,         /* command: IDA bits differ from the addressed IDs */
     /* the firmware refused the configuration (ST_CFG_ERROR = BISS_CFGERR_*) */
@@ -81,7 +81,9 @@ enum biss_error {
     BISS_E_FW_EW = -46,
     BISS_E_FW_IEP_PERIOD = -47,
     BISS_E_FW_SSI = -48,
-    BISS_E_FW_UNKNOWN = -49, /* an ST_CFG_ERROR code this library does not know */
+    BISS_E_FW_UNKNOWN = -49,  /* an ST_CFG_ERROR code this library does not know */
+    BISS_E_CD_ECHO = -50,     /* a write (data or CRC4) was not echoed as sent */
+    BISS_E_CD_WITHHELD = -51, /* IDA test failed: the command was withheld (not executed) */
 };
 
 /* Static text for any return value of this library (never NULL). */
@@ -256,18 +258,26 @@ int biss_wait_sample(biss_t *h, uint32_t after_frame, unsigned timeout_ms, struc
 int biss_line_delay(biss_t *h, struct biss_line_delay *d);
 
 /* ---- control communication (CDM/CDS, one bit per frame) ---------------- */
-/* A raw program for the firmware: ops[i] is one of 0 (send CDM 0), 1 (send
+/* A raw program for the firmware: ops[i] is an op, 0 (send CDM 0), 1 (send
  * CDM 1), 2 (wait: CDM 0 until a frame's CDS is 1, then the next step in
- * that frame), 3 (end); at most 1024 steps. resp (at least (n + 7) / 8
- * bytes) gets bit i (byte i / 8, bit i % 8) = the CDS that answered step
- * i. A WAIT gives up after wait_limit frames with CDS 0 (0: at once; at
- * most 65535); a WAIT may not follow a WAIT. The firmware first sends 14
- * frames with CDM 0. In host-trigger mode the call triggers the frames it
- * needs. Blocks at most timeout_ms (emulator: simulated). */
-#define BISS_CD_OP_0    0
-#define BISS_CD_OP_1    1
-#define BISS_CD_OP_WAIT 2
-#define BISS_CD_OP_END  3
+ * that frame) or 3 (send the next bit of the firmware's CRC4 of the DATA
+ * and ECHO bits sent, inverted), or'ed with a class: DATA (the bit into
+ * that CRC, its answer into a second one), CHECK (the answer must be the
+ * next bit of the second CRC, inverted), ECHO (as DATA, and the answer must
+ * equal the bit sent); at most 1024 steps (include/biss/biss_shm.h has the
+ * details). resp (at least (n + 7) / 8 bytes) gets bit i (byte i / 8, bit
+ * i % 8) = the CDS that answered step i. A WAIT gives up after wait_limit
+ * frames with CDS 0 (0: at once; at most 65535); a WAIT has no class and is
+ * not followed by a WAIT or a CRC bit. The firmware first sends 14 frames
+ * with CDM 0. In host-trigger mode the call triggers the frames it needs.
+ * Blocks at most timeout_ms (emulator: simulated). */
+#define BISS_CD_OP_0     0
+#define BISS_CD_OP_1     1
+#define BISS_CD_OP_WAIT  2
+#define BISS_CD_OP_CRC   3
+#define BISS_CD_CL_DATA  4
+#define BISS_CD_CL_CHECK 8
+#define BISS_CD_CL_ECHO  12
 int biss_cd_run(biss_t *h, const uint8_t *ops, unsigned n, unsigned wait_limit, unsigned timeout_ms,
                 uint8_t *resp);
 
@@ -280,8 +290,12 @@ int biss_cd_run(biss_t *h, const uint8_t *ops, unsigned n, unsigned wait_limit, 
 int biss_reg_read(biss_t *h, unsigned id, uint8_t addr, uint8_t *buf, unsigned n);
 int biss_reg_write(biss_t *h, unsigned id, uint8_t addr, const uint8_t *buf, unsigned n);
 /* BiSS command cmd (0..3) to the slaves in ids (bit i = ID i; 0 = all,
- * a broadcast without acknowledge). *ida, if set, gets the IDA answers. */
-int biss_command(biss_t *h, uint8_t ids, unsigned cmd, uint8_t *ida);
+ * a broadcast without acknowledge). *ida, if set, gets the IDA answers
+ * (bit i = ID i). They must equal ids: with check_ida the firmware tests
+ * them before the command's stop bit and withholds the command if they
+ * differ (BISS_E_CD_WITHHELD, as iC-MB4's IDA_TEST); without it the
+ * command executes and the mismatch is reported after (BISS_E_CD_IDA). */
+int biss_command(biss_t *h, uint8_t ids, unsigned cmd, bool check_ida, uint8_t *ida);
 /* The calls above block for at most the handle's timeout (open params
  * timeout_ms). The same accesses without blocking: *_start puts the
  * program into data RAM and returns at once with a job (NULL on error);
@@ -295,7 +309,7 @@ typedef struct biss_cd_job biss_cd_job;
 int biss_reg_read_start(biss_t *h, unsigned id, uint8_t addr, unsigned n, biss_cd_job **job);
 int biss_reg_write_start(biss_t *h, unsigned id, uint8_t addr, const uint8_t *buf, unsigned n,
                          biss_cd_job **job);
-int biss_command_start(biss_t *h, uint8_t ids, unsigned cmd, biss_cd_job **job);
+int biss_command_start(biss_t *h, uint8_t ids, unsigned cmd, bool check_ida, biss_cd_job **job);
 int biss_cd_poll(biss_t *h, biss_cd_job *job);
 /* After a successful poll: the n bytes a register read got, the IDA answers. */
 int biss_cd_job_bytes(const biss_cd_job *job, uint8_t *buf);

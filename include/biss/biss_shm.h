@@ -83,37 +83,60 @@
 #define BISS_ST_END             0x0AC
 
 // ---- control communication: a CDM program, one step per frame ------------
-// The host writes the program (BISS_CD_PROG, 2 bits a step, step i in bits
-// 2(i%4)+1..2(i%4) of byte i/4), its length and the wait limit, then
-// increments CD_CMD. The firmware starts it once at least 14 frames in a
-// row went out with CDM = 0 since the last program ended (and keeps sending
-// 0 until then), executes one
-// step per frame, and stores in BISS_CD_RESP bit i (byte i/8, bit i%8) the
-// CDS of the frame after the one that sent step i. When the program ends it
-// sets ST_CD_STATUS and echoes CD_CMD in ST_CD_SEQ. Frames keep coming as
-// usual throughout: control data never stops position data.
+// The host writes the program (BISS_CD_PROG, 4 bits a step: step i in the
+// low nibble of byte i/2 when i is even, the high nibble when odd; bits 1..0
+// the op, bits 3..2 the class), its length, the wait limit and the IDA
+// check, then increments CD_CMD. The firmware starts it once at least 14
+// frames in a row went out with CDM = 0 since the last program ended (and
+// keeps sending 0 until then), executes one step per frame, and stores in
+// BISS_CD_RESP bit i (byte i/8, bit i%8) the CDS of the frame after the one
+// that sent step i. Two CRC4 registers (polynomial 0x13, start 0, MSB
+// first) run beside it: CRC_M over the CDM of DATA and ECHO steps (an op
+// CRC step sends its next bit, inverted), CRC_S over their answers (a CHECK
+// step's answer must be its next bit, inverted); both start afresh at the
+// program's start and after each WAIT. When the program ends it sets
+// ST_CD_STATUS and echoes CD_CMD in ST_CD_SEQ. Frames keep coming as usual
+// throughout: control data never stops position data.
 #define BISS_CD_CMD             0x0B0   // u32 (host): incremented to run the program
 #define BISS_CD_STEPS           0x0B4   // u16 (host): program length, 1..BISS_CD_MAX_STEPS
 #define BISS_CD_WAIT_LIMIT      0x0B6   // u16 (host): frames with CDS 0 a WAIT may see (0: at once)
 #define BISS_ST_CD_SEQ          0x0B8   // u32: CD_CMD of the program last ended (or refused)
-#define BISS_ST_CD_STATUS       0x0BC   // u16: BISS_CDST_*; u16 at +2: steps executed
-#define BISS_ST_CD_END          0x0C0
-#define BISS_CD_PROG            0x400   // 256 bytes
-#define BISS_CD_RESP            0x500   // 128 bytes
+#define BISS_ST_CD_STATUS       0x0BC   // u8: BISS_CDST_*; u8 at +1: bytes transferred correctly;
+                                        // u16 at +2: steps executed (answers recorded below it)
+#define BISS_CD_IDA_STEP        0x0C0   // u16 (host): IDA test: the step of a command's P (0: none);
+                                        // its CDM is inverted (the command withheld) unless the
+                                        // answers of the 8 steps 9..2 before it equal IDA_EXPECT
+#define BISS_CD_IDA_EXPECT      0x0C2   // u8 (host): those answers, bit k = step P - 9 + k
+#define BISS_ST_CD_END          0x0C4
+#define BISS_CD_PROG            0x400   // 512 bytes
+#define BISS_CD_RESP            0x600   // 128 bytes
 #define BISS_CD_MAX_STEPS       1024
 
 #define BISS_CDOP_0             0       // send CDM 0
 #define BISS_CDOP_1             1       // send CDM 1
 #define BISS_CDOP_WAIT          2       // CDM 0 until a frame's CDS is 1, then the next step in that
-                                        // frame (never followed by another WAIT)
-#define BISS_CDOP_END           3       // end of the program (also: CD_STEPS reached)
+                                        // frame (never followed by another WAIT or a CRC step)
+#define BISS_CDOP_CRC           3       // send the next bit of CRC_M, inverted
+#define BISS_CDCL_NONE          0       // (class, bits 3..2 of a step) answer only recorded
+#define BISS_CDCL_DATA          1       // CDM into CRC_M (ops 0/1), the answer into CRC_S
+#define BISS_CDCL_CHECK         2       // the answer must be the next bit of CRC_S, inverted
+#define BISS_CDCL_ECHO          3       // as DATA, and the answer must equal the CDM sent
 
+// A program ends at its length, or early: a WAIT over its limit stops it at
+// once; a CHECK, ECHO or IDA error lets the current register byte finish (so
+// a slave never takes a half-sent write) and ends the control frame at the
+// next step that is a master S (op 1, class NONE), sending 0 there instead.
+// The bytes count is the WAITs passed whose byte then reached its next
+// class-NONE step with no error pending.
 #define BISS_CDST_IDLE          0       // no program since start
 #define BISS_CDST_BUSY          1       // waiting for the 14 zeros, or running
 #define BISS_CDST_DONE          2       // ended normally
 #define BISS_CDST_ERR_WAIT      3       // a WAIT step saw no CDS = 1 within CD_WAIT_LIMIT frames
 #define BISS_CDST_ERR_STEPS     4       // CD_STEPS out of range
 #define BISS_CDST_ERR_FRAME     5       // a frame failed (no ACK, processing time) while running
+#define BISS_CDST_ERR_CRC       6       // a CHECK answer was wrong (register data CRC4)
+#define BISS_CDST_ERR_ECHO      7       // an ECHO answer differed from the CDM sent
+#define BISS_CDST_ERR_IDA       8       // the IDA test failed: P went out inverted
 
 #define BISS_MAGIC              0x42695353  // "SSiB"
 

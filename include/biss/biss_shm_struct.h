@@ -63,8 +63,12 @@ struct biss_shm_cd {
     uint16_t steps;      /* host */
     uint16_t wait_limit; /* host */
     uint32_t seq;        /* firmware: CD_CMD of the program last ended */
-    uint16_t status;     /* firmware: BISS_CDST_* */
+    uint8_t status;      /* firmware: BISS_CDST_* */
+    uint8_t bytes;       /* firmware: bytes transferred correctly */
     uint16_t steps_done; /* firmware */
+    uint16_t ida_step;   /* host: the P of a command with IDA test (0: none) */
+    uint8_t ida_expect;  /* host */
+    uint8_t reserved;
 };
 
 /* One slave's result (BISS_R_S_*). */
@@ -93,7 +97,7 @@ struct biss_shm_result {
     struct biss_shm_slave_result slave[BISS_MAX_SLAVES];
 };
 
-#define BISS_SHM_CD_PROG_BYTES (BISS_CD_MAX_STEPS / 4) /* 2 bits a step */
+#define BISS_SHM_CD_PROG_BYTES (BISS_CD_MAX_STEPS / 2) /* 4 bits a step */
 #define BISS_SHM_CD_RESP_BYTES (BISS_CD_MAX_STEPS / 8) /* 1 bit a step */
 
 /* The whole shared area, from data RAM address 0 to the end of the
@@ -167,7 +171,10 @@ BISS_SHM_AT(cd.steps, BISS_CD_STEPS);
 BISS_SHM_AT(cd.wait_limit, BISS_CD_WAIT_LIMIT);
 BISS_SHM_AT(cd.seq, BISS_ST_CD_SEQ);
 BISS_SHM_AT(cd.status, BISS_ST_CD_STATUS);
+BISS_SHM_AT(cd.bytes, BISS_ST_CD_STATUS + 1);
 BISS_SHM_AT(cd.steps_done, BISS_ST_CD_STATUS + 2);
+BISS_SHM_AT(cd.ida_step, BISS_CD_IDA_STEP);
+BISS_SHM_AT(cd.ida_expect, BISS_CD_IDA_EXPECT);
 _Static_assert(BISS_CD_CMD + sizeof(struct biss_shm_cd) == BISS_ST_CD_END, "cd area size");
 
 BISS_SHM_AT(res[0], BISS_RES0);

@@ -120,21 +120,34 @@ START_TEST(test_commands_with_and_without_ida) {
     fw_check_restart(&r.fc, UINT64_MAX);
     static biss_cd_prog p;
     struct fw_cd cd;
-    ck_assert_int_eq(biss_cd_build_command(&p, 0x02, 1), BISS_CD_OK); /* ID 1 */
+    ck_assert_int_eq(biss_cd_build_command(&p, 0x02, 1, false), BISS_CD_OK); /* ID 1 */
     ck_assert_int_eq(run_cd(&r, &p, 10, &cd), BISS_CD_OK);
     ck_assert_uint_eq(cd.result.ida, 0x02);
     link_model *l = bench_link(b);
     ck_assert_int_eq(l->biss.ctrl[1].last_cmd, 1);
     ck_assert_int_eq(l->biss.ctrl[0].last_cmd, -1);
-    ck_assert_int_eq(biss_cd_build_command(&p, 0x00, 2), BISS_CD_OK); /* broadcast */
+    ck_assert_int_eq(biss_cd_build_command(&p, 0x00, 2, false), BISS_CD_OK); /* broadcast */
     ck_assert_int_eq(run_cd(&r, &p, 10, &cd), BISS_CD_OK);
     ck_assert_uint_eq(cd.result.ida, 0);
     for (unsigned i = 0; i < 3; i++) {
         ck_assert_int_eq(l->biss.ctrl[i].last_cmd, 2);
     }
     /* an ID nobody has: the IDA says so */
-    ck_assert_int_eq(biss_cd_build_command(&p, 0x80, 1), BISS_CD_OK);
+    ck_assert_int_eq(biss_cd_build_command(&p, 0x80, 1, false), BISS_CD_OK);
     ck_assert_int_eq(run_cd(&r, &p, 10, &cd), BISS_CD_E_IDA);
+    /* IDA checked before execution: IDs 1 and 7 asked, ID 7 silent, so the
+     * firmware inverts P and ID 1 drops the command; IDs 1 and 2 pass */
+    ck_assert_int_eq(biss_cd_build_command(&p, 0x82, 3, true), BISS_CD_OK);
+    ck_assert_int_eq(run_cd(&r, &p, 10, &cd), BISS_CD_E_WITHHELD);
+    ck_assert_uint_eq(cd.status, BISS_CDST_ERR_IDA);
+    ck_assert_uint_eq(cd.result.ida, 0x02);
+    ck_assert_int_eq(l->biss.ctrl[1].last_cmd, 2);
+    ck_assert_uint_eq(l->biss.ctrl[1].commands_dropped, 1);
+    ck_assert_int_eq(biss_cd_build_command(&p, 0x06, 3, true), BISS_CD_OK);
+    ck_assert_int_eq(run_cd(&r, &p, 10, &cd), BISS_CD_OK);
+    ck_assert_int_eq(l->biss.ctrl[1].last_cmd, 3);
+    ck_assert_int_eq(l->biss.ctrl[2].last_cmd, 3);
+    ck_assert_int_eq(l->biss.ctrl[0].last_cmd, 2);
     assert_positions_clean(&r);
     e2e_free(&r);
 }
@@ -191,8 +204,11 @@ START_TEST(test_corrupted_cds_fails_crc) {
     ck_assert(flipped);
     ck_assert(cd.done);
     ck_assert_int_eq(cd.err, BISS_CD_E_CRC);
+    ck_assert_uint_eq(cd.status, BISS_CDST_ERR_CRC); /* the firmware's own check */
     ck_assert_uint_eq(cd.result.good_bytes, 0);
     ck_assert(!cd.result.byte[0].crc_ok);
+    /* it ended the control frame at the second byte's S */
+    ck_assert_int_eq(cd.result.byte[1].start, BISS_CD_S_NOT_REACHED);
     assert_positions_clean(&r);
     e2e_free(&r);
 }

@@ -59,7 +59,7 @@ START_TEST(test_firmware_verdicts) {
     struct fake *f;
     biss_t *h = configured_fake(&f);
     f->cd_answers = true;
-    uint8_t ops[3] = {BISS_CD_OP_1, BISS_CD_OP_0, BISS_CD_OP_END}, resp[1];
+    uint8_t ops[3] = {BISS_CD_OP_1, BISS_CD_OP_0, BISS_CD_OP_CRC | BISS_CD_CL_ECHO}, resp[1];
     f->cd_status = BISS_CDST_DONE;
     f->mem[BISS_CD_RESP] = 0x5;
     ck_assert_int_eq(biss_cd_run(h, ops, 3, 10, 5, resp), BISS_OK);
@@ -70,21 +70,31 @@ START_TEST(test_firmware_verdicts) {
     ck_assert_int_eq(biss_cd_run(h, ops, 3, 10, 5, resp), BISS_E_CD_FRAME);
     f->cd_status = BISS_CDST_ERR_STEPS;
     ck_assert_int_eq(biss_cd_run(h, ops, 3, 10, 5, resp), BISS_E_CD_STEPS);
-    ck_assert_uint_eq(fake_dram32(f, BISS_CD_CMD), 4);
+    f->cd_status = BISS_CDST_ERR_CRC;
+    ck_assert_int_eq(biss_cd_run(h, ops, 3, 10, 5, resp), BISS_E_CD_CRC);
+    f->cd_status = BISS_CDST_ERR_ECHO;
+    ck_assert_int_eq(biss_cd_run(h, ops, 3, 10, 5, resp), BISS_E_CD_ECHO);
+    f->cd_status = BISS_CDST_ERR_IDA;
+    ck_assert_int_eq(biss_cd_run(h, ops, 3, 10, 5, resp), BISS_E_CD_WITHHELD);
+    ck_assert_uint_eq(fake_dram32(f, BISS_CD_CMD), 7);
     /* refused before the firmware sees them */
     ck_assert_int_eq(biss_cd_run(h, ops, 0, 10, 5, resp), BISS_E_CD_STEPS);
     ck_assert_int_eq(biss_cd_run(h, ops, BISS_CD_MAX_STEPS + 1, 10, 5, resp), BISS_E_CD_STEPS);
     ck_assert_int_eq(biss_cd_run(h, ops, 3, 0x10000, 5, resp), BISS_E_INVAL);
-    uint8_t waits[3] = {BISS_CD_OP_WAIT, BISS_CD_OP_WAIT, BISS_CD_OP_END};
+    uint8_t waits[3] = {BISS_CD_OP_WAIT, BISS_CD_OP_WAIT, BISS_CD_OP_0};
     ck_assert_int_eq(biss_cd_run(h, waits, 3, 10, 5, resp), BISS_E_INVAL);
-    uint8_t bad[1] = {4};
+    uint8_t wait_crc[2] = {BISS_CD_OP_WAIT, BISS_CD_OP_CRC};
+    ck_assert_int_eq(biss_cd_run(h, wait_crc, 2, 10, 5, resp), BISS_E_INVAL);
+    uint8_t wait_class[1] = {BISS_CD_OP_WAIT | BISS_CD_CL_DATA};
+    ck_assert_int_eq(biss_cd_run(h, wait_class, 1, 10, 5, resp), BISS_E_INVAL);
+    uint8_t bad[1] = {16};
     ck_assert_int_eq(biss_cd_run(h, bad, 1, 10, 5, resp), BISS_E_INVAL);
     uint8_t b[2];
     ck_assert_int_eq(biss_reg_read(h, 8, 0x10, b, 1), BISS_E_INVAL);
     ck_assert_int_eq(biss_reg_read(h, 0, 0x80, b, 1), BISS_E_INVAL);
     ck_assert_int_eq(biss_reg_read(h, 0, 0x10, b, 0), BISS_E_INVAL);
     ck_assert_int_eq(biss_reg_read(h, 0, 0x00, b, BISS_REG_MAX_SEQ + 1), BISS_E_INVAL);
-    ck_assert_uint_eq(fake_dram32(f, BISS_CD_CMD), 4);
+    ck_assert_uint_eq(fake_dram32(f, BISS_CD_CMD), 7);
     /* a done program whose answers are all zero: no R/W echo */
     f->cd_status = BISS_CDST_DONE;
     memset(f->mem + BISS_CD_RESP, 0, BISS_CD_MAX_STEPS / 8);
@@ -96,7 +106,7 @@ END_TEST
 START_TEST(test_needs_a_configuration) {
     struct fake *f;
     biss_t *h = fake_handle(&f);
-    uint8_t ops[1] = {BISS_CD_OP_END}, resp[1];
+    uint8_t ops[1] = {BISS_CD_OP_0}, resp[1];
     ck_assert_int_eq(biss_cd_run(h, ops, 1, 10, 5, resp), BISS_E_NOT_CONFIGURED);
     biss_close(h);
 }
@@ -188,11 +198,22 @@ END_TEST
 START_TEST(test_emu_command) {
     biss_t *h = emu(BISS_TRIGGER_FREERUN);
     uint8_t ida = 0xff;
-    int rc = biss_command(h, 0x01, 0, &ida);
+    int rc = biss_command(h, 0x01, 0, false, &ida);
     ck_assert_msg(rc == BISS_OK, "%s", biss_strerror(rc));
     ck_assert_uint_eq(ida, 0x01);
-    ck_assert_int_eq(bench_link(biss_emu_bench(h))->biss.ctrl[0].last_cmd, 0);
-    ck_assert_int_eq(biss_command(h, 0x01, 4, &ida), BISS_E_INVAL);
+    const biss_ctrl *ctrl = &bench_link(biss_emu_bench(h))->biss.ctrl[0];
+    ck_assert_int_eq(ctrl->last_cmd, 0);
+    ck_assert_int_eq(biss_command(h, 0x01, 4, false, &ida), BISS_E_INVAL);
+    /* IDs 0 and 1, only 0 present: executed and reported after the fact,
+     * or withheld by the firmware's IDA test */
+    ck_assert_int_eq(biss_command(h, 0x03, 1, false, &ida), BISS_E_CD_IDA);
+    ck_assert_uint_eq(ida, 0x01);
+    ck_assert_int_eq(ctrl->last_cmd, 1);
+    ck_assert_int_eq(biss_command(h, 0x03, 2, true, &ida), BISS_E_CD_WITHHELD);
+    ck_assert_int_eq(ctrl->last_cmd, 1);
+    ck_assert_uint_eq(ctrl->commands_dropped, 1);
+    ck_assert_int_eq(biss_command(h, 0x01, 2, true, &ida), BISS_OK);
+    ck_assert_int_eq(ctrl->last_cmd, 2);
     biss_close(h);
 }
 END_TEST
@@ -205,7 +226,7 @@ START_TEST(test_emu_nonblocking) {
     ck_assert_int_eq(biss_reg_read_start(h, 0, 0x78, 8, &j), BISS_OK);
     ck_assert_ptr_nonnull(j);
     biss_cd_job *other = (biss_cd_job *)1;
-    ck_assert_int_eq(biss_command_start(h, 0x01, 0, &other), BISS_E_CD_BUSY);
+    ck_assert_int_eq(biss_command_start(h, 0x01, 0, false, &other), BISS_E_CD_BUSY);
     ck_assert_ptr_null(other);
     uint8_t b[8];
     ck_assert_int_eq(biss_cd_job_bytes(j, b), BISS_E_CD_BUSY);
@@ -234,7 +255,7 @@ START_TEST(test_emu_nonblocking) {
     biss_cd_job_free(j);
     ck_assert_uint_eq(regfile_read(slave_regs(h), 0x60), 0x5a);
 
-    ck_assert_int_eq(biss_command_start(h, 0x01, 0, &j), BISS_OK);
+    ck_assert_int_eq(biss_command_start(h, 0x01, 0, true, &j), BISS_OK);
     while ((rc = biss_cd_poll(h, j)) == BISS_E_CD_BUSY) {
         ck_assert_int_eq(biss_run_ms(h, 1), BISS_OK);
     }

@@ -9,14 +9,39 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* The program's CDM bits from step `from` on, WAIT steps left out, MSB
- * first into a word of up to 32 bits. */
+/* The CDM the firmware sends for each step of a program (WAIT steps: -1):
+ * ops 0 and 1 as they are, CRC steps the next bit of its CRC4 of the DATA
+ * and ECHO bits, inverted (biss_shm.h; restarted after a WAIT). */
+static void cdm_bits(const biss_cd_prog *p, int *cdm) {
+    unsigned crc = 0;
+    for (unsigned i = 0; i < p->len; i++) {
+        unsigned op = BISS_CD_STEP_OP(p->op[i]), bit = op;
+        if (op == BISS_CDOP_WAIT) {
+            cdm[i] = -1;
+            crc = 0;
+            continue;
+        }
+        if (op == BISS_CDOP_CRC) {
+            bit = !(crc >> 3 & 1u);
+        }
+        if (op == BISS_CDOP_CRC || BISS_CD_STEP_CL(p->op[i]) != BISS_CDCL_NONE) {
+            unsigned feedback = ((crc >> 3) ^ bit ^ (op == BISS_CDOP_CRC)) & 1u;
+            crc = ((crc << 1) & 15u) ^ (feedback ? 3u : 0u);
+        }
+        cdm[i] = (int)bit;
+    }
+}
+
+/* Those CDM bits from step `from` on, WAIT steps left out, MSB first into
+ * a word of up to 32 bits. */
 static uint32_t cdm_word(const biss_cd_prog *p, unsigned from, unsigned nbits) {
+    static int cdm[BISS_CD_MAX_STEPS];
+    cdm_bits(p, cdm);
     uint32_t w = 0;
     unsigned got = 0;
     for (unsigned i = from; i < p->len && got < nbits; i++) {
-        if (p->op[i] != BISS_CDOP_WAIT) {
-            w = w << 1 | p->op[i];
+        if (cdm[i] >= 0) {
+            w = w << 1 | (unsigned)cdm[i];
             got++;
         }
     }
@@ -81,7 +106,14 @@ START_TEST(read_layout) {
         ck_assert_uint_eq(b->crc, b->data + 8);
         ck_assert_uint_eq(b->stop, b->crc + 4);
         ck_assert_uint_eq(p.op[b->stop], BISS_CDOP_0);
+        /* zeros out; the data into CRC_S, the slave's CRC checked */
+        ck_assert_uint_eq(p.op[b->data + 7], BISS_CD_STEP(BISS_CDOP_0, BISS_CDCL_DATA));
+        ck_assert_uint_eq(p.op[b->crc + 3], BISS_CD_STEP(BISS_CDOP_0, BISS_CDCL_CHECK));
     }
+    /* the header CRC is the firmware's; R W are echoed */
+    ck_assert_uint_eq(p.op[12], BISS_CD_STEP(BISS_CDOP_CRC, BISS_CDCL_NONE));
+    ck_assert_uint_eq(p.op[p.rw], BISS_CD_STEP(BISS_CDOP_1, BISS_CDCL_ECHO));
+    ck_assert_uint_eq(p.op[p.rw + 1], BISS_CD_STEP(BISS_CDOP_0, BISS_CDCL_ECHO));
     ck_assert_uint_eq(p.op[p.len - 1 - BISS_CD_TAIL_ZEROS], BISS_CDOP_0); /* final S */
     /* the longest access fits one program */
     ck_assert_int_eq(biss_cd_build_read(&p, 7, 0, 64), BISS_CD_OK);
@@ -94,8 +126,11 @@ START_TEST(write_layout) {
     const uint8_t data[] = {0x57, 0xa0};
     ck_assert_int_eq(biss_cd_build_write(&p, 0, 0x10, data, 2), BISS_CD_OK);
     /* R W = 0 1 */
-    ck_assert_uint_eq(p.op[p.rw], 0);
-    ck_assert_uint_eq(p.op[p.rw + 1], 1);
+    ck_assert_uint_eq(BISS_CD_STEP_OP(p.op[p.rw]), 0);
+    ck_assert_uint_eq(BISS_CD_STEP_OP(p.op[p.rw + 1]), 1);
+    /* every data and CRC bit's echo is checked; the CRC is the firmware's */
+    ck_assert_uint_eq(p.op[p.byte[0].data], BISS_CD_STEP(BISS_CDOP_0, BISS_CDCL_ECHO));
+    ck_assert_uint_eq(p.op[p.byte[0].crc], BISS_CD_STEP(BISS_CDOP_CRC, BISS_CDCL_ECHO));
     /* data 01010111 then its line CRC 0100 */
     ck_assert_uint_eq(cdm_word(&p, p.byte[0].data, 12), 0x57u << 4 | 0x4);
     ck_assert_uint_eq(cdm_word(&p, p.byte[1].data, 8), 0xa0);
@@ -105,14 +140,19 @@ END_TEST
 
 START_TEST(command_layout) {
     biss_cd_prog p;
-    ck_assert_int_eq(biss_cd_build_command(&p, 0x01, 2), BISS_CD_OK);
+    ck_assert_int_eq(biss_cd_build_command(&p, 0x01, 2, false), BISS_CD_OK);
     ck_assert_uint_eq(p.len, 25 + BISS_CD_TAIL_ZEROS);
-    ck_assert_uint_eq(p.op[1], 0); /* CTS */
-    ck_assert_uint_eq(p.op[2], 1); /* IDS: ID 0 first */
-    ck_assert_uint_eq(p.op[9], 0); /* ID 7 */
+    ck_assert_uint_eq(p.op[1], BISS_CD_STEP(0, BISS_CDCL_DATA)); /* CTS */
+    ck_assert_uint_eq(p.op[2], BISS_CD_STEP(1, BISS_CDCL_DATA)); /* IDS: ID 0 first */
+    ck_assert_uint_eq(p.op[9], BISS_CD_STEP(0, BISS_CDCL_DATA)); /* ID 7 */
     ck_assert_uint_eq(cdm_word(&p, 10, 2), 2);
     ck_assert_uint_eq(cdm_word(&p, 12, 4), biss_cd_crc4_line(biss_cd_cmd_header(0x01, 2), 11));
     ck_assert_uint_eq(p.ida, 15); /* the last CRC step */
+    ck_assert_uint_eq(p.end, 24); /* P */
+    ck_assert_uint_eq(biss_cd_ida_word(&p), 0);
+    /* the IDA test: P's step and the IDs that must answer */
+    ck_assert_int_eq(biss_cd_build_command(&p, 0x81, 1, true), BISS_CD_OK);
+    ck_assert_uint_eq(biss_cd_ida_word(&p), 24u | 0x81u << 16);
 }
 END_TEST
 
@@ -125,8 +165,8 @@ START_TEST(builder_arguments) {
     ck_assert_int_eq(biss_cd_build_read(&p, 0, 0, 65), BISS_CD_E_ARG);
     ck_assert_int_eq(biss_cd_build_write(&p, 0, 0, NULL, 1), BISS_CD_E_ARG);
     ck_assert_int_eq(biss_cd_build_write(&p, 0, 0, d, 65), BISS_CD_E_ARG);
-    ck_assert_int_eq(biss_cd_build_command(&p, 0, 4), BISS_CD_E_ARG);
-    uint8_t ops[] = {0, 1, 4};
+    ck_assert_int_eq(biss_cd_build_command(&p, 0, 4, false), BISS_CD_E_ARG);
+    uint8_t ops[] = {0, 1, 16};
     ck_assert_int_eq(biss_cd_build_raw(&p, ops, 3), BISS_CD_E_ARG);
     ck_assert_int_eq(biss_cd_build_raw(&p, ops, 0), BISS_CD_E_ARG);
     ck_assert_int_eq(biss_cd_build_raw(&p, ops, BISS_CD_MAX_STEPS + 1), BISS_CD_E_TOO_LONG);
@@ -138,14 +178,19 @@ END_TEST
 START_TEST(pack_and_shm_words) {
     static uint8_t dram[BISS_DRAM_BYTES];
     memset(dram, 0, sizeof dram);
-    const uint8_t ops[] = {1, 0, 2, 3, 1, 1};
+    const uint8_t ops[] = {1, 0, 2, 0xf, 5, 1};
     biss_cd_prog p;
     ck_assert_int_eq(biss_cd_build_raw(&p, ops, 6), BISS_CD_OK);
+    memset(dram + BISS_CD_PROG, 0xee, BISS_CD_PROG_BYTES);
     ck_assert_int_eq(biss_cd_shm_put(&p, 0x1234, dram, sizeof dram), BISS_CD_OK);
-    /* step i in bits 2(i%4)+1..2(i%4) of byte i/4; past the end: END */
-    ck_assert_uint_eq(dram[BISS_CD_PROG], 1 | 0 << 2 | 2 << 4 | 3 << 6);
-    ck_assert_uint_eq(dram[BISS_CD_PROG + 1], 1 | 1 << 2 | 3 << 4 | 3 << 6);
-    ck_assert_uint_eq(dram[BISS_CD_PROG + 2], 0xff);
+    /* step i in the low nibble of byte i/2 (even i) or its high nibble;
+     * past the end: 0 */
+    ck_assert_uint_eq(dram[BISS_CD_PROG], 0x01);
+    ck_assert_uint_eq(dram[BISS_CD_PROG + 1], 0xf2);
+    ck_assert_uint_eq(dram[BISS_CD_PROG + 2], 0x15);
+    ck_assert_uint_eq(dram[BISS_CD_PROG + 3], 0);
+    ck_assert_uint_eq(dram[BISS_CD_PROG + BISS_CD_PROG_BYTES - 1], 0);
+    ck_assert_uint_eq(dram[BISS_CD_IDA_STEP], 0); /* no IDA test */
     ck_assert_uint_eq(dram[BISS_CD_STEPS], 6);
     ck_assert_uint_eq(dram[BISS_CD_STEPS + 1], 0);
     ck_assert_uint_eq(dram[BISS_CD_WAIT_LIMIT], 0x34);
@@ -153,7 +198,7 @@ START_TEST(pack_and_shm_words) {
     ck_assert_uint_eq(dram[BISS_CD_CMD], 0); /* left to the caller */
     ck_assert_int_eq(biss_cd_shm_put(&p, 0, dram, BISS_CD_RESP - 1), BISS_CD_E_ARG);
 
-    const uint8_t st[] = {0x78, 0x56, 0x34, 0x12, BISS_CDST_DONE, 0, 0x21, 0x03};
+    const uint8_t st[] = {0x78, 0x56, 0x34, 0x12, BISS_CDST_DONE, 42, 0x21, 0x03};
     memcpy(dram + BISS_ST_CD_SEQ, st, sizeof st);
     dram[BISS_CD_RESP + 127] = 0x80;
     biss_cd_answer a;
@@ -161,6 +206,7 @@ START_TEST(pack_and_shm_words) {
     ck_assert_uint_eq(a.seq, 0x12345678);
     ck_assert_uint_eq(a.status, BISS_CDST_DONE);
     ck_assert_uint_eq(a.steps, 0x321);
+    ck_assert_uint_eq(a.bytes, 42);
     ck_assert_int_eq(biss_cd_answer_bit(&a, 1023), 1);
     ck_assert_int_eq(biss_cd_answer_bit(&a, 1022), 0);
 }
@@ -179,7 +225,7 @@ static void set_bits(biss_cd_answer *a, unsigned step, unsigned value, unsigned 
 START_TEST(parse_by_hand) {
     biss_cd_prog p;
     ck_assert_int_eq(biss_cd_build_read(&p, 0, 0x67, 1), BISS_CD_OK);
-    biss_cd_answer a = {.status = BISS_CDST_DONE, .steps = p.len};
+    biss_cd_answer a = {.status = BISS_CDST_DONE, .steps = p.len, .bytes = 1};
     set_bits(&a, p.rw, 2, 2);            /* R W echoed: 1 0 */
     set_bits(&a, p.byte[0].start, 1, 1); /* S in time */
     set_bits(&a, p.byte[0].data, 0x5f, 8);
@@ -204,6 +250,13 @@ START_TEST(parse_by_hand) {
     /* one lost in the tail costs nothing */
     a.steps = (uint16_t)(p.end + 2);
     ck_assert_int_eq(biss_cd_parse(&p, &a, &r), BISS_CD_OK);
+    /* the firmware's verdict when the answers look right (a CDS bit seen
+     * wrong by the firmware, say): it wins, with its byte count */
+    a.status = BISS_CDST_ERR_CRC;
+    a.steps = p.len;
+    a.bytes = 0;
+    ck_assert_int_eq(biss_cd_parse(&p, &a, &r), BISS_CD_E_CRC);
+    ck_assert_uint_eq(r.good_bytes, 0);
     ck_assert_str_eq(biss_cd_strerror(BISS_CD_E_CRC), "register data CRC error");
     ck_assert_str_eq(biss_cd_strerror((biss_cd_err)99), "unknown error");
 }

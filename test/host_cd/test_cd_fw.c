@@ -102,6 +102,7 @@ static biss_cd_err rig_run(fw_rig *r, const biss_cd_prog *p, uint16_t wait_limit
     ck_assert_int_eq(biss_cd_shm_put(p, wait_limit, dram, sizeof dram), BISS_CD_OK);
     put(r, BISS_CD_PROG, dram + BISS_CD_PROG, BISS_CD_PROG_BYTES);
     put(r, BISS_CD_STEPS, dram + BISS_CD_STEPS, 4); /* length and wait limit */
+    put(r, BISS_CD_IDA_STEP, dram + BISS_CD_IDA_STEP, 4);
     r->cmd++;
     put(r, BISS_CD_CMD, &r->cmd, 4);
     struct pru_core *core = bench_core(r->b);
@@ -208,17 +209,30 @@ START_TEST(fw_commands) {
     rig_start(&r, 0);
     static biss_cd_prog p;
     biss_cd_result res;
-    ck_assert_int_eq(biss_cd_build_command(&p, 0, 2), BISS_CD_OK);
+    ck_assert_int_eq(biss_cd_build_command(&p, 0, 2, false), BISS_CD_OK);
     ck_assert_int_eq(rig_run(&r, &p, 0, &res), BISS_CD_OK);
     ck_assert_uint_eq(res.ida, 0);
     ck_assert_int_eq(bench_link(r.b)->biss.ctrl[0].last_cmd, 2);
-    ck_assert_int_eq(biss_cd_build_command(&p, 0x01, 1), BISS_CD_OK); /* ID 0 */
+    ck_assert_int_eq(biss_cd_build_command(&p, 0x01, 1, false), BISS_CD_OK); /* ID 0 */
     ck_assert_int_eq(rig_run(&r, &p, 0, &res), BISS_CD_OK);
     ck_assert_uint_eq(res.ida, 0x01);
     ck_assert_int_eq(bench_link(r.b)->biss.ctrl[0].last_cmd, 1);
-    ck_assert_int_eq(biss_cd_build_command(&p, 0x08, 3), BISS_CD_OK); /* ID 3: none */
+    ck_assert_int_eq(biss_cd_build_command(&p, 0x08, 3, false), BISS_CD_OK); /* ID 3: none */
     ck_assert_int_eq(rig_run(&r, &p, 0, &res), BISS_CD_E_IDA);
     ck_assert_uint_eq(res.ida, 0);
+    /* IDs 0 and 3 with the IDA test: ID 3 does not answer, so the firmware
+     * sends P inverted and slave 0, addressed, drops the command */
+    const biss_ctrl *ctrl = &bench_link(r.b)->biss.ctrl[0];
+    ck_assert_int_eq(biss_cd_build_command(&p, 0x09, 2, true), BISS_CD_OK);
+    ck_assert_int_eq(rig_run(&r, &p, 0, &res), BISS_CD_E_WITHHELD);
+    ck_assert_uint_eq(res.ida, 0x01);
+    ck_assert_int_eq(ctrl->last_cmd, 1);
+    ck_assert_uint_eq(ctrl->commands_dropped, 1);
+    /* the same test passes for ID 0 alone: executed */
+    ck_assert_int_eq(biss_cd_build_command(&p, 0x01, 2, true), BISS_CD_OK);
+    ck_assert_int_eq(rig_run(&r, &p, 0, &res), BISS_CD_OK);
+    ck_assert_int_eq(ctrl->last_cmd, 2);
+    ck_assert_uint_eq(ctrl->commands_dropped, 1);
     bench_free(r.b);
 }
 END_TEST

@@ -231,7 +231,9 @@ START_TEST(corrupted_cds_bit) {
     ck_assert(r.byte[0].crc_ok);
     ck_assert(!r.byte[1].crc_ok);
     ck_assert_uint_eq(r.byte[1].data, 0x01 ^ 0x10);
-    ck_assert(r.byte[2].crc_ok); /* parsed on, but after the error */
+    /* the firmware ended the control frame at byte 2's S (sent as 0) */
+    ck_assert_int_eq(r.byte[2].start, BISS_CD_S_NOT_REACHED);
+    ck_assert_uint_eq(c.reads, 2);
     /* a flipped CRC bit is a CRC error too */
     g.sim.flip_step = p.byte[0].crc + 2;
     ck_assert_int_eq(run(&p, 10, &r), BISS_CD_E_CRC);
@@ -255,7 +257,8 @@ START_TEST(other_id_answers_nothing) {
     biss_cd_result r;
     ck_assert_int_eq(read_regs(3, 0x67, 1, 6, &r), BISS_CD_E_NO_ECHO);
     ck_assert(!r.rw_echo_ok);
-    ck_assert_int_eq(r.byte[0].start, BISS_CD_S_MISSING);
+    /* R's echo was missing: the firmware ended the frame at the byte's S */
+    ck_assert_int_eq(r.byte[0].start, BISS_CD_S_NOT_REACHED);
     ck_assert_uint_eq(r.good_bytes, 0);
     ck_assert_uint_eq(c.reads, 0);
 }
@@ -319,10 +322,14 @@ static void add_chain(void) {
     }
 }
 
-static biss_cd_err command(uint8_t ids, unsigned cmd, biss_cd_result *r) {
+static biss_cd_err command_test(uint8_t ids, unsigned cmd, bool ida_test, biss_cd_result *r) {
     static biss_cd_prog p;
-    ck_assert_int_eq(biss_cd_build_command(&p, ids, cmd), BISS_CD_OK);
+    ck_assert_int_eq(biss_cd_build_command(&p, ids, cmd, ida_test), BISS_CD_OK);
     return run(&p, 0, r);
+}
+
+static biss_cd_err command(uint8_t ids, unsigned cmd, biss_cd_result *r) {
+    return command_test(ids, cmd, false, r);
 }
 
 START_TEST(command_broadcast) {
@@ -351,6 +358,26 @@ START_TEST(command_addressed) {
     ck_assert_uint_eq(r.ida, 0x02);
     ck_assert_uint_eq(r.ida_expected, 0x42);
     ck_assert_int_eq(chain[1].last_cmd, 3);
+}
+END_TEST
+
+/* With the IDA test the same mismatch withholds the command: P goes out
+ * as 1, and no slave executes it. A matching IDA lets it through. */
+START_TEST(command_ida_test) {
+    add_chain();
+    biss_cd_result r;
+    ck_assert_int_eq(command_test(0x42, 3, true, &r), BISS_CD_E_WITHHELD);
+    ck_assert_uint_eq(r.ida, 0x02);
+    ck_assert_int_eq(chain[1].last_cmd, -1);
+    ck_assert_uint_eq(chain[1].commands_dropped, 1);
+    ck_assert_int_eq(command_test(0x06, 3, true, &r), BISS_CD_OK);
+    ck_assert_uint_eq(r.ida, 0x06);
+    ck_assert_int_eq(chain[1].last_cmd, 3);
+    ck_assert_int_eq(chain[2].last_cmd, 3);
+    ck_assert_int_eq(chain[0].last_cmd, -1);
+    /* a broadcast expects no IDA at all */
+    ck_assert_int_eq(command_test(0, 1, true, &r), BISS_CD_OK);
+    ck_assert_int_eq(chain[0].last_cmd, 1);
 }
 END_TEST
 
@@ -401,6 +428,7 @@ int main(void) {
     tcase_add_test(tc, back_to_back_waits_for_the_zeros);
     tcase_add_test(tc, command_broadcast);
     tcase_add_test(tc, command_addressed);
+    tcase_add_test(tc, command_ida_test);
     tcase_add_test(tc, command_frame_failure);
     tcase_add_test(tc, chain_register_access);
     suite_add_tcase(s, tc);
