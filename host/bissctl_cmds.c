@@ -247,9 +247,8 @@ int bissctl_command(biss_t *h, const struct bissctl_opts *o) {
         return BISSCTL_USAGE;
     }
     int rc = biss_command(h, ids, cmd, o->ida_test, &ida);
-    if (rc) {
-        return bissctl_fail("command", rc);
+    if (!rc || rc == BISS_E_CD_IDA || rc == BISS_E_CD_WITHHELD) {
+        printf("ids=0x%02x cmd=%u ida=0x%02x\n", ids, cmd, ida); /* which IDs answered */
     }
-    printf("ids=0x%02x cmd=%u ida=0x%02x\n", ids, cmd, ida);
-    return BISSCTL_OK;
+    return rc ? bissctl_fail("command", rc) : BISSCTL_OK;
 }

@@ -175,40 +175,80 @@ START_TEST(test_late_start_bit) {
 }
 END_TEST
 
-/* A CDS bit corrupted on its way (the slave's frame bit flipped before it
- * goes out) while the first data byte of a read is answered: the byte's
- * CRC4 fails, no byte counts as right, and positions are untouched (the
- * CDS is outside their CRC). */
-START_TEST(test_corrupted_cds_fails_crc) {
-    struct e2e_run r;
-    struct bench *b = e2e_bench(&r, "tidep0022-test-encoder", 2, NULL);
-    ck_assert_uint_eq(e2e_run_frames(&r, 10, 1000, 10), 10);
-    fw_check_restart(&r.fc, UINT64_MAX);
+/* Runs p and flips the slave's CDS once, in the frame that answers the
+ * data bit `bit` of register byte `byte` (the slave's frame bit 0, before
+ * it goes out). */
+static void run_flipped(struct e2e_run *r, const biss_cd_prog *p, unsigned byte, unsigned bit,
+                        struct fw_cd *cd) {
+    struct bench *b = r->b;
     biss_slave *sl = &bench_link(b)->biss;
-    static biss_cd_prog p;
-    struct fw_cd cd;
-    ck_assert_int_eq(biss_cd_build_read(&p, 0, 0x45, 2), BISS_CD_OK);
-    fw_cd_issue(&cd, b, &p, 10);
-    int flipped = 0;
+    fw_cd_issue(cd, b, p, 10);
+    unsigned seen = 0; /* data bits of the byte seen (frames answering them) */
+    int flipped = 0, in_bit = 0;
     int64_t end = pru_time_ps(bench_core(b)) + 100 * SIM_PS_PER_MS;
-    while (!fw_cd_poll(&cd) && pru_time_ps(bench_core(b)) < end) {
-        /* a frame has started and its CDS (bit 0) is not out yet */
-        if (!flipped && sl->phase == BISS_ACTIVE && sl->bit == 0 &&
-            sl->ctrl[0].state == CTRL_DATA && sl->ctrl[0].count == 3) {
+    while (!fw_cd_poll(cd) && pru_time_ps(bench_core(b)) < end) {
+        int here = sl->phase == BISS_ACTIVE && sl->bit == 0 && sl->ctrl[0].state == CTRL_DATA &&
+                   sl->ctrl[0].count == bit;
+        if (here && !in_bit && !flipped && seen++ == byte) {
             sl->bits[0] ^= 1;
             flipped = 1;
         }
+        in_bit = here;
         ck_assert_int_eq(bench_run_until(b, pru_time_ps(bench_core(b)) + 200 * SIM_PS_PER_NS),
                          PRU_STOP_LIMIT);
     }
     ck_assert(flipped);
-    ck_assert(cd.done);
+    ck_assert(cd->done);
+}
+
+/* A CDS bit corrupted on its way while the second data byte of a read is
+ * answered: the firmware's CRC4 check fails it, one byte counts as right,
+ * the control frame ends at the third byte's S, and positions are
+ * untouched (the CDS is outside their CRC). */
+START_TEST(test_corrupted_cds_fails_crc) {
+    struct e2e_run r;
+    e2e_bench(&r, "tidep0022-test-encoder", 2, NULL);
+    ck_assert_uint_eq(e2e_run_frames(&r, 10, 1000, 10), 10);
+    fw_check_restart(&r.fc, UINT64_MAX);
+    static biss_cd_prog p;
+    struct fw_cd cd;
+    ck_assert_int_eq(biss_cd_build_read(&p, 0, 0x45, 3), BISS_CD_OK);
+    run_flipped(&r, &p, 1, 3, &cd);
     ck_assert_int_eq(cd.err, BISS_CD_E_CRC);
     ck_assert_uint_eq(cd.status, BISS_CDST_ERR_CRC); /* the firmware's own check */
+    ck_assert_uint_eq(cd.result.good_bytes, 1);
+    ck_assert(cd.result.byte[0].crc_ok);
+    ck_assert(!cd.result.byte[1].crc_ok);
+    ck_assert_int_eq(cd.result.byte[2].start, BISS_CD_S_NOT_REACHED);
+    assert_positions_clean(&r);
+    /* the slave is ready for the next control frame at once */
+    static const uint8_t serial[] = {0xd9, 0x01, 0x32};
+    read_expect(&r, 0x45, serial, 3);
+    e2e_free(&r);
+}
+END_TEST
+
+/* The echo of a write's data bit corrupted on its way back: the firmware
+ * reports the echo error, counts no byte, and ends the control frame
+ * before the second byte. The slave got the first byte right and stored
+ * it (the master cannot know that: a read-back tells). */
+START_TEST(test_corrupted_echo_fails_write) {
+    static const uint8_t data[] = {0x3c, 0xc3};
+    struct e2e_run r;
+    struct bench *b = e2e_bench(&r, "tidep0022-test-encoder", 2, NULL);
+    ck_assert_uint_eq(e2e_run_frames(&r, 10, 1000, 10), 10);
+    fw_check_restart(&r.fc, UINT64_MAX);
+    static biss_cd_prog p;
+    struct fw_cd cd;
+    ck_assert_int_eq(biss_cd_build_write(&p, 0, 0x10, data, 2), BISS_CD_OK);
+    run_flipped(&r, &p, 0, 5, &cd);
+    ck_assert_int_eq(cd.err, BISS_CD_E_ECHO);
+    ck_assert_uint_eq(cd.status, BISS_CDST_ERR_ECHO);
     ck_assert_uint_eq(cd.result.good_bytes, 0);
-    ck_assert(!cd.result.byte[0].crc_ok);
-    /* it ended the control frame at the second byte's S */
     ck_assert_int_eq(cd.result.byte[1].start, BISS_CD_S_NOT_REACHED);
+    regfile *regs = &bench_link(b)->biss.cfg.s[0].regs;
+    ck_assert_uint_eq(regfile_read(regs, 0x10), 0x3c);
+    ck_assert_uint_ne(regfile_read(regs, 0x11), 0xc3);
     assert_positions_clean(&r);
     e2e_free(&r);
 }
@@ -224,6 +264,7 @@ int main(void) {
     tcase_add_test(tc, test_commands_with_and_without_ida);
     tcase_add_test(tc, test_late_start_bit);
     tcase_add_test(tc, test_corrupted_cds_fails_crc);
+    tcase_add_test(tc, test_corrupted_echo_fails_write);
     suite_add_tcase(s, tc);
     return check_run(s);
 }
