@@ -212,7 +212,7 @@ int biss_ctrl_cdm(biss_ctrl *c, int cdm) {
         }
         break;
     case CTRL_CMD_STOP:
-        if (cdm) {
+        if (cdm != c->cmd_stop) {
             c->commands_dropped += c->addressed;
         } else if (c->addressed) {
             c->commands++;

@@ -29,11 +29,13 @@
  *               above), 0 = end of the frame
  *   command     after the CRC, 8 IDA slots: CDS after the CRC and after each
  *               of the first 7 slots is 1 in slot i if this slave has ID i and
- *               was addressed (never for a broadcast, IDS = 0); then P = 0,
- *               on which the command is executed (recorded). A 1 where P
- *               belongs breaks the frame: the command is dropped (counted).
- *               (TIDEP0022 and the Posital manual give the stop bit as 0;
- *               a master's IDA test withholds a command by inverting it.)
+ *               was addressed (never for a broadcast, IDS = 0); then P, on
+ *               which the command is executed (recorded) if P = cmd_stop;
+ *               the other value breaks the frame: the command is dropped
+ *               (counted). cmd_stop is 0 by default (TIDEP0022 and the
+ *               Posital manual give the stop bit as 0); 1 models a slave
+ *               that wants P = 1. A master's IDA test withholds a command
+ *               by inverting P, which works for either.
  *
  * After a frame ends the slave needs 14 zero CDMs again before a new S. */
 #ifndef BISS_CTRL_H
@@ -61,6 +63,7 @@ typedef enum {
 typedef struct {
     uint8_t id;               /* 0..7 */
     unsigned reg_proc_frames; /* late S: frames of register processing */
+    uint8_t cmd_stop;         /* the command's stop bit P that executes it (default 0) */
     regfile *regs;
 
     biss_ctrl_state state;

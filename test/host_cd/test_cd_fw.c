@@ -237,6 +237,34 @@ START_TEST(fw_commands) {
 }
 END_TEST
 
+/* A slave that executes on a stop bit of 1 (biss_ctrl cmd_stop): the
+ * program sends P = 1, and the IDA test still withholds the command, by
+ * sending 0 there. The firmware only inverts what the program holds. */
+START_TEST(fw_ida_test_either_stop_bit) {
+    fw_rig r;
+    rig_start(&r, 0);
+    biss_ctrl *ctrl = &bench_link(r.b)->biss.ctrl[0];
+    ctrl->cmd_stop = 1;
+    static biss_cd_prog p;
+    biss_cd_result res;
+    ck_assert_int_eq(biss_cd_build_command(&p, 0x01, 3, true), BISS_CD_OK);
+    p.op[p.end] = BISS_CDOP_1;
+    ck_assert_int_eq(rig_run(&r, &p, 0, &res), BISS_CD_OK);
+    ck_assert_int_eq(ctrl->last_cmd, 3);
+    ck_assert_int_eq(biss_cd_build_command(&p, 0x03, 1, true), BISS_CD_OK); /* ID 1: none */
+    p.op[p.end] = BISS_CDOP_1;
+    ck_assert_int_eq(rig_run(&r, &p, 0, &res), BISS_CD_E_WITHHELD);
+    ck_assert_uint_eq(res.ida, 0x01);
+    /* (a P = 1 ends the control frame like a master S: the firmware reports
+     * the end in the frame whose timeout carries it, before the slave has
+     * taken it) */
+    bench_run_until(r.b, pru_time_ps(bench_core(r.b)) + 100 * SIM_PS_PER_US);
+    ck_assert_int_eq(ctrl->last_cmd, 3);
+    ck_assert_uint_eq(ctrl->commands_dropped, 1);
+    bench_free(r.b);
+}
+END_TEST
+
 /* Programs back to back: the firmware waits for 14 frames of CDM 0 after
  * the first, as the slaves do, and both go through. */
 START_TEST(fw_back_to_back) {
@@ -259,6 +287,7 @@ int main(void) {
     tcase_add_test(tc, fw_write_read_back);
     tcase_add_test(tc, fw_late_start);
     tcase_add_test(tc, fw_commands);
+    tcase_add_test(tc, fw_ida_test_either_stop_bit);
     tcase_add_test(tc, fw_back_to_back);
     suite_add_tcase(s, tc);
     return check_run(s);
