@@ -98,7 +98,7 @@ void bissctl_usage(const char *command) {
            "BiSS-C master on a PRU (emulated or real) through libbiss.\n"
            "Commands: info, read [-n N], stats, run [--ms MS], trigger, start, stop,\n"
            "          reg-read ADDR [-n N], reg-write ADDR BYTE..., command IDS CMD\n"
-           "          (bissctl COMMAND --help for each)\n\n%s",
+           "          (also spelt reg read, reg write, cmd; bissctl COMMAND --help for each)\n\n%s",
            common_help);
 }
 
@@ -427,6 +427,13 @@ int bissctl_parse(int argc, char **argv, struct bissctl_opts *o) {
     }
     if (optind < argc) {
         o->command = argv[optind++];
+        /* the spellings "reg read", "reg write" and "cmd" as well */
+        if (strcmp(o->command, "reg") == 0 && optind < argc &&
+            (strcmp(argv[optind], "read") == 0 || strcmp(argv[optind], "write") == 0)) {
+            o->command = strcmp(argv[optind++], "read") == 0 ? "reg-read" : "reg-write";
+        } else if (strcmp(o->command, "cmd") == 0) {
+            o->command = "command";
+        }
         if (!known_command(o->command)) {
             return usage_error("unknown command '%s'", o->command);
         }

@@ -87,6 +87,14 @@ r = run("--freq", "10000000", "--id", "3", "reg-read", "0x78")
 check(r.returncode == 1 and "no slave took" in r.stderr, "reg-read wrong id: %r" % r.stderr)
 r = run("--freq", "10000000", "command", "1", "0")
 check(r.returncode == 0 and r.stdout == "ids=0x01 cmd=0 ida=0x01\n", "command: %r %r" % (r.stdout, r.stderr))
+# the other spellings: "reg read", "reg write", "cmd"
+r = run("--freq", "10000000", "reg", "read", "0x78", "-n", "2")
+check(r.returncode == 0 and r.stdout.split("\n")[:2] ==
+      ["id=0 addr=0x78 value=0x46", "id=0 addr=0x79 value=0x3a"], "reg read: %r %r" % (r.stdout, r.stderr))
+r = run("--freq", "10000000", "reg", "write", "0x60", "0x12")
+check(r.returncode == 0 and r.stdout == "", "reg write: %r %r" % (r.stdout, r.stderr))
+r = run("--freq", "10000000", "cmd", "1", "0")
+check(r.returncode == 0 and r.stdout == "ids=0x01 cmd=0 ida=0x01\n", "cmd: %r %r" % (r.stdout, r.stderr))
 # ID 1 is not there: with the IDA test the firmware withholds the command
 r = run("--freq", "10000000", "command", "3", "1", "--ida-test")
 check(r.returncode == 1 and r.stdout == "ids=0x03 cmd=1 ida=0x01\n" and "withheld" in r.stderr,
