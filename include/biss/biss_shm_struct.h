@@ -206,6 +206,10 @@ BISS_SHM_AT(priv, BISS_PRIV);
 BISS_SHM_AT(cd_prog, BISS_CD_PROG);
 BISS_SHM_AT(cd_resp, BISS_CD_RESP);
 _Static_assert(BISS_CD_PROG + BISS_SHM_CD_PROG_BYTES <= BISS_CD_RESP, "CD program fits its area");
+/* The firmware's CD_OP forms BISS_CD_PROG + step / 2 by setting bit 10 of
+ * step / 2 (at most 511). */
+_Static_assert(BISS_CD_PROG == 0x400 && BISS_SHM_CD_PROG_BYTES <= 0x400,
+               "CD_OP's program address is a bit set");
 _Static_assert(sizeof(struct biss_shm) == BISS_CD_RESP + BISS_SHM_CD_RESP_BYTES,
                "shared area size");
 _Static_assert(sizeof(struct biss_shm) <= BISS_DRAM_BYTES, "shared area fits the data RAM");
