@@ -1,5 +1,7 @@
 #include "cd_sim.h"
 
+#include "biss_crc.h"
+
 #include <string.h>
 
 void cd_sim_init(cd_sim *s) {
@@ -60,12 +62,6 @@ static void finish(uint8_t *dram, unsigned status, unsigned bytes, unsigned step
     memcpy(dram + BISS_ST_CD_SEQ, dram + BISS_CD_CMD, 4);
 }
 
-static unsigned crc4(unsigned crc, unsigned bit) {
-    unsigned feedback = ((crc >> 3) ^ bit) & 1u;
-    crc = (crc << 1) & 15u;
-    return feedback ? crc ^ 3u : crc;
-}
-
 /* The firmware's program state (P_CD). */
 struct run {
     unsigned len, limit, ida_step, ida_expect;
@@ -115,7 +111,7 @@ static void answer(struct run *r, uint8_t *dram, int cds) {
         }
         r->crc_s = (r->crc_s << 1) & 15u;
     } else if (cl != BISS_CDCL_NONE) {
-        r->crc_s = crc4(r->crc_s, (unsigned)cds);
+        r->crc_s = biss_crc_bit(r->crc_s, BISS_CRC4_POLY, cds);
         if (cl == BISS_CDCL_ECHO && (unsigned)cds != r->cdm_sent) {
             set_err(r, BISS_CDST_ERR_ECHO);
         }
@@ -127,7 +123,7 @@ static void sent(struct run *r, unsigned st, int cdm) {
     r->cdm_sent = (unsigned)cdm;
     if (st >= BISS_CDOP_CRC) {
         unsigned crc_bit = (st & 3u) == BISS_CDOP_CRC;
-        r->crc_m = crc4(r->crc_m, (unsigned)cdm ^ crc_bit);
+        r->crc_m = biss_crc_bit(r->crc_m, BISS_CRC4_POLY, (int)((unsigned)cdm ^ crc_bit));
     } else if (!r->err && r->open) {
         r->open = false;
         r->bytes++;

@@ -2,6 +2,7 @@
  * header bits, program layout, data RAM packing, and the parser on
  * answers written by hand. */
 #include "biss_cd.h"
+#include "biss_crc.h"
 
 #include "check_run.h"
 
@@ -25,8 +26,7 @@ static void cdm_bits(const biss_cd_prog *p, int *cdm) {
             bit = !(crc >> 3 & 1u);
         }
         if (op == BISS_CDOP_CRC || BISS_CD_STEP_CL(p->op[i]) != BISS_CDCL_NONE) {
-            unsigned feedback = ((crc >> 3) ^ bit ^ (op == BISS_CDOP_CRC)) & 1u;
-            crc = ((crc << 1) & 15u) ^ (feedback ? 3u : 0u);
+            crc = biss_crc_bit(crc, BISS_CRC4_POLY, (int)(bit ^ (op == BISS_CDOP_CRC)));
         }
         cdm[i] = (int)bit;
     }
