@@ -159,28 +159,6 @@ int biss_cd_error(biss_cd_err e) {
     return BISS_E_CD_CRC;
 }
 
-/* The firmware's verdict on a raw program (no fields to parse). */
-static int status_error(unsigned status) {
-    switch (status) {
-    case BISS_CDST_DONE:
-        return BISS_OK;
-    case BISS_CDST_ERR_WAIT:
-        return BISS_E_CD_WAIT;
-    case BISS_CDST_ERR_STEPS:
-        return BISS_E_CD_STEPS;
-    case BISS_CDST_ERR_FRAME:
-        return BISS_E_CD_FRAME;
-    case BISS_CDST_ERR_CRC:
-        return BISS_E_CD_CRC;
-    case BISS_CDST_ERR_ECHO:
-        return BISS_E_CD_ECHO;
-    case BISS_CDST_ERR_IDA:
-        return BISS_E_CD_WITHHELD;
-    default:
-        return BISS_E_TIMEOUT; /* still busy or idle: no verdict */
-    }
-}
-
 int biss_cd_run(biss_t *h, const uint8_t *ops, unsigned n, unsigned wait_limit, unsigned timeout_ms,
                 uint8_t *resp) {
     if (!h || !ops || !resp) {
@@ -208,7 +186,8 @@ int biss_cd_run(biss_t *h, const uint8_t *ops, unsigned n, unsigned wait_limit, 
         rc = biss_cd_exchange(h, p, wait_limit, timeout_ms, a);
     }
     if (!rc) {
-        rc = status_error(a->status);
+        biss_cd_result r; /* a raw program's: only the firmware's verdict */
+        rc = biss_cd_error(biss_cd_parse(p, a, &r));
     }
     if (!rc) {
         memcpy(resp, a->resp, (n + 7) / 8);
