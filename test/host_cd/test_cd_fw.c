@@ -1,124 +1,55 @@
-/* Check suite for the codec through the real firmware: pru_fw/biss_master.p
- * assembled and run on the emulated PRU, wired to the slave model of a
- * profile. Programs go in and answers come out through the data RAM, as a
+/* Check suite for the codec through the real firmware: the built image of
+ * pru_fw/biss_master.p run on the emulated PRU, wired to the slave model of
+ * a profile. Programs go in and answers come out through the data RAM, as a
  * host would move them. */
-#include "bench.h"
 #include "biss_cd.h"
-#include "pruasm.h"
-#include "scenario.h"
+#include "e2e_util.h"
+#include "fw_cd.h"
+#include "fw_config.h"
 
 #include "check_run.h"
 
 #include <check.h>
-#include <stdio.h>
-#include <stdlib.h>
-#include <string.h>
 
 /* Frames of a register access of n bytes, every slave S in time (see
  * test_cd_sim.c); late S adds the slave's processing frames per byte. */
 #define REG_FRAMES(n) (20u + BISS_CD_TAIL_ZEROS + 14u * (n))
 
 typedef struct {
-    struct bench *b;
-    uint32_t base; /* global address of the data RAM */
-    uint32_t cmd;
+    struct e2e_run run;
     uint64_t frames; /* frames the last program took, from CD_CMD to its end */
 } fw_rig;
 
-static void put(fw_rig *r, uint32_t off, const void *p, size_t n) {
-    pru_host_write(bench_core(r->b), r->base + off, p, n);
-}
-
-static void get(fw_rig *r, uint32_t off, void *p, size_t n) {
-    pru_host_read(bench_core(r->b), r->base + off, p, n);
-}
-
-static unsigned crc_width(uint32_t poly) {
-    unsigned w = 0;
-    while (poly >> (w + 1)) {
-        w++;
-    }
-    return w;
-}
-
-/* One slave's block of the firmware configuration, from its model. */
-static void configure_slave(fw_rig *r, unsigned i, const biss_slave_cfg *s) {
-    unsigned w = crc_width(s->crc_poly);
-    uint16_t poly = (uint16_t)(s->crc_poly & ((1u << w) - 1u));
-    uint16_t start = (uint16_t)s->crc_start;
-    uint8_t blk[BISS_CFG_SLAVE_SIZE] = {
-        (uint8_t)(s->pos_bits + s->fill_bits + s->has_err + s->has_warn + s->lc_bits), (uint8_t)w,
-        (uint8_t)s->lc_bits, (uint8_t)(s->has_err && s->has_warn ? BISS_SF_EW : 0)};
-    memcpy(blk + BISS_CFG_S_CRC_POLY, &poly, 2);
-    memcpy(blk + BISS_CFG_S_CRC_START, &start, 2);
-    put(r, BISS_CFG_SLAVE0 + BISS_CFG_SLAVE_SIZE * i, blk, sizeof blk);
-}
-
-static void configure(fw_rig *r) {
-    const biss_chain_cfg *chain = &bench_link(r->b)->sc.biss;
-    uint16_t half = 10, proc_limit = 200;
-    uint8_t n = (uint8_t)chain->n, trig = BISS_TRIG_FREERUN;
-    put(r, BISS_CFG_HALF, &half, 2);
-    put(r, BISS_CFG_NSLAVES, &n, 1);
-    put(r, BISS_CFG_TRIGGER, &trig, 1);
-    put(r, BISS_CFG_PROC_LIMIT, &proc_limit, 2);
-    for (unsigned i = 0; i < chain->n; i++) {
-        configure_slave(r, i, &chain->s[i]);
-    }
-    uint32_t seq = 1;
-    put(r, BISS_CFG_SEQ, &seq, 4);
-}
-
+/* The built firmware on the bench with the profile's encoder, configured
+ * for 10 MHz free-running frames and run for 200 us. */
 static void rig_start(fw_rig *r, unsigned reg_proc_frames) {
+    scenario sc;
+    ck_assert_int_eq(profile_by_name("tidep0022-test-encoder", &sc), 0);
+    sc.biss.s[0].reg_proc_frames = reg_proc_frames;
     struct bench_config cfg;
     bench_config_default(&cfg);
     cfg.pru.fast_forward = 1;
-    ck_assert_int_eq(profile_by_name("tidep0022-test-encoder", &cfg.link), 0);
-    cfg.link.biss.s[0].reg_proc_frames = reg_proc_frames;
-    char err[200], path[600], inc[600];
-    r->b = bench_new(&cfg, err, sizeof err);
-    ck_assert_msg(r->b != NULL, "%s", err);
-    r->base = pru_soc_base(cfg.soc);
-    r->cmd = 0;
-    const char *src = getenv("TEST_SRC_DIR");
-    ck_assert_ptr_nonnull(src);
-    snprintf(path, sizeof path, "%s/pru_fw/biss_master.p", src);
-    snprintf(inc, sizeof inc, "%s/include/biss", src);
-    const char *incs[] = {inc};
-    struct pruasm_options opt = {.core = 3, .include_dirs = incs, .ninclude_dirs = 1};
-    struct pruasm_image img;
-    struct pruasm_diag d = {0};
-    ck_assert_msg(pruasm_assemble_file(&opt, path, &img, &d) == 0, "%s", d.first_error);
-    ck_assert_int_eq(bench_start_image(r->b, img.words, img.nwords * 4), 0);
-    pruasm_image_free(&img); /* the core has its copy */
-    configure(r);
-    bench_run_until(r->b, pru_time_ps(bench_core(r->b)) + 200 * SIM_PS_PER_US);
+    e2e_bench_scenario(&r->run, &sc, &cfg.pru);
+    struct fw_settings set = {.half = 10, .trigger = BISS_TRIG_FREERUN, .proc_limit = 200};
+    fw_config_write(r->run.b, &set);
+    bench_run_until(r->run.b, pru_time_ps(bench_core(r->run.b)) + 200 * SIM_PS_PER_US);
 }
 
-/* Hands p to the firmware, runs until it reports the end, parses. */
+/* Hands p to the firmware as a host would (fw_cd), runs until it reports
+ * the end, parses. */
 static biss_cd_err rig_run(fw_rig *r, const biss_cd_prog *p, uint16_t wait_limit,
                            biss_cd_result *res) {
-    static uint8_t dram[BISS_DRAM_BYTES];
-    ck_assert_int_eq(biss_cd_shm_put(p, wait_limit, dram, sizeof dram), BISS_CD_OK);
-    put(r, BISS_CD_PROG, dram + BISS_CD_PROG, BISS_CD_PROG_BYTES);
-    put(r, BISS_CD_STEPS, dram + BISS_CD_STEPS, 4); /* length and wait limit */
-    put(r, BISS_CD_IDA_STEP, dram + BISS_CD_IDA_STEP, 4);
-    r->cmd++;
-    put(r, BISS_CD_CMD, &r->cmd, 4);
-    struct pru_core *core = bench_core(r->b);
-    uint64_t f0 = link_frames(bench_link(r->b));
+    struct fw_cd cd;
+    fw_cd_issue(&cd, r->run.b, p, wait_limit);
+    struct pru_core *core = bench_core(r->run.b);
     int64_t give_up = pru_time_ps(core) + 100 * SIM_PS_PER_MS;
-    uint32_t seq = 0;
-    while (seq != r->cmd) {
+    while (!fw_cd_poll(&cd)) {
         ck_assert_int_lt(pru_time_ps(core), give_up);
-        bench_run_until(r->b, pru_time_ps(core) + SIM_PS_PER_US);
-        get(r, BISS_ST_CD_SEQ, &seq, 4);
+        bench_run_until(r->run.b, pru_time_ps(core) + SIM_PS_PER_US);
     }
-    r->frames = link_frames(bench_link(r->b)) - f0;
-    get(r, 0, dram, sizeof dram);
-    biss_cd_answer a;
-    ck_assert_int_eq(biss_cd_shm_get(dram, sizeof dram, &a), BISS_CD_OK);
-    return biss_cd_parse(p, &a, res);
+    r->frames = cd.frames;
+    *res = cd.result;
+    return cd.err;
 }
 
 static biss_cd_err rig_read(fw_rig *r, unsigned addr, unsigned n, uint16_t wait_limit,
@@ -168,7 +99,7 @@ START_TEST(fw_reads_table11) {
     ck_assert_uint_eq(res.byte[0x47 - 0x40].data, 0x32);
     ck_assert_uint_eq(res.byte[0x7f - 0x40].data, 0x41);
     assert_frames(&r, REG_FRAMES(64));
-    bench_free(r.b);
+    e2e_free(&r.run);
 }
 END_TEST
 
@@ -183,7 +114,7 @@ START_TEST(fw_write_read_back) {
     ck_assert(res.byte[0].echo_ok && res.byte[1].echo_ok);
     ck_assert_int_eq(rig_read(&r, 0x10, 2, 10, &res), BISS_CD_OK);
     assert_bytes(&res, d, 2);
-    bench_free(r.b);
+    e2e_free(&r.run);
 }
 END_TEST
 
@@ -200,7 +131,7 @@ START_TEST(fw_late_start) {
     ck_assert_int_eq(rig_read(&r, 0x44, 4, 2, &res), BISS_CD_E_NO_START);
     ck_assert_int_eq(res.byte[0].start, BISS_CD_S_MISSING);
     ck_assert_uint_eq(res.good_bytes, 0);
-    bench_free(r.b);
+    e2e_free(&r.run);
 }
 END_TEST
 
@@ -212,17 +143,17 @@ START_TEST(fw_commands) {
     ck_assert_int_eq(biss_cd_build_command(&p, 0, 2, false), BISS_CD_OK);
     ck_assert_int_eq(rig_run(&r, &p, 0, &res), BISS_CD_OK);
     ck_assert_uint_eq(res.ida, 0);
-    ck_assert_int_eq(bench_link(r.b)->biss.ctrl[0].last_cmd, 2);
+    ck_assert_int_eq(bench_link(r.run.b)->biss.ctrl[0].last_cmd, 2);
     ck_assert_int_eq(biss_cd_build_command(&p, 0x01, 1, false), BISS_CD_OK); /* ID 0 */
     ck_assert_int_eq(rig_run(&r, &p, 0, &res), BISS_CD_OK);
     ck_assert_uint_eq(res.ida, 0x01);
-    ck_assert_int_eq(bench_link(r.b)->biss.ctrl[0].last_cmd, 1);
+    ck_assert_int_eq(bench_link(r.run.b)->biss.ctrl[0].last_cmd, 1);
     ck_assert_int_eq(biss_cd_build_command(&p, 0x08, 3, false), BISS_CD_OK); /* ID 3: none */
     ck_assert_int_eq(rig_run(&r, &p, 0, &res), BISS_CD_E_IDA);
     ck_assert_uint_eq(res.ida, 0);
     /* IDs 0 and 3 with the IDA test: ID 3 does not answer, so the firmware
      * sends P inverted and slave 0, addressed, drops the command */
-    const biss_ctrl *ctrl = &bench_link(r.b)->biss.ctrl[0];
+    const biss_ctrl *ctrl = &bench_link(r.run.b)->biss.ctrl[0];
     ck_assert_int_eq(biss_cd_build_command(&p, 0x09, 2, true), BISS_CD_OK);
     ck_assert_int_eq(rig_run(&r, &p, 0, &res), BISS_CD_E_WITHHELD);
     ck_assert_uint_eq(res.ida, 0x01);
@@ -233,7 +164,7 @@ START_TEST(fw_commands) {
     ck_assert_int_eq(rig_run(&r, &p, 0, &res), BISS_CD_OK);
     ck_assert_int_eq(ctrl->last_cmd, 2);
     ck_assert_uint_eq(ctrl->commands_dropped, 1);
-    bench_free(r.b);
+    e2e_free(&r.run);
 }
 END_TEST
 
@@ -243,7 +174,7 @@ END_TEST
 START_TEST(fw_ida_test_either_stop_bit) {
     fw_rig r;
     rig_start(&r, 0);
-    biss_ctrl *ctrl = &bench_link(r.b)->biss.ctrl[0];
+    biss_ctrl *ctrl = &bench_link(r.run.b)->biss.ctrl[0];
     ctrl->cmd_stop = 1;
     static biss_cd_prog p;
     biss_cd_result res;
@@ -258,10 +189,10 @@ START_TEST(fw_ida_test_either_stop_bit) {
     /* (a P = 1 ends the control frame like a master S: the firmware reports
      * the end in the frame whose timeout carries it, before the slave has
      * taken it) */
-    bench_run_until(r.b, pru_time_ps(bench_core(r.b)) + 100 * SIM_PS_PER_US);
+    bench_run_until(r.run.b, pru_time_ps(bench_core(r.run.b)) + 100 * SIM_PS_PER_US);
     ck_assert_int_eq(ctrl->last_cmd, 3);
     ck_assert_uint_eq(ctrl->commands_dropped, 1);
-    bench_free(r.b);
+    e2e_free(&r.run);
 }
 END_TEST
 
@@ -276,7 +207,7 @@ START_TEST(fw_back_to_back) {
     ck_assert_int_eq(rig_run(&r, &p, 10, &res), BISS_CD_OK);
     ck_assert_int_eq(rig_run(&r, &p, 10, &res), BISS_CD_OK);
     ck_assert_uint_eq(res.byte[0].data, 0x5f);
-    bench_free(r.b);
+    e2e_free(&r.run);
 }
 END_TEST
 
