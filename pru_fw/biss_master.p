@@ -34,9 +34,10 @@
 #define MA_MASK         (1 << MA_BIT)
 #define LAG             2               // extra whole periods between a bit and its read
 #define CLOCK_FOREVER   0x7fff0000      // r12 while the start bit is awaited
-#define MAJORITY3       0xe8            // bit k set: two or more of k's three bits are 1
-#define IDLE_HIGH       0xff            // R31.b0 when SL has been high for a whole MA period
-#define IDLE_TURNS      33333           // SL idle polls (3 cycles): 500 us, then no slave
+#define MAJORITY5       0xfee8e880      // bit k set: three or more of k's five bits are 1
+#define IDLE_MASK       0x0f            // R31 samples that must all be high for SL idle: half
+                                        // a period, longer than any glitch of under 3 samples
+#define IDLE_TURNS      25000           // SL idle polls (4 cycles): 500 us, then no slave
 
 // offsets from a result buffer (r9) to the current slave's result
 #define RES_DATA_LO     (BISS_R_SLAVE0 + BISS_R_S_DATA_LO)
@@ -530,7 +531,7 @@ LAG1:
     max     r3, r3, r6                      // 1
     sub     r3, r3, r6                      // 2  idle periods before the first read
     ldi     r6, 0                           // 3  busy clocks
-    rsb     r5.w0, r10, 30                  // 4  R31 >> r5.w0: bit 1 the sample point
+    rsb     r5.w0, r10, 29                  // 4  R31 >> r5.w0: bit 2 the sample point
     PADS    3                               // 5..7
     DELAY_B
     qbeq    SW_TOP, r3, 0
@@ -555,17 +556,18 @@ LAG_LAST:
     PAD
 
 // ---- START_WAIT: ACK and busy read 0, the start bit 1 ------------------------
-// The start bit is taken by a majority of three samples (the sample point
-// and its neighbours, all inside the bit): one sample flipped by a glitch
-// neither starts the data early (in the busy) nor misses the start bit.
+// The start bit is taken by a majority of five samples (the sample point
+// and two on either side, all inside the bit): two samples flipped by a
+// glitch (25 ns at 10 MHz) neither start the data early (in the busy) nor
+// miss the start bit.
 SW_TOP:
     MA_FALL
-    lsr     r2, r31, r5.w0                  // 1  bits 2, 1, 0: sample point -1, 0, +1
-    and     r2, r2, 7                       // 2
-    ldi     r3, MAJORITY3                   // 3
-    qbbs    START_FOUND, r3, r2             // 4  two of the three are 1
-    add     r6, r6, 1                       // 5
-    PADS    3                               // 6..8
+    lsr     r2, r31, r5.w0                  // 1  bits 4..0: sample point -2 .. +2
+    and     r2, r2, 0x1f                    // 2
+    mov     r3, MAJORITY5                   // 3..4
+    qbbs    START_FOUND, r3, r2             // 5  three of the five are 1
+    add     r6, r6, 1                       // 6
+    PADS    2                               // 7..8
     DELAY_A
     MA_RISE
     qblt    PROC_ERROR, r6, r7.w2           // 1: limit < busy: give up after this rise
@@ -577,8 +579,7 @@ SSI_LAG_LAST:                               // t = H + 8
     DELAY_B
     jmp     r7.w2
 
-START_FOUND:                                // t = 5
-    sbbo    r6, r9, BISS_R_PROC_CLOCKS, 2   // 5  busy clocks before the start bit
+START_FOUND:                                // t = 6
     max     r3, r5.w2, r8                   // 6  clocks after this period:
     sub     r3, r3, r8                      // 7  max(N + 2 - LAG - m, 0), 2 edges each
     lsl     r12, r3, MA_BIT + 1             // 8
@@ -586,8 +587,8 @@ START_FOUND:                                // t = 5
     MA_RISE
     ldi     r8, 0                           // 1  (r8.w0 stays 0 from here on)
     NEXT_CLOCK                              // 2..5
-    ldi     r6, 0                           // 6  (r6.w0 stays 0 from here on)
-    PAD                                     // 7
+    sbbo    r6, r9, BISS_R_PROC_CLOCKS, 2   // 6  busy clocks before the start bit
+    ldi     r6, 0                           // 7  (r6.w0 stays 0 from here on)
     DELAY_B
     PAD
 
@@ -779,7 +780,8 @@ FE_NO_SMA:
     jal     r12.w0, FRAME_REGS
     mov     r2, IDLE_TURNS                  // as SLAVE_IDLE
 FE_IDLE_POLL:
-    qbeq    FE_IDLE_YES, r31.b0, IDLE_HIGH  // the slave's timeout has ended: SL high
+    and     r1.b3, r31.b0, IDLE_MASK
+    qbeq    FE_IDLE_YES, r1.b3, IDLE_MASK   // the slave's timeout has ended: SL high
     sub     r2, r2, 1
     qbne    FE_IDLE_POLL, r2, 0
     qba     FE_MAIN                         // not in time: MAIN and FRAME find it so again
@@ -831,15 +833,18 @@ PUBLISH:
     jmp     r0.w0
 
 // Wait for SL high: the slave's timeout has ended. High means the newest
-// 8 samples (R31.b0, one MA period) are all 1, not just the newest: a
-// glitch on SL during the timeout must not start a frame while the slave
-// still ignores MA (it would misframe this frame and the next two). At
-// most IDLE_TURNS turns of 3 cycles; r3 = 0 if SL did not come high (the
-// turns left if it did).
+// 4 samples (IDLE_MASK, half an MA period) are all 1, not just the newest:
+// a glitch on SL during the timeout must not start a frame while the slave
+// still ignores MA (it would misframe this frame and the next two). Half
+// a period keeps the master's overhead low at 1 MHz and still outlasts a
+// glitch of two samples (25 ns at 10 MHz). At most IDLE_TURNS turns of 4
+// cycles; r3 = 0 if SL did not come high (the turns left if it did). r2
+// is scratch.
 SLAVE_IDLE:
     mov     r3, IDLE_TURNS
 SLAVE_IDLE_POLL:
-    qbeq    SLAVE_IDLE_YES, r31.b0, IDLE_HIGH
+    and     r2.b0, r31.b0, IDLE_MASK
+    qbeq    SLAVE_IDLE_YES, r2.b0, IDLE_MASK
     sub     r3, r3, 1
     qbne    SLAVE_IDLE_POLL, r3, 0
 SLAVE_IDLE_YES:
