@@ -89,11 +89,16 @@ END_TEST
 /* ---- noise: the scenarios scripts/bench-noise runs for 10^6 frames ---- */
 static const struct noise_case {
     const char *file;
-    double min_good; /* share of publications valid with a good CRC */
+    double min_good;        /* share of publications valid with a good CRC */
+    unsigned wrong_per_1e4; /* wrong positions passed as valid, at most */
 } noise[] = {
-    {SCENARIO_DIR "/noise-sl-10khz.json", 0.95},
-    {SCENARIO_DIR "/noise-sl-100khz.json", 0.85},
-    {SCENARIO_DIR "/noise-sl-30khz-jitter.json", 0.90},
+    {SCENARIO_DIR "/noise-sl-10khz.json", 0.95, 0},
+    {SCENARIO_DIR "/noise-sl-100khz.json", 0.85, 0},
+    {SCENARIO_DIR "/noise-sl-30khz-jitter.json", 0.90, 0},
+    /* a glitch every 1.4 us on average: frames started in the slave's
+     * timeout once lost the slave for good (every frame then read an idle
+     * line); now the frames go on, a few wrong ones pass the CRC6 */
+    {SCENARIO_DIR "/noise-sl-700khz.json", 0.50, 2},
 };
 
 START_TEST(test_noise_never_valid_and_wrong) {
@@ -103,10 +108,11 @@ START_TEST(test_noise_never_valid_and_wrong) {
     uint64_t frames = 2 * e2e_frames(10000);
     uint64_t got = e2e_run_frames(&r, 10, 1000, frames);
     ck_assert_uint_eq(got, frames);
-    ck_assert_uint_eq(r.fc.mismatches, 0);
+    ck_assert_uint_le(r.fc.mismatches, frames * c->wrong_per_1e4 / 10000);
     double good = (double)(r.fc.frames - r.fc.crc_errors) / (double)r.fc.publications;
     ck_assert_msg(good >= c->min_good, "%s: %.4f of the frames good", c->file, good);
     ck_assert_uint_le(r.fc.ack_jump_good, r.fc.ack_jumps);
+    ck_assert_uint_eq(r.fc.no_slave, 0);
     e2e_free(&r);
 }
 END_TEST
