@@ -77,6 +77,7 @@ void biss_sample_decode(const struct biss_config *c, bool configured, uint32_t s
     s->proc_error = (r->flags & BISS_RF_PROC_ERROR) != 0;
     s->training = (r->flags & BISS_RF_TRAINING) != 0;
     s->sma = (r->flags & BISS_RF_SMA) != 0;
+    s->ack_jump = (r->flags & BISS_RF_ACK_JUMP) != 0;
     s->timestamp = r->timestamp;
     s->proc_clocks = r->proc_clocks;
     s->cds = r->cds;

@@ -40,6 +40,7 @@ static void print_sample(const struct biss_sample *s, const struct biss_config *
            : s->training   ? "training"
            : s->no_slave   ? "no-slave"
            : s->proc_error ? "proc-error"
+           : s->ack_jump   ? "ack-jump"
                            : "invalid");
     if (s->valid) {
         for (unsigned i = 0; i < s->nslaves; i++) {

@@ -34,6 +34,10 @@
 #define MA_MASK         (1 << MA_BIT)
 #define LAG             2               // extra whole periods between a bit and its read
 #define CLOCK_FOREVER   0x7fff0000      // r12 while the start bit is awaited
+#define MAJORITY5       0xfee8e880      // bit k set: three or more of k's five bits are 1
+#define IDLE_MASK       0x0f            // R31 samples that must all be high for SL idle: half
+                                        // a period, longer than any glitch of under 3 samples
+#define IDLE_TURNS      25000           // SL idle polls (4 cycles): 500 us, then no slave
 
 // offsets from a result buffer (r9) to the current slave's result
 #define RES_DATA_LO     (BISS_R_SLAVE0 + BISS_R_S_DATA_LO)
@@ -527,7 +531,8 @@ LAG1:
     max     r3, r3, r6                      // 1
     sub     r3, r3, r6                      // 2  idle periods before the first read
     ldi     r6, 0                           // 3  busy clocks
-    PADS    4                               // 4..7
+    rsb     r5.w0, r10, 29                  // 4  R31 >> r5.w0: bit 2 the sample point
+    PADS    3                               // 5..7
     DELAY_B
     qbeq    SW_TOP, r3, 0
 
@@ -551,12 +556,18 @@ LAG_LAST:
     PAD
 
 // ---- START_WAIT: ACK and busy read 0, the start bit 1 ------------------------
+// The start bit is taken by a majority of five samples (the sample point
+// and two on either side, all inside the bit): two samples flipped by a
+// glitch (25 ns at 10 MHz) neither start the data early (in the busy) nor
+// miss the start bit.
 SW_TOP:
     MA_FALL
-    SAMPLE                                  // 1
-    qbbs    START_FOUND, r2, 31             // 2
-    add     r6, r6, 1                       // 3
-    PADS    5                               // 4..8
+    lsr     r2, r31, r5.w0                  // 1  bits 4..0: sample point -2 .. +2
+    and     r2, r2, 0x1f                    // 2
+    mov     r3, MAJORITY5                   // 3..4
+    qbbs    START_FOUND, r3, r2             // 5  three of the five are 1
+    add     r6, r6, 1                       // 6
+    PADS    2                               // 7..8
     DELAY_A
     MA_RISE
     qblt    PROC_ERROR, r6, r7.w2           // 1: limit < busy: give up after this rise
@@ -568,18 +579,16 @@ SSI_LAG_LAST:                               // t = H + 8
     DELAY_B
     jmp     r7.w2
 
-START_FOUND:                                // t = 3
-    sbbo    r6, r9, BISS_R_PROC_CLOCKS, 2   // 3  busy clocks before the start bit
-    PAD                                     // 4
-    max     r3, r5.w2, r8                   // 5  clocks after this period:
-    sub     r3, r3, r8                      // 6  max(N + 2 - LAG - m, 0), 2 edges each
-    lsl     r12, r3, MA_BIT + 1             // 7
-    ldi     r6, 0                           // 8  (r6.w0 stays 0 from here on)
+START_FOUND:                                // t = 6
+    max     r3, r5.w2, r8                   // 6  clocks after this period:
+    sub     r3, r3, r8                      // 7  max(N + 2 - LAG - m, 0), 2 edges each
+    lsl     r12, r3, MA_BIT + 1             // 8
     DELAY_A
     MA_RISE
     ldi     r8, 0                           // 1  (r8.w0 stays 0 from here on)
     NEXT_CLOCK                              // 2..5
-    PADS    2                               // 6..7
+    sbbo    r6, r9, BISS_R_PROC_CLOCKS, 2   // 6  busy clocks before the start bit
+    ldi     r6, 0                           // 7  (r6.w0 stays 0 from here on)
     DELAY_B
     PAD
 
@@ -723,16 +732,28 @@ FE_NO_CRC_ERR:
     lsr     r6, r6, 3
     add     r6, r6, LAG
     sbbo    r6.b0, r2, BISS_R_LAG_PERIODS, 1
-    // history: a jump of more than half a bit starts the average afresh
+    // History. An ACK more than half a bit from the average it was read
+    // with means this frame's bits were read at the wrong place (a glitch
+    // in WAIT_ACK, or an average spoilt by one) or the line changed: the
+    // frame is not valid, whatever its CRC says. One such ACK is left out of
+    // the average; a second in a row starts the average afresh from it.
+    // P_NSLAVES bit 31 (r8 here) remembers the first.
     sub     r6, r1.w2, r3                   // Q' - Qf' + 4 in 0..8: no jump
     add     r6, r6, 4
-    qblt    FE_HIST_RESET, r6, 8
+    qblt    FE_ACK_JUMP, r6, 8
+    clr     r8, r8, 31
     mov     r5.w0, r4.w2                    // h2 = h1
     mov     r4.w2, r4.w0                    // h1 = h0
     mov     r4.w0, r1.w2                    // h0 = Q'
     qble    FE_HIST_SAVE, r8.b3, 3          // 3 <= frames in the average: full
     add     r8.b3, r8.b3, 1
     qba     FE_HIST_SAVE
+FE_ACK_JUMP:
+    xor     r12, r12, BISS_RF_VALID         // set since FRAME_END: now clear
+    or      r12, r12, BISS_RF_ACK_JUMP
+    qbbs    FE_HIST_RESET, r8, 31           // the second in a row
+    set     r8, r8, 31
+    qba     FE_NO_SMA                       // the history stays as it was
 FE_HIST_RESET:
     mov     r4.w0, r1.w2
     mov     r4.w2, r1.w2
@@ -757,12 +778,13 @@ FE_NO_SMA:
     lbco    r3, c28, P_SSI, 2
     qbne    FE_SLOW, r3.w0, 0
     jal     r12.w0, FRAME_REGS
-    mov     r2, 100000                      // as SLAVE_IDLE: 3 cycles a turn
+    mov     r2, IDLE_TURNS                  // as SLAVE_IDLE
 FE_IDLE_POLL:
-    qbbs    FE_IDLE_YES, r31, 0             // the slave's timeout ends: SL high
+    and     r1.b3, r31.b0, IDLE_MASK
+    qbeq    FE_IDLE_YES, r1.b3, IDLE_MASK   // the slave's timeout has ended: SL high
     sub     r2, r2, 1
     qbne    FE_IDLE_POLL, r2, 0
-    qba     FE_MAIN                         // not within 2 ms: MAIN and FRAME find it so again
+    qba     FE_MAIN                         // not in time: MAIN and FRAME find it so again
 FE_IDLE_YES:
     set     r30, r30, MA_BIT                // CDM done: MA idles high
     lbco    r2, c24, BISS_CFG_SEQ, 4
@@ -810,13 +832,19 @@ PUBLISH:
     sbco    r3, c24, BISS_ST_STATE, 4
     jmp     r0.w0
 
-// Wait for SL high (the newest 8x sample, R31 bit 0): the slave's timeout
-// has ended. At most 2 ms (slave timeouts are microseconds). r3 = 0 if it
-// did not come (the turns left if it did).
+// Wait for SL high: the slave's timeout has ended. High means the newest
+// 4 samples (IDLE_MASK, half an MA period) are all 1, not just the newest:
+// a glitch on SL during the timeout must not start a frame while the slave
+// still ignores MA (it would misframe this frame and the next two). Half
+// a period keeps the master's overhead low at 1 MHz and still outlasts a
+// glitch of two samples (25 ns at 10 MHz). At most IDLE_TURNS turns of 4
+// cycles; r3 = 0 if SL did not come high (the turns left if it did). r2
+// is scratch.
 SLAVE_IDLE:
-    mov     r3, 100000                      // 3 cycles a turn
+    mov     r3, IDLE_TURNS
 SLAVE_IDLE_POLL:
-    qbbs    SLAVE_IDLE_YES, r31, 0
+    and     r2.b0, r31.b0, IDLE_MASK
+    qbeq    SLAVE_IDLE_YES, r2.b0, IDLE_MASK
     sub     r3, r3, 1
     qbne    SLAVE_IDLE_POLL, r3, 0
 SLAVE_IDLE_YES:

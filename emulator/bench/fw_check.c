@@ -71,6 +71,16 @@ static void compare_ssi(struct fw_check *fc, const uint8_t *res) {
     }
 }
 
+/* Slave i's data word and status in the result buffer res. */
+static uint64_t result_word(const uint8_t *res, unsigned i, uint32_t *status) {
+    const uint8_t *s = res + BISS_R_SLAVE0 + i * BISS_R_SLAVE_SIZE;
+    uint32_t lo, hi;
+    memcpy(&lo, s + BISS_R_S_DATA_LO, 4);
+    memcpy(&hi, s + BISS_R_S_DATA_HI, 4);
+    memcpy(status, s + BISS_R_S_STATUS, 4);
+    return (uint64_t)hi << 32 | lo;
+}
+
 static void compare(struct fw_check *fc, const uint8_t *res) {
     link_model *l = bench_link(fc->b);
     if (l->sc.protocol == SCENARIO_SSI) {
@@ -84,18 +94,12 @@ static void compare(struct fw_check *fc, const uint8_t *res) {
     }
     bool same = true;
     for (unsigned i = 0; i < l->sc.biss.n && i < BISS_MAX_SLAVES; i++) {
-        const uint8_t *s = res + BISS_R_SLAVE0 + i * BISS_R_SLAVE_SIZE;
-        uint32_t lo, hi, st;
-        memcpy(&lo, s + BISS_R_S_DATA_LO, 4);
-        memcpy(&hi, s + BISS_R_S_DATA_HI, 4);
-        memcpy(&st, s + BISS_R_S_STATUS, 4);
-        fc->data[i] = (uint64_t)hi << 32 | lo;
-        fc->status[i] = st;
+        fc->data[i] = result_word(res, i, &fc->status[i]);
         uint64_t want = fw_check_sent_word(&l->sc.biss.s[i], &r->s[i]);
         fc->sent[i] = r->s[i].position;
         /* a word whose CRC failed is reported as such; only a word passed
          * as right must be what was sent */
-        same = same && (fc->data[i] == want || !(st & BISS_RS_CRC_OK));
+        same = same && (fc->data[i] == want || !(fc->status[i] & BISS_RS_CRC_OK));
     }
     if (!same) {
         fc->mismatches++;
@@ -103,6 +107,25 @@ static void compare(struct fw_check *fc, const uint8_t *res) {
             fc->first_mismatch_frame = fc->publications;
         }
     }
+}
+
+/* A frame the firmware refused for its ACK (BISS_RF_ACK_JUMP): was every
+ * word right all the same (CRC good, and what was sent)? Then the rule
+ * cost a good frame. */
+static void judge_refused(struct fw_check *fc, const uint8_t *res) {
+    link_model *l = bench_link(fc->b);
+    const biss_frame_record *r = l->sc.protocol == SCENARIO_BISS ? frame_record(fc) : NULL;
+    if (!r) {
+        return;
+    }
+    for (unsigned i = 0; i < l->sc.biss.n && i < BISS_MAX_SLAVES; i++) {
+        uint32_t st;
+        if (result_word(res, i, &st) != fw_check_sent_word(&l->sc.biss.s[i], &r->s[i]) ||
+            !(st & BISS_RS_CRC_OK)) {
+            return;
+        }
+    }
+    fc->ack_jump_good++;
 }
 
 static void on_publish(void *ctx, uint32_t addr) {
@@ -123,6 +146,10 @@ static void on_publish(void *ctx, uint32_t addr) {
     fc->no_slave += !!(flags & BISS_RF_NO_SLAVE);
     fc->proc_errors += !!(flags & BISS_RF_PROC_ERROR);
     fc->training += !!(flags & BISS_RF_TRAINING);
+    if (flags & BISS_RF_ACK_JUMP) {
+        fc->ack_jumps++;
+        judge_refused(fc, res);
+    }
     memcpy(&u16, res + BISS_R_DELAY_RAW, 2);
     fc->delay_raw = u16;
     memcpy(&u16, res + BISS_R_DELAY_AVG, 2);

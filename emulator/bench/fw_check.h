@@ -23,7 +23,9 @@ struct fw_check {
     uint64_t crc_errors;   /* frames flagged with a CRC error */
     uint64_t mismatches;   /* frames with a word passed as right (CRC) but unlike what was sent */
     uint64_t no_slave, proc_errors, training;
-    uint64_t unmatched; /* valid frames whose slave record was gone */
+    uint64_t ack_jumps;     /* frames refused for an ACK away from the average */
+    uint64_t ack_jump_good; /* of those, frames whose every word was right: good frames lost */
+    uint64_t unmatched;     /* valid frames whose slave record was gone */
     uint32_t last_flags;
     unsigned delay_raw, delay_avg, sample_point, lag, half;
     unsigned delay_raw_min, delay_raw_max; /* raw ACK positions of the valid frames */

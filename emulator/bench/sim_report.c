@@ -105,6 +105,8 @@ static void add_firmware(cJSON *j, struct bench *b, const struct fw_check *fw) {
     cJSON_AddNumberToObject(f, "publications", (double)fw->publications);
     cJSON_AddNumberToObject(f, "no_slave", (double)fw->no_slave);
     cJSON_AddNumberToObject(f, "processing_errors", (double)fw->proc_errors);
+    cJSON_AddNumberToObject(f, "ack_jumps", (double)fw->ack_jumps);
+    cJSON_AddNumberToObject(f, "ack_jumps_good_lost", (double)fw->ack_jump_good);
     cJSON_AddNumberToObject(f, "training_frames", (double)fw->training);
     cJSON_AddNumberToObject(f, "line_delay_ns", sim_fw_line_delay_ns(fw));
     cJSON_AddNumberToObject(f, "delay_bit8_raw", fw->delay_raw);
@@ -244,9 +246,10 @@ void sim_print_text(const struct sim_result *r) {
            (unsigned long long)(fw ? fw->frames : st->frames), stop_name(r->why));
     if (fw) {
         printf("checked              %llu CRC errors, %llu position mismatches, %llu no-slave, "
-               "%llu processing-time errors\n",
+               "%llu processing-time errors, %llu refused for an ACK jump\n",
                (unsigned long long)fw->crc_errors, (unsigned long long)fw->mismatches,
-               (unsigned long long)fw->no_slave, (unsigned long long)fw->proc_errors);
+               (unsigned long long)fw->no_slave, (unsigned long long)fw->proc_errors,
+               (unsigned long long)fw->ack_jumps);
         printf("line delay           %.1f ns measured by the firmware (%.1f ns in the model), "
                "sample point %u/8, lag %u periods\n",
                sim_fw_line_delay_ns(fw), bench_round_trip_ps(b) / 1000.0, fw->sample_point,

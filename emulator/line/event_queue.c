@@ -76,14 +76,18 @@ eq_id eq_schedule(event_queue *q, sim_ps t, eq_fn fn, void *ctx, int64_t arg) {
         q->heap = heap;
         q->cap = cap;
     }
-    eq_event *e = &q->heap[q->len];
-    e->t = t < q->now ? q->now : t; /* never schedule into the past */
-    e->id = q->next_id++;
-    e->fn = fn;
-    e->ctx = ctx;
-    e->arg = arg;
+    /* The id is taken before sifting: the new event may move up the heap,
+     * and the slot it was written to then holds another event. */
+    eq_id id = q->next_id++;
+    q->heap[q->len] = (eq_event){
+        .t = t < q->now ? q->now : t, /* never schedule into the past */
+        .id = id,
+        .fn = fn,
+        .ctx = ctx,
+        .arg = arg,
+    };
     sift_up(q, q->len++);
-    return e->id;
+    return id;
 }
 
 int eq_cancel(event_queue *q, eq_id id) {

@@ -18,6 +18,7 @@ void line_params_default(line_params *p) {
     p->glitch_width_ps = 20000;
     p->fault = LINE_OK;
     p->fault_at_ps = 0;
+    p->fault_until_ps = 0;
 }
 
 double line_tau_ps(const line_params *p) {
@@ -129,6 +130,9 @@ void line_dir_init(line_dir *l, const line_params *p, event_queue *q, uint64_t s
     schedule_next_glitch(l, eq_now(q));
     if (p->fault != LINE_OK) {
         line_dir_set_fault(l, p->fault_at_ps, p->fault);
+        if (p->fault_until_ps > p->fault_at_ps) {
+            line_dir_set_fault(l, p->fault_until_ps, LINE_OK);
+        }
     }
 }
 

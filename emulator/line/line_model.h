@@ -48,6 +48,7 @@ typedef struct {
     sim_ps glitch_width_ps;   /* default 20 ns */
     line_fault fault;         /* applied from fault_at_ps; default LINE_OK */
     sim_ps fault_at_ps;
+    sim_ps fault_until_ps; /* the fault ends then (reconnected); 0: it never ends */
 } line_params;
 
 void line_params_default(line_params *p);

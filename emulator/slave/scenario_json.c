@@ -174,6 +174,8 @@ static int parse_line(ctx *c, const cJSON *obj, line_params *p) {
             r = parse_fault(c, it, &p->fault);
         } else if (!strcmp(k, "fault_at_ns")) {
             r = get_ns(c, it, k, &p->fault_at_ps);
+        } else if (!strcmp(k, "fault_until_ns")) {
+            r = get_ns(c, it, k, &p->fault_until_ps);
         } else {
             r = fail(c, k, "unknown field");
         }

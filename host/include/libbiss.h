@@ -239,6 +239,8 @@ struct biss_sample {
     uint32_t frame; /* frame number (all frames the firmware ran, training included) */
     uint32_t flags; /* BISS_RF_* */
     bool valid, crc_error, no_slave, proc_error, training, sma;
+    bool ack_jump;         /* the ACK lay over half a bit from the average: bits read at
+                              the wrong place, so not valid (a glitch, or the line changed) */
     uint32_t timestamp;    /* IEP count when the first MA edge was due */
     unsigned proc_clocks;  /* slave busy time, MA clocks */
     unsigned cds;          /* CDS bit */

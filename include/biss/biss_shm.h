@@ -188,6 +188,8 @@
 #define BISS_RF_PROC_ERROR      0x08    // processing time over CFG_PROC_LIMIT: frame aborted
 #define BISS_RF_TRAINING        0x10    // first frame at a new rate: delay measured, data not checked
 #define BISS_RF_SMA             0x20    // the moving average is filled (4 frames at this rate)
+#define BISS_RF_ACK_JUMP        0x40    // the ACK lay over half a bit from the average: bits read
+                                        // at the wrong place, so never VALID (see pru_fw/README)
 
 #define BISS_RS_CRC_OK          0x01
 #define BISS_RS_NE              0x02    // nE as received (1: no error); 0 if the slave has none

@@ -222,6 +222,20 @@ START_TEST(test_aborted_frame_has_no_slave_data) {
 }
 END_TEST
 
+START_TEST(test_ack_jump_frame_is_not_valid) {
+    uint8_t b[BISS_RES_SIZE];
+    result_bytes(b);
+    put32(b, BISS_R_FLAGS, BISS_RF_ACK_JUMP);
+    struct biss_shm_result r;
+    memcpy(&r, b, sizeof r);
+    struct biss_config c = two_slaves();
+    struct biss_sample s;
+    biss_sample_decode(&c, true, 1, &r, &s);
+    ck_assert(!s.valid && s.ack_jump && !s.no_slave);
+    ck_assert_uint_eq(s.slave[0].data, 0); /* words read at the wrong place: none */
+}
+END_TEST
+
 int main(void) {
     Suite *s = suite_create("host_encode");
     TCase *tc = tcase_create("encode");
@@ -231,6 +245,7 @@ int main(void) {
     tcase_add_test(tc, test_result_decode);
     tcase_add_test(tc, test_delay_decode);
     tcase_add_test(tc, test_aborted_frame_has_no_slave_data);
+    tcase_add_test(tc, test_ack_jump_frame_is_not_valid);
     suite_add_tcase(s, tc);
     return check_run(s);
 }

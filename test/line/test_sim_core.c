@@ -62,6 +62,127 @@ START_TEST(queue_cancel_removes_only_that_event) {
 }
 END_TEST
 
+START_TEST(queue_cancel_of_an_event_that_sifted_up) {
+    /* B is earlier than A, so it moves to the heap's top when scheduled:
+     * its id must still be its own. */
+    event_queue q;
+    log_t g = {.n = 0};
+    eq_init(&q);
+    eq_id a = eq_schedule(&q, 100, note, &g, 1);
+    eq_id b = eq_schedule(&q, 50, note, &g, 2);
+    ck_assert_uint_ne(a, b);
+    ck_assert_int_eq(eq_cancel(&q, b), 1);
+    eq_run_until(&q, 1000);
+    ck_assert_int_eq(g.n, 1);
+    ck_assert_int_eq(g.order[0], 1);
+    eq_free(&q);
+}
+END_TEST
+
+/* The reference: pending events in a plain array, the next one found by a
+ * linear scan for the least (time, scheduling order). */
+typedef struct {
+    sim_ps t;
+    eq_id id;
+    int64_t arg;
+} ref_event;
+
+typedef struct {
+    ref_event ev[512];
+    int n;
+} ref_queue;
+
+static int ref_earliest(const ref_queue *r) {
+    int best = -1;
+    for (int i = 0; i < r->n; i++) {
+        if (best < 0 || r->ev[i].t < r->ev[best].t ||
+            (r->ev[i].t == r->ev[best].t && r->ev[i].id < r->ev[best].id)) {
+            best = i;
+        }
+    }
+    return best;
+}
+
+static void ref_remove(ref_queue *r, int i) {
+    r->ev[i] = r->ev[--r->n];
+}
+
+typedef struct {
+    int64_t args[4096];
+    sim_ps when[4096];
+    int n;
+} run_log;
+
+static void log_run(void *ctx, sim_ps t, int64_t arg) {
+    run_log *l = ctx;
+    ck_assert_int_lt(l->n, 4096);
+    l->args[l->n] = arg;
+    l->when[l->n] = t;
+    l->n++;
+}
+
+START_TEST(queue_agrees_with_reference_model) {
+    /* Random schedules (earlier and later than what is pending, equal times
+     * too), cancellations of pending, run and unknown ids, and runs up to a
+     * time: every event runs exactly when and in the order the reference
+     * says, and eq_cancel's verdict matches. */
+    sim_rng rng;
+    sim_rng_seed(&rng, 0x5eed + (uint64_t)_i);
+    event_queue q;
+    eq_init(&q);
+    static ref_queue ref;
+    static run_log got;
+    ref.n = 0;
+    got.n = 0;
+    eq_id ids[4096];
+    int nids = 0;
+    int64_t next_arg = 0;
+    for (int step = 0; step < 3000; step++) {
+        unsigned op = (unsigned)(sim_rng_u64(&rng) % 10);
+        if (op < 5 && ref.n < 512) {
+            sim_ps t = eq_now(&q) + (sim_ps)(sim_rng_u64(&rng) % 64);
+            eq_id id = eq_schedule(&q, t, log_run, &got, next_arg);
+            ck_assert_uint_ne(id, 0);
+            ref.ev[ref.n++] = (ref_event){t, id, next_arg};
+            ids[nids++ % 4096] = id;
+            next_arg++;
+        } else if (op < 8) {
+            /* any id seen so far (pending or not), or one never issued */
+            eq_id id = nids && op < 7
+                           ? ids[sim_rng_u64(&rng) % (uint64_t)(nids < 4096 ? nids : 4096)]
+                           : (eq_id)(sim_rng_u64(&rng) % 100000 + 1000000);
+            int pending = -1;
+            for (int i = 0; i < ref.n; i++) {
+                if (ref.ev[i].id == id) {
+                    pending = i;
+                }
+            }
+            ck_assert_int_eq(eq_cancel(&q, id), pending >= 0);
+            if (pending >= 0) {
+                ref_remove(&ref, pending);
+            }
+        } else {
+            sim_ps until = eq_now(&q) + (sim_ps)(sim_rng_u64(&rng) % 40);
+            int first = got.n;
+            eq_run_until(&q, until);
+            int k = first;
+            for (int i; (i = ref_earliest(&ref)) >= 0 && ref.ev[i].t <= until;) {
+                ck_assert_int_lt(k, got.n);
+                ck_assert_int_eq(got.args[k], ref.ev[i].arg);
+                ck_assert_int_eq(got.when[k], ref.ev[i].t);
+                ref_remove(&ref, i);
+                k++;
+            }
+            ck_assert_int_eq(k, got.n);
+        }
+        ck_assert_uint_eq(eq_pending(&q), (size_t)ref.n);
+        int e = ref_earliest(&ref);
+        ck_assert_int_eq(eq_next_time(&q), e < 0 ? SIM_NEVER : ref.ev[e].t);
+    }
+    eq_free(&q);
+}
+END_TEST
+
 typedef struct {
     event_queue *q;
     log_t g;
@@ -163,6 +284,8 @@ int main(void) {
     tcase_add_test(tc, queue_runs_in_time_then_fifo_order);
     tcase_add_test(tc, queue_cancel_removes_only_that_event);
     tcase_add_test(tc, queue_runs_events_scheduled_while_running);
+    tcase_add_test(tc, queue_cancel_of_an_event_that_sifted_up);
+    tcase_add_loop_test(tc, queue_agrees_with_reference_model, 0, 20);
     tcase_add_test(tc, waveform_lookups);
     tcase_add_test(tc, waveform_many_edges_binary_search);
     tcase_add_test(tc, rng_reproducible_and_sane);

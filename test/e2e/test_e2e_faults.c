@@ -1,0 +1,130 @@
+/* End-to-end: faults that really happen on a BiSS line, scheduled in the
+ * future as they come on a running machine, and noise. The firmware must
+ * ride through glitches, report a lost slave and recover, and never publish
+ * a wrong position as valid. */
+#include "e2e_util.h"
+
+#include "biss/biss_shm.h"
+#include "scenario_json.h"
+
+#include "check_run.h"
+
+#include <check.h>
+#include <math.h>
+
+#ifndef SCENARIO_DIR
+#error "SCENARIO_DIR must name test/scenarios"
+#endif
+
+#define MS SIM_PS_PER_MS
+
+static struct bench *bench_for(struct e2e_run *r, const char *file) {
+    scenario sc;
+    char err[512];
+    ck_assert_msg(scenario_load_file(file, &sc, err, sizeof err) == 0, "%s", err);
+    return e2e_bench_scenario(r, &sc, NULL);
+}
+
+static sim_ps now(struct e2e_run *r) {
+    return pru_time_ps(bench_core(r->b));
+}
+
+static void run_to(struct e2e_run *r, sim_ps t) {
+    ck_assert_int_eq(bench_run_until(r->b, t), PRU_STOP_LIMIT);
+}
+
+/* ---- glitches keep coming for as long as the line runs (they stopped
+ * after about one when the event queue cancelled the wrong events) ---- */
+START_TEST(test_glitches_keep_coming) {
+    struct e2e_run r;
+    scenario sc;
+    ck_assert_int_eq(profile_by_name("tidep0022-test-encoder", &sc), 0);
+    sc.sl_line.glitch_rate_hz = 100000;
+    e2e_bench_scenario(&r, &sc, NULL);
+    ck_assert_uint_gt(e2e_run_frames(&r, 10, 1000, 100), 90);
+    link_model *l = bench_link(r.b);
+    uint64_t before = l->sl_line.glitches;
+    sim_ps t0 = now(&r);
+    run_to(&r, t0 + 20 * MS);
+    /* Poisson, mean 2000 in 20 ms: within 5 sigma */
+    uint64_t n = l->sl_line.glitches - before;
+    ck_assert_uint_gt(n, 2000 - 224);
+    ck_assert_uint_lt(n, 2000 + 224);
+    e2e_free(&r);
+}
+END_TEST
+
+/* ---- SL stuck low from a time in the future until a later one: no slave
+ * reported within about a millisecond, valid frames again afterwards, no
+ * wrong position ever ---- */
+START_TEST(test_stuck_low_scheduled) {
+    struct e2e_run r;
+    scenario sc;
+    ck_assert_int_eq(profile_by_name("tidep0022-test-encoder", &sc), 0);
+    const sim_ps at = 5 * MS, until = 9 * MS;
+    sc.sl_line.fault = _i ? LINE_STUCK_HIGH : LINE_STUCK_LOW;
+    sc.sl_line.fault_at_ps = at;
+    sc.sl_line.fault_until_ps = until;
+    e2e_bench_scenario(&r, &sc, NULL);
+    ck_assert_uint_eq(e2e_run_frames(&r, 10, 1000, 50), 50);
+    ck_assert_int_lt(now(&r), at);
+    fw_check_restart(&r.fc, UINT64_MAX);
+    run_to(&r, at);
+    uint64_t good = r.fc.frames;
+    ck_assert_uint_gt(good, 50);
+    ck_assert_uint_eq(r.fc.no_slave, 0);
+    run_to(&r, at + 1200 * SIM_PS_PER_US); /* reported within 1.2 ms */
+    ck_assert_uint_ge(r.fc.no_slave, 1);
+    run_to(&r, until);
+    ck_assert_uint_ge(r.fc.no_slave, 3);
+    ck_assert_uint_le(r.fc.frames, good + 1); /* the frame under way when it broke */
+    ck_assert_uint_eq(e2e_dram32(r.b, BISS_ST_STATE), BISS_STATE_RUNNING);
+    run_to(&r, until + 3 * MS);
+    ck_assert_uint_gt(r.fc.frames, good + 50);
+    ck_assert_uint_eq(r.fc.mismatches, 0);
+    e2e_free(&r);
+}
+END_TEST
+
+/* ---- noise: the scenarios scripts/bench-noise runs for 10^6 frames ---- */
+static const struct noise_case {
+    const char *file;
+    double min_good;        /* share of publications valid with a good CRC */
+    unsigned wrong_per_1e4; /* wrong positions passed as valid, at most */
+} noise[] = {
+    {SCENARIO_DIR "/noise-sl-10khz.json", 0.95, 0},
+    {SCENARIO_DIR "/noise-sl-100khz.json", 0.85, 0},
+    {SCENARIO_DIR "/noise-sl-30khz-jitter.json", 0.90, 0},
+    /* a glitch every 1.4 us on average: frames started in the slave's
+     * timeout once lost the slave for good (every frame then read an idle
+     * line); now the frames go on, a few wrong ones pass the CRC6 */
+    {SCENARIO_DIR "/noise-sl-700khz.json", 0.50, 2},
+};
+
+START_TEST(test_noise_never_valid_and_wrong) {
+    const struct noise_case *c = &noise[_i];
+    struct e2e_run r;
+    bench_for(&r, c->file);
+    uint64_t frames = 2 * e2e_frames(10000);
+    uint64_t got = e2e_run_frames(&r, 10, 1000, frames);
+    ck_assert_uint_eq(got, frames);
+    ck_assert_uint_le(r.fc.mismatches, frames * c->wrong_per_1e4 / 10000);
+    double good = (double)(r.fc.frames - r.fc.crc_errors) / (double)r.fc.publications;
+    ck_assert_msg(good >= c->min_good, "%s: %.4f of the frames good", c->file, good);
+    ck_assert_uint_le(r.fc.ack_jump_good, r.fc.ack_jumps);
+    ck_assert_uint_eq(r.fc.no_slave, 0);
+    e2e_free(&r);
+}
+END_TEST
+
+int main(void) {
+    Suite *s = suite_create("e2e_faults");
+    TCase *tc = tcase_create("faults");
+    tcase_set_timeout(tc, 600);
+    tcase_add_test(tc, test_glitches_keep_coming);
+    tcase_add_loop_test(tc, test_stuck_low_scheduled, 0, 2);
+    tcase_add_loop_test(tc, test_noise_never_valid_and_wrong, 0,
+                        (int)(sizeof noise / sizeof noise[0]));
+    suite_add_tcase(s, tc);
+    return check_run(s);
+}
