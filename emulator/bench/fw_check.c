@@ -123,6 +123,7 @@ static void on_publish(void *ctx, uint32_t addr) {
     fc->no_slave += !!(flags & BISS_RF_NO_SLAVE);
     fc->proc_errors += !!(flags & BISS_RF_PROC_ERROR);
     fc->training += !!(flags & BISS_RF_TRAINING);
+    fc->delay_frames += (flags & (BISS_RF_VALID | BISS_RF_TRAINING)) != 0;
     memcpy(&u16, res + BISS_R_DELAY_RAW, 2);
     fc->delay_raw = u16;
     memcpy(&u16, res + BISS_R_DELAY_AVG, 2);

@@ -23,7 +23,8 @@ struct fw_check {
     uint64_t crc_errors;   /* frames flagged with a CRC error */
     uint64_t mismatches;   /* frames with a word passed as right (CRC) but unlike what was sent */
     uint64_t no_slave, proc_errors, training;
-    uint64_t unmatched; /* valid frames whose slave record was gone */
+    uint64_t delay_frames; /* publications with a line delay (valid or training) */
+    uint64_t unmatched;    /* valid frames whose slave record was gone */
     uint32_t last_flags;
     unsigned delay_raw, delay_avg, sample_point, lag, half;
     unsigned delay_raw_min, delay_raw_max; /* raw ACK positions of the valid frames */
