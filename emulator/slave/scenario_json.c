@@ -195,10 +195,15 @@ static int parse_registers(ctx *c, const cJSON *obj, regfile *r) {
         unsigned bank = 0;
         uint8_t addr = 0;
         unsigned v;
-        if (parse_addr(c, it->string, "registers", &bank, &addr) ||
-            get_whole(c, it, "registers", 255, &v)) {
+        if (parse_addr(c, it->string, "registers", &bank, &addr)) {
             return -1;
         }
+        size_t saved = strlen(c->path);
+        push(c, "registers"); /* a bad value is named by its address */
+        if (get_whole(c, it, it->string, 255, &v)) {
+            return -1;
+        }
+        pop(c, saved);
         regfile_poke(r, bank, addr, (uint8_t)v);
     }
     return 0;

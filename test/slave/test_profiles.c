@@ -187,6 +187,10 @@ START_TEST(json_ranges) {
                  "biss.slaves[1].id: 1 is slaves[0]'s id too");
     expect_error("{\"biss\": {\"slaves\": [{\"position\": \"-1\"}]}}",
                  "biss.slaves[0].position: expected a number (or a string like \"0x43\")");
+    expect_error("{\"biss\": {\"slaves\": [{\"registers\": {\"0x44\": 1, \"bank1:0x10\": 256}}]}}",
+                 "biss.slaves[0].registers.bank1:0x10: 256 out of range 0..255");
+    expect_error("{\"biss\": {\"slaves\": [{\"banks\": 73}]}}",
+                 "biss.slaves[0].banks: 73 out of range 0..72");
     /* the document itself: nothing after the object, no key twice */
     expect_error("{\"seed\": 1} garbage", "text after the JSON object (at byte 12)");
     expect_error("{\"seed\": 1}{}", "text after the JSON object (at byte 11)");
