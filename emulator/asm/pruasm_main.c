@@ -9,6 +9,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #define MAX_DEFINES   8
@@ -248,6 +249,7 @@ struct staged {
     char tmp[MAX_OUTPUTS][300];
     char final[MAX_OUTPUTS][300];
     int n;
+    mode_t umask; /* the process's, for the outputs' modes */
 };
 
 static int stage(struct staged *s, const char *base, const char *suffix, const void *data,
@@ -263,6 +265,12 @@ static int stage(struct staged *s, const char *base, const char *suffix, const v
         return -1;
     }
     s->n++;
+    /* mkstemp creates 0600; the outputs get what fopen would give them */
+    if (fchmod(fd, 0666 & ~s->umask) != 0) {
+        fprintf(stderr, "Error: Unable to open output file: %s\n\n", s->final[i]);
+        close(fd);
+        return -1;
+    }
     FILE *fp = fdopen(fd, "wb");
     if (!fp) {
         close(fd);
@@ -277,6 +285,8 @@ static int stage(struct staged *s, const char *base, const char *suffix, const v
 
 static int write_outputs(const struct cli *o, const char *base, const struct pruasm_image *img) {
     struct staged s = {0};
+    s.umask = umask(0); /* read it: umask has no getter */
+    umask(s.umask);
     int rc = 0;
     size_t len = 0;
     char *text;

@@ -27,6 +27,10 @@
 #include <time.h>
 #include <unistd.h>
 
+/* The longest simulated run (~11.6 days): far inside the core's time range
+ * (PRU_MAX_CYCLE), so run limits in ps never overflow. */
+#define MAX_SIM_MS 1e9
+
 #ifndef BISS_SIM_FIRMWARE
 #define BISS_SIM_FIRMWARE "biss_master.bin"
 #endif
@@ -232,8 +236,9 @@ static int set_option(struct options *o, const char *a, const char *v) {
             return die("--svg-frame: '%s' is not a frame number", v);
         }
     } else if (!strcmp(a, "--max-ms")) {
-        if (parse_double(v, &o->max_ms) || o->max_ms <= 0) {
-            return die("--max-ms: '%s' is not a positive time", v);
+        if (parse_double(v, &o->max_ms) || o->max_ms <= 0 || o->max_ms > MAX_SIM_MS) {
+            return die("--max-ms: '%s' is not a time of more than 0 and at most %.0f ms", v,
+                       MAX_SIM_MS);
         }
     }
     return 0;
@@ -366,6 +371,10 @@ static int run(const struct options *o) {
         return die("--freq %g: 100 MHz / f must be a whole number of PRU cycles, 5..%d", o->freq_hz,
                    BISS_MAX_HALF);
     }
+    const char *why_not = o->image ? NULL : fw_config_half_problem(half);
+    if (why_not) {
+        return die("--freq %.10g: the firmware cannot clock it: %s", o->freq_hz, why_not);
+    }
     char err[512];
     struct bench *b = bench_new(&cfg, err, sizeof(err));
     if (!b) {
@@ -409,17 +418,18 @@ static int run(const struct options *o) {
     if (o->svg) {
         bench_capture_frame(b, o->svg_frame);
     }
-    /* ample time: every frame at its longest, twice, plus start-up */
-    int64_t max_ps =
-        o->max_ms > 0
-            ? (int64_t)(o->max_ms * 1e9)
-            : (int64_t)(2 * sim_clock_frame_ps(b, half) * (double)(o->frames + 4)) + SIM_PS_PER_MS;
+    /* ample time: every frame at its longest, twice, plus start-up; never
+     * beyond MAX_SIM_MS (the message then says how many frames ran) */
+    double limit_ps =
+        o->max_ms > 0 ? o->max_ms * 1e9
+                      : 2 * sim_clock_frame_ps(b, half) * ((double)o->frames + 4) + SIM_PS_PER_MS;
     int tty = isatty(2);
     double t_start = now_seconds();
     struct fw_cd cd = {0};
     if (o->cd_set) {
-        max_ps += (int64_t)(2 * sim_clock_frame_ps(b, half) * (o->cd.len + 20));
+        limit_ps += 2 * sim_clock_frame_ps(b, half) * (o->cd.len + 20);
     }
+    int64_t max_ps = (int64_t)fmin(limit_ps, MAX_SIM_MS * 1e9);
     enum pru_stop why =
         fw_mode ? run_firmware(b, &fc, o->frames, max_ps, tty, &cd, o->cd_set ? &o->cd : NULL)
                 : bench_run_frames(b, o->frames, max_ps, NULL, NULL);
@@ -433,7 +443,9 @@ static int run(const struct options *o) {
         rc = 3;
     }
     if (fw_mode && dram32(b, BISS_ST_STATE) == BISS_STATE_CFG_ERROR) {
-        rc = die("the firmware refused the configuration (error %u)", dram32(b, BISS_ST_CFG_ERROR));
+        uint32_t code = dram32(b, BISS_ST_CFG_ERROR);
+        rc = die("the firmware refused the configuration (error %u, %s)", code,
+                 fw_config_error_text(code));
     }
     if (o->svg && sim_write_svg(&res, o->svg, o->svg_frame, err, sizeof(err)) != 0) {
         rc = die("%s", err);
@@ -460,8 +472,12 @@ static int run(const struct options *o) {
     }
     uint64_t done = fw_mode ? fc.frames : bench_stats(b)->frames;
     if (rc == 0 && done < o->frames) {
-        fprintf(stderr, "biss-sim: only %llu of %llu frames completed\n", (unsigned long long)done,
-                (unsigned long long)o->frames);
+        fprintf(stderr,
+                "biss-sim: only %llu of %llu frames completed in %.6g ms of simulated time "
+                "(%s)\n",
+                (unsigned long long)done, (unsigned long long)o->frames, (double)max_ps / 1e9,
+                o->max_ms > 0 ? "the --max-ms limit"
+                              : "the limit for these frames; --max-ms sets it");
         rc = 2;
     }
     pruasm_image_free(&img);

@@ -150,6 +150,7 @@ static void on_publish(void *ctx, uint32_t addr) {
         fc->ack_jumps++;
         judge_refused(fc, res);
     }
+    fc->delay_frames += (flags & (BISS_RF_VALID | BISS_RF_TRAINING)) != 0;
     memcpy(&u16, res + BISS_R_DELAY_RAW, 2);
     fc->delay_raw = u16;
     memcpy(&u16, res + BISS_R_DELAY_AVG, 2);

@@ -61,3 +61,50 @@ int fw_config_write(struct bench *b, const struct fw_settings *s) {
     put(b, BISS_CFG_SEQ, get32(b, BISS_CFG_SEQ) + 1, 4);
     return 0;
 }
+
+/* The 28-bit shift register samples SL at 8x MA through two cascaded
+ * dividers of the 200 MHz clock, ratios a/2 and b/2 with 2 <= a, b <= 32
+ * (docs/pru-facts.md §4.4, §4.5): 8 samples per 2H cycles need H = a * b. */
+static int has_shift_factors(unsigned half) {
+    for (unsigned a = 2; a <= 32; a++) {
+        if (half % a == 0 && half / a >= 2 && half / a <= 32) {
+            return 1;
+        }
+    }
+    return 0;
+}
+
+const char *fw_config_half_problem(unsigned half) {
+    if (half < BISS_MIN_HALF) {
+        return "faster than the firmware's 10 MHz (BISS_MIN_HALF = 10 PRU cycles)";
+    }
+    if (half > BISS_MAX_HALF) {
+        return "slower than the firmware's 97.7 kHz (BISS_MAX_HALF = 1024 PRU cycles)";
+    }
+    if (!has_shift_factors(half)) {
+        return "no exact 8x shift clock for it (the half period in PRU cycles must be a * b, "
+               "2 <= a, b <= 32)";
+    }
+    return NULL;
+}
+
+const char *fw_config_error_text(uint32_t code) {
+    /* the meanings of include/biss/biss_shm.h */
+    static const char *const text[] = {
+        [BISS_CFGERR_NONE] = "BISS_CFGERR_NONE: accepted",
+        [BISS_CFGERR_NSLAVES] = "BISS_CFGERR_NSLAVES: 0 or more than 8 slaves",
+        [BISS_CFGERR_HALF] = "BISS_CFGERR_HALF: MA half period out of range or no exact 8x "
+                             "shift clock for it",
+        [BISS_CFGERR_DATA_BITS] = "BISS_CFGERR_DATA_BITS: a slave with 0 or more than 64 data "
+                                  "bits",
+        [BISS_CFGERR_CRC_BITS] = "BISS_CFGERR_CRC_BITS: a slave with more than 16 CRC bits",
+        [BISS_CFGERR_TRIGGER] = "BISS_CFGERR_TRIGGER: unknown trigger mode",
+        [BISS_CFGERR_EW] = "BISS_CFGERR_EW: nE/nW position outside the data word",
+        [BISS_CFGERR_IEP_PERIOD] = "BISS_CFGERR_IEP_PERIOD: IEP period shorter than a frame can be",
+        [BISS_CFGERR_SSI] = "BISS_CFGERR_SSI: SSI needs one slave and no CRC",
+    };
+    if (code < sizeof text / sizeof text[0] && text[code]) {
+        return text[code];
+    }
+    return "an error code the header does not define";
+}

@@ -19,4 +19,13 @@ struct fw_settings {
  * round trip from the model) and increments CFG_SEQ. Returns 0. */
 int fw_config_write(struct bench *b, const struct fw_settings *s);
 
+/* Why the firmware refuses the MA half period `half` (BISS_CFGERR_HALF:
+ * out of BISS_MIN_HALF..BISS_MAX_HALF, or no exact 8x shift clock), or
+ * NULL when it takes it. */
+const char *fw_config_half_problem(unsigned half);
+
+/* "BISS_CFGERR_HALF: ..." for a configuration-error code the firmware
+ * reports in BISS_ST_CFG_ERROR (include/biss/biss_shm.h). */
+const char *fw_config_error_text(uint32_t code);
+
 #endif

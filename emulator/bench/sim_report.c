@@ -108,7 +108,11 @@ static void add_firmware(cJSON *j, struct bench *b, const struct fw_check *fw) {
     cJSON_AddNumberToObject(f, "ack_jumps", (double)fw->ack_jumps);
     cJSON_AddNumberToObject(f, "ack_jumps_good_lost", (double)fw->ack_jump_good);
     cJSON_AddNumberToObject(f, "training_frames", (double)fw->training);
-    cJSON_AddNumberToObject(f, "line_delay_ns", sim_fw_line_delay_ns(fw));
+    if (fw->delay_frames) {
+        cJSON_AddNumberToObject(f, "line_delay_ns", sim_fw_line_delay_ns(fw));
+    } else {
+        cJSON_AddNullToObject(f, "line_delay_ns"); /* nothing measured */
+    }
     cJSON_AddNumberToObject(f, "delay_bit8_raw", fw->delay_raw);
     cJSON_AddNumberToObject(f, "delay_bit8_avg", fw->delay_avg);
     cJSON_AddNumberToObject(f, "sample_point", fw->sample_point);
@@ -195,7 +199,10 @@ static void print_sent(const struct sim_result *r) {
 static void print_read(const struct sim_result *r) {
     const struct fw_check *fw = r->fw;
     const biss_chain_cfg *c = &bench_link(r->b)->sc.biss;
-    for (unsigned i = 0; i < c->n && i < 8; i++) {
+    if (fw->frames == 0) {
+        printf("slaves               no valid frame read\n");
+    }
+    for (unsigned i = 0; fw->frames && i < c->n && i < 8; i++) {
         uint64_t pos;
         int nE, nW;
         fw_check_split(&c->s[i], fw->data[i], &pos, &nE, &nW);
@@ -207,6 +214,10 @@ static void print_read(const struct sim_result *r) {
     }
     static const char *const names[] = {"valid",           "CRC error", "no slave",
                                         "processing time", "training",  "average ready"};
+    if (fw->publications == 0) {
+        printf("flags                none: the firmware published nothing\n");
+        return;
+    }
     printf("flags                0x%02x:", fw->last_flags);
     for (unsigned b = 0; b < sizeof(names) / sizeof(names[0]); b++) {
         if (fw->last_flags & (1u << b)) {
@@ -250,10 +261,16 @@ void sim_print_text(const struct sim_result *r) {
                (unsigned long long)fw->crc_errors, (unsigned long long)fw->mismatches,
                (unsigned long long)fw->no_slave, (unsigned long long)fw->proc_errors,
                (unsigned long long)fw->ack_jumps);
-        printf("line delay           %.1f ns measured by the firmware (%.1f ns in the model), "
-               "sample point %u/8, lag %u periods\n",
-               sim_fw_line_delay_ns(fw), bench_round_trip_ps(b) / 1000.0, fw->sample_point,
-               fw->lag);
+        if (fw->delay_frames) {
+            printf("line delay           %.1f ns measured by the firmware (%.1f ns in the model), "
+                   "sample point %u/8, lag %u periods\n",
+                   sim_fw_line_delay_ns(fw), bench_round_trip_ps(b) / 1000.0, fw->sample_point,
+                   fw->lag);
+        } else {
+            printf("line delay           not measured: the firmware published no frame with an "
+                   "ACK (%.1f ns in the model)\n",
+                   bench_round_trip_ps(b) / 1000.0);
+        }
     } else {
         printf("round trip (model)   %.1f ns\n", bench_round_trip_ps(b) / 1000.0);
     }

@@ -7,6 +7,7 @@
 #include "pru_core.h"
 #include "read_file.h"
 
+#include <ctype.h>
 #include <errno.h>
 #include <inttypes.h>
 #include <stdlib.h>
@@ -42,10 +43,12 @@ static void usage(FILE *f) {
             (long long)DEFAULT_MAX_CYCLES);
 }
 
+/* A whole number, decimal or with a C prefix (0x...), 0..2^64-1: no sign,
+ * no spaces, nothing after it. */
 static int parse_u64(const char *s, uint64_t *out) {
     char *end;
     errno = 0;
-    if (!s || !*s || *s == '-')
+    if (!s || !isdigit((unsigned char)*s))
         return -1;
     unsigned long long v = strtoull(s, &end, 0);
     if (errno || *end)
@@ -74,9 +77,10 @@ static int parse_args(int argc, char **argv, struct opts *o) {
         } else if (strcmp(a, "--trace") == 0) {
             o->trace = 1;
         } else if (strcmp(a, "--max-cycles") == 0) {
-            if (parse_u64(val, &u) || u == 0 || u >= (uint64_t)PRU_MAX_CYCLE)
-                return bad("--max-cycles needs a positive number", val);
-            o->max_cycles = (int64_t)u;
+            if (parse_u64(val, &u) || u == 0)
+                return bad("--max-cycles needs a whole number of cycles from 1 to 2^64-1", val);
+            /* the core caps a limit at PRU_MAX_CYCLE (about 52 days) anyway */
+            o->max_cycles = u > (uint64_t)INT64_MAX ? INT64_MAX : (int64_t)u;
             i++;
         } else if (strcmp(a, "--soc") == 0) {
             if (!val || pru_soc_from_name(val, &o->soc))
@@ -114,8 +118,16 @@ static int read_input(const char *path, uint8_t **buf, size_t *len) {
         fprintf(stderr, "pru-run: cannot open %s: %s\n", path, strerror(errno));
         return -1;
     }
+    if (e == READ_FILE_TOO_BIG) {
+        fprintf(stderr, "pru-run: cannot read %s: larger than 32 MB\n", path);
+        return -1;
+    }
+    if (e == READ_FILE_NOMEM) {
+        fprintf(stderr, "pru-run: cannot read %s: out of memory\n", path);
+        return -1;
+    }
     if (e) {
-        fprintf(stderr, "pru-run: cannot read %s\n", path);
+        fprintf(stderr, "pru-run: cannot read %s: %s\n", path, strerror(errno));
         return -1;
     }
     *buf = (uint8_t *)b;
@@ -128,7 +140,10 @@ static int load(struct pru_core *c, const struct opts *o) {
     if (read_input(o->image, &buf, &len))
         return -1;
     int rc = 0;
-    if (len % 4 != 0) {
+    if (len == 0) {
+        fprintf(stderr, "pru-run: %s: empty image (no instruction to run)\n", o->image);
+        rc = -1;
+    } else if (len % 4 != 0) {
         fprintf(stderr, "pru-run: %s: size %zu is not a multiple of 4\n", o->image, len);
         rc = -1;
     } else if (pru_load_image(c, buf, len) != 0) {

@@ -1,6 +1,7 @@
 #include "biss_slave.h"
 
 #include "biss_crc.h"
+#include "slave_motion.h"
 
 #include <math.h>
 #include <string.h>
@@ -28,9 +29,25 @@ void biss_chain_cfg_default(biss_chain_cfg *c) {
     c->adaptive_max_ps = 20 * SIM_PS_PER_US;
 }
 
+unsigned biss_slave_cfg_data_bits(const biss_slave_cfg *s) {
+    return s->pos_bits + s->fill_bits + (s->has_err ? 1 : 0) + (s->has_warn ? 1 : 0) + s->lc_bits;
+}
+
 unsigned biss_slave_cfg_bits(const biss_slave_cfg *s) {
-    return s->pos_bits + s->fill_bits + (s->has_err ? 1 : 0) + (s->has_warn ? 1 : 0) + s->lc_bits +
-           biss_crc_width(s->crc_poly);
+    return biss_slave_cfg_data_bits(s) + biss_crc_width(s->crc_poly);
+}
+
+int biss_chain_shared_id(const biss_chain_cfg *c, unsigned *first, unsigned *second) {
+    for (unsigned j = 1; j < c->n && j < BISS_MAX_SLAVES; j++) {
+        for (unsigned i = 0; i < j; i++) {
+            if (c->s[i].id == c->s[j].id) {
+                *first = i;
+                *second = j;
+                return 1;
+            }
+        }
+    }
+    return 0;
 }
 
 const char *biss_slave_cfg_check(const biss_slave_cfg *s) {
@@ -45,6 +62,10 @@ const char *biss_slave_cfg_check(const biss_slave_cfg *s) {
     }
     if (s->lc_bits > 32) {
         return "life_counter_bits: must be 0..32";
+    }
+    if (biss_slave_cfg_data_bits(s) > 64) {
+        return "position_bits: with fill_bits, nE, nW and life_counter_bits more than 64 data "
+               "bits before the CRC";
     }
     if (s->crc_poly != 0 &&
         (biss_crc_width(s->crc_poly) < 1 || s->crc_poly > 0x1ffffu || !(s->crc_poly & 1u))) {
@@ -65,6 +86,10 @@ const char *biss_chain_cfg_check(const biss_chain_cfg *c) {
         if (e) {
             return e;
         }
+    }
+    unsigned first, second;
+    if (biss_chain_shared_id(c, &first, &second)) {
+        return "slaves: two slaves with one id (each answers control frames for its own)";
     }
     if (c->out_delay_ps <= 0) {
         return "output_delay_ns: must be > 0 (every effect follows its cause)";
@@ -122,10 +147,7 @@ static uint64_t mask_bits(unsigned n) {
 
 uint64_t biss_slave_position_at(const biss_slave *b, unsigned i, sim_ps t) {
     const biss_slave_cfg *s = &b->cfg.s[i];
-    double moved = floor(s->speed_cps * ((double)t / (double)SIM_PS_PER_S));
-    /* two's-complement wrap of the step keeps negative speeds right */
-    uint64_t step = (uint64_t)(int64_t)moved;
-    return (s->pos0 + step) & mask_bits(s->pos_bits);
+    return slave_position_at(s->pos0, s->speed_cps, s->pos_bits, t);
 }
 
 /* ---- SL output ---- */

@@ -74,6 +74,12 @@ void biss_slave_cfg_default(biss_slave_cfg *s, uint8_t id);
 void biss_chain_cfg_default(biss_chain_cfg *c);
 /* Bits a slave puts on the wire per frame (position .. CRC). */
 unsigned biss_slave_cfg_bits(const biss_slave_cfg *s);
+/* Its data word before the CRC: position, fill, nE, nW, life counter. At
+ * most 64 (the firmware's BISS_MAX_DATA_BITS; the bench checks the word
+ * as one uint64_t). */
+unsigned biss_slave_cfg_data_bits(const biss_slave_cfg *s);
+/* Whether two slaves of the chain share an id (then *first < *second). */
+int biss_chain_shared_id(const biss_chain_cfg *c, unsigned *first, unsigned *second);
 /* Check a configuration; return NULL or a message naming the field. */
 const char *biss_slave_cfg_check(const biss_slave_cfg *s);
 const char *biss_chain_cfg_check(const biss_chain_cfg *c);

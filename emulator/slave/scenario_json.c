@@ -1,8 +1,10 @@
 #include "scenario_json.h"
 
 #include "read_file.h"
+#include "scenario_fields.h"
 
 #include <cJSON.h>
+#include <ctype.h>
 #include <errno.h>
 #include <math.h>
 #include <stdarg.h>
@@ -35,43 +37,73 @@ static int fail(ctx *c, const char *field, const char *fmt, ...) {
     return -1;
 }
 
-/* Numbers may be JSON numbers or strings such as "0x43". */
-static int get_number(ctx *c, const cJSON *item, const char *field, double *out) {
-    if (cJSON_IsNumber(item)) {
-        *out = item->valuedouble;
-        return 0;
-    }
-    if (cJSON_IsString(item)) {
-        char *end;
-        errno = 0;
-        unsigned long long v = strtoull(item->valuestring, &end, 0);
-        if (errno == 0 && end != item->valuestring && *end == '\0') {
-            *out = (double)v;
-            return 0;
-        }
-    }
-    return fail(c, field, "expected a number (or a string like \"0x43\")");
-}
-
-static int get_uint(ctx *c, const cJSON *item, const char *field, double max, uint64_t *out) {
-    double v = 0;
-    if (cJSON_IsString(item)) { /* keep all 64 bits of hex strings */
-        char *end;
-        errno = 0;
-        unsigned long long u = strtoull(item->valuestring, &end, 0);
-        if (errno == 0 && end != item->valuestring && *end == '\0' && (double)u <= max) {
-            *out = u;
-            return 0;
-        }
-    }
-    if (get_number(c, item, field, &v)) {
+/* A string holding a whole number, decimal or with a C prefix ("0x43",
+ * "18446744073709551615"): its exact value. No sign, no spaces. */
+static int whole_string(const char *text, uint64_t *out) {
+    if (!isdigit((unsigned char)text[0])) {
         return -1;
     }
-    if (v < 0 || v > max || v != floor(v)) {
-        return fail(c, field, "expected a whole number from 0 to %.0f", max);
+    char *end;
+    errno = 0;
+    unsigned long long v = strtoull(text, &end, 0);
+    if (errno || *end) {
+        return -1;
     }
-    *out = (uint64_t)v;
+    *out = v;
     return 0;
+}
+
+/* One numeric field of a table (scenario_fields.h): a JSON number, or a
+ * string with a whole number; checked against the field's range, then
+ * stored. A whole number from 2^53 up is exact only as a string: a JSON
+ * number there has already lost digits in the parser's double. */
+static int parse_field(ctx *c, const cJSON *item, const sf_field *f, void *obj) {
+    double v;
+    uint64_t u = 0;
+    int exact = 0;
+    if (cJSON_IsNumber(item)) {
+        v = item->valuedouble;
+    } else if (cJSON_IsString(item) && whole_string(item->valuestring, &u) == 0) {
+        v = (double)u;
+        exact = 1;
+    } else {
+        return fail(c, f->name, "expected a number (or a string like \"0x43\")");
+    }
+    char what[96];
+    if (f->kind != SF_U64 || !exact) {
+        if (sf_check(f, v, what, sizeof what)) {
+            return fail(c, f->name, "%s", what);
+        }
+    }
+    if (f->kind == SF_U64 && !exact) {
+        if (v >= 9007199254740992.0) {
+            sf_format(v, what, sizeof what);
+            return fail(c, f->name,
+                        "a JSON number is exact only below 2^53 (this one reads as %s): "
+                        "give it as a string, \"18446744073709551615\" or \"0xffffffffffffffff\"",
+                        what);
+        }
+        u = (uint64_t)v;
+    }
+    sf_store(f, obj, v, u);
+    return 0;
+}
+
+/* If the key of item is a numeric field of table t, parses it into obj
+ * (*r: 0 or -1) and returns 1; else returns 0. */
+static int number_field(ctx *c, const sf_field *t, const cJSON *item, void *obj, int *r) {
+    const sf_field *f = sf_find(t, item->string);
+    if (!f) {
+        return 0;
+    }
+    *r = parse_field(c, item, f, obj);
+    return 1;
+}
+
+/* A whole number 0..hi outside the tables (bank count, register value). */
+static int get_whole(ctx *c, const cJSON *item, const char *field, double hi, unsigned *out) {
+    const sf_field f = {field, SF_UNSIGNED, 0, 0, 0, hi};
+    return parse_field(c, item, &f, out);
 }
 
 static int get_bool(ctx *c, const cJSON *item, const char *field, bool *out) {
@@ -79,29 +111,6 @@ static int get_bool(ctx *c, const cJSON *item, const char *field, bool *out) {
         return fail(c, field, "expected true or false");
     }
     *out = cJSON_IsTrue(item);
-    return 0;
-}
-
-/* A time in ns (fractions allowed) stored as ps. */
-static int get_ns(ctx *c, const cJSON *item, const char *field, sim_ps *out) {
-    double v = 0;
-    if (get_number(c, item, field, &v)) {
-        return -1;
-    }
-    if (v < 0 || v > 9e9) {
-        return fail(c, field, "expected a time in ns from 0 to 9e9");
-    }
-    *out = (sim_ps)llround(v * 1000.0);
-    return 0;
-}
-
-static int get_nonneg(ctx *c, const cJSON *item, const char *field, double *out) {
-    if (get_number(c, item, field, out)) {
-        return -1;
-    }
-    if (*out < 0) {
-        return fail(c, field, "must be >= 0");
-    }
     return 0;
 }
 
@@ -142,42 +151,12 @@ static int parse_fault(ctx *c, const cJSON *item, line_fault *f) {
 static int parse_line(ctx *c, const cJSON *obj, line_params *p) {
     const cJSON *it;
     cJSON_ArrayForEach(it, obj) {
-        const char *k = it->string;
         int r;
-        if (!strcmp(k, "length_m")) {
-            r = get_nonneg(c, it, k, &p->length_m);
-        } else if (!strcmp(k, "ns_per_m")) {
-            double v = 0;
-            r = get_nonneg(c, it, k, &v);
-            p->ps_per_m = v * 1000.0;
-        } else if (!strcmp(k, "driver_delay_ns")) {
-            r = get_ns(c, it, k, &p->driver_delay_ps);
-        } else if (!strcmp(k, "receiver_delay_ns")) {
-            r = get_ns(c, it, k, &p->receiver_delay_ps);
-        } else if (!strcmp(k, "rise_extra_ns")) {
-            r = get_ns(c, it, k, &p->rise_extra_ps);
-        } else if (!strcmp(k, "fall_extra_ns")) {
-            r = get_ns(c, it, k, &p->fall_extra_ps);
-        } else if (!strcmp(k, "tau0_ns")) {
-            double v = 0;
-            r = get_nonneg(c, it, k, &v);
-            p->tau0_ps = v * 1000.0;
-        } else if (!strcmp(k, "tau_per_m2_ps")) {
-            r = get_nonneg(c, it, k, &p->tau_per_m2_ps);
-        } else if (!strcmp(k, "jitter_rms_ps")) {
-            r = get_nonneg(c, it, k, &p->jitter_rms_ps);
-        } else if (!strcmp(k, "glitch_rate_hz")) {
-            r = get_nonneg(c, it, k, &p->glitch_rate_hz);
-        } else if (!strcmp(k, "glitch_width_ns")) {
-            r = get_ns(c, it, k, &p->glitch_width_ps);
-        } else if (!strcmp(k, "fault")) {
+        if (number_field(c, sf_line, it, p, &r)) {
+        } else if (!strcmp(it->string, "fault")) {
             r = parse_fault(c, it, &p->fault);
-        } else if (!strcmp(k, "fault_at_ns")) {
-            r = get_ns(c, it, k, &p->fault_at_ps);
-        } else if (!strcmp(k, "fault_until_ns")) {
-            r = get_ns(c, it, k, &p->fault_until_ps);
         } else {
-            r = fail(c, k, "unknown field");
+            r = fail(c, it->string, "unknown field");
         }
         if (r) {
             return -1;
@@ -215,11 +194,16 @@ static int parse_registers(ctx *c, const cJSON *obj, regfile *r) {
     cJSON_ArrayForEach(it, obj) {
         unsigned bank = 0;
         uint8_t addr = 0;
-        uint64_t v;
-        if (parse_addr(c, it->string, "registers", &bank, &addr) ||
-            get_uint(c, it, "registers", 255, &v)) {
+        unsigned v;
+        if (parse_addr(c, it->string, "registers", &bank, &addr)) {
             return -1;
         }
+        size_t saved = strlen(c->path);
+        push(c, "registers"); /* a bad value is named by its address */
+        if (get_whole(c, it, it->string, 255, &v)) {
+            return -1;
+        }
+        pop(c, saved);
         regfile_poke(r, bank, addr, (uint8_t)v);
     }
     return 0;
@@ -249,50 +233,25 @@ static int parse_slave(ctx *c, const cJSON *obj, biss_slave_cfg *s) {
      * order of the fields */
     const cJSON *banks = cJSON_GetObjectItemCaseSensitive(obj, "banks");
     if (banks) {
-        uint64_t u;
-        if (get_uint(c, banks, "banks", REGFILE_MAX_BANKS, &u)) {
+        unsigned n;
+        if (get_whole(c, banks, "banks", REGFILE_MAX_BANKS, &n)) {
             return -1;
         }
-        s->regs.nbanks = u ? (unsigned)u : 1;
+        s->regs.nbanks = n ? n : 1;
     }
     const cJSON *it;
     cJSON_ArrayForEach(it, obj) {
         const char *k = it->string;
-        uint64_t u = 0;
         int r = 0;
-        if (!strcmp(k, "id")) {
-            r = get_uint(c, it, k, 7, &u);
-            s->id = (uint8_t)u;
-        } else if (!strcmp(k, "position_bits")) {
-            r = get_uint(c, it, k, 64, &u);
-            s->pos_bits = (unsigned)u;
-        } else if (!strcmp(k, "fill_bits")) {
-            r = get_uint(c, it, k, 64, &u);
-            s->fill_bits = (unsigned)u;
+        if (number_field(c, sf_slave, it, s, &r)) {
         } else if (!strcmp(k, "error_bit")) {
             r = get_bool(c, it, k, &s->has_err);
         } else if (!strcmp(k, "warning_bit")) {
             r = get_bool(c, it, k, &s->has_warn);
-        } else if (!strcmp(k, "life_counter_bits")) {
-            r = get_uint(c, it, k, 32, &u);
-            s->lc_bits = (unsigned)u;
-        } else if (!strcmp(k, "crc_poly")) {
-            r = get_uint(c, it, k, 0x1ffff, &u);
-            s->crc_poly = (uint32_t)u;
-        } else if (!strcmp(k, "crc_start")) {
-            r = get_uint(c, it, k, 0xffff, &u);
-            s->crc_start = (uint32_t)u;
-        } else if (!strcmp(k, "position")) {
-            r = get_uint(c, it, k, 18446744073709551615.0, &s->pos0);
-        } else if (!strcmp(k, "speed_cps")) {
-            r = get_number(c, it, k, &s->speed_cps);
         } else if (!strcmp(k, "error")) {
             r = get_bool(c, it, k, &s->error);
         } else if (!strcmp(k, "warning")) {
             r = get_bool(c, it, k, &s->warning);
-        } else if (!strcmp(k, "register_processing_frames")) {
-            r = get_uint(c, it, k, 1000, &u);
-            s->reg_proc_frames = (unsigned)u;
         } else if (!strcmp(k, "banks")) {
             continue; /* done above */
         } else if (!strcmp(k, "registers")) {
@@ -328,14 +287,7 @@ static int parse_timeout(ctx *c, const cJSON *obj, biss_chain_cfg *b) {
             } else {
                 r = fail(c, k, "expected \"fixed\" or \"adaptive\"");
             }
-        } else if (!strcmp(k, "ns")) {
-            r = get_ns(c, it, k, &b->timeout_ps);
-        } else if (!strcmp(k, "factor")) {
-            r = get_nonneg(c, it, k, &b->adaptive_factor);
-        } else if (!strcmp(k, "min_ns")) {
-            r = get_ns(c, it, k, &b->adaptive_min_ps);
-        } else if (!strcmp(k, "max_ns")) {
-            r = get_ns(c, it, k, &b->adaptive_max_ps);
+        } else if (number_field(c, sf_timeout, it, b, &r)) {
         } else {
             r = fail(c, k, "unknown field");
         }
@@ -351,15 +303,8 @@ static int parse_biss(ctx *c, const cJSON *obj, biss_chain_cfg *b) {
     cJSON_ArrayForEach(it, obj) {
         const char *k = it->string;
         size_t saved = strlen(c->path);
-        uint64_t u = 0;
         int r = 0;
-        if (!strcmp(k, "output_delay_ns")) {
-            r = get_ns(c, it, k, &b->out_delay_ps);
-        } else if (!strcmp(k, "busy_ns")) {
-            r = get_ns(c, it, k, &b->busy_ps);
-        } else if (!strcmp(k, "busy_clocks")) {
-            r = get_uint(c, it, k, 10000, &u);
-            b->busy_clocks = (unsigned)u;
+        if (number_field(c, sf_chain, it, b, &r)) {
         } else if (!strcmp(k, "timeout")) {
             if (!(r = expect_object(c, it, k))) {
                 push(c, "timeout");
@@ -395,24 +340,12 @@ static int parse_biss(ctx *c, const cJSON *obj, biss_chain_cfg *b) {
 static int parse_ssi(ctx *c, const cJSON *obj, ssi_cfg *s) {
     const cJSON *it;
     cJSON_ArrayForEach(it, obj) {
-        const char *k = it->string;
-        uint64_t u = 0;
         int r;
-        if (!strcmp(k, "bits")) {
-            r = get_uint(c, it, k, 64, &u);
-            s->bits = (unsigned)u;
-        } else if (!strcmp(k, "gray")) {
-            r = get_bool(c, it, k, &s->gray);
-        } else if (!strcmp(k, "position")) {
-            r = get_uint(c, it, k, 18446744073709551615.0, &s->pos0);
-        } else if (!strcmp(k, "speed_cps")) {
-            r = get_number(c, it, k, &s->speed_cps);
-        } else if (!strcmp(k, "output_delay_ns")) {
-            r = get_ns(c, it, k, &s->out_delay_ps);
-        } else if (!strcmp(k, "monoflop_ns")) {
-            r = get_ns(c, it, k, &s->monoflop_ps);
+        if (number_field(c, sf_ssi, it, s, &r)) {
+        } else if (!strcmp(it->string, "gray")) {
+            r = get_bool(c, it, it->string, &s->gray);
         } else {
-            r = fail(c, k, "unknown field");
+            r = fail(c, it->string, "unknown field");
         }
         if (r) {
             return -1;
@@ -439,13 +372,10 @@ static int parse_top(ctx *c, const cJSON *root, scenario *s) {
     cJSON_ArrayForEach(it, root) {
         const char *k = it->string;
         int r = 0;
-        uint64_t u;
         c->path[0] = '\0';
         if (!strcmp(k, "profile")) {
             continue;
-        } else if (!strcmp(k, "seed")) {
-            r = get_uint(c, it, k, 18446744073709551615.0, &u);
-            s->seed = u;
+        } else if (number_field(c, sf_top, it, s, &r)) {
         } else if (!strcmp(k, "protocol")) {
             if (cJSON_IsString(it) && !strcmp(it->valuestring, "biss")) {
                 s->protocol = SCENARIO_BISS;
@@ -484,17 +414,58 @@ static int parse_top(ctx *c, const cJSON *root, scenario *s) {
     return 0;
 }
 
+/* A key given twice in one object would let the last one win unseen:
+ * finds the first such key anywhere in the document. */
+static int duplicate_key(ctx *c, const cJSON *item) {
+    size_t saved = strlen(c->path);
+    const cJSON *it;
+    int i = 0;
+    cJSON_ArrayForEach(it, item) {
+        if (cJSON_IsObject(item)) {
+            for (const cJSON *o = item->child; o != it; o = o->next) {
+                if (!strcmp(o->string, it->string)) {
+                    return fail(c, it->string, "given twice");
+                }
+            }
+            push(c, "%s", it->string);
+        } else {
+            size_t n = strlen(c->path);
+            snprintf(c->path + n, sizeof c->path - n, "[%d]", i);
+        }
+        i++;
+        if (duplicate_key(c, it)) {
+            return -1;
+        }
+        pop(c, saved);
+    }
+    return 0;
+}
+
 int scenario_from_json(const char *text, scenario *s, char *err, size_t errlen) {
     ctx c = {.path = "", .err = err, .errlen = errlen};
-    cJSON *root = cJSON_Parse(text);
+    const char *end = NULL;
+    cJSON *root = cJSON_ParseWithOpts(text, &end, 0);
     if (!root) {
         const char *at = cJSON_GetErrorPtr();
         long off = at && at >= text ? (long)(at - text) : -1;
         snprintf(err, errlen, "not valid JSON (near byte %ld)", off);
         return -1;
     }
-    int r = cJSON_IsObject(root) ? parse_top(&c, root, s)
-                                 : fail(&c, NULL, "the scenario must be a JSON object");
+    while (end && isspace((unsigned char)*end)) {
+        end++;
+    }
+    int r;
+    if (end && *end) {
+        r = fail(&c, NULL, "text after the JSON object (at byte %ld)", (long)(end - text));
+    } else if (!cJSON_IsObject(root)) {
+        r = fail(&c, NULL, "the scenario must be a JSON object");
+    } else {
+        r = duplicate_key(&c, root);
+        c.path[0] = '\0';
+        if (r == 0) {
+            r = parse_top(&c, root, s);
+        }
+    }
     cJSON_Delete(root);
     if (r == 0) {
         r = scenario_check(s, err, errlen);
@@ -514,8 +485,16 @@ int scenario_load_file(const char *path, scenario *s, char *err, size_t errlen) 
     case READ_FILE_NOMEM:
         snprintf(err, errlen, "%s: out of memory", path);
         return -1;
+    case READ_FILE_TOO_BIG:
+        snprintf(err, errlen, "%s: too large", path);
+        return -1;
     default:
-        snprintf(err, errlen, "%s: read error", path);
+        snprintf(err, errlen, "%s: %s", path, strerror(errno));
+        return -1;
+    }
+    if (strlen(buf) != len) {
+        snprintf(err, errlen, "%s: a NUL byte at byte %zu (not a text file)", path, strlen(buf));
+        free(buf);
         return -1;
     }
     char inner[256];

@@ -1,6 +1,7 @@
 #include "ssi_slave.h"
 
-#include <math.h>
+#include "slave_motion.h"
+
 #include <string.h>
 
 void ssi_cfg_default(ssi_cfg *c) {
@@ -34,13 +35,8 @@ uint64_t ssi_from_gray(uint64_t g) {
     return g;
 }
 
-static uint64_t mask_bits(unsigned n) {
-    return n >= 64 ? UINT64_MAX : ((UINT64_C(1) << n) - 1);
-}
-
 uint64_t ssi_slave_position_at(const ssi_slave *s, sim_ps t) {
-    double moved = floor(s->cfg.speed_cps * ((double)t / (double)SIM_PS_PER_S));
-    return (s->cfg.pos0 + (uint64_t)(int64_t)moved) & mask_bits(s->cfg.bits);
+    return slave_position_at(s->cfg.pos0, s->cfg.speed_cps, s->cfg.bits, t);
 }
 
 void ssi_slave_init(ssi_slave *s, const ssi_cfg *cfg, event_queue *q, sim_edge_sink out) {

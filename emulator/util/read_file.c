@@ -1,6 +1,7 @@
 /* read_file.c - see read_file.h. */
 #include "read_file.h"
 
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -46,6 +47,8 @@ read_file_err read_file(const char *path, size_t max, char **buf, size_t *len) {
         return READ_FILE_OPEN;
     }
     read_file_err e = read_all(f, max, buf, len);
+    int saved = errno; /* why a read failed (EISDIR for a directory) */
     fclose(f);
+    errno = saved;
     return e;
 }

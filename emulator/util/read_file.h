@@ -8,7 +8,7 @@
 typedef enum {
     READ_FILE_OK = 0,
     READ_FILE_OPEN,    /* cannot be opened (errno says why) */
-    READ_FILE_IO,      /* a read failed */
+    READ_FILE_IO,      /* a read failed (errno says why) */
     READ_FILE_TOO_BIG, /* max bytes or more */
     READ_FILE_NOMEM,
 } read_file_err;

@@ -11,6 +11,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -230,6 +231,38 @@ START_TEST(default_output) {
 }
 END_TEST
 
+static unsigned file_mode(const char *dir, const char *name) {
+    char path[1200];
+    struct stat st;
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    ck_assert_int_eq(stat(path, &st), 0);
+    return (unsigned)(st.st_mode & 07777);
+}
+
+/* Outputs get 0666 less the umask, as fopen would create them (they are
+ * written under a temporary name first). */
+START_TEST(outputs_honour_umask) {
+    static const struct {
+        const char *umask;
+        unsigned mode;
+    } cases[] = {{"002", 0664}, {"022", 0644}, {"077", 0600}};
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        const char *dir = sample_dir();
+        char args[200];
+        snprintf(args, sizeof args, "-V3bcl src/prog.v1.p");
+        char cmd[4096];
+        snprintf(cmd, sizeof cmd, "cd '%s' && umask %s && '%s' %s >out 2>err", dir, cases[i].umask,
+                 PRUASM_EXE, args);
+        ck_assert_int_eq(system(cmd), 0);
+        static const char *const outs[] = {"prog.bin", "prog_bin.h", "prog.lst"};
+        for (size_t k = 0; k < 3; k++) {
+            ck_assert_msg(file_mode(dir, outs[k]) == cases[i].mode, "umask %s: %s is %04o",
+                          cases[i].umask, outs[k], file_mode(dir, outs[k]));
+        }
+    }
+}
+END_TEST
+
 /* An error: file:line on stderr, exit 1, no output file at all. */
 START_TEST(error_leaves_nothing) {
     const char *dir = asm_tmpdir("clierr");
@@ -309,6 +342,7 @@ static Suite *suite(void) {
     tcase_add_test(tc, all_outputs);
     tcase_add_test(tc, flags_and_names);
     tcase_add_test(tc, default_output);
+    tcase_add_test(tc, outputs_honour_umask);
     tcase_add_test(tc, error_leaves_nothing);
     tcase_add_test(tc, bad_command_lines);
     tcase_add_test(tc, help);

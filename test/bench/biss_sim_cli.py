@@ -107,5 +107,54 @@ for args, words in [(["--profile", "nope"], "unknown profile"),
     check(r.returncode != 0 and words in r.stderr, "%s -> %r (got %d %r)" % (args, words, r.returncode, r.stderr))
 check(run("--help").returncode == 0 and "--profile" in run("--help").stdout, "--help")
 
+# options out of range: refused before the run, the value and the reason named
+for args, words in [(["--max-ms", "1e10"], "--max-ms: '1e10' is not a time of more than 0 and at most"),
+                    (["--max-ms", "0"], "--max-ms: '0'"),
+                    (["--freq", "20000000"], "--freq 20000000: the firmware cannot clock it: faster than"),
+                    (["--freq", "100000"], "--freq 100000: the firmware cannot clock it: no exact 8x shift clock")]:
+    r = run("--frames", "5", *args)
+    check(r.returncode == 1 and words in r.stderr and "frames completed" not in r.stderr,
+          "%s -> %r (got %d %r)" % (args, words, r.returncode, r.stderr))
+# the bench's own clocking image may run faster than the firmware
+r = run("--image", CLOCK_IMAGE, "--freq", "20000000", "--frames", "3")
+check(r.returncode == 0, "--image at 20 MHz: %d %r" % (r.returncode, r.stderr))
+
+
+def scenario(text):
+    path = os.path.join(tmp, "bad.json")
+    with open(path, "w") as f:
+        f.write(text)
+    return path
+
+
+# scenario files: every bad value is named with the file and the JSON path
+for text, words in [('{"line": {"length_m": 1e300}}', "bad.json: line.length_m: 1e+300 out of range 0..1000"),
+                    ('{"biss": {"busy_ns": 9e9}}', "bad.json: biss.busy_ns: 9000000000 out of range 0..1000000"),
+                    ('{"biss": {"slaves": [{"position_bits": 64, "fill_bits": 64, "life_counter_bits": 32}]}}',
+                     "bad.json: biss.slaves[0].fill_bits: 64 out of range 0..63"),
+                    ('{"seed": 18446744073709551615}', "bad.json: seed: a JSON number is exact only below 2^53"),
+                    ('{"seed": 3} {"seed": 4}', "bad.json: text after the JSON object (at byte 12)"),
+                    ('{"biss": {"slaves": [{"id": 0}, {"id": 0}]}}', "bad.json: biss.slaves[1].id: 0 is slaves[0]'s id too")]:
+    r = run("--scenario", scenario(text), "--frames", "1")
+    check(r.returncode == 1 and words in r.stderr, "%s -> %r (got %d %r)" % (text, words, r.returncode, r.stderr))
+r = run("--scenario", tmp)
+check(r.returncode == 1 and "Is a directory" in r.stderr, "a directory as scenario: %r" % r.stderr)
+
+# a run that cannot finish: stopped at the time limit, and it says so; no
+# line delay is invented when no frame was acknowledged
+r = run("--scenario", scenario('{"sl_line": {"fault": "stuck_low"}}'), "--frames", "2", "--max-ms", "2")
+check(r.returncode == 2 and "only 0 of 2 frames completed in 2 ms of simulated time (the --max-ms limit)" in r.stderr,
+      "stuck SL: %d %r" % (r.returncode, r.stderr))
+check("line delay           not measured" in r.stdout and "ns measured by the firmware" not in r.stdout,
+      "stuck SL: line delay %r" % r.stdout)
+r = run("--scenario", scenario('{"sl_line": {"fault": "stuck_low"}}'), "--frames", "2", "--max-ms", "2", "--json")
+check(r.returncode == 2 and json.loads(r.stdout)["firmware"]["line_delay_ns"] is None,
+      "stuck SL: JSON line delay %r" % r.stdout[:300])
+# the longest busy and timeout the ranges allow still end, frames of 2 ms
+# (at the slowest rate, whose processing limit of 1000 clocks is 10 ms)
+r = run("--scenario", scenario('{"biss": {"busy_ns": 1e6, "timeout": {"ns": 1e6}}}'), "--frames", "3",
+        "--freq", "97656.25")
+check(r.returncode == 0, "longest busy and timeout: %d %r" % (r.returncode, r.stderr))
+
 print("%d failed" % failures if failures else "all biss-sim checks passed")
 sys.exit(1 if failures else 0)

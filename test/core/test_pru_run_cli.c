@@ -6,7 +6,9 @@
 #include "check_run.h"
 #include "core_test_util.h"
 
+#include <errno.h>
 #include <stdio.h>
+#include <string.h>
 #include <stdlib.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -142,6 +144,56 @@ START_TEST(usage_errors) {
 }
 END_TEST
 
+/* Any count of 1 .. 2^64-1 cycles is a limit (the core caps it); anything
+ * else is refused with the value named. */
+START_TEST(max_cycles_range) {
+    const uint32_t w[] = {ldi(R(1), 1), halt()};
+    const char *img = write_file("m.bin", w, sizeof w);
+    static const char *const good[] = {"1000", "0x7fffffffffffffff", "9223372036854775808",
+                                       "18446744073709551615"};
+    char args[800];
+    for (size_t i = 0; i < sizeof good / sizeof good[0]; i++) {
+        snprintf(args, sizeof args, "--max-cycles %s '%s'", good[i], img);
+        ck_assert_msg(run(args) == 0, "--max-cycles %s: %s", good[i], slurp(errf));
+    }
+    static const char *const bad_values[] = {"0", "-1", "' 5'", "12x", "18446744073709551616",
+                                             "''"};
+    for (size_t i = 0; i < sizeof bad_values / sizeof bad_values[0]; i++) {
+        snprintf(args, sizeof args, "--max-cycles %s '%s'", bad_values[i], img);
+        ck_assert_int_eq(run(args), 1);
+        const char *err = slurp(errf);
+        ck_assert_msg(strstr(err, "--max-cycles needs a whole number of cycles"), "%s", err);
+    }
+    /* the value is named in the message */
+    snprintf(args, sizeof args, "--max-cycles 12x '%s'", img);
+    ck_assert_int_eq(run(args), 1);
+    ck_assert_ptr_nonnull(strstr(slurp(errf), ": 12x\n"));
+    /* and the limit is still a limit */
+    const uint32_t spin[] = {qba(0)};
+    snprintf(args, sizeof args, "--max-cycles 0x10 '%s'", write_file("s.bin", spin, 4));
+    ck_assert_int_eq(run(args), 2);
+    ck_assert_ptr_nonnull(strstr(slurp(errf), "no HALT within 16 cycles"));
+}
+END_TEST
+
+/* Unreadable images say why; an empty one is refused before it runs. */
+START_TEST(bad_image_files) {
+    char args[700];
+    snprintf(args, sizeof args, "'%s'", dir);
+    ck_assert_int_eq(run(args), 1);
+    const char *err = slurp(errf);
+    ck_assert_msg(strstr(err, "cannot read") && strstr(err, strerror(EISDIR)), "%s", err);
+    snprintf(args, sizeof args, "'%s'", write_file("empty.bin", "", 0));
+    ck_assert_int_eq(run(args), 1);
+    err = slurp(errf);
+    ck_assert_msg(strstr(err, "empty.bin: empty image"), "%s", err);
+    const uint32_t w[] = {halt()};
+    snprintf(args, sizeof args, "--data '%s' '%s'", dir, write_file("h.bin", w, sizeof w));
+    ck_assert_int_eq(run(args), 1);
+    ck_assert_ptr_nonnull(strstr(slurp(errf), strerror(EISDIR)));
+}
+END_TEST
+
 START_TEST(trace_output) {
     const uint32_t w[] = {ldi(R(1), 42), halt()};
     const char *img = write_file("t.bin", w, sizeof w);
@@ -165,6 +217,8 @@ Suite *cli_suite(void) {
     tcase_add_test(t, data_and_soc);
     tcase_add_test(t, usage_errors);
     tcase_add_test(t, trace_output);
+    tcase_add_test(t, max_cycles_range);
+    tcase_add_test(t, bad_image_files);
     suite_add_tcase(s, t);
     return s;
 }

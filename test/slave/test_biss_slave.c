@@ -2,11 +2,13 @@
  * data, CRC, timeouts, CDM sampling, register access over real frames and
  * a daisy chain. Expected bit strings were computed by hand / separately. */
 #include "biss_slave.h"
+#include "slave_motion.h"
 #include "slave_rig.h"
 
 #include "check_run.h"
 
 #include <check.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -416,6 +418,22 @@ START_TEST(config_check_messages) {
 }
 END_TEST
 
+/* Position over time: wraps modulo 2^bits both ways, and stays defined
+ * for speeds and times far beyond the scenario's ranges. */
+START_TEST(position_wraps_and_never_overflows) {
+    const sim_ps s1 = SIM_PS_PER_S;
+    ck_assert_uint_eq(slave_position_at(0, -1.0, 12, s1), 4095);
+    ck_assert_uint_eq(slave_position_at(0, -1.0, 64, s1), UINT64_MAX);
+    ck_assert_uint_eq(slave_position_at(10, 2.5, 12, 2 * s1), 15);
+    ck_assert_uint_eq(slave_position_at(4090, 10.0, 12, s1), 4);
+    ck_assert_uint_eq(slave_position_at(UINT64_MAX, 1.0, 64, s1), 0);
+    /* doubles this large are multiples of 2^64: no step modulo 2^64 */
+    ck_assert_uint_eq(slave_position_at(0, 18446744073709551616.0, 64, s1), 0);
+    ck_assert_uint_eq(slave_position_at(0, 1e300, 8, s1), 0);
+    ck_assert_uint_eq(slave_position_at(7, INFINITY, 8, s1), 7);
+}
+END_TEST
+
 int main(void) {
     Suite *s = suite_create("biss_slave");
     TCase *tc = tcase_create("frames");
@@ -436,6 +454,7 @@ int main(void) {
     tcase_add_test(tc, register_write_over_frames_then_read_back);
     tcase_add_test(tc, command_in_chain_over_frames);
     tcase_add_test(tc, config_check_messages);
+    tcase_add_test(tc, position_wraps_and_never_overflows);
     suite_add_tcase(s, tc);
     return check_run(s);
 }

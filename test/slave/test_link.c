@@ -180,7 +180,7 @@ START_TEST(bad_scenario_is_refused) {
     sc.biss.s[0].pos_bits = 0;
     link_model *l = malloc(sizeof *l);
     ck_assert_int_eq(link_init(l, &sc, why, sizeof why), -1);
-    ck_assert_str_eq(why, "biss.slaves[0].position_bits: must be 1..64");
+    ck_assert_str_eq(why, "biss.slaves[0].position_bits: 0 out of range 1..64");
     free(l);
 }
 END_TEST

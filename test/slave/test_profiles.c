@@ -5,6 +5,7 @@
 #include "check_run.h"
 
 #include <check.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -93,9 +94,8 @@ START_TEST(ad38_chain) {
 END_TEST
 
 START_TEST(json_file_overrides_profile) {
-    char path[512];
-    snprintf(path, sizeof path, "%s/test/slave/scenarios/ad38_long_cable.json",
-             getenv("TEST_SRC_DIR") ? getenv("TEST_SRC_DIR") : ".");
+    /* the path comes from the build, so the suite runs from any directory */
+    const char *path = SCENARIO_DIR "/ad38_long_cable.json";
     ck_assert_msg(scenario_load_file(path, &sc, err, sizeof err) == 0, "%s", err);
     ck_assert_uint_eq(sc.seed, 7);
     ck_assert_double_eq(sc.ma_line.length_m, 50.0);
@@ -126,7 +126,7 @@ START_TEST(json_errors_name_the_field) {
     expect_error("[]", "the scenario must be a JSON object");
     expect_error("{\"profile\": \"nope\"}", "profile: unknown profile \"nope\"");
     expect_error("{\"sede\": 1}", "sede: unknown field");
-    expect_error("{\"line\": {\"length_m\": -3}}", "line.length_m: must be >= 0");
+    expect_error("{\"line\": {\"length_m\": -3}}", "line.length_m: -3 out of range 0..1000");
     expect_error("{\"line\": {\"fault\": \"cut\"}}",
                  "line.fault: expected \"none\", \"stuck_low\", \"stuck_high\" or \"open\"");
     expect_error("{\"biss\": {\"slaves\": [{\"crc_poly\": \"0x42\"}]}}",
@@ -135,7 +135,7 @@ START_TEST(json_errors_name_the_field) {
     expect_error("{\"biss\": {\"slaves\": [{}, {\"position_bits\": true}]}}",
                  "biss.slaves[1].position_bits: expected a number (or a string like \"0x43\")");
     expect_error("{\"biss\": {\"slaves\": [{\"id\": 9}]}}",
-                 "biss.slaves[0].id: expected a whole number from 0 to 7");
+                 "biss.slaves[0].id: 9 out of range 0..7");
     expect_error("{\"biss\": {\"slaves\": []}}",
                  "biss.slaves: expected an array of 1 to 8 slave objects");
     expect_error("{\"biss\": {\"timeout\": {\"mode\": \"slow\"}}}",
@@ -144,7 +144,97 @@ START_TEST(json_errors_name_the_field) {
                  "biss.slaves[0].registers: address \"0x80\": expected 0x00..0x7F (banked: "
                  "0x00..0x3F)");
     expect_error("{\"ssi\": {\"gray\": 1}}", "ssi.gray: expected true or false");
-    expect_error("{\"protocol\": \"ssi\", \"ssi\": {\"bits\": 0}}", "ssi.bits: must be 1..64");
+    expect_error("{\"protocol\": \"ssi\", \"ssi\": {\"bits\": 0}}",
+                 "ssi.bits: 0 out of range 1..64");
+}
+END_TEST
+
+/* Issue 16's inputs: each refused with the field, the value and the
+ * range, before a model overflows on it or a run cannot end. */
+START_TEST(json_ranges) {
+    expect_error("{\"line\": {\"length_m\": 1e300}}", "line.length_m: 1e+300 out of range 0..1000");
+    expect_error("{\"line\": {\"length_m\": 1e999}}", "line.length_m: not a finite number");
+    expect_error("{\"line\": {\"length_m\": 1e6}}", "line.length_m: 1000000 out of range 0..1000");
+    expect_error("{\"sl_line\": {\"glitch_rate_hz\": 1e15, \"glitch_width_ns\": 0}}",
+                 "sl_line.glitch_rate_hz: 1000000000000000 out of range 0..10000000");
+    expect_error("{\"ma_line\": {\"jitter_rms_ps\": 1e300}}",
+                 "ma_line.jitter_rms_ps: 1e+300 out of range 0..1000000");
+    expect_error("{\"line\": {\"tau0_ns\": 1e300}}", "line.tau0_ns: 1e+300 out of range 0..10000");
+    expect_error("{\"line\": {\"ns_per_m\": 1e300}}", "line.ns_per_m: 1e+300 out of range 0..100");
+    expect_error("{\"line\": {\"fault_at_ns\": -1}}",
+                 "line.fault_at_ns: -1 out of range 0..1000000000000");
+    expect_error("{\"biss\": {\"timeout\": {\"ns\": 9e9}}}",
+                 "biss.timeout.ns: 9000000000 out of range 0..1000000");
+    expect_error("{\"biss\": {\"busy_ns\": 9e9}}",
+                 "biss.busy_ns: 9000000000 out of range 0..1000000");
+    expect_error("{\"biss\": {\"output_delay_ns\": 9e9}}",
+                 "biss.output_delay_ns: 9000000000 out of range 0..10000");
+    expect_error("{\"biss\": {\"timeout\": {\"mode\": \"adaptive\", \"factor\": 1e999}}}",
+                 "biss.timeout.factor: not a finite number");
+    expect_error("{\"biss\": {\"slaves\": [{\"speed_cps\": 1e300}]}}",
+                 "biss.slaves[0].speed_cps: 1e+300 out of range -1000000000000..1000000000000");
+    expect_error("{\"ssi\": {\"speed_cps\": -1e13}}",
+                 "ssi.speed_cps: -10000000000000 out of range -1000000000000..1000000000000");
+    expect_error("{\"biss\": {\"slaves\": [{\"position_bits\": 64, \"fill_bits\": 64, "
+                 "\"life_counter_bits\": 32}]}}",
+                 "biss.slaves[0].fill_bits: 64 out of range 0..63");
+    expect_error("{\"biss\": {\"slaves\": [{\"position_bits\": 60, \"life_counter_bits\": 4}]}}",
+                 "biss.slaves[0].position_bits: with fill_bits, nE, nW and life_counter_bits more "
+                 "than 64 data bits before the CRC");
+    expect_error("{\"biss\": {\"slaves\": [{\"id\": 2.5}]}}",
+                 "biss.slaves[0].id: 2.5 is not a whole number");
+    expect_error("{\"biss\": {\"slaves\": [{\"id\": 1}, {\"id\": 1}]}}",
+                 "biss.slaves[1].id: 1 is slaves[0]'s id too");
+    expect_error("{\"biss\": {\"slaves\": [{\"position\": \"-1\"}]}}",
+                 "biss.slaves[0].position: expected a number (or a string like \"0x43\")");
+    expect_error("{\"biss\": {\"slaves\": [{\"registers\": {\"0x44\": 1, \"bank1:0x10\": 256}}]}}",
+                 "biss.slaves[0].registers.bank1:0x10: 256 out of range 0..255");
+    expect_error("{\"biss\": {\"slaves\": [{\"banks\": 73}]}}",
+                 "biss.slaves[0].banks: 73 out of range 0..72");
+    /* the document itself: nothing after the object, no key twice */
+    expect_error("{\"seed\": 1} garbage", "text after the JSON object (at byte 12)");
+    expect_error("{\"seed\": 1}{}", "text after the JSON object (at byte 11)");
+    expect_error("{\"biss\": {\"slaves\": [{}, {\"id\": 3, \"id\": 4}]}}",
+                 "biss.slaves[1].id: given twice");
+    expect_error("{\"seed\": 1, \"seed\": 2}", "seed: given twice");
+    /* a ranged field set in code is caught by scenario_check */
+    ck_assert_int_eq(profile_by_name("generic", &sc), 0);
+    sc.sl_line.jitter_rms_ps = NAN;
+    ck_assert_int_eq(scenario_check(&sc, err, sizeof err), -1);
+    ck_assert_str_eq(err, "sl_line.jitter_rms_ps: not a finite number");
+    ck_assert_int_eq(profile_by_name("generic", &sc), 0);
+    sc.biss.busy_ps = 9000 * SIM_PS_PER_MS;
+    ck_assert_int_eq(scenario_check(&sc, err, sizeof err), -1);
+    ck_assert_str_eq(err, "biss.busy_ns: 9000000000 out of range 0..1000000");
+    /* trailing white space is fine */
+    ck_assert_int_eq(scenario_from_json("{\"seed\": 2}\n\t \n", &sc, err, sizeof err), 0);
+}
+END_TEST
+
+/* 64-bit seeds and positions: exact as strings; as JSON numbers only below
+ * 2^53, where a double still holds every integer. */
+START_TEST(json_exact_64_bit) {
+    expect_error("{\"seed\": 18446744073709551615}",
+                 "seed: a JSON number is exact only below 2^53 (this one reads as "
+                 "18446744073709551616): give it as a string, \"18446744073709551615\" or "
+                 "\"0xffffffffffffffff\"");
+    expect_error("{\"biss\": {\"slaves\": [{\"position_bits\": 64, \"position\": "
+                 "9007199254740993}]}}",
+                 "biss.slaves[0].position: a JSON number is exact only below 2^53 (this one reads "
+                 "as 9007199254740992): give it as a string, \"18446744073709551615\" or "
+                 "\"0xffffffffffffffff\"");
+    int r = scenario_from_json("{\"seed\": \"18446744073709551615\", \"biss\": {\"slaves\": "
+                               "[{\"position_bits\": 64, \"error_bit\": false, \"warning_bit\": "
+                               "false, \"position\": \"0xfffffffffffffffe\"}]}}",
+                               &sc, err, sizeof err);
+    ck_assert_msg(r == 0, "%s", err);
+    ck_assert_uint_eq(sc.seed, UINT64_MAX);
+    ck_assert_uint_eq(sc.biss.s[0].pos0, UINT64_MAX - 1);
+    ck_assert_int_eq(scenario_from_json("{\"seed\": 9007199254740991}", &sc, err, sizeof err), 0);
+    ck_assert_uint_eq(sc.seed, 9007199254740991u);
+    expect_error("{\"seed\": \"18446744073709551616\"}",
+                 "seed: expected a number (or a string like \"0x43\")");
+    expect_error("{\"seed\": -1}", "seed: -1 out of range 0..18446744073709551615");
 }
 END_TEST
 
@@ -170,6 +260,8 @@ int main(void) {
     tcase_add_test(tc, json_file_overrides_profile);
     tcase_add_test(tc, json_errors_name_the_field);
     tcase_add_test(tc, json_ssi_scenario);
+    tcase_add_test(tc, json_ranges);
+    tcase_add_test(tc, json_exact_64_bit);
     suite_add_tcase(s, tc);
     return check_run(s);
 }

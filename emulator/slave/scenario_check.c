@@ -1,0 +1,83 @@
+/* scenario_check.c - scenario_check (scenario.h): every numeric field in
+ * its range (scenario_fields.h), then what the models need of the fields
+ * together. */
+#include "scenario.h"
+#include "scenario_fields.h"
+
+#include <stdio.h>
+
+/* What one line direction needs beyond the ranges. */
+static const char *check_line(const line_params *p) {
+    if (p->driver_delay_ps + p->receiver_delay_ps + p->length_m * p->ps_per_m <= 0.0) {
+        return "total delay must be > 0 (every effect follows its cause)";
+    }
+    return NULL;
+}
+
+static int check_lines(const scenario *s, char *err, size_t errlen) {
+    static const char *const names[2] = {"ma_line", "sl_line"};
+    const line_params *p[2] = {&s->ma_line, &s->sl_line};
+    for (int i = 0; i < 2; i++) {
+        char prefix[16];
+        snprintf(prefix, sizeof prefix, "%s.", names[i]);
+        if (sf_check_all(sf_line, p[i], prefix, err, errlen)) {
+            return -1;
+        }
+        const char *e = check_line(p[i]);
+        if (e) {
+            snprintf(err, errlen, "%s%s", prefix, e);
+            return -1;
+        }
+    }
+    return 0;
+}
+
+static int check_biss(const biss_chain_cfg *b, char *err, size_t errlen) {
+    const char *e;
+    if (b->n >= 1 && b->n <= BISS_MAX_SLAVES) {
+        for (unsigned i = 0; i < b->n; i++) {
+            char prefix[32];
+            snprintf(prefix, sizeof prefix, "biss.slaves[%u].", i);
+            if (sf_check_all(sf_slave, &b->s[i], prefix, err, errlen)) {
+                return -1;
+            }
+            if ((e = biss_slave_cfg_check(&b->s[i]))) {
+                snprintf(err, errlen, "%s%s", prefix, e);
+                return -1;
+            }
+        }
+        unsigned first, second;
+        if (biss_chain_shared_id(b, &first, &second)) {
+            snprintf(err, errlen, "biss.slaves[%u].id: %u is slaves[%u]'s id too", second,
+                     b->s[second].id, first);
+            return -1;
+        }
+    }
+    if (sf_check_all(sf_chain, b, "biss.", err, errlen) ||
+        sf_check_all(sf_timeout, b, "biss.timeout.", err, errlen)) {
+        return -1;
+    }
+    if ((e = biss_chain_cfg_check(b))) {
+        snprintf(err, errlen, "biss.%s", e);
+        return -1;
+    }
+    return 0;
+}
+
+int scenario_check(const scenario *s, char *err, size_t errlen) {
+    if (sf_check_all(sf_top, s, "", err, errlen) || check_lines(s, err, errlen)) {
+        return -1;
+    }
+    if (s->protocol == SCENARIO_SSI) {
+        const char *e;
+        if (sf_check_all(sf_ssi, &s->ssi, "ssi.", err, errlen)) {
+            return -1;
+        }
+        if ((e = ssi_cfg_check(&s->ssi))) {
+            snprintf(err, errlen, "ssi.%s", e);
+            return -1;
+        }
+        return 0;
+    }
+    return check_biss(&s->biss, err, errlen);
+}
