@@ -55,10 +55,9 @@ static uint8_t *read_image(const char *path, size_t *n) {
     }
     if (got == 0 || got % 4 != 0 || got > MAX_IMAGE) {
         free(buf);
-        fprintf(stderr,
-                "pru-elf: %s: %zu%s bytes: an IRAM image is 4..%d bytes, whole 32-bit words\n",
-                path, got > MAX_IMAGE ? (size_t)MAX_IMAGE : got, got > MAX_IMAGE ? "+" : "",
-                MAX_IMAGE);
+        fprintf(
+            stderr, "pru-elf: %s: %zu%s bytes: an IRAM image is 4..%d bytes, whole 32-bit words\n",
+            path, got > MAX_IMAGE ? (size_t)MAX_IMAGE : got, got > MAX_IMAGE ? "+" : "", MAX_IMAGE);
         return NULL;
     }
     *n = got;
@@ -107,8 +106,8 @@ static int build(Elf *e, uint8_t *image, size_t n, uint8_t *data) {
                               sizeof(struct biss_shm_id));
     Elf_Scn *rsc = add_section(e, NAME_RSC, SHT_PROGBITS, SHF_ALLOC | SHF_WRITE, BISS_RSC_TABLE,
                                data + sizeof(struct biss_shm_id), BISS_RSC_TABLE_BYTES);
-    Elf_Scn *str = add_section(e, NAME_SHSTRTAB, SHT_STRTAB, 0, 0, (void *)shstrtab,
-                               sizeof shstrtab);
+    Elf_Scn *str =
+        add_section(e, NAME_SHSTRTAB, SHT_STRTAB, 0, 0, (void *)shstrtab, sizeof shstrtab);
     if (!text || !id || !rsc || !str) {
         return -1;
     }
