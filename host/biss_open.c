@@ -194,7 +194,9 @@ static int open_linux(biss_t *h, const struct biss_open_params *p, struct biss_e
     if (rc || !rproc) {
         return rc;
     }
+    pthread_mutex_lock(&h->lock); /* the wait drops it while it sleeps */
     rc = biss_wait_for(h, h->timeout_ms, magic_seen, NULL);
+    pthread_mutex_unlock(&h->lock);
     if (rc == BISS_E_TIMEOUT) {
         return biss_err(e, BISS_E_NOT_RUNNING,
                         "remoteproc started the firmware but no magic "
