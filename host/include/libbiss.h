@@ -130,7 +130,9 @@ struct biss_open_params {
     const char *firmware;
     /* Linux targets: file mapped at the SoC's PRU-ICSS base. NULL: /dev/mem. */
     const char *devmem;
-    /* Linux targets: attach to a running firmware (no load, no restart). */
+    /* Linux targets: attach to a running firmware (no load, no restart);
+     * the lock is shared with other readers until the handle changes the
+     * firmware's state (configure, start, stop, control communication). */
     bool attach;
     /* Emulator: named profile (NULL: "tidep0022-test-encoder"), or a JSON
      * scenario file, which wins when both are given. */
@@ -159,9 +161,13 @@ void biss_open_params_default(struct biss_open_params *p);
 
 typedef struct biss biss_t;
 
-/* Builds the backend, loads the image into IRAM with the PRU halted,
- * clears the shared area, starts the PRU and waits for the firmware's
- * magic. On error *out is NULL. */
+/* Builds the backend and starts the firmware: the emulator and the devmem
+ * loader write the image into IRAM with the PRU halted, clear the shared
+ * area and start the PRU; the remoteproc loader has the kernel load and
+ * start the ELF and waits for the firmware's magic. With attach (Linux
+ * targets) nothing is loaded: the running firmware's identification block
+ * and configuration are checked and adopted. On error *out is NULL (and
+ * params errbuf, if given, holds the detail). */
 int biss_open(const struct biss_open_params *p, biss_t **out);
 void biss_close(biss_t *h);
 
