@@ -7,6 +7,7 @@
 #include "biss_oserr.h"
 #include "read_file.h"
 
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -38,22 +39,25 @@ static const char *firmware_path(const struct biss_open_params *p) {
     return BISS_DEFAULT_FIRMWARE;
 }
 
-static int read_image(biss_t *h, const char *path) {
+static int read_image(biss_t *h, const char *path, struct biss_errbuf *e) {
     char *buf;
     size_t n;
     switch (read_file(path, h->be.iram_bytes + 1u, &buf, &n)) {
     case READ_FILE_OK:
         break;
     case READ_FILE_TOO_BIG:
-        return BISS_E_FIRMWARE_SIZE;
+        return biss_err(e, BISS_E_FIRMWARE_SIZE, "%s: more than the %u bytes of this PRU's IRAM",
+                        path, (unsigned)h->be.iram_bytes);
     case READ_FILE_NOMEM:
         return BISS_E_NOMEM;
-    default:
-        return BISS_E_FIRMWARE_IO;
+    default: {
+        int err = errno;
+        return biss_err(e, BISS_E_FIRMWARE_IO, "%s: %s (errno %d)", path, strerror(err), err);
+    }
     }
     if (n == 0 || n % 4 != 0) {
         free(buf);
-        return BISS_E_FIRMWARE_SIZE;
+        return biss_err(e, BISS_E_FIRMWARE_SIZE, "%s: %zu bytes, not whole 32-bit words", path, n);
     }
     h->image = (uint8_t *)buf;
     h->image_bytes = n;
@@ -172,16 +176,17 @@ static int magic_seen(biss_t *h, void *arg) {
 /* The image the host expects: loaded by the devmem loader; for the
  * others (attach, remoteproc, which loads its ELF itself) only compared,
  * and the build tree's default may be absent on a board. */
-static int expected_image(biss_t *h, const struct biss_open_params *p, bool loads) {
+static int expected_image(biss_t *h, const struct biss_open_params *p, bool loads,
+                          struct biss_errbuf *e) {
     const char *path = firmware_path(p);
     bool given = (p->firmware && *p->firmware) || strcmp(path, BISS_DEFAULT_FIRMWARE) != 0;
-    int rc = read_image(h, path);
+    int rc = read_image(h, path, (loads || given) ? e : NULL);
     return rc && !loads && !given ? BISS_OK : rc;
 }
 
 static int open_linux(biss_t *h, const struct biss_open_params *p, struct biss_errbuf *e) {
     bool rproc = p->loader == BISS_LOADER_REMOTEPROC;
-    int rc = expected_image(h, p, !p->attach && !rproc);
+    int rc = expected_image(h, p, !p->attach && !rproc, e);
     if (rc) {
         return rc;
     }
@@ -230,7 +235,7 @@ int biss_open(const struct biss_open_params *p, biss_t **out) {
         return rc;
     }
     if (p->target == BISS_TARGET_EMU) {
-        rc = read_image(h, firmware_path(p));
+        rc = read_image(h, firmware_path(p), &e);
         if (!rc) {
             rc = biss_pru_load_and_start(h);
         }

@@ -416,8 +416,11 @@ START_TEST(test_open_errors) {
     unlink(image);
     make_image(10);
     ck_assert_int_eq(biss_open(&p, &h), BISS_E_FIRMWARE_SIZE);
+    ck_assert_msg(strstr(err, "10 bytes, not whole 32-bit words"), "%s", err);
     p.firmware = "/nonexistent/biss.bin";
     ck_assert_int_eq(biss_open(&p, &h), BISS_E_FIRMWARE_IO);
+    ck_assert_msg(strstr(err, "/nonexistent/biss.bin: No such file or directory (errno 2)"), "%s",
+                  err);
     p.firmware = image;
     unlink(image);
     make_image(64);

@@ -185,8 +185,8 @@ static struct biss_open_params params(void) {
     p.devmem = devmem;
     p.firmware = image;
     p.timeout_ms = 2000;
-    char *sys = malloc(96); /* freed with the tree's life: one per test */
-    snprintf(sys, 96, "%s/sys", root);
+    static char sys[96];
+    snprintf(sys, sizeof sys, "%s/sys", root);
     p.sysfs_root = sys;
     p.firmware_dir = fwdir;
     p.lock_dir = root;
@@ -229,7 +229,6 @@ START_TEST(test_start_stop_firmware_name) {
     ck_assert_uint_eq(mem32(AM335X_BASE + IRAM0), 0x5a5a5a5a);
     atomic_store(&k.stop, 1);
     pthread_join(t, NULL);
-    free((void *)p.sysfs_root);
     remove_tree();
 }
 END_TEST
@@ -262,7 +261,6 @@ START_TEST(test_attach_leaves_it_running) {
     ck_assert_str_eq(buf, "running\n");
     atomic_store(&k.stop, 1);
     pthread_join(t, NULL);
-    free((void *)p.sysfs_root);
     remove_tree();
 }
 END_TEST
@@ -303,7 +301,6 @@ START_TEST(test_refusals) {
     ck_assert_int_eq(system(cmd), 0);
     ck_assert_int_eq(biss_open(&p, &h), BISS_E_RPROC);
     ck_assert_msg(strstr(err, "class/remoteproc: No such file or directory (errno 2)"), "%s", err);
-    free((void *)p.sysfs_root);
     remove_tree();
 }
 END_TEST
