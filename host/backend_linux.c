@@ -1,30 +1,54 @@
-/* backend_linux.c - the PRU-ICSS of an AM335x/AM437x through mmap of
- * /dev/mem (or any file standing in for it, mapped at the same offset). */
+/* backend_linux.c - a PRU-ICSS of an AM335x/AM437x through mmap of
+ * /dev/mem (or any file standing in for it, mapped at the same offset).
+ * Two loaders: devmem (the whole PRU-ICSS mapped; libbiss writes IRAM and
+ * CONTROL itself) and remoteproc (the kernel's pru_rproc loads and starts
+ * the ELF through sysfs; only PRU0's data RAM is mapped). Both check that
+ * the PRU-ICSS is powered before touching it (an access to an unclocked
+ * module is a bus error, not an error code) and take the per-PRU lock. */
 #include "biss_priv.h"
 
+#include "biss_lock.h"
+#include "biss_oserr.h"
+#include "biss_rproc.h"
+
+#include <errno.h>
 #include <fcntl.h>
+#include <limits.h>
+#include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 #include <sys/mman.h>
 #include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
 
 struct soc_info {
-    off_t base;          /* physical address of the PRU-ICSS */
-    uint32_t iram_bytes; /* PRU0 instruction RAM */
+    off_t base;              /* physical address of the PRU-ICSS */
+    uint32_t window;         /* its size */
+    uint32_t iram_bytes;     /* PRU0 instruction RAM */
+    uint32_t dram_bytes;     /* PRU0 data RAM */
+    off_t clkctrl;           /* CM_PER_PRU_ICSS_CLKCTRL */
+    unsigned long iram_phys; /* PRU0 IRAM: pru_rproc names the instance after it */
+    const char *fw_name;     /* the firmware name the kernel's device tree gives PRU0 */
 };
 
-/* AM335x TRM ch. 4; AM437x TRM ch. 30 (ICSS1 is the big one). */
+/* docs/pru-facts.md §5.4. AM335x: one 512 KB PRU-ICSS. AM437x: ICSS1 at
+ * 0x54400000 and ICSS0 at 0x54440000, 256 KB each, one clock control for
+ * both (Linux am4372.dtsi; dt-bindings/clock/am4.h AM4_PRUSS_CLKCTRL at
+ * CM_PER + 0x320). Firmware names: Linux am33xx-l4.dtsi / am4372.dtsi. */
 static int soc_of(enum biss_target t, struct soc_info *s) {
     switch (t) {
     case BISS_TARGET_AM335X:
-        *s = (struct soc_info){0x4A300000, 8 * 1024};
+        *s = (struct soc_info){0x4A300000, 0x80000,    8 * 1024,        8 * 1024,
+                               0x44E000E8, 0x4A334000, "am335x-pru0-fw"};
         return BISS_OK;
     case BISS_TARGET_AM437X_ICSS1:
-        *s = (struct soc_info){0x54400000, 12 * 1024};
+        *s = (struct soc_info){0x54400000, 0x40000,    12 * 1024,         8 * 1024,
+                               0x44DF8B20, 0x54434000, "am437x-pru1_0-fw"};
         return BISS_OK;
     case BISS_TARGET_AM437X_ICSS0:
-        *s = (struct soc_info){0x54440000, 4 * 1024};
+        *s = (struct soc_info){0x54440000, 0x40000,    4 * 1024,          4 * 1024,
+                               0x44DF8B20, 0x54474000, "am437x-pru0_0-fw"};
         return BISS_OK;
     case BISS_TARGET_EMU:
         break;
@@ -34,11 +58,18 @@ static int soc_of(enum biss_target t, struct soc_info *s) {
 
 struct lnx {
     volatile uint8_t *map;
+    size_t map_len;
     int fd;
+    int lock_fd;
+    bool shared;  /* the lock is shared (attached) */
+    bool rproc;   /* remoteproc loader */
+    bool started; /* this handle started the instance: close stops it */
+    char dir[PATH_MAX];
+    char fw_name[256];
 };
 
-static int in_window(uint32_t off, size_t n) {
-    return off <= ICSS_WINDOW && n <= ICSS_WINDOW - off;
+static int in_window(const struct lnx *l, uint32_t off, size_t n) {
+    return off <= l->map_len && n <= l->map_len - off;
 }
 
 static int aligned(uint32_t off, size_t n) {
@@ -50,7 +81,7 @@ static int aligned(uint32_t off, size_t n) {
  * split or dropped. */
 static int lnx_read(void *ctx, uint32_t off, void *buf, size_t n) {
     struct lnx *l = ctx;
-    if (!in_window(off, n)) {
+    if (!in_window(l, off, n)) {
         return BISS_E_IO;
     }
     if (aligned(off, n)) {
@@ -70,7 +101,7 @@ static int lnx_read(void *ctx, uint32_t off, void *buf, size_t n) {
 
 static int lnx_write(void *ctx, uint32_t off, const void *buf, size_t n) {
     struct lnx *l = ctx;
-    if (!in_window(off, n)) {
+    if (!in_window(l, off, n)) {
         return BISS_E_IO;
     }
     if (aligned(off, n)) {
@@ -102,22 +133,244 @@ static uint64_t lnx_now_us(void *ctx) {
     return (uint64_t)ts.tv_sec * 1000000u + (uint64_t)ts.tv_nsec / 1000u;
 }
 
+static int lnx_exclusive(void *ctx) {
+    struct lnx *l = ctx;
+    if (!l->shared) {
+        return BISS_OK;
+    }
+    int rc = biss_lock_upgrade(l->lock_fd, NULL);
+    if (!rc) {
+        l->shared = false;
+    }
+    return rc;
+}
+
+/* ---- remoteproc: the kernel loads, starts and stops ------------------- */
+static int rproc_state(struct lnx *l, char *state, size_t n) {
+    return biss_rproc_get(l->dir, "state", state, n, NULL);
+}
+
+static int rproc_halt(void *ctx) {
+    struct lnx *l = ctx;
+    char state[32];
+    int rc = rproc_state(l, state, sizeof state);
+    if (!rc && strcmp(state, "offline") != 0) {
+        rc = biss_rproc_set(l->dir, "state", "stop", NULL);
+    }
+    if (!rc) {
+        l->started = false;
+    }
+    return rc;
+}
+
+static int rproc_start(void *ctx) {
+    struct lnx *l = ctx;
+    int rc = biss_rproc_set(l->dir, "firmware", l->fw_name, NULL);
+    if (!rc) {
+        rc = biss_rproc_set(l->dir, "state", "start", NULL);
+    }
+    if (!rc) {
+        l->started = true;
+    }
+    return rc;
+}
+
+static int rproc_enabled(void *ctx, bool *on) {
+    struct lnx *l = ctx;
+    char state[32];
+    int rc = rproc_state(l, state, sizeof state);
+    *on = !rc && strcmp(state, "running") == 0;
+    return rc;
+}
+
 static void lnx_close(void *ctx) {
     struct lnx *l = ctx;
-    munmap((void *)l->map, ICSS_WINDOW);
-    close(l->fd);
+    if (l->started) {
+        biss_rproc_set(l->dir, "state", "stop", NULL);
+    }
+    if (l->map) {
+        munmap((void *)l->map, l->map_len);
+    }
+    if (l->fd >= 0) {
+        close(l->fd);
+    }
+    if (l->lock_fd >= 0) {
+        close(l->lock_fd); /* releases the flock */
+    }
     free(l);
 }
 
-static const struct biss_backend_ops lnx_ops = {
+static const struct biss_backend_ops devmem_ops = {
     .read = lnx_read,
     .write = lnx_write,
     .advance = lnx_advance,
     .now_us = lnx_now_us,
     .close = lnx_close,
+    .exclusive = lnx_exclusive,
     .poll_us = 50,
     .advance_sleeps = 1,
 };
+
+static const struct biss_backend_ops rproc_ops = {
+    .read = lnx_read,
+    .write = lnx_write,
+    .advance = lnx_advance,
+    .now_us = lnx_now_us,
+    .close = lnx_close,
+    .exclusive = lnx_exclusive,
+    .pru_halt = rproc_halt,
+    .pru_start = rproc_start,
+    .pru_enabled = rproc_enabled,
+    .poll_us = 50,
+    .advance_sleeps = 1,
+};
+
+/* ---- opening ------------------------------------------------------------ */
+static const char *sysfs_root(const struct biss_open_params *p) {
+    return p->sysfs_root && *p->sysfs_root ? p->sysfs_root : "/sys";
+}
+
+/* A regular file standing in for memory must reach end, or an access past
+ * its end would be a SIGBUS. */
+static int file_covers(const struct stat *st, off_t end) {
+    return !S_ISREG(st->st_mode) || st->st_size >= end;
+}
+
+/* The pruss driver bound (it keeps the module powered), or else the PRCM
+ * clock control says the module is enabled and functional (MODULEMODE = 2,
+ * IDLEST = 0; AM335x TRM 8.1.12.1, CM_PER_PRU_ICSS_CLKCTRL). */
+static int check_powered(const struct soc_info *s, const char *sysfs, int fd, const struct stat *st,
+                         const char *path, struct biss_errbuf *e) {
+    char drv[PATH_MAX];
+    snprintf(drv, sizeof drv, "%s/bus/platform/drivers/pruss/%lx.pruss", sysfs,
+             (unsigned long)s->base);
+    if (access(drv, F_OK) == 0) {
+        return BISS_OK;
+    }
+    long page = sysconf(_SC_PAGESIZE);
+    off_t at = s->clkctrl & ~(off_t)(page - 1);
+    if (!file_covers(st, at + page)) {
+        return biss_err(e, BISS_E_NOT_POWERED,
+                        "%s ends before CM_PER_PRU_ICSS_CLKCTRL (0x%lx) "
+                        "and %s does not exist: cannot tell that the PRU-ICSS is powered",
+                        path, (unsigned long)s->clkctrl, drv);
+    }
+    void *m = mmap(NULL, (size_t)page, PROT_READ, MAP_SHARED, fd, at);
+    if (m == MAP_FAILED) {
+        int err = errno;
+        return biss_err(e, BISS_E_NOT_POWERED,
+                        "%s: mapping CM_PER_PRU_ICSS_CLKCTRL (0x%lx): %s "
+                        "(errno %d): %s; or bind the pruss driver (%s)",
+                        path, (unsigned long)s->clkctrl, strerror(err), err, biss_devmem_hint(err),
+                        drv);
+    }
+    uint32_t v = *(volatile uint32_t *)((volatile uint8_t *)m + (s->clkctrl - at));
+    munmap(m, (size_t)page);
+    unsigned mode = v & 3u, idlest = (v >> 16) & 3u;
+    if (mode == 2 && idlest == 0) {
+        return BISS_OK;
+    }
+    return biss_err(e, BISS_E_NOT_POWERED,
+                    "%s: CM_PER_PRU_ICSS_CLKCTRL (0x%lx) = 0x%08x "
+                    "(MODULEMODE %u, IDLEST %u: not enabled) and no pruss driver bound (%s): "
+                    "enable the PRU-ICSS in the device tree (boards/ overlays) and load the pruss "
+                    "driver (modprobe pruss)",
+                    path, (unsigned long)s->clkctrl, v, mode, idlest, drv);
+}
+
+/* Remoteproc: the instance, not running someone else's firmware. */
+static int rproc_prepare(struct lnx *l, const struct soc_info *s, const struct biss_open_params *p,
+                         struct biss_errbuf *e) {
+    int rc = biss_rproc_find(sysfs_root(p), s->iram_phys, l->dir, e);
+    if (rc) {
+        return rc;
+    }
+    snprintf(l->fw_name, sizeof l->fw_name, "%s",
+             p->rproc_firmware && *p->rproc_firmware ? p->rproc_firmware : s->fw_name);
+    char state[32], fw[256];
+    rc = biss_rproc_get(l->dir, "state", state, sizeof state, e);
+    if (!rc) {
+        rc = biss_rproc_get(l->dir, "firmware", fw, sizeof fw, e);
+    }
+    if (rc) {
+        return rc;
+    }
+    bool running = strcmp(state, "running") == 0;
+    if (p->attach) {
+        return running ? BISS_OK
+                       : biss_err(e, BISS_E_NOT_RUNNING, "%s/state is '%s': nothing to attach to",
+                                  l->dir, state);
+    }
+    if (running && strcmp(fw, l->fw_name) != 0) {
+        return biss_err(e, BISS_E_RPROC_BUSY,
+                        "%s runs firmware '%s', not '%s': stop it first "
+                        "(echo stop > %s/state) if it is yours to stop",
+                        l->dir, fw, l->fw_name, l->dir);
+    }
+    if (strcmp(state, "offline") != 0 && !running) {
+        return biss_err(e, BISS_E_RPROC_BUSY, "%s/state is '%s'", l->dir, state);
+    }
+    const char *fwdir = p->firmware_dir && *p->firmware_dir ? p->firmware_dir : "/lib/firmware";
+    char fwpath[PATH_MAX];
+    snprintf(fwpath, sizeof fwpath, "%s/%s", fwdir, l->fw_name);
+    if (access(fwpath, R_OK) != 0) {
+        int err = errno;
+        return biss_err(e, BISS_E_FIRMWARE_IO,
+                        "%s: %s (errno %d): install biss_master.elf under "
+                        "that name (docs/hardware.md)",
+                        fwpath, strerror(err), err);
+    }
+    return BISS_OK;
+}
+
+static int open_mem(struct lnx *l, const struct soc_info *s, const struct biss_open_params *p,
+                    struct biss_errbuf *e) {
+    const char *path = p->devmem && *p->devmem ? p->devmem : "/dev/mem";
+    /* O_SYNC: uncached mapping of /dev/mem, as device memory must be */
+    l->fd = open(path, O_RDWR | O_SYNC | O_CLOEXEC);
+    if (l->fd < 0) {
+        int err = errno;
+        return biss_err(e, BISS_E_DEVMEM, "%s: %s (errno %d): %s", path, strerror(err), err,
+                        biss_devmem_hint(err));
+    }
+    struct stat st;
+    if (fstat(l->fd, &st) != 0) {
+        int err = errno;
+        return biss_err(e, BISS_E_DEVMEM, "%s: %s (errno %d)", path, strerror(err), err);
+    }
+    /* one lock per PRU: the memory file and the PRU-ICSS base name it */
+    char key[96];
+    snprintf(key, sizeof key, "biss-%llx-%llx-%lx.lock", (unsigned long long)st.st_dev,
+             (unsigned long long)st.st_ino, (unsigned long)s->base);
+    l->shared = p->attach;
+    int rc = biss_lock_take(p->lock_dir, key, l->shared, &l->lock_fd, e);
+    if (!rc) {
+        rc = check_powered(s, sysfs_root(p), l->fd, &st, path, e);
+    }
+    if (!rc && l->rproc) {
+        rc = rproc_prepare(l, s, p, e);
+    }
+    if (rc) {
+        return rc;
+    }
+    l->map_len = l->rproc ? s->dram_bytes : s->window;
+    if (!file_covers(&st, s->base + (off_t)l->map_len)) {
+        return biss_err(e, BISS_E_DEVMEM,
+                        "%s: %lld bytes, ends before the PRU-ICSS window "
+                        "0x%lx..0x%lx",
+                        path, (long long)st.st_size, (unsigned long)s->base,
+                        (unsigned long)(s->base + (off_t)l->map_len));
+    }
+    void *m = mmap(NULL, l->map_len, PROT_READ | PROT_WRITE, MAP_SHARED, l->fd, s->base);
+    if (m == MAP_FAILED) {
+        int err = errno;
+        return biss_err(e, BISS_E_DEVMEM, "%s: mapping 0x%lx+0x%zx: %s (errno %d): %s", path,
+                        (unsigned long)s->base, l->map_len, strerror(err), err,
+                        biss_devmem_hint(err));
+    }
+    l->map = m;
+    return BISS_OK;
+}
 
 int biss_linux_backend_open(const struct biss_open_params *p, struct biss_backend *be) {
     struct soc_info soc;
@@ -125,32 +378,23 @@ int biss_linux_backend_open(const struct biss_open_params *p, struct biss_backen
     if (rc) {
         return rc;
     }
+    if (p->loader != BISS_LOADER_DEVMEM && p->loader != BISS_LOADER_REMOTEPROC) {
+        return BISS_E_INVAL;
+    }
     struct lnx *l = calloc(1, sizeof *l);
     if (!l) {
         return BISS_E_NOMEM;
     }
-    const char *path = p->devmem && *p->devmem ? p->devmem : "/dev/mem";
-    /* O_SYNC: uncached mapping of /dev/mem, as device memory must be */
-    l->fd = open(path, O_RDWR | O_SYNC | O_CLOEXEC);
-    if (l->fd < 0) {
-        free(l);
-        return BISS_E_DEVMEM;
+    l->fd = -1;
+    l->lock_fd = -1;
+    l->rproc = p->loader == BISS_LOADER_REMOTEPROC;
+    struct biss_errbuf e = {p->errbuf, p->errbuf_len};
+    rc = open_mem(l, &soc, p, &e);
+    if (rc) {
+        lnx_close(l);
+        return rc;
     }
-    /* a plain file too short for the window would fault on first access */
-    struct stat st;
-    if (fstat(l->fd, &st) != 0 ||
-        (S_ISREG(st.st_mode) && st.st_size < soc.base + (off_t)ICSS_WINDOW)) {
-        close(l->fd);
-        free(l);
-        return BISS_E_DEVMEM;
-    }
-    void *m = mmap(NULL, ICSS_WINDOW, PROT_READ | PROT_WRITE, MAP_SHARED, l->fd, soc.base);
-    if (m == MAP_FAILED) {
-        close(l->fd);
-        free(l);
-        return BISS_E_DEVMEM;
-    }
-    l->map = m;
-    *be = (struct biss_backend){.ops = &lnx_ops, .ctx = l, .iram_bytes = soc.iram_bytes};
+    *be = (struct biss_backend){
+        .ops = l->rproc ? &rproc_ops : &devmem_ops, .ctx = l, .iram_bytes = soc.iram_bytes};
     return BISS_OK;
 }

@@ -37,15 +37,68 @@ void biss_config_encode(const struct biss_config *c, struct biss_shm_config *out
     }
 }
 
-/* Reading back a block another process wrote (attach): the position field
- * is what lies above nE/nW, as pos_bits 0 means. */
-int biss_config_decode(const struct biss_shm_config *in, struct biss_config *c) {
+/* Reading back a block another process wrote (attach): untrusted, every
+ * field is checked before it is used (a junk byte would otherwise become a
+ * shift count or a loop bound). The position field is what lies above
+ * nE/nW, as pos_bits 0 means. */
+static const char *bad_slave(const struct biss_shm_slave_cfg *s, unsigned i) {
+    if (s->data_bits < 1 || s->data_bits > BISS_MAX_DATA_BITS) {
+        return "slave data bits";
+    }
+    if (s->crc_bits > BISS_MAX_CRC_BITS) {
+        return "slave CRC bits";
+    }
+    if (s->flags & ~(BISS_SF_EW | BISS_SF_SSI)) {
+        return "slave flags";
+    }
+    if ((s->flags & BISS_SF_EW) && (unsigned)s->ew_shift + 2u > s->data_bits) {
+        return "slave nE/nW position";
+    }
+    if (s->crc_bits < 16 && (s->crc_poly >> s->crc_bits || s->crc_start >> s->crc_bits)) {
+        return "slave CRC polynomial or start value";
+    }
+    if ((s->flags & BISS_SF_SSI) && (i != 0 || s->crc_bits || (s->flags & BISS_SF_EW))) {
+        return "slave SSI flag";
+    }
+    return NULL;
+}
+
+static const char *bad_block(const struct biss_shm_config *in) {
+    unsigned half = in->half;
+    if (half < BISS_MIN_HALF || half > BISS_MAX_HALF || BISS_HALF_CLOCK_HZ % half != 0) {
+        return "MA half period";
+    }
+    if (in->nslaves < 1 || in->nslaves > BISS_MAX_SLAVES) {
+        return "slave count";
+    }
+    if (in->trigger > BISS_TRIG_FREERUN) {
+        return "trigger mode";
+    }
+    if ((in->slave[0].flags & BISS_SF_SSI) && in->nslaves != 1) {
+        return "slave count (SSI)";
+    }
+    for (unsigned i = 0; i < in->nslaves; i++) {
+        const char *why = bad_slave(&in->slave[i], i);
+        if (why) {
+            return why;
+        }
+    }
+    return NULL;
+}
+
+int biss_config_decode(const struct biss_shm_config *in, struct biss_config *c,
+                       const char **field) {
     biss_config_default(c);
+    *field = NULL;
     if (in->half == 0) {
         return BISS_E_NOT_CONFIGURED;
     }
+    *field = bad_block(in);
+    if (*field) {
+        return BISS_E_SHM_CONFIG;
+    }
     c->freq_hz = BISS_HALF_CLOCK_HZ / in->half;
-    c->nslaves = in->nslaves <= BISS_MAX_SLAVES ? in->nslaves : BISS_MAX_SLAVES;
+    c->nslaves = in->nslaves;
     c->trigger = (enum biss_trigger)in->trigger;
     c->iep_period_ns = in->iep_period * 5u;
     c->proc_limit = in->proc_limit;
@@ -61,6 +114,11 @@ int biss_config_decode(const struct biss_shm_config *in, struct biss_config *c) 
         o->ew_shift = o->has_ew ? s->ew_shift : 0;
         o->pos_bits = 0;
         o->ssi = (s->flags & BISS_SF_SSI) != 0; /* Gray or not is not in the block */
+    }
+    /* the library's own rules too (shift clock, IEP period, SSI delay) */
+    if (biss_config_check(c) != BISS_OK) {
+        *field = "configuration (fails the library's checks)";
+        return BISS_E_SHM_CONFIG;
     }
     return BISS_OK;
 }

@@ -48,8 +48,12 @@ static int write_block(biss_t *h, const struct biss_config *c, uint32_t seq) {
 }
 
 static int configure_locked(biss_t *h, const struct biss_config *c) {
+    int rc = biss_exclusive(h);
+    if (rc) {
+        return rc;
+    }
     uint32_t seq = next_seq(h->cfg_seq);
-    int rc = write_block(h, c, seq);
+    rc = write_block(h, c, seq);
     if (rc) {
         return rc;
     }

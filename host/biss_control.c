@@ -86,7 +86,11 @@ static int begin_locked(biss_t *h, const biss_cd_prog *p, unsigned wait_limit, u
     if (wait_limit > 0xffff) {
         return BISS_E_INVAL;
     }
-    return h->configured ? put_program(h, p, wait_limit, cmd) : BISS_E_NOT_CONFIGURED;
+    if (!h->configured) {
+        return BISS_E_NOT_CONFIGURED;
+    }
+    int rc = biss_exclusive(h);
+    return rc ? rc : put_program(h, p, wait_limit, cmd);
 }
 
 static int exchange_locked(biss_t *h, const biss_cd_prog *p, unsigned wait_limit,

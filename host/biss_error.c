@@ -18,7 +18,7 @@ static const struct err_text errors[] = {
     {BISS_E_TARGET, "unknown target (emu, am335x, am437x-icss0, am437x-icss1)"},
     {BISS_E_FIRMWARE_IO, "firmware image cannot be read"},
     {BISS_E_FIRMWARE_SIZE, "firmware image is empty, not whole 32-bit words, or too big for IRAM"},
-    {BISS_E_DEVMEM, "devmem cannot be opened or mapped at the PRU-ICSS base"},
+    {BISS_E_DEVMEM, "the PRU-ICSS memory cannot be opened or mapped"},
     {BISS_E_PROFILE, "unknown emulator profile"},
     {BISS_E_SCENARIO, "scenario file cannot be read or is invalid"},
     {BISS_E_EMU, "emulator bench cannot be built"},
@@ -66,6 +66,15 @@ static const struct err_text errors[] = {
     {BISS_E_FW_IEP_PERIOD, "firmware refused the configuration: IEP period"},
     {BISS_E_FW_SSI, "firmware refused the configuration: SSI"},
     {BISS_E_FW_UNKNOWN, "firmware refused the configuration (unknown reason)"},
+    {BISS_E_NOT_POWERED, "the PRU-ICSS is not powered (load/enable the pruss driver)"},
+    {BISS_E_BUSY, "the PRU is in use by another process"},
+    {BISS_E_RPROC, "no usable remoteproc instance for this PRU"},
+    {BISS_E_RPROC_BUSY, "the PRU's remoteproc instance runs another firmware"},
+    {BISS_E_FW_ID, "no image identification block in data RAM (not this firmware)"},
+    {BISS_E_SHM_VERSION, "the firmware's shared-memory version differs from this library's"},
+    {BISS_E_FW_IMAGE, "the running firmware image is not the expected one (CRC-32 differs)"},
+    {BISS_E_SHM_CONFIG, "the configuration block read back from data RAM is invalid"},
+    {BISS_E_SHM_RESULT, "a published result contradicts the configuration (junk in data RAM)"},
 };
 
 const char *biss_strerror(int err) {
@@ -94,9 +103,10 @@ int biss_target_from_name(const char *name, enum biss_target *t) {
             return BISS_OK;
         }
     }
-    /* the architecture's short name: the PRU-ICSS with the bigger IRAM */
+    /* the architecture's short name: ICSS0, as TIDEP0022 on the AM437x IDK
+     * (whose device tree gives ICSS1 to PRU Ethernet) */
     if (strcmp(name, "am437x") == 0) {
-        *t = BISS_TARGET_AM437X_ICSS1;
+        *t = BISS_TARGET_AM437X_ICSS0;
         return BISS_OK;
     }
     return BISS_E_TARGET;
@@ -150,4 +160,18 @@ const char *biss_fw_state_name(uint32_t state) {
     default:
         return "unknown";
     }
+}
+
+int biss_loader_from_name(const char *name, enum biss_loader *l) {
+    if (!name || !l) {
+        return BISS_E_INVAL;
+    }
+    if (strcmp(name, "remoteproc") == 0) {
+        *l = BISS_LOADER_REMOTEPROC;
+    } else if (strcmp(name, "devmem") == 0) {
+        *l = BISS_LOADER_DEVMEM;
+    } else {
+        return BISS_E_INVAL;
+    }
+    return BISS_OK;
 }

@@ -3,8 +3,11 @@
 #include "biss_priv.h"
 
 #include "biss/biss_shm_struct.h"
+#include "biss_image_id.h"
+#include "biss_oserr.h"
 #include "read_file.h"
 
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -36,22 +39,25 @@ static const char *firmware_path(const struct biss_open_params *p) {
     return BISS_DEFAULT_FIRMWARE;
 }
 
-static int read_image(biss_t *h, const char *path) {
+static int read_image(biss_t *h, const char *path, struct biss_errbuf *e) {
     char *buf;
     size_t n;
     switch (read_file(path, h->be.iram_bytes + 1u, &buf, &n)) {
     case READ_FILE_OK:
         break;
     case READ_FILE_TOO_BIG:
-        return BISS_E_FIRMWARE_SIZE;
+        return biss_err(e, BISS_E_FIRMWARE_SIZE, "%s: more than the %u bytes of this PRU's IRAM",
+                        path, (unsigned)h->be.iram_bytes);
     case READ_FILE_NOMEM:
         return BISS_E_NOMEM;
-    default:
-        return BISS_E_FIRMWARE_IO;
+    default: {
+        int err = errno;
+        return biss_err(e, BISS_E_FIRMWARE_IO, "%s: %s (errno %d)", path, strerror(err), err);
+    }
     }
     if (n == 0 || n % 4 != 0) {
         free(buf);
-        return BISS_E_FIRMWARE_SIZE;
+        return biss_err(e, BISS_E_FIRMWARE_SIZE, "%s: %zu bytes, not whole 32-bit words", path, n);
     }
     h->image = (uint8_t *)buf;
     h->image_bytes = n;
@@ -96,19 +102,114 @@ static int open_backend(const struct biss_open_params *p, struct biss_backend *b
     return BISS_E_TARGET;
 }
 
-/* Attached: the configuration in force is the block in data RAM. */
-static void adopt_running_config(biss_t *h) {
+/* Attached: the configuration in force is the block in data RAM, read as
+ * untrusted input (another process, or another firmware, wrote it). */
+static int adopt_running_config(biss_t *h, struct biss_errbuf *e) {
     struct biss_shm_config blk;
     uint32_t ack = 0, err = 1;
-    if (biss_dram_read(h, 0, &blk, sizeof blk) || biss_dram_read32(h, BISS_ST_CFG_ACK, &ack) ||
-        biss_dram_read32(h, BISS_ST_CFG_ERROR, &err)) {
-        return;
+    int rc = biss_dram_read(h, 0, &blk, sizeof blk);
+    if (!rc) {
+        rc = biss_dram_read32(h, BISS_ST_CFG_ACK, &ack);
+    }
+    if (!rc) {
+        rc = biss_dram_read32(h, BISS_ST_CFG_ERROR, &err);
+    }
+    if (rc) {
+        return rc;
     }
     h->cfg_seq = blk.seq;
-    if (blk.seq != 0 && ack == blk.seq && err == BISS_CFGERR_NONE &&
-        biss_config_decode(&blk, &h->cfg) == BISS_OK) {
-        h->configured = true;
+    if (blk.seq == 0 || ack != blk.seq || err != BISS_CFGERR_NONE) {
+        return BISS_OK; /* not configured (yet, or refused): nothing to adopt */
     }
+    const char *field;
+    rc = biss_config_decode(&blk, &h->cfg, &field);
+    if (rc == BISS_E_SHM_CONFIG) {
+        return biss_err(e, rc, "data RAM configuration block (CFG_SEQ %u, acked): bad %s", blk.seq,
+                        field);
+    }
+    h->configured = rc == BISS_OK;
+    return BISS_OK;
+}
+
+/* The image identification block (biss_shm.h BISS_ID): this project's
+ * firmware, built with this library's BISS_SHM_VERSION, and the image the
+ * host expects when it has one. */
+static int check_identity(biss_t *h, struct biss_errbuf *e) {
+    struct biss_shm_id id;
+    int rc = biss_dram_read(h, BISS_ID, &id, sizeof id);
+    if (rc) {
+        return rc;
+    }
+    if (id.magic != BISS_ID_MAGIC) {
+        return biss_err(e, BISS_E_FW_ID,
+                        "data RAM 0x%03x holds 0x%08x, not the identification "
+                        "block (0x%08x): not biss_master, or a build older than the block",
+                        BISS_ID, id.magic, BISS_ID_MAGIC);
+    }
+    if (id.shm_version != BISS_SHM_VERSION) {
+        return biss_err(e, BISS_E_SHM_VERSION,
+                        "the firmware was built with BISS_SHM_VERSION %u, "
+                        "this library with %u: rebuild one of them",
+                        id.shm_version, BISS_SHM_VERSION);
+    }
+    if (h->image) {
+        struct biss_shm_id want;
+        biss_image_id(h->image, h->image_bytes, &want);
+        if (want.image_crc != id.image_crc || want.image_bytes != id.image_bytes) {
+            return biss_err(e, BISS_E_FW_IMAGE,
+                            "the running image has CRC-32 0x%08x (%u bytes), "
+                            "%s has 0x%08x (%u bytes)",
+                            id.image_crc, id.image_bytes, h->firmware, want.image_crc,
+                            want.image_bytes);
+        }
+    }
+    return BISS_OK;
+}
+
+static int magic_seen(biss_t *h, void *arg) {
+    (void)arg;
+    uint32_t magic = 0;
+    int rc = biss_dram_read32(h, BISS_ST_MAGIC, &magic);
+    return rc ? rc : magic == BISS_MAGIC;
+}
+
+/* The image the host expects: loaded by the devmem loader; for the
+ * others (attach, remoteproc, which loads its ELF itself) only compared,
+ * and the build tree's default may be absent on a board. */
+static int expected_image(biss_t *h, const struct biss_open_params *p, bool loads,
+                          struct biss_errbuf *e) {
+    const char *path = firmware_path(p);
+    bool given = (p->firmware && *p->firmware) || strcmp(path, BISS_DEFAULT_FIRMWARE) != 0;
+    int rc = read_image(h, path, (loads || given) ? e : NULL);
+    return rc && !loads && !given ? BISS_OK : rc;
+}
+
+static int open_linux(biss_t *h, const struct biss_open_params *p, struct biss_errbuf *e) {
+    bool rproc = p->loader == BISS_LOADER_REMOTEPROC;
+    int rc = expected_image(h, p, !p->attach && !rproc, e);
+    if (rc) {
+        return rc;
+    }
+    if (p->attach) {
+        h->attached = true;
+        rc = check_identity(h, e);
+        return rc ? rc : adopt_running_config(h, e);
+    }
+    rc = biss_pru_load_and_start(h);
+    if (rc || !rproc) {
+        return rc;
+    }
+    pthread_mutex_lock(&h->lock); /* the wait drops it while it sleeps */
+    rc = biss_wait_for(h, h->timeout_ms, magic_seen, NULL);
+    pthread_mutex_unlock(&h->lock);
+    if (rc == BISS_E_TIMEOUT) {
+        return biss_err(e, BISS_E_NOT_RUNNING,
+                        "remoteproc started the firmware but no magic "
+                        "appeared in data RAM within %u ms: is the installed firmware "
+                        "biss_master.elf?",
+                        h->timeout_ms);
+    }
+    return rc ? rc : check_identity(h, e);
 }
 
 int biss_open(const struct biss_open_params *p, biss_t **out) {
@@ -119,7 +220,10 @@ int biss_open(const struct biss_open_params *p, biss_t **out) {
     if (!p) {
         return BISS_E_INVAL;
     }
-    bool attach = p->attach && p->target != BISS_TARGET_EMU;
+    if (p->errbuf && p->errbuf_len) {
+        p->errbuf[0] = '\0';
+    }
+    struct biss_errbuf e = {p->errbuf, p->errbuf_len};
     struct biss_backend be;
     int rc = open_backend(p, &be);
     if (rc) {
@@ -130,13 +234,13 @@ int biss_open(const struct biss_open_params *p, biss_t **out) {
     if (rc) {
         return rc;
     }
-    if (attach) {
-        adopt_running_config(h);
-    } else {
-        rc = read_image(h, firmware_path(p));
+    if (p->target == BISS_TARGET_EMU) {
+        rc = read_image(h, firmware_path(p), &e);
         if (!rc) {
             rc = biss_pru_load_and_start(h);
         }
+    } else {
+        rc = open_linux(h, p, &e);
     }
     if (rc) {
         biss_close(h);
@@ -169,6 +273,10 @@ void biss_close(biss_t *h) {
 
 enum biss_target biss_target(const biss_t *h) {
     return h ? h->target : BISS_TARGET_EMU;
+}
+
+bool biss_attached(const biss_t *h) {
+    return h && h->attached;
 }
 
 const char *biss_firmware_path(const biss_t *h) {

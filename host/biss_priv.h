@@ -21,7 +21,7 @@
 #define ICSS_DRAM0        0x00000u
 #define ICSS_CTRL0        0x22000u /* PRU0 CONTROL */
 #define ICSS_IRAM0        0x34000u
-#define ICSS_WINDOW       0x80000u /* bytes mapped */
+#define ICSS_WINDOW       0x80000u /* the largest PRU-ICSS (AM335x) */
 #define ICSS_CTRL_RESET_N (1u << 0)
 #define ICSS_CTRL_ENABLE  (1u << 1)
 
@@ -36,6 +36,15 @@ struct biss_backend_ops {
     /* The backend's clock in microseconds (simulated time for the emulator). */
     uint64_t (*now_us)(void *ctx);
     void (*close)(void *ctx);
+    /* Optional. exclusive: this handle may now change the firmware's state
+     * (configure, start, stop); 0 or BISS_E_BUSY. pru_halt/pru_start/
+     * pru_enabled: a loader that owns the PRU (remoteproc) stops, loads and
+     * starts it, and says whether it runs; NULL: the CONTROL register and
+     * IRAM through read/write. */
+    int (*exclusive)(void *ctx);
+    int (*pru_halt)(void *ctx);
+    int (*pru_start)(void *ctx);
+    int (*pru_enabled)(void *ctx, bool *on);
     /* How long one advance() step of a wait is, microseconds. */
     unsigned poll_us;
     /* advance() only sleeps: the handle is unlocked around it so other
@@ -65,7 +74,11 @@ struct biss {
     bool configured;
     struct biss_config cfg;
     uint32_t cfg_seq;
+    bool attached;
 };
+
+/* Asks the backend for the right to change the firmware's state. */
+int biss_exclusive(biss_t *h);
 
 /* A handle around a ready backend (takes it over, closing it on error);
  * no firmware is loaded. biss_open uses it; tests use it with fakes. */
@@ -85,6 +98,9 @@ int biss_dram_write32(biss_t *h, uint32_t off, uint32_t v);
 /* PRU control and image loading (biss_pru.c). */
 int biss_pru_halt(biss_t *h);
 int biss_pru_load_and_start(biss_t *h);
+int biss_pru_enabled(biss_t *h, bool *on);
+/* Writes the identification block of the handle's image (devmem loader). */
+int biss_pru_write_id(biss_t *h);
 
 /* Waits (handle locked) until done(h, arg) returns nonzero or timeout_ms
  * of backend time passed; returns 0, BISS_E_TIMEOUT, or done's error if
@@ -101,7 +117,10 @@ int biss_reconfigure_locked(biss_t *h);
 /* Encoding of a checked config into the shm block (biss_config_encode.c). */
 struct biss_shm_config;
 void biss_config_encode(const struct biss_config *c, struct biss_shm_config *out);
-int biss_config_decode(const struct biss_shm_config *in, struct biss_config *c);
+/* Decodes a block read back from data RAM, as untrusted input: 0,
+ * BISS_E_NOT_CONFIGURED (no rate: never configured) or BISS_E_SHM_CONFIG
+ * (*field names the first bad field). */
+int biss_config_decode(const struct biss_shm_config *in, struct biss_config *c, const char **field);
 /* Maps ST_CFG_ERROR to BISS_E_FW_* (0 stays 0). */
 int biss_fw_cfg_error(uint32_t cfgerr);
 
@@ -122,8 +141,10 @@ int biss_cd_error(biss_cd_err e);
 
 /* Sample decoding (biss_sample_decode.c). */
 struct biss_shm_result;
-void biss_sample_decode(const struct biss_config *c, bool configured, uint32_t seq,
-                        const struct biss_shm_result *r, struct biss_sample *s);
+/* 0, or BISS_E_SHM_RESULT for a result no firmware with this
+ * configuration publishes (slave count). */
+int biss_sample_decode(const struct biss_config *c, bool configured, uint32_t seq,
+                       const struct biss_shm_result *r, struct biss_sample *s);
 void biss_delay_decode(uint16_t raw, uint16_t avg, unsigned half, struct biss_line_delay *d);
 
 #endif

@@ -4,6 +4,7 @@
 #include "biss_priv.h"
 
 #include "biss/biss_shm_struct.h"
+#include "biss_image_id.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -12,9 +13,26 @@ static int write_control(biss_t *h, uint32_t v) {
     return h->be.ops->write(h->be.ctx, ICSS_CTRL0, &v, 4);
 }
 
+int biss_exclusive(biss_t *h) {
+    return h->be.ops->exclusive ? h->be.ops->exclusive(h->be.ctx) : BISS_OK;
+}
+
 int biss_pru_halt(biss_t *h) {
+    if (h->be.ops->pru_halt) {
+        return h->be.ops->pru_halt(h->be.ctx);
+    }
     /* ENABLE clear, SOFT_RST_N kept high: the PRU stops where it is */
     return write_control(h, ICSS_CTRL_RESET_N);
+}
+
+int biss_pru_enabled(biss_t *h, bool *on) {
+    if (h->be.ops->pru_enabled) {
+        return h->be.ops->pru_enabled(h->be.ctx, on);
+    }
+    uint32_t control = 0;
+    int rc = h->be.ops->read(h->be.ctx, ICSS_CTRL0, &control, 4);
+    *on = (control & ICSS_CTRL_ENABLE) != 0;
+    return rc;
 }
 
 /* IRAM is written whole (zeros after the image) so nothing from an earlier
@@ -30,6 +48,16 @@ static int load_iram(biss_t *h) {
     return rc;
 }
 
+/* What remoteproc's loader puts at BISS_ID from the ELF (pru-elf). */
+int biss_pru_write_id(biss_t *h) {
+    uint8_t blk[BISS_ID_END - BISS_ID];
+    struct biss_shm_id id;
+    biss_image_id(h->image, h->image_bytes, &id);
+    memcpy(blk, &id, sizeof id);
+    biss_rsc_table(blk + sizeof id);
+    return biss_dram_write(h, BISS_ID, blk, sizeof blk);
+}
+
 /* Config, commands, status, results and the control-communication area
  * start from zero: data RAM keeps whatever an earlier run left (a stale
  * magic or ack would lie). */
@@ -40,11 +68,25 @@ static int clear_shared(biss_t *h) {
 
 int biss_pru_load_and_start(biss_t *h) {
     int rc = biss_pru_halt(h);
+    if (h->be.ops->pru_start) {
+        /* the kernel loads the ELF (code, identification block) and starts */
+        if (!rc) {
+            rc = clear_shared(h);
+        }
+        if (!rc) {
+            rc = h->be.ops->pru_start(h->be.ctx);
+        }
+        h->cfg_seq = 0;
+        return rc;
+    }
     if (!rc) {
         rc = load_iram(h);
     }
     if (!rc) {
         rc = clear_shared(h);
+    }
+    if (!rc) {
+        rc = biss_pru_write_id(h);
     }
     /* ENABLE with SOFT_RST_N low: reset (PC to 0) and run, as prussdrv does */
     if (!rc) {

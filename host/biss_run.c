@@ -12,12 +12,21 @@ _Static_assert(BISS_FW_STOPPED == BISS_STATE_STOPPED && BISS_FW_RUNNING == BISS_
                "firmware state enum matches the shm codes");
 
 static int start_locked(biss_t *h) {
-    if (!h->image) {
+    int rc = biss_exclusive(h);
+    if (rc) {
+        return rc;
+    }
+    if (h->attached && h->be.ops->pru_start) {
+        /* attached through remoteproc: start what is installed */
+        rc = biss_pru_load_and_start(h);
+        return rc ? rc : biss_reconfigure_locked(h);
+    }
+    if (!h->image || h->attached) {
         /* attached to a firmware someone else loaded: resume it */
         uint32_t v = ICSS_CTRL_RESET_N | ICSS_CTRL_ENABLE;
         return h->be.ops->write(h->be.ctx, ICSS_CTRL0, &v, 4);
     }
-    int rc = biss_pru_load_and_start(h);
+    rc = biss_pru_load_and_start(h);
     if (!rc) {
         rc = biss_reconfigure_locked(h);
     }
@@ -39,7 +48,10 @@ int biss_stop(biss_t *h) {
         return BISS_E_INVAL;
     }
     pthread_mutex_lock(&h->lock);
-    int rc = biss_pru_halt(h);
+    int rc = biss_exclusive(h);
+    if (!rc) {
+        rc = biss_pru_halt(h);
+    }
     pthread_mutex_unlock(&h->lock);
     return rc;
 }
@@ -80,19 +92,23 @@ int biss_run_ms(biss_t *h, unsigned ms) {
 
 static int status_locked(biss_t *h, struct biss_status *st) {
     struct biss_shm_status s;
-    uint32_t control = 0;
+    struct biss_shm_id id;
     int rc = biss_dram_read(h, BISS_ST_MAGIC, &s, sizeof s);
     if (!rc) {
-        rc = h->be.ops->read(h->be.ctx, ICSS_CTRL0, &control, 4);
+        rc = biss_pru_enabled(h, &st->pru_enabled);
     }
     if (!rc) {
         rc = biss_dram_read32(h, BISS_CFG_SEQ, &st->cfg_seq);
     }
+    if (!rc) {
+        rc = biss_dram_read(h, BISS_ID, &id, sizeof id);
+    }
     if (rc) {
         return rc;
     }
+    st->shm_version = id.magic == BISS_ID_MAGIC ? id.shm_version : 0;
+    st->image_crc = id.magic == BISS_ID_MAGIC ? id.image_crc : 0;
     st->firmware_running = s.magic == BISS_MAGIC;
-    st->pru_enabled = (control & ICSS_CTRL_ENABLE) != 0;
     st->state = s.state;
     st->cfg_ack = s.cfg_ack;
     st->cfg_error = s.cfg_error;

@@ -37,7 +37,7 @@ static int read_consistent(biss_t *h, struct biss_shm_result *r, uint32_t *seq) 
             return rc;
         }
         if (buf > 1) {
-            continue;
+            return BISS_E_SHM_RESULT; /* the firmware only ever writes 0 or 1 */
         }
         *r = (struct biss_shm_result){0};
         rc = biss_dram_read(h, BISS_RES0 + buf * BISS_RES_SIZE, r, result_bytes(h));
@@ -62,7 +62,7 @@ static int read_sample_locked(biss_t *h, struct biss_sample *s) {
     uint32_t seq = 0;
     int rc = read_consistent(h, &r, &seq);
     if (!rc) {
-        biss_sample_decode(&h->cfg, h->configured, seq, &r, s);
+        rc = biss_sample_decode(&h->cfg, h->configured, seq, &r, s);
     }
     return rc;
 }

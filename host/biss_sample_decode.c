@@ -50,6 +50,9 @@ static uint64_t from_gray(uint64_t g) {
 static void decode_slave(const struct biss_slave_config *c, const struct biss_shm_slave_result *r,
                          struct biss_slave_result *o) {
     o->data = (uint64_t)r->data_hi << 32 | r->data_lo;
+    if (c) {
+        o->data &= low_mask(c->data_bits); /* no bit the layout does not have */
+    }
     o->crc_reg = r->crc_reg;
     o->status = r->status;
     o->crc_ok = (r->status & BISS_RS_CRC_OK) != 0;
@@ -65,8 +68,8 @@ static void decode_slave(const struct biss_slave_config *c, const struct biss_sh
     o->warning = c->has_ew && !(r->status & BISS_RS_NW);
 }
 
-void biss_sample_decode(const struct biss_config *c, bool configured, uint32_t seq,
-                        const struct biss_shm_result *r, struct biss_sample *s) {
+int biss_sample_decode(const struct biss_config *c, bool configured, uint32_t seq,
+                       const struct biss_shm_result *r, struct biss_sample *s) {
     memset(s, 0, sizeof *s);
     s->seq = seq;
     s->frame = r->frame;
@@ -84,13 +87,19 @@ void biss_sample_decode(const struct biss_config *c, bool configured, uint32_t s
     s->sample_point = r->sample_point;
     s->lag_periods = r->lag_periods;
     biss_delay_decode(r->delay_raw, r->delay_avg, r->half, &s->delay);
-    s->nslaves = r->nslaves <= BISS_MAX_SLAVES ? r->nslaves : BISS_MAX_SLAVES;
+    /* data RAM is untrusted: a slave count the configuration does not
+     * have (or past the limit) is junk, not data */
+    if (r->nslaves > BISS_MAX_SLAVES || (configured && s->valid && r->nslaves != c->nslaves)) {
+        return BISS_E_SHM_RESULT;
+    }
+    s->nslaves = r->nslaves;
     /* an aborted frame leaves older data in its buffer: report none */
     if (!s->valid) {
-        return;
+        return BISS_OK;
     }
     for (unsigned i = 0; i < s->nslaves; i++) {
         const struct biss_slave_config *sc = configured && i < c->nslaves ? &c->slave[i] : NULL;
         decode_slave(sc, &r->slave[i], &s->slave[i]);
     }
+    return BISS_OK;
 }

@@ -52,6 +52,55 @@ static int apply_config(biss_t *h, struct bissctl_opts *o) {
     return rc ? bissctl_fail("configure", rc) : BISSCTL_OK;
 }
 
+/* Commands that only look: on hardware they use a firmware already running
+ * rather than reloading it (stop, too: it halts what runs). */
+static bool read_only(const char *command) {
+    return strcmp(command, "info") == 0 || strcmp(command, "stats") == 0 ||
+           strcmp(command, "read") == 0;
+}
+
+static int open_failed(struct bissctl_opts *o, int rc) {
+    if (o->errbuf[0]) {
+        fprintf(stderr, "bissctl: open: %s: %s\n", biss_strerror(rc), o->errbuf);
+        return BISSCTL_FAIL;
+    }
+    return bissctl_fail("open", rc);
+}
+
+/* A firmware already running on hardware serves the read-only commands as
+ * it is, unless a configuration is given; otherwise it is loaded. */
+static int open_target(struct bissctl_opts *o, const struct command *cmd, biss_t **h) {
+    bool hw = o->open.target != BISS_TARGET_EMU;
+    bool layout = o->slaves_given || o->no_configure;
+    if (hw && strcmp(cmd->name, "stop") == 0) {
+        o->open.attach = true;
+    }
+    if (hw && !o->open.attach && read_only(cmd->name) && !o->config_given) {
+        struct biss_open_params p = o->open;
+        p.attach = true;
+        int rc = biss_open(&p, h);
+        struct biss_status st;
+        if (rc == BISS_OK && biss_get_status(*h, &st) == BISS_OK && st.firmware_running &&
+            st.pru_enabled) {
+            o->open.attach = true;
+            return BISSCTL_OK;
+        }
+        if (rc == BISS_OK) {
+            biss_close(*h);
+        } else if (rc != BISS_E_NOT_RUNNING && rc != BISS_E_FW_ID) {
+            return open_failed(o, rc); /* busy, another firmware, no access ... */
+        }
+        o->errbuf[0] = '\0';
+    }
+    if (hw && cmd->configure && !o->open.attach && !layout) {
+        fprintf(stderr, "bissctl: a real target needs --slave or --ssi (the slave layout)%s\n",
+                read_only(cmd->name) ? ", or a firmware already running to attach to" : "");
+        return BISSCTL_USAGE;
+    }
+    int rc = biss_open(&o->open, h);
+    return rc ? open_failed(o, rc) : BISSCTL_OK;
+}
+
 int main(int argc, char **argv) {
     struct bissctl_opts o;
     int rc = bissctl_parse(argc, argv, &o);
@@ -63,7 +112,11 @@ int main(int argc, char **argv) {
         return BISSCTL_OK;
     }
     const struct command *cmd = find(o.command);
-    /* catch a bad configuration before touching the target */
+    /* catch a bad command line before touching the target */
+    rc = bissctl_check_args(&o);
+    if (rc) {
+        return rc;
+    }
     if (cmd->configure && o.slaves_given && !o.no_configure) {
         int bad = biss_config_check(&o.cfg);
         if (bad) {
@@ -71,9 +124,9 @@ int main(int argc, char **argv) {
         }
     }
     biss_t *h;
-    rc = biss_open(&o.open, &h);
+    rc = open_target(&o, cmd, &h);
     if (rc) {
-        return bissctl_fail("open", rc);
+        return rc;
     }
     rc = cmd->configure ? apply_config(h, &o) : BISSCTL_OK;
     if (rc == BISSCTL_OK) {

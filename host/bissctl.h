@@ -23,6 +23,8 @@ struct bissctl_opts {
     char **args;         /* words after the command */
     int nargs;
     bool help;
+    bool attach_given; /* --attach on the command line */
+    char errbuf[1024]; /* open's detail */
 };
 
 /* Exit codes */
@@ -51,5 +53,8 @@ int bissctl_command(biss_t *h, const struct bissctl_opts *o);
 
 /* "bissctl: <what>: <strerror>" on stderr; returns BISSCTL_FAIL. */
 int bissctl_fail(const char *what, int err);
+/* The command's own arguments, checked before anything is opened:
+ * BISSCTL_OK or BISSCTL_USAGE (reported). */
+int bissctl_check_args(const struct bissctl_opts *o);
 
 #endif

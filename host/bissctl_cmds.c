@@ -3,6 +3,7 @@
 
 #include <stdbool.h>
 #include <stdio.h>
+#include <string.h>
 
 int bissctl_fail(const char *what, int err) {
     fprintf(stderr, "bissctl: %s: %s\n", what, biss_strerror(err));
@@ -79,8 +80,10 @@ int bissctl_info(biss_t *h, const struct bissctl_opts *o) {
     if (rc) {
         return bissctl_fail("info", rc);
     }
-    printf("target=%s firmware=%s\n", biss_target_name(biss_target(h)),
-           *biss_firmware_path(h) ? biss_firmware_path(h) : "(attached)");
+    printf("target=%s firmware=%s%s\n", biss_target_name(biss_target(h)),
+           *biss_firmware_path(h) ? biss_firmware_path(h) : "(not known here)",
+           biss_attached(h) ? " (attached)" : "");
+    printf("shm_version=%u image_crc=0x%08x\n", st.shm_version, st.image_crc);
     printf("pru=%s firmware_running=%s state=%s\n", st.pru_enabled ? "enabled" : "halted",
            st.firmware_running ? "yes" : "no", biss_fw_state_name(st.state));
     printf("cfg_seq=%u cfg_ack=%u cfg_error=%u publications=%u\n", st.cfg_seq, st.cfg_ack,
@@ -252,4 +255,45 @@ int bissctl_command(biss_t *h, const struct bissctl_opts *o) {
         printf("ids=0x%02x cmd=%u ida=0x%02x\n", ids, cmd, ida); /* which IDs answered */
     }
     return rc ? bissctl_fail("command", rc) : BISSCTL_OK;
+}
+
+int bissctl_check_args(const struct bissctl_opts *o) {
+    uint8_t addr, b;
+    if (strcmp(o->command, "reg-read") == 0) {
+        int rc = parse_addr(o, &addr);
+        if (!rc && o->nargs > 1) {
+            fprintf(stderr, "bissctl: reg-read takes one address (-n N for more registers)\n");
+            rc = BISSCTL_USAGE;
+        }
+        if (!rc && o->count > BISS_REG_MAX_SEQ) {
+            fprintf(stderr, "bissctl: reg-read reads at most %d registers\n", BISS_REG_MAX_SEQ);
+            rc = BISSCTL_USAGE;
+        }
+        return rc;
+    }
+    if (strcmp(o->command, "reg-write") == 0) {
+        int rc = parse_addr(o, &addr);
+        if (rc) {
+            return rc;
+        }
+        if (o->nargs < 2 || o->nargs - 1 > BISS_REG_MAX_SEQ) {
+            fprintf(stderr, "bissctl: reg-write needs 1..64 bytes after the address\n");
+            return BISSCTL_USAGE;
+        }
+        for (int i = 1; i < o->nargs; i++) {
+            if (bissctl_parse_byte(o->args[i], 0xff, &b)) {
+                fprintf(stderr, "bissctl: reg-write: '%s' is not a byte\n", o->args[i]);
+                return BISSCTL_USAGE;
+            }
+        }
+        return BISSCTL_OK;
+    }
+    if (strcmp(o->command, "command") == 0) {
+        if (o->nargs != 2 || bissctl_parse_byte(o->args[0], 0xff, &b) ||
+            bissctl_parse_byte(o->args[1], 3, &b)) {
+            fprintf(stderr, "bissctl: command needs an ID mask 0..0xff and a command 0..3\n");
+            return BISSCTL_USAGE;
+        }
+    }
+    return BISSCTL_OK;
 }

@@ -12,9 +12,17 @@ static const char *const commands[] = {"info",  "read", "stats",    "run",      
 
 static const char common_help[] =
     "Target:\n"
-    "  --target T         emu (default), am335x, am437x-icss0, am437x-icss1\n"
+    "  --target T         emu (default), am335x, am437x (= am437x-icss0), am437x-icss1\n"
     "  --devmem PATH      file mapped at the PRU-ICSS base (default /dev/mem)\n"
-    "  --attach           use the firmware already running (no load, no restart)\n"
+    "  --attach           use the firmware already running (no load, no restart);\n"
+    "                     info, stats, read and stop attach by default when one runs\n"
+    "  --loader L         remoteproc (default: the kernel's pru_rproc loads the ELF) or\n"
+    "                     devmem (IRAM and CONTROL written through /dev/mem)\n"
+    "  --sysfs DIR        sysfs root (default /sys)\n"
+    "  --firmware-dir DIR where remoteproc finds firmware (default /lib/firmware)\n"
+    "  --rproc-firmware N firmware name for remoteproc (default the PRU's, e.g.\n"
+    "                     am335x-pru0-fw); the lock directory is $BISS_LOCK_DIR\n"
+    "                     (default /run/lock, else /tmp)\n"
     "  --firmware FILE    IRAM image (default: $BISS_FIRMWARE, else the build's)\n"
     "  --timeout-ms MS    firmware answers and each sample (default 100; emu: simulated)\n"
     "Emulator:\n"
@@ -202,6 +210,10 @@ enum {
     OPT_ID,
     OPT_DUMP,
     OPT_IDA_TEST,
+    OPT_LOADER,
+    OPT_SYSFS,
+    OPT_FWDIR,
+    OPT_RPROC_FW,
 };
 
 static const struct option long_opts[] = {
@@ -226,6 +238,10 @@ static const struct option long_opts[] = {
     {"id", required_argument, NULL, OPT_ID},
     {"dump", no_argument, NULL, OPT_DUMP},
     {"ida-test", no_argument, NULL, OPT_IDA_TEST},
+    {"loader", required_argument, NULL, OPT_LOADER},
+    {"sysfs", required_argument, NULL, OPT_SYSFS},
+    {"firmware-dir", required_argument, NULL, OPT_FWDIR},
+    {"rproc-firmware", required_argument, NULL, OPT_RPROC_FW},
     {"help", no_argument, NULL, 'h'},
     {NULL, 0, NULL, 0},
 };
@@ -270,7 +286,8 @@ static int take_target_opt(int c, const char *arg, struct bissctl_opts *o) {
     switch (c) {
     case OPT_TARGET:
         return biss_target_from_name(arg, &o->open.target)
-                   ? usage_error("unknown target '%s' (emu, am335x, am437x-icss0, am437x-icss1)",
+                   ? usage_error("unknown target '%s' (emu, am335x, am437x, am437x-icss0, "
+                                 "am437x-icss1)",
                                  arg)
                    : 0;
     case OPT_DEVMEM:
@@ -278,6 +295,20 @@ static int take_target_opt(int c, const char *arg, struct bissctl_opts *o) {
         return 0;
     case OPT_ATTACH:
         o->open.attach = true;
+        o->attach_given = true;
+        return 0;
+    case OPT_LOADER:
+        return biss_loader_from_name(arg, &o->open.loader)
+                   ? usage_error("--loader '%s': expected remoteproc or devmem", arg)
+                   : 0;
+    case OPT_SYSFS:
+        o->open.sysfs_root = arg;
+        return 0;
+    case OPT_FWDIR:
+        o->open.firmware_dir = arg;
+        return 0;
+    case OPT_RPROC_FW:
+        o->open.rproc_firmware = arg;
         return 0;
     case OPT_FIRMWARE:
         o->open.firmware = arg;
@@ -404,6 +435,8 @@ int bissctl_parse(int argc, char **argv, struct bissctl_opts *o) {
     o->count = 1;
     o->run_ms = 100;
     o->timeout_ms = 100;
+    o->open.errbuf = o->errbuf;
+    o->open.errbuf_len = sizeof o->errbuf;
     opterr = 0;
     optind = 1;
     int c;

@@ -3,7 +3,7 @@
 # project. Does nothing when everything is already there.
 set -euo pipefail
 
-packages=(gcc make cmake pkg-config check libcjson-dev python3 clang-format)
+packages=(gcc make cmake pkg-config check libcjson-dev python3 clang-format libelf-dev binutils python3-pyelftools device-tree-compiler gcc-arm-linux-gnueabihf qemu-user)
 
 missing=()
 for p in "${packages[@]}"; do

@@ -19,6 +19,7 @@
 #define LIBBISS_H
 
 #include <stdbool.h>
+#include <stddef.h>
 #include <stdint.h>
 
 #ifdef __cplusplus
@@ -84,6 +85,17 @@ enum biss_error {
     BISS_E_FW_UNKNOWN = -49,  /* an ST_CFG_ERROR code this library does not know */
     BISS_E_CD_ECHO = -50,     /* a write (data or CRC4) was not echoed as sent */
     BISS_E_CD_WITHHELD = -51, /* IDA test failed: the command was withheld (not executed) */
+    /* opening a real PRU: the open params' errbuf gets path, errno and a hint */
+    BISS_E_NOT_POWERED = -52, /* the PRU-ICSS is not powered (pruss driver not bound) */
+    BISS_E_BUSY = -53,        /* another process holds this PRU (its pid in errbuf) */
+    BISS_E_RPROC = -54,       /* no usable remoteproc instance for this PRU */
+    BISS_E_RPROC_BUSY = -55,  /* the remoteproc instance runs another firmware */
+    /* what an attached handle reads back from data RAM */
+    BISS_E_FW_ID = -56,       /* no image identification block: not this firmware */
+    BISS_E_SHM_VERSION = -57, /* the firmware speaks another BISS_SHM_VERSION */
+    BISS_E_FW_IMAGE = -58,    /* the running image is not the expected one (CRC-32) */
+    BISS_E_SHM_CONFIG = -59,  /* the configuration block in data RAM is invalid */
+    BISS_E_SHM_RESULT = -60,  /* a published result contradicts the configuration */
 };
 
 /* Static text for any return value of this library (never NULL). */
@@ -97,17 +109,30 @@ enum biss_target {
     BISS_TARGET_AM437X_ICSS1,
 };
 
-/* "emu", "am335x", "am437x-icss0", "am437x-icss1" ("am437x" = ICSS1). */
+/* "emu", "am335x", "am437x-icss0", "am437x-icss1" ("am437x" = ICSS0, the
+ * PRU-ICSS TIDEP0022 uses; ICSS1 carries PRU Ethernet on TI's AM437x IDK). */
 int biss_target_from_name(const char *name, enum biss_target *t);
 const char *biss_target_name(enum biss_target t);
 
+/* How a Linux target's firmware is loaded and started. */
+enum biss_loader {
+    BISS_LOADER_REMOTEPROC = 0, /* the kernel's remoteproc (pru_rproc): the default */
+    BISS_LOADER_DEVMEM = 1,     /* IRAM and CONTROL written through /dev/mem */
+};
+
+/* "remoteproc", "devmem". */
+int biss_loader_from_name(const char *name, enum biss_loader *l);
+
 struct biss_open_params {
     enum biss_target target;
+    enum biss_loader loader;
     /* Raw IRAM image. NULL: $BISS_FIRMWARE, else the build tree's image. */
     const char *firmware;
     /* Linux targets: file mapped at the SoC's PRU-ICSS base. NULL: /dev/mem. */
     const char *devmem;
-    /* Linux targets: attach to a running firmware (no load, no restart). */
+    /* Linux targets: attach to a running firmware (no load, no restart);
+     * the lock is shared with other readers until the handle changes the
+     * firmware's state (configure, start, stop, control communication). */
     bool attach;
     /* Emulator: named profile (NULL: "tidep0022-test-encoder"), or a JSON
      * scenario file, which wins when both are given. */
@@ -117,21 +142,41 @@ struct biss_open_params {
     bool set_seed;  /* use seed instead of the scenario's */
     uint64_t seed;
     unsigned timeout_ms; /* firmware answers (start-up, config ack); 0: 100 ms */
+    /* Linux targets. sysfs_root: NULL "/sys" (remoteproc instances, the
+     * pruss driver). firmware_dir: NULL "/lib/firmware". rproc_firmware:
+     * the name written to the instance's firmware file (NULL: the name the
+     * kernel's device tree gives that PRU, e.g. "am335x-pru0-fw").
+     * lock_dir: where the per-PRU lock file lives (NULL: $BISS_LOCK_DIR,
+     * else /run/lock when writable, else /tmp). */
+    const char *sysfs_root;
+    const char *firmware_dir;
+    const char *rproc_firmware;
+    const char *lock_dir;
+    /* If set, an open error's detail (path, errno, hint) lands here. */
+    char *errbuf;
+    size_t errbuf_len;
 };
 
 void biss_open_params_default(struct biss_open_params *p);
 
 typedef struct biss biss_t;
 
-/* Builds the backend, loads the image into IRAM with the PRU halted,
- * clears the shared area, starts the PRU and waits for the firmware's
- * magic. On error *out is NULL. */
+/* Builds the backend and starts the firmware: the emulator and the devmem
+ * loader write the image into IRAM with the PRU halted, clear the shared
+ * area and start the PRU; the remoteproc loader has the kernel load and
+ * start the ELF and waits for the firmware's magic. With attach (Linux
+ * targets) nothing is loaded: the running firmware's identification block
+ * and configuration are checked and adopted. On error *out is NULL (and
+ * params errbuf, if given, holds the detail). */
 int biss_open(const struct biss_open_params *p, biss_t **out);
 void biss_close(biss_t *h);
 
 enum biss_target biss_target(const biss_t *h);
-/* The firmware image path this handle loaded ("" when attached). */
+/* The firmware image path this handle loaded or compared the running
+ * image with ("" when none). */
 const char *biss_firmware_path(const biss_t *h);
+/* The handle attached to a running firmware (no load, no restart). */
+bool biss_attached(const biss_t *h);
 
 /* ---- configuration ----------------------------------------------------- */
 enum biss_trigger {
@@ -335,6 +380,8 @@ struct biss_status {
     uint32_t cfg_ack;      /* echoed by the firmware (0xffffffff: none yet) */
     uint32_t cfg_error;    /* BISS_CFGERR_* */
     uint32_t seq;          /* publications */
+    uint32_t shm_version;  /* from the image identification block (0: none) */
+    uint32_t image_crc;    /* CRC-32 of the IRAM image it names */
 };
 
 struct biss_stats {

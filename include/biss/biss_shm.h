@@ -210,4 +210,15 @@
 #define BISS_PRIV               0x300
 #define BISS_PRIV_END           0x400   // (the CD program and answers follow)
 
+// ---- image identification and remoteproc resource table -------------------
+// The top 32 bytes of the 4 KB data RAM, which the firmware never touches:
+// loaded with the image (by the host's /dev/mem loader, or by the kernel's
+// pru_rproc from the ELF's data segment), read by a host that attaches.
+#define BISS_ID                 0xFE0   // u32 BISS_ID_MAGIC, u32 BISS_SHM_VERSION the image was
+                                        // built with, u32 CRC-32 (IEEE, as zlib) of the IRAM
+                                        // image, u32 image bytes
+#define BISS_ID_MAGIC           0x44495342  // "BSID"
+#define BISS_RSC_TABLE          0xFF0   // 16 bytes: remoteproc resource table, version 1, empty
+#define BISS_ID_END             0x1000
+
 #endif

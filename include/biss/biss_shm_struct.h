@@ -214,6 +214,18 @@ _Static_assert(sizeof(struct biss_shm) == BISS_CD_RESP + BISS_SHM_CD_RESP_BYTES,
                "shared area size");
 _Static_assert(sizeof(struct biss_shm) <= BISS_DRAM_BYTES, "shared area fits the data RAM");
 
+/* The identification block and the resource table (biss_shm.h). */
+struct biss_shm_id {
+    uint32_t magic;       /* BISS_ID_MAGIC */
+    uint32_t shm_version; /* BISS_SHM_VERSION of the image's build */
+    uint32_t image_crc;   /* CRC-32 of the IRAM image */
+    uint32_t image_bytes;
+};
+_Static_assert(sizeof(struct biss_shm) <= BISS_ID, "the identification block is above the shm");
+_Static_assert(BISS_ID + sizeof(struct biss_shm_id) == BISS_RSC_TABLE, "id block size");
+_Static_assert(BISS_RSC_TABLE + 16 == BISS_ID_END && BISS_ID_END == BISS_DRAM_BYTES,
+               "the resource table ends the 4 KB data RAM");
+
 #undef BISS_SHM_AT
 #undef BISS_SHM_SLAVE_CFG_AT
 #undef BISS_SHM_RESULT_AT

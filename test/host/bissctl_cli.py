@@ -125,33 +125,115 @@ for args, text in [(["--freq", "3000000", "read"], "not 100 MHz divided by a who
                    (["--slave", "70,6,0x43,0", "read"], "data bits"),
                    (["--profile", "nope", "info"], "unknown emulator profile"),
                    (["--firmware", "/nonexistent.bin", "info"], "firmware image cannot be read"),
-                   (["--target", "am335x", "--devmem", "/nonexistent", "info"], "devmem")]:
+                   (["--target", "am335x", "--devmem", "/nonexistent", "--slave", "14,6,0x43,0",
+                     "info"], "/nonexistent: No such file or directory (errno 2)")]:
     r = run(*args)
     check(r.returncode == 1 and text in r.stderr, "%r: rc %d %r" % (args, r.returncode, r.stderr))
 
-# a real target on a file: loads, writes, and reports that no firmware answers
+# a real target on a file standing in for /dev/mem, the PRU-ICSS clock on
+# (CM_PER_PRU_ICSS_CLKCTRL = 2, as the pruss driver leaves it); the lock
+# files in a directory of the test's own
+BASE, CTRL0, CLKCTRL = 0x4A300000, 0x22000, 0x44E000E8
+
+
+def rd(mem, at, n=4):
+    with open(mem, "rb") as f:
+        f.seek(at)
+        return int.from_bytes(f.read(n), "little")
+
+
+def wr(mem, at, v, n=4):
+    with open(mem, "r+b") as f:
+        f.seek(at)
+        f.write(v.to_bytes(n, "little"))
+
+
 with tempfile.TemporaryDirectory() as tmp:
+    env = dict(os.environ, BISS_LOCK_DIR=tmp)
     mem = os.path.join(tmp, "mem")
     with open(mem, "wb") as f:
-        f.truncate(0x4A300000 + 0x80000)
-    r = run("--target", "am335x", "--devmem", mem, "--timeout-ms", "20", "info")
-    check(r.returncode == 2 and "--slave or --ssi" in r.stderr, "real target without layout: %r" % r.stderr)
-    r = run("--target", "am335x", "--devmem", mem, "--timeout-ms", "20",
-            "--slave", "14,6,0x43,0,0", "--freq", "10000000", "info")
+        f.truncate(BASE + 0x80000)
+    dm = ["--target", "am335x", "--loader", "devmem", "--devmem", mem, "--sysfs", tmp]
+    # not powered: refused before the PRU-ICSS is touched, with the reason
+    r = run(*dm, "--slave", "14,6,0x43,0,0", "info", env=env)
+    check(r.returncode == 1 and "not powered" in r.stderr and "0x44e000e8" in r.stderr
+          and "modprobe pruss" in r.stderr and rd(mem, BASE + CTRL0) == 0,
+          "unpowered: %r" % r.stderr)
+    wr(mem, CLKCTRL, 2)
+    # usage errors come before anything is opened or loaded
+    r = run(*dm, "--timeout-ms", "20", "info", env=env)
+    check(r.returncode == 2 and "--slave or --ssi" in r.stderr and "attach to" in r.stderr,
+          "real target without layout: %r" % r.stderr)
+    for args in [["reg-read", "0x80"], ["reg-write", "0x10"], ["command", "1", "9"]]:
+        r = run(*dm, "--slave", "14,6,0x43,0,0", *args, env=env)
+        check(r.returncode == 2 and rd(mem, BASE + CTRL0) == 0,
+              "%r before open: %d %r" % (args, r.returncode, r.stderr))
+    r = run(*dm, "--timeout-ms", "20", "run", env=env)
+    check(r.returncode == 2 and rd(mem, BASE + CTRL0) == 0, "run without layout: %r" % r.stderr)
+    # loads, writes, and reports that no firmware answers
+    r = run(*dm, "--timeout-ms", "20", "--slave", "14,6,0x43,0,0", "--freq", "10000000", "info",
+            env=env)
     check(r.returncode == 1 and "not running" in r.stderr, "file target: %r" % r.stderr)
-    with open(mem, "rb") as f:
-        f.seek(0x4A300000 + 0x22000)
-        control = int.from_bytes(f.read(4), "little")
-        f.seek(0x4A300000 + 0x4)
-        half = int.from_bytes(f.read(2), "little")
-    check(control == 2 and half == 10, "CONTROL %#x, CFG_HALF %d" % (control, half))
-    r = run("--target", "am335x", "--devmem", mem, "--attach", "stats")
+    check(rd(mem, BASE + CTRL0) == 2 and rd(mem, BASE + 4, 2) == 10,
+          "CONTROL %#x, CFG_HALF %d" % (rd(mem, BASE + CTRL0), rd(mem, BASE + 4, 2)))
+    check(rd(mem, BASE + 0xFE0) == 0x44495342, "identification block written")
+    # attach (the identification block checked) reads without reloading
+    r = run(*dm, "--attach", "stats", env=env)
     check(r.returncode == 0 and "frames=0" in r.stdout, "attach stats: %r %r" % (r.stdout, r.stderr))
-    r = run("--target", "am335x", "--devmem", mem, "--attach", "stop")
-    with open(mem, "rb") as f:
-        f.seek(0x4A300000 + 0x22000)
-        control = int.from_bytes(f.read(4), "little")
-    check(r.returncode == 0 and control == 1, "stop: CONTROL %#x" % control)
+    # a read-only command attaches by itself to a firmware that runs
+    wr(mem, BASE + 0x80, 0x42695353)  # the magic, as the firmware sets it
+    wr(mem, BASE + 0x98, 1234)        # ST_FRAMES
+    wr(mem, BASE + 0x34000, 0xdeadbeef)
+    r = run(*dm, "stats", env=env)
+    check(r.returncode == 0 and "frames=1234" in r.stdout and rd(mem, BASE + 0x34000) == 0xdeadbeef,
+          "default attach: %r %r" % (r.stdout, r.stderr))
+    r = run(*dm, "info", env=env)
+    check(r.returncode == 0 and "(attached)" in r.stdout and "shm_version=1" in r.stdout,
+          "default attach info: %r %r" % (r.stdout, r.stderr))
+    # two processes on one PRU: the second is told who holds it
+    holder = subprocess.Popen([CTL, *dm, "--slave", "14,6,0x43,0,0", "--no-configure", "--attach",
+                               "run", "--ms", "3000"], env=env, stdout=subprocess.PIPE,
+                              stderr=subprocess.PIPE, text=True)
+    import time
+    time.sleep(0.5)
+    r = run(*dm, "--slave", "14,6,0x43,0,0", "--freq", "10000000", "info", env=env)
+    check(r.returncode == 1 and ("pid %d" % holder.pid) in r.stderr and "in use" in r.stderr,
+          "second process: %r" % r.stderr)
+    r = run(*dm, "stats", env=env)  # another reader shares it
+    check(r.returncode == 0 and "frames=1234" in r.stdout, "shared reader: %r" % r.stderr)
+    holder.wait(timeout=30)
+    # junk in data RAM is refused by name, not printed
+    wr(mem, BASE + 0x00, 1)            # CFG_SEQ 1 ...
+    wr(mem, BASE + 0x8C, 1)            # ... acked
+    wr(mem, BASE + 0x90, 0)
+    wr(mem, BASE + 0x04, 0x00080001)   # H = 1, 8 slaves: the old "freq_hz=100000000 slaves=8"
+    r = run(*dm, "info", env=env)
+    check(r.returncode == 1 and "bad MA half period" in r.stderr and "freq_hz" not in r.stdout,
+          "junk config: %r %r" % (r.stdout, r.stderr))
+    wr(mem, BASE + 0x04, 0x0001000a)   # H = 10, 1 slave
+    wr(mem, BASE + 0x10, 0x000000c8)   # 200 data bits: once a shift by 200
+    r = run(*dm, "--attach", "read", env=env)
+    check(r.returncode == 1 and "bad slave data bits" in r.stderr, "junk slave: %r" % r.stderr)
+    wr(mem, BASE + 0xFE4, 99)          # another BISS_SHM_VERSION
+    r = run(*dm, "--attach", "stats", env=env)
+    check(r.returncode == 1 and "BISS_SHM_VERSION 99" in r.stderr, "version: %r" % r.stderr)
+    wr(mem, BASE + 0xFE0, 0)           # no identification block: not this firmware
+    r = run(*dm, "--attach", "stats", env=env)
+    check(r.returncode == 1 and "identification" in r.stderr, "no id: %r" % r.stderr)
+    # stop attaches (no reload) and halts
+    wr(mem, BASE + 0xFE0, 0x44495342)
+    wr(mem, BASE + 0xFE4, 1)
+    wr(mem, BASE + 0x04, 0)
+    r = run(*dm, "stop", env=env)
+    check(r.returncode == 0 and rd(mem, BASE + CTRL0) == 1 and rd(mem, BASE + 0x34000) == 0xdeadbeef,
+          "stop: %r CONTROL %#x" % (r.stderr, rd(mem, BASE + CTRL0)))
+    # remoteproc is the default loader: without an instance, a clear refusal
+    r = run("--target", "am335x", "--devmem", mem, "--sysfs", tmp, "--slave", "14,6,0x43,0,0",
+            "read", env=env)
+    check(r.returncode == 1 and "remoteproc" in r.stderr and "--loader devmem" in r.stderr,
+          "no remoteproc: %r" % r.stderr)
+    r = run("--loader", "uio", "info")
+    check(r.returncode == 2 and "remoteproc or devmem" in r.stderr, "bad loader: %r" % r.stderr)
 
 print("bissctl CLI: %d failure(s)" % failures)
 sys.exit(1 if failures else 0)

@@ -224,8 +224,17 @@ START_TEST(test_names_and_texts) {
     enum biss_target t;
     ck_assert_int_eq(biss_target_from_name("am437x-icss0", &t), BISS_OK);
     ck_assert_int_eq(t, BISS_TARGET_AM437X_ICSS0);
+    /* TIDEP0022's PRU-ICSS; ICSS1 (PRU Ethernet on the IDK) by its name */
     ck_assert_int_eq(biss_target_from_name("am437x", &t), BISS_OK);
+    ck_assert_int_eq(t, BISS_TARGET_AM437X_ICSS0);
+    ck_assert_int_eq(biss_target_from_name("am437x-icss1", &t), BISS_OK);
     ck_assert_int_eq(t, BISS_TARGET_AM437X_ICSS1);
+    enum biss_loader l;
+    ck_assert_int_eq(biss_loader_from_name("remoteproc", &l), BISS_OK);
+    ck_assert_int_eq(l, BISS_LOADER_REMOTEPROC);
+    ck_assert_int_eq(biss_loader_from_name("devmem", &l), BISS_OK);
+    ck_assert_int_eq(l, BISS_LOADER_DEVMEM);
+    ck_assert_int_eq(biss_loader_from_name("uio", &l), BISS_E_INVAL);
     ck_assert_int_eq(biss_target_from_name("pi", &t), BISS_E_TARGET);
     enum biss_trigger tr;
     ck_assert_int_eq(biss_trigger_from_name("iep", &tr), BISS_OK);

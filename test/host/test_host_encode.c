@@ -81,7 +81,9 @@ START_TEST(test_config_bytes) {
     }
     /* and back (what an attached handle reads) */
     struct biss_config d;
-    ck_assert_int_eq(biss_config_decode(&blk, &d), BISS_OK);
+    const char *field;
+    ck_assert_int_eq(biss_config_decode(&blk, &d, &field), BISS_OK);
+    ck_assert_ptr_null(field);
     ck_assert_uint_eq(d.freq_hz, 2000000);
     ck_assert_uint_eq(d.slave[0].crc_poly, 0x43);
     ck_assert_uint_eq(d.slave[1].crc_poly, 0x190D9);
@@ -161,7 +163,7 @@ START_TEST(test_result_decode) {
     memcpy(&r, b, sizeof r);
     struct biss_config c = two_slaves();
     struct biss_sample s;
-    biss_sample_decode(&c, true, 9, &r, &s);
+    ck_assert_int_eq(biss_sample_decode(&c, true, 9, &r, &s), BISS_OK);
     ck_assert_uint_eq(s.seq, 9);
     ck_assert_uint_eq(s.frame, 77);
     ck_assert(s.valid && s.crc_error && s.sma && !s.training && !s.no_slave && !s.proc_error);
@@ -183,7 +185,7 @@ START_TEST(test_result_decode) {
     ck_assert(!s.slave[1].error && !s.slave[1].warning); /* it has none */
     /* explicit position bits: the top 8 of slave 0's 12 */
     c.slave[0].pos_bits = 8;
-    biss_sample_decode(&c, true, 9, &r, &s);
+    ck_assert_int_eq(biss_sample_decode(&c, true, 9, &r, &s), BISS_OK);
     ck_assert_uint_eq(s.slave[0].position, 0xab);
 }
 END_TEST
@@ -215,10 +217,106 @@ START_TEST(test_aborted_frame_has_no_slave_data) {
     memcpy(&r, b, sizeof r);
     struct biss_config c = two_slaves();
     struct biss_sample s;
-    biss_sample_decode(&c, true, 1, &r, &s);
+    ck_assert_int_eq(biss_sample_decode(&c, true, 1, &r, &s), BISS_OK);
     ck_assert(!s.valid && s.no_slave);
     ck_assert_uint_eq(s.slave[0].data, 0);
     ck_assert_uint_eq(s.slave[0].position, 0);
+}
+END_TEST
+
+static void spoil_half(struct biss_shm_config *b) {
+    b->half = 1;
+}
+static void spoil_nslaves(struct biss_shm_config *b) {
+    b->nslaves = 9;
+}
+static void spoil_trigger(struct biss_shm_config *b) {
+    b->trigger = 7;
+}
+static void spoil_data_bits(struct biss_shm_config *b) {
+    b->slave[1].data_bits = 200;
+}
+static void spoil_crc_bits(struct biss_shm_config *b) {
+    b->slave[0].crc_bits = 17;
+}
+static void spoil_flags(struct biss_shm_config *b) {
+    b->slave[0].flags |= 0x80;
+}
+static void spoil_ew(struct biss_shm_config *b) {
+    b->slave[0].ew_shift = 17;
+}
+static void spoil_poly(struct biss_shm_config *b) {
+    b->slave[0].crc_poly = 0x1ff;
+}
+static void spoil_ssi_chain(struct biss_shm_config *b) {
+    b->slave[1].flags = BISS_SF_SSI;
+}
+static void spoil_shift_clock(struct biss_shm_config *b) {
+    b->half = 1000; /* 100 kHz: 1000 = 8 * 125 has no exact 8x shift clock */
+}
+
+/* A block read back from data RAM is untrusted: each junk field is refused
+ * by name before it can become a shift count or a loop bound (a half
+ * period of 1 once gave freq_hz=100000000, a data_bits of 200 a shift by
+ * 200). */
+START_TEST(test_junk_config_block_refused) {
+    struct biss_config c = two_slaves();
+    c.freq_hz = 2000000;
+    c.proc_limit = 300;
+    struct biss_shm_config good;
+    biss_config_encode(&c, &good);
+    struct {
+        const char *field;
+        void (*spoil)(struct biss_shm_config *b);
+    } cases[] = {
+        {"MA half period", spoil_half},
+        {"slave count", spoil_nslaves},
+        {"trigger mode", spoil_trigger},
+        {"slave data bits", spoil_data_bits},
+        {"slave CRC bits", spoil_crc_bits},
+        {"slave flags", spoil_flags},
+        {"slave nE/nW position", spoil_ew},
+        {"slave CRC polynomial or start value", spoil_poly},
+        {"slave SSI flag", spoil_ssi_chain},
+        {"configuration (fails the library's checks)", spoil_shift_clock},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        struct biss_shm_config b = good;
+        cases[i].spoil(&b);
+        struct biss_config d;
+        const char *field = NULL;
+        ck_assert_int_eq(biss_config_decode(&b, &d, &field), BISS_E_SHM_CONFIG);
+        ck_assert_str_eq(field, cases[i].field);
+    }
+    /* all 0xff: refused, and so is all zero (never configured) */
+    struct biss_shm_config b;
+    memset(&b, 0xff, sizeof b);
+    struct biss_config d;
+    const char *field;
+    ck_assert_int_eq(biss_config_decode(&b, &d, &field), BISS_E_SHM_CONFIG);
+    memset(&b, 0, sizeof b);
+    ck_assert_int_eq(biss_config_decode(&b, &d, &field), BISS_E_NOT_CONFIGURED);
+}
+END_TEST
+
+/* A result with another slave count than the configuration, or past the
+ * limit, is junk; data bits beyond the layout's word are masked. */
+START_TEST(test_junk_result_refused) {
+    uint8_t b[BISS_RES_SIZE];
+    result_bytes(b);
+    struct biss_shm_result r;
+    memcpy(&r, b, sizeof r);
+    struct biss_config c = two_slaves();
+    struct biss_sample s;
+    r.nslaves = 200;
+    ck_assert_int_eq(biss_sample_decode(&c, true, 1, &r, &s), BISS_E_SHM_RESULT);
+    ck_assert_int_eq(biss_sample_decode(&c, false, 1, &r, &s), BISS_E_SHM_RESULT);
+    r.nslaves = 3;
+    ck_assert_int_eq(biss_sample_decode(&c, true, 1, &r, &s), BISS_E_SHM_RESULT);
+    r.nslaves = 2;
+    r.slave[0].data_hi = 0xffffffffu; /* junk above slave 0's 18 bits */
+    ck_assert_int_eq(biss_sample_decode(&c, true, 1, &r, &s), BISS_OK);
+    ck_assert_uint_eq(s.slave[0].data, (0xabcull << 6 | 1 << 4 | 0x5));
 }
 END_TEST
 
@@ -230,7 +328,7 @@ START_TEST(test_ack_jump_frame_is_not_valid) {
     memcpy(&r, b, sizeof r);
     struct biss_config c = two_slaves();
     struct biss_sample s;
-    biss_sample_decode(&c, true, 1, &r, &s);
+    ck_assert_int_eq(biss_sample_decode(&c, true, 1, &r, &s), BISS_OK);
     ck_assert(!s.valid && s.ack_jump && !s.no_slave);
     ck_assert_uint_eq(s.slave[0].data, 0); /* words read at the wrong place: none */
 }
@@ -245,6 +343,8 @@ int main(void) {
     tcase_add_test(tc, test_result_decode);
     tcase_add_test(tc, test_delay_decode);
     tcase_add_test(tc, test_aborted_frame_has_no_slave_data);
+    tcase_add_test(tc, test_junk_config_block_refused);
+    tcase_add_test(tc, test_junk_result_refused);
     tcase_add_test(tc, test_ack_jump_frame_is_not_valid);
     suite_add_tcase(s, tc);
     return check_run(s);

@@ -7,9 +7,11 @@
 
 #include "biss/biss_shm.h"
 
+#include "biss_oserr.h"
 #include "check_run.h"
 
 #include <check.h>
+#include <errno.h>
 #include <fcntl.h>
 #include <pthread.h>
 #include <stdatomic.h>
@@ -17,6 +19,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/mman.h>
+#include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -27,14 +30,25 @@
 #define CTRL0       0x22000L
 #define IRAM0       0x34000L
 
+#define AM335X_CLKCTRL 0x44E000E8L /* CM_PER_PRU_ICSS_CLKCTRL */
+#define AM437X_CLKCTRL 0x44DF8B20L
+
 static char devmem[256], image[256];
 
+static void file_write32(off_t at, uint32_t v);
+
+/* A sparse file standing in for /dev/mem, with the PRU-ICSS clock on
+ * (MODULEMODE enabled, IDLEST functional) as the pruss driver leaves it. */
 static void make_devmem(off_t size) {
     snprintf(devmem, sizeof devmem, "/tmp/biss_devmem_XXXXXX");
     int fd = mkstemp(devmem);
     ck_assert_int_ge(fd, 0);
     ck_assert_int_eq(ftruncate(fd, size), 0); /* sparse: costs no disk */
     close(fd);
+    if (size > AM335X_CLKCTRL) {
+        file_write32(AM335X_CLKCTRL, 0x2);
+        file_write32(AM437X_CLKCTRL, 0x2);
+    }
 }
 
 /* An image of n bytes whose word i is 0x1000 + i. */
@@ -81,9 +95,12 @@ static struct biss_open_params params(enum biss_target t) {
     struct biss_open_params p;
     biss_open_params_default(&p);
     p.target = t;
+    p.loader = BISS_LOADER_DEVMEM;
     p.devmem = devmem;
     p.firmware = image;
     p.timeout_ms = 20;
+    p.sysfs_root = "/nonexistent-sysfs"; /* the clock word decides */
+    p.lock_dir = "/tmp";
     return p;
 }
 
@@ -269,25 +286,91 @@ START_TEST(test_virtual_board) {
     ck_assert_int_eq(biss_get_status(h, &status), BISS_OK);
     ck_assert_uint_eq(status.cfg_ack, 11);
 
-    /* a second process attaches: no reload, the running configuration */
+    /* a second handle is refused while the first holds the PRU, and the
+     * refusal names the holder */
+    char err[256];
     struct biss_open_params pa = params(BISS_TARGET_AM335X);
     pa.attach = true;
-    pa.firmware = "/nonexistent";
+    pa.errbuf = err;
+    pa.errbuf_len = sizeof err;
     biss_t *h2;
+    ck_assert_int_eq(biss_open(&pa, &h2), BISS_E_BUSY);
+    char pid[32];
+    snprintf(pid, sizeof pid, "pid %ld", (long)getpid());
+    ck_assert_msg(strstr(err, pid) && strstr(err, "/tmp/biss-"), "%s", err);
+    struct biss_open_params pl = params(BISS_TARGET_AM335X);
+    ck_assert_int_eq(biss_open(&pl, &h2), BISS_E_BUSY);
+    biss_close(h); /* the devmem loader leaves the PRU running */
+
+    /* attach: no reload, the running configuration, the image checked */
     ck_assert_int_eq(biss_open(&pa, &h2), BISS_OK);
+    ck_assert(biss_attached(h2));
     struct biss_config back;
     ck_assert_int_eq(biss_get_config(h2, &back), BISS_OK);
     ck_assert_uint_eq(back.freq_hz, 5000000);
     ck_assert_uint_eq(back.slave[0].crc_poly, 0x43);
     ck_assert_int_eq(biss_read_sample(h2, &s), BISS_OK);
     ck_assert_uint_eq(s.slave[0].position, 0x123);
+    ck_assert_int_eq(biss_get_status(h2, &status), BISS_OK);
+    ck_assert_uint_eq(status.shm_version, BISS_SHM_VERSION);
+    ck_assert_uint_ne(status.image_crc, 0);
+    /* readers share the PRU; changing it takes it alone */
+    biss_t *h3;
+    ck_assert_int_eq(biss_open(&pa, &h3), BISS_OK);
+    ck_assert_int_eq(biss_configure(h2, &c), BISS_E_BUSY);
+    ck_assert_int_eq(biss_stop(h3), BISS_E_BUSY);
+    biss_close(h3);
+    ck_assert_int_eq(biss_configure(h2, &c), BISS_OK); /* alone now */
+    biss_close(h2);
+
+    /* another image than the one expected */
+    struct biss_open_params po = pa;
+    char other[] = "/tmp/biss_other_XXXXXX";
+    int ofd = mkstemp(other);
+    ck_assert_int_ge(ofd, 0);
+    ck_assert_int_eq(write(ofd, "\1\2\3\4", 4), 4);
+    close(ofd);
+    po.firmware = other;
+    ck_assert_int_eq(biss_open(&po, &h2), BISS_E_FW_IMAGE);
+    ck_assert_msg(strstr(err, "CRC-32") && strstr(err, other), "%s", err);
+    unlink(other);
+    po.firmware = "/nonexistent.bin"; /* given: must be readable */
+    ck_assert_int_eq(biss_open(&po, &h2), BISS_E_FIRMWARE_IO);
+
+    /* junk in data RAM, as another firmware or a stray write leaves it */
+    struct {
+        uint32_t off, val;
+        int rc;
+        const char *text;
+    } junk[] = {
+        {BISS_CFG_NSLAVES & ~3u, 0x000a0014, BISS_E_SHM_CONFIG, "bad slave count"},
+        {BISS_CFG_SLAVE0, 200, BISS_E_SHM_CONFIG, "bad slave data bits"},
+        {BISS_CFG_HALF & ~3u, 1, BISS_E_SHM_CONFIG, "bad MA half period"},
+        {BISS_ID + 4, BISS_SHM_VERSION + 1, BISS_E_SHM_VERSION, "BISS_SHM_VERSION"},
+        {BISS_ID, 0x12345678, BISS_E_FW_ID, "0x12345678"},
+    };
+    for (size_t i = 0; i < sizeof junk / sizeof junk[0]; i++) {
+        uint32_t keep = file32(AM335X_BASE + junk[i].off);
+        file_write32(AM335X_BASE + junk[i].off, junk[i].val);
+        ck_assert_int_eq(biss_open(&pa, &h2), junk[i].rc);
+        ck_assert_msg(strstr(err, junk[i].text), "%zu: %s", i, err);
+        file_write32(AM335X_BASE + junk[i].off, keep);
+    }
+    ck_assert_int_eq(biss_open(&pa, &h2), BISS_OK);
+    /* a published result no firmware with this configuration writes */
+    uint32_t buf = file32(AM335X_BASE + BISS_ST_BUF);
+    off_t res = AM335X_BASE + BISS_RES0 + buf * BISS_RES_SIZE;
+    uint32_t word = file32(res + (BISS_R_NSLAVES & ~3u));
+    file_write32(res + (BISS_R_NSLAVES & ~3u), (word & 0x00ffffffu) | 200u << 24);
+    ck_assert_int_eq(biss_read_sample(h2, &s), BISS_E_SHM_RESULT);
+    file_write32(AM335X_BASE + BISS_ST_BUF, 7);
+    ck_assert_int_eq(biss_read_sample(h2, &s), BISS_E_SHM_RESULT);
     biss_close(h2);
 
     atomic_store(&v.stop, 1);
     pthread_join(t, NULL);
     munmap(m, WINDOW);
     close(fd);
-    biss_close(h);
     cleanup();
 }
 END_TEST
@@ -324,23 +407,77 @@ END_TEST
 START_TEST(test_open_errors) {
     make_devmem(AM335X_BASE + WINDOW);
     biss_t *h;
+    char err[512];
     struct biss_open_params p = params(BISS_TARGET_AM335X);
+    p.errbuf = err;
+    p.errbuf_len = sizeof err;
     make_image(0);
     ck_assert_int_eq(biss_open(&p, &h), BISS_E_FIRMWARE_SIZE);
     unlink(image);
     make_image(10);
     ck_assert_int_eq(biss_open(&p, &h), BISS_E_FIRMWARE_SIZE);
+    ck_assert_msg(strstr(err, "10 bytes, not whole 32-bit words"), "%s", err);
     p.firmware = "/nonexistent/biss.bin";
     ck_assert_int_eq(biss_open(&p, &h), BISS_E_FIRMWARE_IO);
-    p = params(BISS_TARGET_AM335X);
+    ck_assert_msg(strstr(err, "/nonexistent/biss.bin: No such file or directory (errno 2)"), "%s",
+                  err);
+    p.firmware = image;
+    unlink(image);
+    make_image(64);
+    /* every memory error names the path, the errno and a hint */
     p.devmem = "/nonexistent/mem";
     ck_assert_int_eq(biss_open(&p, &h), BISS_E_DEVMEM);
+    ck_assert_msg(strstr(err, "/nonexistent/mem: No such file or directory (errno 2)"), "%s", err);
+    ck_assert_msg(strstr(err, "CONFIG_DEVMEM"), "%s", err);
+    /* the hint for a refusal (this suite may run as root, which no file
+     * refuses): root, and strict /dev/mem */
+    ck_assert_ptr_nonnull(strstr(biss_devmem_hint(EACCES), "run as root"));
+    ck_assert_ptr_nonnull(strstr(biss_devmem_hint(EPERM), "iomem=relaxed"));
+    p.devmem = devmem;
+    /* the PRU-ICSS clock off and no pruss driver bound: refused before any
+     * access to it, which would be a bus error on silicon */
+    file_write32(AM335X_CLKCTRL, 0x00030000);
+    file_write32(AM335X_BASE + CTRL0, 0x5a5a5a5a);
+    ck_assert_int_eq(biss_open(&p, &h), BISS_E_NOT_POWERED);
+    ck_assert_msg(strstr(err, "CM_PER_PRU_ICSS_CLKCTRL (0x44e000e8) = 0x00030000") &&
+                      strstr(err, "/nonexistent-sysfs/bus/platform/drivers/pruss/4a300000.pruss") &&
+                      strstr(err, "modprobe pruss"),
+                  "%s", err);
+    ck_assert_uint_eq(file32(AM335X_BASE + CTRL0), 0x5a5a5a5a); /* untouched */
+    /* the pruss driver bound (a stand-in sysfs tree) is enough */
+    char sys[] = "/tmp/biss_sys_XXXXXX";
+    ck_assert_ptr_nonnull(mkdtemp(sys));
+    char path[256];
+    const char *parts[] = {"/bus", "/bus/platform", "/bus/platform/drivers",
+                           "/bus/platform/drivers/pruss",
+                           "/bus/platform/drivers/pruss/4a300000.pruss"};
+    for (size_t i = 0; i < 5; i++) {
+        snprintf(path, sizeof path, "%s%s", sys, parts[i]);
+        ck_assert_int_eq(mkdir(path, 0755), 0);
+    }
+    p.sysfs_root = sys;
+    ck_assert_int_eq(biss_open(&p, &h), BISS_OK);
+    biss_close(h);
+    for (size_t i = 5; i-- > 0;) {
+        snprintf(path, sizeof path, "%s%s", sys, parts[i]);
+        rmdir(path);
+    }
+    rmdir(sys);
+    p.sysfs_root = "/nonexistent-sysfs";
+    file_write32(AM335X_CLKCTRL, 0x2);
     cleanup();
     /* a file that ends before the PRU-ICSS window */
     make_devmem(AM335X_BASE + 0x1000);
     make_image(64);
-    p = params(BISS_TARGET_AM335X);
+    p.devmem = devmem;
     ck_assert_int_eq(biss_open(&p, &h), BISS_E_DEVMEM);
+    ck_assert_msg(strstr(err, "ends before the PRU-ICSS window 0x4a300000..0x4a380000"), "%s", err);
+    /* and one that ends before the clock control */
+    cleanup();
+    make_devmem(0x1000);
+    make_image(64);
+    ck_assert_int_eq(biss_open(&p, &h), BISS_E_NOT_POWERED);
+    ck_assert_msg(strstr(err, "ends before CM_PER_PRU_ICSS_CLKCTRL"), "%s", err);
     p.target = (enum biss_target)42;
     ck_assert_int_eq(biss_open(&p, &h), BISS_E_TARGET);
     ck_assert_int_eq(biss_open(NULL, &h), BISS_E_INVAL);

@@ -1,0 +1,126 @@
+#!/usr/bin/env python3
+"""The board overlays compiled with dtc -@ and read back: every pad they
+set, its offset and value, against the table below (written from TI's pad
+tables, not from the overlays): the AM335x TRM's control-module pad
+registers as Linux's dt-bindings/pinctrl/am33xx.h and am43xx.h encode
+them, the BeagleBone Black / PocketBeagle header tables, and TIDEP0022's
+Table 9 for the AM437x IDK. Also the nodes they enable and the labels they
+need from the base device tree.
+
+usage: overlays_check.py BOARDS_DIR
+"""
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+
+failures = 0
+
+
+def check(cond, what):
+    global failures
+    if not cond:
+        failures += 1
+        print("FAIL:", what)
+
+
+CONTROL = 0x44E10000   # control module; pinctrl-single's base is CONTROL + 0x800
+
+# Pad value encodings. AM335x (am33xx.h): bits 2:0 mode, bit 3 pull disable,
+# bit 4 pull up, bit 5 receiver (input) enable. AM437x (am43xx.h): bits 3:0
+# mode, bit 16 pull disable, bit 17 pull up, bit 18 input enable.
+ENC = {"am335x": dict(mode=0x7, pulldis=1 << 3, pullup=1 << 4, input=1 << 5),
+       "am437x": dict(mode=0xF, pulldis=1 << 16, pullup=1 << 17, input=1 << 18)}
+
+# board, overlay, soc, header pin, pad name, pad (control module offset),
+# mode, signal, direction ("in" with pull-up, "out" without pull)
+PINS = [
+    ("BeagleBone Black", "BB-BISS-PRU0-00A0", "am335x", "P9_29", "mcasp0_fsx", 0x994, 5,
+     "pr1_pru0_pru_r30_1 (MA)", "out"),
+    ("BeagleBone Black", "BB-BISS-PRU0-00A0", "am335x", "P9_31", "mcasp0_aclkx", 0x990, 6,
+     "pr1_pru0_pru_r31_0 (SL)", "in"),
+    ("PocketBeagle", "PB-BISS-PRU0-00A0", "am335x", "P1_33", "mcasp0_fsx", 0x994, 5,
+     "pr1_pru0_pru_r30_1 (MA)", "out"),
+    ("PocketBeagle", "PB-BISS-PRU0-00A0", "am335x", "P1_36", "mcasp0_aclkx", 0x990, 6,
+     "pr1_pru0_pru_r31_0 (SL)", "in"),
+    ("AM437x IDK", "AM437X-IDK-BISS-00A0", "am437x", "-", "mcasp0_aclkx", 0x990, 6,
+     "pr0_pru0_gpi0 (SL)", "in"),
+    ("AM437x IDK", "AM437X-IDK-BISS-00A0", "am437x", "-", "mcasp0_fsx", 0x994, 5,
+     "pr0_pru0_gpo1 (MA)", "out"),
+    ("AM437x IDK", "AM437X-IDK-BISS-00A0", "am437x", "-", "endat_en", 0xA48, 7,
+     "gpio5_12 (receiver enable)", "out"),
+]
+
+# what each overlay must switch on (label -> property it sets) and no more
+TARGETS = {
+    "BB-BISS-PRU0-00A0": {"am33xx_pinmux", "pruss_tm", "pruss", "mcasp0"},
+    "PB-BISS-PRU0-00A0": {"am33xx_pinmux", "pruss_tm", "pruss"},
+    "AM437X-IDK-BISS-00A0": {"am43xx_pinmux", "pruss_tm", "pruss0", "gpio5"},
+}
+
+boards = sys.argv[1]
+dtc = shutil.which("dtc")
+check(dtc is not None, "dtc on PATH (Debian: device-tree-compiler, scripts/setup.sh)")
+if dtc is None:
+    sys.exit(1)
+
+with tempfile.TemporaryDirectory() as tmp:
+    for name, labels in TARGETS.items():
+        src = os.path.join(boards, name + ".dts")
+        dtbo = os.path.join(tmp, name + ".dtbo")
+        r = subprocess.run([dtc, "-@", "-I", "dts", "-O", "dtb", "-o", dtbo, src],
+                           capture_output=True, text=True)
+        check(r.returncode == 0, "%s: dtc: %s" % (name, r.stderr))
+        check(r.stderr == "", "%s: dtc warnings: %s" % (name, r.stderr))
+        if r.returncode:
+            continue
+        back = subprocess.run([dtc, "-I", "dtb", "-O", "dts", dtbo], capture_output=True,
+                              text=True).stdout
+        cells = re.findall(r"pinctrl-single,pins = <([^>]*)>", back)
+        check(len(cells) == 1, "%s: one pin group, found %d" % (name, len(cells)))
+        words = [int(w, 16) for w in cells[0].split()] if cells else []
+        pads = dict(zip(words[0::2], words[1::2]))
+        rows = [p for p in PINS if p[1] == name]
+        check(len(pads) == len(rows) and len(words) == 2 * len(rows),
+              "%s: %d pads set, table has %d" % (name, len(pads), len(rows)))
+        for board, _, soc, pin, pad, off, mode, signal, d in rows:
+            e = ENC[soc]
+            key = off - 0x800      # pinctrl-single offset
+            v = pads.get(key)
+            what = "%s %s %s (pad 0x%03x, 0x%08x)" % (board, pin, pad, off, CONTROL + off)
+            check(v is not None, "%s: not set" % what)
+            if v is None:
+                continue
+            check(v & e["mode"] == mode, "%s: mode %d, want %d for %s" % (what, v & e["mode"],
+                                                                         mode, signal))
+            if d == "in":
+                check(v & e["input"] and v & e["pullup"] and not v & e["pulldis"],
+                      "%s: 0x%x is not an input with pull-up" % (what, v))
+            else:
+                check(not v & e["input"] and v & e["pulldis"],
+                      "%s: 0x%x is not an output without pull" % (what, v))
+            known = e["mode"] | e["pulldis"] | e["pullup"] | e["input"]
+            check(v & ~known == 0, "%s: unexpected bits 0x%x" % (what, v & ~known))
+        fix = re.search(r"__fixups__ \{(.*?)\};", back, re.S)
+        got = set(re.findall(r"(\w+) = ", fix.group(1))) if fix else set()
+        check(got == labels, "%s: labels %s, want %s" % (name, sorted(got), sorted(labels)))
+        check("__symbols__" in back, "%s: compiled with symbols (-@)" % name)
+        # the PRU-ICSS switched on; on the Black, McASP0 (HDMI audio) off
+        check(len(re.findall(r'status = "okay"', back)) == 2, "%s: two nodes enabled" % name)
+        if "mcasp0" in labels:
+            check('status = "disabled"' in back, "%s: McASP0 disabled" % name)
+        if "gpio5" in labels:
+            check(re.search(r"gpio-hog;\s*gpios = <0x0c 0x00>;\s*output-high;", back) is not None,
+                  "%s: gpio5_12 hog" % name)
+
+    # the config-pin recipes name the same header pins and PRU modes
+    for script, pins in [("config-pin-beaglebone.sh", {"P9_29": "pruout", "P9_31": "pruin"}),
+                         ("config-pin-pocketbeagle.sh", {"P1_33": "pruout", "P1_36": "pruin"})]:
+        text = open(os.path.join(boards, script)).read()
+        got = dict(re.findall(r"^config-pin (P\d_\d+) (\w+)$", text, re.M))
+        check(got == pins, "%s: %r" % (script, got))
+
+print("board overlays: %d failure(s)" % failures)
+sys.exit(1 if failures else 0)
