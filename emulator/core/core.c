@@ -22,6 +22,8 @@ void pru_params_default(struct pru_params *p) {
     p->shift_phase_ps = 0;
     p->shift_frac = PRU_FRAC_EXACT;
     p->fast_forward = 1;
+    p->ff_counted = 1;
+    p->ff_r31_bits = 1;
 }
 
 static const struct {

@@ -146,6 +146,7 @@ struct ff_probe {
     uint32_t regs[32];
     int carry;
     uint64_t skipped;
+    uint32_t r31_mask; /* R31 bits the armed loop looks at (horizons of R31 reads) */
 };
 
 struct pru_core {
@@ -223,6 +224,8 @@ void cfg_write(struct pru_core *c, uint32_t ofs, uint32_t val, uint32_t bmask, i
 void cfg_reset(struct pru_core *c);
 uint32_t gpi_r31(struct pru_core *c, int64_t cycle);
 int64_t gpi_stable_until(struct pru_core *c, int64_t cycle);
+/* The same for the R31 bits in mask only. */
+int64_t gpi_bits_stable_until(struct pru_core *c, int64_t cycle, uint32_t mask);
 void gpi_sync(struct pru_core *c, int64_t cycle);
 int64_t gpi_next_cnt16(struct pru_core *c, int64_t cycle);
 uint32_t pins_inputs_at(struct pru_core *c, int64_t t_ps);
