@@ -55,6 +55,8 @@ struct options {
     biss_cd_prog cd; /* a control frame to send, when cd_set */
     int cd_set;
     const char *cd_what; /* the option that asked for it */
+    /* fast paths switched off (--no-fast-path) */
+    int no_ff, no_ff_counted, no_ff_r31_bits;
 };
 
 static void usage(FILE *f) {
@@ -80,6 +82,10 @@ static void usage(FILE *f) {
                "  --svg-frame K      which frame the SVG shows (default 2); frames count from 1,\n"
                "                     as bissctl's: frame 1 is the first (BiSS-C: training)\n"
                "  --json             print the results as one JSON object\n"
+               "  --no-fast-path P   run without the emulator's fast path P (results are the\n"
+               "                     same, only slower): ff (idle loops, and with it the\n"
+               "                     next two), ff-counted (polls with a time-out counter),\n"
+               "                     ff-r31-bits (horizons of the R31 bits a loop tests)\n"
                "  --max-ms T         stop after T ms of simulated time (default: ample)\n"
                "  --reg-read ID:ADDR[:N]       read N (1..64) registers of slave ID through\n"
                "                               control frames, while positions go on\n"
@@ -130,14 +136,21 @@ static void list_profiles(void) {
 }
 
 /* Options that take a value. */
-static const char *const valued[] = {
-    "--profile",       "--scenario", "--freq",     "--cable-m",   "--frames",    "--seed",
-    "--image",         "--soc",      "--vcd",      "--svg",       "--svg-frame", "--max-ms",
-    "--vcd-timescale", "--firmware", "--reg-read", "--reg-write", "--command"};
+static const char *const valued[] = {"--profile",  "--scenario", "--freq",      "--cable-m",
+                                     "--frames",   "--seed",     "--image",     "--soc",
+                                     "--vcd",      "--svg",      "--svg-frame", "--max-ms",
+                                     "--firmware", "--reg-read", "--reg-write", "--command"};
+/* ... and those of the waveform output and the fast paths */
+static const char *const valued_out[] = {"--vcd-timescale", "--no-fast-path"};
 
 static int takes_value(const char *a) {
     for (size_t i = 0; i < sizeof(valued) / sizeof(valued[0]); i++) {
         if (!strcmp(a, valued[i])) {
+            return 1;
+        }
+    }
+    for (size_t i = 0; i < sizeof(valued_out) / sizeof(valued_out[0]); i++) {
+        if (!strcmp(a, valued_out[i])) {
             return 1;
         }
     }
@@ -243,6 +256,16 @@ static int set_option(struct options *o, const char *a, const char *v) {
         if (!o->vcd_unit_ps) {
             return die("--vcd-timescale: '%s' is not 1ps, 10ps, 100ps or 1ns", v);
         }
+    } else if (!strcmp(a, "--no-fast-path")) {
+        if (!strcmp(v, "ff")) {
+            o->no_ff = 1;
+        } else if (!strcmp(v, "ff-counted")) {
+            o->no_ff_counted = 1;
+        } else if (!strcmp(v, "ff-r31-bits")) {
+            o->no_ff_r31_bits = 1;
+        } else {
+            return die("--no-fast-path: '%s' is not ff, ff-counted or ff-r31-bits", v);
+        }
     } else if (!strcmp(a, "--svg")) {
         o->svg = v;
     } else if (!strcmp(a, "--svg-frame")) {
@@ -307,6 +330,9 @@ static int build_config(const struct options *o, struct bench_config *cfg) {
     if (o->seed_set) {
         cfg->link.seed = o->seed;
     }
+    cfg->pru.fast_forward = !o->no_ff;
+    cfg->pru.ff_counted = !o->no_ff_counted;
+    cfg->pru.ff_r31_bits = !o->no_ff_r31_bits;
     return 0;
 }
 

@@ -163,6 +163,8 @@ void sim_print_json(const struct sim_result *r) {
     cJSON_AddNumberToObject(h, "max", (double)st->half_max_ps / PRU_PS_PER_CYCLE);
     cJSON_AddNumberToObject(j, "pru_cycles", (double)pru_cycles(bench_core(b)));
     cJSON_AddNumberToObject(j, "host_seconds", r->host_seconds);
+    /* loop iterations the core skipped rather than ran (same results) */
+    cJSON_AddNumberToObject(j, "skipped_iterations", (double)pru_ff_skipped(bench_core(b)));
     cJSON_AddItemToObject(j, "slaves", slaves_json(r));
     if (fw) {
         add_firmware(j, b, fw);

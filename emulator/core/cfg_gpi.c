@@ -182,6 +182,24 @@ static uint32_t low_bits(uint32_t mask) {
     return m;
 }
 
+/* First cycle at which a read may see an input change after `cycle`
+ * through the shift register: from the first edge whose sample (taken
+ * gpi_delay_ps before the edge) is at or after the change. (Rounding the
+ * change to a cycle first would miss an edge between the change and that
+ * cycle.) */
+static int64_t shift_sees_change(struct pru_core *c, int64_t cycle) {
+    if (!c->have_pins)
+        return CYCLE_NEVER;
+    if (!c->pins.next_input_change)
+        return cycle + 1;
+    int64_t delay = c->p.gpi_delay_ps;
+    int64_t t = cycle * PRU_PS_PER_CYCLE - delay;
+    int64_t tn = c->pins.next_input_change(c->pins.ctx, t < 0 ? 0 : t);
+    if (tn >= NEVER_PS)
+        return CYCLE_NEVER;
+    return cycle_of(edge_time(c, last_edge(c, tn + delay - 1) + 1));
+}
+
 static int64_t shift_stable_until(struct pru_core *c, int64_t cycle, uint32_t mask) {
     struct gpi_shift *s = &c->sh;
     gpi_sync(c, cycle);
@@ -194,14 +212,9 @@ static int64_t shift_stable_until(struct pru_core *c, int64_t cycle, uint32_t ma
         fixed = false;
     if (!fixed)
         return next_edge;
-    int64_t in = input_change_cycle(c, cycle);
-    if (in != CYCLE_NEVER) {
-        /* first edge whose sample can see the new level */
-        int64_t tin = in * PRU_PS_PER_CYCLE;
-        in = cycle_of(edge_time(c, last_edge(c, tin) + 1));
-        if (in < next_edge)
-            in = next_edge;
-    }
+    int64_t in = shift_sees_change(c, cycle);
+    if (in < next_edge)
+        in = next_edge;
     if (s->sb && (mask & 1u << 28)) {
         int64_t e = k + 1;
         if (!cnt16_high(s, k)) /* next pulse edge */
