@@ -56,7 +56,7 @@ struct options {
     int cd_set;
     const char *cd_what; /* the option that asked for it */
     /* fast paths switched off (--no-fast-path) */
-    int no_ff, no_ff_counted, no_ff_r31_bits;
+    int no_ff, no_ff_counted, no_ff_r31_bits, no_ff_loop_delay;
 };
 
 static void usage(FILE *f) {
@@ -84,8 +84,9 @@ static void usage(FILE *f) {
                "  --json             print the results as one JSON object\n"
                "  --no-fast-path P   run without the emulator's fast path P (results are the\n"
                "                     same, only slower): ff (idle loops, and with it the\n"
-               "                     next two), ff-counted (polls with a time-out counter),\n"
-               "                     ff-r31-bits (horizons of the R31 bits a loop tests)\n"
+               "                     next three), ff-counted (polls with a time-out counter),\n"
+               "                     ff-r31-bits (horizons of the R31 bits a loop tests),\n"
+               "                     ff-loop-delay (LOOP delays run at once)\n"
                "  --max-ms T         stop after T ms of simulated time (default: ample)\n"
                "  --reg-read ID:ADDR[:N]       read N (1..64) registers of slave ID through\n"
                "                               control frames, while positions go on\n"
@@ -263,8 +264,11 @@ static int set_option(struct options *o, const char *a, const char *v) {
             o->no_ff_counted = 1;
         } else if (!strcmp(v, "ff-r31-bits")) {
             o->no_ff_r31_bits = 1;
+        } else if (!strcmp(v, "ff-loop-delay")) {
+            o->no_ff_loop_delay = 1;
         } else {
-            return die("--no-fast-path: '%s' is not ff, ff-counted or ff-r31-bits", v);
+            return die("--no-fast-path: '%s' is not ff, ff-counted, ff-r31-bits or ff-loop-delay",
+                       v);
         }
     } else if (!strcmp(a, "--svg")) {
         o->svg = v;
@@ -333,6 +337,7 @@ static int build_config(const struct options *o, struct bench_config *cfg) {
     cfg->pru.fast_forward = !o->no_ff;
     cfg->pru.ff_counted = !o->no_ff_counted;
     cfg->pru.ff_r31_bits = !o->no_ff_r31_bits;
+    cfg->pru.ff_loop_delay = !o->no_ff_loop_delay;
     return 0;
 }
 

@@ -19,23 +19,16 @@
  * - ff_r31_bits: when the body looks at R31 only through QBBS/QBBC, the
  *   horizon of its R31 reads covers only the bits it tests, so e.g. the
  *   Cnt_16 pulses of a shift-mode input do not cut the skip short.
+ * And a third kind of skip (ff_loop_delay): a LOOP over one instruction
+ * that changes nothing (AND/OR of a register with itself, pasm's
+ * "mov rN, rN") is a delay of one cycle an iteration, run at once.
  */
 #include "core_priv.h"
 #include "pru_isa.h"
 
 #include <string.h>
 
-#define FF_MAX_BODY 16u /* words; longer loops are not idle polls */
-
 /* ---- the loop body, decoded ---- */
-
-static bool body_insn(const struct pru_core *c, uint32_t pc, struct pru_insn *in) {
-    return pc < c->iram_words && pru_decode(c->iram0[pc], in) == 0;
-}
-
-static bool is_alu(const struct pru_insn *in) {
-    return pru_optable[in->op].fmt == PRU_FMT_ALU;
-}
 
 /* Register operands an instruction of the formats a poll uses reads. */
 static bool reads_reg(const struct pru_insn *in, unsigned r) {
@@ -45,73 +38,107 @@ static bool reads_reg(const struct pru_insn *in, unsigned r) {
     return in->rs1 == r || (!in->io && in->rs2 == r);
 }
 
-/* The R31 bits the body [top, pc] looks at: the bits of QBBS/QBBC r31, n
- * (whole register, immediate bit), everything if R31 is read otherwise or
- * an instruction is of a kind not looked into. */
-static uint32_t body_r31_mask(const struct pru_core *c, uint32_t top, uint32_t pc) {
+/* The kinds of instruction the analyses below look into. */
+static bool poll_kind(const struct pru_insn *in) {
+    enum pru_fmt f = pru_optable[in->op].fmt;
+    return f == PRU_FMT_ALU || f == PRU_FMT_LDI || f == PRU_FMT_QB || f == PRU_FMT_QBA ||
+           f == PRU_FMT_QBB;
+}
+
+/* The R31 bits the body looks at: the bits of QBBS/QBBC r31, n (whole
+ * register, immediate bit), everything if R31 is read otherwise or an
+ * instruction is of a kind not looked into. */
+static uint32_t r31_mask(const struct pru_insn *in, uint32_t n) {
     uint32_t mask = 0;
-    for (uint32_t a = top; a <= pc; a++) {
-        struct pru_insn in;
-        if (!body_insn(c, a, &in))
+    for (uint32_t i = 0; i < n; i++) {
+        if (!poll_kind(&in[i]))
             return ~0u;
-        enum pru_fmt f = pru_optable[in.op].fmt;
-        if (f == PRU_FMT_QBB && in.rs1 == 31 && in.rs1sel == PRU_SEL_R && in.io)
-            mask |= 1u << (in.imm & 31u);
-        else if (f == PRU_FMT_QBB || f == PRU_FMT_QB || f == PRU_FMT_ALU) {
-            if (reads_reg(&in, 31))
-                return ~0u;
-        } else if (f != PRU_FMT_LDI && f != PRU_FMT_QBA)
+        if (pru_optable[in[i].op].fmt == PRU_FMT_QBB && in[i].rs1 == 31 &&
+            in[i].rs1sel == PRU_SEL_R && in[i].io)
+            mask |= 1u << (in[i].imm & 31u);
+        else if (reads_reg(&in[i], 31))
             return ~0u;
     }
     return mask;
 }
 
-/* A counted poll (see the top): register x changes by `step` per iteration
- * through one ADD/SUB x, x, imm, and the closing branch at pc is QBNE
- * top, x, imm; no other instruction reads or writes x, and every one is of
- * a kind a poll uses (ALU, LDI, QB*, QBB*). Returns how many more
- * iterations keep the counter off the end value and without carry, or -1
- * if the body is not such a loop. */
-static int64_t counted_room(const struct pru_core *c, uint32_t top, uint32_t pc, unsigned x,
-                            uint32_t step) {
-    struct pru_insn in;
-    if (!body_insn(c, pc, &in) || in.op != PRU_OP_QBNE || in.rs1 != x || in.rs1sel != PRU_SEL_R ||
-        !in.io)
-        return -1;
-    uint32_t end = in.imm;
+/* A counted poll (see the top): the closing branch in[n-1] is QBNE top,
+ * x, imm; one ADD/SUB x, x, imm steps x; no other instruction reads or
+ * writes x, and every one is of a kind a poll uses. Sets b->counter (x, or
+ * -1 if the body is no such loop), b->step and b->end. */
+static void counted(struct ff_body *b, const struct pru_insn *in, uint32_t n) {
+    b->counter = -1;
+    const struct pru_insn *br = &in[n - 1];
+    if (br->op != PRU_OP_QBNE || br->rs1sel != PRU_SEL_R || !br->io || br->rs1 > 30)
+        return;
+    unsigned x = br->rs1;
     int updates = 0;
-    bool down = false;
-    for (uint32_t a = top; a < pc; a++) {
-        if (!body_insn(c, a, &in))
-            return -1;
-        enum pru_fmt f = pru_optable[in.op].fmt;
-        bool writes = (is_alu(&in) || f == PRU_FMT_LDI) && in.rd == x;
-        if (writes) {
-            if ((in.op != PRU_OP_ADD && in.op != PRU_OP_SUB) || in.rdsel != PRU_SEL_R ||
-                in.rs1 != x || in.rs1sel != PRU_SEL_R || !in.io || in.imm == 0)
-                return -1;
-            down = in.op == PRU_OP_SUB;
-            if (step != (down ? 0u - in.imm : in.imm))
-                return -1; /* not one update per iteration */
+    for (uint32_t i = 0; i + 1 < n; i++) {
+        const struct pru_insn *a = &in[i];
+        enum pru_fmt f = pru_optable[a->op].fmt;
+        if (!poll_kind(a))
+            return;
+        if ((f == PRU_FMT_ALU || f == PRU_FMT_LDI) && a->rd == x) {
+            if ((a->op != PRU_OP_ADD && a->op != PRU_OP_SUB) || a->rdsel != PRU_SEL_R ||
+                a->rs1 != x || a->rs1sel != PRU_SEL_R || !a->io || a->imm == 0)
+                return;
+            b->step = a->op == PRU_OP_SUB ? 0u - a->imm : a->imm;
             updates++;
-        } else if (reads_reg(&in, x) || (f != PRU_FMT_ALU && f != PRU_FMT_LDI && f != PRU_FMT_QB &&
-                                         f != PRU_FMT_QBA && f != PRU_FMT_QBB)) {
-            return -1;
+        } else if (reads_reg(a, x)) {
+            return;
         }
     }
-    /* the iteration seen must not have wrapped either (its carry) */
-    uint32_t k = down ? 0u - step : step;
-    uint32_t before = c->r[x] - step;
-    if (updates != 1 || (down ? before < k : before > 0xffffffffu - k))
+    if (updates == 1) {
+        b->counter = (int)x;
+        b->end = br->imm;
+    }
+}
+
+/* The body [top, pc] analysed, from the cache while IRAM is unchanged;
+ * NULL if it does not decode. */
+static const struct ff_body *body(struct pru_core *c, uint32_t top, uint32_t pc) {
+    struct ff_body *b = &c->ff.body;
+    uint32_t n = pc - top + 1;
+    if (pc >= c->iram_words || n > FF_MAX_BODY)
+        return NULL;
+    const uint32_t *w = &c->iram0[top];
+    if (b->top == top && b->pc == pc && memcmp(b->words, w, n * 4) == 0)
+        return b;
+    struct pru_insn in[FF_MAX_BODY];
+    for (uint32_t i = 0; i < n; i++) {
+        if (pru_decode(w[i], &in[i]) != 0) {
+            b->top = 1;
+            b->pc = 0; /* none */
+            return NULL;
+        }
+    }
+    memcpy(b->words, w, n * 4);
+    b->top = top;
+    b->pc = pc;
+    b->r31_mask = r31_mask(in, n);
+    counted(b, in, n);
+    return b;
+}
+
+/* Iterations a counted poll may still skip: counter x moved by `step`
+ * this iteration. The values after the next n steps must all differ from
+ * the end value and not wrap, nor may this iteration's step have wrapped
+ * (the carry of ADD/SUB stays what it left). -1 if the loop is no counted
+ * poll with this counter and step. */
+static int64_t counted_room(struct pru_core *c, uint32_t top, uint32_t pc, int x, uint32_t step) {
+    const struct ff_body *b = body(c, top, pc);
+    if (!b || b->counter != x || b->step != step)
         return -1;
-    /* the values after the next n updates must all differ from `end` and
-     * not wrap (the carry of ADD/SUB stays what this iteration left) */
-    uint32_t v = c->r[x];
+    bool down = step > 0x7fffffffu;
+    uint32_t k = down ? 0u - step : step;
+    uint32_t v = c->r[x], before = v - step;
+    if (down ? before < k : before > 0xffffffffu - k)
+        return -1;
     if (down) {
-        uint32_t lo = end < v ? end + 1 : 0;
+        uint32_t lo = b->end < v ? b->end + 1 : 0;
         return (int64_t)((v - lo) / k);
     }
-    uint32_t hi = end > v ? end - 1 : 0xffffffffu;
+    uint32_t hi = b->end > v ? b->end - 1 : 0xffffffffu;
     return (int64_t)((hi - v) / k);
 }
 
@@ -149,14 +176,14 @@ static void arm(struct pru_core *c, uint32_t top, uint32_t pc, int64_t now, uint
     f->horizon = CYCLE_NEVER;
     memcpy(f->regs, c->r, sizeof f->regs);
     f->carry = c->carry;
-    f->r31_mask = c->p.ff_r31_bits ? body_r31_mask(c, top, pc) : ~0u;
+    const struct ff_body *b = c->p.ff_r31_bits ? body(c, top, pc) : NULL;
+    f->r31_mask = b ? b->r31_mask : ~0u;
 }
 
 /* Iterations that may still be skipped when this one repeats the last,
  * or -1 if it does not: unlimited with the same registers, a counter's
  * room in a counted poll. *x is the counter (-1 none), *step its step. */
-static int64_t repeat_room(const struct pru_core *c, uint32_t top, uint32_t pc, int *x,
-                           uint32_t *step) {
+static int64_t repeat_room(struct pru_core *c, uint32_t top, uint32_t pc, int *x, uint32_t *step) {
     const struct ff_probe *f = &c->ff;
     *x = -1;
     if (!f->have_snap || f->dirty || f->carry != c->carry)
@@ -166,7 +193,7 @@ static int64_t repeat_room(const struct pru_core *c, uint32_t top, uint32_t pc, 
     if (!c->p.ff_counted || (*x = one_changed(c)) < 0)
         return -1;
     *step = c->r[*x] - f->regs[*x];
-    return counted_room(c, top, pc, (unsigned)*x, *step);
+    return counted_room(c, top, pc, *x, *step);
 }
 
 /* Called by a taken branch from pc back to top, before its cycle is counted. */
@@ -213,4 +240,32 @@ void ff_backward_branch(struct pru_core *c, uint32_t pc, uint32_t top, int64_t l
         f->saw_input = true; /* the same reads: keep probing */
     }
     arm(c, top, pc, now, insns);
+}
+
+/* A delay: AND/OR of a whole register (not R30/R31) with itself into it. */
+static bool is_delay(uint32_t word) {
+    struct pru_insn in;
+    if (pru_decode(word, &in) != 0 || (in.op != PRU_OP_AND && in.op != PRU_OP_OR) || in.io)
+        return false;
+    return in.rd == in.rs1 && in.rs1 == in.rs2 && in.rd < 30 && in.rdsel == in.rs1sel &&
+           in.rs1sel == in.rs2sel;
+}
+
+void ff_loop_entered(struct pru_core *c, int64_t limit) {
+    if (!c->p.ff_loop_delay || c->loop_end != c->loop_top + 1 || c->pc != c->loop_top ||
+        c->loop_top >= c->iram_words || !is_delay(c->iram0[c->loop_top]))
+        return;
+    /* the LOOP instruction's own cycle is counted after this */
+    int64_t room = limit - (c->cycle + 1);
+    if (room <= 0)
+        return;
+    int64_t n = room < (int64_t)c->loop_count ? room : (int64_t)c->loop_count;
+    c->cycle += n;
+    c->insns += (uint64_t)n;
+    c->ff.skipped += (uint64_t)n;
+    c->loop_count -= (uint32_t)n;
+    if (c->loop_count == 0) {
+        c->pc = c->loop_end;
+        c->loop_end = NO_LOOP;
+    }
 }

@@ -69,6 +69,10 @@ struct pru_params {
      * skipped until one of the bits it tests may change (not every R31 bit:
      * e.g. Cnt_16 pulses). */
     int ff_r31_bits;
+    /* With fast_forward, a LOOP whose body is one instruction that changes
+     * nothing (AND/OR of a register with itself: a delay) runs its
+     * iterations at once. */
+    int ff_loop_delay;
 };
 
 void pru_params_default(struct pru_params *p);
