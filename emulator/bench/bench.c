@@ -51,6 +51,7 @@ struct bench {
     ssi_frame_record cap_ssi;
 
     uint64_t frame_limit; /* frames from this number on are not measured */
+    sim_ps forgot_at;     /* when pin history was last dropped */
     struct bench_stats st;
 };
 
@@ -393,9 +394,11 @@ enum pru_stop bench_run_until(struct bench *b, int64_t t_ps) {
     if (b->vcd_on) {
         vcd_frame_update(b, now);
     }
-    /* pin history older than a millisecond is never looked at again */
-    if (now > SIM_PS_PER_MS) {
+    /* pin history older than a millisecond is never looked at again; it is
+     * dropped once a millisecond (each drop moves what is kept) */
+    if (now - b->forgot_at > SIM_PS_PER_MS) {
         link_forget_before(&b->link, now - SIM_PS_PER_MS);
+        b->forgot_at = now;
     }
     return why;
 }

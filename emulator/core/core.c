@@ -94,7 +94,8 @@ struct pru_core *pru_core_new(enum pru_soc soc, const struct pru_params *params)
     }
     c->loop_end = NO_LOOP;
     c->ff.top = NO_LOOP;
-    c->ff.body.top = 1; /* no body decoded yet */
+    for (unsigned i = 0; i < FF_BODIES; i++)
+        c->ff.body[i].top = 1; /* no body decoded yet */
     c->ff_on = c->p.fast_forward != 0;
     ctrl_reset(c);
     cfg_reset(c);

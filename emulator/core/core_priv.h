@@ -134,6 +134,7 @@ struct ext_window {
 /* A loop body as the fast-forward decoded it (ff.c), kept while IRAM
  * holds the same words there. */
 #define FF_MAX_BODY 16u /* words; longer loops are not idle polls */
+#define FF_BODIES   8u  /* loop bodies kept (a firmware's period loops and its polls) */
 struct ff_body {
     uint32_t top, pc; /* [top, pc], pc the closing branch; top > pc: none */
     uint32_t words[FF_MAX_BODY];
@@ -158,8 +159,8 @@ struct ff_probe {
     uint32_t regs[32];
     int carry;
     uint64_t skipped;
-    uint32_t r31_mask; /* R31 bits the armed loop looks at (horizons of R31 reads) */
-    struct ff_body body;
+    uint32_t r31_mask;              /* R31 bits the armed loop looks at (horizons of R31 reads) */
+    struct ff_body body[FF_BODIES]; /* by loop top modulo FF_BODIES */
 };
 
 struct pru_core {

@@ -97,7 +97,7 @@ static void counted(struct ff_body *b, const struct pru_insn *in, uint32_t n) {
 /* The body [top, pc] analysed, from the cache while IRAM is unchanged;
  * NULL if it does not decode. */
 static const struct ff_body *body(struct pru_core *c, uint32_t top, uint32_t pc) {
-    struct ff_body *b = &c->ff.body;
+    struct ff_body *b = &c->ff.body[top % FF_BODIES];
     uint32_t n = pc - top + 1;
     if (pc >= c->iram_words || n > FF_MAX_BODY)
         return NULL;
