@@ -45,19 +45,38 @@ static bool poll_kind(const struct pru_insn *in) {
            f == PRU_FMT_QBB;
 }
 
-/* The R31 bits the body looks at: the bits of QBBS/QBBC r31, n (whole
- * register, immediate bit), everything if R31 is read otherwise or an
- * instruction is of a kind not looked into. */
+/* The bits of a register that an operand field selects. */
+static uint32_t field_bits(unsigned sel) {
+    static const uint32_t bits[8] = {0xffu,   0xff00u,   0xff0000u,   0xff000000u,
+                                     0xffffu, 0xffff00u, 0xffff0000u, 0xffffffffu};
+    return bits[sel & 7u];
+}
+
+/* The R31 bits the body looks at: the bit of QBBS/QBBC r31, n (immediate
+ * bit), the field of any other operand that reads R31 (e.g. and rX,
+ * r31.b0, mask); everything if an instruction is of a kind not looked
+ * into. */
 static uint32_t r31_mask(const struct pru_insn *in, uint32_t n) {
     uint32_t mask = 0;
     for (uint32_t i = 0; i < n; i++) {
-        if (!poll_kind(&in[i]))
+        const struct pru_insn *a = &in[i];
+        if (!poll_kind(a))
             return ~0u;
-        if (pru_optable[in[i].op].fmt == PRU_FMT_QBB && in[i].rs1 == 31 &&
-            in[i].rs1sel == PRU_SEL_R && in[i].io)
-            mask |= 1u << (in[i].imm & 31u);
-        else if (reads_reg(&in[i], 31))
-            return ~0u;
+        enum pru_fmt f = pru_optable[a->op].fmt;
+        if (f == PRU_FMT_QBB && a->rs1 == 31 && a->io) {
+            /* the bit counts from the field's lowest; one past the field:
+             * the whole field, to be safe */
+            uint32_t fb = field_bits(a->rs1sel);
+            uint32_t bit = (a->imm & 31u) + (uint32_t)__builtin_ctz(fb);
+            mask |= bit < 32 && (fb >> bit & 1u) ? 1u << bit : fb;
+            continue;
+        }
+        if (!reads_reg(a, 31))
+            continue;
+        if (a->rs1 == 31)
+            mask |= field_bits(a->rs1sel);
+        if (!a->io && a->rs2 == 31)
+            mask |= field_bits(a->rs2sel);
     }
     return mask;
 }

@@ -55,8 +55,10 @@ struct outcome {
 /* Shift mode at 80 MHz (the firmware's 8x clock at 10 MHz: 2.5 cycles a
  * sample, so Cnt_16 pulses every 40 cycles once SB is set), then a poll
  * with a time-out on R31 bit 0 low: qbbc DONE, r31, 0; sub r2, r2, 1;
- * qbne POLL, r2, 0 (once bit 0 shows the high level). */
-static struct outcome counted_poll(enum path p, int64_t t_fall, unsigned count) {
+ * qbne POLL, r2, 0 (once bit 0 shows the high level); or with `field`, on
+ * the newest 4 samples all low through and r1.b3, r31.b0, 15 (as the
+ * firmware waits for SL idle). */
+static struct outcome counted_poll(enum path p, int64_t t_fall, unsigned count, int field) {
     struct edge_in in = {t_fall};
     struct pru_core *c = ff_core(p, &in);
     uint32_t prog[16];
@@ -65,9 +67,16 @@ static struct outcome counted_poll(enum path p, int64_t t_fall, unsigned count) 
     prog[n++] = burst(PRU_OP_SBCO, 4 * 1, 4, 8, 4); /* GPCFG0 */
     prog[n++] = ldi(R(2), count);
     prog[n++] = qbi(PRU_OP_QBBC, 0, R(31), 0); /* until the high level is sampled */
-    prog[n++] = qbi(PRU_OP_QBBC, 3, R(31), 0);
-    prog[n++] = alui(PRU_OP_SUB, R(2), R(2), 1);
-    prog[n++] = qbi(PRU_OP_QBNE, -2, R(2), 0);
+    if (field) { /* the newest 4 samples low: and r1.b3, r31.b0, 15; qbeq DONE, r1.b3, 0 */
+        prog[n++] = alui(PRU_OP_AND, B3(1), B0(31), 15);
+        prog[n++] = qbi(PRU_OP_QBEQ, 3, B3(1), 0);
+        prog[n++] = alui(PRU_OP_SUB, R(2), R(2), 1);
+        prog[n++] = qbi(PRU_OP_QBNE, -3, R(2), 0);
+    } else {
+        prog[n++] = qbi(PRU_OP_QBBC, 3, R(31), 0);
+        prog[n++] = alui(PRU_OP_SUB, R(2), R(2), 1);
+        prog[n++] = qbi(PRU_OP_QBNE, -2, R(2), 0);
+    }
     prog[n++] = halt();
     pru_load_image(c, prog, n * 4);
     pru_start(c);
@@ -88,28 +97,30 @@ static void same(const struct outcome *a, const struct outcome *b, const char *w
  * same cycle with every fast path, without each, and without any (a shift
  * edge between the fall and the next cycle boundary must not be missed). */
 START_TEST(counted_poll_exact) {
-    for (int64_t t = 20000000; t < 20000000 + 25000; t += 250) {
-        struct outcome ref = counted_poll(NONE, t, 60000);
-        ck_assert_uint_eq(ref.skipped, 0);
-        for (enum path p = ALL; p < NONE; p++) {
-            struct outcome o = counted_poll(p, t, 60000);
-            same(&o, &ref, "fast path off", t);
+    for (int field = 0; field < 2; field++) {
+        for (int64_t t = 20000000; t < 20000000 + 25000; t += 250) {
+            struct outcome ref = counted_poll(NONE, t, 60000, field);
+            ck_assert_uint_eq(ref.skipped, 0);
+            for (enum path p = ALL; p < NONE; p++) {
+                struct outcome o = counted_poll(p, t, 60000, field);
+                same(&o, &ref, field ? "field poll, a fast path off" : "fast path off", t);
+            }
+            struct outcome all = counted_poll(ALL, t, 60000, field);
+            struct outcome no_counted = counted_poll(NO_COUNTED, t, 60000, field);
+            struct outcome no_bits = counted_poll(NO_R31_BITS, t, 60000, field);
+            /* 20 us of polling at 3 or 4 cycles a turn: nearly all skipped */
+            ck_assert_uint_gt(all.skipped, 900);
+            ck_assert_uint_eq(no_counted.skipped, 0); /* r2 changes every turn */
+            ck_assert_uint_lt(no_bits.skipped, all.skipped);
         }
-        struct outcome all = counted_poll(ALL, t, 60000);
-        struct outcome no_counted = counted_poll(NO_COUNTED, t, 60000);
-        struct outcome no_bits = counted_poll(NO_R31_BITS, t, 60000);
-        /* 20 us of polling at 3 cycles a turn: nearly all skipped */
-        ck_assert_uint_gt(all.skipped, 1300);
-        ck_assert_uint_eq(no_counted.skipped, 0); /* r2 changes every turn */
-        ck_assert_uint_lt(no_bits.skipped, all.skipped);
     }
 }
 END_TEST
 
 /* No fall: the counter ends the poll, on the same cycle with r2 = 0. */
 START_TEST(counted_poll_times_out) {
-    struct outcome ref = counted_poll(NONE, INT64_MAX, 5000);
-    struct outcome all = counted_poll(ALL, INT64_MAX, 5000);
+    struct outcome ref = counted_poll(NONE, INT64_MAX, 5000, 0);
+    struct outcome all = counted_poll(ALL, INT64_MAX, 5000, 0);
     same(&all, &ref, "time-out", INT64_MAX);
     ck_assert_uint_eq(all.r2, 0);
     ck_assert_uint_gt(all.skipped, 4900);
