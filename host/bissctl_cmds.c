@@ -55,7 +55,8 @@ static void print_sample(const struct biss_sample *s, const struct biss_config *
     if (s->valid) { /* the sample point (1/8 bit) and lag a data frame was read with */
         printf(" sample_point=%u lag=%u", s->sample_point, s->lag_periods);
     }
-    printf(" timestamp=%u\n", s->timestamp);
+    /* IEP counts of one PRU cycle, 5 ns (the firmware sets increment 1) */
+    printf(" timestamp=%u (IEP counts of 5 ns: %.3f us)\n", s->timestamp, s->timestamp * 5e-3);
 }
 
 static void print_stats(const struct biss_stats *st) {

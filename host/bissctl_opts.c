@@ -50,9 +50,11 @@ static const char *command_help(const char *command) {
     }
     if (strcmp(command, "read") == 0) {
         return "bissctl [options] read [-n N]\n"
-               "  Prints N published frames (default 1), one line each: frame, flags,\n"
+               "  Prints N published frames (default 1), one line each: frame (1 is the\n"
+               "  first, a training frame after each configuration), flags,\n"
                "  per slave position, data, nE/nW, CRC (\"none\" where the layout has\n"
-               "  none); line delay, sample point (1/8 bit), lag (periods), IEP timestamp.\n"
+               "  none); line delay, sample point (1/8 bit), lag (periods), the IEP\n"
+               "  timestamp (counts of 5 ns) and the time it stands for.\n"
                "  In host-trigger mode each frame is triggered first.\n";
     }
     if (strcmp(command, "stats") == 0) {

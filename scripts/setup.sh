@@ -4,6 +4,7 @@
 set -euo pipefail
 
 packages=(gcc make cmake pkg-config check libcjson-dev python3 clang-format libelf-dev binutils python3-pyelftools device-tree-compiler gcc-arm-linux-gnueabihf qemu-user)
+packages+=(sigrok-cli gtkwave) # the VCD clients the tests open the bench's VCD with
 
 missing=()
 for p in "${packages[@]}"; do

@@ -4,6 +4,7 @@
 
 #include "vcd.h"
 
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -12,7 +13,9 @@
  * length the models allow holds far fewer. */
 #define MA_RING 4096
 
+/* VCD wires: the four pins (by link_pin), then the frame wire */
 static const char *const pin_names[4] = {"MA_master", "SL_master", "MA_slave", "SL_slave"};
+#define VCD_FRAME_WIRE 4
 
 enum capture_state { CAP_OFF, CAP_ARMED, CAP_ON, CAP_DONE };
 
@@ -33,14 +36,22 @@ struct bench {
 
     struct vcd_writer vcd;
     bool vcd_on;
+    sim_ps vcd_ma_lag;     /* the longest an MA edge takes to the slave, with margin */
+    bool vcd_frame_open;   /* the frame wire is high */
+    uint64_t vcd_frame;    /* the slave's number of that frame */
+    sim_ps vcd_frame_last; /* master time of its last MA edge so far */
+    sim_ps vcd_frame_half; /* and the time from the edge before it, 0 none */
 
     enum capture_state cap_state;
     uint64_t cap_frame;
     waveform cap[4];
-    sim_ps cap_t0, cap_last; /* first and last MA edge of the frame, at the master */
-    sim_ps cap_end;          /* when the frame was over on every pin */
+    sim_ps cap_t0, cap_last;    /* first and last MA edge of the frame, at the master */
+    sim_ps cap_end;             /* when the frame was over on every pin */
+    biss_frame_record cap_biss; /* the frame's record, kept: the slave's ring moves on */
+    ssi_frame_record cap_ssi;
 
     uint64_t frame_limit; /* frames from this number on are not measured */
+    sim_ps forgot_at;     /* when pin history was last dropped */
     struct bench_stats st;
 };
 
@@ -117,6 +128,8 @@ static void account_edge(struct bench *b, uint64_t frame, int64_t t, int level) 
     b->prev_t = t;
 }
 
+static void vcd_frame_edge(struct bench *b, uint64_t frame, sim_ps t_master);
+
 static void ma_reached_slave(struct bench *b, int level) {
     uint64_t idx = b->st.ma_edges_slave++;
     bool timed = idx < b->st.ma_edges_master && b->st.ma_edges_master - idx <= MA_RING;
@@ -125,11 +138,56 @@ static void ma_reached_slave(struct bench *b, int level) {
     if (active) {
         b->current_frame = frame;
     }
+    if (timed && active && b->vcd_on) {
+        vcd_frame_edge(b, frame, b->ma_times[idx % MA_RING]);
+    }
     if (timed && active && frame < b->frame_limit) {
         account_edge(b, frame, b->ma_times[idx % MA_RING], level);
     } else {
         b->prev_frame = 0;
     }
+}
+
+/* ---- the VCD's frame wire ---------------------------------------------- */
+
+/* High from a frame's first MA edge at the master pin (the same time
+ * stamp) to one half period after its last (where the next clock edge
+ * would have come), so a decoder that takes it as a chip select sees every
+ * clock edge of the frame inside it. Which edges belong to a frame is
+ * known when they reach the slave (and which was the last when the slave
+ * closes the frame), so the writer holds back what comes after the edges
+ * in flight and after the open frame's last edge (vcd.h). */
+static void vcd_frame_close(struct bench *b) {
+    vcd_change(&b->vcd, b->vcd_frame_last + b->vcd_frame_half, VCD_FRAME_WIRE, 0);
+    b->vcd_frame_open = false;
+}
+
+static void vcd_frame_edge(struct bench *b, uint64_t frame, sim_ps t_master) {
+    if (b->vcd_frame_open && b->vcd_frame != frame) {
+        vcd_frame_close(b);
+    }
+    if (!b->vcd_frame_open) {
+        vcd_change(&b->vcd, t_master, VCD_FRAME_WIRE, 1);
+        b->vcd_frame_open = true;
+        b->vcd_frame = frame;
+        b->vcd_frame_half = 0;
+    } else {
+        b->vcd_frame_half = t_master - b->vcd_frame_last;
+    }
+    b->vcd_frame_last = t_master;
+}
+
+/* Closes the frame wire once the slave closed the frame, and writes what
+ * can no longer be preceded by a frame wire change. */
+static void vcd_frame_update(struct bench *b, sim_ps now) {
+    if (b->vcd_frame_open && link_frames(&b->link) > b->vcd_frame) {
+        vcd_frame_close(b);
+    }
+    sim_ps hold = now - b->vcd_ma_lag;
+    if (b->vcd_frame_open && b->vcd_frame_last < hold) {
+        hold = b->vcd_frame_last;
+    }
+    vcd_flush_before(&b->vcd, hold);
 }
 
 /* ---- scope capture ------------------------------------------------------ */
@@ -148,6 +206,15 @@ static sim_ps capture_end(const struct bench *b) {
     return end < 0 ? -1 : end + (sim_ps)bench_round_trip_ps(b) + 200 * SIM_PS_PER_NS;
 }
 
+/* Copies the captured frame's record, which capture_end found. */
+static void capture_keep_record(struct bench *b) {
+    if (b->link.sc.protocol == SCENARIO_SSI) {
+        b->cap_ssi = *ssi_slave_record(&b->link.ssi, b->cap_frame);
+    } else {
+        b->cap_biss = *biss_slave_record(&b->link.biss, b->cap_frame);
+    }
+}
+
 static waveform *pin_record(struct bench *b, int pin) {
     waveform *w[4] = {&b->link.ma_master, &b->link.sl_master, &b->link.ma_slave, &b->link.sl_slave};
     return w[pin];
@@ -163,6 +230,7 @@ static void capture_update(struct bench *b, sim_ps t) {
     } else if (b->cap_state == CAP_ON && slave_frames(b) > b->cap_frame) {
         sim_ps end = capture_end(b);
         if (end >= 0 && t > end) {
+            capture_keep_record(b);
             b->cap_end = end;
             b->cap_state = CAP_DONE;
         }
@@ -187,6 +255,9 @@ static void on_pin(void *ctx, link_pin pin, sim_ps t, int level) {
     }
     if (pin == LINK_MA_SLAVE) {
         ma_reached_slave(b, level);
+    }
+    if (b->vcd_on) {
+        vcd_frame_update(b, t);
     }
     if (b->cap_state != CAP_OFF) {
         capture_update(b, t);
@@ -266,19 +337,28 @@ void bench_free(struct bench *b) {
     free(b);
 }
 
-int bench_open_vcd(struct bench *b, const char *path) {
+int bench_open_vcd(struct bench *b, const char *path, int64_t unit_ps) {
     bench_close_vcd(b);
-    if (vcd_open(&b->vcd, path) != 0) {
+    if (!vcd_unit_valid(unit_ps)) {
+        errno = EINVAL;
+        return -1;
+    }
+    if (vcd_open(&b->vcd, path, unit_ps) != 0) {
         return -1;
     }
     for (int i = 0; i < 4; i++) {
         vcd_add_wire(&b->vcd, pin_names[i]);
     }
+    vcd_add_wire(&b->vcd, "frame");
+    const line_params *ma = &b->link.sc.ma_line;
+    b->vcd_ma_lag = (sim_ps)(line_nominal_delay_ps(ma) + 10 * ma->jitter_rms_ps) + SIM_PS_PER_US;
+    b->vcd_frame_open = false;
     b->vcd_on = true;
     sim_ps now = eq_now(&b->link.q);
     for (int i = 0; i < 4; i++) {
         vcd_change(&b->vcd, now, i, waveform_level_at(pin_record(b, i), now));
     }
+    vcd_change(&b->vcd, now, VCD_FRAME_WIRE, 0);
     return 0;
 }
 
@@ -311,9 +391,14 @@ enum pru_stop bench_run_until(struct bench *b, int64_t t_ps) {
     /* the link catches up with the core (a halted core leaves it behind) */
     int64_t now = pru_time_ps(b->core);
     link_sl(&b->link, now);
-    /* pin history older than a millisecond is never looked at again */
-    if (now > SIM_PS_PER_MS) {
+    if (b->vcd_on) {
+        vcd_frame_update(b, now);
+    }
+    /* pin history older than a millisecond is never looked at again; it is
+     * dropped once a millisecond (each drop moves what is kept) */
+    if (now - b->forgot_at > SIM_PS_PER_MS) {
         link_forget_before(&b->link, now - SIM_PS_PER_MS);
+        b->forgot_at = now;
     }
     return why;
 }
@@ -403,4 +488,12 @@ int bench_capture_get(struct bench *b, waveform *pins[4], sim_ps *t0, sim_ps *t1
         pins[i] = &b->cap[i];
     }
     return 0;
+}
+
+void bench_capture_record(const struct bench *b, const biss_frame_record **biss,
+                          const ssi_frame_record **ssi) {
+    bool done = b->cap_state == CAP_DONE;
+    bool is_ssi = b->link.sc.protocol == SCENARIO_SSI;
+    *biss = done && !is_ssi ? &b->cap_biss : NULL;
+    *ssi = done && is_ssi ? &b->cap_ssi : NULL;
 }

@@ -54,9 +54,14 @@ struct bench;
 struct bench *bench_new(const struct bench_config *cfg, char *err, size_t errlen);
 void bench_free(struct bench *b);
 
-/* Records MA_master, SL_master, MA_slave, SL_slave (scope "bench") from now
- * on. Returns 0, or -1 if the file cannot be written. */
-int bench_open_vcd(struct bench *b, const char *path);
+/* Records MA_master, SL_master, MA_slave, SL_slave and frame (scope
+ * "bench") from now on, with the timescale unit_ps (1, 10, 100 or 1000 ps:
+ * vcd.h says how edges keep their order). The frame wire is high from a
+ * frame's first MA edge at the master to half a period after its last (the
+ * edges the slave took as that frame's): a chip select for decoders.
+ * Returns 0, or -1 with errno set if the file
+ * cannot be written or unit_ps is none of those. */
+int bench_open_vcd(struct bench *b, const char *path, int64_t unit_ps);
 /* Flushes and closes the VCD, if one is open. Returns 0 or -1. */
 int bench_close_vcd(struct bench *b);
 
@@ -107,5 +112,11 @@ void bench_capture_frame(struct bench *b, uint64_t k);
  * window that shows frame k whole. Returns 0, or -1 if frame k has not been
  * captured completely. */
 int bench_capture_get(struct bench *b, waveform *pins[4], sim_ps *t0, sim_ps *t1);
+
+/* The captured frame's slave record (BiSS-C or SSI; the other NULL), kept
+ * when the frame closed: the slave's own ring of records moves on. Both
+ * NULL until the capture is complete. */
+void bench_capture_record(const struct bench *b, const biss_frame_record **biss,
+                          const ssi_frame_record **ssi);
 
 #endif

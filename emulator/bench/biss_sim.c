@@ -47,6 +47,7 @@ struct options {
     const char *firmware; /* the BiSS master firmware (default: this tree's) */
     const char *soc;
     const char *vcd;
+    int64_t vcd_unit_ps;
     const char *svg;
     uint64_t svg_frame;
     int json;
@@ -54,6 +55,8 @@ struct options {
     biss_cd_prog cd; /* a control frame to send, when cd_set */
     int cd_set;
     const char *cd_what; /* the option that asked for it */
+    /* fast paths switched off (--no-fast-path) */
+    int no_ff, no_ff_counted, no_ff_r31_bits, no_ff_loop_delay;
 };
 
 static void usage(FILE *f) {
@@ -72,10 +75,18 @@ static void usage(FILE *f) {
                "  --image FILE       any PRU image (.bin, or .p assembled with -D HALF, CLOCKS,\n"
                "                     GAP, FRAMES, MA_BIT), run as is: nothing is decoded\n"
                "  --soc NAME         am335x (default), am437x-icss0, am437x-icss1\n"
-               "  --vcd FILE         write MA/SL at master and slave as VCD (scope bench)\n"
+               "  --vcd FILE         write MA/SL at master and slave and a frame wire (high\n"
+               "                     while a frame is clocked) as VCD (scope bench)\n"
+               "  --vcd-timescale U  1ps, 10ps, 100ps or 1ns (default); edges keep their order\n"
                "  --svg FILE         write a scope view of one frame as SVG\n"
-               "  --svg-frame K      which frame the SVG shows (default 1)\n"
+               "  --svg-frame K      which frame the SVG shows (default 2); frames count from 1,\n"
+               "                     as bissctl's: frame 1 is the first (BiSS-C: training)\n"
                "  --json             print the results as one JSON object\n"
+               "  --no-fast-path P   run without the emulator's fast path P (results are the\n"
+               "                     same, only slower): ff (idle loops, and with it the\n"
+               "                     next three), ff-counted (polls with a time-out counter),\n"
+               "                     ff-r31-bits (horizons of the R31 bits a loop tests),\n"
+               "                     ff-loop-delay (LOOP delays run at once)\n"
                "  --max-ms T         stop after T ms of simulated time (default: ample)\n"
                "  --reg-read ID:ADDR[:N]       read N (1..64) registers of slave ID through\n"
                "                               control frames, while positions go on\n"
@@ -130,10 +141,17 @@ static const char *const valued[] = {"--profile",  "--scenario", "--freq",      
                                      "--frames",   "--seed",     "--image",     "--soc",
                                      "--vcd",      "--svg",      "--svg-frame", "--max-ms",
                                      "--firmware", "--reg-read", "--reg-write", "--command"};
+/* ... and those of the waveform output and the fast paths */
+static const char *const valued_out[] = {"--vcd-timescale", "--no-fast-path"};
 
 static int takes_value(const char *a) {
     for (size_t i = 0; i < sizeof(valued) / sizeof(valued[0]); i++) {
         if (!strcmp(a, valued[i])) {
+            return 1;
+        }
+    }
+    for (size_t i = 0; i < sizeof(valued_out) / sizeof(valued_out[0]); i++) {
+        if (!strcmp(a, valued_out[i])) {
             return 1;
         }
     }
@@ -229,11 +247,34 @@ static int set_option(struct options *o, const char *a, const char *v) {
         o->soc = v;
     } else if (!strcmp(a, "--vcd")) {
         o->vcd = v;
+    } else if (!strcmp(a, "--vcd-timescale")) {
+        static const char *const units[] = {"1ps", "10ps", "100ps", "1ns"};
+        static const int64_t ps[] = {1, 10, 100, 1000};
+        o->vcd_unit_ps = 0;
+        for (int i = 0; i < 4; i++) {
+            o->vcd_unit_ps = strcmp(v, units[i]) ? o->vcd_unit_ps : ps[i];
+        }
+        if (!o->vcd_unit_ps) {
+            return die("--vcd-timescale: '%s' is not 1ps, 10ps, 100ps or 1ns", v);
+        }
+    } else if (!strcmp(a, "--no-fast-path")) {
+        if (!strcmp(v, "ff")) {
+            o->no_ff = 1;
+        } else if (!strcmp(v, "ff-counted")) {
+            o->no_ff_counted = 1;
+        } else if (!strcmp(v, "ff-r31-bits")) {
+            o->no_ff_r31_bits = 1;
+        } else if (!strcmp(v, "ff-loop-delay")) {
+            o->no_ff_loop_delay = 1;
+        } else {
+            return die("--no-fast-path: '%s' is not ff, ff-counted, ff-r31-bits or ff-loop-delay",
+                       v);
+        }
     } else if (!strcmp(a, "--svg")) {
         o->svg = v;
     } else if (!strcmp(a, "--svg-frame")) {
-        if (parse_u64(v, &o->svg_frame)) {
-            return die("--svg-frame: '%s' is not a frame number", v);
+        if (parse_u64(v, &o->svg_frame) || o->svg_frame == 0) {
+            return die("--svg-frame: '%s' is not a frame number (1 is the first)", v);
         }
     } else if (!strcmp(a, "--max-ms")) {
         if (parse_double(v, &o->max_ms) || o->max_ms <= 0 || o->max_ms > MAX_SIM_MS) {
@@ -251,7 +292,8 @@ static int parse_args(int argc, char **argv, struct options *o) {
                           .cable_m = -1,
                           .frames = 100,
                           .soc = "am335x",
-                          .svg_frame = 1};
+                          .vcd_unit_ps = 1000,
+                          .svg_frame = 2};
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
@@ -292,6 +334,10 @@ static int build_config(const struct options *o, struct bench_config *cfg) {
     if (o->seed_set) {
         cfg->link.seed = o->seed;
     }
+    cfg->pru.fast_forward = !o->no_ff;
+    cfg->pru.ff_counted = !o->no_ff_counted;
+    cfg->pru.ff_r31_bits = !o->no_ff_r31_bits;
+    cfg->pru.ff_loop_delay = !o->no_ff_loop_delay;
     return 0;
 }
 
@@ -398,7 +444,7 @@ static int run(const struct options *o) {
     }
     if (bench_start_image(b, img.words, img.nwords * 4) != 0) {
         rc = die("image of %zu words does not fit the IRAM of %s", img.nwords, o->soc);
-    } else if (o->vcd && bench_open_vcd(b, o->vcd) != 0) {
+    } else if (o->vcd && bench_open_vcd(b, o->vcd, o->vcd_unit_ps) != 0) {
         rc = die("cannot write '%s'", o->vcd);
     }
     struct fw_check fc;
@@ -415,8 +461,11 @@ static int run(const struct options *o) {
         bench_free(b);
         return rc;
     }
-    if (o->svg) {
-        bench_capture_frame(b, o->svg_frame);
+    if (o->svg) { /* the slave numbers frames from 0 */
+        bench_capture_frame(b, o->svg_frame - 1);
+        if (fw_mode) {
+            fw_check_watch(&fc, o->svg_frame - 1);
+        }
     }
     /* ample time: every frame at its longest, twice, plus start-up; never
      * beyond MAX_SIM_MS (the message then says how many frames ran) */

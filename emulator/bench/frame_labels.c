@@ -67,12 +67,12 @@ static void slave_bits(struct label_list *L, const biss_slave_cfg *s) {
     numbered_bits(L, "C", biss_crc_width(s->crc_poly));
 }
 
-size_t frame_labels(const link_model *l, uint64_t k, waveform *ma_slave, struct svg_label *out,
-                    size_t max) {
+size_t frame_labels(const link_model *l, const biss_frame_record *br, const ssi_frame_record *sr,
+                    waveform *ma_slave, struct svg_label *out, size_t max) {
     sim_ps t[FRAME_LABELS_MAX];
     struct label_list L = {out, 0, max, t, 0, 0};
     if (l->sc.protocol == SCENARIO_SSI) {
-        const ssi_frame_record *r = ssi_slave_record(&l->ssi, k);
+        const ssi_frame_record *r = sr;
         if (r) {
             L.nt = bit_starts(ma_slave, r->start_ps, r->end_ps, l->sc.ssi.out_delay_ps, t,
                               FRAME_LABELS_MAX);
@@ -80,7 +80,7 @@ size_t frame_labels(const link_model *l, uint64_t k, waveform *ma_slave, struct 
         }
         return L.n;
     }
-    const biss_frame_record *r = biss_slave_record(&l->biss, k);
+    const biss_frame_record *r = br;
     if (!r || !r->started) {
         return 0;
     }

@@ -12,9 +12,10 @@
 
 #define FRAME_LABELS_MAX 700
 
-/* Fills out[] from frame k's record and the MA edges at the slave (ma_slave
- * must cover the frame). Returns the number of labels. */
-size_t frame_labels(const link_model *l, uint64_t k, waveform *ma_slave, struct svg_label *out,
-                    size_t max);
+/* Fills out[] from a frame's record (br for a BiSS-C chain, sr for an SSI
+ * encoder; the one l's protocol names is used) and the MA edges at the
+ * slave (ma_slave must cover the frame). Returns the number of labels. */
+size_t frame_labels(const link_model *l, const biss_frame_record *br, const ssi_frame_record *sr,
+                    waveform *ma_slave, struct svg_label *out, size_t max);
 
 #endif

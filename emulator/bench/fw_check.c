@@ -128,16 +128,44 @@ static void judge_refused(struct fw_check *fc, const uint8_t *res) {
     fc->ack_jump_good++;
 }
 
+/* A result buffer as struct fw_frame. */
+static void keep(struct fw_frame *f, const uint8_t *res) {
+    uint16_t u16;
+    f->seen = 1;
+    memcpy(&f->frame, res + BISS_R_FRAME, 4);
+    memcpy(&f->flags, res + BISS_R_FLAGS, 4);
+    memcpy(&f->timestamp, res + BISS_R_TIMESTAMP, 4);
+    memcpy(&u16, res + BISS_R_DELAY_RAW, 2);
+    f->delay_raw = u16;
+    memcpy(&u16, res + BISS_R_DELAY_AVG, 2);
+    f->delay_avg = u16;
+    memcpy(&u16, res + BISS_R_HALF, 2);
+    f->half = u16;
+    f->sample_point = res[BISS_R_SAMPLE_POINT];
+    f->lag = res[BISS_R_LAG_PERIODS];
+    f->nslaves = res[BISS_R_NSLAVES];
+    for (unsigned i = 0; i < f->nslaves && i < BISS_MAX_SLAVES; i++) {
+        f->data[i] = result_word(res, i, &f->status[i]);
+    }
+}
+
 static void on_publish(void *ctx, uint32_t addr) {
     struct fw_check *fc = ctx;
     (void)addr;
-    if (fc->frames >= fc->limit) {
+    bool watched = fc->watch != UINT64_MAX && bench_current_frame(fc->b) == fc->watch;
+    if (fc->frames >= fc->limit && !watched) {
         return;
     }
     uint32_t buf;
     uint8_t res[BISS_RES_SIZE];
     read_dram(fc, BISS_ST_BUF, &buf, 4);
     read_dram(fc, BISS_RES0 + (buf & 1) * BISS_RES_SIZE, res, sizeof res);
+    if (watched) {
+        keep(&fc->watched, res);
+    }
+    if (fc->frames >= fc->limit) {
+        return;
+    }
     uint32_t flags;
     uint16_t u16;
     memcpy(&flags, res + BISS_R_FLAGS, 4);
@@ -182,12 +210,22 @@ void fw_check_attach(struct fw_check *fc, struct bench *b) {
     memset(fc, 0, sizeof(*fc));
     fc->b = b;
     fc->limit = UINT64_MAX;
+    fc->watch = UINT64_MAX;
     pru_set_store_watch(bench_core(b), BISS_ST_SEQ, on_publish, fc);
+}
+
+void fw_check_watch(struct fw_check *fc, uint64_t k) {
+    fc->watch = k;
+    fc->watched.seen = 0;
 }
 
 void fw_check_restart(struct fw_check *fc, uint64_t limit) {
     struct bench *b = fc->b;
+    uint64_t watch = fc->watch;
+    struct fw_frame watched = fc->watched;
     memset(fc, 0, sizeof(*fc));
     fc->b = b;
     fc->limit = limit;
+    fc->watch = watch;
+    fc->watched = watched;
 }

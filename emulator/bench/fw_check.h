@@ -16,6 +16,15 @@
 
 #include <stdint.h>
 
+/* One publication as the firmware wrote it. */
+struct fw_frame {
+    int seen; /* 0: not published (yet) */
+    uint32_t frame, flags, timestamp;
+    unsigned delay_raw, delay_avg, sample_point, lag, half, nslaves;
+    uint64_t data[8];
+    uint32_t status[8];
+};
+
 struct fw_check {
     struct bench *b;
     uint64_t publications; /* every publication */
@@ -37,12 +46,19 @@ struct fw_check {
     uint64_t sent[8];              /* and the position the encoder sent in it */
     uint64_t first_mismatch_frame; /* publication number, 0 none */
     uint64_t limit;                /* valid frames to check; later publications are ignored */
+    uint64_t watch;                /* the slave's number of a frame to keep, UINT64_MAX none */
+    struct fw_frame watched;       /* what the firmware published for it */
 };
 
 /* Starts checking the bench's publications from now on (no limit). */
 void fw_check_attach(struct fw_check *fc, struct bench *b);
 
-/* Starts counting afresh, checking at most `limit` more valid frames. */
+/* Keeps the publication of the frame the slave numbers k (from 0) in
+ * fc->watched, whatever the limit. */
+void fw_check_watch(struct fw_check *fc, uint64_t k);
+
+/* Starts counting afresh, checking at most `limit` more valid frames (the
+ * watched frame stays). */
 void fw_check_restart(struct fw_check *fc, uint64_t limit);
 
 /* A data word split as slave s lays it out: position (fill dropped), nE,

@@ -8,6 +8,7 @@
 #include <cjson/cJSON.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 static const char *stop_name(enum pru_stop why) {
     switch (why) {
@@ -162,6 +163,8 @@ void sim_print_json(const struct sim_result *r) {
     cJSON_AddNumberToObject(h, "max", (double)st->half_max_ps / PRU_PS_PER_CYCLE);
     cJSON_AddNumberToObject(j, "pru_cycles", (double)pru_cycles(bench_core(b)));
     cJSON_AddNumberToObject(j, "host_seconds", r->host_seconds);
+    /* loop iterations the core skipped rather than ran (same results) */
+    cJSON_AddNumberToObject(j, "skipped_iterations", (double)pru_ff_skipped(bench_core(b)));
     cJSON_AddItemToObject(j, "slaves", slaves_json(r));
     if (fw) {
         add_firmware(j, b, fw);
@@ -293,26 +296,143 @@ void sim_print_text(const struct sim_result *r) {
     }
 }
 
+/* Rising edges of w after t0 up to t1, at most max. */
+static size_t rises(waveform *w, sim_ps t0, sim_ps t1, sim_ps *out, size_t max) {
+    size_t n = 0;
+    for (sim_ps t = waveform_next_after(w, t0); t <= t1 && n < max; t = waveform_next_after(w, t)) {
+        if (waveform_level_at(w, t) == 1) {
+            out[n++] = t;
+        }
+    }
+    return n;
+}
+
+/* The firmware's side of the picture: where it sampled each bit at the
+ * master's SL and the line delay it measured, from what it published for
+ * this frame. A bit goes out on SL at the slave on the MA rise that clocks
+ * it; the firmware places that bit's edge at the master one measured round
+ * trip after the rise at the master pin (biss_shm.h, BISS_R_DELAY_AVG: the
+ * 4-frame average it samples by) and samples half a bit (H cycles) later,
+ * to 1/8 bit (BISS_R_SAMPLE_POINT). */
+struct svg_fw {
+    sim_ps marks[FRAME_LABELS_MAX];
+    size_t nmarks;
+    struct svg_arrow arrow;
+    int has_arrow;
+};
+
+static void firmware_marks(const struct sim_result *r, const struct svg_label *labels, size_t n,
+                           waveform *pins[4], sim_ps t0, sim_ps t1, sim_ps slave_start,
+                           struct svg_fw *out) {
+    const struct fw_frame *f = &r->fw->watched;
+    link_model *l = bench_link(r->b);
+    double rt_cycles =
+        ((double)f->delay_avg - BISS_DELAY_ZERO) * f->half / 4.0 - BISS_DELAY_ADJ_CYCLES;
+    sim_ps rt = (sim_ps)(rt_cycles * PRU_PS_PER_CYCLE);
+    sim_ps half = (sim_ps)f->half * PRU_PS_PER_CYCLE;
+    sim_ps out_delay =
+        l->sc.protocol == SCENARIO_SSI ? l->sc.ssi.out_delay_ps : l->sc.biss.out_delay_ps;
+    static sim_ps rm[FRAME_LABELS_MAX], rs[FRAME_LABELS_MAX];
+    size_t nm = rises(pins[0], t0, t1, rm, FRAME_LABELS_MAX);
+    size_t ns = rises(pins[2], slave_start, t1, rs, FRAME_LABELS_MAX);
+    out->nmarks = 0;
+    /* the MA rise of each named bit, by its place among the frame's rises */
+    for (size_t i = 0; i < n; i++) {
+        const char *txt = labels[i].text;
+        if (!strcmp(txt, "ACK") || !strcmp(txt, "timeout")) {
+            continue;
+        }
+        for (size_t j = 0; j < ns && j < nm; j++) {
+            if (rs[j] + out_delay == labels[i].t0) {
+                out->marks[out->nmarks++] = rm[j] + rt + half;
+                break;
+            }
+        }
+    }
+    /* the line delay: the ACK answers the second rise */
+    out->has_arrow = l->sc.protocol != SCENARIO_SSI && nm >= 2;
+    if (out->has_arrow) {
+        out->arrow.trace = 1;
+        out->arrow.t0 = rm[1];
+        out->arrow.t1 = rm[1] + rt;
+        snprintf(out->arrow.text, sizeof(out->arrow.text), "line delay %.1f ns (firmware)",
+                 rt_cycles * 5.0);
+    }
+}
+
+/* What the firmware read in the frame, one line per slave, and its flags. */
+static size_t firmware_notes(const struct sim_result *r, char (*notes)[160], size_t max) {
+    const struct fw_frame *f = &r->fw->watched;
+    const biss_chain_cfg *c = &bench_link(r->b)->sc.biss;
+    size_t n = 0;
+    snprintf(notes[n++], 160,
+             "firmware: frame %u, flags 0x%02x, line delay %.1f ns, sample point %u/8, lag %u, "
+             "timestamp %.3f us (IEP %u)",
+             f->frame, f->flags,
+             (((double)f->delay_avg - BISS_DELAY_ZERO) * f->half / 4.0 - BISS_DELAY_ADJ_CYCLES) *
+                 5.0,
+             f->sample_point, f->lag, f->timestamp * 5e-3, f->timestamp);
+    if (!(f->flags & BISS_RF_VALID)) {
+        snprintf(notes[n++], 160, "  no data in this frame (%s)",
+                 (f->flags & BISS_RF_TRAINING) ? "training frame" : "not valid");
+        return n;
+    }
+    if (bench_link(r->b)->sc.protocol == SCENARIO_SSI) {
+        snprintf(notes[n++], 160, "  encoder word read: %llu (0x%llx), as sent (binary or Gray)",
+                 (unsigned long long)f->data[0], (unsigned long long)f->data[0]);
+        return n;
+    }
+    for (unsigned i = 0; i < c->n && i < f->nslaves && n < max; i++) {
+        uint64_t pos;
+        int nE, nW;
+        fw_check_split(&c->s[i], f->data[i], &pos, &nE, &nW);
+        snprintf(notes[n++], 160, "  slave %u read: position %llu (0x%llx), nE %d, nW %d, CRC %s",
+                 i, (unsigned long long)pos, (unsigned long long)pos, nE, nW,
+                 (f->status[i] & BISS_RS_CRC_OK) ? "ok" : "WRONG");
+    }
+    return n;
+}
+
 int sim_write_svg(const struct sim_result *r, const char *path, uint64_t k, char *err,
                   size_t errlen) {
     waveform *pins[4];
     sim_ps t0, t1;
-    if (bench_capture_get(r->b, pins, &t0, &t1) != 0) {
+    const biss_frame_record *br;
+    const ssi_frame_record *sr;
+    bench_capture_record(r->b, &br, &sr);
+    if (bench_capture_get(r->b, pins, &t0, &t1) != 0 || (!br && !sr)) {
         snprintf(err, errlen, "--svg: frame %llu was not captured whole (run more frames?)",
                  (unsigned long long)k);
         return -1;
     }
-    struct svg_label labels[FRAME_LABELS_MAX];
-    size_t n = frame_labels(bench_link(r->b), k, pins[2], labels, FRAME_LABELS_MAX);
+    static struct svg_label labels[FRAME_LABELS_MAX];
+    link_model *l = bench_link(r->b);
+    size_t n = frame_labels(l, br, sr, pins[2], labels, FRAME_LABELS_MAX);
     static const char *const names[4] = {"MA master", "SL master", "MA slave", "SL slave"};
     struct svg_trace tr[4];
     for (int i = 0; i < 4; i++) {
-        tr[i] = (struct svg_trace){names[i], pins[i], i == 3 ? labels : NULL, i == 3 ? n : 0};
+        tr[i] =
+            (struct svg_trace){names[i], pins[i], i == 3 ? labels : NULL, i == 3 ? n : 0, NULL, 0};
     }
-    char title[160];
-    snprintf(title, sizeof(title), "%s, %.3g MHz, %.1f m: frame %llu", bench_link(r->b)->sc.profile,
-             r->freq_hz / 1e6, bench_link(r->b)->sc.ma_line.length_m, (unsigned long long)k);
-    if (svg_scope_write(path, title, tr, 4, t0, t1) != 0) {
+    char title[200];
+    snprintf(title, sizeof(title), "%s, %.3g MHz, %.1f m: frame %llu (frame 1 is the first)",
+             l->sc.profile, r->freq_hz / 1e6, l->sc.ma_line.length_m, (unsigned long long)k);
+    struct svg_view v = {title, tr, 4, NULL, 0, NULL, NULL, 0, t0, t1};
+    static struct svg_fw fw;
+    char notes[1 + BISS_MAX_SLAVES][160];
+    if (r->fw && r->fw->watched.seen) {
+        sim_ps slave_start = br ? br->start_ps : sr->start_ps;
+        firmware_marks(r, labels, n, pins, t0, t1, slave_start, &fw);
+        tr[1].marks = fw.marks;
+        tr[1].nmarks = fw.nmarks;
+        v.mark_legend = "where the firmware samples each bit at the master: MA rise + its "
+                        "measured line delay + half a bit";
+        v.arrows = fw.has_arrow ? &fw.arrow : NULL;
+        v.narrows = fw.has_arrow ? 1 : 0;
+        v.notes = notes;
+        v.nnotes = firmware_notes(r, notes, 1 + BISS_MAX_SLAVES);
+    }
+    if (svg_scope_write(path, &v) != 0) {
         snprintf(err, errlen, "cannot write '%s'", path);
         return -1;
     }

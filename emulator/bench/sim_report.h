@@ -21,7 +21,11 @@ struct sim_result {
 void sim_print_json(const struct sim_result *r);
 void sim_print_text(const struct sim_result *r);
 
-/* The SVG of captured frame k; returns 0 or -1 (message in err). */
+/* The SVG of the captured frame, numbered k as biss-sim and bissctl count
+ * frames (1 = the first frame, the training frame of a BiSS-C run): the
+ * pins, the bit names, and with the firmware what it published for the
+ * frame: its sample points, its measured line delay and the values it
+ * read. Returns 0 or -1 (message in err). */
 int sim_write_svg(const struct sim_result *r, const char *path, uint64_t k, char *err,
                   size_t errlen);
 

@@ -8,9 +8,43 @@
 #define ROW   70.0   /* height of one trace row */
 #define SWING 30.0   /* high-to-low distance in px */
 #define TOP   50.0
+#define NOTE  16.0 /* height of one line of notes */
 
 static double x_of(sim_ps t, sim_ps t0, sim_ps t1) {
     return LEFT + WIDTH * (double)(t - t0) / (double)(t1 - t0);
+}
+
+static double base_of(size_t trace) {
+    return TOP + ROW * (double)trace + SWING;
+}
+
+static void draw_labels(FILE *f, const struct svg_trace *tr, double base, sim_ps t0, sim_ps t1) {
+    for (size_t i = 0; i < tr->nlabels; i++) {
+        const struct svg_label *l = &tr->labels[i];
+        if (l->t1 < t0 || l->t0 > t1) {
+            continue;
+        }
+        double xa = x_of(l->t0 < t0 ? t0 : l->t0, t0, t1);
+        double xb = x_of(l->t1 > t1 ? t1 : l->t1, t0, t1);
+        fprintf(f, "<line class=\"tick\" x1=\"%.2f\" y1=\"%.1f\" x2=\"%.2f\" y2=\"%.1f\"/>\n", xa,
+                base + 4, xa, base + 12);
+        fprintf(f, "<text x=\"%.2f\" y=\"%.1f\" class=\"bit\">%s</text>\n", (xa + xb) / 2,
+                base + 22, l->text);
+    }
+}
+
+/* A short vertical line through the trace and a dot at its middle. */
+static void draw_marks(FILE *f, const struct svg_trace *tr, double base, sim_ps t0, sim_ps t1) {
+    for (size_t i = 0; i < tr->nmarks; i++) {
+        if (tr->marks[i] < t0 || tr->marks[i] > t1) {
+            continue;
+        }
+        double x = x_of(tr->marks[i], t0, t1);
+        fprintf(f, "<line class=\"mark\" x1=\"%.2f\" y1=\"%.1f\" x2=\"%.2f\" y2=\"%.1f\"/>\n", x,
+                base - SWING - 4, x, base + 4);
+        fprintf(f, "<circle class=\"mark\" cx=\"%.2f\" cy=\"%.1f\" r=\"2.5\"/>\n", x,
+                base - SWING / 2);
+    }
 }
 
 static void draw_trace(FILE *f, const struct svg_trace *tr, double base, sim_ps t0, sim_ps t1) {
@@ -28,18 +62,19 @@ static void draw_trace(FILE *f, const struct svg_trace *tr, double base, sim_ps 
         fprintf(f, " %.2f,%.1f", x, y);
     }
     fprintf(f, " %.2f,%.1f\"/>\n", LEFT + WIDTH, y);
-    for (size_t i = 0; i < tr->nlabels; i++) {
-        const struct svg_label *l = &tr->labels[i];
-        if (l->t1 < t0 || l->t0 > t1) {
-            continue;
-        }
-        double xa = x_of(l->t0 < t0 ? t0 : l->t0, t0, t1);
-        double xb = x_of(l->t1 > t1 ? t1 : l->t1, t0, t1);
-        fprintf(f, "<line class=\"tick\" x1=\"%.2f\" y1=\"%.1f\" x2=\"%.2f\" y2=\"%.1f\"/>\n", xa,
-                base + 4, xa, base + 12);
-        fprintf(f, "<text x=\"%.2f\" y=\"%.1f\" class=\"bit\">%s</text>\n", (xa + xb) / 2,
-                base + 22, l->text);
-    }
+    draw_labels(f, tr, base, t0, t1);
+    draw_marks(f, tr, base, t0, t1);
+}
+
+/* A double-headed arrow over the trace, its caption above it. */
+static void draw_arrow(FILE *f, const struct svg_arrow *a, sim_ps t0, sim_ps t1) {
+    double y = base_of(a->trace) - SWING - 8;
+    double xa = x_of(a->t0, t0, t1), xb = x_of(a->t1, t0, t1);
+    fprintf(f,
+            "<line class=\"arrow\" x1=\"%.2f\" y1=\"%.1f\" x2=\"%.2f\" y2=\"%.1f\" "
+            "marker-start=\"url(#head)\" marker-end=\"url(#head)\"/>\n",
+            xa, y, xb, y);
+    fprintf(f, "<text x=\"%.2f\" y=\"%.1f\" class=\"atext\">%s</text>\n", xb + 4, y + 4, a->text);
 }
 
 static void draw_axis(FILE *f, double y, sim_ps t0, sim_ps t1) {
@@ -62,29 +97,50 @@ static void draw_axis(FILE *f, double y, sim_ps t0, sim_ps t1) {
     }
 }
 
-int svg_scope_write(const char *path, const char *title, const struct svg_trace *traces,
-                    size_t ntraces, sim_ps t0, sim_ps t1) {
-    if (t1 <= t0) {
+static void draw_notes(FILE *f, const struct svg_view *v, double y) {
+    if (v->mark_legend) {
+        fprintf(f, "<circle class=\"mark\" cx=\"14\" cy=\"%.1f\" r=\"2.5\"/>\n", y - 4);
+        fprintf(f, "<text x=\"24\" y=\"%.1f\">%s</text>\n", y, v->mark_legend);
+        y += NOTE;
+    }
+    for (size_t i = 0; i < v->nnotes; i++, y += NOTE) {
+        fprintf(f, "<text x=\"8\" y=\"%.1f\" xml:space=\"preserve\">%s</text>\n", y, v->notes[i]);
+    }
+}
+
+int svg_scope_write(const char *path, const struct svg_view *v) {
+    if (v->t1 <= v->t0) {
         return -1;
     }
     FILE *f = fopen(path, "w");
     if (!f) {
         return -1;
     }
-    double height = TOP + ROW * (double)ntraces + 40;
+    double axis = TOP + ROW * (double)v->ntraces;
+    double notes_y = axis + 44;
+    double height = notes_y + NOTE * (double)(v->nnotes + (v->mark_legend ? 1 : 0)) + 10;
     fprintf(f,
             "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%.0f\" height=\"%.0f\" "
             "font-family=\"monospace\" font-size=\"12\">\n"
+            "<defs><marker id=\"head\" viewBox=\"0 0 10 10\" refX=\"10\" refY=\"5\" "
+            "markerWidth=\"7\" markerHeight=\"7\" orient=\"auto-start-reverse\">"
+            "<path d=\"M0,0 L10,5 L0,10 z\" fill=\"#c40\"/></marker></defs>\n"
             "<style>.wave{fill:none;stroke:#0a6;stroke-width:1.5}.grid{stroke:#ddd}"
             ".axis{stroke:#444}.tick{stroke:#888}.name{font-weight:bold}"
             ".bit{text-anchor:middle;font-size:10px}.time{text-anchor:middle;fill:#444}"
+            "line.mark{stroke:#d22;stroke-width:0.8}circle.mark{fill:#d22}"
+            ".arrow{stroke:#c40;stroke-width:1.2}.atext{fill:#c40}"
             "</style>\n<rect width=\"100%%\" height=\"100%%\" fill=\"white\"/>\n"
             "<text x=\"8\" y=\"20\" font-size=\"14\">%s</text>\n",
-            LEFT + WIDTH + 30, height, title);
-    draw_axis(f, TOP + ROW * (double)ntraces, t0, t1);
-    for (size_t i = 0; i < ntraces; i++) {
-        draw_trace(f, &traces[i], TOP + ROW * (double)i + SWING, t0, t1);
+            LEFT + WIDTH + 30, height, v->title);
+    draw_axis(f, axis, v->t0, v->t1);
+    for (size_t i = 0; i < v->ntraces; i++) {
+        draw_trace(f, &v->traces[i], base_of(i), v->t0, v->t1);
     }
+    for (size_t i = 0; i < v->narrows; i++) {
+        draw_arrow(f, &v->arrows[i], v->t0, v->t1);
+    }
+    draw_notes(f, v, notes_y);
     fprintf(f, "</svg>\n");
     int bad = ferror(f);
     bad |= fclose(f) != 0;

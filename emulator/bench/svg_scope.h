@@ -2,8 +2,10 @@
  * svg_scope.h - an oscilloscope-style SVG picture of digital traces.
  *
  * Draws each trace as a square wave over a time window, a time axis in
- * nanoseconds, and text labels under a chosen trace (e.g. the BiSS bit
- * names at the slave). Open the file in any browser.
+ * nanoseconds, text labels under a chosen trace (e.g. the BiSS bit names
+ * at the slave), marks at given instants on a trace (e.g. where the master
+ * sampled), arrows between two instants with a caption (e.g. a measured
+ * delay), and lines of notes under the plot. Open the file in any browser.
  */
 #ifndef SVG_SCOPE_H
 #define SVG_SCOPE_H
@@ -22,11 +24,30 @@ struct svg_trace {
     waveform *wave;
     const struct svg_label *labels; /* drawn under this trace, may be NULL */
     size_t nlabels;
+    const sim_ps *marks; /* instants marked on this trace, may be NULL */
+    size_t nmarks;
 };
 
-/* Writes the picture of [t0, t1]. Returns 0, or -1 if the file cannot be
- * written or the window is empty. */
-int svg_scope_write(const char *path, const char *title, const struct svg_trace *traces,
-                    size_t ntraces, sim_ps t0, sim_ps t1);
+struct svg_arrow {
+    size_t trace; /* drawn above this trace */
+    sim_ps t0, t1;
+    char text[64];
+};
+
+struct svg_view {
+    const char *title;
+    const struct svg_trace *traces;
+    size_t ntraces;
+    const struct svg_arrow *arrows;
+    size_t narrows;
+    const char *mark_legend; /* what the marks are, NULL if there are none */
+    char (*notes)[160];      /* lines of text under the plot */
+    size_t nnotes;
+    sim_ps t0, t1; /* the window */
+};
+
+/* Writes the picture. Returns 0, or -1 if the file cannot be written or
+ * the window is empty. */
+int svg_scope_write(const char *path, const struct svg_view *v);
 
 #endif

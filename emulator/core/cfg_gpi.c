@@ -154,7 +154,7 @@ uint32_t gpi_r31(struct pru_core *c, int64_t cycle) {
     }
     v |= intc_host_bits(c, cycle);
     if (ff_input_read(c))
-        ff_horizon(c, gpi_stable_until(c, cycle));
+        ff_horizon(c, gpi_bits_stable_until(c, cycle, c->ff.r31_mask));
     return v;
 }
 
@@ -172,24 +172,50 @@ static int64_t input_change_cycle(struct pru_core *c, int64_t cycle) {
     return cn > cycle ? cn : cycle + 1;
 }
 
-static int64_t shift_stable_until(struct pru_core *c, int64_t cycle) {
+/* Register bits 0..n where n is the highest shift-register bit in mask: a
+ * shift moves bit j-1 into j, so these stay as they are exactly when all
+ * of them equal the new sample. */
+static uint32_t low_bits(uint32_t mask) {
+    uint32_t m = mask & SHIFT_MASK;
+    while (m & (m + 1)) /* fill below the highest set bit */
+        m |= m >> 1 | m >> 2 | m >> 4 | m >> 8 | m >> 16;
+    return m;
+}
+
+/* First cycle at which a read may see an input change after `cycle`
+ * through the shift register: from the first edge whose sample (taken
+ * gpi_delay_ps before the edge) is at or after the change. (Rounding the
+ * change to a cycle first would miss an edge between the change and that
+ * cycle.) */
+static int64_t shift_sees_change(struct pru_core *c, int64_t cycle) {
+    if (!c->have_pins)
+        return CYCLE_NEVER;
+    if (!c->pins.next_input_change)
+        return cycle + 1;
+    int64_t delay = c->p.gpi_delay_ps;
+    int64_t t = cycle * PRU_PS_PER_CYCLE - delay;
+    int64_t tn = c->pins.next_input_change(c->pins.ctx, t < 0 ? 0 : t);
+    if (tn >= NEVER_PS)
+        return CYCLE_NEVER;
+    return cycle_of(edge_time(c, last_edge(c, tn + delay - 1) + 1));
+}
+
+static int64_t shift_stable_until(struct pru_core *c, int64_t cycle, uint32_t mask) {
     struct gpi_shift *s = &c->sh;
     gpi_sync(c, cycle);
     int64_t k = s->k_done;
     int64_t next_edge = cycle_of(edge_time(c, k + 1));
     uint32_t v = pins_inputs_at(c, cycle * PRU_PS_PER_CYCLE - c->p.gpi_delay_ps) & 1u;
-    bool fixed = s->reg == (v ? SHIFT_MASK : 0) && (s->sb || !v);
+    uint32_t low = low_bits(mask);
+    bool fixed = (s->reg & low) == (v ? low : 0);
+    if ((mask & 1u << 29) && !s->sb && v) /* SB is set by the next edge */
+        fixed = false;
     if (!fixed)
         return next_edge;
-    int64_t in = input_change_cycle(c, cycle);
-    if (in != CYCLE_NEVER) {
-        /* first edge whose sample can see the new level */
-        int64_t tin = in * PRU_PS_PER_CYCLE;
-        in = cycle_of(edge_time(c, last_edge(c, tin) + 1));
-        if (in < next_edge)
-            in = next_edge;
-    }
-    if (s->sb) {
+    int64_t in = shift_sees_change(c, cycle);
+    if (in < next_edge)
+        in = next_edge;
+    if (s->sb && (mask & 1u << 28)) {
         int64_t e = k + 1;
         if (!cnt16_high(s, k)) /* next pulse edge */
             e = s->cnt16_k + ((k - s->cnt16_k) / 16 + 1) * 16;
@@ -200,15 +226,19 @@ static int64_t shift_stable_until(struct pru_core *c, int64_t cycle) {
     return in;
 }
 
-int64_t gpi_stable_until(struct pru_core *c, int64_t cycle) {
-    int64_t h =
-        gpi_mode(c) == MODE_SHIFT ? shift_stable_until(c, cycle) : input_change_cycle(c, cycle);
-    if ((c->intc.ger & 1u) && (c->intc.hier & 3u)) { /* R31[31:30] can move */
+int64_t gpi_bits_stable_until(struct pru_core *c, int64_t cycle, uint32_t mask) {
+    int64_t h = gpi_mode(c) == MODE_SHIFT ? shift_stable_until(c, cycle, mask)
+                                          : input_change_cycle(c, cycle);
+    if ((mask & 3u << 30) && (c->intc.ger & 1u) && (c->intc.hier & 3u)) { /* R31[31:30] can move */
         int64_t hi = intc_next_change(c, cycle);
         if (hi < h)
             h = hi;
     }
     return h;
+}
+
+int64_t gpi_stable_until(struct pru_core *c, int64_t cycle) {
+    return gpi_bits_stable_until(c, cycle, ~0u);
 }
 
 int64_t gpi_next_cnt16(struct pru_core *c, int64_t cycle) {

@@ -22,6 +22,9 @@ void pru_params_default(struct pru_params *p) {
     p->shift_phase_ps = 0;
     p->shift_frac = PRU_FRAC_EXACT;
     p->fast_forward = 1;
+    p->ff_counted = 1;
+    p->ff_r31_bits = 1;
+    p->ff_loop_delay = 1;
 }
 
 static const struct {
@@ -91,6 +94,8 @@ struct pru_core *pru_core_new(enum pru_soc soc, const struct pru_params *params)
     }
     c->loop_end = NO_LOOP;
     c->ff.top = NO_LOOP;
+    for (unsigned i = 0; i < FF_BODIES; i++)
+        c->ff.body[i].top = 1; /* no body decoded yet */
     c->ff_on = c->p.fast_forward != 0;
     ctrl_reset(c);
     cfg_reset(c);

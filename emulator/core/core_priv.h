@@ -131,6 +131,19 @@ struct ext_window {
     uint8_t *mem;
 };
 
+/* A loop body as the fast-forward decoded it (ff.c), kept while IRAM
+ * holds the same words there. */
+#define FF_MAX_BODY 16u /* words; longer loops are not idle polls */
+#define FF_BODIES   8u  /* loop bodies kept (a firmware's period loops and its polls) */
+struct ff_body {
+    uint32_t top, pc; /* [top, pc], pc the closing branch; top > pc: none */
+    uint32_t words[FF_MAX_BODY];
+    uint32_t r31_mask; /* R31 bits it looks at */
+    int counter;       /* a counted poll's counter register, -1 if it is none */
+    uint32_t step;     /* ... added to it per iteration (mod 2^32) */
+    uint32_t end;      /* ... the value that ends the loop */
+};
+
 /* Fast-forward probe of an idle polling loop (ff.c). */
 struct ff_probe {
     uint32_t top; /* loop top, NO_LOOP when unarmed */
@@ -146,6 +159,8 @@ struct ff_probe {
     uint32_t regs[32];
     int carry;
     uint64_t skipped;
+    uint32_t r31_mask;              /* R31 bits the armed loop looks at (horizons of R31 reads) */
+    struct ff_body body[FF_BODIES]; /* by loop top modulo FF_BODIES */
 };
 
 struct pru_core {
@@ -223,6 +238,8 @@ void cfg_write(struct pru_core *c, uint32_t ofs, uint32_t val, uint32_t bmask, i
 void cfg_reset(struct pru_core *c);
 uint32_t gpi_r31(struct pru_core *c, int64_t cycle);
 int64_t gpi_stable_until(struct pru_core *c, int64_t cycle);
+/* The same for the R31 bits in mask only. */
+int64_t gpi_bits_stable_until(struct pru_core *c, int64_t cycle, uint32_t mask);
 void gpi_sync(struct pru_core *c, int64_t cycle);
 int64_t gpi_next_cnt16(struct pru_core *c, int64_t cycle);
 uint32_t pins_inputs_at(struct pru_core *c, int64_t t_ps);
@@ -244,6 +261,9 @@ int64_t intc_next_change(struct pru_core *c, int64_t cycle);
 
 /* ff.c */
 void ff_backward_branch(struct pru_core *c, uint32_t pc, uint32_t top, int64_t limit);
+/* Called when a LOOP instruction (ending before `limit`) has entered its
+ * loop: runs the iterations of a pure delay at once. */
+void ff_loop_entered(struct pru_core *c, int64_t limit);
 /* An input was read; true if its horizon is wanted (a probe is running). */
 static inline bool ff_input_read(struct pru_core *c) {
     if (c->ff.top == NO_LOOP)

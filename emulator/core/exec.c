@@ -231,6 +231,8 @@ static __attribute__((noinline)) void exec_one(struct pru_core *c, const struct 
         switch ((enum pd_kind)d->kind) {
         case K_LOOP:
             do_loop(c, d);
+            if (c->ff_on)
+                ff_loop_entered(c, limit);
             break;
         case K_LBBO:
             cost = exec_burst(c, d, true, false);

@@ -9,16 +9,174 @@
  * R30 change, R31 event, XOUT, LOOP, peripheral write), every later
  * iteration repeats it exactly until the horizon, so whole iterations are
  * skipped: cycles, instructions and STALL advance as if they had run.
+ *
+ * Two refinements, each with its own switch (pru_params):
+ * - ff_counted: a poll with a time-out counts a register down (or up) by a
+ *   constant and closes the loop with QBNE on it. When the body (decoded
+ *   from IRAM) uses that register nowhere else, iterations differ only in
+ *   it, so they are skipped up to the one before the counter would end the
+ *   loop (or wrap), with the counter advanced by as many steps.
+ * - ff_r31_bits: when the body looks at R31 only through QBBS/QBBC, the
+ *   horizon of its R31 reads covers only the bits it tests, so e.g. the
+ *   Cnt_16 pulses of a shift-mode input do not cut the skip short.
+ * And a third kind of skip (ff_loop_delay): a LOOP over one instruction
+ * that changes nothing (AND/OR of a register with itself, pasm's
+ * "mov rN, rN") is a delay of one cycle an iteration, run at once.
  */
 #include "core_priv.h"
+#include "pru_isa.h"
 
 #include <string.h>
 
-#define FF_MAX_BODY 16u /* words; longer loops are not idle polls */
+/* ---- the loop body, decoded ---- */
+
+/* Register operands an instruction of the formats a poll uses reads. */
+static bool reads_reg(const struct pru_insn *in, unsigned r) {
+    enum pru_fmt f = pru_optable[in->op].fmt;
+    if (f != PRU_FMT_ALU && f != PRU_FMT_QB && f != PRU_FMT_QBB)
+        return false;
+    return in->rs1 == r || (!in->io && in->rs2 == r);
+}
+
+/* The kinds of instruction the analyses below look into. */
+static bool poll_kind(const struct pru_insn *in) {
+    enum pru_fmt f = pru_optable[in->op].fmt;
+    return f == PRU_FMT_ALU || f == PRU_FMT_LDI || f == PRU_FMT_QB || f == PRU_FMT_QBA ||
+           f == PRU_FMT_QBB;
+}
+
+/* The bits of a register that an operand field selects. */
+static uint32_t field_bits(unsigned sel) {
+    static const uint32_t bits[8] = {0xffu,   0xff00u,   0xff0000u,   0xff000000u,
+                                     0xffffu, 0xffff00u, 0xffff0000u, 0xffffffffu};
+    return bits[sel & 7u];
+}
+
+/* The R31 bits the body looks at: the bit of QBBS/QBBC r31, n (immediate
+ * bit), the field of any other operand that reads R31 (e.g. and rX,
+ * r31.b0, mask); everything if an instruction is of a kind not looked
+ * into. */
+static uint32_t r31_mask(const struct pru_insn *in, uint32_t n) {
+    uint32_t mask = 0;
+    for (uint32_t i = 0; i < n; i++) {
+        const struct pru_insn *a = &in[i];
+        if (!poll_kind(a))
+            return ~0u;
+        enum pru_fmt f = pru_optable[a->op].fmt;
+        if (f == PRU_FMT_QBB && a->rs1 == 31 && a->io) {
+            /* the bit counts from the field's lowest; one past the field:
+             * the whole field, to be safe */
+            uint32_t fb = field_bits(a->rs1sel);
+            uint32_t bit = (a->imm & 31u) + (uint32_t)__builtin_ctz(fb);
+            mask |= bit < 32 && (fb >> bit & 1u) ? 1u << bit : fb;
+            continue;
+        }
+        if (!reads_reg(a, 31))
+            continue;
+        if (a->rs1 == 31)
+            mask |= field_bits(a->rs1sel);
+        if (!a->io && a->rs2 == 31)
+            mask |= field_bits(a->rs2sel);
+    }
+    return mask;
+}
+
+/* A counted poll (see the top): the closing branch in[n-1] is QBNE top,
+ * x, imm; one ADD/SUB x, x, imm steps x; no other instruction reads or
+ * writes x, and every one is of a kind a poll uses. Sets b->counter (x, or
+ * -1 if the body is no such loop), b->step and b->end. */
+static void counted(struct ff_body *b, const struct pru_insn *in, uint32_t n) {
+    b->counter = -1;
+    const struct pru_insn *br = &in[n - 1];
+    if (br->op != PRU_OP_QBNE || br->rs1sel != PRU_SEL_R || !br->io || br->rs1 > 30)
+        return;
+    unsigned x = br->rs1;
+    int updates = 0;
+    for (uint32_t i = 0; i + 1 < n; i++) {
+        const struct pru_insn *a = &in[i];
+        enum pru_fmt f = pru_optable[a->op].fmt;
+        if (!poll_kind(a))
+            return;
+        if ((f == PRU_FMT_ALU || f == PRU_FMT_LDI) && a->rd == x) {
+            if ((a->op != PRU_OP_ADD && a->op != PRU_OP_SUB) || a->rdsel != PRU_SEL_R ||
+                a->rs1 != x || a->rs1sel != PRU_SEL_R || !a->io || a->imm == 0)
+                return;
+            b->step = a->op == PRU_OP_SUB ? 0u - a->imm : a->imm;
+            updates++;
+        } else if (reads_reg(a, x)) {
+            return;
+        }
+    }
+    if (updates == 1) {
+        b->counter = (int)x;
+        b->end = br->imm;
+    }
+}
+
+/* The body [top, pc] analysed, from the cache while IRAM is unchanged;
+ * NULL if it does not decode. */
+static const struct ff_body *body(struct pru_core *c, uint32_t top, uint32_t pc) {
+    struct ff_body *b = &c->ff.body[top % FF_BODIES];
+    uint32_t n = pc - top + 1;
+    if (pc >= c->iram_words || n > FF_MAX_BODY)
+        return NULL;
+    const uint32_t *w = &c->iram0[top];
+    if (b->top == top && b->pc == pc && memcmp(b->words, w, n * 4) == 0)
+        return b;
+    struct pru_insn in[FF_MAX_BODY];
+    for (uint32_t i = 0; i < n; i++) {
+        if (pru_decode(w[i], &in[i]) != 0) {
+            b->top = 1;
+            b->pc = 0; /* none */
+            return NULL;
+        }
+    }
+    memcpy(b->words, w, n * 4);
+    b->top = top;
+    b->pc = pc;
+    b->r31_mask = r31_mask(in, n);
+    counted(b, in, n);
+    return b;
+}
+
+/* Iterations a counted poll may still skip: counter x moved by `step`
+ * this iteration. The values after the next n steps must all differ from
+ * the end value and not wrap, nor may this iteration's step have wrapped
+ * (the carry of ADD/SUB stays what it left). -1 if the loop is no counted
+ * poll with this counter and step. */
+static int64_t counted_room(struct pru_core *c, uint32_t top, uint32_t pc, int x, uint32_t step) {
+    const struct ff_body *b = body(c, top, pc);
+    if (!b || b->counter != x || b->step != step)
+        return -1;
+    bool down = step > 0x7fffffffu;
+    uint32_t k = down ? 0u - step : step;
+    uint32_t v = c->r[x], before = v - step;
+    if (down ? before < k : before > 0xffffffffu - k)
+        return -1;
+    if (down) {
+        uint32_t lo = b->end < v ? b->end + 1 : 0;
+        return (int64_t)((v - lo) / k);
+    }
+    uint32_t hi = b->end > v ? b->end - 1 : 0xffffffffu;
+    return (int64_t)((hi - v) / k);
+}
+
+/* The one register (r0..r30) that differs from the snapshot, or -1. */
+static int one_changed(const struct pru_core *c) {
+    int x = -1;
+    for (unsigned i = 0; i < 31; i++) {
+        if (c->r[i] != c->ff.regs[i]) {
+            if (x >= 0)
+                return -1;
+            x = (int)i;
+        }
+    }
+    return x;
+}
 
 /* A probe snapshot is taken only when the last iteration read an input
  * (pure countdown loops never pay for it) and no backoff is pending. */
-static void arm(struct pru_core *c, uint32_t top, int64_t now, uint64_t insns) {
+static void arm(struct pru_core *c, uint32_t top, uint32_t pc, int64_t now, uint64_t insns) {
     struct ff_probe *f = &c->ff;
     if (f->top != top)
         f->fails = f->backoff = 0;
@@ -37,12 +195,24 @@ static void arm(struct pru_core *c, uint32_t top, int64_t now, uint64_t insns) {
     f->horizon = CYCLE_NEVER;
     memcpy(f->regs, c->r, sizeof f->regs);
     f->carry = c->carry;
+    const struct ff_body *b = c->p.ff_r31_bits ? body(c, top, pc) : NULL;
+    f->r31_mask = b ? b->r31_mask : ~0u;
 }
 
-static bool same_state(const struct pru_core *c) {
+/* Iterations that may still be skipped when this one repeats the last,
+ * or -1 if it does not: unlimited with the same registers, a counter's
+ * room in a counted poll. *x is the counter (-1 none), *step its step. */
+static int64_t repeat_room(struct pru_core *c, uint32_t top, uint32_t pc, int *x, uint32_t *step) {
     const struct ff_probe *f = &c->ff;
-    return f->have_snap && !f->dirty && f->carry == c->carry &&
-           memcmp(f->regs, c->r, 31 * sizeof c->r[0]) == 0;
+    *x = -1;
+    if (!f->have_snap || f->dirty || f->carry != c->carry)
+        return -1;
+    if (memcmp(f->regs, c->r, 31 * sizeof c->r[0]) == 0)
+        return INT64_MAX;
+    if (!c->p.ff_counted || (*x = one_changed(c)) < 0)
+        return -1;
+    *step = c->r[*x] - f->regs[*x];
+    return counted_room(c, top, pc, *x, *step);
 }
 
 /* Called by a taken branch from pc back to top, before its cycle is counted. */
@@ -54,13 +224,17 @@ void ff_backward_branch(struct pru_core *c, uint32_t pc, uint32_t top, int64_t l
     if (pc - top >= FF_MAX_BODY) {
         f->top = NO_LOOP;
         f->have_snap = false;
+        f->r31_mask = ~0u;
         return;
     }
-    if (f->top == top && f->have_snap && !same_state(c)) {
+    int x = -1;
+    uint32_t step = 0;
+    int64_t room = f->top == top && f->have_snap ? repeat_room(c, top, pc, &x, &step) : -2;
+    if (room == -1) {
         /* a busy loop, not an idle one: probe it less and less often */
         f->fails = f->fails < 10 ? f->fails + 1 : 10;
         f->backoff = 1u << f->fails;
-    } else if (f->top == top && same_state(c)) {
+    } else if (room >= 0) {
         f->fails = 0;
         int64_t len = now - f->cycle0;
         int64_t n = (limit - now) / len;
@@ -69,16 +243,48 @@ void ff_backward_branch(struct pru_core *c, uint32_t pc, uint32_t top, int64_t l
             if (hn < n)
                 n = hn;
         }
+        if (room < n)
+            n = room;
         if (n > 0) {
             uint64_t di = (uint64_t)n * (insns - f->insn0);
             c->cycle += n * len;
             c->insns += di;
             c->stall_total += n * (c->stall_total - f->stall0);
+            if (x >= 0)
+                c->r[x] += (uint32_t)n * step;
             f->skipped += (uint64_t)n;
             now += n * len;
             insns += di;
         }
         f->saw_input = true; /* the same reads: keep probing */
     }
-    arm(c, top, now, insns);
+    arm(c, top, pc, now, insns);
+}
+
+/* A delay: AND/OR of a whole register (not R30/R31) with itself into it. */
+static bool is_delay(uint32_t word) {
+    struct pru_insn in;
+    if (pru_decode(word, &in) != 0 || (in.op != PRU_OP_AND && in.op != PRU_OP_OR) || in.io)
+        return false;
+    return in.rd == in.rs1 && in.rs1 == in.rs2 && in.rd < 30 && in.rdsel == in.rs1sel &&
+           in.rs1sel == in.rs2sel;
+}
+
+void ff_loop_entered(struct pru_core *c, int64_t limit) {
+    if (!c->p.ff_loop_delay || c->loop_end != c->loop_top + 1 || c->pc != c->loop_top ||
+        c->loop_top >= c->iram_words || !is_delay(c->iram0[c->loop_top]))
+        return;
+    /* the LOOP instruction's own cycle is counted after this */
+    int64_t room = limit - (c->cycle + 1);
+    if (room <= 0)
+        return;
+    int64_t n = room < (int64_t)c->loop_count ? room : (int64_t)c->loop_count;
+    c->cycle += n;
+    c->insns += (uint64_t)n;
+    c->ff.skipped += (uint64_t)n;
+    c->loop_count -= (uint32_t)n;
+    if (c->loop_count == 0) {
+        c->pc = c->loop_end;
+        c->loop_end = NO_LOOP;
+    }
 }

@@ -61,6 +61,18 @@ struct pru_params {
     enum pru_frac_mode shift_frac;
     /* Skip idle polling loops in whole iterations (results are identical). */
     int fast_forward;
+    /* With fast_forward, also skip counted polls: a loop whose only changing
+     * register is a counter stepped by a constant and closed by QBNE on it
+     * (a poll with a time-out), up to the iteration before it would end. */
+    int ff_counted;
+    /* With fast_forward, a loop that looks at R31 only through QBBS/QBBC is
+     * skipped until one of the bits it tests may change (not every R31 bit:
+     * e.g. Cnt_16 pulses). */
+    int ff_r31_bits;
+    /* With fast_forward, a LOOP whose body is one instruction that changes
+     * nothing (AND/OR of a register with itself: a delay) runs its
+     * iterations at once. */
+    int ff_loop_delay;
 };
 
 void pru_params_default(struct pru_params *p);

@@ -74,7 +74,8 @@ for profile, firmware in runs:
         scale, data = read_vcd(vcd)
         check(scale <= 1000, "%s: timescale 1 ns or finer" % name)
         names = {n for (scope, n) in data if scope == "bench"}
-        check(names == {"MA_master", "SL_master", "MA_slave", "SL_slave"}, "%s: wires %s" % (name, names))
+        check(names == {"MA_master", "SL_master", "MA_slave", "SL_slave", "frame"},
+              "%s: wires %s" % (name, names))
         ma = [c for (s, n), c in data.items() if n == "MA_master"][0]
         falls = sum(1 for t, v in ma if v == "0")
         check(falls >= 30 * 10, "%s: MA clocked (%d falling edges)" % (name, falls))
@@ -94,6 +95,15 @@ svg = os.path.join(tmp, "frame.svg")
 r = run("--frames", "5", "--svg", svg, "--svg-frame", "2")
 check(r.returncode == 0 and open(svg).read().startswith("<svg"), "SVG written")
 check("CDS" in open(svg).read(), "SVG names the bits")
+# a frame long gone from the slave's ring of records by the end of the run
+# keeps its bit names, and shows what the firmware did with it
+r = run("--frames", "300", "--svg", svg, "--svg-frame", "3")
+text = open(svg).read() if r.returncode == 0 else ""
+check(">CDS<" in text and ">C0<" in text and ">nE<" in text, "SVG of frame 3 of 300 names the bits")
+check(text.count('<circle class="mark"') == 1 + 2 + 12 + 2 + 6,
+      "SVG: one sample mark per bit read (S, CDS, 12 + 2 + 6) and the legend's")
+check("line delay" in text and 'marker-end="url(#head)"' in text, "SVG: the line delay arrow")
+check("firmware: frame 3," in text and "slave 0 read: position" in text, "SVG: the values read")
 
 # bad input: a clear message and a non-zero exit
 for args, words in [(["--profile", "nope"], "unknown profile"),
@@ -101,6 +111,8 @@ for args, words in [(["--profile", "nope"], "unknown profile"),
                     (["--frames", "-5"], "--frames"),
                     (["--bogus"], "unknown option"),
                     (["--soc", "am999"], "unknown SoC"),
+                    (["--vcd-timescale", "2ns"], "--vcd-timescale"),
+                    (["--svg-frame", "0"], "--svg-frame"),
                     (["--image", "/nonexistent.bin"], "cannot read"),
                     (["--scenario", "/nonexistent.json"], "nonexistent")]:
     r = run(*args)

@@ -79,7 +79,7 @@ START_TEST(test_round_trip_on_long_cable) {
     bench_config_default(&cfg);
     scenario_set_cable(&cfg.link, 100.0);
     struct bench *b = bench_with_image(&cfg, &img);
-    ck_assert_int_eq(bench_open_vcd(b, "bench_round_trip.vcd"), 0);
+    ck_assert_int_eq(bench_open_vcd(b, "bench_round_trip.vcd", 1), 0);
     bench_run_until(b, 200 * SIM_PS_PER_US);
     ck_assert_int_eq(bench_close_vcd(b), 0);
     const biss_frame_record *r = biss_slave_record(&bench_link(b)->biss, 0);

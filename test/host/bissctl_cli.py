@@ -50,11 +50,13 @@ lines = r.stdout.splitlines()
 check(len(lines) == 5, "read -n 5 printed %d lines" % len(lines))
 frames = [int(m.group(1)) for m in (re.match(r"frame=(\d+) ", l) for l in lines) if m]
 check(frames == list(range(frames[0], frames[0] + 5)) if frames else False, "frames %r" % frames)
+# frames count from 1, as biss-sim's --svg-frame: the first is the training frame
+check(lines[0].startswith("frame=1 ") and " training " in lines[0], "first frame: %r" % lines[0])
 data = [l for l in lines if " valid " in l]
 check(len(data) >= 4, "at least 4 data frames: %r" % lines)
 for l in data:
     check("s0.crc=ok" in l and "s0.nE=ok" in l and "s0.nW=ok" in l and "delay_ns=" in l
-          and re.search(r" sample_point=[0-7] lag=\d+ timestamp=\d+$", l), l)
+          and re.search(r" sample_point=[0-7] lag=\d+ timestamp=\d+ \(IEP counts of 5 ns: \d+\.\d{3} us\)$", l), l)
 
 # an explicit slave layout (the profile's own: 14 data bits, CRC6 0x43, nE/nW at 0)
 r = run("--freq", "10000000", "--slave", "14,6,0x43,0,0", "read", "-n", "3")

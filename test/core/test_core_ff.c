@@ -1,0 +1,221 @@
+/*
+ * Check suite: the fast-forward's skips (emulator/core/ff.c, TIMING.md
+ * "Fast-forward") give exactly the cycles, instructions and registers of
+ * running every instruction: counted polls, polls on one R31 bit of a
+ * shift-mode input, LOOP delays; and loops that look alike but are not
+ * skippable run as they are.
+ */
+#include "check_run.h"
+#include "core_test_util.h"
+
+#include <stdint.h>
+
+#define BASE   0x00000000u /* AM335x PRU0 local view */
+#define GPCFG0 (BASE + 0x26008u)
+
+/* One input edge: SL high from 0, low from t_fall (INT64_MAX: never). */
+struct edge_in {
+    int64_t t_fall;
+};
+
+static uint32_t in_at(void *ctx, int64_t t) {
+    const struct edge_in *e = ctx;
+    return t < e->t_fall ? 1u : 0u;
+}
+
+static int64_t in_next(void *ctx, int64_t t) {
+    const struct edge_in *e = ctx;
+    return t < e->t_fall ? e->t_fall : INT64_MAX;
+}
+
+enum path { ALL, NO_COUNTED, NO_R31_BITS, NO_LOOP_DELAY, NONE, PATHS };
+
+static struct pru_core *ff_core(enum path p, struct edge_in *in) {
+    struct pru_params prm;
+    pru_params_default(&prm);
+    prm.fast_forward = p != NONE;
+    prm.ff_counted = p != NO_COUNTED;
+    prm.ff_r31_bits = p != NO_R31_BITS;
+    prm.ff_loop_delay = p != NO_LOOP_DELAY;
+    struct pru_core *c = pru_core_new(PRU_SOC_AM335X, &prm);
+    ck_assert_ptr_nonnull(c);
+    if (in) {
+        struct pru_pins pins = {in, in_at, in_next, NULL};
+        pru_set_pins(c, &pins);
+    }
+    return c;
+}
+
+struct outcome {
+    int64_t cycles;
+    uint64_t insns, skipped;
+    uint32_t r2;
+};
+
+/* Shift mode at 80 MHz (the firmware's 8x clock at 10 MHz: 2.5 cycles a
+ * sample, so Cnt_16 pulses every 40 cycles once SB is set), then a poll
+ * with a time-out on R31 bit 0 low: qbbc DONE, r31, 0; sub r2, r2, 1;
+ * qbne POLL, r2, 0 (once bit 0 shows the high level); or with `field`, on
+ * the newest 4 samples all low through and r1.b3, r31.b0, 15 (as the
+ * firmware waits for SL idle). */
+static struct outcome counted_poll(enum path p, int64_t t_fall, unsigned count, int field) {
+    struct edge_in in = {t_fall};
+    struct pru_core *c = ff_core(p, &in);
+    uint32_t prog[16];
+    unsigned n = 0;
+    prog[n++] = ldi(R(1), 2u | 3u << 3);
+    prog[n++] = burst(PRU_OP_SBCO, 4 * 1, 4, 8, 4); /* GPCFG0 */
+    prog[n++] = ldi(R(2), count);
+    prog[n++] = qbi(PRU_OP_QBBC, 0, R(31), 0); /* until the high level is sampled */
+    if (field) { /* the newest 4 samples low: and r1.b3, r31.b0, 15; qbeq DONE, r1.b3, 0 */
+        prog[n++] = alui(PRU_OP_AND, B3(1), B0(31), 15);
+        prog[n++] = qbi(PRU_OP_QBEQ, 3, B3(1), 0);
+        prog[n++] = alui(PRU_OP_SUB, R(2), R(2), 1);
+        prog[n++] = qbi(PRU_OP_QBNE, -3, R(2), 0);
+    } else {
+        prog[n++] = qbi(PRU_OP_QBBC, 3, R(31), 0);
+        prog[n++] = alui(PRU_OP_SUB, R(2), R(2), 1);
+        prog[n++] = qbi(PRU_OP_QBNE, -2, R(2), 0);
+    }
+    prog[n++] = halt();
+    pru_load_image(c, prog, n * 4);
+    pru_start(c);
+    ck_assert_int_eq(pru_run(c, 10000000), PRU_STOP_HALT);
+    struct outcome o = {pru_cycles(c), pru_instructions(c), pru_ff_skipped(c), pru_reg(c, 2)};
+    pru_core_free(c);
+    return o;
+}
+
+static void same(const struct outcome *a, const struct outcome *b, const char *what, int64_t t) {
+    ck_assert_msg(a->cycles == b->cycles && a->insns == b->insns && a->r2 == b->r2,
+                  "%s, fall at %lld ps: %lld cycles %llu insns r2=%u vs %lld %llu %u", what,
+                  (long long)t, (long long)a->cycles, (unsigned long long)a->insns, a->r2,
+                  (long long)b->cycles, (unsigned long long)b->insns, b->r2);
+}
+
+/* The fall at every quarter ns over two shift periods: the poll ends on the
+ * same cycle with every fast path, without each, and without any (a shift
+ * edge between the fall and the next cycle boundary must not be missed). */
+START_TEST(counted_poll_exact) {
+    for (int field = 0; field < 2; field++) {
+        for (int64_t t = 20000000; t < 20000000 + 25000; t += 250) {
+            struct outcome ref = counted_poll(NONE, t, 60000, field);
+            ck_assert_uint_eq(ref.skipped, 0);
+            for (enum path p = ALL; p < NONE; p++) {
+                struct outcome o = counted_poll(p, t, 60000, field);
+                same(&o, &ref, field ? "field poll, a fast path off" : "fast path off", t);
+            }
+            struct outcome all = counted_poll(ALL, t, 60000, field);
+            struct outcome no_counted = counted_poll(NO_COUNTED, t, 60000, field);
+            struct outcome no_bits = counted_poll(NO_R31_BITS, t, 60000, field);
+            /* 20 us of polling at 3 or 4 cycles a turn: nearly all skipped */
+            ck_assert_uint_gt(all.skipped, 900);
+            ck_assert_uint_eq(no_counted.skipped, 0); /* r2 changes every turn */
+            ck_assert_uint_lt(no_bits.skipped, all.skipped);
+        }
+    }
+}
+END_TEST
+
+/* No fall: the counter ends the poll, on the same cycle with r2 = 0. */
+START_TEST(counted_poll_times_out) {
+    struct outcome ref = counted_poll(NONE, INT64_MAX, 5000, 0);
+    struct outcome all = counted_poll(ALL, INT64_MAX, 5000, 0);
+    same(&all, &ref, "time-out", INT64_MAX);
+    ck_assert_uint_eq(all.r2, 0);
+    ck_assert_uint_gt(all.skipped, 4900);
+}
+END_TEST
+
+/* A counter the body also reads (add r3, r3, r2) is no counted poll: the
+ * loop runs as it is, and r3 shows every turn. */
+START_TEST(counter_read_elsewhere_runs) {
+    uint32_t r3[2];
+    for (int ff = 0; ff < 2; ff++) {
+        struct edge_in in = {INT64_MAX};
+        struct pru_core *c = ff_core(ff ? ALL : NONE, &in);
+        uint32_t prog[8];
+        unsigned n = 0;
+        prog[n++] = ldi(R(2), 1000);
+        prog[n++] = qbi(PRU_OP_QBBC, 4, R(31), 0);
+        prog[n++] = alu(PRU_OP_ADD, R(3), R(3), R(2));
+        prog[n++] = alui(PRU_OP_SUB, R(2), R(2), 1);
+        prog[n++] = qbi(PRU_OP_QBNE, -3, R(2), 0);
+        prog[n++] = halt();
+        pru_load_image(c, prog, n * 4);
+        pru_start(c);
+        ck_assert_int_eq(pru_run(c, 1000000), PRU_STOP_HALT);
+        r3[ff] = pru_reg(c, 3);
+        if (ff)
+            ck_assert_uint_eq(pru_ff_skipped(c), 0);
+        pru_core_free(c);
+    }
+    ck_assert_uint_eq(r3[0], 1000u * 1001u / 2u);
+    ck_assert_uint_eq(r3[1], r3[0]);
+}
+END_TEST
+
+/* loop END, r0; <body>; END: halt -- run in pieces of `piece` cycles. */
+static struct outcome loop_run(enum path p, uint32_t body, unsigned count, int64_t piece) {
+    struct pru_core *c = ff_core(p, NULL);
+    uint32_t prog[8];
+    unsigned n = 0;
+    prog[n++] = ldi(R(0), count);
+    prog[n++] = loopr(2, R(0));
+    prog[n++] = body;
+    prog[n++] = alui(PRU_OP_ADD, R(2), R(2), 7);
+    prog[n++] = halt();
+    pru_load_image(c, prog, n * 4);
+    pru_start(c);
+    enum pru_stop st = PRU_STOP_LIMIT;
+    for (int64_t limit = piece; st == PRU_STOP_LIMIT && limit < 2000000; limit += piece) {
+        st = pru_run_until_cycle(c, limit);
+        ck_assert_int_le(pru_cycles(c), limit);
+    }
+    ck_assert_int_eq(st, PRU_STOP_HALT);
+    struct outcome o = {pru_cycles(c), pru_instructions(c), pru_ff_skipped(c), pru_reg(c, 2)};
+    pru_core_free(c);
+    return o;
+}
+
+/* A LOOP delay (mov r0, r0 = and r0, r0, r0) runs at once, never past a
+ * run's limit, with the cycles and instructions of running it. */
+START_TEST(loop_delay_exact) {
+    uint32_t delay = alu(PRU_OP_AND, R(0), R(0), R(0));
+    for (int64_t piece = 7; piece <= 70007; piece += 10000) {
+        struct outcome ref = loop_run(NONE, delay, 9000, piece);
+        struct outcome off = loop_run(NO_LOOP_DELAY, delay, 9000, piece);
+        struct outcome all = loop_run(ALL, delay, 9000, piece);
+        same(&off, &ref, "delay, no loop-delay path", piece);
+        same(&all, &ref, "delay, all fast paths", piece);
+        ck_assert_int_eq(ref.cycles, 9000 + 4);
+        ck_assert_uint_eq(off.skipped, 0);
+        /* (a LOOP is run at once when entered; cut by a limit, its rest runs) */
+        ck_assert_uint_gt(all.skipped, piece > 9000 ? 8999 : (uint64_t)piece - 3);
+    }
+}
+END_TEST
+
+/* A LOOP over an instruction that changes something runs every turn. */
+START_TEST(loop_with_work_runs) {
+    struct outcome all = loop_run(ALL, alui(PRU_OP_ADD, R(2), R(2), 1), 500, 1000000);
+    ck_assert_uint_eq(all.r2, 500 + 7);
+    ck_assert_uint_eq(all.skipped, 0);
+    /* the same register in another field is not "itself" */
+    all = loop_run(ALL, alu(PRU_OP_OR, R(2), W0(2), W0(2)), 500, 1000000);
+    ck_assert_uint_eq(all.skipped, 0);
+}
+END_TEST
+
+int main(void) {
+    Suite *s = suite_create("core_ff");
+    TCase *tc = tcase_create("ff");
+    tcase_set_timeout(tc, 60);
+    tcase_add_test(tc, counted_poll_exact);
+    tcase_add_test(tc, counted_poll_times_out);
+    tcase_add_test(tc, counter_read_elsewhere_runs);
+    tcase_add_test(tc, loop_delay_exact);
+    tcase_add_test(tc, loop_with_work_runs);
+    suite_add_tcase(s, tc);
+    return check_run(s);
+}
