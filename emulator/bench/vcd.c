@@ -144,10 +144,11 @@ int vcd_close(struct vcd_writer *w, int64_t end_ps) {
         write_header(w);
     }
     vcd_flush_before(w, INT64_MAX);
+    /* The end of the run, one unit after a change made at its very end
+     * at the least: a viewer then shows that last value, and a decoder
+     * (sigrok's) sees the last edge as an edge. */
     int64_t s = stamp_of(w, end_ps);
-    if (s > w->last_stamp) {
-        fprintf(w->f, "#%lld\n", (long long)s);
-    }
+    fprintf(w->f, "#%lld\n", (long long)(s > w->last_stamp ? s : w->last_stamp + 1));
     int bad = ferror(w->f);
     bad |= fclose(w->f) != 0;
     w->f = NULL;
