@@ -135,10 +135,18 @@ WAIT_IEP:
     // The hit was seen up to one turn of MAIN late; start every frame at
     // the same count after the period's reset instead, so periods are exact.
     lbco    r3, c26, IEP_COUNT, 4
-    rsb     r3, r3, IEP_ALIGN               // cycles to wait; none if later
+    rsb     r3, r3, IEP_ALIGN               // d: cycles to wait; none if later
     qbne    FRAME, r3.w2, 0                 // upper half set: late, go now
-    loop    IEP_ALIGNED, r3.w0
-    mov     r0, r0
+    // 3 + d cycles for every d, from single-cycle instructions only (no
+    // LOOP of one instruction, no count of 0: docs/silicon-assumptions.md)
+    qbbc    IEP_EVEN, r3, 0
+    mov     r0, r0                          // d odd: one more
+IEP_EVEN:
+    lsr     r3, r3, 1
+    qbeq    IEP_ALIGNED, r3, 0
+IEP_WAIT:
+    sub     r3, r3, 1                       // 2 cycles a turn
+    qbne    IEP_WAIT, r3, 0
 IEP_ALIGNED:
     jmp     FRAME
 
@@ -282,7 +290,10 @@ CFG_MASK_DONE:
     ldi     r8, 0
     lsl     r10, r5.w0, 16                  // polynomial, left-aligned to bit 31
     qbeq    CFG_RESIDUE_DONE, r2.b1, 0
-    loop    CFG_RESIDUE_DONE, r2.b1
+    // The count from a whole register: which bits a LOOP takes from a byte
+    // field is not documented (docs/silicon-assumptions.md).
+    mov     r3, r2.b1                       // (r3 is free after CFG_REC)
+    loop    CFG_RESIDUE_DONE, r3.w0
     lsl     r9, r8, 0                       // keep bit 31 (feedback = bit31 ^ 1)
     lsl     r8, r8, 1
     qbbs    CFG_RESIDUE_STEP, r9, 31
