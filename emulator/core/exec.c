@@ -1,6 +1,6 @@
 /*
  * exec.c - the execute loop: one predecoded instruction per iteration,
- * exact cycle costs (pru-facts section 3), LOOP hardware, sleep and stop.
+ * exact cycle costs (docs/pru-facts.md §3), LOOP hardware, sleep and stop.
  */
 #include "core_priv.h"
 #include "exec_priv.h"
@@ -29,7 +29,7 @@ static inline uint32_t add_c(int *carry, const struct pd *d, uint64_t a, uint64_
     return (uint32_t)s;
 }
 
-/* carry = NOT borrow: NOT bit W of the wide difference (pru-facts 1.3) */
+/* carry = NOT borrow: NOT bit W of the wide difference (docs/pru-facts.md §1.3) */
 static inline uint32_t sub_c(int *carry, const struct pd *d, uint64_t a, uint64_t b, uint64_t bin) {
     uint64_t s = a - b - bin;
     *carry = (int)(((s >> d->rdw) & 1u) ^ 1u);

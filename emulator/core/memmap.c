@@ -1,6 +1,6 @@
 /*
- * memmap.c - the PRU-local data space (pru-facts 5.1), the constant table
- * (5.2), the host's global view (5.4) and the cost of each access (3).
+ * memmap.c - the PRU-local data space (docs/pru-facts.md §5.1), the constant
+ * table (§5.2), the host's global view (§5.4) and the cost of each access (§3).
  */
 #include "core_priv.h"
 

@@ -1,7 +1,7 @@
 /*
  * pru_isa.c - the instruction table and the word <-> struct pru_insn codec.
  *
- * Bit layouts are those of design/pru-facts.md section 1 (formats 1, 2, 4,
+ * Bit layouts are those of docs/pru-facts.md §1 (formats 1, 2, 4,
  * 5, 6 and pasm's format 101 for NOPn). Decoding is strict: bits that every
  * layout keeps at zero must be zero, so that encode(decode(w)) == w.
  */

@@ -2,7 +2,7 @@
  * pru_isa.h - the one PRU core V3 instruction table.
  *
  * The assembler encodes from it, the disassembler/tracer prints from it and
- * the emulator decodes from it. Encodings: design/pru-facts.md section 1.
+ * the emulator decodes from it. Encodings: docs/pru-facts.md §1.
  *
  * A PRU instruction is one 32-bit word. pru_decode() turns a word into a
  * struct pru_insn; pru_encode() is its exact inverse for every word that

@@ -8,7 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Words produced by pasm 0.87 -V3 (pru-facts.md 1.9 and more checked
+/* Words produced by pasm 0.87 -V3 (docs/pru-facts.md §1.9 and more checked
  * against it), with the text our disassembler prints for them at pc. */
 static const struct {
     uint32_t word;
