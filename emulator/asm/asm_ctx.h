@@ -1,7 +1,7 @@
 /*
  * asm_ctx.h - internal state of one pruasm assembly, shared by its modules.
  *
- * The limits below are pasm 0.87's (see design/pru-facts.md section 2); they
+ * The limits below are pasm 0.87's (see docs/pru-facts.md §2); they
  * are kept because they decide which sources pasm accepts, and they double as
  * the bounds that keep malformed input from exhausting memory or stack.
  */

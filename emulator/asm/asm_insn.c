@@ -7,7 +7,6 @@
 #include "pru_isa.h"
 
 #include <string.h>
-#include <strings.h>
 
 typedef char term_t[ASM_TOKEN_MAX];
 
@@ -63,25 +62,14 @@ static void emit_alu(struct stmt *s, int op, const struct asm_arg *rd, const str
     emit(s, &in);
 }
 
-static int core_at_least(struct stmt *s, int core) {
-    if (s->c->core < core)
-        return fail(s, "Instruction illegal with specified core version");
-    return 1;
-}
-
 /* ADD..MAX, NOT, LMBD, NOPn: Rd, Rs1, OP(255) (NOT also Rd, Rs1). */
 static int alu(struct stmt *s, int op) {
     struct asm_arg a[3];
-    if (op == PRU_OP_NOT) {
+    if (pru_optable[op].form == PRU_FORM_NOT) {
         if (s->n != 3 && s->n != 4)
             return fail(s, "Expected 2 or 3 operands on NOT");
-    } else {
-        if (op == PRU_OP_LMBD && !core_at_least(s, CORE_V1))
-            return 0;
-        if (op >= PRU_OP_NOP0 && op <= PRU_OP_NOPF && !core_at_least(s, CORE_V3))
-            return 0;
-        if (s->n != 4)
-            return fail(s, "Expected 3 operands");
+    } else if (s->n != 4) {
+        return fail(s, "Expected 3 operands");
     }
     if (!asm_get_reg(s->c, s->f, 1, s->t[1], &a[0], 0, 0) ||
         !asm_get_reg(s->c, s->f, 2, s->t[2], &a[1], 0, 0))
@@ -141,21 +129,23 @@ static void emit_ldi(struct stmt *s, unsigned reg, unsigned field, uint32_t valu
     emit(s, &in);
 }
 
-static int ldi(struct stmt *s) {
+static int ldi(struct stmt *s, int op) {
     struct asm_arg rd, v;
     if (s->n != 3)
         return fail(s, "Expected 2 operands");
     if (!asm_get_reg(s->c, s->f, 1, s->t[1], &rd, 0, 0) ||
         !asm_get_imm(s->c, s->f, 2, s->t[2], &v, 0, 65535))
         return 0;
+    (void)op;
     emit_ldi(s, rd.value, rd.field, v.value);
     return 1;
 }
 
 /* MOV: a register source is AND Rd, Rs, Rs; an immediate becomes LDI, split
  * into two (upper half first) for a 32-bit destination above 0xFFFF. */
-static int mov(struct stmt *s) {
+static int mov(struct stmt *s, int op) {
     struct asm_arg rd, v;
+    (void)op;
     if (s->n != 3)
         return fail(s, "Expected 2 operands");
     if (is_reg(s->t[2])) {
@@ -179,10 +169,8 @@ static int mov(struct stmt *s) {
     return 1;
 }
 
-static int scan(struct stmt *s) {
+static int scan(struct stmt *s, int op) {
     struct asm_arg rd, op2;
-    if (s->c->core != CORE_V1)
-        return fail(s, "Instruction illegal with specified core version");
     if (s->n != 3)
         return fail(s, "Expected 2 operands");
     if (!asm_get_reg(s->c, s->f, 1, s->t[1], &rd, 0, 0))
@@ -191,14 +179,8 @@ static int scan(struct stmt *s) {
         return fail(s, "Register fields not allowed on operand 1");
     if (!reg_or_imm(s, 2, &op2, 0, 255))
         return 0;
-    /* SCAN (format 2 sub-op 4, core V1 only) has no row in the V3 table:
-     * it shares the ALU layout, so encode as ADD and set its sub-op. */
-    struct pru_insn in = {0};
-    in.op = PRU_OP_ADD;
-    in.rd = in.rs1 = (uint8_t)rd.value;
-    in.rdsel = in.rs1sel = (uint8_t)rd.field;
-    set_op2(&in, &op2);
-    asm_gen(s->c, s->f, s->n, s->t, pru_encode(&in) | 0x28000000u);
+    /* SCAN has the ALU layout with the register as both rd and rs1 */
+    emit_alu(s, op, &rd, &rd, &op2);
     return 1;
 }
 
@@ -248,8 +230,6 @@ static int mvi_operand(struct stmt *s, int num, struct asm_arg *a, unsigned size
 static int mvi(struct stmt *s, int op) {
     unsigned size = op == PRU_OP_MVIB ? 1 : op == PRU_OP_MVIW ? 2 : 4;
     struct asm_arg a[2];
-    if (!core_at_least(s, CORE_V1))
-        return 0;
     if (s->n == 4)
         return fail(s, "3 operand mode not supported on this core");
     if (s->n != 3)
@@ -303,25 +283,22 @@ static int mvi(struct stmt *s, int op) {
     return 1;
 }
 
-static int halt(struct stmt *s) {
-    if (!core_at_least(s, CORE_V1))
-        return 0;
+/* HALT; the V0-only rows (LFC, STC) never get here (core gating). */
+static int no_operands(struct stmt *s, int op) {
     if (s->n != 1)
         return fail(s, "Expected no operands");
-    struct pru_insn in = {.op = PRU_OP_HALT};
+    struct pru_insn in = {.op = (uint8_t)op};
     emit(s, &in);
     return 1;
 }
 
-static int slp(struct stmt *s) {
+static int slp(struct stmt *s, int op) {
     struct asm_arg a;
-    if (!core_at_least(s, CORE_V1))
-        return 0;
     if (s->n != 2)
         return fail(s, "Expected 1 operand");
     if (!asm_get_imm(s->c, s->f, 1, s->t[1], &a, 0, 1))
         return 0;
-    struct pru_insn in = {.op = PRU_OP_SLP, .flag = (uint8_t)a.value};
+    struct pru_insn in = {.op = (uint8_t)op, .flag = (uint8_t)a.value};
     emit(s, &in);
     if (s->c->core < CORE_V3)
         asm_gen(s->c, s->f, s->n, s->t, 0x10000000u); /* pre-V3 cores need a trailing no-op */
@@ -362,7 +339,7 @@ static int burst(struct stmt *s, int op) {
         return fail(s, "Expected 4 operands");
     if (!reg_or_imm(s, 1, &rx, 0, 127))
         return 0;
-    if (op == PRU_OP_LBBO || op == PRU_OP_SBBO) {
+    if (pru_optable[op].form == PRU_FORM_BURST_BO) {
         if (!asm_get_reg(s->c, s->f, 2, s->t[2], &base, 0, 0))
             return 0;
         if (base.field != PRU_SEL_R)
@@ -385,10 +362,6 @@ static int burst(struct stmt *s, int op) {
 static int xfr(struct stmt *s, int op) {
     struct asm_arg dev, rx;
     unsigned len;
-    if (op >= PRU_OP_SXIN && !core_at_least(s, CORE_V3))
-        return 0;
-    if (!core_at_least(s, CORE_V2))
-        return 0;
     if (s->n != 4)
         return fail(s, "Expected 3 operands");
     if (!asm_get_imm(s->c, s->f, 1, s->t[1], &dev, 0, 253))
@@ -424,10 +397,9 @@ static void zero_by_ldi(struct stmt *s, uint32_t addr, uint32_t len) {
 }
 
 /* ZERO/FILL start, length: XIN from device 255/254 on V2+. */
-static int zero_fill(struct stmt *s, int is_zero) {
+static int zero_fill(struct stmt *s, int op) {
+    int is_zero = op == PRU_OP_ZERO;
     struct asm_arg start, len;
-    if (!core_at_least(s, is_zero ? CORE_V1 : CORE_V2))
-        return 0;
     if (s->n != 3)
         return fail(s, "Expected 2 operands");
     if (!asm_get_imm(s->c, s->f, 1, s->t[1], &start, 0, 123) ||
@@ -438,7 +410,8 @@ static int zero_fill(struct stmt *s, int is_zero) {
                                : "Length exceeds register file length");
     if (!len.value)
         return fail(s, is_zero ? "Zero length clear" : "Zero length fill");
-    if (is_zero && s->c->core < CORE_V2) {
+    /* ZERO is one XIN word where the core has XIN, else LDI words */
+    if (is_zero && s->c->core < pru_optable[PRU_OP_XIN].min_core) {
         zero_by_ldi(s, start.value, len.value);
         return 1;
     }
@@ -463,35 +436,46 @@ static void emit_jump(struct stmt *s, int op, const struct asm_arg *rd, const st
     emit(s, &in);
 }
 
-static int jal(struct stmt *s) {
+static int jal(struct stmt *s, int op) {
     struct asm_arg rd, t;
     if (s->n != 3)
         return fail(s, "Expected 2 operands");
     if (!asm_get_reg(s->c, s->f, 1, s->t[1], &rd, 0, 0) || !reg_or_imm(s, 2, &t, 0, 65535))
         return 0;
-    emit_jump(s, PRU_OP_JAL, &rd, &t);
+    emit_jump(s, op, &rd, &t);
     return 1;
 }
 
-/* JMP target | CALL target (JAL with the call register) | RET. */
-static int jmp_call_ret(struct stmt *s, int is_call, int is_ret) {
-    struct asm_arg t, callreg = {.type = ARG_REG};
-    callreg.value = s->c->retreg;
-    callreg.field = s->c->retfield;
-    if (is_ret) {
-        if (s->n != 1)
-            return fail(s, "Expected no operands");
-        emit_jump(s, PRU_OP_JMP, NULL, &callreg);
-        return 1;
-    }
+static struct asm_arg call_register(const struct stmt *s) {
+    struct asm_arg r = {.type = ARG_REG};
+    r.value = s->c->retreg;
+    r.field = s->c->retfield;
+    return r;
+}
+
+/* RET: JMP to the call register. */
+static int ret(struct stmt *s, int op) {
+    (void)op;
+    if (s->n != 1)
+        return fail(s, "Expected no operands");
+    struct asm_arg callreg = call_register(s);
+    emit_jump(s, PRU_OP_JMP, NULL, &callreg);
+    return 1;
+}
+
+/* JMP target | CALL target (JAL with the call register). */
+static int jmp_call(struct stmt *s, int op) {
+    struct asm_arg t;
     if (s->n != 2)
         return fail(s, "Expected 1 operand");
     if (!reg_or_imm(s, 1, &t, 0, 65535))
         return 0;
-    if (is_call)
+    if (op == PRU_OP_CALL) {
+        struct asm_arg callreg = call_register(s);
         emit_jump(s, PRU_OP_JAL, &callreg, &t);
-    else
-        emit_jump(s, PRU_OP_JMP, NULL, &t);
+    } else {
+        emit_jump(s, op, NULL, &t);
+    }
     return 1;
 }
 
@@ -521,8 +505,6 @@ static int16_t broff10(int off) {
 static int loop(struct stmt *s, int op) {
     struct asm_arg cnt;
     int off;
-    if (!core_at_least(s, CORE_V3))
-        return 0;
     if (s->n != 3)
         return fail(s, "Expected 2 operands");
     if (!branch_offset(s, 1, 2, 255, "invalid loop termination point", &off))
@@ -569,7 +551,7 @@ static int qb(struct stmt *s, int op) {
     return 1;
 }
 
-static int qba(struct stmt *s) {
+static int qba(struct stmt *s, int op) {
     int off;
     if (s->n != 2)
         return fail(s, "Expected 1 operand");
@@ -577,7 +559,7 @@ static int qba(struct stmt *s) {
         return 0;
     struct asm_arg zero = {.type = ARG_IMM, .value = 0};
     struct asm_arg r0 = {.type = ARG_REG, .value = 0, .field = 0};
-    emit_branch(s, PRU_OP_QBA, off, &r0, &zero);
+    emit_branch(s, op, off, &r0, &zero);
     return 1;
 }
 
@@ -613,7 +595,8 @@ static int qbb(struct stmt *s, int op) {
 
 /* WBS waits for a set bit: branch to itself while it is clear (and WBC
  * the other way round). */
-static int wait_bit(struct stmt *s, int wait_set) {
+static int wait_bit(struct stmt *s, int op) {
+    int wait_set = op == PRU_OP_WBS;
     struct asm_arg rs1, bit;
     if (s->n < 2 || s->n > 3)
         return fail(s, "Expected 1 to 2 operands");
@@ -623,67 +606,41 @@ static int wait_bit(struct stmt *s, int wait_set) {
     return 1;
 }
 
-static const struct {
-    const char *name;
-    int op;
-} alu_ops[] = {
-    {"ADD", PRU_OP_ADD},   {"ADC", PRU_OP_ADC},   {"SUB", PRU_OP_SUB},   {"SUC", PRU_OP_SUC},
-    {"LSL", PRU_OP_LSL},   {"LSR", PRU_OP_LSR},   {"RSB", PRU_OP_RSB},   {"RSC", PRU_OP_RSC},
-    {"AND", PRU_OP_AND},   {"OR", PRU_OP_OR},     {"XOR", PRU_OP_XOR},   {"NOT", PRU_OP_NOT},
-    {"MIN", PRU_OP_MIN},   {"MAX", PRU_OP_MAX},   {"LMBD", PRU_OP_LMBD}, {"NOP0", PRU_OP_NOP0},
-    {"NOP1", PRU_OP_NOP1}, {"NOP2", PRU_OP_NOP2}, {"NOP3", PRU_OP_NOP3}, {"NOP4", PRU_OP_NOP4},
-    {"NOP5", PRU_OP_NOP5}, {"NOP6", PRU_OP_NOP6}, {"NOP7", PRU_OP_NOP7}, {"NOP8", PRU_OP_NOP8},
-    {"NOP9", PRU_OP_NOP9}, {"NOPA", PRU_OP_NOPA}, {"NOPB", PRU_OP_NOPB}, {"NOPC", PRU_OP_NOPC},
-    {"NOPD", PRU_OP_NOPD}, {"NOPE", PRU_OP_NOPE}, {"NOPF", PRU_OP_NOPF},
-};
-
-static const struct {
-    const char *name;
-    int op;
-    int (*fn)(struct stmt *, int);
-} other_ops[] = {
-    {"CLR", PRU_OP_CLR, clr_set}, {"SET", PRU_OP_SET, clr_set},  {"MVIB", PRU_OP_MVIB, mvi},
-    {"MVIW", PRU_OP_MVIW, mvi},   {"MVID", PRU_OP_MVID, mvi},    {"LBBO", PRU_OP_LBBO, burst},
-    {"SBBO", PRU_OP_SBBO, burst}, {"LBCO", PRU_OP_LBCO, burst},  {"SBCO", PRU_OP_SBCO, burst},
-    {"XIN", PRU_OP_XIN, xfr},     {"XOUT", PRU_OP_XOUT, xfr},    {"XCHG", PRU_OP_XCHG, xfr},
-    {"SXIN", PRU_OP_SXIN, xfr},   {"SXOUT", PRU_OP_SXOUT, xfr},  {"SXCHG", PRU_OP_SXCHG, xfr},
-    {"LOOP", PRU_OP_LOOP, loop},  {"ILOOP", PRU_OP_ILOOP, loop}, {"QBGT", PRU_OP_QBGT, qb},
-    {"QBGE", PRU_OP_QBGE, qb},    {"QBLT", PRU_OP_QBLT, qb},     {"QBLE", PRU_OP_QBLE, qb},
-    {"QBEQ", PRU_OP_QBEQ, qb},    {"QBNE", PRU_OP_QBNE, qb},     {"QBBS", PRU_OP_QBBS, qbb},
-    {"QBBC", PRU_OP_QBBC, qbb},
+/* The parser of each operand form of the instruction list (pru_isa.h). */
+static int (*const form_parser[])(struct stmt *, int op) = {
+    [PRU_FORM_ALU] = alu,
+    [PRU_FORM_NOT] = alu,
+    [PRU_FORM_CLRSET] = clr_set,
+    [PRU_FORM_LDI] = ldi,
+    [PRU_FORM_MOV] = mov,
+    [PRU_FORM_SCAN] = scan,
+    [PRU_FORM_MVI] = mvi,
+    [PRU_FORM_NONE] = no_operands,
+    [PRU_FORM_SLP] = slp,
+    [PRU_FORM_BURST_BO] = burst,
+    [PRU_FORM_BURST_CO] = burst,
+    [PRU_FORM_XFR] = xfr,
+    [PRU_FORM_ZERO_FILL] = zero_fill,
+    [PRU_FORM_JMP] = jmp_call,
+    [PRU_FORM_JAL] = jal,
+    [PRU_FORM_CALL] = jmp_call,
+    [PRU_FORM_RET] = ret,
+    [PRU_FORM_LOOP] = loop,
+    [PRU_FORM_QB] = qb,
+    [PRU_FORM_QBA] = qba,
+    [PRU_FORM_QBB] = qbb,
+    [PRU_FORM_WAIT] = wait_bit,
 };
 
 int asm_instruction(struct asm_ctx *c, struct asm_file *f, int nterms,
                     char terms[][ASM_TOKEN_MAX]) {
     struct stmt s = {c, f, nterms, terms};
-    const char *m = terms[0];
-    for (size_t i = 0; i < sizeof alu_ops / sizeof alu_ops[0]; i++)
-        if (!strcasecmp(m, alu_ops[i].name))
-            return alu(&s, alu_ops[i].op);
-    for (size_t i = 0; i < sizeof other_ops / sizeof other_ops[0]; i++)
-        if (!strcasecmp(m, other_ops[i].name))
-            return other_ops[i].fn(&s, other_ops[i].op);
-    if (!strcasecmp(m, "LDI"))
-        return ldi(&s);
-    if (!strcasecmp(m, "MOV"))
-        return mov(&s);
-    if (!strcasecmp(m, "SCAN"))
-        return scan(&s);
-    if (!strcasecmp(m, "HALT"))
-        return halt(&s);
-    if (!strcasecmp(m, "SLP"))
-        return slp(&s);
-    if (!strcasecmp(m, "ZERO") || !strcasecmp(m, "FILL"))
-        return zero_fill(&s, !strcasecmp(m, "ZERO"));
-    if (!strcasecmp(m, "JAL"))
-        return jal(&s);
-    if (!strcasecmp(m, "JMP") || !strcasecmp(m, "CALL") || !strcasecmp(m, "RET"))
-        return jmp_call_ret(&s, !strcasecmp(m, "CALL"), !strcasecmp(m, "RET"));
-    if (!strcasecmp(m, "QBA"))
-        return qba(&s);
-    if (!strcasecmp(m, "WBS") || !strcasecmp(m, "WBC"))
-        return wait_bit(&s, !strcasecmp(m, "WBS"));
-    if (!strcasecmp(m, "LFC") || !strcasecmp(m, "STC"))
-        return fail(&s, "Instruction illegal with specified core version"); /* V0 only */
-    return fail(&s, "Invalid opcode");
+    int op = pru_op_lookup(terms[0]);
+    if (op < 0)
+        return fail(&s, "Invalid opcode");
+    const struct pru_opinfo *row = &pru_optable[op];
+    /* pasm checks the core version before the operands */
+    if (c->core < row->min_core || c->core > row->max_core)
+        return fail(&s, "Instruction illegal with specified core version");
+    return form_parser[row->form](&s, op);
 }

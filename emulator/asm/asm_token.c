@@ -8,24 +8,11 @@
 
 #include <ctype.h>
 #include <string.h>
-#include <strings.h>
 
-/* Every mnemonic pasm 0.87 knows, any core version: all are reserved words. */
-static const char *const mnemonics[] = {
-    "ADD",   "ADC",  "SUB",  "SUC",  "LSL",  "LSR",  "RSB",  "RSC",  "AND",   "OR",    "XOR",
-    "NOT",   "MIN",  "MAX",  "CLR",  "SET",  "LDI",  "LBBO", "LBCO", "SBBO",  "SBCO",  "LFC",
-    "STC",   "JAL",  "JMP",  "QBGT", "QBLT", "QBEQ", "QBGE", "QBLE", "QBNE",  "QBA",   "QBBS",
-    "QBBC",  "LMBD", "CALL", "WBC",  "WBS",  "MOV",  "MVIB", "MVIW", "MVID",  "SCAN",  "HALT",
-    "SLP",   "RET",  "ZERO", "FILL", "XIN",  "XOUT", "XCHG", "SXIN", "SXOUT", "SXCHG", "LOOP",
-    "ILOOP", "NOP0", "NOP1", "NOP2", "NOP3", "NOP4", "NOP5", "NOP6", "NOP7",  "NOP8",  "NOP9",
-    "NOPA",  "NOPB", "NOPC", "NOPD", "NOPE", "NOPF",
-};
-
+/* Every mnemonic pasm 0.87 knows, any core version, is a reserved word:
+ * the rows of the instruction list (pru_isa.h). */
 int asm_is_mnemonic(const char *word) {
-    for (size_t i = 0; i < sizeof mnemonics / sizeof mnemonics[0]; i++)
-        if (!strcasecmp(word, mnemonics[i]))
-            return 1;
-    return 0;
+    return pru_op_lookup(word) >= 0;
 }
 
 unsigned asm_token_type(const char *w) {

@@ -1,7 +1,7 @@
 /*
  * pruasm.h - the pasm-compatible PRU assembler as a library.
  *
- * Assembles pasm 0.87 dialect source (design/pru-facts.md section 2) into
+ * Assembles pasm 0.87 dialect source (docs/pru-facts.md §2) into
  * PRU instruction words, in process. The `pruasm` command line tool is a thin
  * wrapper around these calls; the emulator tests and the bench use them to
  * assemble source text without touching the file system.

@@ -1,6 +1,6 @@
 /*
- * cfg_gpi.c - the CFG block (SYSCFG, GPCFG0/1; pru-facts 4.5) and what R31
- * reads: GPI direct mode, and the 28-bit shift mode of 4.4 evaluated lazily
+ * cfg_gpi.c - the CFG block (SYSCFG, GPCFG0/1; docs/pru-facts.md §4.5) and what R31
+ * reads: GPI direct mode, and the 28-bit shift mode of §4.4 evaluated lazily
  * from the input waveform when R31 is read (never stepped per cycle).
  *
  * Shift mode: edge k (k >= 1) of the shift clock is at

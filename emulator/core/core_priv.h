@@ -9,6 +9,7 @@
 #include "pru_isa.h"
 
 #include <stdbool.h>
+#include <string.h>
 
 #define NO_LOOP     0xffffffffu
 #define CYCLE_NEVER INT64_MAX
@@ -19,56 +20,26 @@
 #define SPAD_BYTES  120u /* scratch-pad bank: R0..R29 */
 #define LOCAL_LIMIT 0x80000u
 
-/* Execution kinds of the predecoded form; one per handler in exec.c. */
-enum pd_kind {
-    K_ADD,
-    K_ADC,
-    K_SUB,
-    K_SUC,
-    K_LSL,
-    K_LSR,
-    K_RSB,
-    K_RSC,
-    K_AND,
-    K_OR,
-    K_XOR,
-    K_NOT,
-    K_MIN,
-    K_MAX,
-    K_CLR,
-    K_SET,
-    K_NOP,
-    K_JMP,
-    K_JAL,
-    K_LDI,
-    K_LMBD,
-    K_QBGT,
-    K_QBGE,
-    K_QBLT,
-    K_QBLE,
-    K_QBEQ,
-    K_QBNE,
-    K_QBA,
-    K_QBBS,
-    K_QBBC, /* the kinds up to here only touch registers, carry and PC */
-    K_HALT,
-    K_MVI,
-    K_XFR,
-    K_LOOP,
-    K_SLP,
-    K_LBBO,
-    K_SBBO,
-    K_LBCO,
-    K_SBCO,
-    K_BAD,
-    K_SLOW,     /* fast loop: hand over to exec_one() */
-    K_R31_READ, /* fast loop: refresh R31, then run `kind` */
+/*
+ * What the execute loop runs for a predecoded word (struct pd .kind and
+ * .fast): the instruction's enum pru_op, a row of the instruction list in
+ * pru_isa.h (every NOPn as PRU_OP_NOP0), or one of these.
+ */
+enum {
+    PD_BAD = PRU_OP_COUNT, /* no V3 instruction: a fault when executed */
+    PD_SLOW,               /* fast loop: hand over to exec_one() */
+    PD_R31_READ,           /* fast loop: refresh R31, then run `kind` */
 };
+_Static_assert(PD_R31_READ <= UINT8_MAX, "struct pd keeps kinds in a uint8_t");
 
 /* Flags of a predecoded instruction that need work outside the handler. */
 #define PD_READS_R31  0x01u /* refresh R31 from the inputs before executing */
 #define PD_WRITES_R30 0x02u /* tell the pins if R30 changed */
 #define PD_WRITES_R31 0x04u /* an R31 write raises system events */
+#define PD_EFFECTS    0x07u /* the three above */
+/* and what a burst is, from its row (docs/pru-facts.md §1.7) */
+#define PD_BURST_LOAD  0x08u /* LBBO, LBCO (bit 28) */
+#define PD_BURST_CBASE 0x10u /* LBCO, SBCO: the base is a constant-table entry */
 
 /*
  * One IRAM word decoded once. Register operands are (reg, shift, mask);
@@ -76,15 +47,15 @@ enum pd_kind {
  * value in imm, so "field | imm" reads either form without a branch.
  */
 struct pd {
-    uint8_t fast; /* kind for the fast loop: K_SLOW if flags or not register-only */
+    uint8_t fast; /* kind for the fast loop: PD_SLOW if flags or not register-only */
     uint8_t kind;
     uint8_t flags;
     uint8_t rd, rdsh;
     uint8_t rs1, rs1sh;
     uint8_t rs2, rs2sh;
     uint8_t rdw; /* destination width in bits (carry position) */
-    /* bursts with a fixed length that stay below r30: bytes and register-file
-     * start, for the fast loop (0 bytes: take the general path) */
+    /* bursts with a fixed length that stay below r30 (no pin or event
+     * effects): bytes and register-file start; 0 bytes otherwise */
     uint8_t burst_bytes, burst_rf;
     uint32_t rdmask, rs1mask, rs2mask;
     uint32_t imm;
@@ -221,10 +192,24 @@ void predecode_all(struct pru_core *c);
 /* exec.c */
 enum pru_stop exec_run(struct pru_core *c, int64_t limit, bool one_step);
 
-/* memmap.c: PRU data-space access; return 0 or -1 (fault recorded). */
-int mem_load(struct pru_core *c, uint32_t addr, uint8_t *dst, unsigned n, unsigned *cycles);
-int mem_store(struct pru_core *c, uint32_t addr, const uint8_t *src, unsigned n, unsigned *cycles);
+/* memmap.c: PRU data-space access; return 0 or -1 (fault recorded; a load
+ * then leaves dst as it was). mem_load/mem_store below are the entry points. */
+int mem_load_any(struct pru_core *c, uint32_t addr, uint8_t *dst, unsigned n, unsigned *cycles);
+int mem_store_any(struct pru_core *c, uint32_t addr, const uint8_t *src, unsigned n,
+                  unsigned *cycles);
 uint32_t const_table(const struct pru_core *c, unsigned n);
+
+/* Access cost (docs/pru-facts.md §3, emulator/core/TIMING.md): 32-bit beats. */
+static inline unsigned mem_beats(unsigned n) {
+    return (n + 3u) / 4u;
+}
+static inline unsigned mem_local_load_cycles(const struct pru_core *c, unsigned n) {
+    return c->p.load_local_base + mem_beats(n);
+}
+static inline unsigned mem_store_cycles(const struct pru_core *c, unsigned n) {
+    unsigned cyc = mem_beats(n) * c->p.store_beat_cycles;
+    return cyc ? cyc : 1;
+}
 
 /* ctrl.c */
 uint32_t ctrl_read(struct pru_core *c, uint32_t ofs, int64_t at);
@@ -295,6 +280,39 @@ static inline void fld_set(uint32_t *r, unsigned reg, unsigned sh, uint32_t mask
 static inline void core_store_watch(struct pru_core *c, uint32_t addr, unsigned n) {
     if (c->watch_addr - addr < n)
         c->watch_fn(c->watch_ctx, c->watch_addr);
+}
+
+/*
+ * Load n bytes of the PRU data space at the instruction at pc, issued in
+ * cycle `cycle`: the own data RAM in place (the common case, inline for the
+ * execute loop), the rest in memmap.c, which needs c->pc and c->cycle
+ * current (the caller may keep them in registers until then). Returns 0
+ * on success, -1 after a fault.
+ */
+static inline int mem_load(struct pru_core *c, uint32_t addr, uint8_t *dst, unsigned n,
+                           unsigned *cycles, uint32_t pc, int64_t cycle) {
+    if ((uint64_t)addr + n <= c->dram_bytes) {
+        memcpy(dst, c->dram0 + addr, n);
+        *cycles = mem_local_load_cycles(c, n);
+        return 0;
+    }
+    c->pc = pc;
+    c->cycle = cycle;
+    return mem_load_any(c, addr, dst, n, cycles);
+}
+
+/* Store n bytes; as mem_load. */
+static inline int mem_store(struct pru_core *c, uint32_t addr, const uint8_t *src, unsigned n,
+                            unsigned *cycles, uint32_t pc, int64_t cycle) {
+    if ((uint64_t)addr + n <= c->dram_bytes) {
+        memcpy(c->dram0 + addr, src, n);
+        core_store_watch(c, addr, n);
+        *cycles = mem_store_cycles(c, n);
+        return 0;
+    }
+    c->pc = pc;
+    c->cycle = cycle;
+    return mem_store_any(c, addr, src, n, cycles);
 }
 
 #endif

@@ -1,5 +1,5 @@
 /*
- * ctrl.c - PRU0 control registers (pru-facts 5.3): CONTROL with soft reset,
+ * ctrl.c - PRU0 control registers (docs/pru-facts.md §5.3): CONTROL with soft reset,
  * enable, sleeping, counter enable, single step and the reset PC; STATUS;
  * WAKEUP_EN; CYCLE/STALL (section 3) kept lazily; CTBIR/CTPPR.
  */

@@ -1,6 +1,6 @@
 /*
  * exec.c - the execute loop: one predecoded instruction per iteration,
- * exact cycle costs (pru-facts section 3), LOOP hardware, sleep and stop.
+ * exact cycle costs (docs/pru-facts.md §3), LOOP hardware, sleep and stop.
  */
 #include "core_priv.h"
 #include "exec_priv.h"
@@ -29,7 +29,7 @@ static inline uint32_t add_c(int *carry, const struct pd *d, uint64_t a, uint64_
     return (uint32_t)s;
 }
 
-/* carry = NOT borrow: NOT bit W of the wide difference (pru-facts 1.3) */
+/* carry = NOT borrow: NOT bit W of the wide difference (docs/pru-facts.md §1.3) */
 static inline uint32_t sub_c(int *carry, const struct pd *d, uint64_t a, uint64_t b, uint64_t bin) {
     uint64_t s = a - b - bin;
     *carry = (int)(((s >> d->rdw) & 1u) ^ 1u);
@@ -114,71 +114,71 @@ static inline __attribute__((always_inline)) bool exec_simple(uint32_t *restrict
                                                               unsigned kind, uint32_t *pc,
                                                               int *carry) {
     uint32_t p = *pc;
-    switch ((enum pd_kind)kind) {
-    case K_ADD:
+    switch ((enum pru_op)kind) {
+    case PRU_OP_ADD:
         wr(r, d, add_c(carry, d, rs1v(r, d), op2v(r, d), 0));
         break;
-    case K_ADC:
+    case PRU_OP_ADC:
         wr(r, d, add_c(carry, d, rs1v(r, d), op2v(r, d), (uint64_t)*carry));
         break;
-    case K_SUB:
+    case PRU_OP_SUB:
         wr(r, d, sub_c(carry, d, rs1v(r, d), op2v(r, d), 0));
         break;
-    case K_SUC:
+    case PRU_OP_SUC:
         wr(r, d, sub_c(carry, d, rs1v(r, d), op2v(r, d), (uint64_t) !*carry));
         break;
-    case K_RSB:
+    case PRU_OP_RSB:
         wr(r, d, sub_c(carry, d, op2v(r, d), rs1v(r, d), 0));
         break;
-    case K_RSC:
+    case PRU_OP_RSC:
         wr(r, d, sub_c(carry, d, op2v(r, d), rs1v(r, d), (uint64_t) !*carry));
         break;
-    case K_LSL:
+    case PRU_OP_LSL:
         wr(r, d, rs1v(r, d) << (op2v(r, d) & 31u));
         break;
-    case K_LSR:
+    case PRU_OP_LSR:
         wr(r, d, rs1v(r, d) >> (op2v(r, d) & 31u));
         break;
-    case K_AND:
+    case PRU_OP_AND:
         wr(r, d, rs1v(r, d) & op2v(r, d));
         break;
-    case K_OR:
+    case PRU_OP_OR:
         wr(r, d, rs1v(r, d) | op2v(r, d));
         break;
-    case K_XOR:
+    case PRU_OP_XOR:
         wr(r, d, rs1v(r, d) ^ op2v(r, d));
         break;
-    case K_NOT:
+    case PRU_OP_NOT:
         wr(r, d, ~rs1v(r, d));
         break;
-    case K_MIN: {
+    case PRU_OP_MIN: {
         uint32_t a = rs1v(r, d), b = op2v(r, d);
         wr(r, d, a < b ? a : b);
         break;
     }
-    case K_MAX: {
+    case PRU_OP_MAX: {
         uint32_t a = rs1v(r, d), b = op2v(r, d);
         wr(r, d, a > b ? a : b);
         break;
     }
-    case K_CLR:
+    case PRU_OP_CLR:
         wr(r, d, rs1v(r, d) & ~(1u << (op2v(r, d) & 31u)));
         break;
-    case K_SET:
+    case PRU_OP_SET:
         wr(r, d, rs1v(r, d) | (1u << (op2v(r, d) & 31u)));
         break;
-    case K_NOP:
+    case PRU_OP_NOP0: /* every NOPn */
         break;
-    case K_LDI:
+    case PRU_OP_LDI:
         wr(r, d, d->imm);
         break;
-    case K_LMBD:
+    case PRU_OP_LMBD:
         wr(r, d, lmbd(rs1v(r, d), d->rs1mask, op2v(r, d)));
         break;
-    case K_JMP:
+    case PRU_OP_JMP:
         *pc = op2v(r, d) & 0xffffu;
         return true;
-    case K_JAL: {
+    case PRU_OP_JAL: {
         uint32_t t = op2v(r, d) & 0xffffu; /* read before the link write */
         wr(r, d, p + 1);
         *pc = t;
@@ -187,24 +187,24 @@ static inline __attribute__((always_inline)) bool exec_simple(uint32_t *restrict
 #define QB(cond)                                                                                   \
     *pc = (cond) ? d->target : p + 1;                                                              \
     return true
-    case K_QBGT:
+    case PRU_OP_QBGT:
         QB(op2v(r, d) > rs1v(r, d));
-    case K_QBGE:
+    case PRU_OP_QBGE:
         QB(op2v(r, d) >= rs1v(r, d));
-    case K_QBLT:
+    case PRU_OP_QBLT:
         QB(op2v(r, d) < rs1v(r, d));
-    case K_QBLE:
+    case PRU_OP_QBLE:
         QB(op2v(r, d) <= rs1v(r, d));
-    case K_QBEQ:
+    case PRU_OP_QBEQ:
         QB(op2v(r, d) == rs1v(r, d));
-    case K_QBNE:
+    case PRU_OP_QBNE:
         QB(op2v(r, d) != rs1v(r, d));
-    case K_QBA:
+    case PRU_OP_QBA:
         *pc = d->target;
         return true;
-    case K_QBBS:
+    case PRU_OP_QBBS:
         QB((rs1v(r, d) >> (op2v(r, d) & 31u)) & 1u);
-    case K_QBBC:
+    case PRU_OP_QBBC:
         QB(!((rs1v(r, d) >> (op2v(r, d) & 31u)) & 1u));
 #undef QB
     default:
@@ -228,34 +228,27 @@ static __attribute__((noinline)) void exec_one(struct pru_core *c, const struct 
         if (c->pc <= pc && c->ff_on) /* a backward jump or branch */
             ff_backward_branch(c, pc, c->pc, limit);
     } else {
-        switch ((enum pd_kind)d->kind) {
-        case K_LOOP:
+        switch ((enum pru_fmt)(d->kind == PD_BAD ? PRU_FMT_PSEUDO : pru_optable[d->kind].fmt)) {
+        case PRU_FMT_LOOP:
             do_loop(c, d);
             if (c->ff_on)
                 ff_loop_entered(c, limit);
             break;
-        case K_LBBO:
-            cost = exec_burst(c, d, true, false);
+        case PRU_FMT_BURST:
+            cost = exec_burst(c, d, c->pc, c->cycle);
+            if (c->fault.cause == PRU_FAULT_NONE)
+                c->pc++;
             break;
-        case K_SBBO:
-            cost = exec_burst(c, d, false, false);
-            break;
-        case K_LBCO:
-            cost = exec_burst(c, d, true, true);
-            break;
-        case K_SBCO:
-            cost = exec_burst(c, d, false, true);
-            break;
-        case K_XFR:
+        case PRU_FMT_XFR:
             exec_xfr(c, d);
             break;
-        case K_MVI:
+        case PRU_FMT_MVI:
             exec_mvi(c, d);
             break;
-        case K_HALT:
+        case PRU_FMT_NONE: /* HALT */
             do_halt(c);
             break;
-        case K_SLP:
+        case PRU_FMT_SLP:
             do_slp(c, d);
             break;
         default:
@@ -331,31 +324,6 @@ void exec_recheck(struct pru_core *c) {
 }
 
 /*
- * A fixed-length burst between registers below r30 and the own data RAM:
- * the common load/store, done in place. Returns its cycles, or 0 when the
- * general path has to handle it (other block, fault).
- */
-static inline unsigned burst_dram0(struct pru_core *c, const struct pd *d) {
-    bool bbo = d->kind == K_LBBO || d->kind == K_SBBO;
-    uint32_t base = bbo ? c->r[d->in.base] : const_table(c, d->in.base);
-    uint32_t addr = base + op2v(c->r, d);
-    unsigned n = d->burst_bytes;
-    if ((uint64_t)addr + n > c->dram_bytes)
-        return 0;
-    uint8_t *rf = (uint8_t *)c->r + d->burst_rf;
-    unsigned beats = (n + 3u) / 4u;
-    if (d->kind == K_LBBO || d->kind == K_LBCO) {
-        memcpy(rf, c->dram0 + addr, n);
-        return c->p.load_local_base + beats;
-    }
-    memcpy(c->dram0 + addr, rf, n);
-    core_store_watch(c, addr, n);
-    ff_dirty(c);
-    unsigned cyc = beats * c->p.store_beat_cycles;
-    return cyc ? cyc : 1;
-}
-
-/*
  * The hot path (no trace, no single step): register-only instructions run
  * here with PC, carry and counters in local variables; everything else goes
  * through exec_one(). Stops on limit, end of IRAM or anything setting stop.
@@ -378,7 +346,7 @@ static void run_fast(struct pru_core *c, int64_t limit) {
         const struct pd *d = &pd[pc];
         uint32_t old = pc;
         bool done = exec_simple(r, d, d->fast, &pc, &carry);
-        if (!done && d->fast == K_R31_READ) { /* kept off the path of the others */
+        if (!done && d->fast == PD_R31_READ) { /* kept off the path of the others */
             r[31] = gpi_r31(c, cyc);
             done = exec_simple(r, d, d->kind, &pc, &carry);
         }
@@ -397,8 +365,26 @@ static void run_fast(struct pru_core *c, int64_t limit) {
             }
             continue;
         }
-        unsigned cost;
-        if (d->burst_bytes && d->flags == 0 && (cost = burst_dram0(c, d)) != 0) {
+        if (d->burst_bytes && (d->flags & PD_EFFECTS) == 0) {
+            /* a fixed-length burst without R31 or pin effects: what
+             * exec_one() does, without its checks, for speed */
+            unsigned cost = exec_burst(c, d, pc, cyc);
+            if (c->stop) {
+                /* a fault, or a store to a control register (which may have
+                 * reset the core): finish as exec_one() does, on the core */
+                if (c->fault.cause != PRU_FAULT_NONE)
+                    break;
+                c->carry = carry;
+                c->insns = ins;
+                c->pc++;
+                c->cycle += cost;
+                c->stall_total += cost - 1;
+                c->insns++;
+                if (c->pc == c->loop_end)
+                    loop_back(c);
+                SYNC_IN();
+                break;
+            }
             pc++;
             cyc += cost;
             ins++;

@@ -1,7 +1,8 @@
 /*
  * exec_mem.c - instructions that move bytes between the register file and
- * memory or other register-file bytes: bursts (LBBO/SBBO/LBCO/SBCO), XFR
- * (XIN/XOUT/XCHG to scratch pads, ZERO, FILL) and MVIx.
+ * other register-file bytes or the scratch pads: XFR (XIN/XOUT/XCHG, ZERO,
+ * FILL) and MVIx, and what moving bytes into R30/R31 or out of R31 implies
+ * (bursts: exec_burst() in exec_priv.h).
  *
  * The register file is 128 bytes, little-endian: byte 4*n + k is rn.bk.
  */
@@ -9,20 +10,18 @@
 
 #include <string.h>
 
-#define RF_BYTES 128u
-
 static uint8_t *rf(struct pru_core *c) {
     return (uint8_t *)c->r;
 }
 
 /* Before reading register-file bytes [start, start+n): refresh R31. */
-static void rf_before_read(struct pru_core *c, unsigned start, unsigned n) {
+void rf_before_read(struct pru_core *c, unsigned start, unsigned n) {
     if (start + n > 124u)
         c->r[31] = gpi_r31(c, c->cycle);
 }
 
 /* After writing register-file bytes [start, start+n). */
-static void rf_after_write(struct pru_core *c, unsigned start, unsigned n, int64_t end_cycle) {
+void rf_after_write(struct pru_core *c, unsigned start, unsigned n, int64_t end_cycle) {
     unsigned end = start + n;
     if (start < 124u && end > 120u)
         exec_r30_changed(c, end_cycle);
@@ -32,34 +31,6 @@ static void rf_after_write(struct pru_core *c, unsigned start, unsigned n, int64
             mask |= 0xffu << (8u * (b - 124u));
         exec_r31_written(c, mask);
     }
-}
-
-unsigned exec_burst(struct pru_core *c, const struct pd *d, bool load, bool cbase) {
-    const struct pru_insn *in = &d->in;
-    unsigned n = pru_len_bytes(in->len, c->r[0]);
-    unsigned start = 4u * in->rx + in->rxbyte;
-    uint32_t base = cbase ? const_table(c, in->base) : c->r[in->base];
-    uint32_t addr = base + (fld(c->r, d->rs2, d->rs2sh, d->rs2mask) | d->imm);
-    unsigned cycles = 1;
-
-    if (n == 0 || start + n > RF_BYTES) {
-        core_fault(c, PRU_FAULT_BURST, addr);
-        return 1;
-    }
-    if (load) {
-        uint8_t tmp[RF_BYTES];
-        if (mem_load(c, addr, tmp, n, &cycles) != 0)
-            return 1;
-        memcpy(rf(c) + start, tmp, n);
-        rf_after_write(c, start, n, c->cycle + cycles);
-    } else {
-        rf_before_read(c, start, n);
-        if (mem_store(c, addr, rf(c) + start, n, &cycles) != 0)
-            return 1;
-        ff_dirty(c);
-    }
-    c->pc++;
-    return cycles;
 }
 
 /* XIN/XOUT on a scratch-pad bank (device 10, 11, 12). */

@@ -1,5 +1,5 @@
 /*
- * iep.c - the IEP timer (pru-facts 6): COUNT with DEFAULT_INC / CMP_INC /
+ * iep.c - the IEP timer (docs/pru-facts.md §6): COUNT with DEFAULT_INC / CMP_INC /
  * COMPEN, compares CMP0..7 (hit when COUNT >= CMPn, status write-1-to-clear),
  * reset on CMP0, overflow flag. Evaluated lazily: the state is brought up to
  * a cycle boundary when read or written, in bulk between events.
@@ -160,7 +160,7 @@ void iep_write(struct pru_core *c, uint32_t ofs, uint32_t val, uint32_t bm, int6
         break;
     case COUNT:
         e->count = (e->count & ~bm) | v;
-        break; /* plain write (pru-facts 8) */
+        break; /* plain write (docs/pru-facts.md §8) */
     case CMP_CFG:
         e->cmp_cfg = ((e->cmp_cfg & ~bm) | v) & 0x1ffu;
         break;

@@ -1,5 +1,5 @@
 /*
- * intc.c - the subset of the PRU-ICSS INTC (pru-facts 5.5) that decides
+ * intc.c - the subset of the PRU-ICSS INTC (docs/pru-facts.md §5.5) that decides
  * R31[31:30]: system events from R31 writes (16..31), Cnt_16 (1) and the
  * IEP compare (7, a level while any CMP_STATUS bit is set); raw/enabled
  * status set and clear; channel and host maps; global and host enables.

@@ -1,6 +1,6 @@
 /*
- * memmap.c - the PRU-local data space (pru-facts 5.1), the constant table
- * (5.2), the host's global view (5.4) and the cost of each access (3).
+ * memmap.c - the PRU-local data space (docs/pru-facts.md §5.1), the constant
+ * table (§5.2), the host's global view (§5.4) and the cost of each access (§3).
  */
 #include "core_priv.h"
 
@@ -220,28 +220,24 @@ static void regs_store(struct pru_core *c, const struct hit *h, const uint8_t *s
     }
 }
 
-static unsigned beats(unsigned n) {
-    return (n + 3u) / 4u;
-}
-
 static unsigned load_cycles(const struct pru_core *c, enum region rg, unsigned n) {
     const struct pru_params *p = &c->p;
     switch (rg) {
     case RG_DRAM0:
     case RG_DRAM1:
     case RG_SHARED:
-        return p->load_local_base + beats(n);
+        return mem_local_load_cycles(c, n);
     case RG_INTC:
-        return p->load_intc_cycles + beats(n) - 1;
+        return p->load_intc_cycles + mem_beats(n) - 1;
     case RG_CTRL0:
     case RG_CTRL1:
-        return p->load_ctrl_cycles + beats(n) - 1;
+        return p->load_ctrl_cycles + mem_beats(n) - 1;
     case RG_CFG:
-        return p->load_cfg_cycles + beats(n) - 1;
+        return p->load_cfg_cycles + mem_beats(n) - 1;
     case RG_IEP:
-        return p->load_iep_cycles + beats(n) - 1;
+        return p->load_iep_cycles + mem_beats(n) - 1;
     default:
-        return p->load_ext_cycles + beats(n) - 1;
+        return p->load_ext_cycles + mem_beats(n) - 1;
     }
 }
 
@@ -280,12 +276,13 @@ static bool lookup(struct pru_core *c, uint32_t addr, unsigned n, struct hit *h,
 }
 
 /* Accesses may run from one block into an adjacent one (PRU0 into PRU1
- * data RAM on an 8 KB part); the first block decides the cost. */
-int mem_load(struct pru_core *c, uint32_t addr, uint8_t *dst, unsigned n, unsigned *cycles) {
-    if ((uint64_t)addr + n <= c->dram_bytes) { /* the common case: own data RAM */
-        memcpy(dst, c->dram0 + addr, n);
-        *cycles = c->p.load_local_base + beats(n);
-        return 0;
+ * data RAM on an 8 KB part); the first block decides the cost. A load that
+ * faults part way leaves dst as it was. */
+int mem_load_any(struct pru_core *c, uint32_t addr, uint8_t *out, unsigned n, unsigned *cycles) {
+    uint8_t dst[128];
+    if (n > sizeof dst) {
+        core_fault(c, PRU_FAULT_BURST, addr);
+        return -1;
     }
     for (unsigned done = 0, chunk; done < n; done += chunk) {
         struct hit h;
@@ -302,17 +299,13 @@ int mem_load(struct pru_core *c, uint32_t addr, uint8_t *dst, unsigned n, unsign
             note_horizon(c, &h, chunk);
         }
     }
+    memcpy(out, dst, n);
     return 0;
 }
 
-int mem_store(struct pru_core *c, uint32_t addr, const uint8_t *src, unsigned n, unsigned *cycles) {
-    unsigned cyc = beats(n) * c->p.store_beat_cycles;
-    *cycles = cyc ? cyc : 1;
-    if ((uint64_t)addr + n <= c->dram_bytes) { /* the common case: own data RAM */
-        memcpy(c->dram0 + addr, src, n);
-        core_store_watch(c, addr, n);
-        return 0;
-    }
+int mem_store_any(struct pru_core *c, uint32_t addr, const uint8_t *src, unsigned n,
+                  unsigned *cycles) {
+    *cycles = mem_store_cycles(c, n);
     /* check the whole range first: a faulting store writes nothing */
     for (unsigned done = 0, chunk = 0; done < n; done += chunk) {
         struct hit h = {0};

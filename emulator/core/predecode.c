@@ -44,137 +44,74 @@ static void set_op2(struct pd *d, const struct pru_insn *in) {
     }
 }
 
-static enum pd_kind alu_kind(unsigned op) {
-    static const uint8_t k[] = {K_ADD, K_ADC, K_SUB, K_SUC, K_LSL, K_LSR, K_RSB, K_RSC,
-                                K_AND, K_OR,  K_XOR, K_NOT, K_MIN, K_MAX, K_CLR, K_SET};
-    return (enum pd_kind)k[op - PRU_OP_ADD];
-}
-
-static enum pd_kind branch_kind(unsigned op) {
-    switch (op) {
-    case PRU_OP_QBGT:
-        return K_QBGT;
-    case PRU_OP_QBGE:
-        return K_QBGE;
-    case PRU_OP_QBLT:
-        return K_QBLT;
-    case PRU_OP_QBLE:
-        return K_QBLE;
-    case PRU_OP_QBEQ:
-        return K_QBEQ;
-    case PRU_OP_QBNE:
-        return K_QBNE;
-    case PRU_OP_QBBS:
-        return K_QBBS;
-    case PRU_OP_QBBC:
-        return K_QBBC;
-    default:
-        return K_QBA;
-    }
-}
-
 static void decode_into(struct pd *d, const struct pru_insn *in, uint32_t pc) {
     unsigned op = in->op;
-    if (op <= PRU_OP_SET) {
-        d->kind = (uint8_t)alu_kind(op);
+    d->kind = (uint8_t)op;
+    switch ((enum pru_fmt)pru_optable[op].fmt) {
+    case PRU_FMT_ALU:
+        if (op >= PRU_OP_NOP0 && op <= PRU_OP_NOPF) {
+            d->kind = PRU_OP_NOP0; /* no operand is read or written */
+            return;
+        }
         set_dst(d, in->rd, in->rdsel);
         set_rs1(d, in->rs1, in->rs1sel);
         set_op2(d, in);
         if (op == PRU_OP_SET && in->rs1 == 31) {
-            /* DOC quirk: R31 as the source of SET reads as zero */
+            /* DOC quirk (docs/pru-facts.md §1.3): R31 as the source of SET reads as zero */
             d->rs1 = ZERO_REG;
             d->flags &= (uint8_t)~PD_READS_R31;
             if (!in->io && in->rs2 == 31)
                 d->flags |= PD_READS_R31;
         }
         return;
-    }
-    if (op >= PRU_OP_NOP0 && op <= PRU_OP_NOPF) {
-        d->kind = K_NOP;
-        return;
-    }
-    switch (op) {
-    case PRU_OP_LMBD:
-        d->kind = K_LMBD;
+    case PRU_FMT_JAL:
         set_dst(d, in->rd, in->rdsel);
-        set_rs1(d, in->rs1, in->rs1sel);
         set_op2(d, in);
         return;
-    case PRU_OP_JMP:
-    case PRU_OP_JAL:
-        d->kind = op == PRU_OP_JMP ? K_JMP : K_JAL;
-        if (op == PRU_OP_JAL)
-            set_dst(d, in->rd, in->rdsel);
+    case PRU_FMT_JMP:
         set_op2(d, in);
         return;
-    case PRU_OP_LDI:
-        d->kind = K_LDI;
+    case PRU_FMT_LDI:
         set_dst(d, in->rd, in->rdsel);
         d->imm = in->imm;
         return;
-    case PRU_OP_HALT:
-        d->kind = K_HALT;
-        return;
-    case PRU_OP_SLP:
-        d->kind = K_SLP;
-        return;
-    case PRU_OP_MVIB:
-    case PRU_OP_MVIW:
-    case PRU_OP_MVID:
-        d->kind = K_MVI;
-        return;
-    case PRU_OP_XIN:
-    case PRU_OP_XOUT:
-    case PRU_OP_XCHG:
-    case PRU_OP_SXIN:
-    case PRU_OP_SXOUT:
-    case PRU_OP_SXCHG:
-        d->kind = K_XFR;
-        return;
-    case PRU_OP_LOOP:
-    case PRU_OP_ILOOP:
-        d->kind = K_LOOP;
+    case PRU_FMT_LOOP:
         set_op2(d, in);
         if (in->io)
             d->imm = in->imm + 1u; /* encoded as count - 1 */
         d->target = pc + in->loop_end;
         return;
-    case PRU_OP_QBBS:
-    case PRU_OP_QBBC:
-    case PRU_OP_QBGT:
-    case PRU_OP_QBGE:
-    case PRU_OP_QBLT:
-    case PRU_OP_QBLE:
-    case PRU_OP_QBEQ:
-    case PRU_OP_QBNE:
-    case PRU_OP_QBA:
-        d->kind = (uint8_t)branch_kind(op);
-        if (op != PRU_OP_QBA) {
-            set_rs1(d, in->rs1, in->rs1sel);
-            set_op2(d, in);
-        }
+    case PRU_FMT_QB:
+    case PRU_FMT_QBB:
+        set_rs1(d, in->rs1, in->rs1sel);
+        set_op2(d, in);
         d->target = (uint32_t)(pc + (uint32_t)(int32_t)in->broff) & 0xffffu;
         return;
-    case PRU_OP_LBBO:
-    case PRU_OP_SBBO:
-    case PRU_OP_LBCO:
-    case PRU_OP_SBCO:
-        d->kind = op == PRU_OP_LBBO   ? K_LBBO
-                  : op == PRU_OP_SBBO ? K_SBBO
-                  : op == PRU_OP_LBCO ? K_LBCO
-                                      : K_SBCO;
+    case PRU_FMT_QBA:
+        d->target = (uint32_t)(pc + (uint32_t)(int32_t)in->broff) & 0xffffu;
+        return;
+    case PRU_FMT_BURST:
         set_op2(d, in);
-        if ((op == PRU_OP_LBBO || op == PRU_OP_SBBO) && in->base == 31)
+        if ((pru_optable[op].match >> 28) & 1u)
+            d->flags |= PD_BURST_LOAD;
+        if (pru_optable[op].form == PRU_FORM_BURST_CO)
+            d->flags |= PD_BURST_CBASE;
+        if (pru_optable[op].form == PRU_FORM_BURST_BO && in->base == 31)
             d->flags |= PD_READS_R31;
         if (in->len < 124 && 4u * in->rx + in->rxbyte + in->len + 1u <= 120u) {
             d->burst_bytes = (uint8_t)(in->len + 1u);
             d->burst_rf = (uint8_t)(4u * in->rx + in->rxbyte);
         }
         return;
-    default:
-        d->kind = K_BAD; /* SCAN (V1 only) */
+    case PRU_FMT_NONE: /* HALT */
+    case PRU_FMT_SLP:
+    case PRU_FMT_MVI:
+    case PRU_FMT_XFR: /* these read their fields from d->in */
         return;
+    case PRU_FMT_PSEUDO:
+        break;
     }
+    d->kind = PD_BAD;
 }
 
 void predecode_word(struct pru_core *c, uint32_t pc) {
@@ -182,16 +119,16 @@ void predecode_word(struct pru_core *c, uint32_t pc) {
     memset(d, 0, sizeof *d);
     struct pru_insn in;
     if (pru_decode(c->iram0[pc], &in) != 0) {
-        d->kind = K_BAD;
-        d->fast = K_SLOW;
+        d->kind = PD_BAD;
+        d->fast = PD_SLOW;
         return;
     }
     d->in = in;
     decode_into(d, &in, pc);
-    d->fast = d->kind > K_QBBC           ? K_SLOW
-              : d->flags == 0            ? d->kind
-              : d->flags == PD_READS_R31 ? K_R31_READ
-                                         : K_SLOW;
+    d->fast = d->kind == PD_BAD || !pru_op_register_only(d->kind) ? PD_SLOW
+              : d->flags == 0                                     ? d->kind
+              : d->flags == PD_READS_R31                          ? PD_R31_READ
+                                                                  : PD_SLOW;
 }
 
 void predecode_all(struct pru_core *c) {

@@ -178,7 +178,7 @@
 // is not known to the firmware, and R31 is read on whole cycles while the
 // samples may fall between them). BISS_DELAY_ADJ_CYCLES is the firmware's read one cycle
 // after the period starts less the PRU's input synchronizer (2 cycles,
-// design/pru-facts.md section 3, an estimate).
+// docs/pru-facts.md §3, an estimate).
 #define BISS_DELAY_ZERO         20
 #define BISS_DELAY_ADJ_CYCLES   1
 

@@ -1,6 +1,6 @@
 /*
- * test_asm_dialect.c - the pasm source dialect (design/pru-facts.md
- * section 2): comments, #define and conditionals, -D, labels, .origin,
+ * test_asm_dialect.c - the pasm source dialect (docs/pru-facts.md
+ * §2): comments, #define and conditionals, -D, labels, .origin,
  * .entrypoint, macros with label renaming, structures, scopes, SIZE/OFFSET,
  * .setcallreg, .codeword, .proc, &register, #include with "" and <>, and the
  * in-process API. Expected words were checked against pasm 0.87 -V3.

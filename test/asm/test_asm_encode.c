@@ -2,7 +2,7 @@
  * test_asm_encode.c - every instruction and operand form pruasm accepts
  * produces the words pasm 0.87 -V3 produces. Each snippet is assembled after
  * ".origin 0"; the expected words were checked against pasm 0.87 (and the
- * VER table of design/pru-facts.md section 1.9).
+ * VER table of docs/pru-facts.md §1.9).
  */
 #include "check_run.h"
 

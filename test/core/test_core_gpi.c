@@ -1,5 +1,5 @@
 /*
- * Check suite: GPI 28-bit shift mode (pru-facts 4.4/4.5) against known
+ * Check suite: GPI 28-bit shift mode (docs/pru-facts.md §4.4, §4.5) against known
  * input waveforms, for every divisor code pair that gives the 8x shift
  * clocks of 1, 2, 5 and 10 MHz MA (8, 16, 40, 80 MHz), both fractional
  * divider patterns and several phases: R31 contents asserted at every

@@ -142,7 +142,7 @@ START_TEST(compensation) {
 }
 END_TEST
 
-/* Plain reference: one tick at a time, exactly as pru-facts 6 reads. */
+/* Plain reference: one tick at a time, exactly as docs/pru-facts.md §6 reads. */
 struct ref {
     uint32_t cfg, compen, count, ccfg, cst, gst, cmp[8];
 };

@@ -1,6 +1,6 @@
 /*
  * Check suite: semantics and cycle cost of every PRU instruction in the
- * core emulator (pru-facts sections 1 and 3).
+ * core emulator (docs/pru-facts.md §1 and §3).
  */
 #include "check_run.h"
 #include "core_test_util.h"
@@ -55,7 +55,7 @@ START_TEST(sub_not_borrow) {
     ck_assert_uint_eq(REG(c, 2), 0xFFFFFFFEu);
     ck_assert_int_eq(pru_carry(c), 0);
     pru_core_free(c);
-    /* pru-facts 1.3: dest .b0, rs1 = 0x180 (.w0), op2 = 1 -> 0x7F, carry 0 */
+    /* docs/pru-facts.md §1.3: dest .b0, rs1 = 0x180 (.w0), op2 = 1 -> 0x7F, carry 0 */
     c = RUN(ldi(R(4), 0x180), alui(PRU_OP_SUB, B0(3), W0(4), 1), halt());
     ck_assert_uint_eq(REG(c, 3), 0x7F);
     ck_assert_int_eq(pru_carry(c), 0);

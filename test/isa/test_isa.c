@@ -8,7 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Words produced by pasm 0.87 -V3 (pru-facts.md 1.9 and more checked
+/* Words produced by pasm 0.87 -V3 (docs/pru-facts.md §1.9 and more checked
  * against it), with the text our disassembler prints for them at pc. */
 static const struct {
     uint32_t word;
@@ -181,8 +181,9 @@ START_TEST(test_lookup_and_helpers) {
     ck_assert_int_eq(pru_op_lookup("QBBS"), PRU_OP_QBBS);
     ck_assert_int_eq(pru_op_lookup("lbco"), PRU_OP_LBCO);
     ck_assert_int_eq(pru_op_lookup("nopf"), PRU_OP_NOPF);
-    ck_assert_int_eq(pru_op_lookup("mov"), -1); /* a pseudo-instruction */
-    ck_assert_int_eq(pru_op_lookup("scan"), -1);
+    ck_assert_int_eq(pru_op_lookup("MOV"), PRU_OP_MOV); /* pseudo-instructions are rows too */
+    ck_assert_int_eq(pru_op_lookup("scan"), PRU_OP_SCAN);
+    ck_assert_int_eq(pru_op_lookup("nop"), -1);
     ck_assert_int_eq(pru_op_lookup(""), -1);
     ck_assert_int_eq(pru_op_lookup("averyverylongname"), -1);
     ck_assert_uint_eq(pru_len_bytes(0, 0), 1);
@@ -193,11 +194,23 @@ START_TEST(test_lookup_and_helpers) {
     ck_assert_uint_eq(pru_sel_width(PRU_SEL_R), 32);
     char buf[8];
     ck_assert_str_eq(pru_reg_name(30, PRU_SEL_W0, buf), "r30.w0");
-    /* every row's match lies within its own mask, and no two rows overlap */
+    /* every row's match lies within its own mask, its name finds it, its
+     * core range is sane, pseudo rows have no bits, and no two rows that
+     * decode overlap */
     for (int a = 0; a < PRU_OP_COUNT; a++) {
         ck_assert_uint_eq(pru_optable[a].match & ~pru_optable[a].mask, 0);
         ck_assert_int_eq(pru_op_lookup(pru_optable[a].name), a);
+        ck_assert_uint_le(pru_optable[a].min_core, pru_optable[a].max_core);
+        ck_assert_uint_le(pru_optable[a].max_core, 3);
+        if (pru_optable[a].fmt == PRU_FMT_PSEUDO) {
+            ck_assert_uint_eq(pru_optable[a].mask, 0);
+            ck_assert(!pru_op_decodes(a));
+        }
+        if (!pru_op_decodes(a))
+            continue;
         for (int b = a + 1; b < PRU_OP_COUNT; b++) {
+            if (!pru_op_decodes(b))
+                continue;
             uint32_t common = pru_optable[a].mask & pru_optable[b].mask;
             ck_assert_msg((pru_optable[a].match & common) != (pru_optable[b].match & common),
                           "%s overlaps %s", pru_optable[a].name, pru_optable[b].name);
