@@ -7,7 +7,7 @@ if(CLANG_FORMAT)
        ${PROJECT_SOURCE_DIR}/emulator/*.c ${PROJECT_SOURCE_DIR}/emulator/*.h
        ${PROJECT_SOURCE_DIR}/host/*.c ${PROJECT_SOURCE_DIR}/host/*.h
        ${PROJECT_SOURCE_DIR}/include/*.h ${PROJECT_SOURCE_DIR}/test/*.c
-       ${PROJECT_SOURCE_DIR}/test/*.h)
+       ${PROJECT_SOURCE_DIR}/test/*.h ${PROJECT_SOURCE_DIR}/examples/*.c)
   add_test(NAME clang_format COMMAND ${CLANG_FORMAT} --dry-run -Werror ${BISS_FORMAT_FILES})
 else()
   message(STATUS "clang-format not found: no formatting test (scripts/setup.sh installs it)")

@@ -1,7 +1,8 @@
-/* backend_emu.c - the in-process backend: the bench's emulated PRU-ICSS,
- * reached through the same global addresses as on the SoC. Time is
- * simulated and moves only in advance(). */
+/* backend_emu.c - libbiss-emu: the in-process backend, the bench's
+ * emulated PRU-ICSS, reached through the same global addresses as on the
+ * SoC. Time is simulated and moves only in advance(). */
 #include "biss_priv.h"
+#include "libbiss-emu.h"
 
 #include "bench.h"
 #include "scenario_json.h"
@@ -73,7 +74,7 @@ static int build_scenario(const struct biss_open_params *p, scenario *sc) {
     return scenario_check(sc, err, sizeof err) == 0 ? BISS_OK : BISS_E_SCENARIO;
 }
 
-int biss_emu_backend_open(const struct biss_open_params *p, struct biss_backend *be) {
+static int emu_backend_open(const struct biss_open_params *p, struct biss_backend *be) {
     struct bench_config cfg;
     bench_config_default(&cfg);
     int rc = build_scenario(p, &cfg.link);
@@ -98,6 +99,14 @@ int biss_emu_backend_open(const struct biss_open_params *p, struct biss_backend 
         .bench = e->bench,
     };
     return BISS_OK;
+}
+
+int biss_emu_open(const struct biss_open_params *p, biss_t **out) {
+    return biss_open_with(p, emu_backend_open, out);
+}
+
+struct bench *biss_emu_bench(biss_t *h) {
+    return h ? h->be.bench : NULL;
 }
 
 /* The single-cycle data layout of each slave the scenario wired up: data

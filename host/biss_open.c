@@ -10,10 +10,22 @@
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <limits.h>
 #include <string.h>
+#include <unistd.h>
 
-#ifndef BISS_DEFAULT_FIRMWARE
-#define BISS_DEFAULT_FIRMWARE "biss_master.bin"
+/* Where the image is when nothing names it (host/CMakeLists.txt sets all
+ * three): the build tree's, the installed one relative to an installed
+ * program's bin directory, and the one under the configured prefix. */
+#ifndef BISS_BUILD_DIR
+#define BISS_BUILD_DIR      "/nonexistent"
+#define BISS_BUILD_FIRMWARE "biss_master.bin"
+#endif
+#ifndef BISS_BIN_TO_FIRMWARE
+#define BISS_BIN_TO_FIRMWARE "../lib/firmware/biss_master.bin"
+#endif
+#ifndef BISS_INSTALLED_FIRMWARE
+#define BISS_INSTALLED_FIRMWARE "/usr/local/lib/firmware/biss_master.bin"
 #endif
 #define DEFAULT_TIMEOUT_MS 100
 
@@ -27,8 +39,42 @@ void biss_open_params_default(struct biss_open_params *p) {
     };
 }
 
-/* The params win, then $BISS_FIRMWARE, then the build tree's image. */
-static const char *firmware_path(const struct biss_open_params *p) {
+/* With no image named: a program of the build tree takes the build's
+ * image; any other takes the one installed beside it (<its bin>/../lib/
+ * firmware, so a moved prefix still works) when there is one, else the
+ * configured prefix's. buf holds the candidate beside the program. */
+static const char *default_firmware(char *buf, size_t len) {
+    char exe[PATH_MAX];
+    ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
+    if (n <= 0) {
+        return BISS_INSTALLED_FIRMWARE;
+    }
+    exe[n] = '\0';
+    size_t b = strlen(BISS_BUILD_DIR);
+    if (strncmp(exe, BISS_BUILD_DIR, b) == 0 && exe[b] == '/') {
+        return BISS_BUILD_FIRMWARE;
+    }
+    /* <prefix>/lib/..., not <prefix>/bin/../lib/...: each leading "../"
+     * of the relative path takes one directory off the program's */
+    const char *rel = BISS_BIN_TO_FIRMWARE;
+    char *slash = strrchr(exe, '/');
+    while (slash && strncmp(rel, "../", 3) == 0) {
+        *slash = '\0';
+        slash = strrchr(exe, '/');
+        rel += 3;
+    }
+    if (slash) {
+        *slash = '\0';
+        snprintf(buf, len, "%s/%s", exe, rel);
+        if (access(buf, R_OK) == 0) {
+            return buf;
+        }
+    }
+    return BISS_INSTALLED_FIRMWARE;
+}
+
+/* The params win, then $BISS_FIRMWARE, then default_firmware(). */
+static const char *firmware_path(const struct biss_open_params *p, char *buf, size_t len) {
     if (p->firmware && *p->firmware) {
         return p->firmware;
     }
@@ -36,7 +82,7 @@ static const char *firmware_path(const struct biss_open_params *p) {
     if (env && *env) {
         return env;
     }
-    return BISS_DEFAULT_FIRMWARE;
+    return default_firmware(buf, len);
 }
 
 static int read_image(biss_t *h, const char *path, struct biss_errbuf *e) {
@@ -90,10 +136,16 @@ int biss_handle_new(enum biss_target t, const struct biss_backend *be, unsigned 
     return BISS_OK;
 }
 
-static int open_backend(const struct biss_open_params *p, struct biss_backend *be) {
+static int open_backend(const struct biss_open_params *p, biss_backend_open_fn emu,
+                        struct biss_backend *be, struct biss_errbuf *e) {
     switch (p->target) {
     case BISS_TARGET_EMU:
-        return biss_emu_backend_open(p, be);
+        if (!emu) {
+            return biss_err(e, BISS_E_TARGET,
+                            "the emulator target is in libbiss-emu (biss_emu_open), "
+                            "not in libbiss");
+        }
+        return emu(p, be);
     case BISS_TARGET_AM335X:
     case BISS_TARGET_AM437X_ICSS0:
     case BISS_TARGET_AM437X_ICSS1:
@@ -175,11 +227,13 @@ static int magic_seen(biss_t *h, void *arg) {
 
 /* The image the host expects: loaded by the devmem loader; for the
  * others (attach, remoteproc, which loads its ELF itself) only compared,
- * and the build tree's default may be absent on a board. */
+ * and the default image may be absent on a board. */
 static int expected_image(biss_t *h, const struct biss_open_params *p, bool loads,
                           struct biss_errbuf *e) {
-    const char *path = firmware_path(p);
-    bool given = (p->firmware && *p->firmware) || strcmp(path, BISS_DEFAULT_FIRMWARE) != 0;
+    char buf[PATH_MAX + 64];
+    const char *path = firmware_path(p, buf, sizeof buf);
+    const char *env = getenv("BISS_FIRMWARE");
+    bool given = (p->firmware && *p->firmware) || (env && *env);
     int rc = read_image(h, path, (loads || given) ? e : NULL);
     return rc && !loads && !given ? BISS_OK : rc;
 }
@@ -213,6 +267,10 @@ static int open_linux(biss_t *h, const struct biss_open_params *p, struct biss_e
 }
 
 int biss_open(const struct biss_open_params *p, biss_t **out) {
+    return biss_open_with(p, NULL, out);
+}
+
+int biss_open_with(const struct biss_open_params *p, biss_backend_open_fn emu, biss_t **out) {
     if (!out) {
         return BISS_E_INVAL;
     }
@@ -225,7 +283,7 @@ int biss_open(const struct biss_open_params *p, biss_t **out) {
     }
     struct biss_errbuf e = {p->errbuf, p->errbuf_len};
     struct biss_backend be;
-    int rc = open_backend(p, &be);
+    int rc = open_backend(p, emu, &be, &e);
     if (rc) {
         return rc;
     }
@@ -235,7 +293,8 @@ int biss_open(const struct biss_open_params *p, biss_t **out) {
         return rc;
     }
     if (p->target == BISS_TARGET_EMU) {
-        rc = read_image(h, firmware_path(p), &e);
+        char buf[PATH_MAX + 64];
+        rc = read_image(h, firmware_path(p, buf, sizeof buf), &e);
         if (!rc) {
             rc = biss_pru_load_and_start(h);
         }
@@ -281,8 +340,4 @@ bool biss_attached(const biss_t *h) {
 
 const char *biss_firmware_path(const biss_t *h) {
     return h ? h->firmware : "";
-}
-
-struct bench *biss_emu_bench(biss_t *h) {
-    return h ? h->be.bench : NULL;
 }

@@ -85,9 +85,12 @@ int biss_exclusive(biss_t *h);
 int biss_handle_new(enum biss_target t, const struct biss_backend *be, unsigned timeout_ms,
                     biss_t **out);
 
-/* Backends: fill be, or return BISS_E_*. */
-int biss_emu_backend_open(const struct biss_open_params *p, struct biss_backend *be);
+/* Backends: fill be, or return BISS_E_*. The emulator's is in libbiss-emu
+ * (backend_emu.c), which hands it to biss_open_with; libbiss alone has none. */
+typedef int (*biss_backend_open_fn)(const struct biss_open_params *p, struct biss_backend *be);
 int biss_linux_backend_open(const struct biss_open_params *p, struct biss_backend *be);
+/* biss_open with an emulator backend (NULL: target "emu" refused). */
+int biss_open_with(const struct biss_open_params *p, biss_backend_open_fn emu, biss_t **out);
 
 /* Register helpers over the backend (data RAM offsets are BISS_* values). */
 int biss_dram_read(biss_t *h, uint32_t off, void *buf, size_t n);

@@ -1,6 +1,7 @@
 /* bissctl - the libbiss command line: the same subcommands on the
  * emulator and on a real PRU-ICSS. */
 #include "bissctl.h"
+#include "libbiss-emu.h"
 
 #include <stdio.h>
 #include <string.h>
@@ -78,7 +79,7 @@ static int open_target(struct bissctl_opts *o, const struct command *cmd, biss_t
     if (hw && !o->open.attach && read_only(cmd->name) && !o->config_given) {
         struct biss_open_params p = o->open;
         p.attach = true;
-        int rc = biss_open(&p, h);
+        int rc = biss_emu_open(&p, h);
         struct biss_status st;
         if (rc == BISS_OK && biss_get_status(*h, &st) == BISS_OK && st.firmware_running &&
             st.pru_enabled) {
@@ -97,11 +98,15 @@ static int open_target(struct bissctl_opts *o, const struct command *cmd, biss_t
                 read_only(cmd->name) ? ", or a firmware already running to attach to" : "");
         return BISSCTL_USAGE;
     }
-    int rc = biss_open(&o->open, h);
+    int rc = biss_emu_open(&o->open, h);
     return rc ? open_failed(o, rc) : BISSCTL_OK;
 }
 
 int main(int argc, char **argv) {
+    if (argc == 2 && strcmp(argv[1], "--version") == 0) { /* the project's (CMakeLists.txt) */
+        printf("%s %s\n", "bissctl", BISS_VERSION);
+        return 0;
+    }
     struct bissctl_opts o;
     int rc = bissctl_parse(argc, argv, &o);
     if (rc) {

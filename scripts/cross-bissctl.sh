@@ -1,25 +1,23 @@
 #!/bin/sh
-# Builds bissctl for the board (ARM, hard float) without the emulator:
-#   scripts/cross-bissctl.sh [OUT]        (default build-arm/bissctl)
-# CC defaults to arm-linux-gnueabihf-gcc (Debian: gcc-arm-linux-gnueabihf).
-# The binary is static, so it runs on any ARM Linux image and, on a PC,
-# under qemu-arm. 64-bit file offsets: readdir of a sysfs (or any) directory
-# must not fail with EOVERFLOW on large inode numbers.
+# Cross-builds the host side for the board (ARM, hard float) with CMake and
+# cmake/toolchain-armhf.cmake, and installs it into BUILD_DIR-prefix:
+#   scripts/cross-bissctl.sh [BUILD_DIR]        (default build-arm)
+# Prints the installed bissctl's path. The build directory is a cache: a
+# second run only rebuilds what changed. (The prefix lies outside the build
+# tree so the installed programs find their firmware as installed ones do.) Programs are linked statically
+# (libbiss.so is still built and installed), so bissctl runs on any ARM
+# Linux image whatever its C library and, on a PC, under qemu-arm.
+# Debian: gcc-arm-linux-gnueabihf (scripts/setup.sh installs it).
 set -eu
 here=$(cd "$(dirname "$0")/.." && pwd)
-out=${1:-build-arm/bissctl}
-cc=${CC:-arm-linux-gnueabihf-gcc}
-mkdir -p "$(dirname "$out")"
-srcs=""
-for f in "$here"/host/*.c; do
-    case $(basename "$f") in
-    backend_emu.c) ;;   # the emulator stays on the PC
-    *) srcs="$srcs $f" ;;
-    esac
-done
-# shellcheck disable=SC2086
-"$cc" -std=c11 -O2 -Wall -Wextra -Werror -D_POSIX_C_SOURCE=200809L -D_FILE_OFFSET_BITS=64 -static -pthread \
-    -DBISS_DEFAULT_FIRMWARE='"/lib/firmware/biss_master.bin"' \
-    -I"$here/host/include" -I"$here/host" -I"$here/include" -I"$here/emulator/util" \
-    $srcs "$here/emulator/util/read_file.c" -o "$out"
-echo "$out"
+dir=${1:-build-arm}
+mkdir -p "$dir"
+dir=$(cd "$dir" && pwd)
+cmake -S "$here" -B "$dir" -DCMAKE_TOOLCHAIN_FILE="$here/cmake/toolchain-armhf.cmake" \
+    -DBUILD_TESTING=OFF -DCMAKE_BUILD_TYPE=Release -DCMAKE_EXE_LINKER_FLAGS=-static \
+    -DCMAKE_INSTALL_PREFIX="$dir-prefix" >"$dir/configure.log" ||
+    { cat "$dir/configure.log" >&2; exit 1; }
+cmake --build "$dir" -j "${BISS_CROSS_JOBS:-2}" >"$dir/build.log" 2>&1 ||
+    { tail -40 "$dir/build.log" >&2; exit 1; }
+cmake --install "$dir" >/dev/null
+echo "$dir-prefix/bin/bissctl"

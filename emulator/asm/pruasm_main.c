@@ -337,6 +337,10 @@ static int write_outputs(const struct cli *o, const char *base, const struct pru
 }
 
 int main(int argc, char **argv) {
+    if (argc == 2 && strcmp(argv[1], "--version") == 0) { /* the project's (CMakeLists.txt) */
+        printf("%s %s\n", "pruasm", BISS_VERSION);
+        return 0;
+    }
     struct cli o = {0};
     const char *slash = strrchr(argv[0], '/');
     o.prog = slash ? slash + 1 : argv[0];

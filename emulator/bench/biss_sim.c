@@ -535,6 +535,10 @@ static int run(const struct options *o) {
 }
 
 int main(int argc, char **argv) {
+    if (argc == 2 && strcmp(argv[1], "--version") == 0) { /* the project's (CMakeLists.txt) */
+        printf("%s %s\n", "biss-sim", BISS_VERSION);
+        return 0;
+    }
     struct options o;
     int rc = parse_args(argc, argv, &o);
     if (rc) {

@@ -11,6 +11,7 @@
 #include <errno.h>
 #include <inttypes.h>
 #include <stdlib.h>
+#include <stdio.h>
 #include <string.h>
 
 #define EXIT_NOHALT        2
@@ -175,6 +176,10 @@ static void dump_regs(struct pru_core *c) {
 }
 
 int main(int argc, char **argv) {
+    if (argc == 2 && strcmp(argv[1], "--version") == 0) { /* the project's (CMakeLists.txt) */
+        printf("%s %s\n", "pru-run", BISS_VERSION);
+        return 0;
+    }
     struct opts o;
     if (parse_args(argc, argv, &o))
         return 1;

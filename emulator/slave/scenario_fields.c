@@ -178,7 +178,7 @@ static double load(const sf_field *f, const void *obj) {
 
 int sf_check_all(const sf_field *t, const void *obj, const char *prefix, char *err, size_t errlen) {
     for (; t->name; t++) {
-        char what[96];
+        char what[128]; /* sf_check writes at most 110 bytes */
         if (sf_check(t, load(t, obj), what, sizeof what)) {
             snprintf(err, errlen, "%s%s: %s", prefix, t->name, what);
             return -1;

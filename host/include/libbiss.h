@@ -2,10 +2,11 @@
  * libbiss.h - the ARM-host API of the PRU BiSS-C master.
  *
  * One handle drives one PRU0 running biss_master.bin, either emulated in
- * process (target "emu": PRU core + cable + encoder models) or on an
- * AM335x/AM437x PRU-ICSS mapped through /dev/mem (or any file standing in
- * for it). The same protocol code serves both: the firmware and the host
- * meet in PRU0's data RAM (include/biss/biss_shm.h).
+ * process (target "emu": PRU core + cable + encoder models, opened with
+ * biss_emu_open from libbiss-emu, <libbiss-emu.h>) or on an AM335x/AM437x
+ * PRU-ICSS mapped through /dev/mem (or any file standing in for it). This
+ * library (libbiss) holds the Linux backends only. The same protocol code serves both: the firmware
+ * and the host meet in PRU0's data RAM (include/biss/biss_shm.h).
  *
  * Every function returns 0 (BISS_OK) or a negative BISS_E_* code;
  * biss_strerror() names it. Handles hold no global state; each call locks
@@ -230,11 +231,6 @@ int biss_rate_half(uint32_t freq_hz, unsigned *half);
  * start value, position bits). 0 or the first specific error. */
 int biss_config_check(const struct biss_config *c);
 
-/* Emulator only: the slave layout of the bench's encoder(s), into
- * c->nslaves and c->slave[] (and, for an SSI encoder, c->ssi_delay_ns: the
- * bench line's round trip); the rest of c is left alone. */
-int biss_config_from_emu(biss_t *h, struct biss_config *c);
-
 /* Validates, writes the block, bumps CFG_SEQ and waits for the firmware's
  * ack; the firmware's refusal comes back as BISS_E_FW_*. */
 int biss_configure(biss_t *h, const struct biss_config *c);
@@ -390,12 +386,6 @@ struct biss_stats {
 
 int biss_get_status(biss_t *h, struct biss_status *st);
 int biss_get_stats(biss_t *h, struct biss_stats *st);
-
-/* ---- emulator access --------------------------------------------------- */
-struct bench;
-/* The bench behind an emulator handle (NULL for hardware). Use it only
- * while no other thread is inside a call on h. */
-struct bench *biss_emu_bench(biss_t *h);
 
 #ifdef __cplusplus
 }

@@ -139,6 +139,10 @@ static int build(Elf *e, uint8_t *image, size_t n, uint8_t *data) {
 }
 
 int main(int argc, char **argv) {
+    if (argc == 2 && strcmp(argv[1], "--version") == 0) { /* the project's (CMakeLists.txt) */
+        printf("%s %s\n", "pru-elf", BISS_VERSION);
+        return 0;
+    }
     if (argc != 3) {
         fprintf(stderr, "usage: pru-elf IMAGE.bin OUT.elf\n");
         return 2;

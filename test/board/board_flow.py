@@ -7,7 +7,7 @@ start-up: on "start" it loads the ELF's data segment (read with
 pyelftools from the real biss_master.elf) into data RAM and sets the
 magic; it acknowledges configurations; on "stop" the instance goes
 offline. Run with the PC's bissctl and, when given, the ARM build under
-qemu-arm (scripts/cross-bissctl.sh).
+qemu-arm (scripts/cross-bissctl.sh, installed in <build>/arm-prefix).
 
 usage: board_flow.py BISSCTL BISS_MASTER_ELF BISS_MASTER_BIN [ARM_BISSCTL]
 """

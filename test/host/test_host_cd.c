@@ -2,6 +2,7 @@
  * RAM, the firmware's verdicts, and register access end to end on the
  * emulator against the slave model's register file. */
 #include "fake_backend.h"
+#include "libbiss-emu.h"
 
 #include "bench.h"
 #include "biss/biss_shm.h"
@@ -119,7 +120,7 @@ static biss_t *emu(enum biss_trigger t) {
     p.profile = "tidep0022-test-encoder";
     p.cable_m = 2.0;
     biss_t *h;
-    ck_assert_int_eq(biss_open(&p, &h), BISS_OK);
+    ck_assert_int_eq(biss_emu_open(&p, &h), BISS_OK);
     struct biss_config c;
     biss_config_default(&c);
     c.freq_hz = 10000000;

@@ -1,7 +1,7 @@
 /* libbiss end to end on the emulator backend: the real firmware image on
  * the emulated PRU, a cable, and the TIDEP0022 test encoder model. What the
  * library reports is checked against what the slave model sent. */
-#include "libbiss.h"
+#include "libbiss-emu.h"
 
 #include "bench.h"
 
@@ -24,7 +24,7 @@ static biss_t *open_emu(double cable_m) {
     p.set_seed = true;
     p.seed = 7;
     biss_t *h;
-    int rc = biss_open(&p, &h);
+    int rc = biss_emu_open(&p, &h);
     ck_assert_msg(rc == BISS_OK, "open: %s", biss_strerror(rc));
     ck_assert_ptr_nonnull(biss_emu_bench(h));
     return h;
@@ -260,7 +260,7 @@ static void ssi_run(const char *scenario_file, bool gray) {
     p.profile = "ssi";
     p.scenario_file = scenario_file;
     biss_t *h;
-    int rc = biss_open(&p, &h);
+    int rc = biss_emu_open(&p, &h);
     ck_assert_msg(rc == BISS_OK, "open: %s", biss_strerror(rc));
     struct biss_config c;
     biss_config_default(&c);
@@ -342,20 +342,28 @@ START_TEST(test_emu_open_errors) {
     biss_open_params_default(&p);
     biss_t *h;
     p.profile = "no-such-encoder";
-    ck_assert_int_eq(biss_open(&p, &h), BISS_E_PROFILE);
+    ck_assert_int_eq(biss_emu_open(&p, &h), BISS_E_PROFILE);
     ck_assert_ptr_null(h);
     p.profile = NULL;
     p.scenario_file = "/nonexistent.json";
-    ck_assert_int_eq(biss_open(&p, &h), BISS_E_SCENARIO);
+    ck_assert_int_eq(biss_emu_open(&p, &h), BISS_E_SCENARIO);
     p.scenario_file = NULL;
     p.firmware = "/nonexistent.bin";
-    ck_assert_int_eq(biss_open(&p, &h), BISS_E_FIRMWARE_IO);
+    ck_assert_int_eq(biss_emu_open(&p, &h), BISS_E_FIRMWARE_IO);
     /* the environment names the image when the params do not */
     p.firmware = NULL;
     setenv("BISS_FIRMWARE", "/nonexistent-env.bin", 1);
-    ck_assert_int_eq(biss_open(&p, &h), BISS_E_FIRMWARE_IO);
+    ck_assert_int_eq(biss_emu_open(&p, &h), BISS_E_FIRMWARE_IO);
     unsetenv("BISS_FIRMWARE");
-    ck_assert_int_eq(biss_open(&p, &h), BISS_OK);
+    /* libbiss alone has no emulator: a refusal that says where it is */
+    char why[160];
+    p.errbuf = why;
+    p.errbuf_len = sizeof why;
+    ck_assert_int_eq(biss_open(&p, &h), BISS_E_TARGET);
+    ck_assert_ptr_null(h);
+    ck_assert_ptr_nonnull(strstr(why, "libbiss-emu"));
+    p.errbuf = NULL;
+    ck_assert_int_eq(biss_emu_open(&p, &h), BISS_OK);
     ck_assert_int_eq(biss_target(h), BISS_TARGET_EMU);
     /* not configured yet: nothing to trigger, nothing published */
     struct biss_sample s;

@@ -3,7 +3,7 @@
  * CONTROL is written, the configuration bytes are where biss_shm.h says;
  * with a "virtual firmware" thread on the same file the whole protocol
  * runs as on a board. */
-#include "libbiss.h"
+#include "libbiss-emu.h"
 
 #include "biss/biss_shm.h"
 

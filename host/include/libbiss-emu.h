@@ -1,0 +1,34 @@
+/*
+ * libbiss-emu.h - the emulator target of libbiss: the firmware running on
+ * the emulated PRU core, wired through the cable and encoder models (the
+ * bench). libbiss-emu adds this backend to libbiss; an application for a
+ * board links libbiss alone (<libbiss.h>).
+ */
+#ifndef LIBBISS_EMU_H
+#define LIBBISS_EMU_H
+
+#include "libbiss.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* biss_open for every target, the emulator ("emu") included: its profile,
+ * scenario file, cable length and seed come from p. */
+int biss_emu_open(const struct biss_open_params *p, biss_t **out);
+
+/* The slave layout of the bench's encoder(s), into c->nslaves and
+ * c->slave[] (and, for an SSI encoder, c->ssi_delay_ns: the bench line's
+ * round trip); the rest of c is left alone. BISS_E_NOT_EMU for hardware. */
+int biss_config_from_emu(biss_t *h, struct biss_config *c);
+
+struct bench;
+/* The bench behind an emulator handle (NULL for hardware). Use it only
+ * while no other thread is inside a call on h. */
+struct bench *biss_emu_bench(biss_t *h);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

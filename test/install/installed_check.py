@@ -1,0 +1,200 @@
+#!/usr/bin/env python3
+"""An installed tree as its users meet it: the files in their places, every
+tool's --version, libbiss.so's soname and exports (no emulator symbols, no
+libcjson), bissctl finding the firmware installed beside it (emulator
+target) and loading it through a file standing in for /dev/mem, and
+examples/read_positions.c built with `pkg-config --cflags --libs libbiss`
+reading a position the test publishes in the stand-in's data RAM.
+
+usage: installed_check.py --version V --source DIR --cc CC [--nm NM]
+         (--install-from BUILD_DIR | --prefix PREFIX)
+         [--run "qemu-arm -L /usr/arm-linux-gnueabihf"] [--tools "bissctl pruasm ..."]
+         [--same-firmware BUILD_DIR]
+--install-from installs BUILD_DIR into a temporary prefix first (removed
+after); --prefix checks a tree already installed (the cross build's).
+--same-firmware: the installed images must be byte-identical to BUILD_DIR's.
+"""
+import argparse
+import os
+import shlex
+import shutil
+import struct
+import subprocess
+import sys
+import tempfile
+
+failures = 0
+
+
+def check(cond, what):
+    global failures
+    if not cond:
+        failures += 1
+        print("FAIL:", what)
+    return cond
+
+
+ap = argparse.ArgumentParser()
+ap.add_argument("--version", required=True)
+ap.add_argument("--source", required=True)
+ap.add_argument("--cc", required=True)
+ap.add_argument("--nm", default="nm")
+ap.add_argument("--install-from")
+ap.add_argument("--prefix")
+ap.add_argument("--run", default="")
+ap.add_argument("--tools", default="bissctl biss-sim pruasm pru-run pru-elf")
+ap.add_argument("--same-firmware")
+a = ap.parse_args()
+runner = shlex.split(a.run)
+
+BASE, CLKCTRL, IRAM = 0x4A300000, 0x44E000E8, 0x34000
+CFG_SEQ, MAGIC, ST_SEQ, ST_BUF, ST_CFG_ACK, ST_CFG_ERROR, ST_STATE = (
+    0x00, 0x80, 0x84, 0x88, 0x8C, 0x90, 0x94)
+RES0, RF_VALID, RS_CRC_OK, R_SLAVE0 = 0x100, 0x01, 0x01, 0x20
+
+
+def run(*args, **kw):
+    return subprocess.run([*runner, *args], capture_output=True, text=True, timeout=120, **kw)
+
+
+def rd(mem, at, n=4):
+    with open(mem, "rb") as f:
+        f.seek(at)
+        return int.from_bytes(f.read(n), "little")
+
+
+def wr(mem, at, v, n=4):
+    with open(mem, "r+b") as f:
+        f.seek(at)
+        f.write(v.to_bytes(n, "little"))
+
+
+def check_tree(prefix, tmp):
+    pc = os.path.join(prefix, "lib", "pkgconfig", "libbiss.pc")
+    if not os.path.exists(pc):  # a multiarch libdir (prefix /usr on Debian)
+        found = [d for d, _, f in os.walk(prefix) if "libbiss.pc" in f]
+        pc = os.path.join(found[0], "libbiss.pc") if found else pc
+    if not check(os.path.exists(pc), "libbiss.pc installed"):
+        return
+    env = dict(os.environ, PKG_CONFIG_LIBDIR=os.path.dirname(pc), PKG_CONFIG_PATH="")
+    libdir = subprocess.run(["pkg-config", "--variable=libdir", "libbiss"], env=env,
+                            capture_output=True, text=True).stdout.strip()
+    check(os.path.realpath(libdir) == os.path.realpath(os.path.dirname(os.path.dirname(pc))),
+          "libdir %r beside the .pc" % libdir)
+    fw = os.path.join(prefix, "lib", "firmware")
+    for f in ["bin/" + t for t in a.tools.split()] + [
+            "include/libbiss.h", "lib/firmware/biss_master.bin", "lib/firmware/biss_master.elf",
+            "lib/firmware/am335x-pru0-fw", "lib/firmware/BB-BISS-PRU0-00A0.dtbo",
+            "share/doc/pru_biss/README.md", "share/doc/pru_biss/host/README.md"]:
+        check(os.path.exists(os.path.join(prefix, f)), "installed: " + f)
+    for f in ["libbiss.a", "libbiss.so"]:
+        check(os.path.exists(os.path.join(libdir, f)), "installed: %s/%s" % (libdir, f))
+    check(not os.path.exists(os.path.join(prefix, "include", "libbiss-emu.h")),
+          "the emulator header is not installed")
+    with open(os.path.join(prefix, "include", "libbiss.h")) as f:
+        check("struct bench" not in f.read(), "libbiss.h names no bench type")
+
+    # every tool: one project version
+    for t in a.tools.split():
+        r = run(os.path.join(prefix, "bin", t), "--version")
+        check(r.returncode == 0 and r.stdout == "%s %s\n" % (t, a.version),
+              "%s --version: %d %r %r" % (t, r.returncode, r.stdout, r.stderr))
+
+    # the shared library: soname, needs, exports
+    so = os.path.join(libdir, "libbiss.so")
+    dyn = subprocess.run(["readelf", "-d", so], capture_output=True, text=True).stdout
+    soname = "libbiss.so.%s" % a.version.split(".")[0]
+    check("Library soname: [%s]" % soname in dyn, "SONAME %s in %r" % (soname, dyn))
+    check(os.path.islink(so) and os.readlink(so) == soname, "libbiss.so -> " + soname)
+    needed = [l.split("[")[1].rstrip("]") for l in dyn.splitlines() if "(NEEDED)" in l]
+    check(needed and not [n for n in needed if "cjson" in n or "elf" in n or "check" in n],
+          "libbiss.so needs only the C library: %r" % needed)
+    syms = subprocess.run([a.nm, "-D", "--defined-only", so], capture_output=True,
+                          text=True).stdout.split("\n")
+    names = [l.split()[-1] for l in syms if len(l.split()) == 3 and l.split()[1] in "TDBRV"]
+    check(len(names) > 40 and "biss_open" in names and "biss_read_sample" in names,
+          "libbiss.so exports its API (%d symbols)" % len(names))
+    emu = [n for n in names if not n.startswith("biss_") or n.startswith("biss_emu")
+           or n in ("biss_config_from_emu",)]
+    check(not emu, "libbiss.so exports nothing but its API, no emulator: %r" % emu[:10])
+    for n in names:
+        for bad in ("bench_", "pru_core", "pru_host", "scenario_", "cJSON", "link_model"):
+            check(bad not in n, "emulator symbol %s exported" % n)
+
+    # bissctl on the emulator target finds the firmware installed beside it
+    ctl = os.path.join(prefix, "bin", "bissctl")
+    r = run(ctl, "info")
+    want = os.path.join(fw, "biss_master.bin")
+    check(r.returncode == 0 and ("firmware=%s\n" % want) in r.stdout,
+          "installed firmware found: %r %r" % (r.stdout, r.stderr))
+    r = run(ctl, "read", "-n", "3")
+    check(r.returncode == 0 and r.stdout.count("valid s0.pos=") >= 2,
+          "emulator read: %r %r" % (r.stdout, r.stderr))
+
+    # the devmem loader, on a file standing in for /dev/mem
+    mem = os.path.join(tmp, "mem")
+    with open(mem, "wb") as f:
+        f.truncate(BASE + 0x80000)
+    wr(mem, CLKCTRL, 2)  # powered, as the pruss driver leaves it
+    env = dict(os.environ, BISS_LOCK_DIR=tmp)
+    dm = ["--target", "am335x", "--loader", "devmem", "--devmem", mem]
+    r = run(ctl, *dm, "--slave", "14,6,0x43,0,0", "--freq", "10000000", "--timeout-ms", "20",
+            "info", env=env)
+    check(r.returncode == 1 and "not running" in r.stderr, "devmem load: %r" % r.stderr)
+    with open(want, "rb") as f:
+        image = f.read()
+    with open(mem, "rb") as f:
+        f.seek(BASE + IRAM)
+        check(f.read(len(image)) == image, "IRAM holds the installed image")
+    check(rd(mem, BASE + 0x04, 2) == 10, "CFG_HALF 10 (10 MHz)")
+
+    # the firmware's part, played here: running, configuration acked, one
+    # frame published with slave 0's data word: 12-bit position, nE, nW
+    seq, pos = rd(mem, BASE + CFG_SEQ), 0xA5C
+    wr(mem, BASE + MAGIC, 0x42695353)
+    wr(mem, BASE + ST_CFG_ACK, seq)
+    wr(mem, BASE + ST_CFG_ERROR, 0)
+    wr(mem, BASE + ST_STATE, 1)
+    res = BASE + RES0
+    wr(mem, res + 0x00, 7)             # frame
+    wr(mem, res + 0x04, RF_VALID)
+    wr(mem, res + 0x0F, 1, 1)          # nslaves
+    wr(mem, res + 0x16, 10, 2)         # half
+    wr(mem, res + R_SLAVE0, pos << 2 | 3)  # data_lo: nE, nW = 1: no error, no warning
+    wr(mem, res + R_SLAVE0 + 12, RS_CRC_OK)
+    wr(mem, BASE + ST_BUF, 0)
+    wr(mem, BASE + ST_SEQ, 1)
+
+    # the example, built against the installed tree with pkg-config
+    flags = subprocess.run(["pkg-config", "--cflags", "--libs", "libbiss"], env=dict(
+        os.environ, PKG_CONFIG_LIBDIR=os.path.dirname(pc), PKG_CONFIG_PATH=""),
+        capture_output=True, text=True)
+    check(flags.returncode == 0 and "-lbiss" in flags.stdout, "pkg-config: %r" % flags.stderr)
+    exe = os.path.join(tmp, "read_positions")
+    cc = subprocess.run([*shlex.split(a.cc), "-std=c11", "-Wall", "-Wextra", "-Werror",
+                         os.path.join(a.source, "examples", "read_positions.c"), "-o", exe,
+                         *shlex.split(flags.stdout), "-Wl,-rpath," + libdir],
+                        capture_output=True, text=True)
+    if check(cc.returncode == 0, "example build: %r" % cc.stderr):
+        ldd = subprocess.run(["readelf", "-d", exe], capture_output=True, text=True).stdout
+        check("[%s]" % soname in ldd, "the example links the shared libbiss")
+        r = run(exe, mem, env=env)
+        check(r.returncode == 0 and r.stdout == "slave 0: position %d\n" % pos,
+              "example: %d %r %r" % (r.returncode, r.stdout, r.stderr))
+
+
+with tempfile.TemporaryDirectory() as tmp:
+    prefix = a.prefix and os.path.abspath(a.prefix)
+    if a.install_from:
+        prefix = os.path.join(tmp, "prefix")
+        r = subprocess.run(["cmake", "--install", a.install_from, "--prefix", prefix],
+                           capture_output=True, text=True)
+        check(r.returncode == 0, "cmake --install: %r" % r.stderr)
+    check_tree(prefix, tmp)
+    if a.same_firmware:
+        for f in ["biss_master.bin", "biss_master.elf"]:
+            with open(os.path.join(prefix, "lib", "firmware", f), "rb") as x, \
+                 open(os.path.join(a.same_firmware, "pru_fw", f), "rb") as y:
+                check(x.read() == y.read(), "%s byte-identical to %s's" % (f, a.same_firmware))
+print("installed tree %s: %d failure(s)" % (a.prefix or "(temporary)", failures))
+sys.exit(1 if failures else 0)
