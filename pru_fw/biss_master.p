@@ -993,11 +993,18 @@ CDP_IDA:
     xor     r5.b0, r5.b0, MA_MASK
     qba     CDP_OUT
 CDP_WAIT:
-    add     r8, r3.w0, 1                    // CDS 1 ends the wait: send the next step now
+    // While the slave's S is late the master sends CDM 1 (MA low in the
+    // timeout): 13 CDM 0 already follow a read byte (D, CRC, P), and any
+    // control frame is cancelled by 14 (TIDEP0022 §2.1.3). TI's own PRU
+    // firmware does the same: it keeps its S (clock held low) until the
+    // slave's start bit comes (motor-control-sdk, bissc_main.asm,
+    // BISSC_SKIP_CTRL_SB?). CDS 1 ends the wait: send the next step now.
+    ldi     r5.b0, MA_MASK
+    add     r8, r3.w0, 1
     jal     r0.w2, CD_OP
     and     r7, r7, CD_PAST_END | 3
-    qbne    CDP_OUT, r7, BISS_CDOP_1
-    ldi     r5.b1, MA_MASK
+    qbeq    CDP_OUT, r7, BISS_CDOP_1        // 1 either way
+    ldi     r5.b1, MA_MASK                  // 0 once CDS is 1
 CDP_OUT:
     sbco    r2, c28, P_CD, 20
     jmp     r0.w0

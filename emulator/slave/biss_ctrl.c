@@ -150,6 +150,7 @@ int biss_ctrl_cdm(biss_ctrl *c, int cdm) {
     cdm = cdm ? 1 : 0;
     c->zeros = cdm ? 0 : c->zeros + 1;
     int cds = 0;
+    bool in_frame = c->state != CTRL_IDLE;
     switch (c->state) {
     case CTRL_IDLE:
         if (cdm && c->armed) {
@@ -161,11 +162,6 @@ int biss_ctrl_cdm(biss_ctrl *c, int cdm) {
         break;
     case CTRL_IGNORE:
     case CTRL_HEADER:
-        if (c->zeros >= ARM_ZEROS) { /* cancelled: back to idle, armed */
-            go(c, CTRL_IDLE);
-            c->armed = true;
-            break;
-        }
         if (c->state == CTRL_IGNORE) {
             break;
         }
@@ -220,6 +216,17 @@ int biss_ctrl_cdm(biss_ctrl *c, int cdm) {
         }
         cds = finish(c, cdm);
         break;
+    }
+    if (in_frame && c->state != CTRL_IDLE && c->zeros >= ARM_ZEROS) {
+        /* [TI] TIDEP0022 §2.1.3: "Any control frame can be cancelled by
+         * transmitting 14 numbers of CDM equaling 0", in whatever state it
+         * is (header, late S, data, IDA): back to idle, armed. A frame
+         * that this zero ends as the layout says (a final S = 0, a
+         * command's P) has ended already, and wants 14 fresh zeros. */
+        go(c, CTRL_IDLE);
+        c->armed = true;
+        c->cancels++;
+        cds = 0;
     }
     c->cds = cds;
     return cds;

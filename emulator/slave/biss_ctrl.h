@@ -11,7 +11,7 @@
  *                 CTS = 1 register access: ID(3) ADR(7)
  *                 CTS = 0 BiSS command:    IDS(8, first bit = ID 0) CMD(2)
  *               bad CRC -> error counter +1, frame ignored; other ID ->
- *               ignored; 14 zeros during the header cancel it
+ *               ignored
  *   register    R W S from the master (read 1 0 1, write 0 1 1); CDS echoes
  *               R after R and W after W; after S the slave answers its own S:
  *               1 at once, or 0 for reg_proc_frames frames first (late S,
@@ -37,7 +37,9 @@
  *               that wants P = 1. A master's IDA test withholds a command
  *               by inverting P, which works for either.
  *
- * After a frame ends the slave needs 14 zero CDMs again before a new S. */
+ * After a frame ends the slave needs 14 zero CDMs again before a new S.
+ * 14 zero CDMs in a row cancel a control frame in any state ([TI]
+ * TIDEP0022 §2.1.3: "any control frame"), counted in `cancels`. */
 #ifndef BISS_CTRL_H
 #define BISS_CTRL_H
 
@@ -83,6 +85,7 @@ typedef struct {
 
     /* what happened, for the bench and tests */
     unsigned long crc_errors, reads, writes, write_refused, commands, commands_dropped, frames;
+    unsigned long cancels; /* control frames cancelled by 14 zero CDMs */
     int last_cmd; /* -1 until a command executes */
     int last_addr, last_value;
 } biss_ctrl;

@@ -114,7 +114,7 @@
 
 #define BISS_CDOP_0             0       // send CDM 0
 #define BISS_CDOP_1             1       // send CDM 1
-#define BISS_CDOP_WAIT          2       // CDM 0 until a frame's CDS is 1, then the next step in that
+#define BISS_CDOP_WAIT          2       // CDM 1 until a frame's CDS is 1, then the next step in that
                                         // frame (never followed by another WAIT or a CRC step)
 #define BISS_CDOP_CRC           3       // send the next bit of CRC_M, inverted
 #define BISS_CDCL_NONE          0       // (class, bits 3..2 of a step) answer only recorded

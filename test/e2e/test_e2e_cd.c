@@ -175,6 +175,45 @@ START_TEST(test_late_start_bit) {
 }
 END_TEST
 
+/* Late S of 1, 3 and 20 frames at 10 and 1 MHz, against a slave that
+ * cancels a control frame on 14 CDM = 0 in any state (TIDEP0022 §2.1.3):
+ * a single read and a sequential read of 4 bytes both come through, and
+ * the slave never saw a cancel. (13 CDM = 0 follow every read byte: D, CRC
+ * and P; a master sending 0 while it waits makes 14 with one frame.) */
+START_TEST(test_late_start_never_cancels) {
+    static const unsigned lates[] = {1, 3, 20};
+    static const unsigned halves[] = {10, 100};
+    static const uint8_t serial[] = {0x00, 0xd9, 0x01, 0x32};
+    const uint8_t temp = 0x5f;
+    unsigned late = lates[_i % 3], half = halves[_i / 3];
+    struct e2e_run r;
+    struct bench *b = e2e_bench(&r, "tidep0022-test-encoder", 2, NULL);
+    biss_ctrl *ctrl = &bench_link(b)->biss.ctrl[0];
+    ctrl->reg_proc_frames = late;
+    ck_assert_uint_eq(e2e_run_frames(&r, half, 1000, 10), 10);
+    fw_check_restart(&r.fc, UINT64_MAX);
+    static biss_cd_prog p;
+    struct fw_cd cd;
+    ck_assert_int_eq(biss_cd_build_read(&p, 0, 0x67, 1), BISS_CD_OK);
+    ck_assert_int_eq(run_cd(&r, &p, (uint16_t)(late + 2), &cd), BISS_CD_OK);
+    ck_assert_uint_eq(cd.result.byte[0].data, temp);
+    ck_assert_int_eq(cd.result.byte[0].start, BISS_CD_S_LATE);
+    ck_assert_uint_eq(ctrl->reads, 1);
+    ck_assert_uint_eq(ctrl->cancels, 0);
+    ck_assert_int_eq(biss_cd_build_read(&p, 0, 0x44, 4), BISS_CD_OK);
+    ck_assert_int_eq(run_cd(&r, &p, (uint16_t)(late + 2), &cd), BISS_CD_OK);
+    ck_assert_uint_eq(cd.result.good_bytes, 4);
+    for (unsigned i = 0; i < 4; i++) {
+        ck_assert_uint_eq(cd.result.byte[i].data, serial[i]);
+        ck_assert_int_eq(cd.result.byte[i].start, BISS_CD_S_LATE);
+    }
+    ck_assert_uint_eq(ctrl->reads, 5);
+    ck_assert_uint_eq(ctrl->cancels, 0);
+    assert_positions_clean(&r);
+    e2e_free(&r);
+}
+END_TEST
+
 /* Runs p and flips the slave's CDS once, in the frame that answers the
  * data bit `bit` of register byte `byte` (the slave's frame bit 0, before
  * it goes out). */
@@ -263,6 +302,7 @@ int main(void) {
     tcase_add_test(tc, test_write_then_read_back);
     tcase_add_test(tc, test_commands_with_and_without_ida);
     tcase_add_test(tc, test_late_start_bit);
+    tcase_add_loop_test(tc, test_late_start_never_cancels, 0, 6);
     tcase_add_test(tc, test_corrupted_cds_fails_crc);
     tcase_add_test(tc, test_corrupted_echo_fails_write);
     suite_add_tcase(s, tc);

@@ -187,8 +187,9 @@ START_TEST(late_start_bit_delays_data) {
     biss_ctrl_init(&c, 0, &regs, 3);
     arm(&c);
     char out[128];
-    /* after RWS the slave answers S = 0 for 3 frames, then S = 1 */
-    feed(&c, "1 10001100111 0010 101 000 00000000 0000 0 0", out);
+    /* after RWS the slave answers S = 0 for 3 frames, then S = 1; the
+     * master holds CDM = 1 meanwhile (see late_start_zeros_cancel) */
+    feed(&c, "1 10001100111 0010 101 111 00000000 0000 0 0", out);
     ck_assert_str_eq(out, "0000000000000000"
                           "10"
                           "000"
@@ -326,6 +327,32 @@ START_TEST(broadcast_command) {
 }
 END_TEST
 
+/* TIDEP0022 §2.1.3: any control frame is cancelled by 14 CDM = 0. A
+ * master that sends 0 while the slave's S is late puts 3 + 8 + 4 zeros
+ * in a row into a read: the frame is cancelled in the data, and the read
+ * never completes. */
+START_TEST(late_start_zeros_cancel) {
+    biss_ctrl c;
+    biss_ctrl_init(&c, 0, &regs, 3);
+    arm(&c);
+    char out[128];
+    feed(&c, "1 10001100111 0010 101 000 00000000 00", out); /* 13 zeros */
+    ck_assert_int_eq(c.state, CTRL_DCRC);
+    feed(&c, "0", out); /* the 14th zero */
+    ck_assert_int_eq(c.state, CTRL_IDLE);
+    ck_assert(c.armed);
+    ck_assert_uint_eq(c.cancels, 1);
+    ck_assert_uint_eq(c.reads, 0);
+    /* the S of a sequential access after 13 zeros is not a cancel */
+    biss_ctrl_init(&c, 0, &regs, 0);
+    arm(&c);
+    feed(&c, "1 10001100111 0010 101 00000000 0000 0 1 00000000 0000 0 0", out);
+    ck_assert_uint_eq(c.reads, 2);
+    ck_assert_uint_eq(c.cancels, 0);
+    ck_assert(!c.armed); /* a frame that ended wants 14 fresh zeros */
+}
+END_TEST
+
 START_TEST(fourteen_zeros_cancel_a_header) {
     biss_ctrl c;
     biss_ctrl_init(&c, 0, &regs, 0);
@@ -358,6 +385,7 @@ int main(void) {
     tcase_add_test(tc, addressed_command_with_ida);
     tcase_add_test(tc, broadcast_command);
     tcase_add_test(tc, fourteen_zeros_cancel_a_header);
+    tcase_add_test(tc, late_start_zeros_cancel);
     suite_add_tcase(s, tc);
     return check_run(s);
 }
