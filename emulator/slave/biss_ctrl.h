@@ -86,7 +86,7 @@ typedef struct {
     /* what happened, for the bench and tests */
     unsigned long crc_errors, reads, writes, write_refused, commands, commands_dropped, frames;
     unsigned long cancels; /* control frames cancelled by 14 zero CDMs */
-    int last_cmd; /* -1 until a command executes */
+    int last_cmd;          /* -1 until a command executes */
     int last_addr, last_value;
 } biss_ctrl;
 

@@ -211,9 +211,6 @@ static void start_frame(biss_slave *b, sim_ps t) {
     b->nbits = 0;
     b->bit = 0;
     push_bits(b, (uint64_t)b->cds, 1, NULL, 0);
-    for (unsigned i = 0; i < b->cfg.n; i++) {
-        build_slave_data(b, i, t);
-    }
     b->rises = 0;
     b->started = false;
     b->phase = BISS_ACTIVE;
@@ -284,6 +281,13 @@ static void restart_timeout(biss_slave *b, sim_ps t) {
 static void on_rise(biss_slave *b, sim_ps t) {
     b->rises++;
     if (b->rises == 1) {
+        /* [MB4] "BiSS C Frame": "With the first rising edge at MAx all
+         * sensors start calculating their sensor data" - the position is
+         * taken here, not at the falling edge that starts the frame. */
+        b->cur.latch_ps = t;
+        for (unsigned i = 0; i < b->cfg.n; i++) {
+            build_slave_data(b, i, t);
+        }
         return;
     }
     if (b->rises == 2) {

@@ -7,9 +7,10 @@
  *
  * One frame, from the slave's side:
  *   idle       SL high
- *   MA falls   (while idle) the frame starts: every slave latches its
- *              position at this instant and builds its single-cycle data
- *   1st rise   nothing
+ *   MA falls   (while idle) the frame starts
+ *   1st rise   every slave latches its position at this instant and builds
+ *              its single-cycle data ([MB4] "BiSS C Frame": the sensors
+ *              start calculating with the first rising edge)
  *   2nd rise   SL low: ACK
  *   busy       SL stays low on further rising edges until both busy_clocks
  *              extra clocks have passed and busy_ps has elapsed since the ACK
@@ -96,6 +97,7 @@ typedef struct {
 typedef struct {
     uint64_t frame; /* 0, 1, ... */
     sim_ps start_ps, ack_ps, start_bit_ps, end_ps;
+    sim_ps latch_ps; /* first rising edge: the position's instant (0: none) */
     int cds;         /* CDS sent in this frame */
     int cdm;         /* CDM sampled at its timeout, -1 if none */
     bool acked;      /* at least two rising edges */
