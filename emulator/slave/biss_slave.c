@@ -81,10 +81,18 @@ const char *biss_chain_cfg_check(const biss_chain_cfg *c) {
     if (c->n < 1 || c->n > BISS_MAX_SLAVES) {
         return "slaves: a chain has 1 to 8 slaves";
     }
+    unsigned ids = 0; /* IDs answered by control communication */
     for (unsigned i = 0; i < c->n; i++) {
         const char *e = biss_slave_cfg_check(&c->s[i]);
         if (e) {
             return e;
+        }
+        if (!c->s[i].no_control) {
+            if (ids & (1u << c->s[i].id)) {
+                return "slaves: two slaves answer control communication with the same id "
+                       "(set \"control\": false on a data-only channel)";
+            }
+            ids |= 1u << c->s[i].id;
         }
     }
     unsigned first, second;
@@ -261,7 +269,9 @@ static void on_timeout(void *ctx, sim_ps t, int64_t arg) {
         int cdm = !b->ma;
         int cds = 0;
         for (unsigned i = 0; i < b->cfg.n; i++) {
-            cds |= biss_ctrl_cdm(&b->ctrl[i], cdm);
+            if (!b->cfg.s[i].no_control) {
+                cds |= biss_ctrl_cdm(&b->ctrl[i], cdm);
+            }
         }
         b->cds = cds;
         b->cur.cdm = cdm;
