@@ -19,8 +19,11 @@
  *                    [DATA], CRC 0s [CHECK]; write: D [ECHO], CRC [ECHO]);
  *                    finally S=0
  *   BiSS command     S=1, CTS=0 IDS(8, first = ID 0) CMD(2) [DATA], CRC,
- *                    8 IDA slots (CDM 0), P=0 (IDA test: inverted if the
- *                    IDA answers differ from the IDs addressed)
+ *                    8 IDA slots (CDM 0), then the bit that executes it:
+ *                    EX = 1 by default (iC-MB4 rev B2, Table 31: "EX bit
+ *                    after IDA"), or P = 0 (biss_cd_build_command_ex);
+ *                    with the IDA test it goes out inverted if the IDA
+ *                    answers differ from the IDs addressed
  * and then BISS_CD_TAIL_ZEROS steps of CDM 0 (none: the firmware itself
  * sends 14 frames of CDM 0 after a program before it starts the next).
  * CRC4: polynomial 0x13 (x^4+x+1), start 0, sent inverted, over CTS and
@@ -141,8 +144,19 @@ biss_cd_err biss_cd_build_write(biss_cd_prog *p, unsigned id, unsigned addr, con
                                 unsigned count);
 /* BiSS command cmd (0..3) to the slaves in ids (bit i = ID i; 0 = all,
  * broadcast without IDA). ida_test: the firmware checks the IDA answers
- * before P and withholds the command (P inverted) if they are not ids. */
+ * before the execute bit and withholds the command (the bit inverted) if
+ * they are not ids. The execute bit is BISS_CD_EX_DEFAULT. */
 biss_cd_err biss_cd_build_command(biss_cd_prog *p, uint8_t ids, unsigned cmd, bool ida_test);
+/* The bit after the IDA slots that executes a command: 1, iC-MB4 rev B2's
+ * EX bit ("the slaves feedback (IDA) is tested before execution (EX bit
+ * after IDA)", Table 31), the only document that speaks of that bit for a
+ * command; the stop bit P = 0 of TIDEP0022 and the POSITAL manual is a
+ * register access's. With 1, every CDM 0 a master sends when it stops
+ * (an error, a failed frame, idle) withholds a command. */
+#define BISS_CD_EX_DEFAULT 1
+/* As biss_cd_build_command, with the execute bit ex (0 or 1) the slaves want. */
+biss_cd_err biss_cd_build_command_ex(biss_cd_prog *p, uint8_t ids, unsigned cmd, bool ida_test,
+                                     unsigned ex);
 /* frames (1..BISS_CD_MAX_STEPS) of CDM 0: lets a slave left inside a
  * frame (after BISS_CD_E_NO_START or BISS_CD_E_FRAME) finish it and re-arm. */
 biss_cd_err biss_cd_build_idle(biss_cd_prog *p, unsigned frames);

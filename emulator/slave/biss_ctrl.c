@@ -9,6 +9,7 @@ void biss_ctrl_init(biss_ctrl *c, uint8_t id, regfile *regs, unsigned reg_proc_f
     c->id = id & 7;
     c->regs = regs;
     c->reg_proc_frames = reg_proc_frames;
+    c->cmd_stop = BISS_CTRL_CMD_EXEC_DEFAULT;
     c->state = CTRL_IDLE;
     c->last_cmd = -1;
     c->last_addr = -1;

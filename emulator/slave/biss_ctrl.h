@@ -29,13 +29,15 @@
  *               above), 0 = end of the frame
  *   command     after the CRC, 8 IDA slots: CDS after the CRC and after each
  *               of the first 7 slots is 1 in slot i if this slave has ID i and
- *               was addressed (never for a broadcast, IDS = 0); then P, on
- *               which the command is executed (recorded) if P = cmd_stop;
- *               the other value breaks the frame: the command is dropped
- *               (counted). cmd_stop is 0 by default (TIDEP0022 and the
- *               Posital manual give the stop bit as 0); 1 models a slave
- *               that wants P = 1. A master's IDA test withholds a command
- *               by inverting P, which works for either.
+ *               was addressed (never for a broadcast, IDS = 0); then the
+ *               execute bit, on which the command is executed (recorded)
+ *               if it equals cmd_stop; the other value breaks the frame:
+ *               the command is dropped (counted). cmd_stop is 1 by default
+ *               (iC-MB4 rev B2, Table 31: "EX bit after IDA"); 0 models a
+ *               slave that takes the register access's stop bit P = 0
+ *               (TIDEP0022, the Posital manual) there. A master's IDA test
+ *               withholds a command by inverting the bit, which works for
+ *               either.
  *
  * After a frame ends the slave needs 14 zero CDMs again before a new S.
  * 14 zero CDMs in a row cancel a control frame in any state ([TI]
@@ -47,6 +49,11 @@
 
 #include <stdbool.h>
 #include <stdint.h>
+
+/* The bit after the IDA slots that executes a command: iC-MB4 rev B2,
+ * Table 31, "EX bit after IDA" (1); 0 for a slave that takes the register
+ * access's stop bit P = 0 ([TI], [POS]) there. */
+#define BISS_CTRL_CMD_EXEC_DEFAULT 1
 
 typedef enum {
     CTRL_IDLE,
@@ -65,7 +72,7 @@ typedef enum {
 typedef struct {
     uint8_t id;               /* 0..7 */
     unsigned reg_proc_frames; /* late S: frames of register processing */
-    uint8_t cmd_stop;         /* the command's stop bit P that executes it (default 0) */
+    uint8_t cmd_stop;         /* the bit after IDA that executes a command (default 1) */
     regfile *regs;
 
     biss_ctrl_state state;

@@ -12,6 +12,7 @@ void biss_slave_cfg_default(biss_slave_cfg *s, uint8_t id) {
     s->pos_bits = 12;
     s->has_err = s->has_warn = true;
     s->crc_poly = 0x43;
+    s->cmd_exec = BISS_CTRL_CMD_EXEC_DEFAULT;
     regfile_init(&s->regs, 1);
 }
 
@@ -123,6 +124,7 @@ void biss_slave_init(biss_slave *b, const biss_chain_cfg *cfg, event_queue *q, s
     b->out = out;
     for (unsigned i = 0; i < cfg->n; i++) {
         biss_ctrl_init(&b->ctrl[i], b->cfg.s[i].id, &b->cfg.s[i].regs, b->cfg.s[i].reg_proc_frames);
+        b->ctrl[i].cmd_stop = b->cfg.s[i].cmd_exec;
     }
     b->phase = BISS_IDLE;
     b->ma = 1;

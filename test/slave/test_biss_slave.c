@@ -408,7 +408,7 @@ START_TEST(command_in_chain_over_frames) {
             "10"
             "0111"
             "00000000"
-            "0"
+            "1"
             "0",
             3 * 20 + 6, cds);
     ck_assert_str_eq(cds + 14 + 16, "001"

@@ -296,7 +296,7 @@ START_TEST(addressed_command_with_ida) {
     biss_ctrl_init(&c5, 5, &regs, 0);
     arm(&c2);
     arm(&c5);
-    const char *f = "1 0 00100000 10 0111 00000000 0";
+    const char *f = "1 0 00100000 10 0111 00000000 1"; /* EX = 1 */
     char o2[64], o5[64];
     feed(&c2, f, o2);
     feed(&c5, f, o5);
@@ -315,12 +315,35 @@ START_TEST(addressed_command_with_ida) {
 }
 END_TEST
 
+/* The bit after the IDA slots: EX = 1 executes by default (iC-MB4 rev B2,
+ * Table 31); a 0 there (a master that stopped, or withholds the command)
+ * drops it. A slave with cmd_stop = 0 takes it the other way round. */
+START_TEST(command_execute_bit_either_convention) {
+    biss_ctrl c;
+    char out[64];
+    biss_ctrl_init(&c, 2, &regs, 0);
+    ck_assert_uint_eq(c.cmd_stop, 1);
+    arm(&c);
+    feed(&c, "1 0 00100000 10 0111 00000000 0", out);
+    ck_assert_uint_eq(c.commands, 0);
+    ck_assert_uint_eq(c.commands_dropped, 1);
+    biss_ctrl_init(&c, 2, &regs, 0);
+    c.cmd_stop = 0;
+    arm(&c);
+    feed(&c, "1 0 00100000 10 0111 00000000 1", out);
+    ck_assert_uint_eq(c.commands_dropped, 1);
+    feed(&c, ZEROS14, out);
+    feed(&c, "1 0 00100000 10 0111 00000000 0", out);
+    ck_assert_uint_eq(c.commands, 1);
+}
+END_TEST
+
 START_TEST(broadcast_command) {
     biss_ctrl c;
     biss_ctrl_init(&c, 3, &regs, 0);
     arm(&c);
     char out[64];
-    feed(&c, "1 0 00000000 01 1100 00000000 0", out);
+    feed(&c, "1 0 00000000 01 1100 00000000 1", out);
     ck_assert_str_eq(out, "0000000000000000000000000");
     ck_assert_uint_eq(c.commands, 1);
     ck_assert_int_eq(c.last_cmd, 1);
@@ -384,6 +407,7 @@ int main(void) {
     tcase_add_test(tc, read_only_and_write_protected);
     tcase_add_test(tc, addressed_command_with_ida);
     tcase_add_test(tc, broadcast_command);
+    tcase_add_test(tc, command_execute_bit_either_convention);
     tcase_add_test(tc, fourteen_zeros_cancel_a_header);
     tcase_add_test(tc, late_start_zeros_cancel);
     suite_add_tcase(s, tc);
