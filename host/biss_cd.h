@@ -82,6 +82,7 @@ typedef struct {
     uint8_t wdata[BISS_CD_MAX_BYTES]; /* write: the bytes sent */
     uint8_t ids, cmd;                 /* command: ids bit i = slave ID i */
     uint16_t rw;                      /* register access: R step (W is rw + 1) */
+    uint16_t idl;                     /* register access: step answered by IDL slot 0 (CTS) */
     biss_cd_byte_steps byte[BISS_CD_MAX_BYTES];
     uint16_t ida;  /* command: step whose answer is IDA slot 0 (slot i: ida + i) */
     bool ida_test; /* command: the firmware withholds P unless the IDA answers are ids */
@@ -120,6 +121,8 @@ typedef struct {
     unsigned nbytes;     /* entries of byte[] filled (the program's count) */
     bool rw_echo_ok;     /* register access: R and W echoed */
     biss_cd_byte byte[BISS_CD_MAX_BYTES];
+    uint8_t idl;          /* register access: ID-lock answers IDL0..7, bit i = ID i */
+    bool idl_answered;    /* all 8 IDL answers were recorded */
     uint8_t ida;          /* command: IDA slot answers, bit i = ID i */
     uint8_t ida_expected; /* command: the addressed IDs (0 for a broadcast) */
 } biss_cd_result;

@@ -91,6 +91,7 @@ static biss_cd_err build_register(biss_cd_prog *p, bool write, unsigned id, unsi
     p->id = (uint8_t)id;
     p->addr = (uint8_t)addr;
     p->count = (uint8_t)count;
+    p->idl = (uint16_t)(p->len + 1u); /* CTS, after S */
     put_header(p, biss_cd_reg_header(p->id, p->addr));
     p->rw = p->len;
     put_bits(p, write ? 1u : 2u, 2, BISS_CDCL_ECHO); /* R W, echoed by the slave */

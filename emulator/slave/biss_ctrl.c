@@ -66,6 +66,20 @@ static int ida_bit(const biss_ctrl *c, unsigned slot) {
     return c->addressed && !c->broadcast && slot == c->id;
 }
 
+/* ID lock: in a register access (CTS = 1) every slave answers the CTS and
+ * the 7 header bits after it with IDL0..7, 1 in the slot of its own ID
+ * ([AD38] control-frame drawings: CDS "IDL0..7" during the header, before
+ * R W S; [POS] §3.1.2: "ID Lock bits (IDL) are sent back to communicate
+ * which slaves are occupied"; [TI] §2.1.3: IDs are carried out by setting
+ * the IDL bits for the first eight IDs). Which 8 of the 15 header answers
+ * carry them the drawings leave to the OCR: EST, the first 8, slot k
+ * answering header bit k (k = 0: CTS). */
+static int idl_bit(const biss_ctrl *c) {
+    unsigned k = c->count - 1;
+    bool cts = (c->shift >> k) & 1u;
+    return cts && k < 8 && k == c->id;
+}
+
 static int on_header_done(biss_ctrl *c) {
     uint16_t payload = (uint16_t)(c->shift >> 4);
     uint8_t crc = c->shift & 0xf;
@@ -169,6 +183,8 @@ int biss_ctrl_cdm(biss_ctrl *c, int cdm) {
         c->shift = (c->shift << 1) | (unsigned)cdm;
         if (++c->count == 15) {
             cds = on_header_done(c);
+        } else {
+            cds = idl_bit(c);
         }
         break;
     case CTRL_RWS:

@@ -7,7 +7,9 @@
  *   idle        >= 14 consecutive CDM = 0 arm the slave
  *   S           CDM = 1 while armed starts a control frame
  *   header      CTS, then 10 bits, then CRC4 (poly 0x13, start 0, sent
- *               inverted) over CTS and the 10 bits
+ *               inverted) over CTS and the 10 bits; in a register access
+ *               CDS after CTS and the next 7 bits: IDL0..7, 1 in the slot
+ *               of the slave's own ID (ID lock; slot placement EST)
  *                 CTS = 1 register access: ID(3) ADR(7)
  *                 CTS = 0 BiSS command:    IDS(8, first bit = ID 0) CMD(2)
  *               bad CRC -> error counter +1, frame ignored; other ID ->

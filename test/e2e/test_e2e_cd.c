@@ -174,6 +174,9 @@ START_TEST(test_ad38_registers_by_id) {
     ck_assert_int_eq(biss_cd_build_read(&p, 0, 0x67, 1), BISS_CD_OK);
     ck_assert_int_eq(run_cd(&r, &p, 10, &cd), BISS_CD_OK);
     ck_assert_uint_eq(cd.result.byte[0].data, 0x40);
+    /* the header's ID-lock answers: IDs 0 and 1 are taken */
+    ck_assert(cd.result.idl_answered);
+    ck_assert_uint_eq(cd.result.idl, 0x03);
     ck_assert_int_eq(biss_cd_build_read(&p, 1, 0x69, 1), BISS_CD_OK);
     ck_assert_int_eq(run_cd(&r, &p, 10, &cd), BISS_CD_OK);
     ck_assert_uint_eq(cd.result.byte[0].data, 0x0a);

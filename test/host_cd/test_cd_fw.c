@@ -82,6 +82,8 @@ START_TEST(fw_reads_table11) {
     const uint8_t temp = 0x5f;
     ck_assert_int_eq(rig_read(&r, 0x67, 1, 10, &res), BISS_CD_OK);
     assert_bytes(&res, &temp, 1);
+    ck_assert(res.idl_answered);
+    ck_assert_uint_eq(res.idl, 0x01); /* ID lock: the one slave holds ID 0 */
     ck_assert_int_eq(res.byte[0].start, BISS_CD_S_IN_TIME);
     /* back to back: the firmware starts each at once */
     ck_assert_int_eq(rig_read(&r, 0x67, 1, 10, &res), BISS_CD_OK);

@@ -95,7 +95,9 @@ START_TEST(register_read) {
     /* S, the Table 7 frame for 0x67, then the sequential S = 0 */
     feed(&c, "1 10001100111 0010 101 00000000 0000 0 0", out);
     /* 16 x 0 (S + header), R W S echo 1 0 1, data 0x5F, CRC4 sent 1111, P, end */
-    ck_assert_str_eq(out, "0000000000000000"
+    ck_assert_str_eq(out, "0"
+                          "10000000" /* IDL0..7: ID 0 */
+                          "0000000"
                           "101"
                           "01011111"
                           "1111"
@@ -115,7 +117,9 @@ START_TEST(register_write_stores_and_echoes) {
     /* write 0x3A to 0x10 (bank 0): header 10000010000 CRC 0011, RWS 011,
      * data 00111010, CRC4 of 0x3A sent 1101, P, end */
     feed(&c, "1 10000010000 0011 011 00111010 1101 0 0", out);
-    ck_assert_str_eq(out, "0000000000000000"
+    ck_assert_str_eq(out, "0"
+                          "10000000" /* IDL0..7: ID 0 */
+                          "0000000"
                           "011"
                           "00111010"
                           "1101"
@@ -144,7 +148,9 @@ START_TEST(header_crc_error_is_ignored_and_counted) {
     arm(&c);
     char out[128];
     feed(&c, "1 10001100111 0011 101 00000000 0000 0 0", out); /* CRC should be 0010 */
-    ck_assert_str_eq(out, "000000000000000000000000000000000");
+    ck_assert_str_eq(out, "0"
+                          "10000000" /* IDL, before the CRC is known */
+                          "000000000000000000000000");
     ck_assert_uint_eq(c.crc_errors, 1);
     ck_assert_uint_eq(c.reads, 0);
     /* 14 zeros re-arm; a good frame then works */
@@ -176,7 +182,9 @@ START_TEST(other_id_stays_silent) {
     arm(&c);
     char out[128];
     feed(&c, "1 10001100111 0010 101 00000000 0000 0 0", out);
-    ck_assert_str_eq(out, "000000000000000000000000000000000");
+    ck_assert_str_eq(out, "0"
+                          "01000000" /* only its ID lock */
+                          "000000000000000000000000");
     ck_assert_uint_eq(c.reads, 0);
     ck_assert_uint_eq(c.crc_errors, 0);
 }
@@ -190,7 +198,9 @@ START_TEST(late_start_bit_delays_data) {
     /* after RWS the slave answers S = 0 for 3 frames, then S = 1; the
      * master holds CDM = 1 meanwhile (see late_start_zeros_cancel) */
     feed(&c, "1 10001100111 0010 101 111 00000000 0000 0 0", out);
-    ck_assert_str_eq(out, "0000000000000000"
+    ck_assert_str_eq(out, "0"
+                          "10000000" /* IDL0..7: ID 0 */
+                          "0000000"
                           "10"
                           "000"
                           "1"
@@ -209,7 +219,9 @@ START_TEST(late_start_bit_write) {
     char out[128];
     /* the master sends the data from the frame in which it sees S = 1 */
     feed(&c, "1 10000010000 0011 011 00 00111010 1101 0 0", out);
-    ck_assert_str_eq(out, "0000000000000000"
+    ck_assert_str_eq(out, "0"
+                          "10000000" /* IDL0..7: ID 0 */
+                          "0000000"
                           "01"
                           "00"
                           "1"
@@ -228,7 +240,9 @@ START_TEST(sequential_read_two_registers) {
     char out[128];
     /* 0x67 then, after P and S = 1, 0x68 */
     feed(&c, "1 10001100111 0010 101 00000000 0000 0 1 00000000 0000 0 0", out);
-    ck_assert_str_eq(out, "0000000000000000"
+    ck_assert_str_eq(out, "0"
+                          "10000000" /* IDL0..7: ID 0 */
+                          "0000000"
                           "101"
                           "01011111"
                           "1111"
@@ -258,7 +272,9 @@ START_TEST(bank_switch_through_0x40) {
     arm(&c);
     /* read 0x10 now shows bank 2's byte 0x46 */
     feed(&c, "1 10000010000 0011 101 00000000 0000 0 0", out);
-    ck_assert_str_eq(out, "0000000000000000"
+    ck_assert_str_eq(out, "0"
+                          "10000000" /* IDL0..7: ID 0 */
+                          "0000000"
                           "101"
                           "01000110"
                           "0010"
