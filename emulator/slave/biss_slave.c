@@ -167,12 +167,23 @@ static void emit_sl(void *ctx, sim_ps t, int64_t level) {
     sim_edge_send(&b->out, t, (int)level);
 }
 
+/* A slave that lost its frame keeps SL low until a new frame ends. */
+static bool held_low(const biss_slave *b) {
+    return b->lost && b->cur.start_ps <= b->lost_at;
+}
+
 static void drive_sl(biss_slave *b, sim_ps t_cause, int level) {
-    if (level == b->sl_sched) {
+    if (level == b->sl_sched || (level && held_low(b))) {
         return;
     }
     b->sl_sched = level;
     eq_schedule(b->q, t_cause + b->cfg.out_delay_ps, emit_sl, b, level);
+}
+
+void biss_slave_lose_sync(biss_slave *b, sim_ps t) {
+    b->lost = true;
+    b->lost_at = t;
+    drive_sl(b, t, 0);
 }
 
 /* ---- frame data ---- */
@@ -277,6 +288,9 @@ static void on_timeout(void *ctx, sim_ps t, int64_t arg) {
         }
         b->cds = cds;
         b->cur.cdm = cdm;
+    }
+    if (b->lost && !held_low(b)) {
+        b->lost = false; /* a whole frame after the loss: defined again */
     }
     drive_sl(b, t, 1);
     b->phase = BISS_IDLE;

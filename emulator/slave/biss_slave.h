@@ -131,7 +131,9 @@ typedef struct {
     uint8_t bits[BISS_MAX_FRAME_BITS];
     int sl_sched; /* SL level after the last scheduled change */
     eq_id timeout_ev;
-    int cds; /* CDS for the next frame */
+    int cds;   /* CDS for the next frame */
+    bool lost; /* SL held low since lost_at (biss_slave_lose_sync) */
+    sim_ps lost_at;
 
     biss_frame_record cur;
     biss_frame_record ring[BISS_RECORD_RING];
@@ -155,6 +157,13 @@ const biss_frame_record *biss_slave_record(const biss_slave *b, uint64_t n);
 
 /* Position slave i would latch at time t. */
 uint64_t biss_slave_position_at(const biss_slave *b, unsigned i, sim_ps t);
+
+/* The last slave loses its frame (a disconnect, a broken frame): SL goes
+ * low at t and stays low, whatever MA does, until a frame that starts after
+ * t has timed out ([MB4] "BiSS C Initialization Sequence": "After power-on
+ * or after a failure the last slave may not be defined and the SLx line is
+ * digital low"; an INIT, two MA pulses, brings it back). */
+void biss_slave_lose_sync(biss_slave *b, sim_ps t);
 
 /* Runtime switches. */
 void biss_slave_set_status(biss_slave *b, unsigned i, bool error, bool warning);

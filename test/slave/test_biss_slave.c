@@ -145,6 +145,27 @@ START_TEST(fixed_timeout_then_sl_high) {
 }
 END_TEST
 
+/* A slave that lost its frame keeps SL low, also through the end of a
+ * frame it was in; two clocks of a new frame ([MB4] INIT) and its timeout
+ * bring SL high again. */
+START_TEST(lost_slave_holds_sl_low_until_a_new_frame_ends) {
+    bench *x = bench_new(cfg_12bit(0), 500 * NS);
+    x->r.t = 1 * US;
+    rig_ma(&x->r, 1 * US, 0); /* a frame begins ... */
+    rig_ma(&x->r, 1500 * NS, 1);
+    biss_slave_lose_sync(&x->b, 1700 * NS); /* ... and breaks */
+    eq_run_until(&x->r.q, 100 * US);
+    ck_assert_int_eq(waveform_level_at(&x->r.sl, 100 * US), 0);
+    x->r.t = 100 * US;
+    sim_ps last = rig_frame(&x->r, 2, 0, 0, 30 * US, NULL); /* INIT: two clocks */
+    eq_run_until(&x->r.q, last + 30 * US);
+    ck_assert_int_eq(waveform_level_at(&x->r.sl, last + 19 * US), 0);
+    ck_assert_int_eq(waveform_level_at(&x->r.sl, last + 20 * US + 20 * NS), 1);
+    ck_assert(!x->b.lost);
+    bench_free(x);
+}
+END_TEST
+
 START_TEST(adaptive_timeout_one_and_a_half_periods) {
     biss_chain_cfg *c = cfg_12bit(0);
     c->timeout_mode = BISS_TIMEOUT_ADAPTIVE;
@@ -462,6 +483,7 @@ int main(void) {
     tcase_add_test(tc, busy_time_delays_start_bit);
     tcase_add_test(tc, busy_clocks_delay_start_bit);
     tcase_add_test(tc, fixed_timeout_then_sl_high);
+    tcase_add_test(tc, lost_slave_holds_sl_low_until_a_new_frame_ends);
     tcase_add_test(tc, adaptive_timeout_one_and_a_half_periods);
     tcase_add_test(tc, adaptive_timeout_floor);
     tcase_add_test(tc, incomplete_frame_times_out);
