@@ -14,8 +14,10 @@
  *
  * Frames as built here (CDM = master bit per frame, MSB first everywhere;
  * classes in brackets, CRC = the firmware's CRC4 bits):
- *   register access  S=1, CTS=1 ID(3) ADR(7) [DATA], CRC, R W [ECHO], then
- *                    per byte: S=1, WAIT, D(8), CRC4(4), P=0 (read: D 0s
+ *   register access  S=1, CTS=1 ID(3) ADR(7) [DATA] (the answers to CTS and
+ *                    the 7 bits after it: ID lock IDL0..7), CRC, R W [ECHO], then
+ *                    per byte: S=1, WAIT (CDM 1 while the slave's S is
+ *                    late), D(8), CRC4(4), P=0 (read: D 0s
  *                    [DATA], CRC 0s [CHECK]; write: D [ECHO], CRC [ECHO]);
  *                    finally S=0
  *   BiSS command     S=1, CTS=0 IDS(8, first = ID 0) CMD(2) [DATA], CRC,
