@@ -14,13 +14,18 @@
  *
  * Frames as built here (CDM = master bit per frame, MSB first everywhere;
  * classes in brackets, CRC = the firmware's CRC4 bits):
- *   register access  S=1, CTS=1 ID(3) ADR(7) [DATA], CRC, R W [ECHO], then
- *                    per byte: S=1, WAIT, D(8), CRC4(4), P=0 (read: D 0s
+ *   register access  S=1, CTS=1 ID(3) ADR(7) [DATA] (the answers to CTS and
+ *                    the 7 bits after it: ID lock IDL0..7), CRC, R W [ECHO], then
+ *                    per byte: S=1, WAIT (CDM 1 while the slave's S is
+ *                    late), D(8), CRC4(4), P=0 (read: D 0s
  *                    [DATA], CRC 0s [CHECK]; write: D [ECHO], CRC [ECHO]);
  *                    finally S=0
  *   BiSS command     S=1, CTS=0 IDS(8, first = ID 0) CMD(2) [DATA], CRC,
- *                    8 IDA slots (CDM 0), P=0 (IDA test: inverted if the
- *                    IDA answers differ from the IDs addressed)
+ *                    8 IDA slots (CDM 0), then the bit that executes it:
+ *                    EX = 1 by default (iC-MB4 rev B2, Table 31: "EX bit
+ *                    after IDA"), or P = 0 (biss_cd_build_command_ex);
+ *                    with the IDA test it goes out inverted if the IDA
+ *                    answers differ from the IDs addressed
  * and then BISS_CD_TAIL_ZEROS steps of CDM 0 (none: the firmware itself
  * sends 14 frames of CDM 0 after a program before it starts the next).
  * CRC4: polynomial 0x13 (x^4+x+1), start 0, sent inverted, over CTS and
@@ -79,6 +84,7 @@ typedef struct {
     uint8_t wdata[BISS_CD_MAX_BYTES]; /* write: the bytes sent */
     uint8_t ids, cmd;                 /* command: ids bit i = slave ID i */
     uint16_t rw;                      /* register access: R step (W is rw + 1) */
+    uint16_t idl;                     /* register access: step answered by IDL slot 0 (CTS) */
     biss_cd_byte_steps byte[BISS_CD_MAX_BYTES];
     uint16_t ida;  /* command: step whose answer is IDA slot 0 (slot i: ida + i) */
     bool ida_test; /* command: the firmware withholds P unless the IDA answers are ids */
@@ -117,6 +123,8 @@ typedef struct {
     unsigned nbytes;     /* entries of byte[] filled (the program's count) */
     bool rw_echo_ok;     /* register access: R and W echoed */
     biss_cd_byte byte[BISS_CD_MAX_BYTES];
+    uint8_t idl;          /* register access: ID-lock answers IDL0..7, bit i = ID i */
+    bool idl_answered;    /* all 8 IDL answers were recorded */
     uint8_t ida;          /* command: IDA slot answers, bit i = ID i */
     uint8_t ida_expected; /* command: the addressed IDs (0 for a broadcast) */
 } biss_cd_result;
@@ -141,8 +149,19 @@ biss_cd_err biss_cd_build_write(biss_cd_prog *p, unsigned id, unsigned addr, con
                                 unsigned count);
 /* BiSS command cmd (0..3) to the slaves in ids (bit i = ID i; 0 = all,
  * broadcast without IDA). ida_test: the firmware checks the IDA answers
- * before P and withholds the command (P inverted) if they are not ids. */
+ * before the execute bit and withholds the command (the bit inverted) if
+ * they are not ids. The execute bit is BISS_CD_EX_DEFAULT. */
 biss_cd_err biss_cd_build_command(biss_cd_prog *p, uint8_t ids, unsigned cmd, bool ida_test);
+/* The bit after the IDA slots that executes a command: 1, iC-MB4 rev B2's
+ * EX bit ("the slaves feedback (IDA) is tested before execution (EX bit
+ * after IDA)", Table 31), the only document that speaks of that bit for a
+ * command; the stop bit P = 0 of TIDEP0022 and the POSITAL manual is a
+ * register access's. With 1, every CDM 0 a master sends when it stops
+ * (an error, a failed frame, idle) withholds a command. */
+#define BISS_CD_EX_DEFAULT 1
+/* As biss_cd_build_command, with the execute bit ex (0 or 1) the slaves want. */
+biss_cd_err biss_cd_build_command_ex(biss_cd_prog *p, uint8_t ids, unsigned cmd, bool ida_test,
+                                     unsigned ex);
 /* frames (1..BISS_CD_MAX_STEPS) of CDM 0: lets a slave left inside a
  * frame (after BISS_CD_E_NO_START or BISS_CD_E_FRAME) finish it and re-arm. */
 biss_cd_err biss_cd_build_idle(biss_cd_prog *p, unsigned frames);

@@ -91,6 +91,7 @@ static biss_cd_err build_register(biss_cd_prog *p, bool write, unsigned id, unsi
     p->id = (uint8_t)id;
     p->addr = (uint8_t)addr;
     p->count = (uint8_t)count;
+    p->idl = (uint16_t)(p->len + 1u); /* CTS, after S */
     put_header(p, biss_cd_reg_header(p->id, p->addr));
     p->rw = p->len;
     put_bits(p, write ? 1u : 2u, 2, BISS_CDCL_ECHO); /* R W, echoed by the slave */
@@ -116,7 +117,12 @@ biss_cd_err biss_cd_build_write(biss_cd_prog *p, unsigned id, unsigned addr, con
 }
 
 biss_cd_err biss_cd_build_command(biss_cd_prog *p, uint8_t ids, unsigned cmd, bool ida_test) {
-    if (cmd > 3) {
+    return biss_cd_build_command_ex(p, ids, cmd, ida_test, BISS_CD_EX_DEFAULT);
+}
+
+biss_cd_err biss_cd_build_command_ex(biss_cd_prog *p, uint8_t ids, unsigned cmd, bool ida_test,
+                                     unsigned ex) {
+    if (cmd > 3 || ex > 1) {
         return BISS_CD_E_ARG;
     }
     _Static_assert(CMD_STEPS <= BISS_CD_MAX_STEPS, "a command fits a program");
@@ -129,7 +135,7 @@ biss_cd_err biss_cd_build_command(biss_cd_prog *p, uint8_t ids, unsigned cmd, bo
     put_bits(p, 0, 8, BISS_CDCL_NONE); /* the IDA slots */
     p->end = p->len;
     p->ida_test = ida_test;
-    put(p, BISS_CDOP_0); /* P: the slaves execute the command */
+    put(p, ex ? BISS_CDOP_1 : BISS_CDOP_0); /* the slaves execute the command on it */
     put_tail(p);
     return BISS_CD_OK;
 }

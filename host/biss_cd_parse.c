@@ -130,6 +130,12 @@ static bool frame_ended(const biss_cd_prog *p, const biss_cd_answer *a, unsigned
 static void parse_register(const biss_cd_prog *p, const biss_cd_answer *a, biss_cd_result *r) {
     unsigned limit = answered_limit(p, a);
     r->nbytes = p->count;
+    /* ID lock: recorded with the other answers, no verdict (which IDs are
+     * locked is the slaves' business; a missing one shows as no echo) */
+    r->idl_answered = p->idl + 8u <= limit;
+    for (unsigned i = 0; r->idl_answered && i < 8; i++) {
+        r->idl |= (uint8_t)(biss_cd_answer_bit(a, p->idl + i) << i);
+    }
     r->rw_echo_ok = rw_echoed(p, a, limit);
     if (!r->rw_echo_ok) {
         r->err = p->rw + 2u > limit ? BISS_CD_E_FRAME : BISS_CD_E_NO_ECHO;

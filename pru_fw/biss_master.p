@@ -902,13 +902,14 @@ PROC_ERROR:                                 // after a rising edge: MA stays hig
 // to TRAIN_DONE.
 TRAIN:
     jal     r0.w0, SLAVE_IDLE
-    qbne    TRAIN_GO, r3, 0
-    jmp     NO_SLAVE_IDLE
+    qbeq    SL_INIT, r3, 0                  // SL stuck low: INIT first
 TRAIN_GO:
     jal     r12.w0, FRAME_REGS
     ldi     r12, 2 * MA_MASK                // one clock after period 0's
     jmp     FRAME_CLOCKED
 TRAIN_DONE:                                 // r9: the result buffer (no slave moved it)
+    lbco    r2.b0, c28, P_PROC + 2, 1
+    qbne    SL_INIT_DONE, r2.b0, 1          // it was the INIT of a low SL
     jal     r0.w0, HIST_FILL                // r4.w0, r4.w2 = Q' too
     sbbo    r4, r9, BISS_R_DELAY_RAW, 4     // and DELAY_AVG
     ldi     r2, 0
@@ -916,6 +917,27 @@ TRAIN_DONE:                                 // r9: the result buffer (no slave m
     sbco    r2.b0, c28, P_NSLAVES + 3, 1    // the average starts at this frame
     ldi     r12, BISS_RF_TRAINING
     ldi     r3, BISS_ST_TRAINING
+    jmp     ABORT_FRAME
+
+// A slave that keeps SL low (the last slave undefined after a disconnect or
+// a broken frame) never lets TRAIN see SL high. iC-MB4's INIT exists for
+// it: "necessary, if the last slave ... is not defined and the data line SLx
+// is digital low"; two low pulses on MA, the slave answers and releases SL
+// after its timeout; "The INIT sequence does not test the SLx state"
+// (datasheet, BiSS C Initialization Sequence; INIT, Table 46). The training
+// frame's two clocks are that sequence; with SL low from the start its
+// ACK position means nothing, so it is published flagged (SL_INIT and
+// NO_SLAVE, counted as no slave) and training stays due: the next MAIN
+// trains at once, with SL high if the slave came back.
+SL_INIT:
+    ldi     r2, 2                           // training due, as the INIT
+    sbco    r2.b0, c28, P_PROC + 2, 1
+    qba     TRAIN_GO
+SL_INIT_DONE:
+    ldi     r2, 1                           // a training proper next
+    sbco    r2.b0, c28, P_PROC + 2, 1
+    ldi     r12, BISS_RF_NO_SLAVE | BISS_RF_SL_INIT
+    ldi     r3, BISS_ST_NO_SLAVE
     jmp     ABORT_FRAME
 
 // ============================================================================
@@ -1004,11 +1026,18 @@ CDP_IDA:
     xor     r5.b0, r5.b0, MA_MASK
     qba     CDP_OUT
 CDP_WAIT:
-    add     r8, r3.w0, 1                    // CDS 1 ends the wait: send the next step now
+    // While the slave's S is late the master sends CDM 1 (MA low in the
+    // timeout): 13 CDM 0 already follow a read byte (D, CRC, P), and any
+    // control frame is cancelled by 14 (TIDEP0022 §2.1.3). TI's own PRU
+    // firmware does the same: it keeps its S (clock held low) until the
+    // slave's start bit comes (motor-control-sdk, bissc_main.asm,
+    // BISSC_SKIP_CTRL_SB?). CDS 1 ends the wait: send the next step now.
+    ldi     r5.b0, MA_MASK
+    add     r8, r3.w0, 1
     jal     r0.w2, CD_OP
     and     r7, r7, CD_PAST_END | 3
-    qbne    CDP_OUT, r7, BISS_CDOP_1
-    ldi     r5.b1, MA_MASK
+    qbeq    CDP_OUT, r7, BISS_CDOP_1        // 1 either way
+    ldi     r5.b1, MA_MASK                  // 0 once CDS is 1
 CDP_OUT:
     sbco    r2, c28, P_CD, 20
     jmp     r0.w0

@@ -9,6 +9,7 @@ void biss_ctrl_init(biss_ctrl *c, uint8_t id, regfile *regs, unsigned reg_proc_f
     c->id = id & 7;
     c->regs = regs;
     c->reg_proc_frames = reg_proc_frames;
+    c->cmd_stop = BISS_CTRL_CMD_EXEC_DEFAULT;
     c->state = CTRL_IDLE;
     c->last_cmd = -1;
     c->last_addr = -1;
@@ -63,6 +64,20 @@ static void load_data(biss_ctrl *c) {
 
 static int ida_bit(const biss_ctrl *c, unsigned slot) {
     return c->addressed && !c->broadcast && slot == c->id;
+}
+
+/* ID lock: in a register access (CTS = 1) every slave answers the CTS and
+ * the 7 header bits after it with IDL0..7, 1 in the slot of its own ID
+ * ([AD38] control-frame drawings: CDS "IDL0..7" during the header, before
+ * R W S; [POS] §3.1.2: "ID Lock bits (IDL) are sent back to communicate
+ * which slaves are occupied"; [TI] §2.1.3: IDs are carried out by setting
+ * the IDL bits for the first eight IDs). Which 8 of the 15 header answers
+ * carry them the drawings leave to the OCR: EST, the first 8, slot k
+ * answering header bit k (k = 0: CTS). */
+static int idl_bit(const biss_ctrl *c) {
+    unsigned k = c->count - 1;
+    bool cts = (c->shift >> k) & 1u;
+    return cts && k < 8 && k == c->id;
 }
 
 static int on_header_done(biss_ctrl *c) {
@@ -150,6 +165,7 @@ int biss_ctrl_cdm(biss_ctrl *c, int cdm) {
     cdm = cdm ? 1 : 0;
     c->zeros = cdm ? 0 : c->zeros + 1;
     int cds = 0;
+    bool in_frame = c->state != CTRL_IDLE;
     switch (c->state) {
     case CTRL_IDLE:
         if (cdm && c->armed) {
@@ -161,17 +177,14 @@ int biss_ctrl_cdm(biss_ctrl *c, int cdm) {
         break;
     case CTRL_IGNORE:
     case CTRL_HEADER:
-        if (c->zeros >= ARM_ZEROS) { /* cancelled: back to idle, armed */
-            go(c, CTRL_IDLE);
-            c->armed = true;
-            break;
-        }
         if (c->state == CTRL_IGNORE) {
             break;
         }
         c->shift = (c->shift << 1) | (unsigned)cdm;
         if (++c->count == 15) {
             cds = on_header_done(c);
+        } else {
+            cds = idl_bit(c);
         }
         break;
     case CTRL_RWS:
@@ -220,6 +233,17 @@ int biss_ctrl_cdm(biss_ctrl *c, int cdm) {
         }
         cds = finish(c, cdm);
         break;
+    }
+    if (in_frame && c->state != CTRL_IDLE && c->zeros >= ARM_ZEROS) {
+        /* [TI] TIDEP0022 §2.1.3: "Any control frame can be cancelled by
+         * transmitting 14 numbers of CDM equaling 0", in whatever state it
+         * is (header, late S, data, IDA): back to idle, armed. A frame
+         * that this zero ends as the layout says (a final S = 0, a
+         * command's P) has ended already, and wants 14 fresh zeros. */
+        go(c, CTRL_IDLE);
+        c->armed = true;
+        c->cancels++;
+        cds = 0;
     }
     c->cds = cds;
     return cds;

@@ -7,11 +7,13 @@
  *   idle        >= 14 consecutive CDM = 0 arm the slave
  *   S           CDM = 1 while armed starts a control frame
  *   header      CTS, then 10 bits, then CRC4 (poly 0x13, start 0, sent
- *               inverted) over CTS and the 10 bits
+ *               inverted) over CTS and the 10 bits; in a register access
+ *               CDS after CTS and the next 7 bits: IDL0..7, 1 in the slot
+ *               of the slave's own ID (ID lock; slot placement EST)
  *                 CTS = 1 register access: ID(3) ADR(7)
  *                 CTS = 0 BiSS command:    IDS(8, first bit = ID 0) CMD(2)
  *               bad CRC -> error counter +1, frame ignored; other ID ->
- *               ignored; 14 zeros during the header cancel it
+ *               ignored
  *   register    R W S from the master (read 1 0 1, write 0 1 1); CDS echoes
  *               R after R and W after W; after S the slave answers its own S:
  *               1 at once, or 0 for reg_proc_frames frames first (late S,
@@ -29,15 +31,19 @@
  *               above), 0 = end of the frame
  *   command     after the CRC, 8 IDA slots: CDS after the CRC and after each
  *               of the first 7 slots is 1 in slot i if this slave has ID i and
- *               was addressed (never for a broadcast, IDS = 0); then P, on
- *               which the command is executed (recorded) if P = cmd_stop;
- *               the other value breaks the frame: the command is dropped
- *               (counted). cmd_stop is 0 by default (TIDEP0022 and the
- *               Posital manual give the stop bit as 0); 1 models a slave
- *               that wants P = 1. A master's IDA test withholds a command
- *               by inverting P, which works for either.
+ *               was addressed (never for a broadcast, IDS = 0); then the
+ *               execute bit, on which the command is executed (recorded)
+ *               if it equals cmd_stop; the other value breaks the frame:
+ *               the command is dropped (counted). cmd_stop is 1 by default
+ *               (iC-MB4 rev B2, Table 31: "EX bit after IDA"); 0 models a
+ *               slave that takes the register access's stop bit P = 0
+ *               (TIDEP0022, the Posital manual) there. A master's IDA test
+ *               withholds a command by inverting the bit, which works for
+ *               either.
  *
- * After a frame ends the slave needs 14 zero CDMs again before a new S. */
+ * After a frame ends the slave needs 14 zero CDMs again before a new S.
+ * 14 zero CDMs in a row cancel a control frame in any state ([TI]
+ * TIDEP0022 §2.1.3: "any control frame"), counted in `cancels`. */
 #ifndef BISS_CTRL_H
 #define BISS_CTRL_H
 
@@ -45,6 +51,11 @@
 
 #include <stdbool.h>
 #include <stdint.h>
+
+/* The bit after the IDA slots that executes a command: iC-MB4 rev B2,
+ * Table 31, "EX bit after IDA" (1); 0 for a slave that takes the register
+ * access's stop bit P = 0 ([TI], [POS]) there. */
+#define BISS_CTRL_CMD_EXEC_DEFAULT 1
 
 typedef enum {
     CTRL_IDLE,
@@ -63,7 +74,7 @@ typedef enum {
 typedef struct {
     uint8_t id;               /* 0..7 */
     unsigned reg_proc_frames; /* late S: frames of register processing */
-    uint8_t cmd_stop;         /* the command's stop bit P that executes it (default 0) */
+    uint8_t cmd_stop;         /* the bit after IDA that executes a command (default 1) */
     regfile *regs;
 
     biss_ctrl_state state;
@@ -83,7 +94,8 @@ typedef struct {
 
     /* what happened, for the bench and tests */
     unsigned long crc_errors, reads, writes, write_refused, commands, commands_dropped, frames;
-    int last_cmd; /* -1 until a command executes */
+    unsigned long cancels; /* control frames cancelled by 14 zero CDMs */
+    int last_cmd;          /* -1 until a command executes */
     int last_addr, last_value;
 } biss_ctrl;
 

@@ -12,6 +12,7 @@ void biss_slave_cfg_default(biss_slave_cfg *s, uint8_t id) {
     s->pos_bits = 12;
     s->has_err = s->has_warn = true;
     s->crc_poly = 0x43;
+    s->cmd_exec = BISS_CTRL_CMD_EXEC_DEFAULT;
     regfile_init(&s->regs, 1);
 }
 
@@ -40,7 +41,8 @@ unsigned biss_slave_cfg_bits(const biss_slave_cfg *s) {
 int biss_chain_shared_id(const biss_chain_cfg *c, unsigned *first, unsigned *second) {
     for (unsigned j = 1; j < c->n && j < BISS_MAX_SLAVES; j++) {
         for (unsigned i = 0; i < j; i++) {
-            if (c->s[i].id == c->s[j].id) {
+            /* a data-only channel shares its device's id */
+            if (c->s[i].id == c->s[j].id && !c->s[i].no_control && !c->s[j].no_control) {
                 *first = i;
                 *second = j;
                 return 1;
@@ -89,7 +91,8 @@ const char *biss_chain_cfg_check(const biss_chain_cfg *c) {
     }
     unsigned first, second;
     if (biss_chain_shared_id(c, &first, &second)) {
-        return "slaves: two slaves with one id (each answers control frames for its own)";
+        return "slaves: two slaves with one id (each answers control frames for its own; a "
+               "data-only channel of the same device has \"control\": false)";
     }
     if (c->out_delay_ps <= 0) {
         return "output_delay_ns: must be > 0 (every effect follows its cause)";
@@ -115,6 +118,7 @@ void biss_slave_init(biss_slave *b, const biss_chain_cfg *cfg, event_queue *q, s
     b->out = out;
     for (unsigned i = 0; i < cfg->n; i++) {
         biss_ctrl_init(&b->ctrl[i], b->cfg.s[i].id, &b->cfg.s[i].regs, b->cfg.s[i].reg_proc_frames);
+        b->ctrl[i].cmd_stop = b->cfg.s[i].cmd_exec;
     }
     b->phase = BISS_IDLE;
     b->ma = 1;
@@ -157,12 +161,23 @@ static void emit_sl(void *ctx, sim_ps t, int64_t level) {
     sim_edge_send(&b->out, t, (int)level);
 }
 
+/* A slave that lost its frame keeps SL low until a new frame ends. */
+static bool held_low(const biss_slave *b) {
+    return b->lost && b->cur.start_ps <= b->lost_at;
+}
+
 static void drive_sl(biss_slave *b, sim_ps t_cause, int level) {
-    if (level == b->sl_sched) {
+    if (level == b->sl_sched || (level && held_low(b))) {
         return;
     }
     b->sl_sched = level;
     eq_schedule(b->q, t_cause + b->cfg.out_delay_ps, emit_sl, b, level);
+}
+
+void biss_slave_lose_sync(biss_slave *b, sim_ps t) {
+    b->lost = true;
+    b->lost_at = t;
+    drive_sl(b, t, 0);
 }
 
 /* ---- frame data ---- */
@@ -211,9 +226,6 @@ static void start_frame(biss_slave *b, sim_ps t) {
     b->nbits = 0;
     b->bit = 0;
     push_bits(b, (uint64_t)b->cds, 1, NULL, 0);
-    for (unsigned i = 0; i < b->cfg.n; i++) {
-        build_slave_data(b, i, t);
-    }
     b->rises = 0;
     b->started = false;
     b->phase = BISS_ACTIVE;
@@ -264,10 +276,15 @@ static void on_timeout(void *ctx, sim_ps t, int64_t arg) {
         int cdm = !b->ma;
         int cds = 0;
         for (unsigned i = 0; i < b->cfg.n; i++) {
-            cds |= biss_ctrl_cdm(&b->ctrl[i], cdm);
+            if (!b->cfg.s[i].no_control) {
+                cds |= biss_ctrl_cdm(&b->ctrl[i], cdm);
+            }
         }
         b->cds = cds;
         b->cur.cdm = cdm;
+    }
+    if (b->lost && !held_low(b)) {
+        b->lost = false; /* a whole frame after the loss: defined again */
     }
     drive_sl(b, t, 1);
     b->phase = BISS_IDLE;
@@ -284,6 +301,13 @@ static void restart_timeout(biss_slave *b, sim_ps t) {
 static void on_rise(biss_slave *b, sim_ps t) {
     b->rises++;
     if (b->rises == 1) {
+        /* [MB4] "BiSS C Frame": "With the first rising edge at MAx all
+         * sensors start calculating their sensor data" - the position is
+         * taken here, not at the falling edge that starts the frame. */
+        b->cur.latch_ps = t;
+        for (unsigned i = 0; i < b->cfg.n; i++) {
+            build_slave_data(b, i, t);
+        }
         return;
     }
     if (b->rises == 2) {

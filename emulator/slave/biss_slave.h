@@ -7,9 +7,10 @@
  *
  * One frame, from the slave's side:
  *   idle       SL high
- *   MA falls   (while idle) the frame starts: every slave latches its
- *              position at this instant and builds its single-cycle data
- *   1st rise   nothing
+ *   MA falls   (while idle) the frame starts
+ *   1st rise   every slave latches its position at this instant and builds
+ *              its single-cycle data ([MB4] "BiSS C Frame": the sensors
+ *              start calculating with the first rising edge)
  *   2nd rise   SL low: ACK
  *   busy       SL stays low on further rising edges until both busy_clocks
  *              extra clocks have passed and busy_ps has elapsed since the ACK
@@ -51,6 +52,10 @@ typedef struct {
     double speed_cps;         /* counts per second, may be negative */
     bool error, warning;      /* drive nE / nW low (active) */
     unsigned reg_proc_frames; /* late S in register access */
+    uint8_t cmd_exec;         /* the bit after IDA that executes a command (biss_ctrl cmd_stop) */
+    bool no_control;          /* a data channel only: its device's control
+                                 communication is another chain slave's
+                                 (same ID); it never answers a CDM */
     regfile regs;
 } biss_slave_cfg;
 
@@ -78,7 +83,8 @@ unsigned biss_slave_cfg_bits(const biss_slave_cfg *s);
  * most 64 (the firmware's BISS_MAX_DATA_BITS; the bench checks the word
  * as one uint64_t). */
 unsigned biss_slave_cfg_data_bits(const biss_slave_cfg *s);
-/* Whether two slaves of the chain share an id (then *first < *second). */
+/* Whether two slaves of the chain that answer control communication (not
+ * no_control) share an id (then *first < *second). */
 int biss_chain_shared_id(const biss_chain_cfg *c, unsigned *first, unsigned *second);
 /* Check a configuration; return NULL or a message naming the field. */
 const char *biss_slave_cfg_check(const biss_slave_cfg *s);
@@ -96,6 +102,7 @@ typedef struct {
 typedef struct {
     uint64_t frame; /* 0, 1, ... */
     sim_ps start_ps, ack_ps, start_bit_ps, end_ps;
+    sim_ps latch_ps; /* first rising edge: the position's instant (0: none) */
     int cds;         /* CDS sent in this frame */
     int cdm;         /* CDM sampled at its timeout, -1 if none */
     bool acked;      /* at least two rising edges */
@@ -125,7 +132,9 @@ typedef struct {
     uint8_t bits[BISS_MAX_FRAME_BITS];
     int sl_sched; /* SL level after the last scheduled change */
     eq_id timeout_ev;
-    int cds; /* CDS for the next frame */
+    int cds;   /* CDS for the next frame */
+    bool lost; /* SL held low since lost_at (biss_slave_lose_sync) */
+    sim_ps lost_at;
 
     biss_frame_record cur;
     biss_frame_record ring[BISS_RECORD_RING];
@@ -149,6 +158,13 @@ const biss_frame_record *biss_slave_record(const biss_slave *b, uint64_t n);
 
 /* Position slave i would latch at time t. */
 uint64_t biss_slave_position_at(const biss_slave *b, unsigned i, sim_ps t);
+
+/* The last slave loses its frame (a disconnect, a broken frame): SL goes
+ * low at t and stays low, whatever MA does, until a frame that starts after
+ * t has timed out ([MB4] "BiSS C Initialization Sequence": "After power-on
+ * or after a failure the last slave may not be defined and the SLx line is
+ * digital low"; an INIT, two MA pulses, brings it back). */
+void biss_slave_lose_sync(biss_slave *b, sim_ps t);
 
 /* Runtime switches. */
 void biss_slave_set_status(biss_slave *b, unsigned i, bool error, bool warning);

@@ -45,10 +45,13 @@ static void tidep0022(scenario *s) {
     regfile_poke(&c->regs, 0, 0x60, 0x0B);
 }
 
-/* POSITAL IXARC kit: SCD MT24 + ST17 + 7 fill + E + W + CRC6 0x43 (start
- * 0, inverted); direct registers of the manual's appendix 8.1.1, 68 banks. */
+/* The POSITAL IXARC kit's SCD layout (MT24 + ST17 + 7 fill + E + W + CRC6
+ * 0x43, start 0, inverted) and registers (direct registers of the manual's
+ * appendix 8.1.1, 68 banks) on a BiSS-C line. The kit itself is a BiSS
+ * Line encoder ([POS] §3.1: half-duplex, 8b10b, 12.5 Mbit/s, no MA clock),
+ * which this master cannot talk to: hence the name. */
 static void posital(scenario *s) {
-    base(s, "posital-kit");
+    base(s, "posital-kit-layout-biss-c");
     biss_slave_cfg *c = &s->biss.s[0];
     c->pos_bits = 41;
     c->fill_bits = 7;
@@ -113,6 +116,15 @@ static void ad38(scenario *s) {
     b->s[2].lc_bits = 6;
     b->s[2].crc_poly = 0x190D9;
     b->s[2].speed_cps = 20000.0;
+    /* Two register devices, not three ([AD38] register tables, "Slave ID"
+     * column; error table "SCD Slave2 -> Slave-ID 1 0x69", "SCD Slave3 ->
+     * Slave-ID 0 0x70..0x72"; temperature 0x67 at Slave ID 0 only): the
+     * channel with the life counter is ID 0, the A/D and position channels
+     * belong to the ID 1 device, whose registers chain slave 1 holds. */
+    b->s[0].id = 1;
+    b->s[0].no_control = true;
+    b->s[1].id = 1;
+    b->s[2].id = 0;
 }
 
 static void generic(scenario *s) {
@@ -132,7 +144,7 @@ static const struct {
     void (*fill)(scenario *);
 } table[] = {
     {"tidep0022-test-encoder", tidep0022},
-    {"posital-kit", posital},
+    {"posital-kit-layout-biss-c", posital},
     {"hengstler-ad38", ad38},
     {"generic", generic},
     {"ssi", ssi},

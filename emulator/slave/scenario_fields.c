@@ -71,6 +71,7 @@ const sf_field sf_slave[] = {
     S("position", SF_U64, pos0, 0, 0, U64_MAX_D),
     S("speed_cps", SF_DOUBLE, speed_cps, 1, -MAX_SPEED, MAX_SPEED),
     S("register_processing_frames", SF_UNSIGNED, reg_proc_frames, 0, 0, 1000),
+    S("command_execute_bit", SF_U8, cmd_exec, 0, 0, 1),
     END,
 };
 

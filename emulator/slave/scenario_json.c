@@ -252,6 +252,10 @@ static int parse_slave(ctx *c, const cJSON *obj, biss_slave_cfg *s) {
             r = get_bool(c, it, k, &s->error);
         } else if (!strcmp(k, "warning")) {
             r = get_bool(c, it, k, &s->warning);
+        } else if (!strcmp(k, "control")) {
+            bool on = true;
+            r = get_bool(c, it, k, &on);
+            s->no_control = !on;
         } else if (!strcmp(k, "banks")) {
             continue; /* done above */
         } else if (!strcmp(k, "registers")) {

@@ -114,7 +114,7 @@
 
 #define BISS_CDOP_0             0       // send CDM 0
 #define BISS_CDOP_1             1       // send CDM 1
-#define BISS_CDOP_WAIT          2       // CDM 0 until a frame's CDS is 1, then the next step in that
+#define BISS_CDOP_WAIT          2       // CDM 1 until a frame's CDS is 1, then the next step in that
                                         // frame (never followed by another WAIT or a CRC step)
 #define BISS_CDOP_CRC           3       // send the next bit of CRC_M, inverted
 #define BISS_CDCL_NONE          0       // (class, bits 3..2 of a step) answer only recorded
@@ -190,6 +190,8 @@
 #define BISS_RF_SMA             0x20    // the moving average is filled (4 frames at this rate)
 #define BISS_RF_ACK_JUMP        0x40    // the ACK lay over half a bit from the average: bits read
                                         // at the wrong place, so never VALID (see pru_fw/README)
+#define BISS_RF_SL_INIT         0x200   // SL stayed low: iC-MB4's INIT sent (two clocks, no
+                                        // measurement), with NO_SLAVE; a training follows
 
 #define BISS_RS_CRC_OK          0x01
 #define BISS_RS_NE              0x02    // nE as received (1: no error); 0 if the slave has none

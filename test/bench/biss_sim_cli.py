@@ -28,7 +28,7 @@ def run(*args):
 tmp = tempfile.mkdtemp()
 profiles = run("--list-profiles").stdout.split()
 check(len(profiles) >= 5, "at least five profiles listed: %r" % profiles)
-for p in ["tidep0022-test-encoder", "posital-kit", "hengstler-ad38", "generic", "ssi"]:
+for p in ["tidep0022-test-encoder", "posital-kit-layout-biss-c", "hengstler-ad38", "generic", "ssi"]:
     check(p in profiles, "profile %s listed" % p)
 
 KEYS = ["frames", "crc_errors", "position_mismatches", "line_delay_ns", "frame_period_ns",

@@ -70,7 +70,7 @@ END_TEST
  * chosen through 0x40) and the direct half of a POSITAL kit's registers. */
 START_TEST(test_sequential_64_across_bank_switch) {
     struct e2e_run r;
-    struct bench *b = e2e_bench(&r, "posital-kit", 10, NULL);
+    struct bench *b = e2e_bench(&r, "posital-kit-layout-biss-c", 10, NULL);
     ck_assert_uint_eq(e2e_run_frames(&r, 10, 1000, 10), 10);
     fw_check_restart(&r.fc, UINT64_MAX);
     regfile *regs = &bench_link(b)->biss.cfg.s[0].regs;
@@ -111,7 +111,9 @@ START_TEST(test_write_then_read_back) {
 }
 END_TEST
 
-/* Commands on the 3-slave AD38 chain: addressed (the IDA slots confirm the
+/* Commands on the AD38 chain: three data channels, two register devices
+ * (ID 0: chain slave 2, the life-counter channel; ID 1: chain slave 1, its
+ * data channel 0 answering nothing), addressed (the IDA slots confirm the
  * addressed IDs) and broadcast (no IDA). */
 START_TEST(test_commands_with_and_without_ida) {
     struct e2e_run r;
@@ -125,29 +127,63 @@ START_TEST(test_commands_with_and_without_ida) {
     ck_assert_uint_eq(cd.result.ida, 0x02);
     link_model *l = bench_link(b);
     ck_assert_int_eq(l->biss.ctrl[1].last_cmd, 1);
-    ck_assert_int_eq(l->biss.ctrl[0].last_cmd, -1);
+    ck_assert_int_eq(l->biss.ctrl[2].last_cmd, -1);
     ck_assert_int_eq(biss_cd_build_command(&p, 0x00, 2, false), BISS_CD_OK); /* broadcast */
     ck_assert_int_eq(run_cd(&r, &p, 10, &cd), BISS_CD_OK);
     ck_assert_uint_eq(cd.result.ida, 0);
-    for (unsigned i = 0; i < 3; i++) {
-        ck_assert_int_eq(l->biss.ctrl[i].last_cmd, 2);
-    }
-    /* an ID nobody has: the IDA says so */
-    ck_assert_int_eq(biss_cd_build_command(&p, 0x80, 1, false), BISS_CD_OK);
+    ck_assert_int_eq(l->biss.ctrl[1].last_cmd, 2);
+    ck_assert_int_eq(l->biss.ctrl[2].last_cmd, 2);
+    ck_assert_int_eq(l->biss.ctrl[0].last_cmd, -1); /* data only */
+    /* an ID nobody has (2, as 7): the IDA says so */
+    ck_assert_int_eq(biss_cd_build_command(&p, 0x04, 1, false), BISS_CD_OK);
     ck_assert_int_eq(run_cd(&r, &p, 10, &cd), BISS_CD_E_IDA);
+    ck_assert_uint_eq(cd.result.ida, 0);
     /* IDA checked before execution: IDs 1 and 7 asked, ID 7 silent, so the
-     * firmware inverts P and ID 1 drops the command; IDs 1 and 2 pass */
+     * firmware inverts the execute bit and ID 1 drops the command; IDs 0
+     * and 1 pass */
     ck_assert_int_eq(biss_cd_build_command(&p, 0x82, 3, true), BISS_CD_OK);
     ck_assert_int_eq(run_cd(&r, &p, 10, &cd), BISS_CD_E_WITHHELD);
     ck_assert_uint_eq(cd.status, BISS_CDST_ERR_IDA);
     ck_assert_uint_eq(cd.result.ida, 0x02);
     ck_assert_int_eq(l->biss.ctrl[1].last_cmd, 2);
     ck_assert_uint_eq(l->biss.ctrl[1].commands_dropped, 1);
-    ck_assert_int_eq(biss_cd_build_command(&p, 0x06, 3, true), BISS_CD_OK);
+    ck_assert_int_eq(biss_cd_build_command(&p, 0x03, 3, true), BISS_CD_OK);
     ck_assert_int_eq(run_cd(&r, &p, 10, &cd), BISS_CD_OK);
+    ck_assert_uint_eq(cd.result.ida, 0x03);
     ck_assert_int_eq(l->biss.ctrl[1].last_cmd, 3);
     ck_assert_int_eq(l->biss.ctrl[2].last_cmd, 3);
-    ck_assert_int_eq(l->biss.ctrl[0].last_cmd, 2);
+    assert_positions_clean(&r);
+    e2e_free(&r);
+}
+END_TEST
+
+/* AD38 register access reaches the device the notes' register tables
+ * name: temperature 0x67 at Slave ID 0 (the life-counter channel, chain
+ * slave 2), the position channel's error register 0x69 at Slave ID 1
+ * (chain slave 1); ID 2 is nobody's. */
+START_TEST(test_ad38_registers_by_id) {
+    struct e2e_run r;
+    struct bench *b = e2e_bench(&r, "hengstler-ad38", 2, NULL);
+    ck_assert_uint_eq(e2e_run_frames(&r, 10, 1000, 10), 10);
+    fw_check_restart(&r.fc, UINT64_MAX);
+    link_model *l = bench_link(b);
+    regfile_poke(&l->biss.cfg.s[2].regs, 0, 0x67, 0x40);
+    regfile_poke(&l->biss.cfg.s[1].regs, 0, 0x69, 0x0a);
+    static biss_cd_prog p;
+    struct fw_cd cd;
+    ck_assert_int_eq(biss_cd_build_read(&p, 0, 0x67, 1), BISS_CD_OK);
+    ck_assert_int_eq(run_cd(&r, &p, 10, &cd), BISS_CD_OK);
+    ck_assert_uint_eq(cd.result.byte[0].data, 0x40);
+    /* the header's ID-lock answers: IDs 0 and 1 are taken */
+    ck_assert(cd.result.idl_answered);
+    ck_assert_uint_eq(cd.result.idl, 0x03);
+    ck_assert_int_eq(biss_cd_build_read(&p, 1, 0x69, 1), BISS_CD_OK);
+    ck_assert_int_eq(run_cd(&r, &p, 10, &cd), BISS_CD_OK);
+    ck_assert_uint_eq(cd.result.byte[0].data, 0x0a);
+    ck_assert_int_eq(biss_cd_build_read(&p, 2, 0x67, 1), BISS_CD_OK);
+    ck_assert_int_eq(run_cd(&r, &p, 10, &cd), BISS_CD_E_NO_ECHO);
+    ck_assert_uint_eq(l->biss.ctrl[2].reads, 1);
+    ck_assert_uint_eq(l->biss.ctrl[1].reads, 1);
     assert_positions_clean(&r);
     e2e_free(&r);
 }
@@ -170,6 +206,45 @@ START_TEST(test_late_start_bit) {
     ck_assert_uint_eq(cd.result.byte[1].data, serial[1]);
     ck_assert_int_eq(cd.result.byte[0].start, BISS_CD_S_LATE);
     ck_assert_int_eq(run_cd(&r, &p, 2, &cd), BISS_CD_E_NO_START);
+    assert_positions_clean(&r);
+    e2e_free(&r);
+}
+END_TEST
+
+/* Late S of 1, 3 and 20 frames at 10 and 1 MHz, against a slave that
+ * cancels a control frame on 14 CDM = 0 in any state (TIDEP0022 §2.1.3):
+ * a single read and a sequential read of 4 bytes both come through, and
+ * the slave never saw a cancel. (13 CDM = 0 follow every read byte: D, CRC
+ * and P; a master sending 0 while it waits makes 14 with one frame.) */
+START_TEST(test_late_start_never_cancels) {
+    static const unsigned lates[] = {1, 3, 20};
+    static const unsigned halves[] = {10, 100};
+    static const uint8_t serial[] = {0x00, 0xd9, 0x01, 0x32};
+    const uint8_t temp = 0x5f;
+    unsigned late = lates[_i % 3], half = halves[_i / 3];
+    struct e2e_run r;
+    struct bench *b = e2e_bench(&r, "tidep0022-test-encoder", 2, NULL);
+    biss_ctrl *ctrl = &bench_link(b)->biss.ctrl[0];
+    ctrl->reg_proc_frames = late;
+    ck_assert_uint_eq(e2e_run_frames(&r, half, 1000, 10), 10);
+    fw_check_restart(&r.fc, UINT64_MAX);
+    static biss_cd_prog p;
+    struct fw_cd cd;
+    ck_assert_int_eq(biss_cd_build_read(&p, 0, 0x67, 1), BISS_CD_OK);
+    ck_assert_int_eq(run_cd(&r, &p, (uint16_t)(late + 2), &cd), BISS_CD_OK);
+    ck_assert_uint_eq(cd.result.byte[0].data, temp);
+    ck_assert_int_eq(cd.result.byte[0].start, BISS_CD_S_LATE);
+    ck_assert_uint_eq(ctrl->reads, 1);
+    ck_assert_uint_eq(ctrl->cancels, 0);
+    ck_assert_int_eq(biss_cd_build_read(&p, 0, 0x44, 4), BISS_CD_OK);
+    ck_assert_int_eq(run_cd(&r, &p, (uint16_t)(late + 2), &cd), BISS_CD_OK);
+    ck_assert_uint_eq(cd.result.good_bytes, 4);
+    for (unsigned i = 0; i < 4; i++) {
+        ck_assert_uint_eq(cd.result.byte[i].data, serial[i]);
+        ck_assert_int_eq(cd.result.byte[i].start, BISS_CD_S_LATE);
+    }
+    ck_assert_uint_eq(ctrl->reads, 5);
+    ck_assert_uint_eq(ctrl->cancels, 0);
     assert_positions_clean(&r);
     e2e_free(&r);
 }
@@ -262,7 +337,9 @@ int main(void) {
     tcase_add_test(tc, test_sequential_64_across_bank_switch);
     tcase_add_test(tc, test_write_then_read_back);
     tcase_add_test(tc, test_commands_with_and_without_ida);
+    tcase_add_test(tc, test_ad38_registers_by_id);
     tcase_add_test(tc, test_late_start_bit);
+    tcase_add_loop_test(tc, test_late_start_never_cancels, 0, 6);
     tcase_add_test(tc, test_corrupted_cds_fails_crc);
     tcase_add_test(tc, test_corrupted_echo_fails_write);
     suite_add_tcase(s, tc);

@@ -244,7 +244,7 @@ END_TEST
 START_TEST(test_rate_change) {
     static const unsigned halves[] = {10, 50, 20, 100, 10};
     struct e2e_run r;
-    struct bench *b = e2e_bench(&r, "posital-kit", 10, NULL);
+    struct bench *b = e2e_bench(&r, "posital-kit-layout-biss-c", 10, NULL);
     for (size_t i = 0; i < sizeof(halves) / sizeof(halves[0]); i++) {
         fw_check_restart(&r.fc, UINT64_MAX);
         ck_assert_uint_eq(e2e_run_frames(&r, halves[i], 1000, 100), 100);

@@ -21,8 +21,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-static const char *const profiles[] = {"tidep0022-test-encoder", "posital-kit", "hengstler-ad38",
-                                       "generic", "ssi"};
+static const char *const profiles[] = {"tidep0022-test-encoder", "posital-kit-layout-biss-c",
+                                       "hengstler-ad38", "generic", "ssi"};
 static const unsigned halves[] = {10, 20, 50, 100}; /* 10, 5, 2, 1 MHz */
 static const double cables[] = {0, 2, 15, 25, 40, 65, 100};
 #define NP (sizeof(profiles) / sizeof(profiles[0]))

@@ -212,9 +212,11 @@ START_TEST(test_emu_command) {
     ck_assert_int_eq(ctrl->last_cmd, 1);
     ck_assert_int_eq(biss_command(h, 0x03, 2, true, &ida), BISS_E_CD_WITHHELD);
     ck_assert_int_eq(ctrl->last_cmd, 1);
-    ck_assert_uint_eq(ctrl->commands_dropped, 1);
     ck_assert_int_eq(biss_command(h, 0x01, 2, true, &ida), BISS_OK);
     ck_assert_int_eq(ctrl->last_cmd, 2);
+    /* (the withheld one's execute bit went out in the frame that reported
+     * its end; the slave has taken it since) */
+    ck_assert_uint_eq(ctrl->commands_dropped, 1);
     biss_close(h);
 }
 END_TEST

@@ -79,7 +79,8 @@ static void prepare(const struct run *r, const uint8_t *dram, int cdm[2]) {
         return;
     }
     unsigned op = st & 3u;
-    if (op == BISS_CDOP_WAIT) {
+    if (op == BISS_CDOP_WAIT) { /* CDM 1 while the slave's S is late */
+        cdm[0] = 1;
         cdm[1] = (step_at(dram, r->len, r->step + 1) & (PAST_END | 3u)) == BISS_CDOP_1;
         return;
     }
@@ -169,7 +170,7 @@ void cd_sim_run(cd_sim *s, uint8_t *dram) {
             if (!cds) {
                 if (++r.waited > r.limit) {
                     finish(dram, BISS_CDST_ERR_WAIT, r.bytes, r.step);
-                    s->zeros = 1;
+                    s->zeros = out ? 0 : 1;
                     break;
                 }
                 continue;

@@ -82,6 +82,8 @@ START_TEST(fw_reads_table11) {
     const uint8_t temp = 0x5f;
     ck_assert_int_eq(rig_read(&r, 0x67, 1, 10, &res), BISS_CD_OK);
     assert_bytes(&res, &temp, 1);
+    ck_assert(res.idl_answered);
+    ck_assert_uint_eq(res.idl, 0x01); /* ID lock: the one slave holds ID 0 */
     ck_assert_int_eq(res.byte[0].start, BISS_CD_S_IN_TIME);
     /* back to back: the firmware starts each at once */
     ck_assert_int_eq(rig_read(&r, 0x67, 1, 10, &res), BISS_CD_OK);
@@ -158,39 +160,44 @@ START_TEST(fw_commands) {
     ck_assert_int_eq(rig_run(&r, &p, 0, &res), BISS_CD_E_WITHHELD);
     ck_assert_uint_eq(res.ida, 0x01);
     ck_assert_int_eq(ctrl->last_cmd, 1);
-    ck_assert_uint_eq(ctrl->commands_dropped, 1);
     /* the same test passes for ID 0 alone: executed */
     ck_assert_int_eq(biss_cd_build_command(&p, 0x01, 2, true), BISS_CD_OK);
     ck_assert_int_eq(rig_run(&r, &p, 0, &res), BISS_CD_OK);
     ck_assert_int_eq(ctrl->last_cmd, 2);
-    ck_assert_uint_eq(ctrl->commands_dropped, 1);
+    ck_assert_uint_eq(ctrl->commands_dropped, 1); /* the withheld one */
     e2e_free(&r.run);
 }
 END_TEST
 
-/* A slave that executes on a stop bit of 1 (biss_ctrl cmd_stop): the
- * program sends P = 1, and the IDA test still withholds the command, by
- * sending 0 there. The firmware only inverts what the program holds. */
-START_TEST(fw_ida_test_either_stop_bit) {
+/* The bit after the IDA slots that executes a command, under either
+ * convention (the slave's biss_ctrl cmd_stop, the host's ex): the program
+ * sends the slave's value and the command is executed; with the IDA test
+ * failing the firmware sends the other value, and the addressed slave (ID
+ * 0) drops it. Under EX = 1 (the default) the idle zeros that follow never
+ * execute it; under P = 0 nothing but the inverted bit protects it. */
+START_TEST(fw_ida_test_either_execute_bit) {
+    unsigned ex = (unsigned)_i;
     fw_rig r;
     rig_start(&r, 0);
     biss_ctrl *ctrl = &bench_link(r.run.b)->biss.ctrl[0];
-    ctrl->cmd_stop = 1;
+    ck_assert_uint_eq(ctrl->cmd_stop, BISS_CD_EX_DEFAULT);
+    ctrl->cmd_stop = (uint8_t)ex;
     static biss_cd_prog p;
     biss_cd_result res;
-    ck_assert_int_eq(biss_cd_build_command(&p, 0x01, 3, true), BISS_CD_OK);
-    p.op[p.end] = BISS_CDOP_1;
+    ck_assert_int_eq(biss_cd_build_command_ex(&p, 0x01, 3, true, ex), BISS_CD_OK);
+    ck_assert_int_eq(p.op[p.end], ex ? BISS_CDOP_1 : BISS_CDOP_0);
     ck_assert_int_eq(rig_run(&r, &p, 0, &res), BISS_CD_OK);
-    ck_assert_int_eq(ctrl->last_cmd, 3);
-    ck_assert_int_eq(biss_cd_build_command(&p, 0x03, 1, true), BISS_CD_OK); /* ID 1: none */
-    p.op[p.end] = BISS_CDOP_1;
-    ck_assert_int_eq(rig_run(&r, &p, 0, &res), BISS_CD_E_WITHHELD);
-    ck_assert_uint_eq(res.ida, 0x01);
-    /* (a P = 1 ends the control frame like a master S: the firmware reports
-     * the end in the frame whose timeout carries it, before the slave has
-     * taken it) */
     bench_run_until(r.run.b, pru_time_ps(bench_core(r.run.b)) + 100 * SIM_PS_PER_US);
     ck_assert_int_eq(ctrl->last_cmd, 3);
+    ck_assert_uint_eq(ctrl->commands, 1);
+    ck_assert_int_eq(biss_cd_build_command_ex(&p, 0x03, 1, true, ex), BISS_CD_OK); /* ID 1: none */
+    ck_assert_int_eq(rig_run(&r, &p, 0, &res), BISS_CD_E_WITHHELD);
+    ck_assert_uint_eq(res.ida, 0x01);
+    /* (the end is reported in the frame whose timeout carries the bit,
+     * before the slave has taken it; then many idle frames) */
+    bench_run_until(r.run.b, pru_time_ps(bench_core(r.run.b)) + 500 * SIM_PS_PER_US);
+    ck_assert_int_eq(ctrl->last_cmd, 3);
+    ck_assert_uint_eq(ctrl->commands, 1);
     ck_assert_uint_eq(ctrl->commands_dropped, 1);
     e2e_free(&r.run);
 }
@@ -218,7 +225,7 @@ int main(void) {
     tcase_add_test(tc, fw_write_read_back);
     tcase_add_test(tc, fw_late_start);
     tcase_add_test(tc, fw_commands);
-    tcase_add_test(tc, fw_ida_test_either_stop_bit);
+    tcase_add_loop_test(tc, fw_ida_test_either_execute_bit, 0, 2);
     tcase_add_test(tc, fw_back_to_back);
     suite_add_tcase(s, tc);
     return check_run(s);

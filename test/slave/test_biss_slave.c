@@ -145,6 +145,27 @@ START_TEST(fixed_timeout_then_sl_high) {
 }
 END_TEST
 
+/* A slave that lost its frame keeps SL low, also through the end of a
+ * frame it was in; two clocks of a new frame ([MB4] INIT) and its timeout
+ * bring SL high again. */
+START_TEST(lost_slave_holds_sl_low_until_a_new_frame_ends) {
+    bench *x = bench_new(cfg_12bit(0), 500 * NS);
+    x->r.t = 1 * US;
+    rig_ma(&x->r, 1 * US, 0); /* a frame begins ... */
+    rig_ma(&x->r, 1500 * NS, 1);
+    biss_slave_lose_sync(&x->b, 1700 * NS); /* ... and breaks */
+    eq_run_until(&x->r.q, 100 * US);
+    ck_assert_int_eq(waveform_level_at(&x->r.sl, 100 * US), 0);
+    x->r.t = 100 * US;
+    sim_ps last = rig_frame(&x->r, 2, 0, 0, 30 * US, NULL); /* INIT: two clocks */
+    eq_run_until(&x->r.q, last + 30 * US);
+    ck_assert_int_eq(waveform_level_at(&x->r.sl, last + 19 * US), 0);
+    ck_assert_int_eq(waveform_level_at(&x->r.sl, last + 20 * US + 20 * NS), 1);
+    ck_assert(!x->b.lost);
+    bench_free(x);
+}
+END_TEST
+
 START_TEST(adaptive_timeout_one_and_a_half_periods) {
     biss_chain_cfg *c = cfg_12bit(0);
     c->timeout_mode = BISS_TIMEOUT_ADAPTIVE;
@@ -194,13 +215,32 @@ START_TEST(position_moves_between_frames) {
     }
     for (uint64_t i = 0; i < 5; i++) {
         const biss_frame_record *rec = biss_slave_record(&x->b, i);
-        uint64_t expect = biss_slave_position_at(&x->b, 0, rec->start_ps);
+        uint64_t expect = biss_slave_position_at(&x->b, 0, rec->latch_ps);
+        ck_assert_uint_eq(rec->latch_ps, rec->start_ps + 500 * NS);
         ck_assert_uint_eq(rec->s[0].position, expect);
-        ck_assert_uint_eq(rec->s[0].position, 100 + (uint64_t)(rec->start_ps / (10 * US)));
+        ck_assert_uint_eq(rec->s[0].position, 100 + (uint64_t)(rec->latch_ps / (10 * US)));
         if (i > 0) {
             ck_assert_uint_gt(rec->s[0].position, biss_slave_record(&x->b, i - 1)->s[0].position);
         }
     }
+    bench_free(x);
+}
+END_TEST
+
+/* [MB4] "BiSS C Frame": the position is taken at the first rising edge of
+ * MA, not at the falling edge that starts the frame. 1 count per us; the
+ * frame starts at 1.75 us (count 1) and its first rise comes at 2.25 us
+ * (count 2). */
+START_TEST(position_latched_at_first_rising_edge) {
+    biss_chain_cfg *c = cfg_12bit(0);
+    c->s[0].speed_cps = 1e6;
+    bench *x = bench_new(c, 500 * NS);
+    x->r.t += 750 * NS;
+    rig_frame(&x->r, 24, 0, 0, 30 * US, NULL);
+    const biss_frame_record *rec = biss_slave_record(&x->b, 0);
+    ck_assert_int_eq(rec->start_ps, 1750 * NS);
+    ck_assert_int_eq(rec->latch_ps, 2250 * NS);
+    ck_assert_uint_eq(rec->s[0].position, 2);
     bench_free(x);
 }
 END_TEST
@@ -389,7 +429,7 @@ START_TEST(command_in_chain_over_frames) {
             "10"
             "0111"
             "00000000"
-            "0"
+            "1"
             "0",
             3 * 20 + 6, cds);
     ck_assert_str_eq(cds + 14 + 16, "001"
@@ -443,10 +483,12 @@ int main(void) {
     tcase_add_test(tc, busy_time_delays_start_bit);
     tcase_add_test(tc, busy_clocks_delay_start_bit);
     tcase_add_test(tc, fixed_timeout_then_sl_high);
+    tcase_add_test(tc, lost_slave_holds_sl_low_until_a_new_frame_ends);
     tcase_add_test(tc, adaptive_timeout_one_and_a_half_periods);
     tcase_add_test(tc, adaptive_timeout_floor);
     tcase_add_test(tc, incomplete_frame_times_out);
     tcase_add_test(tc, position_moves_between_frames);
+    tcase_add_test(tc, position_latched_at_first_rising_edge);
     tcase_add_test(tc, position_wraps_and_runs_backwards);
     tcase_add_test(tc, register_read_over_frames);
     tcase_add_test(tc, daisy_chain_three_slaves);

@@ -95,7 +95,9 @@ START_TEST(register_read) {
     /* S, the Table 7 frame for 0x67, then the sequential S = 0 */
     feed(&c, "1 10001100111 0010 101 00000000 0000 0 0", out);
     /* 16 x 0 (S + header), R W S echo 1 0 1, data 0x5F, CRC4 sent 1111, P, end */
-    ck_assert_str_eq(out, "0000000000000000"
+    ck_assert_str_eq(out, "0"
+                          "10000000" /* IDL0..7: ID 0 */
+                          "0000000"
                           "101"
                           "01011111"
                           "1111"
@@ -115,7 +117,9 @@ START_TEST(register_write_stores_and_echoes) {
     /* write 0x3A to 0x10 (bank 0): header 10000010000 CRC 0011, RWS 011,
      * data 00111010, CRC4 of 0x3A sent 1101, P, end */
     feed(&c, "1 10000010000 0011 011 00111010 1101 0 0", out);
-    ck_assert_str_eq(out, "0000000000000000"
+    ck_assert_str_eq(out, "0"
+                          "10000000" /* IDL0..7: ID 0 */
+                          "0000000"
                           "011"
                           "00111010"
                           "1101"
@@ -144,7 +148,9 @@ START_TEST(header_crc_error_is_ignored_and_counted) {
     arm(&c);
     char out[128];
     feed(&c, "1 10001100111 0011 101 00000000 0000 0 0", out); /* CRC should be 0010 */
-    ck_assert_str_eq(out, "000000000000000000000000000000000");
+    ck_assert_str_eq(out, "0"
+                          "10000000" /* IDL, before the CRC is known */
+                          "000000000000000000000000");
     ck_assert_uint_eq(c.crc_errors, 1);
     ck_assert_uint_eq(c.reads, 0);
     /* 14 zeros re-arm; a good frame then works */
@@ -176,7 +182,9 @@ START_TEST(other_id_stays_silent) {
     arm(&c);
     char out[128];
     feed(&c, "1 10001100111 0010 101 00000000 0000 0 0", out);
-    ck_assert_str_eq(out, "000000000000000000000000000000000");
+    ck_assert_str_eq(out, "0"
+                          "01000000" /* only its ID lock */
+                          "000000000000000000000000");
     ck_assert_uint_eq(c.reads, 0);
     ck_assert_uint_eq(c.crc_errors, 0);
 }
@@ -187,9 +195,12 @@ START_TEST(late_start_bit_delays_data) {
     biss_ctrl_init(&c, 0, &regs, 3);
     arm(&c);
     char out[128];
-    /* after RWS the slave answers S = 0 for 3 frames, then S = 1 */
-    feed(&c, "1 10001100111 0010 101 000 00000000 0000 0 0", out);
-    ck_assert_str_eq(out, "0000000000000000"
+    /* after RWS the slave answers S = 0 for 3 frames, then S = 1; the
+     * master holds CDM = 1 meanwhile (see late_start_zeros_cancel) */
+    feed(&c, "1 10001100111 0010 101 111 00000000 0000 0 0", out);
+    ck_assert_str_eq(out, "0"
+                          "10000000" /* IDL0..7: ID 0 */
+                          "0000000"
                           "10"
                           "000"
                           "1"
@@ -208,7 +219,9 @@ START_TEST(late_start_bit_write) {
     char out[128];
     /* the master sends the data from the frame in which it sees S = 1 */
     feed(&c, "1 10000010000 0011 011 00 00111010 1101 0 0", out);
-    ck_assert_str_eq(out, "0000000000000000"
+    ck_assert_str_eq(out, "0"
+                          "10000000" /* IDL0..7: ID 0 */
+                          "0000000"
                           "01"
                           "00"
                           "1"
@@ -227,7 +240,9 @@ START_TEST(sequential_read_two_registers) {
     char out[128];
     /* 0x67 then, after P and S = 1, 0x68 */
     feed(&c, "1 10001100111 0010 101 00000000 0000 0 1 00000000 0000 0 0", out);
-    ck_assert_str_eq(out, "0000000000000000"
+    ck_assert_str_eq(out, "0"
+                          "10000000" /* IDL0..7: ID 0 */
+                          "0000000"
                           "101"
                           "01011111"
                           "1111"
@@ -257,7 +272,9 @@ START_TEST(bank_switch_through_0x40) {
     arm(&c);
     /* read 0x10 now shows bank 2's byte 0x46 */
     feed(&c, "1 10000010000 0011 101 00000000 0000 0 0", out);
-    ck_assert_str_eq(out, "0000000000000000"
+    ck_assert_str_eq(out, "0"
+                          "10000000" /* IDL0..7: ID 0 */
+                          "0000000"
                           "101"
                           "01000110"
                           "0010"
@@ -295,7 +312,7 @@ START_TEST(addressed_command_with_ida) {
     biss_ctrl_init(&c5, 5, &regs, 0);
     arm(&c2);
     arm(&c5);
-    const char *f = "1 0 00100000 10 0111 00000000 0";
+    const char *f = "1 0 00100000 10 0111 00000000 1"; /* EX = 1 */
     char o2[64], o5[64];
     feed(&c2, f, o2);
     feed(&c5, f, o5);
@@ -314,15 +331,64 @@ START_TEST(addressed_command_with_ida) {
 }
 END_TEST
 
+/* The bit after the IDA slots: EX = 1 executes by default (iC-MB4 rev B2,
+ * Table 31); a 0 there (a master that stopped, or withholds the command)
+ * drops it. A slave with cmd_stop = 0 takes it the other way round. */
+START_TEST(command_execute_bit_either_convention) {
+    biss_ctrl c;
+    char out[64];
+    biss_ctrl_init(&c, 2, &regs, 0);
+    ck_assert_uint_eq(c.cmd_stop, 1);
+    arm(&c);
+    feed(&c, "1 0 00100000 10 0111 00000000 0", out);
+    ck_assert_uint_eq(c.commands, 0);
+    ck_assert_uint_eq(c.commands_dropped, 1);
+    biss_ctrl_init(&c, 2, &regs, 0);
+    c.cmd_stop = 0;
+    arm(&c);
+    feed(&c, "1 0 00100000 10 0111 00000000 1", out);
+    ck_assert_uint_eq(c.commands_dropped, 1);
+    feed(&c, ZEROS14, out);
+    feed(&c, "1 0 00100000 10 0111 00000000 0", out);
+    ck_assert_uint_eq(c.commands, 1);
+}
+END_TEST
+
 START_TEST(broadcast_command) {
     biss_ctrl c;
     biss_ctrl_init(&c, 3, &regs, 0);
     arm(&c);
     char out[64];
-    feed(&c, "1 0 00000000 01 1100 00000000 0", out);
+    feed(&c, "1 0 00000000 01 1100 00000000 1", out);
     ck_assert_str_eq(out, "0000000000000000000000000");
     ck_assert_uint_eq(c.commands, 1);
     ck_assert_int_eq(c.last_cmd, 1);
+}
+END_TEST
+
+/* TIDEP0022 §2.1.3: any control frame is cancelled by 14 CDM = 0. A
+ * master that sends 0 while the slave's S is late puts 3 + 8 + 4 zeros
+ * in a row into a read: the frame is cancelled in the data, and the read
+ * never completes. */
+START_TEST(late_start_zeros_cancel) {
+    biss_ctrl c;
+    biss_ctrl_init(&c, 0, &regs, 3);
+    arm(&c);
+    char out[128];
+    feed(&c, "1 10001100111 0010 101 000 00000000 00", out); /* 13 zeros */
+    ck_assert_int_eq(c.state, CTRL_DCRC);
+    feed(&c, "0", out); /* the 14th zero */
+    ck_assert_int_eq(c.state, CTRL_IDLE);
+    ck_assert(c.armed);
+    ck_assert_uint_eq(c.cancels, 1);
+    ck_assert_uint_eq(c.reads, 0);
+    /* the S of a sequential access after 13 zeros is not a cancel */
+    biss_ctrl_init(&c, 0, &regs, 0);
+    arm(&c);
+    feed(&c, "1 10001100111 0010 101 00000000 0000 0 1 00000000 0000 0 0", out);
+    ck_assert_uint_eq(c.reads, 2);
+    ck_assert_uint_eq(c.cancels, 0);
+    ck_assert(!c.armed); /* a frame that ended wants 14 fresh zeros */
 }
 END_TEST
 
@@ -357,7 +423,9 @@ int main(void) {
     tcase_add_test(tc, read_only_and_write_protected);
     tcase_add_test(tc, addressed_command_with_ida);
     tcase_add_test(tc, broadcast_command);
+    tcase_add_test(tc, command_execute_bit_either_convention);
     tcase_add_test(tc, fourteen_zeros_cancel_a_header);
+    tcase_add_test(tc, late_start_zeros_cancel);
     suite_add_tcase(s, tc);
     return check_run(s);
 }

@@ -66,7 +66,9 @@ START_TEST(tidep0022_registers_match_table11) {
 END_TEST
 
 START_TEST(posital_layout_and_registers) {
-    ck_assert_int_eq(profile_by_name("posital-kit", &sc), 0);
+    /* the kit is a BiSS Line encoder: no profile claims to be it */
+    ck_assert_int_eq(profile_by_name("posital-kit", &sc), -1);
+    ck_assert_int_eq(profile_by_name("posital-kit-layout-biss-c", &sc), 0);
     biss_slave_cfg *s = &sc.biss.s[0];
     ck_assert_uint_eq(biss_slave_cfg_bits(s), 24 + 17 + 7 + 2 + 6);
     ck_assert_int_eq(ctrl_read(&s->regs, 0x42), 0x61);
@@ -89,7 +91,15 @@ START_TEST(ad38_chain) {
     ck_assert_uint_eq(biss_slave_cfg_bits(&b->s[2]), 9 + 2 + 6 + 16);
     ck_assert_int_eq(b->timeout_mode, BISS_TIMEOUT_ADAPTIVE);
     ck_assert_int_eq(b->busy_ps, 2400 * SIM_PS_PER_NS);
-    ck_assert_uint_eq(b->s[2].id, 2);
+    /* two register devices ([AD38] register tables): ID 0 the life-counter
+     * channel, ID 1 the A/D and position channels (slave 1 answers) */
+    ck_assert_uint_eq(b->s[2].id, 0);
+    ck_assert_uint_eq(b->s[1].id, 1);
+    ck_assert_uint_eq(b->s[0].id, 1);
+    ck_assert(b->s[0].no_control && !b->s[1].no_control && !b->s[2].no_control);
+    /* two answering slaves with one ID are refused */
+    b->s[0].no_control = false;
+    ck_assert_ptr_nonnull(biss_chain_cfg_check(b));
 }
 END_TEST
 
