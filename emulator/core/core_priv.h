@@ -142,6 +142,7 @@ struct strict_state {
     int64_t last_edge; /* issue cycle of the last R30 change, INT64_MIN: none */
     struct pru_strict_hit pending[STRICT_PENDING];
     unsigned n_pending;
+    uint64_t pending_over; /* violations beyond `pending` in this window */
     struct pru_strict_hit hits[PRU_STRICT_MAX_HITS];
     size_t n_hits;
     uint64_t lost;

@@ -71,6 +71,7 @@ int pru_strict_parse(const char *list, unsigned *rules, const char **bad) {
 void strict_reset(struct pru_core *c) {
     c->st.last_edge = INT64_MIN;
     c->st.n_pending = 0;
+    c->st.pending_over = 0;
 }
 
 size_t pru_strict_hits(const struct pru_core *c, const struct pru_strict_hit **hits,
@@ -84,7 +85,6 @@ size_t pru_strict_hits(const struct pru_core *c, const struct pru_strict_hit **h
 void pru_strict_clear(struct pru_core *c) {
     c->st.n_hits = 0;
     c->st.lost = 0;
-    c->st.n_pending = 0;
 }
 
 void pru_contend_stats(const struct pru_core *c, uint64_t *collisions, uint64_t *stall_cycles) {
@@ -189,7 +189,7 @@ bool strict_before(struct pru_core *c, const struct pd *d) {
         } else if (c->st.n_pending < STRICT_PENDING) {
             c->st.pending[c->st.n_pending++] = h;
         } else {
-            c->st.lost++; /* a window this full is not one the firmware counts by hand */
+            c->st.pending_over++; /* counted as lost if the window proves clocked */
         }
     }
     return false;
@@ -201,10 +201,12 @@ void strict_edge(struct pru_core *c, int64_t cycle) {
     if (clocked) {
         for (unsigned i = 0; i < s->n_pending; i++)
             log_hit(c, &s->pending[i]);
+        s->lost += s->pending_over;
         if (s->n_pending && !c->p.strict_log)
             strict_fault(c, &s->pending[0], s->last_edge, cycle);
     }
     s->n_pending = 0;
+    s->pending_over = 0;
     s->last_edge = cycle;
 }
 
