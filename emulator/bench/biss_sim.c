@@ -14,6 +14,7 @@
 #include "fw_cd.h"
 #include "fw_check.h"
 #include "fw_config.h"
+#include "pru_isa.h"
 #include "scenario_json.h"
 #include "sim_image.h"
 #include "sim_report.h"
@@ -57,6 +58,10 @@ struct options {
     const char *cd_what; /* the option that asked for it */
     /* fast paths switched off (--no-fast-path) */
     int no_ff, no_ff_counted, no_ff_r31_bits, no_ff_loop_delay;
+    /* strict and contention modes (emulator/core/TIMING.md) */
+    unsigned strict, strict_window;
+    int strict_log;
+    const char *contend;
 };
 
 static void usage(FILE *f) {
@@ -88,6 +93,14 @@ static void usage(FILE *f) {
                "                     ff-r31-bits (horizons of the R31 bits a loop tests),\n"
                "                     ff-loop-delay (LOOP delays run at once)\n"
                "  --max-ms T         stop after T ms of simulated time (default: ample)\n"
+               "  --strict[=RULES]   stop with a fault report on a construct of uncertain\n"
+               "                     silicon behaviour in clocked code (between two MA edges\n"
+               "                     at most --strict-window cycles apart, default 1024):\n"
+               "                     loop1, loop0, loopfield, mvi, dram (default: all)\n"
+               "  --strict-log       with --strict: record every violation, run on, list them\n"
+               "  --contend K,S[,periodic[:PHASE]|random[:SEED]]\n"
+               "                     the host reads the data RAM every K cycles; a PRU\n"
+               "                     load/store meeting one stalls S cycles\n"
                "  --reg-read ID:ADDR[:N]       read N (1..64) registers of slave ID through\n"
                "                               control frames, while positions go on\n"
                "  --reg-write ID:ADDR:B[,B..]  write bytes (hex) to consecutive registers\n"
@@ -142,7 +155,8 @@ static const char *const valued[] = {"--profile",  "--scenario", "--freq",      
                                      "--vcd",      "--svg",      "--svg-frame", "--max-ms",
                                      "--firmware", "--reg-read", "--reg-write", "--command"};
 /* ... and those of the waveform output and the fast paths */
-static const char *const valued_out[] = {"--vcd-timescale", "--no-fast-path"};
+static const char *const valued_out[] = {"--vcd-timescale", "--no-fast-path", "--strict-window",
+                                         "--contend"};
 
 static int takes_value(const char *a) {
     for (size_t i = 0; i < sizeof(valued) / sizeof(valued[0]); i++) {
@@ -270,6 +284,16 @@ static int set_option(struct options *o, const char *a, const char *v) {
             return die("--no-fast-path: '%s' is not ff, ff-counted, ff-r31-bits or ff-loop-delay",
                        v);
         }
+    } else if (!strcmp(a, "--strict-window")) {
+        char *end;
+        errno = 0;
+        unsigned long w = strtoul(v, &end, 10);
+        if (errno || end == v || *end || w == 0 || w > 0xffffff) {
+            return die("--strict-window: '%s' is not a number of cycles (1..16777215)", v);
+        }
+        o->strict_window = (unsigned)w;
+    } else if (!strcmp(a, "--contend")) {
+        o->contend = v;
     } else if (!strcmp(a, "--svg")) {
         o->svg = v;
     } else if (!strcmp(a, "--svg-frame")) {
@@ -304,6 +328,13 @@ static int parse_args(int argc, char **argv, struct options *o) {
             return 2;
         } else if (!strcmp(a, "--json")) {
             o->json = 1;
+        } else if (!strcmp(a, "--strict") || !strncmp(a, "--strict=", 9)) {
+            const char *bad;
+            if (pru_strict_parse(a[8] ? a + 9 : NULL, &o->strict, &bad) != 0) {
+                return die("--strict: unknown rule '%s' (loop1, loop0, loopfield, mvi, dram)", bad);
+            }
+        } else if (!strcmp(a, "--strict-log")) {
+            o->strict_log = 1;
         } else if (!takes_value(a)) {
             return die("unknown option '%s' (see --help)", a);
         } else if (i + 1 >= argc) {
@@ -338,6 +369,17 @@ static int build_config(const struct options *o, struct bench_config *cfg) {
     cfg->pru.ff_counted = !o->no_ff_counted;
     cfg->pru.ff_r31_bits = !o->no_ff_r31_bits;
     cfg->pru.ff_loop_delay = !o->no_ff_loop_delay;
+    cfg->pru.strict = o->strict;
+    cfg->pru.strict_log = o->strict_log;
+    if (o->strict_window) {
+        cfg->pru.strict_window = o->strict_window;
+    }
+    if ((o->strict_log || o->strict_window) && !o->strict) {
+        return die("--strict-log and --strict-window need --strict");
+    }
+    if (o->contend && pru_contend_parse(o->contend, &cfg->pru, err, sizeof(err)) != 0) {
+        return die("--contend: %s", err);
+    }
     return 0;
 }
 
@@ -361,6 +403,24 @@ static double now_seconds(void) {
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
     return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
+}
+
+/* The strict-mode log on stderr, one line per (pc, rule); returns how many. */
+static size_t print_strict_log(struct pru_core *c) {
+    const struct pru_strict_hit *h;
+    uint64_t lost;
+    size_t n = pru_strict_hits(c, &h, &lost);
+    for (size_t i = 0; i < n; i++) {
+        char dis[96];
+        pru_disasm(h[i].word, h[i].pc, dis, sizeof dis);
+        fprintf(stderr, "biss-sim: strict: %-9s pc=0x%04x first cycle %lld, %llu times: %s\n",
+                pru_strict_rule_name(h[i].rule), h[i].pc, (long long)h[i].first_cycle,
+                (unsigned long long)h[i].count, dis);
+    }
+    if (lost) {
+        fprintf(stderr, "biss-sim: strict: %llu more not listed\n", (unsigned long long)lost);
+    }
+    return n + (size_t)lost;
 }
 
 static uint32_t dram32(struct bench *b, uint32_t off) {
@@ -490,6 +550,15 @@ static int run(const struct options *o) {
     if (why == PRU_STOP_FAULT) {
         pru_print_fault(bench_core(b), stderr);
         rc = 3;
+    }
+    if (o->strict_log && print_strict_log(bench_core(b)) > 0 && rc == 0) {
+        rc = 3;
+    }
+    if (o->contend) {
+        uint64_t n, stall;
+        pru_contend_stats(bench_core(b), &n, &stall);
+        fprintf(stderr, "biss-sim: contention: %llu PRU accesses stalled, %llu cycles\n",
+                (unsigned long long)n, (unsigned long long)stall);
     }
     if (fw_mode && dram32(b, BISS_ST_STATE) == BISS_STATE_CFG_ERROR) {
         uint32_t code = dram32(b, BISS_ST_CFG_ERROR);

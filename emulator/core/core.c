@@ -25,6 +25,15 @@ void pru_params_default(struct pru_params *p) {
     p->ff_counted = 1;
     p->ff_r31_bits = 1;
     p->ff_loop_delay = 1;
+    p->strict = 0;
+    p->strict_everywhere = 0;
+    p->strict_window = PRU_STRICT_DEFAULT_WINDOW;
+    p->strict_log = 0;
+    p->contend_period = 0;
+    p->contend_stall = 1;
+    p->contend_phase = 0;
+    p->contend_random = 0;
+    p->contend_seed = 0;
 }
 
 static const struct {
@@ -96,7 +105,10 @@ struct pru_core *pru_core_new(enum pru_soc soc, const struct pru_params *params)
     c->ff.top = NO_LOOP;
     for (unsigned i = 0; i < FF_BODIES; i++)
         c->ff.body[i].top = 1; /* no body decoded yet */
-    c->ff_on = c->p.fast_forward != 0;
+    /* strict and contention see every instruction: no fast path skips one */
+    c->checked = c->p.strict != 0 || c->p.contend_period != 0;
+    c->ff_on = c->p.fast_forward != 0 && !c->checked;
+    strict_reset(c);
     ctrl_reset(c);
     cfg_reset(c);
     iep_reset(c);
@@ -146,12 +158,17 @@ const char *pru_fault_name(enum pru_fault_cause cause) {
         [PRU_FAULT_XFR_DEVICE] = "XFR device not modelled",
         [PRU_FAULT_GPO_SHIFT] = "GPO shift-out mode enabled (not modelled)",
         [PRU_FAULT_UNSUPPORTED] = "unsupported peripheral mode",
+        [PRU_FAULT_STRICT] = "strict-mode rule broken",
     };
     return (unsigned)cause < sizeof names / sizeof names[0] ? names[cause] : "unknown";
 }
 
 void pru_print_fault(const struct pru_core *c, FILE *f) {
     const struct pru_fault *ft = &c->fault;
+    if (ft->cause == PRU_FAULT_STRICT) {
+        strict_print_fault(c, f);
+        return;
+    }
     fprintf(f, "fault: %s at pc=0x%04x cycle=%lld (addr=0x%08x, word=0x%08x)\n",
             pru_fault_name(ft->cause), ft->pc, (long long)ft->cycle, ft->addr, ft->word);
 }

@@ -134,6 +134,21 @@ struct ff_probe {
     struct ff_body body[FF_BODIES]; /* by loop top modulo FF_BODIES */
 };
 
+/* Strict and contention modes (strict.c). Violations wait in `pending`
+ * until the R30 change that closes their window says whether it was a
+ * clocked one. */
+#define STRICT_PENDING 64u
+struct strict_state {
+    int64_t last_edge; /* issue cycle of the last R30 change, INT64_MIN: none */
+    struct pru_strict_hit pending[STRICT_PENDING];
+    unsigned n_pending;
+    uint64_t pending_over; /* violations beyond `pending` in this window */
+    struct pru_strict_hit hits[PRU_STRICT_MAX_HITS];
+    size_t n_hits;
+    uint64_t lost;
+    uint64_t collisions, stall_cycles; /* contention */
+};
+
 struct pru_core {
     /* store watch (pru_set_store_watch): checked on stores to data RAM */
     uint32_t watch_addr; /* UINT32_MAX: none */
@@ -180,6 +195,8 @@ struct pru_core {
     uint32_t r30_pins; /* last R30 value given to the pins */
     FILE *trace;
     struct ff_probe ff;
+    bool checked; /* strict or contention on: every instruction through exec_checked() */
+    struct strict_state st;
 };
 
 /* core.c */
@@ -263,6 +280,21 @@ static inline void ff_horizon(struct pru_core *c, int64_t cycle) {
 static inline void ff_dirty(struct pru_core *c) {
     c->ff.dirty = true;
 }
+
+/* strict.c */
+void strict_reset(struct pru_core *c);
+/* Before executing d at c->pc: record the rules it breaks; true if that
+ * stopped the core (everywhere scope, no log) and d must not run. */
+bool strict_before(struct pru_core *c, const struct pd *d);
+/* R30 changed by the instruction issued in cycle `cycle`. */
+void strict_edge(struct pru_core *c, int64_t cycle);
+/* The data address of burst d as it would run now. */
+uint32_t strict_burst_addr(struct pru_core *c, const struct pd *d);
+/* Whether [addr, addr+n) lies in data RAM 0/1 or shared RAM. */
+bool strict_local_ram(const struct pru_core *c, uint32_t addr, unsigned n);
+/* Extra cycles for a local-RAM access issued in cycle t lasting n cycles. */
+unsigned contend_stall(struct pru_core *c, int64_t t, unsigned n);
+void strict_print_fault(const struct pru_core *c, FILE *f);
 
 /* trace.c */
 void trace_insn(struct pru_core *c, uint32_t pc, int64_t cycle, const uint32_t *before,

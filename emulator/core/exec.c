@@ -234,11 +234,17 @@ static __attribute__((noinline)) void exec_one(struct pru_core *c, const struct 
             if (c->ff_on)
                 ff_loop_entered(c, limit);
             break;
-        case PRU_FMT_BURST:
+        case PRU_FMT_BURST: {
+            /* contention: the address before a load may change its base */
+            uint32_t addr = c->p.contend_period ? strict_burst_addr(c, d) : 0;
             cost = exec_burst(c, d, c->pc, c->cycle);
-            if (c->fault.cause == PRU_FAULT_NONE)
+            if (c->fault.cause == PRU_FAULT_NONE) {
                 c->pc++;
+                if (c->p.contend_period && strict_local_ram(c, addr, 1))
+                    cost += contend_stall(c, c->cycle, cost);
+            }
             break;
+        }
         case PRU_FMT_XFR:
             exec_xfr(c, d);
             break;
@@ -315,6 +321,21 @@ static void exec_traced(struct pru_core *c, const struct pd *d, int64_t limit) {
     if (c->ff.skipped != skipped)
         fprintf(c->trace, "        (fast-forward: %llu loop iterations skipped, now cycle %lld)\n",
                 (unsigned long long)(c->ff.skipped - skipped), (long long)c->cycle);
+}
+
+/* Strict or contention mode: the rules before the instruction, the R30
+ * change after it (strict.c); traced too if tracing. */
+static void exec_checked(struct pru_core *c, const struct pd *d, int64_t limit) {
+    if (c->p.strict && strict_before(c, d))
+        return;
+    uint32_t r30 = c->r30_pins;
+    int64_t issued = c->cycle;
+    if (c->trace_on)
+        exec_traced(c, d, limit);
+    else
+        exec_one(c, d, limit);
+    if (c->r30_pins != r30 && c->p.strict && !c->p.strict_everywhere)
+        strict_edge(c, issued);
 }
 
 /* Leave the fast loop so that exec_run() re-evaluates enable/sleep/step. */
@@ -434,9 +455,11 @@ enum pru_stop exec_run(struct pru_core *c, int64_t limit, bool one_step) {
             return PRU_STOP_FAULT;
         }
         bool stepping = one_step || (c->ctrl.control & PRU_CTRL_SINGLE_STEP);
-        if (c->trace_on || stepping) {
+        if (c->trace_on || stepping || c->checked) {
             const struct pd *d = &c->pd[c->pc];
-            if (c->trace_on)
+            if (c->checked)
+                exec_checked(c, d, limit);
+            else if (c->trace_on)
                 exec_traced(c, d, limit);
             else
                 exec_one(c, d, limit);

@@ -73,7 +73,66 @@ struct pru_params {
      * nothing (AND/OR of a register with itself: a delay) runs its
      * iterations at once. */
     int ff_loop_delay;
+
+    /* Strict mode (TIMING.md "Strict mode"): the PRU_STRICT_* rules checked,
+     * 0 = off. A rule broken stops the core with PRU_FAULT_STRICT, or with
+     * strict_log only records it (pru_strict_hits()). */
+    unsigned strict;
+    /* Where the rules apply: 0 (default) only in clocked code, i.e. between
+     * two R30 changes at most strict_window cycles apart; 1 everywhere. */
+    int strict_everywhere;
+    unsigned strict_window;
+    int strict_log;
+    /* Data-RAM contention (TIMING.md "Contention mode"): a host access to the
+     * local RAMs every contend_period cycles (0 = off); a PRU load/store to
+     * data RAM 0/1 or shared RAM whose cycles meet one stalls contend_stall
+     * cycles. Periodic at cycles = contend_phase mod period, or, with
+     * contend_random, each cycle with probability 1/period (seeded, a pure
+     * function of seed and cycle). */
+    unsigned contend_period, contend_stall, contend_phase;
+    int contend_random;
+    uint32_t contend_seed;
 };
+
+struct pru_core;
+
+/* Strict-mode rules (docs/silicon-assumptions.md A2-A5: the UNCERTAIN rows). */
+enum pru_strict_rule {
+    PRU_STRICT_LOOP1 = 1u << 0,     /* LOOP whose body is one instruction (A2c) */
+    PRU_STRICT_LOOP0 = 1u << 1,     /* LOOP with a register count of 0 (A2d) */
+    PRU_STRICT_LOOPFIELD = 1u << 2, /* LOOP counted by a field not rN or rN.w0 (A2e) */
+    PRU_STRICT_MVI = 1u << 3,       /* MVIB/MVIW/MVID (A3) */
+    PRU_STRICT_DRAM = 1u << 4,      /* load/store to data RAM 0/1 or shared RAM (A4, A5) */
+};
+#define PRU_STRICT_ALL            0x1fu
+#define PRU_STRICT_DEFAULT_WINDOW 1024u /* the largest half period, H = 1024 */
+
+/* "loop1", "loop0", "loopfield", "mvi", "dram" (one rule bit), NULL else. */
+const char *pru_strict_rule_name(unsigned rule);
+/* A comma-separated list of rule names, or "all" (or NULL/"") for every
+ * rule, into a mask. Returns 0, or -1 (*bad points at the unknown name). */
+int pru_strict_parse(const char *list, unsigned *rules, const char **bad);
+
+/* One strict-mode violation: the instruction, the rule, when it first broke
+ * it and how often (counted once per execution). */
+struct pru_strict_hit {
+    uint32_t pc, word;
+    unsigned rule;
+    int64_t first_cycle;
+    uint64_t count;
+};
+#define PRU_STRICT_MAX_HITS 256u
+/* The violations recorded so far, in the order first seen (different
+ * (pc, rule) pairs; at most PRU_STRICT_MAX_HITS, more are only counted in
+ * *lost if lost is not NULL). */
+size_t pru_strict_hits(const struct pru_core *c, const struct pru_strict_hit **hits,
+                       uint64_t *lost);
+void pru_strict_clear(struct pru_core *c);
+/* Contention so far: PRU accesses that met a host access, stall cycles added. */
+void pru_contend_stats(const struct pru_core *c, uint64_t *collisions, uint64_t *stall_cycles);
+/* Parses "K,S[,periodic[:PHASE]|random[:SEED]]" into p's contend_* fields.
+ * Returns 0, or -1 with a message in err. */
+int pru_contend_parse(const char *spec, struct pru_params *p, char *err, size_t errlen);
 
 void pru_params_default(struct pru_params *p);
 
@@ -111,6 +170,7 @@ enum pru_fault_cause {
     PRU_FAULT_XFR_DEVICE,   /* XIN/XOUT to a device that is not modelled */
     PRU_FAULT_GPO_SHIFT,    /* GPO shift-out mode enabled (not modelled) */
     PRU_FAULT_UNSUPPORTED,  /* other mode not modelled (GPI parallel/MII) */
+    PRU_FAULT_STRICT,       /* strict mode: a construct of uncertain silicon behaviour */
 };
 
 struct pru_fault {
@@ -119,6 +179,10 @@ struct pru_fault {
     int64_t cycle; /* cycle in which it was issued */
     uint32_t addr; /* data address involved (if any) */
     uint32_t word; /* instruction word (if any) */
+    /* PRU_FAULT_STRICT: the rule (one PRU_STRICT_* bit) and, in clocked
+     * scope, the cycles of the R30 changes around it (else both -1) */
+    unsigned rule;
+    int64_t edge_from, edge_to;
 };
 
 enum pru_stop {
@@ -224,7 +288,9 @@ int pru_halted(const struct pru_core *c); /* stopped by HALT */
 int pru_sleeping(const struct pru_core *c);
 const struct pru_fault *pru_get_fault(const struct pru_core *c);
 const char *pru_fault_name(enum pru_fault_cause cause);
-/* One line "fault: <cause> at pc=0x.. cycle=N (addr=0x.., word=0x..)". */
+/* One line "fault: <cause> at pc=0x.. cycle=N (addr=0x.., word=0x..)"; for a
+ * strict fault "fault: strict rule <rule> (<what>) at pc=0x.. cycle=N: <insn>"
+ * and, in clocked scope, the R30 changes around it. */
 void pru_print_fault(const struct pru_core *c, FILE *f);
 
 /* Fast-forward statistics: iterations skipped so far. */

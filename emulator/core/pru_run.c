@@ -24,6 +24,7 @@ struct opts {
     int64_t max_cycles;
     uint32_t inputs;
     int dump_regs, trace;
+    struct pru_params params;
 };
 
 static void usage(FILE *f) {
@@ -38,10 +39,21 @@ static void usage(FILE *f) {
             "  --inputs VALUE   constant GPI input levels R31[29:0] (default 0)\n"
             "  --dump-regs      print r0..r31, pc, cycles, instructions after the run\n"
             "  --trace          print every executed instruction to stderr\n"
+            "  --strict[=RULES] stop with a fault report on a construct of uncertain silicon\n"
+            "                   behaviour (docs/silicon-assumptions.md): RULES is a comma\n"
+            "                   list of loop1, loop0, loopfield, mvi, dram (default: all)\n"
+            "  --strict-scope S clocked (default: between two R30 changes at most\n"
+            "                   --strict-window cycles apart) or all (every instruction)\n"
+            "  --strict-window N  cycles (default %u)\n"
+            "  --strict-log     record every violation and run on; list them at the end\n"
+            "                   (exit 3 if there was one)\n"
+            "  --contend K,S[,periodic[:PHASE]|random[:SEED]]\n"
+            "                   a host reads the data RAM every K cycles; a PRU load/store\n"
+            "                   meeting one stalls S cycles (emulator/core/TIMING.md)\n"
             "  --help           this text\n"
             "\n"
             "exit status: 0 halted, 2 no HALT within the cycle limit, 3 fault, 1 usage\n",
-            (long long)DEFAULT_MAX_CYCLES);
+            (long long)DEFAULT_MAX_CYCLES, PRU_STRICT_DEFAULT_WINDOW);
 }
 
 /* A whole number, decimal or with a C prefix (0x...), 0..2^64-1: no sign,
@@ -66,6 +78,7 @@ static int bad(const char *msg, const char *arg) {
 
 static int parse_args(int argc, char **argv, struct opts *o) {
     *o = (struct opts){.soc = PRU_SOC_AM335X, .max_cycles = DEFAULT_MAX_CYCLES};
+    pru_params_default(&o->params);
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         const char *val = i + 1 < argc ? argv[i + 1] : NULL;
@@ -77,6 +90,28 @@ static int parse_args(int argc, char **argv, struct opts *o) {
             o->dump_regs = 1;
         } else if (strcmp(a, "--trace") == 0) {
             o->trace = 1;
+        } else if (strcmp(a, "--strict") == 0 || strncmp(a, "--strict=", 9) == 0) {
+            const char *bad_rule;
+            if (pru_strict_parse(a[8] ? a + 9 : NULL, &o->params.strict, &bad_rule))
+                return bad("--strict: rules are loop1, loop0, loopfield, mvi, dram; unknown",
+                           bad_rule);
+        } else if (strcmp(a, "--strict-scope") == 0) {
+            if (!val || (strcmp(val, "clocked") && strcmp(val, "all")))
+                return bad("--strict-scope must be clocked or all", val);
+            o->params.strict_everywhere = strcmp(val, "all") == 0;
+            i++;
+        } else if (strcmp(a, "--strict-window") == 0) {
+            if (parse_u64(val, &u) || u == 0 || u > 0xffffffu)
+                return bad("--strict-window needs a number of cycles from 1 to 16777215", val);
+            o->params.strict_window = (unsigned)u;
+            i++;
+        } else if (strcmp(a, "--strict-log") == 0) {
+            o->params.strict_log = 1;
+        } else if (strcmp(a, "--contend") == 0) {
+            char err[200];
+            if (pru_contend_parse(val, &o->params, err, sizeof err))
+                return bad("--contend", err);
+            i++;
         } else if (strcmp(a, "--max-cycles") == 0) {
             if (parse_u64(val, &u) || u == 0)
                 return bad("--max-cycles needs a whole number of cycles from 1 to 2^64-1", val);
@@ -107,6 +142,8 @@ static int parse_args(int argc, char **argv, struct opts *o) {
     }
     if (!o->image)
         return bad("no image file given", NULL);
+    if (!o->params.strict && (o->params.strict_log || o->params.strict_everywhere))
+        return bad("--strict-log and --strict-scope need --strict", NULL);
     return 0;
 }
 
@@ -175,6 +212,20 @@ static void dump_regs(struct pru_core *c) {
     printf("instructions=%llu\n", (unsigned long long)pru_instructions(c));
 }
 
+/* The strict-mode log, one line per (pc, rule); returns how many. */
+static size_t print_strict_log(struct pru_core *c) {
+    const struct pru_strict_hit *h;
+    uint64_t lost;
+    size_t n = pru_strict_hits(c, &h, &lost);
+    for (size_t i = 0; i < n; i++)
+        fprintf(stderr, "strict: %s at pc=0x%04x first cycle=%lld, %llu times (word=0x%08x)\n",
+                pru_strict_rule_name(h[i].rule), h[i].pc, (long long)h[i].first_cycle,
+                (unsigned long long)h[i].count, h[i].word);
+    if (lost)
+        fprintf(stderr, "strict: %llu more not listed\n", (unsigned long long)lost);
+    return n + (size_t)lost;
+}
+
 int main(int argc, char **argv) {
     if (argc == 2 && strcmp(argv[1], "--version") == 0) { /* the project's (CMakeLists.txt) */
         printf("%s %s\n", "pru-run", BISS_VERSION);
@@ -183,7 +234,7 @@ int main(int argc, char **argv) {
     struct opts o;
     if (parse_args(argc, argv, &o))
         return 1;
-    struct pru_core *c = pru_core_new(o.soc, NULL);
+    struct pru_core *c = pru_core_new(o.soc, &o.params);
     if (!c) {
         fprintf(stderr, "pru-run: out of memory\n");
         return 1;
@@ -205,6 +256,14 @@ int main(int argc, char **argv) {
         fprintf(stderr, "pru-run: no HALT within %lld cycles (pc=0x%04x)\n",
                 (long long)o.max_cycles, pru_pc(c));
         rc = EXIT_NOHALT;
+    }
+    if (o.params.strict_log && print_strict_log(c) && rc == 0)
+        rc = EXIT_FAULT;
+    if (o.params.contend_period) {
+        uint64_t n, stall;
+        pru_contend_stats(c, &n, &stall);
+        fprintf(stderr, "contention: %llu accesses stalled, %llu cycles\n", (unsigned long long)n,
+                (unsigned long long)stall);
     }
     if (o.dump_regs)
         dump_regs(c);

@@ -168,5 +168,26 @@ r = run("--scenario", scenario('{"biss": {"busy_ns": 1e6, "timeout": {"ns": 1e6}
         "--freq", "97656.25")
 check(r.returncode == 0, "longest busy and timeout: %d %r" % (r.returncode, r.stderr))
 
+# strict mode: the firmware stops at the first construct of uncertain silicon
+# behaviour in a clocked period (today: PADS' one-instruction LOOP in period
+# 0), or with --strict-log lists them all; contention stretches half periods
+r = run("--frames", "3", "--strict")
+check(r.returncode == 3 and "fault: strict rule loop1" in r.stderr and "between R30 changes" in r.stderr,
+      "--strict: %d %r" % (r.returncode, r.stderr))
+r = run("--frames", "3", "--strict=mvi", "--strict-log")
+check(r.returncode == 3 and r.stderr.count("biss-sim: strict: mvi") == 4 and "loop1" not in r.stderr,
+      "--strict=mvi --strict-log: %d %r" % (r.returncode, r.stderr))
+r = run("--frames", "30", "--contend", "40,1", "--json")
+check(r.returncode == 0 and json.loads(r.stdout)["ma_half_period_cycles"]["min"] == 10
+      and json.loads(r.stdout)["ma_half_period_cycles"]["max"] > 10
+      and "PRU accesses stalled" in r.stderr, "--contend 40,1: %d %r %r" % (r.returncode, r.stdout[:200], r.stderr))
+for args, words in [(["--strict=loop9"], "--strict: unknown rule 'loop9'"),
+                    (["--strict-log"], "need --strict"),
+                    (["--strict", "--strict-window", "0"], "--strict-window: '0'"),
+                    (["--contend", "0,1"], "--contend: '0,1' is not"),
+                    (["--contend", "40,1,often"], "pattern must be periodic or random")]:
+    r = run("--frames", "3", *args)
+    check(r.returncode == 1 and words in r.stderr, "%s -> %r (got %d %r)" % (args, words, r.returncode, r.stderr))
+
 print("%d failed" % failures if failures else "all biss-sim checks passed")
 sys.exit(1 if failures else 0)

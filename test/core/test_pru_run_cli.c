@@ -101,6 +101,49 @@ START_TEST(fault_exit_3) {
 }
 END_TEST
 
+/* --strict: the fault report names rule, PC, cycle and the instruction;
+ * --strict-log lists every site; --contend stalls; bad values refused. */
+START_TEST(strict_and_contend) {
+    const uint32_t w[] = {ldi(R(2), 0), loopi(2, 3), alui(PRU_OP_ADD, R(1), R(1), 1),
+                          burst(PRU_OP_SBBO, 4, 2, 0, 4), halt()};
+    const char *img = write_file("s.bin", w, sizeof w);
+    char args[800];
+    snprintf(args, sizeof args, "--strict --strict-scope all '%s'", img);
+    ck_assert_int_eq(run(args), 3);
+    const char *err = slurp(errf);
+    ck_assert_msg(strstr(err, "strict rule loop1") && strstr(err, "pc=0x0001 cycle=1: loop 3, 3"),
+                  "%s", err);
+    snprintf(args, sizeof args, "--strict=dram --strict-scope all '%s'", img);
+    ck_assert_int_eq(run(args), 3);
+    err = slurp(errf);
+    ck_assert_msg(strstr(err, "strict rule dram") &&
+                      strstr(err, "pc=0x0003 cycle=5: sbbo r1, r2, 0, 4"),
+                  "%s", err);
+    snprintf(args, sizeof args, "--strict --strict-scope all --strict-log '%s'", img);
+    ck_assert_int_eq(run(args), 3);
+    err = slurp(errf);
+    ck_assert_msg(strstr(err, "strict: loop1 at pc=0x0001 first cycle=1, 1 times") &&
+                      strstr(err, "strict: dram at pc=0x0003 first cycle=5, 1 times"),
+                  "%s", err);
+    /* clocked scope (the default): no R30 change, so nothing to report */
+    snprintf(args, sizeof args, "--strict '%s'", img);
+    ck_assert_int_eq(run(args), 0);
+    /* the store at cycle 5 meets the host at 5 (K = 5, phase 0): 7 cycles more */
+    snprintf(args, sizeof args, "--contend 5,7,periodic --dump-regs '%s'", img);
+    ck_assert_int_eq(run(args), 0);
+    ck_assert_ptr_nonnull(strstr(slurp(outf), "\ncycles=14\n"));
+    ck_assert_ptr_nonnull(strstr(slurp(errf), "contention: 1 accesses stalled, 7 cycles"));
+    snprintf(args, sizeof args, "--strict=loop2 '%s'", img);
+    ck_assert_int_eq(run(args), 1);
+    ck_assert_ptr_nonnull(strstr(slurp(errf), "unknown: loop2"));
+    snprintf(args, sizeof args, "--contend 5 '%s'", img);
+    ck_assert_int_eq(run(args), 1);
+    ck_assert_ptr_nonnull(strstr(slurp(errf), "--contend"));
+    snprintf(args, sizeof args, "--strict-log '%s'", img);
+    ck_assert_int_eq(run(args), 1);
+}
+END_TEST
+
 START_TEST(data_and_soc) {
     const uint32_t w[] = {burst(PRU_OP_LBCO, 4 * 2, 24, 4, 4), halt()};
     const uint32_t d[] = {0x11111111u, 0xCAFEF00Du};
@@ -214,6 +257,7 @@ Suite *cli_suite(void) {
     tcase_add_test(t, halts_and_dumps_registers);
     tcase_add_test(t, no_halt_exit_2);
     tcase_add_test(t, fault_exit_3);
+    tcase_add_test(t, strict_and_contend);
     tcase_add_test(t, data_and_soc);
     tcase_add_test(t, usage_errors);
     tcase_add_test(t, trace_output);
