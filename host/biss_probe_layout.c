@@ -460,13 +460,40 @@ static unsigned min_rank(const struct biss_probe_layout *l) {
     return r;
 }
 
-/* Every slave's data differences span BEST_MIN_RANK directions, or all of
- * its data word: then the differences include the codeword P * 1 itself
- * (only the last data bit differs), so no wider multiple P * M can fit. */
-static bool enough_evidence(const struct biss_probe_layout *l) {
+/* Remainder of a by b over GF(2) (both with their top terms, degree <= 16). */
+static uint32_t gf2_mod(uint32_t a, uint32_t b) {
+    int db = 31 - __builtin_clz(b);
+    for (int da = a ? 31 - __builtin_clz(a) : -1; da >= db; da = a ? 31 - __builtin_clz(a) : -1) {
+        a ^= b << (da - db);
+    }
+    return a;
+}
+
+/* Whether another fit covers the same bits with a polynomial that divides
+ * this one's or is divided by it: a narrower P fits wherever P * M does. */
+static bool related_fit(const struct ctx *x, const struct biss_probe_slave *s) {
+    const struct seglist *l = &x->cache[s->offset];
+    for (unsigned i = 0; i < l->n; i++) {
+        const struct seg *g = &l->s[i];
+        if (g->d + g->c != s->data_bits + s->crc_bits || g->poly == s->crc_poly) {
+            continue;
+        }
+        if (gf2_mod(s->crc_poly, g->poly) == 0 || gf2_mod(g->poly, s->crc_poly) == 0) {
+            return true;
+        }
+    }
+    return false;
+}
+
+/* Enough evidence to name the first layout: per slave, its data
+ * differences span BEST_MIN_RANK directions or all of its data word (then
+ * they include the codeword P * 1 itself, so no wider multiple P * M can
+ * fit), or no fit over the same bits has a related polynomial (a wider
+ * P * M fitting by chance would leave the truth P as such a fit). */
+static bool enough_evidence(const struct ctx *x, const struct biss_probe_layout *l) {
     for (unsigned i = 0; i < l->nslaves; i++) {
         const struct biss_probe_slave *s = &l->slave[i];
-        if (s->rank < BEST_MIN_RANK && s->rank < s->data_bits) {
+        if (s->rank < BEST_MIN_RANK && s->rank < s->data_bits && related_fit(x, s)) {
             return false;
         }
     }
@@ -483,11 +510,19 @@ static void verdict(struct ctx *x) {
     if (r->nlayouts == 0) {
         r->verdict = BISS_PROBE_NONE;
         snprintf(r->reason, sizeof r->reason,
-                 "no split of the %u bits into slaves of data + CRC (3..16 bits) fits the frames%s",
+                 "no split of the %u bits into slaves of data + CRC (3..16 bits) fits the frames "
+                 "(an SSI encoder, or a CRC outside 3..16 bits?)%s",
                  x->end, cut);
         return;
     }
     const struct biss_probe_layout *a = &r->layout[0];
+    if (x->cut) { /* not every fit was seen: nothing can be called unique or best */
+        r->verdict = BISS_PROBE_AMBIGUOUS;
+        snprintf(r->reason, sizeof r->reason,
+                 "%u layouts fit, and the search stopped at its limits before trying all",
+                 r->nlayouts);
+        return;
+    }
     if (r->nlayouts == 1) {
         r->verdict = BISS_PROBE_UNIQUE;
         snprintf(r->reason, sizeof r->reason, "one layout fits %u of %u frames%s", a->support,
@@ -498,7 +533,7 @@ static void verdict(struct ctx *x) {
     unsigned rank = min_rank(a);
     bool ahead = a->support > b->support || (!a->weak && b->weak) || a->crc_stuck < b->crc_stuck ||
                  a->crc_total > b->crc_total;
-    if (ahead && !a->weak && a->crc_stuck == 0 && enough_evidence(a)) {
+    if (ahead && !a->weak && a->crc_stuck == 0 && enough_evidence(x, a)) {
         r->verdict = BISS_PROBE_BEST;
         snprintf(r->reason, sizeof r->reason,
                  "%u layouts fit; the first checks %u CRC bits against %u of the next%s "
@@ -576,13 +611,13 @@ int biss_probe_analyse(const struct biss_probe_frames *f, struct biss_probe_resu
         return BISS_E_NOMEM;
     }
     walk(&x, 0);
-    free(x.cache);
     for (unsigned i = 0; i < r->nkept; i++) {
         for (unsigned s = 0; s < r->layout[i].nslaves; s++) {
             flags(f, &r->layout[i].slave[s]);
         }
     }
     verdict(&x);
+    free(x.cache);
     return BISS_OK;
 }
 

@@ -18,6 +18,7 @@
 #include "libbiss.h"
 
 #include <stdbool.h>
+#include <stddef.h>
 #include <stdint.h>
 
 #ifdef __cplusplus
@@ -106,7 +107,7 @@ struct biss_probe_regs {
 
 struct biss_probe_params {
     uint32_t freq_hz; /* MA rate for the capture (must be valid for biss_rate_half) */
-    unsigned frames;  /* frames to capture (1..BISS_PROBE_MAX_FRAMES); 0: 256 */
+    unsigned frames;  /* frames to capture (2..BISS_PROBE_MAX_FRAMES); 0: 1024 */
     bool read_regs;   /* also read the identification registers */
     unsigned reg_ids; /* control-frame IDs 0..reg_ids-1 (0: one per slave found, else 1) */
 };
@@ -126,6 +127,11 @@ struct biss_probe_report {
  * Returns 0 with *out filled (the verdict may still be "cannot decide"), or
  * the first library error. */
 int biss_probe(biss_t *h, const struct biss_probe_params *p, struct biss_probe_report *out);
+
+/* The layout as a JSON scenario for biss-sim --scenario and bissctl
+ * --scenario (the generic profile with these slaves). 0, or BISS_E_INVAL
+ * when buf is too small. */
+int biss_probe_scenario_json(const struct biss_probe_layout *l, char *buf, size_t size);
 
 #ifdef __cplusplus
 }

@@ -14,8 +14,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define NBITS   (1 + 8 * 64) /* the capture layout: CDS + 8 x 64 */
-#define NFRAMES 1024 /* the AD38's A/D word moves 1000 counts/s: it needs ~80 ms */
+#define NBITS   (1 + 8 * 64)         /* the capture layout: CDS + 8 x 64 */
+#define NFRAMES 1024                 /* the AD38's A/D word moves 1000 counts/s: it needs ~80 ms */
 #define HALF    (50 * SIM_PS_PER_NS) /* 10 MHz */
 #define PERIOD  (80 * SIM_PS_PER_US)
 
