@@ -87,6 +87,10 @@ static int write_scenario(const char *path, const char *json) {
 }
 
 int bissctl_probe(biss_t *h, const struct bissctl_opts *o) {
+    if (o->nargs > 1) {
+        fprintf(stderr, "bissctl: probe takes one FILE.json, not '%s'\n", o->args[1]);
+        return BISSCTL_USAGE;
+    }
     struct biss_probe_params p = {
         .freq_hz = o->cfg.freq_hz,
         .frames = o->count > 1 ? o->count : DEFAULT_FRAMES,
