@@ -53,6 +53,7 @@ struct seglist {
 
 struct ctx {
     const struct biss_probe_frames *f;
+    unsigned ref;          /* the frame the probes differ from */
     unsigned end;          /* payload bits up to the last 1 */
     struct seglist *cache; /* per payload offset */
     unsigned offsets_searched;
@@ -174,9 +175,13 @@ static unsigned pick_probes(const struct ctx *x, unsigned o, unsigned len,
                             uint8_t diff[MAX_PROBES][WIN], unsigned *first) {
     const struct biss_probe_frames *f = x->f;
     static _Thread_local unsigned at[BISS_PROBE_MAX_FRAMES]; /* first differing bit */
-    for (unsigned i = 1; i < f->nframes; i++) {
+    at[x->ref] = len; /* the reference itself is never a probe */
+    for (unsigned i = 0; i < f->nframes; i++) {
+        if (i == x->ref) {
+            continue;
+        }
         unsigned p = 0;
-        while (p < len && bit_at(f, i, o + p) == bit_at(f, 0, o + p)) {
+        while (p < len && bit_at(f, i, o + p) == bit_at(f, x->ref, o + p)) {
             p++;
         }
         at[i] = p;
@@ -184,7 +189,7 @@ static unsigned pick_probes(const struct ctx *x, unsigned o, unsigned len,
     unsigned np = 0;
     *first = len;
     for (unsigned k = 0; k < len && np < MAX_PROBES; k++) {
-        for (unsigned i = 1; i < f->nframes && np < MAX_PROBES; i++) {
+        for (unsigned i = 0; i < f->nframes && np < MAX_PROBES; i++) {
             if (at[i] != k) {
                 continue;
             }
@@ -192,14 +197,14 @@ static unsigned pick_probes(const struct ctx *x, unsigned o, unsigned len,
             for (unsigned j = 0; j < np && !dup; j++) {
                 dup = true;
                 for (unsigned q = k; q < len && dup; q++) {
-                    dup = diff[j][q] == (bit_at(f, i, o + q) ^ bit_at(f, 0, o + q));
+                    dup = diff[j][q] == (bit_at(f, i, o + q) ^ bit_at(f, x->ref, o + q));
                 }
             }
             if (dup) {
                 continue;
             }
             for (unsigned q = 0; q < len; q++) {
-                diff[np][q] = (uint8_t)(bit_at(f, i, o + q) ^ bit_at(f, 0, o + q));
+                diff[np][q] = (uint8_t)(bit_at(f, i, o + q) ^ bit_at(f, x->ref, o + q));
             }
             *first = k < *first ? k : *first;
             np++;
@@ -209,20 +214,26 @@ static unsigned pick_probes(const struct ctx *x, unsigned o, unsigned len,
 }
 
 /* Data lengths (bit d-1 of the mask = length d) for which polynomial low
- * of degree c fits every probe difference. */
+ * of degree c fits the probe differences: all of them, or with four probes
+ * or more all but one (a frame hit by noise). */
 static uint64_t fits_probes(uint8_t diff[MAX_PROBES][WIN], uint32_t win[MAX_PROBES][WIN],
                             unsigned np, unsigned dmax, uint32_t low, unsigned c) {
-    uint64_t alive = dmax >= 64 ? ~0ull : (1ull << dmax) - 1u;
-    for (unsigned j = 0; j < np && alive; j++) {
+    uint64_t all = dmax >= 64 ? ~0ull : (1ull << dmax) - 1u;
+    uint64_t failed = 0, dead = np >= 4 ? 0 : ~0ull; /* dead: a second failure kills */
+    uint64_t out = 0;
+    for (unsigned j = 0; j < np && out != all; j++) {
         uint32_t reg = 0;
+        uint64_t miss = 0;
         for (unsigned d = 1; d <= dmax; d++) {
             reg = crc_step(reg, low, c, diff[j][d - 1]);
             if (reg != win[j][d]) {
-                alive &= ~(1ull << (d - 1));
+                miss |= 1ull << (d - 1);
             }
         }
+        out |= miss & (failed | dead);
+        failed |= miss;
     }
-    return alive;
+    return all & ~out;
 }
 
 static void search_offset(struct ctx *x, unsigned o, struct seglist *l) {
@@ -404,7 +415,7 @@ static void evidence(const struct biss_probe_frames *f, unsigned o, unsigned d, 
 }
 
 /* The widest k (< data_bits - 2) whose low k bits step by the frame-number
- * difference in every pair of successive frames: a life counter. Its full
+ * difference in (98 % of) the pairs of successive frames: a life counter. Its full
  * width shows once its top bit has moved (2^(k-1) frames). */
 static unsigned life_counter(const struct biss_probe_frames *f, const struct biss_probe_slave *s) {
     if (f->nframes < 4 || s->data_bits < 4) {
@@ -413,17 +424,19 @@ static unsigned life_counter(const struct biss_probe_frames *f, const struct bis
     unsigned kmax = s->data_bits - 3 < 32 ? s->data_bits - 3 : 32;
     for (unsigned k = kmax; k >= 1; k--) {
         uint64_t m = (1ull << k) - 1u;
-        bool ok = true, top_moves = false;
-        for (unsigned i = 1; i < f->nframes && ok; i++) {
+        bool top_moves = false;
+        unsigned bad = 0;
+        for (unsigned i = 1; i < f->nframes; i++) {
             uint64_t a = word_at(f, i - 1, s->offset, s->data_bits);
             uint64_t b = word_at(f, i, s->offset, s->data_bits);
             uint64_t step = f->frame_no ? (uint64_t)(f->frame_no[i] - f->frame_no[i - 1]) : 1u;
-            ok = step != 0 && ((b - a) & m) == (step & m);
+            bad += step == 0 || ((b - a) & m) != (step & m);
             top_moves |= ((a ^ b) >> (k - 1) & 1u) != 0;
         }
         /* a counter's top bit must move, or constant bits above it (nE, nW)
          * would pass as counter bits until it wraps */
-        if (ok && top_moves) {
+        /* 2 % of the pairs may be hit by noise */
+        if ((uint64_t)bad * 50 <= f->nframes - 1 && top_moves) {
             return k;
         }
     }
@@ -576,37 +589,15 @@ static bool all_alike(const struct biss_probe_frames *f, unsigned end) {
     return true;
 }
 
-int biss_probe_analyse(const struct biss_probe_frames *f, struct biss_probe_result *r) {
-    if (!f || !r || !f->bits || f->nframes < 1 || f->nframes > BISS_PROBE_MAX_FRAMES ||
-        f->nbits < 2 || f->nbits > BISS_PROBE_MAX_BITS) {
-        return BISS_E_INVAL;
-    }
+/* The layouts of frames f ending at end, with the probes taken against
+ * frame ref. */
+static int search(const struct biss_probe_frames *f, unsigned end, unsigned ref,
+                  struct biss_probe_result *r) {
     memset(r, 0, sizeof *r);
     r->frames = f->nframes;
-    r->verdict = BISS_PROBE_NONE;
-    unsigned payload = f->nbits - 1;
-    r->end_bit = frame_end(f);
-    if (r->end_bit == 0) {
-        snprintf(r->reason, sizeof r->reason,
-                 "no bit after the CDS was ever 1: no slave sent data");
-        return BISS_OK;
-    }
-    if (r->end_bit >= payload) {
-        snprintf(r->reason, sizeof r->reason,
-                 "bits up to the end of the %u-bit capture are 1: the frame is longer than the "
-                 "capture, or SL never goes low",
-                 payload);
-        return BISS_OK;
-    }
-    if (f->nframes < 2 || all_alike(f, r->end_bit)) {
-        snprintf(r->reason, sizeof r->reason,
-                 "all %u frames are alike: a CRC cannot be told from data without a changing "
-                 "position (move the encoder, capture more frames)",
-                 f->nframes);
-        return BISS_OK;
-    }
-    struct ctx x = {.f = f, .end = r->end_bit, .r = r};
-    x.cache = calloc(payload + 1, sizeof *x.cache);
+    r->end_bit = end;
+    struct ctx x = {.f = f, .ref = ref, .end = end, .r = r};
+    x.cache = calloc(f->nbits, sizeof *x.cache);
     if (!x.cache) {
         return BISS_E_NOMEM;
     }
@@ -619,6 +610,131 @@ int biss_probe_analyse(const struct biss_probe_frames *f, struct biss_probe_resu
     verdict(&x);
     free(x.cache);
     return BISS_OK;
+}
+
+/* Refusals before any search; false when there is something to search. */
+static bool refuse(const struct biss_probe_frames *f, struct biss_probe_result *r) {
+    unsigned payload = f->nbits - 1;
+    r->verdict = BISS_PROBE_NONE;
+    if (r->end_bit == 0) {
+        snprintf(r->reason, sizeof r->reason,
+                 "no bit after the CDS was ever 1: no slave sent data");
+        return true;
+    }
+    if (r->end_bit >= payload) {
+        snprintf(r->reason, sizeof r->reason,
+                 "bits up to the end of the %u-bit capture are 1: the frame is longer than the "
+                 "capture, or SL never goes low",
+                 payload);
+        return true;
+    }
+    if (f->nframes < 2 || all_alike(f, r->end_bit)) {
+        snprintf(r->reason, sizeof r->reason,
+                 "all %u frames are alike: a CRC cannot be told from data without a changing "
+                 "position (move the encoder, capture more frames)",
+                 f->nframes);
+        return true;
+    }
+    return false;
+}
+
+/* Tries three reference frames (one may have been hit by noise). */
+static int search_refs(const struct biss_probe_frames *f, struct biss_probe_result *r) {
+    int rc = BISS_OK;
+    unsigned refs[3] = {0, f->nframes / 3, 2 * f->nframes / 3};
+    for (unsigned k = 0; k < 3 && rc == BISS_OK; k++) {
+        if (k && refs[k] == refs[k - 1]) {
+            continue;
+        }
+        rc = search(f, r->end_bit, refs[k], r);
+        if (r->nlayouts) {
+            break;
+        }
+    }
+    return rc;
+}
+
+/* Noise: glitches put lone 1s after the frame's end. The end is then the
+ * last bit that is 1 in 5 % of the frames; frames with a 1 after it are
+ * left out. Tried first when some frames have 1s after that end; if it
+ * finds nothing, the strict end (the last 1 at all) is tried. */
+static unsigned noisy_end(const struct biss_probe_frames *f) {
+    unsigned payload = f->nbits - 1, need = f->nframes / 20 > 2 ? f->nframes / 20 : 2;
+    for (unsigned p = payload; p > 0; p--) {
+        unsigned ones = 0;
+        for (unsigned i = 0; i < f->nframes; i++) {
+            ones += (unsigned)bit_at(f, i, p - 1);
+        }
+        if (ones >= need) {
+            return p;
+        }
+    }
+    return 0;
+}
+
+static int search_noisy(const struct biss_probe_frames *f, unsigned end,
+                        struct biss_probe_result *r) {
+    unsigned payload = f->nbits - 1;
+    uint8_t *bits = malloc((size_t)f->nframes * f->nbits);
+    uint32_t *fno = malloc(f->nframes * sizeof *fno);
+    if (!bits || !fno) {
+        free(bits);
+        free(fno);
+        return BISS_E_NOMEM;
+    }
+    unsigned kept = 0;
+    for (unsigned i = 0; i < f->nframes; i++) {
+        bool clean = true;
+        for (unsigned p = end; p < payload && clean; p++) {
+            clean = !bit_at(f, i, p);
+        }
+        if (clean) {
+            memcpy(bits + (size_t)kept * f->nbits, f->bits + (size_t)i * f->nbits, f->nbits);
+            fno[kept++] = f->frame_no ? f->frame_no[i] : i;
+        }
+    }
+    struct biss_probe_frames g = {kept, f->nbits, bits, fno};
+    static _Thread_local struct biss_probe_result r2;
+    memset(&r2, 0, sizeof r2);
+    r2.end_bit = end;
+    r2.frames = kept;
+    int rc = BISS_OK;
+    if (kept && !refuse(&g, &r2)) {
+        rc = search_refs(&g, &r2);
+    }
+    if (rc == BISS_OK && r2.nlayouts) {
+        *r = r2;
+        r->dropped = f->nframes - kept;
+        size_t len = strlen(r->reason);
+        snprintf(r->reason + len, sizeof r->reason - len,
+                 "; %u frames with 1s after bit %u left out as noise", r->dropped, end);
+    }
+    free(bits);
+    free(fno);
+    return rc;
+}
+
+int biss_probe_analyse(const struct biss_probe_frames *f, struct biss_probe_result *r) {
+    if (!f || !r || !f->bits || f->nframes < 1 || f->nframes > BISS_PROBE_MAX_FRAMES ||
+        f->nbits < 2 || f->nbits > BISS_PROBE_MAX_BITS) {
+        return BISS_E_INVAL;
+    }
+    memset(r, 0, sizeof *r);
+    r->frames = f->nframes;
+    r->end_bit = frame_end(f);
+    /* lone 1s after where most frames end: try without those frames first */
+    unsigned noisy = f->nframes >= 20 ? noisy_end(f) : r->end_bit;
+    int rc = BISS_OK;
+    if (noisy && noisy < r->end_bit) {
+        rc = search_noisy(f, noisy, r);
+        if (rc || r->nlayouts) {
+            return rc;
+        }
+    }
+    if (!refuse(f, r)) {
+        rc = search_refs(f, r);
+    }
+    return rc;
 }
 
 const char *biss_probe_verdict_name(enum biss_probe_verdict v) {

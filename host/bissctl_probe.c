@@ -102,8 +102,9 @@ int bissctl_probe(biss_t *h, const struct bissctl_opts *o) {
         return bissctl_fail("probe", rc);
     }
     const struct biss_probe_result *w = &r.wire;
-    printf("captured %u frames (%u without ACK, %u invalid); frame length %u bits after the CDS\n",
-           w->frames, r.no_slave, r.invalid, w->end_bit);
+    printf("captured %u frames (%u without ACK, %u invalid), analysed %u; frame length %u bits "
+           "after the CDS\n",
+           w->frames + w->dropped, r.no_slave, r.invalid, w->frames, w->end_bit);
     printf("verdict: %s: %s\n", biss_probe_verdict_name(w->verdict), w->reason);
     /* the best, or with an ambiguous verdict the first three */
     unsigned show = w->verdict == BISS_PROBE_AMBIGUOUS ? 3u : 1u;

@@ -81,6 +81,7 @@ struct biss_probe_result {
     char reason[200];  /* why, in words */
     unsigned frames;   /* frames analysed */
     unsigned end_bit;  /* frame length: bits after the CDS up to the last ever 1 */
+    unsigned dropped;  /* frames left out as noise (1s after end_bit; see reason) */
     unsigned nlayouts; /* layouts that fit (may exceed the ones kept) */
     unsigned nkept;    /* layout[0 .. nkept-1], best first */
     struct biss_probe_layout layout[BISS_PROBE_MAX_LAYOUTS];

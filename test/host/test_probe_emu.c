@@ -143,6 +143,30 @@ START_TEST(every_profile) {
 }
 END_TEST
 
+/* Glitches on SL (30 kHz, 3 ns jitter; test/scenarios): lone 1s after the
+ * frame's end and some bad frames. The layout is still found, the noisy
+ * frames left out and counted. */
+START_TEST(noisy_line) {
+    biss_t *h = open_emu(NULL, SCENARIO_DIR "/noise-sl-30khz-jitter.json");
+    struct biss_probe_params p = {.freq_hz = FREQ, .frames = FRAMES};
+    static struct biss_probe_report r;
+    ck_assert_int_eq(biss_probe(h, &p, &r), BISS_OK);
+    const struct biss_probe_result *w = &r.wire;
+    printf("noise-sl-30khz-jitter: %s: %s\n", biss_probe_verdict_name(w->verdict), w->reason);
+    ck_assert_int_eq(w->verdict, BISS_PROBE_UNIQUE);
+    ck_assert_uint_gt(w->dropped, 0);
+    const struct biss_probe_slave *s = &w->layout[0].slave[0];
+    ck_assert_uint_eq(w->layout[0].nslaves, 1);
+    ck_assert_uint_eq(s->data_bits, 14);
+    ck_assert_uint_eq(s->crc_bits, 6);
+    ck_assert_uint_eq(s->crc_poly, 0x43);
+    ck_assert_uint_eq(s->crc_start, 0);
+    ck_assert(s->has_ew && s->ew_shift == 0);
+    ck_assert_uint_lt(s->support, w->frames); /* a few frames are hit inside the data */
+    biss_close(h);
+}
+END_TEST
+
 /* A bad request is refused before anything is clocked. */
 START_TEST(bad_params) {
     biss_t *h = open_emu("generic", NULL);
@@ -164,6 +188,7 @@ int main(void) {
     TCase *tc = tcase_create("emu");
     tcase_set_timeout(tc, 600);
     tcase_add_test(tc, every_profile);
+    tcase_add_test(tc, noisy_line);
     tcase_add_test(tc, bad_params);
     suite_add_tcase(s, tc);
     return check_run(s);
