@@ -65,6 +65,8 @@ static int capture(biss_t *h, unsigned n, uint8_t *bits, uint32_t *fno,
             out->invalid += !s.no_slave;
             continue;
         }
+        out->busy_max = s.proc_clocks > out->busy_max ? s.proc_clocks : out->busy_max;
+        out->delay_ns = s.delay.ns;
         sample_bits(&s, bits + (size_t)*got * BISS_PROBE_MAX_BITS);
         fno[*got] = s.frame;
         (*got)++;

@@ -105,6 +105,7 @@ int bissctl_probe(biss_t *h, const struct bissctl_opts *o) {
     printf("captured %u frames (%u without ACK, %u invalid), analysed %u; frame length %u bits "
            "after the CDS\n",
            w->frames + w->dropped, r.no_slave, r.invalid, w->frames, w->end_bit);
+    printf("line delay %.0f ns, processing time up to %u MA clocks\n", r.delay_ns, r.busy_max);
     printf("verdict: %s: %s\n", biss_probe_verdict_name(w->verdict), w->reason);
     /* the best, or with an ambiguous verdict the first three */
     unsigned show = w->verdict == BISS_PROBE_AMBIGUOUS ? 3u : 1u;

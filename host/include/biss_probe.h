@@ -116,6 +116,8 @@ struct biss_probe_params {
 struct biss_probe_report {
     struct biss_probe_result wire;
     unsigned no_slave, invalid; /* captured frames without an ACK, or not valid */
+    unsigned busy_max;          /* longest processing time seen (MA clocks after the ACK) */
+    double delay_ns;            /* line delay of the last frame captured (filtered) */
     unsigned nregs;
     struct biss_probe_regs regs[BISS_API_MAX_SLAVES];
     unsigned nnotes;
