@@ -18,6 +18,7 @@ static const struct command table[] = {
     {"trigger", bissctl_trigger, true},     {"start", bissctl_start, true},
     {"stop", bissctl_stop, false},          {"reg-read", bissctl_reg_read, true},
     {"reg-write", bissctl_reg_write, true}, {"command", bissctl_command, true},
+    {"probe", bissctl_probe, false}, /* configures its own capture layout */
 };
 
 static const struct command *find(const char *name) {

@@ -50,6 +50,7 @@ int bissctl_stop(biss_t *h, const struct bissctl_opts *o);
 int bissctl_reg_read(biss_t *h, const struct bissctl_opts *o);
 int bissctl_reg_write(biss_t *h, const struct bissctl_opts *o);
 int bissctl_command(biss_t *h, const struct bissctl_opts *o);
+int bissctl_probe(biss_t *h, const struct bissctl_opts *o); /* bissctl_probe.c */
 
 /* "bissctl: <what>: <strerror>" on stderr; returns BISSCTL_FAIL. */
 int bissctl_fail(const char *what, int err);

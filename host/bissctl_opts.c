@@ -7,8 +7,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const char *const commands[] = {"info",  "read", "stats",    "run",       "trigger",
-                                       "start", "stop", "reg-read", "reg-write", "command"};
+static const char *const commands[] = {"info",      "read",    "stats", "run",
+                                       "trigger",   "start",   "stop",  "reg-read",
+                                       "reg-write", "command", "probe"};
 
 static const char common_help[] =
     "Target:\n"
@@ -90,6 +91,16 @@ static const char *command_help(const char *command) {
                "  --ida-test: the firmware checks them before the stop bit and withholds\n"
                "  the command unless they equal IDS (exit status 1, 'withheld').\n";
     }
+    if (strcmp(command, "probe") == 0) {
+        return "bissctl [options] probe [-n N] [FILE.json]\n"
+               "  Finds an unknown encoder's layout: captures N raw frames (default 1024) in\n"
+               "  a capture layout (8 x 64 bits, no CRC), finds where the data ends and\n"
+               "  which data + CRC split (3..16 bits, any polynomial and start) fits every\n"
+               "  frame, per slave of a chain; proposes nE/nW and life counters; reads the\n"
+               "  identification registers (0x78..0x7F, 0x41..0x47). Prints the candidates\n"
+               "  with a verdict, a --slave line and a scenario for biss-sim (into FILE).\n"
+               "  Exit status 1 when it cannot decide or the result is ambiguous.\n";
+    }
     if (strcmp(command, "reg-write") == 0) {
         return "bissctl [options] reg-write [--id ID] ADDR BYTE...\n"
                "  Writes the bytes to ADDR, ADDR+1, ... of the slave with control-frame\n"
@@ -107,7 +118,8 @@ void bissctl_usage(const char *command) {
     printf("usage: bissctl [options] COMMAND [command options]\n"
            "BiSS-C master on a PRU (emulated or real) through libbiss.\n"
            "Commands: info, read [-n N], stats, run [--ms MS], trigger, start, stop,\n"
-           "          reg-read ADDR [-n N], reg-write ADDR BYTE..., command IDS CMD\n"
+           "          reg-read ADDR [-n N], reg-write ADDR BYTE..., command IDS CMD,\n"
+           "          probe [-n N] [FILE.json]\n"
            "          (also spelt reg read, reg write, cmd; bissctl COMMAND --help for each)\n\n%s",
            common_help);
 }
@@ -476,7 +488,8 @@ int bissctl_parse(int argc, char **argv, struct bissctl_opts *o) {
     o->args = argv + optind;
     o->nargs = argc - optind;
     bool takes_args =
-        o->command && (strncmp(o->command, "reg-", 4) == 0 || strcmp(o->command, "command") == 0);
+        o->command && (strncmp(o->command, "reg-", 4) == 0 || strcmp(o->command, "command") == 0 ||
+                       strcmp(o->command, "probe") == 0);
     if (o->nargs > 0 && !takes_args) {
         return usage_error("unexpected argument '%s'", argv[optind]);
     }

@@ -1,0 +1,183 @@
+/* biss_probe.c - encoder discovery on a handle: raw frames through the
+ * normal firmware in a capture layout, the wire analysis, and the
+ * identification registers.
+ *
+ * Capture layout: 8 slaves x 64 data bits, no CRC, no nE/nW. The firmware
+ * then clocks 512 bits after the CDS and publishes them as eight data
+ * words, with the CDS, ACK position, line delay and busy clocks, as for any
+ * frame; no firmware change is needed. Bits after the chain's last CRC
+ * read 0 (the last slave's SLI is tied low and passed on, [MB4] "BiSS C
+ * Frame"; emulator/slave/biss_slave.h does the same), and the slaves' own
+ * timeout only starts once MA stops, so clocking on past the frame is
+ * harmless. A chain longer than 512 bits shows as "longer than the
+ * capture". */
+#include "biss_probe.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define DEFAULT_FRAMES 1024
+#define SAMPLE_TIMEOUT 100 /* ms per frame (emulator: simulated) */
+#define CAPTURE_BITS   64
+
+static void capture_config(uint32_t freq_hz, struct biss_config *c) {
+    biss_config_default(c);
+    c->freq_hz = freq_hz;
+    c->nslaves = BISS_API_MAX_SLAVES;
+    for (unsigned i = 0; i < BISS_API_MAX_SLAVES; i++) {
+        c->slave[i] = (struct biss_slave_config){.data_bits = CAPTURE_BITS};
+    }
+    c->trigger = BISS_TRIGGER_FREERUN;
+}
+
+/* A sample's bits in wire order: CDS, then each 64-bit word MSB first. */
+static void sample_bits(const struct biss_sample *s, uint8_t *bits) {
+    bits[0] = (uint8_t)(s->cds & 1u);
+    for (unsigned i = 0; i < BISS_API_MAX_SLAVES; i++) {
+        for (unsigned k = 0; k < CAPTURE_BITS; k++) {
+            bits[1 + i * CAPTURE_BITS + k] =
+                (uint8_t)(s->slave[i].data >> (CAPTURE_BITS - 1 - k) & 1u);
+        }
+    }
+}
+
+static int capture(biss_t *h, unsigned n, uint8_t *bits, uint32_t *fno,
+                   struct biss_probe_report *out, unsigned *got) {
+    struct biss_sample s;
+    uint32_t after = biss_read_sample(h, &s) == BISS_OK ? s.frame : 0;
+    unsigned tries = 0;
+    *got = 0;
+    while (*got < n) {
+        if (++tries > 2 * n + 16) {
+            break; /* too few valid frames: analyse what came */
+        }
+        int rc = biss_wait_sample(h, after, SAMPLE_TIMEOUT, &s);
+        if (rc) {
+            return rc;
+        }
+        after = s.frame;
+        if (s.training) {
+            continue;
+        }
+        if (!s.valid) {
+            out->no_slave += s.no_slave;
+            out->invalid += !s.no_slave;
+            continue;
+        }
+        out->busy_max = s.proc_clocks > out->busy_max ? s.proc_clocks : out->busy_max;
+        out->delay_ns = s.delay.ns;
+        sample_bits(&s, bits + (size_t)*got * BISS_PROBE_MAX_BITS);
+        fno[*got] = s.frame;
+        (*got)++;
+    }
+    return BISS_OK;
+}
+
+static void note(struct biss_probe_report *out, const char *fmt, unsigned a, unsigned b) {
+    if (out->nnotes < sizeof out->notes / sizeof out->notes[0]) {
+        snprintf(out->notes[out->nnotes++], sizeof out->notes[0], fmt, a, b);
+    }
+}
+
+static void read_regs(biss_t *h, unsigned id, struct biss_probe_regs *r) {
+    memset(r, 0, sizeof *r);
+    r->id = id;
+    r->rc_device = biss_reg_read(h, id, 0x78, r->device, sizeof r->device);
+    if (r->rc_device == BISS_E_CD_NO_ECHO) { /* nobody with this ID: the rest the same */
+        r->rc_manufacturer = r->rc_profile = r->rc_serial = r->rc_device;
+        return;
+    }
+    r->rc_manufacturer = biss_reg_read(h, id, 0x7E, r->manufacturer, sizeof r->manufacturer);
+    r->rc_profile = biss_reg_read(h, id, 0x41, r->profile, sizeof r->profile);
+    r->rc_serial = biss_reg_read(h, id, 0x44, r->serial, sizeof r->serial);
+}
+
+/* IDs 0..n-1 for the n slaves the wire shows, and ID n: an answer there
+ * means more slaves than the wire layout has. */
+static void probe_regs(biss_t *h, const struct biss_probe_params *p,
+                       struct biss_probe_report *out) {
+    const struct biss_probe_result *w = &out->wire;
+    unsigned wire_n = w->nkept && w->verdict != BISS_PROBE_NONE ? w->layout[0].nslaves : 0;
+    unsigned n = p->reg_ids ? p->reg_ids : wire_n + 1;
+    if (n > BISS_API_MAX_SLAVES) {
+        n = BISS_API_MAX_SLAVES;
+    }
+    unsigned answering = 0;
+    for (unsigned id = 0; id < n; id++) {
+        read_regs(h, id, &out->regs[out->nregs++]);
+        bool answers = out->regs[id].rc_device == BISS_OK;
+        answering += answers;
+        if (wire_n && id < wire_n && !answers) {
+            note(out, "wire slave %u: no register answer for ID %u", id, id);
+        }
+        if (wire_n && id >= wire_n && answers) {
+            note(out, "ID %u answers register reads but the wire shows %u slaves", id, wire_n);
+        }
+    }
+    if (wire_n && answering == wire_n) {
+        note(out, "registers: IDs 0..%u answer, as the wire's %u slaves", wire_n - 1, wire_n);
+    }
+}
+
+int biss_probe(biss_t *h, const struct biss_probe_params *p, struct biss_probe_report *out) {
+    if (!h || !p || !out || p->frames > BISS_PROBE_MAX_FRAMES || p->frames == 1) {
+        return BISS_E_INVAL;
+    }
+    memset(out, 0, sizeof *out);
+    struct biss_config c;
+    capture_config(p->freq_hz, &c);
+    int rc = biss_configure(h, &c);
+    if (rc) {
+        return rc;
+    }
+    unsigned n = p->frames ? p->frames : DEFAULT_FRAMES;
+    uint8_t *bits = calloc(n, BISS_PROBE_MAX_BITS);
+    uint32_t *fno = calloc(n, sizeof *fno);
+    unsigned got = 0;
+    rc = bits && fno ? capture(h, n, bits, fno, out, &got) : BISS_E_NOMEM;
+    if (rc == BISS_OK && got == 0) {
+        out->wire.verdict = BISS_PROBE_NONE;
+        snprintf(out->wire.reason, sizeof out->wire.reason,
+                 "no valid frame in %u tries (%u without ACK: no BiSS slave answered; an SSI "
+                 "encoder sends none)",
+                 2 * n + 16, out->no_slave);
+    } else if (rc == BISS_OK) {
+        struct biss_probe_frames f = {got, BISS_PROBE_MAX_BITS, bits, fno};
+        rc = biss_probe_analyse(&f, &out->wire);
+    }
+    free(bits);
+    free(fno);
+    if (rc == BISS_OK && p->read_regs) {
+        probe_regs(h, p, out);
+    }
+    return rc;
+}
+
+/* A scenario biss-sim and bissctl --scenario accept: the generic profile
+ * with the slaves the wire showed (a life counter below nE/nW; the speed is
+ * a choice, so that positions move). */
+int biss_probe_scenario_json(const struct biss_probe_layout *l, char *buf, size_t size) {
+    size_t used = 0;
+    int n = snprintf(buf, size, "{\n  \"profile\": \"generic\",\n  \"biss\": {\n    \"slaves\": [");
+    for (unsigned i = 0; n >= 0 && i < l->nslaves; i++) {
+        used += (size_t)n;
+        const struct biss_probe_slave *s = &l->slave[i];
+        unsigned lc = s->has_ew ? s->ew_shift : 0;
+        unsigned pos = s->data_bits - (s->has_ew ? 2 + lc : 0);
+        n = snprintf(buf + used, used < size ? size - used : 0,
+                     "%s\n      { \"position_bits\": %u, \"error_bit\": %s, \"warning_bit\": %s, "
+                     "\"life_counter_bits\": %u, \"crc_poly\": \"0x%X\", \"crc_start\": \"0x%X\", "
+                     "\"speed_cps\": 50000 }",
+                     i ? "," : "", pos, s->has_ew ? "true" : "false", s->has_ew ? "true" : "false",
+                     lc, s->crc_poly, s->crc_start);
+    }
+    if (n >= 0) {
+        used += (size_t)n;
+        n = snprintf(buf + used, used < size ? size - used : 0, "\n    ]\n  }\n}\n");
+    }
+    if (n < 0 || used + (size_t)n >= size) {
+        return BISS_E_INVAL;
+    }
+    return BISS_OK;
+}

@@ -1,0 +1,767 @@
+/* biss_probe_layout.c - the slave layout from raw frames (no I/O).
+ *
+ * Every slave sends its data word and then its CRC, inverted, over that
+ * word, from a start value ([MB4] "CRC polynomial" and start values; the
+ * slave model builds frames the same way, emulator/slave/biss_slave.c).
+ * A CRC is linear: for a data length d, crc(start, data) = crc(0, data) ^
+ * crc(start, 0...0). So for the right split (d data bits, c CRC bits,
+ * polynomial P) the value crc(0, data_i) ^ ~received_crc_i is the same
+ * constant K in every frame i, and K gives the start value (undo d zero
+ * steps of the CRC register). No search over start values is needed.
+ *
+ * The search per slave offset: every width c = 3..16 and every polynomial
+ * of that degree (top term set). A polynomial is first tried on the XOR of
+ * a reference frame with a few others ("probes"), where the start value
+ * and the inversion cancel: the CRC register run over the difference must
+ * equal the difference of the received CRCs, tested for all data lengths
+ * d in one pass. Survivors are checked on every frame (the support: frames
+ * whose K is the most common one). A chain is a sequence of such slaves
+ * ending where the frame ends. */
+#include "biss_probe.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define MAX_PROBES       6
+#define MAX_SEGS         64 /* candidate slaves kept per offset */
+#define MAX_OFFSETS      48 /* offsets searched (a chain's slave boundaries) */
+#define MAX_COUNTED      100000
+#define BEST_MIN_RANK    8   /* evidence to prefer the widest CRC (see verdict()) */
+#define SUPPORT_PERMILLE 900 /* a fit needs 90 % of the frames (noise) */
+#define WIN              (64 + BISS_PROBE_MAX_CRC)
+
+static void evidence(const struct biss_probe_frames *f, unsigned o, unsigned d, unsigned *rank,
+                     unsigned *distinct);
+
+static int cmp_u64(const void *a, const void *b) {
+    uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
+    return x < y ? -1 : x > y;
+}
+
+struct seg {
+    unsigned d, c;
+    uint32_t poly, start;
+    unsigned support, distinct, rank, stuck;
+};
+
+struct seglist {
+    bool done;
+    unsigned n;
+    struct seg s[MAX_SEGS];
+};
+
+struct ctx {
+    const struct biss_probe_frames *f;
+    unsigned ref;          /* the frame the probes differ from */
+    unsigned end;          /* payload bits up to the last 1 */
+    struct seglist *cache; /* per payload offset */
+    unsigned offsets_searched;
+    bool cut; /* a limit was reached */
+    struct biss_probe_result *r;
+    struct biss_probe_layout cur;
+};
+
+static inline int bit_at(const struct biss_probe_frames *f, unsigned i, unsigned p) {
+    return f->bits[(size_t)i * f->nbits + 1 + p] & 1;
+}
+
+static uint64_t word_at(const struct biss_probe_frames *f, unsigned i, unsigned p, unsigned n) {
+    uint64_t w = 0;
+    for (unsigned k = 0; k < n; k++) {
+        w = w << 1 | (uint64_t)bit_at(f, i, p + k);
+    }
+    return w;
+}
+
+static inline uint32_t crc_step(uint32_t reg, uint32_t low, unsigned c, int bit) {
+    uint32_t fb = ((reg >> (c - 1)) & 1u) ^ (uint32_t)bit;
+    reg = (reg << 1) & ((1u << c) - 1u);
+    return fb ? reg ^ low : reg;
+}
+
+static uint32_t crc0(uint64_t data, unsigned d, uint32_t low, unsigned c) {
+    uint32_t reg = 0;
+    for (unsigned k = d; k > 0; k--) {
+        reg = crc_step(reg, low, c, (int)((data >> (k - 1)) & 1u));
+    }
+    return reg;
+}
+
+/* The start value s with crc(s, d zeros) == k; false if none. An odd
+ * polynomial makes the step invertible (the new LSB is the feedback). */
+static bool start_of(uint32_t k, unsigned d, uint32_t low, unsigned c, uint32_t *s) {
+    if (low & 1u) {
+        uint32_t reg = k;
+        for (unsigned i = 0; i < d; i++) {
+            uint32_t fb = reg & 1u;
+            uint32_t t = fb ? reg ^ low : reg;
+            reg = (t >> 1) | (fb << (c - 1));
+        }
+        *s = reg;
+        return true;
+    }
+    for (uint32_t cand = 0; cand < (1u << c); cand++) {
+        uint32_t reg = cand;
+        for (unsigned i = 0; i < d; i++) {
+            reg = crc_step(reg, low, c, 0);
+        }
+        if (reg == k) {
+            *s = cand;
+            return true;
+        }
+    }
+    return false;
+}
+
+/* Every frame: K_i = crc0(data_i) ^ ~crc_i; the most common K and how
+ * many frames have it (Boyer-Moore majority, then a count). */
+static unsigned support_of(const struct ctx *x, unsigned o, unsigned d, unsigned c, uint32_t low,
+                           uint32_t *k_out) {
+    const struct biss_probe_frames *f = x->f;
+    uint32_t mask = (1u << c) - 1u, cand = 0;
+    unsigned votes = 0;
+    for (int pass = 0; pass < 2; pass++) {
+        unsigned count = 0;
+        for (unsigned i = 0; i < f->nframes; i++) {
+            uint32_t k =
+                crc0(word_at(f, i, o, d), d, low, c) ^ (~(uint32_t)word_at(f, i, o + d, c) & mask);
+            if (pass == 0) {
+                if (votes == 0) {
+                    cand = k;
+                }
+                votes += k == cand ? 1 : (unsigned)-1;
+            } else if (k == cand) {
+                count++;
+            }
+        }
+        if (pass == 1) {
+            *k_out = cand;
+            return count;
+        }
+    }
+    return 0;
+}
+
+static void add_seg(struct seglist *l, const struct seg *s, bool *cut) {
+    if (l->n < MAX_SEGS) {
+        l->s[l->n++] = *s;
+    } else {
+        *cut = true;
+    }
+}
+
+/* Bits in [p, p + n) that never change. A real CRC bit is a linear
+ * function of the data that rarely vanishes on all data differences; one
+ * that never changes marks a split moved onto a constant bit (the next
+ * slave's first bit, say), which fits any CRC shifted by one place. */
+static unsigned stuck_bits(const struct biss_probe_frames *f, unsigned p, unsigned n) {
+    unsigned stuck = 0;
+    for (unsigned k = 0; k < n; k++) {
+        unsigned i = 1;
+        while (i < f->nframes && bit_at(f, i, p + k) == bit_at(f, 0, p + k)) {
+            i++;
+        }
+        stuck += i == f->nframes;
+    }
+    return stuck;
+}
+
+/* Frames whose bits in [o, o + WIN) differ from frame 0's, those that
+ * differ earliest first (a difference that starts after a slave's CRC says
+ * nothing about it): the differences every polynomial is first tried on.
+ * *first gets the earliest differing bit. */
+static unsigned pick_probes(const struct ctx *x, unsigned o, unsigned len,
+                            uint8_t diff[MAX_PROBES][WIN], unsigned *first) {
+    const struct biss_probe_frames *f = x->f;
+    static _Thread_local unsigned at[BISS_PROBE_MAX_FRAMES]; /* first differing bit */
+    at[x->ref] = len; /* the reference itself is never a probe */
+    for (unsigned i = 0; i < f->nframes; i++) {
+        if (i == x->ref) {
+            continue;
+        }
+        unsigned p = 0;
+        while (p < len && bit_at(f, i, o + p) == bit_at(f, x->ref, o + p)) {
+            p++;
+        }
+        at[i] = p;
+    }
+    unsigned np = 0;
+    *first = len;
+    for (unsigned k = 0; k < len && np < MAX_PROBES; k++) {
+        for (unsigned i = 0; i < f->nframes && np < MAX_PROBES; i++) {
+            if (at[i] != k) {
+                continue;
+            }
+            bool dup = false;
+            for (unsigned j = 0; j < np && !dup; j++) {
+                dup = true;
+                for (unsigned q = k; q < len && dup; q++) {
+                    dup = diff[j][q] == (bit_at(f, i, o + q) ^ bit_at(f, x->ref, o + q));
+                }
+            }
+            if (dup) {
+                continue;
+            }
+            for (unsigned q = 0; q < len; q++) {
+                diff[np][q] = (uint8_t)(bit_at(f, i, o + q) ^ bit_at(f, x->ref, o + q));
+            }
+            *first = k < *first ? k : *first;
+            np++;
+        }
+    }
+    return np;
+}
+
+/* Data lengths (bit d-1 of the mask = length d) for which polynomial low
+ * of degree c fits the probe differences: all of them, or with four probes
+ * or more all but one (a frame hit by noise). */
+static uint64_t fits_probes(uint8_t diff[MAX_PROBES][WIN], uint32_t win[MAX_PROBES][WIN],
+                            unsigned np, unsigned dmax, uint32_t low, unsigned c) {
+    uint64_t all = dmax >= 64 ? ~0ull : (1ull << dmax) - 1u;
+    uint64_t failed = 0, dead = np >= 4 ? 0 : ~0ull; /* dead: a second failure kills */
+    uint64_t out = 0;
+    for (unsigned j = 0; j < np && out != all; j++) {
+        uint32_t reg = 0;
+        uint64_t miss = 0;
+        for (unsigned d = 1; d <= dmax; d++) {
+            reg = crc_step(reg, low, c, diff[j][d - 1]);
+            if (reg != win[j][d]) {
+                miss |= 1ull << (d - 1);
+            }
+        }
+        out |= miss & (failed | dead);
+        failed |= miss;
+    }
+    return all & ~out;
+}
+
+static void search_offset(struct ctx *x, unsigned o, struct seglist *l) {
+    const struct biss_probe_frames *f = x->f;
+    unsigned avail = x->end - o;
+    unsigned len = avail < WIN ? avail : WIN;
+    uint8_t diff[MAX_PROBES][WIN];
+    uint32_t win[MAX_PROBES][WIN];
+    unsigned first;
+    unsigned np = pick_probes(x, o, len, diff, &first);
+    if (np == 0) {
+        return; /* nothing changes here: every polynomial would fit */
+    }
+    for (unsigned c = BISS_PROBE_MIN_CRC; c <= BISS_PROBE_MAX_CRC && c < avail; c++) {
+        unsigned dmax = avail - c < 64 ? avail - c : 64;
+        /* win[j][d]: the c-bit difference of the received CRCs after d data bits */
+        for (unsigned j = 0; j < np; j++) {
+            for (unsigned d = 1; d <= dmax; d++) {
+                uint32_t w = 0;
+                for (unsigned k = 0; k < c; k++) {
+                    w = w << 1 | diff[j][d + k];
+                }
+                win[j][d] = w;
+            }
+        }
+        for (uint32_t low = 0; low < (1u << c); low++) {
+            uint64_t alive = fits_probes(diff, win, np, dmax, low, c);
+            /* a split whose bits never change fits every polynomial: no evidence */
+            if (first > c) {
+                unsigned vacuous = first - c; /* d + c <= first */
+                alive &= vacuous >= 64 ? 0 : ~0ull << vacuous;
+            }
+            for (unsigned d = 1; alive && d <= dmax; d++) {
+                if (!(alive & (1ull << (d - 1)))) {
+                    continue;
+                }
+                alive &= ~(1ull << (d - 1));
+                uint32_t k, start;
+                unsigned sup = support_of(x, o, d, c, low, &k);
+                if ((uint64_t)sup * 1000 < (uint64_t)f->nframes * SUPPORT_PERMILLE ||
+                    !start_of(k, d, low, c, &start)) {
+                    continue;
+                }
+                struct seg s = {d, c, (1u << c) | low, start, sup, 0, 0, 0};
+                evidence(f, o, d, &s.rank, &s.distinct);
+                s.stuck = stuck_bits(f, o + d, c);
+                add_seg(l, &s, &x->cut);
+            }
+        }
+    }
+}
+
+static const struct seglist *segs_at(struct ctx *x, unsigned o) {
+    struct seglist *l = &x->cache[o];
+    if (!l->done) {
+        l->done = true;
+        if (x->offsets_searched++ >= MAX_OFFSETS) {
+            x->cut = true;
+            return l;
+        }
+        search_offset(x, o, l);
+    }
+    return l;
+}
+
+static int layout_cmp(const struct biss_probe_layout *a, const struct biss_probe_layout *b) {
+    if (a->support != b->support) {
+        return a->support > b->support ? -1 : 1;
+    }
+    if (a->weak != b->weak) {
+        return a->weak ? 1 : -1;
+    }
+    if (a->crc_stuck != b->crc_stuck) {
+        return a->crc_stuck < b->crc_stuck ? -1 : 1;
+    }
+    if (a->crc_total != b->crc_total) {
+        return a->crc_total > b->crc_total ? -1 : 1;
+    }
+    if (a->nslaves != b->nslaves) {
+        return a->nslaves < b->nslaves ? -1 : 1;
+    }
+    return 0;
+}
+
+/* Keeps the best BISS_PROBE_MAX_LAYOUTS, in order. */
+static void record(struct ctx *x) {
+    struct biss_probe_result *r = x->r;
+    struct biss_probe_layout l = x->cur;
+    l.support = ~0u;
+    l.crc_total = 0;
+    l.weak = false;
+    l.crc_stuck = 0;
+    for (unsigned i = 0; i < l.nslaves; i++) {
+        l.crc_stuck += l.slave[i].crc_stuck;
+        l.weak |= l.slave[i].rank < 2;
+        l.support = l.slave[i].support < l.support ? l.slave[i].support : l.support;
+        l.crc_total += l.slave[i].crc_bits;
+    }
+    r->nlayouts++;
+    unsigned pos = r->nkept;
+    while (pos > 0 && layout_cmp(&l, &r->layout[pos - 1]) < 0) {
+        pos--;
+    }
+    if (pos >= BISS_PROBE_MAX_LAYOUTS) {
+        return;
+    }
+    unsigned last = r->nkept < BISS_PROBE_MAX_LAYOUTS ? r->nkept : BISS_PROBE_MAX_LAYOUTS - 1;
+    memmove(&r->layout[pos + 1], &r->layout[pos], (last - pos) * sizeof l);
+    r->layout[pos] = l;
+    if (r->nkept < BISS_PROBE_MAX_LAYOUTS) {
+        r->nkept++;
+    }
+}
+
+static void walk(struct ctx *x, unsigned o) {
+    const struct seglist *l = segs_at(x, o);
+    for (unsigned i = 0; i < l->n; i++) {
+        const struct seg *s = &l->s[i];
+        unsigned next = o + s->d + s->c;
+        if (next > x->end || (next < x->end && x->cur.nslaves + 1 >= BISS_API_MAX_SLAVES)) {
+            continue;
+        }
+        if (x->r->nlayouts >= MAX_COUNTED) {
+            x->cut = true;
+            return;
+        }
+        struct biss_probe_slave *ps = &x->cur.slave[x->cur.nslaves++];
+        memset(ps, 0, sizeof *ps);
+        ps->offset = o;
+        ps->data_bits = s->d;
+        ps->crc_bits = s->c;
+        ps->crc_poly = s->poly;
+        ps->crc_start = s->start;
+        ps->support = s->support;
+        ps->rank = s->rank;
+        ps->crc_stuck = s->stuck;
+        ps->distinct = s->distinct;
+        if (next == x->end) {
+            record(x);
+        } else {
+            walk(x, next);
+        }
+        x->cur.nslaves--;
+    }
+}
+
+/* ---- per slave: evidence, life counter, nE/nW ---------------------------- */
+
+/* Distinct data words and the rank (over GF(2)) of their differences. */
+static void evidence(const struct biss_probe_frames *f, unsigned o, unsigned d, unsigned *rank,
+                     unsigned *distinct) {
+    uint64_t *v = malloc(f->nframes * sizeof *v);
+    uint64_t basis[64] = {0};
+    *rank = *distinct = 0;
+    if (!v) {
+        return;
+    }
+    for (unsigned i = 0; i < f->nframes; i++) {
+        v[i] = word_at(f, i, o, d);
+        uint64_t x = v[i] ^ v[0];
+        for (int b = 63; b >= 0 && x; b--) {
+            if (!(x >> b & 1u)) {
+                continue;
+            }
+            if (!basis[b]) {
+                basis[b] = x;
+                (*rank)++;
+                break;
+            }
+            x ^= basis[b];
+        }
+    }
+    qsort(v, f->nframes, sizeof *v, cmp_u64);
+    *distinct = 1;
+    for (unsigned i = 1; i < f->nframes; i++) {
+        *distinct += v[i] != v[i - 1];
+    }
+    free(v);
+}
+
+/* The widest k (< data_bits - 2) whose low k bits step by the frame-number
+ * difference in (98 % of) the pairs of successive frames: a life counter. Its full
+ * width shows once its top bit has moved (2^(k-1) frames). */
+static unsigned life_counter(const struct biss_probe_frames *f, const struct biss_probe_slave *s) {
+    if (f->nframes < 4 || s->data_bits < 4) {
+        return 0;
+    }
+    unsigned kmax = s->data_bits - 3 < 32 ? s->data_bits - 3 : 32;
+    for (unsigned k = kmax; k >= 1; k--) {
+        uint64_t m = (1ull << k) - 1u;
+        bool top_moves = false;
+        unsigned bad = 0;
+        for (unsigned i = 1; i < f->nframes; i++) {
+            uint64_t a = word_at(f, i - 1, s->offset, s->data_bits);
+            uint64_t b = word_at(f, i, s->offset, s->data_bits);
+            uint64_t step = f->frame_no ? (uint64_t)(f->frame_no[i] - f->frame_no[i - 1]) : 1u;
+            bad += step == 0 || ((b - a) & m) != (step & m);
+            top_moves |= ((a ^ b) >> (k - 1) & 1u) != 0;
+        }
+        /* a counter's top bit must move, or constant bits above it (nE, nW)
+         * would pass as counter bits until it wraps */
+        /* 2 % of the pairs may be hit by noise */
+        if ((uint64_t)bad * 50 <= f->nframes - 1 && top_moves) {
+            return k;
+        }
+    }
+    return 0;
+}
+
+/* nE/nW are active low: flags that are (nearly) always 1. A bit that never
+ * changes is indistinguishable from an idle flag, so this is a proposal. */
+static void flags(const struct biss_probe_frames *f, struct biss_probe_slave *s) {
+    s->lc_bits = life_counter(f, s);
+    unsigned sh = s->lc_bits;
+    if (s->data_bits < sh + 3) {
+        return;
+    }
+    unsigned ones_e = 0, ones_w = 0;
+    for (unsigned i = 0; i < f->nframes; i++) {
+        uint64_t w = word_at(f, i, s->offset, s->data_bits);
+        ones_w += (unsigned)(w >> sh & 1u);
+        ones_e += (unsigned)(w >> (sh + 1) & 1u);
+    }
+    unsigned lo = ones_e < ones_w ? ones_e : ones_w;
+    s->ew_ones_pct = (unsigned)((uint64_t)lo * 100 / f->nframes);
+    s->has_ew = s->ew_ones_pct >= 90;
+    s->ew_shift = s->has_ew ? sh : 0;
+}
+
+/* ---- verdict --------------------------------------------------------------- */
+
+static unsigned min_rank(const struct biss_probe_layout *l) {
+    unsigned r = ~0u;
+    for (unsigned i = 0; i < l->nslaves; i++) {
+        r = l->slave[i].rank < r ? l->slave[i].rank : r;
+    }
+    return r;
+}
+
+/* Remainder of a by b over GF(2) (both with their top terms, degree <= 16). */
+static uint32_t gf2_mod(uint32_t a, uint32_t b) {
+    int db = 31 - __builtin_clz(b);
+    for (int da = a ? 31 - __builtin_clz(a) : -1; da >= db; da = a ? 31 - __builtin_clz(a) : -1) {
+        a ^= b << (da - db);
+    }
+    return a;
+}
+
+/* Whether another fit covers the same bits with a polynomial that divides
+ * this one's or is divided by it: a narrower P fits wherever P * M does. */
+static bool related_fit(const struct ctx *x, const struct biss_probe_slave *s) {
+    const struct seglist *l = &x->cache[s->offset];
+    for (unsigned i = 0; i < l->n; i++) {
+        const struct seg *g = &l->s[i];
+        if (g->d + g->c != s->data_bits + s->crc_bits || g->poly == s->crc_poly) {
+            continue;
+        }
+        if (gf2_mod(s->crc_poly, g->poly) == 0 || gf2_mod(g->poly, s->crc_poly) == 0) {
+            return true;
+        }
+    }
+    return false;
+}
+
+/* Enough evidence to name the first layout: per slave, its data
+ * differences span BEST_MIN_RANK directions or all of its data word (then
+ * they include the codeword P * 1 itself, so no wider multiple P * M can
+ * fit), or no fit over the same bits has a related polynomial (a wider
+ * P * M fitting by chance would leave the truth P as such a fit). */
+static bool enough_evidence(const struct ctx *x, const struct biss_probe_layout *l) {
+    for (unsigned i = 0; i < l->nslaves; i++) {
+        const struct biss_probe_slave *s = &l->slave[i];
+        if (s->rank < BEST_MIN_RANK && s->rank < s->data_bits && related_fit(x, s)) {
+            return false;
+        }
+    }
+    return true;
+}
+
+/* With several fits the one with more CRC bits is preferred only when the
+ * data differences have enough independent directions: a narrower CRC P
+ * always fits where P*M does (a factor of a wider polynomial), but with
+ * few differences a wider P*M can fit by chance where P is the truth. */
+static void verdict(struct ctx *x) {
+    struct biss_probe_result *r = x->r;
+    const char *cut = x->cut ? " (search limits reached: more may fit)" : "";
+    if (r->nlayouts == 0) {
+        r->verdict = BISS_PROBE_NONE;
+        snprintf(r->reason, sizeof r->reason,
+                 "no split of the %u bits into slaves of data + CRC (3..16 bits) fits the frames "
+                 "(an SSI encoder, or a CRC outside 3..16 bits?)%s",
+                 x->end, cut);
+        return;
+    }
+    const struct biss_probe_layout *a = &r->layout[0];
+    if (x->cut) { /* not every fit was seen: nothing can be called unique or best */
+        r->verdict = BISS_PROBE_AMBIGUOUS;
+        snprintf(r->reason, sizeof r->reason,
+                 "%u layouts fit, and the search stopped at its limits before trying all",
+                 r->nlayouts);
+        return;
+    }
+    if (r->nlayouts == 1) {
+        r->verdict = BISS_PROBE_UNIQUE;
+        snprintf(r->reason, sizeof r->reason, "one layout fits %u of %u frames%s", a->support,
+                 r->frames, cut);
+        return;
+    }
+    const struct biss_probe_layout *b = &r->layout[1];
+    unsigned rank = min_rank(a);
+    bool ahead = a->support > b->support || (!a->weak && b->weak) || a->crc_stuck < b->crc_stuck ||
+                 a->crc_total > b->crc_total;
+    if (ahead && !a->weak && a->crc_stuck == 0 && enough_evidence(x, a)) {
+        r->verdict = BISS_PROBE_BEST;
+        snprintf(r->reason, sizeof r->reason,
+                 "%u layouts fit; the first checks %u CRC bits against %u of the next%s "
+                 "(evidence: %u independent differences)%s",
+                 r->nlayouts, a->crc_total, b->crc_total,
+                 b->weak        ? " (which has a slave whose data hardly changed)"
+                 : b->crc_stuck ? " (which has CRC bits that never change)"
+                                : "",
+                 rank, cut);
+        return;
+    }
+    r->verdict = BISS_PROBE_AMBIGUOUS;
+    snprintf(r->reason, sizeof r->reason,
+             "%u layouts fit and the frames cannot tell them apart (evidence: %u independent "
+             "differences; more frames with more motion help)%s",
+             r->nlayouts, rank, cut);
+}
+
+static unsigned frame_end(const struct biss_probe_frames *f) {
+    unsigned end = 0;
+    for (unsigned i = 0; i < f->nframes; i++) {
+        for (unsigned p = f->nbits - 1; p > end; p--) {
+            if (bit_at(f, i, p - 1)) {
+                end = p;
+                break;
+            }
+        }
+    }
+    return end;
+}
+
+static bool all_alike(const struct biss_probe_frames *f, unsigned end) {
+    for (unsigned i = 1; i < f->nframes; i++) {
+        for (unsigned p = 0; p < end; p++) {
+            if (bit_at(f, i, p) != bit_at(f, 0, p)) {
+                return false;
+            }
+        }
+    }
+    return true;
+}
+
+/* The layouts of frames f ending at end, with the probes taken against
+ * frame ref. */
+static int search(const struct biss_probe_frames *f, unsigned end, unsigned ref,
+                  struct biss_probe_result *r) {
+    memset(r, 0, sizeof *r);
+    r->frames = f->nframes;
+    r->end_bit = end;
+    struct ctx x = {.f = f, .ref = ref, .end = end, .r = r};
+    x.cache = calloc(f->nbits, sizeof *x.cache);
+    if (!x.cache) {
+        return BISS_E_NOMEM;
+    }
+    walk(&x, 0);
+    for (unsigned i = 0; i < r->nkept; i++) {
+        for (unsigned s = 0; s < r->layout[i].nslaves; s++) {
+            flags(f, &r->layout[i].slave[s]);
+        }
+    }
+    verdict(&x);
+    free(x.cache);
+    return BISS_OK;
+}
+
+/* Refusals before any search; false when there is something to search. */
+static bool refuse(const struct biss_probe_frames *f, struct biss_probe_result *r) {
+    unsigned payload = f->nbits - 1;
+    r->verdict = BISS_PROBE_NONE;
+    if (r->end_bit == 0) {
+        snprintf(r->reason, sizeof r->reason,
+                 "no bit after the CDS was ever 1: no slave sent data");
+        return true;
+    }
+    if (r->end_bit >= payload) {
+        snprintf(r->reason, sizeof r->reason,
+                 "bits up to the end of the %u-bit capture are 1: the frame is longer than the "
+                 "capture, or SL never goes low",
+                 payload);
+        return true;
+    }
+    if (f->nframes < 2 || all_alike(f, r->end_bit)) {
+        snprintf(r->reason, sizeof r->reason,
+                 "all %u frames are alike: a CRC cannot be told from data without a changing "
+                 "position (move the encoder, capture more frames)",
+                 f->nframes);
+        return true;
+    }
+    return false;
+}
+
+/* Tries three reference frames (one may have been hit by noise). */
+static int search_refs(const struct biss_probe_frames *f, struct biss_probe_result *r) {
+    int rc = BISS_OK;
+    unsigned refs[3] = {0, f->nframes / 3, 2 * f->nframes / 3};
+    for (unsigned k = 0; k < 3 && rc == BISS_OK; k++) {
+        if (k && refs[k] == refs[k - 1]) {
+            continue;
+        }
+        rc = search(f, r->end_bit, refs[k], r);
+        if (r->nlayouts) {
+            break;
+        }
+    }
+    return rc;
+}
+
+/* Noise: glitches put lone 1s after the frame's end. The end is then the
+ * last bit that is 1 in 5 % of the frames; frames with a 1 after it are
+ * left out. Tried first when some frames have 1s after that end; if it
+ * finds nothing, the strict end (the last 1 at all) is tried. */
+static unsigned noisy_end(const struct biss_probe_frames *f) {
+    unsigned payload = f->nbits - 1, need = f->nframes / 20 > 2 ? f->nframes / 20 : 2;
+    for (unsigned p = payload; p > 0; p--) {
+        unsigned ones = 0;
+        for (unsigned i = 0; i < f->nframes; i++) {
+            ones += (unsigned)bit_at(f, i, p - 1);
+        }
+        if (ones >= need) {
+            return p;
+        }
+    }
+    return 0;
+}
+
+static int search_noisy(const struct biss_probe_frames *f, unsigned end,
+                        struct biss_probe_result *r) {
+    unsigned payload = f->nbits - 1;
+    uint8_t *bits = malloc((size_t)f->nframes * f->nbits);
+    uint32_t *fno = malloc(f->nframes * sizeof *fno);
+    if (!bits || !fno) {
+        free(bits);
+        free(fno);
+        return BISS_E_NOMEM;
+    }
+    unsigned kept = 0;
+    for (unsigned i = 0; i < f->nframes; i++) {
+        bool clean = true;
+        for (unsigned p = end; p < payload && clean; p++) {
+            clean = !bit_at(f, i, p);
+        }
+        if (clean) {
+            memcpy(bits + (size_t)kept * f->nbits, f->bits + (size_t)i * f->nbits, f->nbits);
+            fno[kept++] = f->frame_no ? f->frame_no[i] : i;
+        }
+    }
+    struct biss_probe_frames g = {kept, f->nbits, bits, fno};
+    static _Thread_local struct biss_probe_result r2;
+    memset(&r2, 0, sizeof r2);
+    r2.end_bit = end;
+    r2.frames = kept;
+    int rc = BISS_OK;
+    if (kept && !refuse(&g, &r2)) {
+        rc = search_refs(&g, &r2);
+    }
+    if (rc == BISS_OK && r2.nlayouts) {
+        *r = r2;
+        r->dropped = f->nframes - kept;
+        size_t len = strlen(r->reason);
+        snprintf(r->reason + len, sizeof r->reason - len,
+                 "; %u frames with 1s after bit %u left out as noise", r->dropped, end);
+    }
+    free(bits);
+    free(fno);
+    return rc;
+}
+
+int biss_probe_analyse(const struct biss_probe_frames *f, struct biss_probe_result *r) {
+    if (!f || !r || !f->bits || f->nframes < 1 || f->nframes > BISS_PROBE_MAX_FRAMES ||
+        f->nbits < 2 || f->nbits > BISS_PROBE_MAX_BITS) {
+        return BISS_E_INVAL;
+    }
+    memset(r, 0, sizeof *r);
+    r->frames = f->nframes;
+    r->end_bit = frame_end(f);
+    /* lone 1s after where most frames end: try without those frames first */
+    unsigned noisy = f->nframes >= 20 ? noisy_end(f) : r->end_bit;
+    int rc = BISS_OK;
+    if (noisy && noisy < r->end_bit) {
+        rc = search_noisy(f, noisy, r);
+        if (rc || r->nlayouts) {
+            return rc;
+        }
+    }
+    if (!refuse(f, r)) {
+        rc = search_refs(f, r);
+    }
+    return rc;
+}
+
+const char *biss_probe_verdict_name(enum biss_probe_verdict v) {
+    switch (v) {
+    case BISS_PROBE_UNIQUE:
+        return "unique";
+    case BISS_PROBE_BEST:
+        return "best";
+    case BISS_PROBE_AMBIGUOUS:
+        return "ambiguous";
+    case BISS_PROBE_NONE:
+        return "cannot decide";
+    }
+    return "?";
+}
+
+void biss_probe_layout_config(const struct biss_probe_layout *l, struct biss_config *c) {
+    c->nslaves = l->nslaves;
+    for (unsigned i = 0; i < l->nslaves && i < BISS_API_MAX_SLAVES; i++) {
+        const struct biss_probe_slave *s = &l->slave[i];
+        c->slave[i] = (struct biss_slave_config){
+            .data_bits = s->data_bits,
+            .crc_bits = s->crc_bits,
+            .crc_poly = s->crc_poly,
+            .crc_start = s->crc_start,
+            .has_ew = s->has_ew,
+            .ew_shift = s->has_ew ? s->ew_shift : 0,
+        };
+    }
+}

@@ -1,0 +1,146 @@
+/* bissctl_probe.c - `bissctl probe`: the layout of an unknown encoder from
+ * the wire, its identification registers, and the options to read it. */
+#include "biss_probe.h"
+#include "bissctl.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <string.h>
+
+#define DEFAULT_FRAMES 1024
+
+static void print_slave(unsigned i, const struct biss_probe_slave *s, unsigned frames) {
+    printf("  slave %u: data %u bits, CRC %u bits poly 0x%X start 0x%X; fits %u/%u frames, %u "
+           "distinct words, %u independent differences",
+           i, s->data_bits, s->crc_bits, s->crc_poly, s->crc_start, s->support, frames, s->distinct,
+           s->rank);
+    if (s->crc_stuck) {
+        printf(", %u CRC bits never change", s->crc_stuck);
+    }
+    if (s->has_ew) {
+        printf("; nE/nW above bit %u (1 in %u%% of frames)", s->ew_shift, s->ew_ones_pct);
+    } else {
+        printf("; no nE/nW (the two bits were 1 in %u%% of frames)", s->ew_ones_pct);
+    }
+    if (s->lc_bits) {
+        printf("; %u-bit life counter", s->lc_bits);
+    }
+    printf("\n");
+}
+
+static void print_slave_opts(const struct biss_probe_layout *l) {
+    printf("options:");
+    for (unsigned i = 0; i < l->nslaves; i++) {
+        const struct biss_probe_slave *s = &l->slave[i];
+        printf(" --slave %u,%u,0x%X,0x%X", s->data_bits, s->crc_bits, s->crc_poly, s->crc_start);
+        if (s->has_ew) {
+            printf(",%u", s->ew_shift);
+        }
+    }
+    printf("\n");
+}
+
+static void print_bytes(const char *name, int rc, const uint8_t *b, unsigned n) {
+    printf(" %s", name);
+    if (rc) {
+        printf(" (%s)", biss_strerror(rc));
+        return;
+    }
+    for (unsigned i = 0; i < n; i++) {
+        printf(" %02X", b[i]);
+    }
+}
+
+static void print_regs(const struct biss_probe_regs *r) {
+    printf("registers ID %u:", r->id);
+    if (r->rc_device == BISS_E_CD_NO_ECHO) {
+        printf(" no answer (%s)\n", biss_strerror(r->rc_device));
+        return;
+    }
+    print_bytes("device 0x78..0x7D", r->rc_device, r->device, sizeof r->device);
+    print_bytes("manufacturer 0x7E..0x7F", r->rc_manufacturer, r->manufacturer,
+                sizeof r->manufacturer);
+    if (r->rc_manufacturer == BISS_OK) {
+        printf(" \"%c%c\"",
+               r->manufacturer[0] >= 0x20 && r->manufacturer[0] < 0x7f ? r->manufacturer[0] : '.',
+               r->manufacturer[1] >= 0x20 && r->manufacturer[1] < 0x7f ? r->manufacturer[1] : '.');
+    }
+    print_bytes("profile 0x41..0x43", r->rc_profile, r->profile, sizeof r->profile);
+    print_bytes("serial 0x44..0x47", r->rc_serial, r->serial, sizeof r->serial);
+    printf("\n");
+}
+
+static int write_scenario(const char *path, const char *json) {
+    FILE *f = fopen(path, "w");
+    if (!f) {
+        fprintf(stderr, "bissctl: %s: %s\n", path, strerror(errno));
+        return BISSCTL_FAIL;
+    }
+    int bad = fputs(json, f) < 0;
+    bad |= fclose(f) != 0;
+    if (bad) {
+        fprintf(stderr, "bissctl: %s: write failed\n", path);
+        return BISSCTL_FAIL;
+    }
+    printf("scenario written to %s (biss-sim --scenario %s)\n", path, path);
+    return BISSCTL_OK;
+}
+
+int bissctl_probe(biss_t *h, const struct bissctl_opts *o) {
+    if (o->nargs > 1) {
+        fprintf(stderr, "bissctl: probe takes one FILE.json, not '%s'\n", o->args[1]);
+        return BISSCTL_USAGE;
+    }
+    struct biss_probe_params p = {
+        .freq_hz = o->cfg.freq_hz,
+        .frames = o->count > 1 ? o->count : DEFAULT_FRAMES,
+        .read_regs = true,
+    };
+    static struct biss_probe_report r;
+    int rc = biss_probe(h, &p, &r);
+    if (rc) {
+        return bissctl_fail("probe", rc);
+    }
+    const struct biss_probe_result *w = &r.wire;
+    printf("captured %u frames (%u without ACK, %u invalid), analysed %u; frame length %u bits "
+           "after the CDS\n",
+           w->frames + w->dropped, r.no_slave, r.invalid, w->frames, w->end_bit);
+    printf("line delay %.0f ns, processing time up to %u MA clocks\n", r.delay_ns, r.busy_max);
+    printf("verdict: %s: %s\n", biss_probe_verdict_name(w->verdict), w->reason);
+    /* the best, or with an ambiguous verdict the first three */
+    unsigned show = w->verdict == BISS_PROBE_AMBIGUOUS ? 3u : 1u;
+    show = show < w->nkept ? show : w->nkept;
+    for (unsigned k = 0; k < show && w->verdict != BISS_PROBE_NONE; k++) {
+        const struct biss_probe_layout *l = &w->layout[k];
+        printf("candidate %u: %u slave%s, %u CRC bits, fits %u/%u frames%s\n", k + 1, l->nslaves,
+               l->nslaves == 1 ? "" : "s", l->crc_total, l->support, w->frames,
+               l->weak ? " (a slave's data hardly changed)" : "");
+        for (unsigned i = 0; i < l->nslaves; i++) {
+            print_slave(i, &l->slave[i], w->frames);
+        }
+    }
+    if (w->verdict == BISS_PROBE_AMBIGUOUS && w->nlayouts > show) {
+        printf("(%u more candidates)\n", w->nlayouts - show);
+    }
+    for (unsigned i = 0; i < r.nregs; i++) {
+        print_regs(&r.regs[i]);
+    }
+    for (unsigned i = 0; i < r.nnotes; i++) {
+        printf("note: %s\n", r.notes[i]);
+    }
+    if (w->verdict == BISS_PROBE_NONE || !w->nkept) {
+        return BISSCTL_FAIL;
+    }
+    print_slave_opts(&w->layout[0]);
+    static char json[4096];
+    if (biss_probe_scenario_json(&w->layout[0], json, sizeof json)) {
+        return bissctl_fail("scenario", BISS_E_INVAL);
+    }
+    if (o->nargs > 0) {
+        rc = write_scenario(o->args[0], json);
+    } else {
+        printf("scenario:\n%s", json);
+    }
+    /* ambiguous is an answer, but not one to configure blindly */
+    return rc ? rc : w->verdict == BISS_PROBE_AMBIGUOUS ? BISSCTL_FAIL : BISSCTL_OK;
+}

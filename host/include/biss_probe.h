@@ -1,0 +1,143 @@
+/*
+ * biss_probe.h - encoder discovery: the slave layout of an unknown BiSS-C
+ * encoder (or chain) from the wire, and its identification registers.
+ *
+ * The wire part is a pure analysis (biss_probe_analyse: no I/O) of raw
+ * frames, each the bits after the start bit: CDS first, then everything
+ * the chain sends. libbiss captures them with the normal firmware in a
+ * capture layout (biss_probe below): 8 slaves x 64 data bits, no CRC, no
+ * nE/nW, so the firmware clocks 512 bits after the CDS and publishes them
+ * as data words. After the last slave's CRC the wire reads 0: the last
+ * slave's SLI input is tied low and every slave passes it on ([MB4],
+ * "BiSS C Frame"; the model, emulator/slave/biss_slave.h, sends 0 on every
+ * further rising edge). So the frame ends after the last bit that is ever 1.
+ */
+#ifndef BISS_PROBE_H
+#define BISS_PROBE_H
+
+#include "libbiss.h"
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define BISS_PROBE_MAX_BITS    (1 + BISS_API_MAX_SLAVES * 64) /* CDS + capture */
+#define BISS_PROBE_MAX_FRAMES  4096
+#define BISS_PROBE_MAX_LAYOUTS 16 /* candidates kept (more are counted) */
+#define BISS_PROBE_MIN_CRC     3
+#define BISS_PROBE_MAX_CRC     16
+
+/* Raw frames: bits[i * nbits + k] is bit k (0/1) of frame i, k = 0 the CDS. */
+struct biss_probe_frames {
+    unsigned nframes, nbits;
+    const uint8_t *bits;
+    /* The firmware's frame numbers (for a life counter's step); NULL: the
+     * frames are consecutive. */
+    const uint32_t *frame_no;
+};
+
+/* One slave as the wire shows it. */
+struct biss_probe_slave {
+    unsigned offset; /* first data bit, counted after the CDS */
+    unsigned data_bits, crc_bits;
+    uint32_t crc_poly; /* with its top term */
+    uint32_t crc_start;
+    unsigned support;   /* frames whose CRC fits with this polynomial and start */
+    unsigned distinct;  /* different data words among the frames */
+    unsigned rank;      /* linearly independent data differences (the evidence) */
+    unsigned crc_stuck; /* CRC bits that never changed */
+    /* nE/nW proposed: the two bits above a life counter of lc_bits (0: the
+     * two bits before the CRC) were 1 in ew_ones_pct % of the frames */
+    bool has_ew;
+    unsigned ew_shift; /* = lc_bits */
+    unsigned ew_ones_pct;
+    unsigned lc_bits; /* low bits that counted +1 per frame (0: none) */
+};
+
+struct biss_probe_layout {
+    unsigned nslaves;
+    struct biss_probe_slave slave[BISS_API_MAX_SLAVES];
+    unsigned support;   /* the smallest of its slaves' */
+    unsigned crc_total; /* CRC bits in all: more checked bits rank higher */
+    /* a slave's data took fewer than 2 independent values (rank < 2): any
+     * polynomial of its width fits one difference, so it proves nothing */
+    bool weak;
+    unsigned crc_stuck; /* its slaves' CRC bits that never changed: ranked last */
+};
+
+enum biss_probe_verdict {
+    BISS_PROBE_UNIQUE,    /* exactly one layout fits every frame */
+    BISS_PROBE_BEST,      /* several fit; the first checks more bits, with enough evidence */
+    BISS_PROBE_AMBIGUOUS, /* several fit and the frames cannot tell them apart */
+    BISS_PROBE_NONE,      /* cannot decide: no layout fits, or the frames say too little */
+};
+
+struct biss_probe_result {
+    enum biss_probe_verdict verdict;
+    char reason[200];  /* why, in words */
+    unsigned frames;   /* frames analysed */
+    unsigned end_bit;  /* frame length: bits after the CDS up to the last ever 1 */
+    unsigned dropped;  /* frames left out as noise (1s after end_bit; see reason) */
+    unsigned nlayouts; /* layouts that fit (may exceed the ones kept) */
+    unsigned nkept;    /* layout[0 .. nkept-1], best first */
+    struct biss_probe_layout layout[BISS_PROBE_MAX_LAYOUTS];
+};
+
+/* Analyses the frames; 0, or BISS_E_INVAL for bad arguments (no frames,
+ * nbits outside 2..BISS_PROBE_MAX_BITS). "Cannot decide" is a verdict, not
+ * an error. */
+int biss_probe_analyse(const struct biss_probe_frames *f, struct biss_probe_result *r);
+const char *biss_probe_verdict_name(enum biss_probe_verdict v);
+/* A layout as a libbiss configuration (slaves only; the rest of c as is). */
+void biss_probe_layout_config(const struct biss_probe_layout *l, struct biss_config *c);
+
+/* ---- on a handle --------------------------------------------------------- */
+/* The BiSS identification registers of one slave (read-only access). */
+struct biss_probe_regs {
+    unsigned id;
+    int rc_device, rc_manufacturer, rc_profile, rc_serial; /* 0 or BISS_E_* */
+    uint8_t device[6];                                     /* 0x78..0x7D */
+    uint8_t manufacturer[2];                               /* 0x7E..0x7F */
+    uint8_t profile[3];                                    /* 0x41..0x43: EDS bank, profile ID */
+    uint8_t serial[4];                                     /* 0x44..0x47 */
+};
+
+struct biss_probe_params {
+    uint32_t freq_hz; /* MA rate for the capture (must be valid for biss_rate_half) */
+    unsigned frames;  /* frames to capture (2..BISS_PROBE_MAX_FRAMES); 0: 1024 */
+    bool read_regs;   /* also read the identification registers */
+    unsigned reg_ids; /* control-frame IDs 0..reg_ids-1 (0: one per slave found, else 1) */
+};
+
+struct biss_probe_report {
+    struct biss_probe_result wire;
+    unsigned no_slave, invalid; /* captured frames without an ACK, or not valid */
+    unsigned busy_max;          /* longest processing time seen (MA clocks after the ACK) */
+    double delay_ns;            /* line delay of the last frame captured (filtered) */
+    unsigned nregs;
+    struct biss_probe_regs regs[BISS_API_MAX_SLAVES];
+    unsigned nnotes;
+    char notes[8][160]; /* where wire and registers disagree, and other remarks */
+};
+
+/* Configures the capture layout (free-running frames), reads the frames
+ * through biss_wait_sample, analyses them, optionally reads the
+ * identification registers, and leaves the capture configuration in force.
+ * Returns 0 with *out filled (the verdict may still be "cannot decide"), or
+ * the first library error. */
+int biss_probe(biss_t *h, const struct biss_probe_params *p, struct biss_probe_report *out);
+
+/* The layout as a JSON scenario for biss-sim --scenario and bissctl
+ * --scenario (the generic profile with these slaves). 0, or BISS_E_INVAL
+ * when buf is too small. */
+int biss_probe_scenario_json(const struct biss_probe_layout *l, char *buf, size_t size);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

@@ -1,0 +1,197 @@
+/* test_probe_emu.c - biss_probe end to end: the real firmware image on the
+ * emulator against every profile's encoder model. The probe must recover
+ * the layout the bench was given (biss_config_from_emu, read from the
+ * model, is the truth), read the identification registers, and its
+ * scenario and configuration must read positions with good CRCs. */
+#include "biss_probe.h"
+#include "check_run.h"
+#include "scenario.h"
+
+#include <check.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#define FREQ   10000000u
+#define FRAMES 1024 /* the AD38's A/D word moves slowly: ~60 ms of frames */
+
+static biss_t *open_emu(const char *profile, const char *scenario_file) {
+    struct biss_open_params p;
+    biss_open_params_default(&p);
+    p.profile = profile;
+    p.scenario_file = scenario_file;
+    biss_t *h = NULL;
+    int rc = biss_open(&p, &h);
+    ck_assert_msg(rc == BISS_OK, "open %s: %s", profile ? profile : scenario_file,
+                  biss_strerror(rc));
+    return h;
+}
+
+static void assert_same_slave(const struct biss_slave_config *a, const struct biss_slave_config *b,
+                              const char *what, unsigned i) {
+    ck_assert_msg(a->data_bits == b->data_bits && a->crc_bits == b->crc_bits &&
+                      a->crc_poly == b->crc_poly && a->crc_start == b->crc_start &&
+                      a->has_ew == b->has_ew && a->ew_shift == b->ew_shift,
+                  "%s slave %u: %u,%u,0x%x,0x%x ew %d/%u, expected %u,%u,0x%x,0x%x ew %d/%u", what,
+                  i, a->data_bits, a->crc_bits, a->crc_poly, a->crc_start, a->has_ew, a->ew_shift,
+                  b->data_bits, b->crc_bits, b->crc_poly, b->crc_start, b->has_ew, b->ew_shift);
+}
+
+/* The probed layout reads the encoder: valid frames, every CRC good. */
+static void read_with(biss_t *h, const struct biss_config *probed) {
+    struct biss_config c = *probed;
+    c.freq_hz = FREQ;
+    int rc = biss_configure(h, &c);
+    ck_assert_msg(rc == BISS_OK, "configure probed layout: %s", biss_strerror(rc));
+    struct biss_sample s;
+    uint32_t after = 0;
+    for (unsigned n = 0; n < 20;) {
+        ck_assert_int_eq(biss_wait_sample(h, after, 100, &s), BISS_OK);
+        after = s.frame;
+        if (s.training) {
+            continue;
+        }
+        ck_assert_msg(s.valid && !s.crc_error, "frame %u flags 0x%x", s.frame, s.flags);
+        for (unsigned i = 0; i < c.nslaves; i++) {
+            ck_assert(s.slave[i].crc_ok);
+        }
+        n++;
+    }
+}
+
+/* The scenario the probe writes builds the same layout in the bench. */
+static void scenario_round_trip(const struct biss_probe_layout *l, const struct biss_config *c) {
+    char json[4096], path[] = "/tmp/probe_scenario_XXXXXX";
+    ck_assert_int_eq(biss_probe_scenario_json(l, json, sizeof json), BISS_OK);
+    int fd = mkstemp(path);
+    ck_assert_int_ge(fd, 0);
+    ck_assert_int_eq(write(fd, json, strlen(json)), (ssize_t)strlen(json));
+    close(fd);
+    biss_t *h = open_emu(NULL, path);
+    struct biss_config again;
+    biss_config_default(&again);
+    ck_assert_int_eq(biss_config_from_emu(h, &again), BISS_OK);
+    ck_assert_uint_eq(again.nslaves, c->nslaves);
+    for (unsigned i = 0; i < c->nslaves; i++) {
+        assert_same_slave(&again.slave[i], &c->slave[i], "scenario", i);
+    }
+    read_with(h, c);
+    biss_close(h);
+    unlink(path);
+}
+
+static void probe_profile(const char *name) {
+    biss_t *h = open_emu(name, NULL);
+    struct biss_config truth;
+    biss_config_default(&truth);
+    ck_assert_int_eq(biss_config_from_emu(h, &truth), BISS_OK);
+    struct biss_probe_params p = {.freq_hz = FREQ, .frames = FRAMES, .read_regs = true};
+    static struct biss_probe_report r;
+    int rc = biss_probe(h, &p, &r);
+    ck_assert_msg(rc == BISS_OK, "%s: probe: %s", name, biss_strerror(rc));
+    const struct biss_probe_result *w = &r.wire;
+    printf("%s: %s: %s\n", name, biss_probe_verdict_name(w->verdict), w->reason);
+    /* the bench's AD38 chain is busy 2.4 us (24 clocks at 10 MHz), the others not */
+    ck_assert_uint_eq(r.busy_max > 20, strcmp(name, "hengstler-ad38") == 0);
+    if (truth.slave[0].ssi) {
+        /* no BiSS frame, no CRC: nothing fits, and it says so */
+        ck_assert_int_eq(w->verdict, BISS_PROBE_NONE);
+        ck_assert_int_eq(r.regs[0].rc_device, BISS_E_CD_NO_ECHO);
+        biss_close(h);
+        return;
+    }
+    ck_assert_msg(w->verdict == BISS_PROBE_UNIQUE || w->verdict == BISS_PROBE_BEST,
+                  "%s: verdict %s", name, biss_probe_verdict_name(w->verdict));
+    struct biss_config got;
+    biss_config_default(&got);
+    biss_probe_layout_config(&w->layout[0], &got);
+    ck_assert_uint_eq(got.nslaves, truth.nslaves);
+    for (unsigned i = 0; i < truth.nslaves; i++) {
+        assert_same_slave(&got.slave[i], &truth.slave[i], name, i);
+    }
+    /* registers: every wire slave answers at 0x78.., and nobody past them */
+    ck_assert_uint_eq(r.nregs, truth.nslaves + 1);
+    for (unsigned id = 0; id < truth.nslaves; id++) {
+        ck_assert_int_eq(r.regs[id].rc_device, BISS_OK);
+        ck_assert_int_eq(r.regs[id].rc_manufacturer, BISS_OK);
+        ck_assert_int_eq(r.regs[id].rc_profile, BISS_OK);
+        ck_assert_int_eq(r.regs[id].rc_serial, BISS_OK);
+    }
+    ck_assert_int_eq(r.regs[truth.nslaves].rc_device, BISS_E_CD_NO_ECHO);
+    if (strcmp(name, "tidep0022-test-encoder") == 0) { /* [TI] Table 11 */
+        static const uint8_t dev[6] = {0x46, 0x3A, 0xC0, 0x0C, 0x00, 0x01};
+        static const uint8_t ser[4] = {0x00, 0xD9, 0x01, 0x32};
+        ck_assert_mem_eq(r.regs[0].device, dev, 6);
+        ck_assert_mem_eq(r.regs[0].manufacturer, ((const uint8_t[]){0x57, 0x41}), 2);
+        ck_assert_mem_eq(r.regs[0].serial, ser, 4);
+    }
+    if (strcmp(name, "posital-kit") == 0) { /* [POS] §8.1.1 */
+        static const uint8_t dev[6] = {0x01, 0x01, 0x68, 0x11, 0x00, 0x01};
+        ck_assert_mem_eq(r.regs[0].device, dev, 6);
+        ck_assert_mem_eq(r.regs[0].profile, ((const uint8_t[]){0x02, 0x61, 0x29}), 3);
+    }
+    read_with(h, &got);
+    biss_close(h);
+    scenario_round_trip(&w->layout[0], &got);
+}
+
+START_TEST(every_profile) {
+    unsigned n = 0;
+    for (size_t i = 0; profile_name_at(i); i++, n++) {
+        probe_profile(profile_name_at(i));
+    }
+    ck_assert_uint_eq(n, 5);
+}
+END_TEST
+
+/* Glitches on SL (30 kHz, 3 ns jitter; test/scenarios): lone 1s after the
+ * frame's end and some bad frames. The layout is still found, the noisy
+ * frames left out and counted. */
+START_TEST(noisy_line) {
+    biss_t *h = open_emu(NULL, SCENARIO_DIR "/noise-sl-30khz-jitter.json");
+    struct biss_probe_params p = {.freq_hz = FREQ, .frames = FRAMES};
+    static struct biss_probe_report r;
+    ck_assert_int_eq(biss_probe(h, &p, &r), BISS_OK);
+    const struct biss_probe_result *w = &r.wire;
+    printf("noise-sl-30khz-jitter: %s: %s\n", biss_probe_verdict_name(w->verdict), w->reason);
+    ck_assert_int_eq(w->verdict, BISS_PROBE_UNIQUE);
+    ck_assert_uint_gt(w->dropped, 0);
+    const struct biss_probe_slave *s = &w->layout[0].slave[0];
+    ck_assert_uint_eq(w->layout[0].nslaves, 1);
+    ck_assert_uint_eq(s->data_bits, 14);
+    ck_assert_uint_eq(s->crc_bits, 6);
+    ck_assert_uint_eq(s->crc_poly, 0x43);
+    ck_assert_uint_eq(s->crc_start, 0);
+    ck_assert(s->has_ew && s->ew_shift == 0);
+    ck_assert_uint_lt(s->support, w->frames); /* a few frames are hit inside the data */
+    biss_close(h);
+}
+END_TEST
+
+/* A bad request is refused before anything is clocked. */
+START_TEST(bad_params) {
+    biss_t *h = open_emu("generic", NULL);
+    struct biss_probe_report r;
+    struct biss_probe_params p = {.freq_hz = FREQ, .frames = 1};
+    ck_assert_int_eq(biss_probe(h, &p, &r), BISS_E_INVAL);
+    p.frames = BISS_PROBE_MAX_FRAMES + 1;
+    ck_assert_int_eq(biss_probe(h, &p, &r), BISS_E_INVAL);
+    p.frames = 16;
+    p.freq_hz = 3000000; /* 100 MHz / 3 MHz is not whole */
+    ck_assert_int_eq(biss_probe(h, &p, &r), BISS_E_RATE_INEXACT);
+    ck_assert_int_eq(biss_probe(NULL, &p, &r), BISS_E_INVAL);
+    biss_close(h);
+}
+END_TEST
+
+int main(void) {
+    Suite *s = suite_create("probe_emu");
+    TCase *tc = tcase_create("emu");
+    tcase_set_timeout(tc, 600);
+    tcase_add_test(tc, every_profile);
+    tcase_add_test(tc, noisy_line);
+    tcase_add_test(tc, bad_params);
+    suite_add_tcase(s, tc);
+    return check_run(s);
+}
