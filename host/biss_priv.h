@@ -74,6 +74,11 @@ struct biss {
     bool configured;
     struct biss_config cfg;
     uint32_t cfg_seq;
+    /* ST_SEQ when this handle's configuration was acknowledged: results
+     * published up to then were made with the previous one (its slave
+     * layout), so they are no sample of this configuration. */
+    uint32_t cfg_pub_seq;
+    bool cfg_pub_seq_valid;
     bool attached;
 };
 

@@ -157,7 +157,7 @@ int biss_probe(biss_t *h, const struct biss_probe_params *p, struct biss_probe_r
 /* A scenario biss-sim and bissctl --scenario accept: the generic profile
  * with the slaves the wire showed (a life counter below nE/nW; the speed is
  * a choice, so that positions move). */
-int biss_probe_scenario_json(const struct biss_probe_layout *l, char *buf, size_t size) {
+int biss_probe_to_json(const struct biss_probe_layout *l, char *buf, size_t size) {
     size_t used = 0;
     int n = snprintf(buf, size, "{\n  \"profile\": \"generic\",\n  \"biss\": {\n    \"slaves\": [");
     for (unsigned i = 0; n >= 0 && i < l->nslaves; i++) {

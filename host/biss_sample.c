@@ -61,6 +61,9 @@ static int read_sample_locked(biss_t *h, struct biss_sample *s) {
     struct biss_shm_result r;
     uint32_t seq = 0;
     int rc = read_consistent(h, &r, &seq);
+    if (!rc && h->configured && h->cfg_pub_seq_valid && (int32_t)(seq - h->cfg_pub_seq) <= 0) {
+        return BISS_E_NO_SAMPLE; /* published under the previous configuration */
+    }
     if (!rc) {
         rc = biss_sample_decode(&h->cfg, h->configured, seq, &r, s);
     }
@@ -97,6 +100,9 @@ static int newer_published(biss_t *h, void *arg) {
         return 0;
     }
     rc = read_sample_locked(h, w->s);
+    if (rc == BISS_E_NO_SAMPLE) {
+        return 0; /* the previous configuration's: not yet */
+    }
     if (rc) {
         return rc;
     }

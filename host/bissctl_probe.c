@@ -133,7 +133,7 @@ int bissctl_probe(biss_t *h, const struct bissctl_opts *o) {
     }
     print_slave_opts(&w->layout[0]);
     static char json[4096];
-    if (biss_probe_scenario_json(&w->layout[0], json, sizeof json)) {
+    if (biss_probe_to_json(&w->layout[0], json, sizeof json)) {
         return bissctl_fail("scenario", BISS_E_INVAL);
     }
     if (o->nargs > 0) {

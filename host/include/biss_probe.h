@@ -134,7 +134,7 @@ int biss_probe(biss_t *h, const struct biss_probe_params *p, struct biss_probe_r
 /* The layout as a JSON scenario for biss-sim --scenario and bissctl
  * --scenario (the generic profile with these slaves). 0, or BISS_E_INVAL
  * when buf is too small. */
-int biss_probe_scenario_json(const struct biss_probe_layout *l, char *buf, size_t size);
+int biss_probe_to_json(const struct biss_probe_layout *l, char *buf, size_t size);
 
 #ifdef __cplusplus
 }
