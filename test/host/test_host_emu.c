@@ -293,6 +293,34 @@ static void ssi_run(const char *scenario_file, bool gray) {
     biss_close(h);
 }
 
+/* A new slave layout: frames published under the previous one are no
+ * sample of it (they hold another slave count), so reading waits for the
+ * first frame made with the new layout instead of failing. */
+START_TEST(test_reconfigure_other_layout) {
+    biss_t *h = open_emu(2.0);
+    struct biss_config c;
+    biss_config_default(&c);
+    c.freq_hz = 10000000;
+    ck_assert_int_eq(biss_config_from_emu(h, &c), BISS_OK);
+    struct biss_config wide = c; /* the same wire read as 3 slaves of 8 bits, no CRC */
+    wide.nslaves = 3;
+    for (unsigned i = 0; i < 3; i++) {
+        wide.slave[i] = (struct biss_slave_config){.data_bits = 8};
+    }
+    ck_assert_int_eq(biss_configure(h, &wide), BISS_OK);
+    struct biss_sample s;
+    ck_assert_int_eq(biss_wait_sample(h, 0, 100, &s), BISS_OK);
+    ck_assert_uint_eq(s.nslaves, 3);
+    ck_assert_int_eq(biss_configure(h, &c), BISS_OK);
+    int rc = biss_read_sample(h, &s);
+    ck_assert_msg(rc == BISS_E_NO_SAMPLE || (rc == BISS_OK && s.nslaves == 1), "read: %s",
+                  biss_strerror(rc));
+    ck_assert_int_eq(biss_wait_sample(h, 0, 100, &s), BISS_OK);
+    ck_assert_uint_eq(s.nslaves, 1);
+    biss_close(h);
+}
+END_TEST
+
 START_TEST(test_ssi_binary) {
     ssi_run(NULL, false);
 }
@@ -390,6 +418,7 @@ int main(int argc, char **argv) {
     tcase_add_test(tc, test_iep_trigger);
     tcase_add_test(tc, test_stop_start);
     tcase_add_test(tc, test_emu_open_errors);
+    tcase_add_test(tc, test_reconfigure_other_layout);
     tcase_add_test(tc, test_ssi_binary);
     tcase_add_test(tc, test_ssi_gray);
     tcase_add_test(tc, test_ssi_config_errors);
