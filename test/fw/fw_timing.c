@@ -395,8 +395,11 @@ static int on_write(struct run_state *s, const struct fw_run *r, int64_t cyc, ui
             describe_half(s, prev, cur, half, sizeof(half));
             fail(err, errlen,
                  "H=%u: known defect: SWITCH_SHORT cut the last slave's switch to %lld-cycle "
-                 "halves (r0.w2 = %u) with MA edges left in it; the half period %s",
-                 s->half, (long long)d, r0 >> 16, half);
+                 "halves (r0.w2 = %u) with MA edges left in it (%s); the half period %s",
+                 s->half, (long long)d, r0 >> 16,
+                 edge ? "an MA edge mistimed: the rising one comes early"
+                      : "only the CDM edge at its t = 0, none moved",
+                 half);
             return FW_KNOWN_DEFECT;
         }
         if (!short_ok) {

@@ -149,6 +149,7 @@ static void biss_frames(struct h_ctx *h, const struct fw_config *cf) {
         {3, 0x0f, -2, 0, 0, "ACK in WAIT_ACK period 3, no idle period, no busy"},
         {1, 0xf8, -1, 2, FW_MA_MASK << 8, "ACK in the first period, busy 2, CDM 1 if CDS 1"},
         {2, 0x0f, 1, 1, FW_MA_MASK, "one idle period or two, busy 1, CDM 1"},
+        {2, 0x0f, 0, 0, FW_MA_MASK, "the usual line delay (m = 2), CDM 1"},
         {1, 0xf0, n - 2, 3, 0, "clocks stop two bits before the end"},
         {2, 0x0f, n + 2, 0, FW_MA_MASK, "no clock left after the start bit's"},
     };
