@@ -348,30 +348,9 @@ static uint32_t period_inputs(struct run_state *s, const struct fw_run *r, uint3
     return 0;
 }
 
-/* The one miscount the firmware is known to have (test_fw_timing.c,
- * known_switch_defect): SWITCH_SHORT takes min(r0.w2, r12) in the last
- * slave's periods, meant to give 0 once r12 = 0 but giving r12 itself when
- * a clock or the CDM is left (r12 < H - 10): the switch's halves are then
- * 10 + r12 cycles long although MA still moves in it. Recognised only
- * exactly so: the rising-edge write of a *_SWITCH block, 10 + r0.w2 cycles
- * after its falling one, r0.w2 below r0.w0, an MA edge at either. */
-static int known_switch_defect(const struct run_state *s, const struct write_rec *prev,
-                               const struct write_rec *cur, int64_t d, int edge, uint32_t r0) {
-    const struct fw_listing *l = &s->f->lst;
-    char text[400];
-    if (s->nw % 2 != 1 || d <= SHORT_HALF || d >= (int64_t)s->half || !(edge || prev->edge))
-        return 0;
-    if ((r0 >> 16) >= (r0 & 0xffffu) || d != SHORT_HALF + (int64_t)(r0 >> 16))
-        return 0;
-    if (l->line[prev->pc] != l->line[cur->pc])
-        return 0;
-    fw_describe_pc(l, cur->pc, text, sizeof(text));
-    return strstr(text, "_SWITCH`") != NULL;
-}
-
-/* One R30 write (index s->nw) at cycle cyc; r0 the delay counts then. */
+/* One R30 write (index s->nw) at cycle cyc. */
 static int on_write(struct run_state *s, const struct fw_run *r, int64_t cyc, uint32_t pc, int edge,
-                    uint32_t r0, char *err, size_t errlen) {
+                    char *err, size_t errlen) {
     struct write_rec *cur = &s->w[s->nw % WRITES_KEEP];
     cur->cycle = cyc;
     cur->pc = pc;
@@ -391,17 +370,6 @@ static int on_write(struct run_state *s, const struct fw_run *r, int64_t cyc, ui
          * MA edge is left: both its halves 10 cycles, MA still. */
         int short_ok = r->chain_periods >= 0 && d == SHORT_HALF && !edge && !prev->edge &&
                        (s->short_from < 0 ? (s->nw % 2) == 1 : s->nw == s->short_from + 1);
-        if (!short_ok && known_switch_defect(s, prev, cur, d, edge, r0)) {
-            describe_half(s, prev, cur, half, sizeof(half));
-            fail(err, errlen,
-                 "H=%u: known defect: SWITCH_SHORT cut the last slave's switch to %lld-cycle "
-                 "halves (r0.w2 = %u) with MA edges left in it (%s); the half period %s",
-                 s->half, (long long)d, r0 >> 16,
-                 edge ? "an MA edge mistimed: the rising one comes early"
-                      : "only the CDM edge at its t = 0, none moved",
-                 half);
-            return FW_KNOWN_DEFECT;
-        }
         if (!short_ok) {
             describe_half(s, prev, cur, half, sizeof(half));
             fail(err, errlen,
@@ -508,7 +476,7 @@ int fw_run(const struct fw *f, struct pru_core *c, const uint32_t regs[30], unsi
         }
         if (wr) {
             int edge = (int)((pru_reg(c, 30) >> FW_MA_BIT) & 1) != ma_before;
-            int rc = on_write(&s, r, cyc, pc, edge, pru_reg(c, 0), err, errlen);
+            int rc = on_write(&s, r, cyc, pc, edge, err, errlen);
             if (rc != 0)
                 return rc;
             if (s.nw % 2 == 1) /* a period's first write: its samples follow */

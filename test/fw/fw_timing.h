@@ -99,9 +99,7 @@ int fw_cover_check(const struct fw_cover *cv, const struct fw *f, unsigned half,
                    size_t errlen);
 
 /* Runs `r` on core c from the registers in regs[0..29]. Returns 0, or -1
- * with the failure (the block and path) in err; FW_KNOWN_DEFECT when the
- * failure is the known one (test_fw_timing.c, known_switch_defect). */
-#define FW_KNOWN_DEFECT (-2)
+ * with the failure (the block and path) in err. */
 int fw_run(const struct fw *f, struct pru_core *c, const uint32_t regs[30], unsigned half,
            const struct fw_run *r, struct fw_cover *cv, char *err, size_t errlen);
 

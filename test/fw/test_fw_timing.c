@@ -86,7 +86,6 @@ static void describe_config(const struct fw_config *cf, char *buf, size_t len) {
 struct h_ctx {
     unsigned half;
     struct fw_cover cv;
-    unsigned known; /* runs stopped by the known defect (known_switch_defect) */
 };
 
 /* Configures cf and runs each of runs[]; fails the test naming the run. */
@@ -101,12 +100,6 @@ static void run_config(struct h_ctx *h, const struct fw_config *cf, const struct
         regs[i] = pru_reg(c, i);
     for (size_t i = 0; i < nruns; i++) {
         int rc = fw_run(&fw, c, regs, h->half, &runs[i], &h->cv, err, sizeof(err));
-        if (rc == FW_KNOWN_DEFECT) {
-            if (h->known++ == 0)
-                fprintf(stderr, "H=%u frame %s, run \"%s\" (and others like it): %s\n", h->half,
-                        what, names[i], err);
-            continue;
-        }
         if (rc != 0) {
             pru_core_free(c);
             ck_abort_msg("timing: frame %s, run \"%s\": %s", what, names[i], err);
@@ -270,18 +263,6 @@ START_TEST(clocked_blocks) {
     unsigned shortened = h.cv.short_switches, full = h.cv.full_switches;
     fw_cover_free(&h.cv);
     ck_assert_msg(rc == 0, "H=%u: %s", h.half, err);
-    /* The known defect (fw_timing.c, known_switch_defect): the last slave's
-     * switch made shorter than 2H while MA still moves in it, when one clock
-     * or the CDM edge is left for it (r12 < H - 10; never at H = 10). It is
-     * allowed only as long as it is there: once the firmware is fixed, this
-     * fails, and the allowance is to be removed. */
-    if (h.half == 10)
-        ck_assert_uint_eq(h.known, 0);
-    else
-        ck_assert_msg(h.known > 0,
-                      "H=%u: the known SWITCH_SHORT defect is gone: remove its allowance "
-                      "(known_switch_defect in test/fw/fw_timing.c)",
-                      h.half);
     if (h.half != 10) /* at H = 10 a shortened switch is no shorter */
         ck_assert_msg(shortened > 0 && full > 0,
                       "H=%u: switches cut short %u, full %u: both must be run", h.half, shortened,
