@@ -57,7 +57,7 @@
 // Firmware-private data RAM, reached through C28 (CTPPR0 points it at
 // BISS_PRIV, since burst offsets are 8 bits). Offsets from BISS_PRIV:
 #define P_RECORDS       0x00                // 68 bytes: the image of r13..r29
-#define P_DELAYS        0x44                // u32: r0 (delay counts)
+#define P_DELAYS        0x44                // u32: r0 (the tails: DLY_* entry, flag, turns)
 #define P_HIST          0x48                // u16 h0, h1, h2 (last ACK positions), u16 K
 #define P_HSUM          0x50                // u32: h0 + h1 + h2 + 2
 #define P_BUF           0x54                // u32: result buffer being filled (0/1)
@@ -318,9 +318,10 @@ CFG_RESIDUE_DONE:
     add     r2, r24, 8
     ldi     r3, 0
     lsl     r4, r20.w0, 1                   // 2H
-    loop    CFG_IEP_MIN, r2
-    add     r3, r3, r4
-CFG_IEP_MIN:
+CFG_IEP_MIN:                                // r2 = N + 8 >= 9 turns (no LOOP of one
+    add     r3, r3, r4                      // instruction: docs/silicon-assumptions.md)
+    sub     r2, r2, 1
+    qbne    CFG_IEP_MIN, r2, 0
     ldi     r28, BISS_CFGERR_IEP_PERIOD
     qbgt    CFG_FAIL, r21, r3               // period < minimum
     sub     r2, r21, 1                      // CMP0 = period - 1 (the count resets after it)
@@ -334,8 +335,24 @@ CFG_IEP_MIN:
 CFG_IEP_OK:
 
     // Accepted: commit everything.
-    sub     r0.w0, r20.w0, 10               // delay counts of both halves: H - 10
-    mov     r0.w2, r0.w0
+    // The tails of the half periods (DELAY_A in biss_periods.hp): none at
+    // H = 10 (r0 = 0), else the routine's entry for L = H - 11 cycles
+    // (r0.w0), r0.b2 = 1, and its 4-cycle turns (r0.b3).
+    ldi     r0, 0
+    qbeq    CFG_DELAY_SAVE, r20.w0, 10
+    ldi     r0.b2, 1
+    sub     r2, r20.w0, 11                  // L >= 1
+    qblt    CFG_DELAY_LONG, r2, 7
+    ldi     r3, DLY_S1 + 1                  // short: entry DLY_S1 + 1 - L
+    sub     r0.w0, r3, r2
+    qba     CFG_DELAY_SAVE
+CFG_DELAY_LONG:
+    sub     r2, r2, 2                       // L - 2 = 4 n + r, n >= 1 (L >= 8)
+    lsr     r0.b3, r2, 2                    // n <= (1013 - 2) / 4 = 252
+    and     r2, r2, 3
+    ldi     r3, DLY_L0                      // entry DLY_L0 - r
+    sub     r0.w0, r3, r2
+CFG_DELAY_SAVE:
     sbco    r0, c28, P_DELAYS, 4
     // K = N + 2 - LAG: the clocks after the start bit's period are the CDS,
     // the N bits and one more, on which the slave starts its timeout (SL
@@ -391,6 +408,40 @@ DIVIDE:
 DIVIDE_DONE:
     jmp     r0.w2
 
+// The shared delay of the clocked periods: called by `jal r10.w2, entry`,
+// it costs from its entry to its return included: DLY_Sk k cycles (k =
+// 1..7), DLY_Lr 2 + r + 4 r0.b3 cycles (r = 0..3, r0.b3 >= 1, so the turn
+// counter never starts at 0 nor wraps). Single-cycle instructions only
+// (docs/pru-facts.md §3): no LOOP. It writes r10.b1 and the carry.
+DLY_S7:
+    mov     r0, r0
+DLY_S6:
+    mov     r0, r0
+DLY_S5:
+    mov     r0, r0
+DLY_S4:
+    mov     r0, r0
+DLY_S3:
+    mov     r0, r0
+DLY_S2:
+    mov     r0, r0
+DLY_S1:
+    jmp     r10.w2
+DLY_L3:
+    mov     r0, r0
+DLY_L2:
+    mov     r0, r0
+DLY_L1:
+    mov     r0, r0
+DLY_L0:
+    mov     r10.b1, r0.b3
+DLY_TURN:                                   // 4 cycles a turn
+    sub     r10.b1, r10.b1, 1
+    mov     r0, r0
+    mov     r0, r0
+    qbne    DLY_TURN, r10.b1, 0
+    jmp     r10.w2
+
 // The result buffer's address for the buffer number (0/1) in buf, to reg:
 // BISS_RES0 (0x100, bit 8) + buf * BISS_RES_SIZE (< 0x100), branch-free (the
 // same number of cycles either way: FRAME_REGS lies between an IEP trigger
@@ -413,7 +464,7 @@ DIVIDE_DONE:
 // Before a frame: the slave must be idle (SL high); then the registers the
 // clocked code starts from (FRAME_REGS), and the frame's timestamp.
 //   r3 = 8p (ACK position base), r4.w0/w2, r5.w0 = history, r5.w2 = K,
-//   r7.w0 = ACK limit, r7.w2 = processing-time limit, r10 = history sum.
+//   r7.w0 = ACK limit, r7.w2 = processing-time limit, r4.w2 = history sum.
 // A subroutine (returns through r12.w0; r2 it leaves alone) so that a
 // free-run frame can have it done before SL is high (FE_NEXT).
 FRAME_REGS:
@@ -426,7 +477,7 @@ FRAME_REGS:
     mov     r7.w0, r9.w2                    // ACK limit
     mov     r7.w2, r10.w0                   // processing-time limit
     mov     r9, r8
-    mov     r10, r6
+    mov     r4.w2, r6.w0                    // history sum (r10 is the delay's)
     lbco    r4.w0, c28, P_CDM, 2            // the CDM edge for either CDS
     ldi     r1.w0, REC_BASE                 // r1.b1 = 0
     ldi     r6, 0
@@ -466,11 +517,11 @@ FRAME_CLOCKED:                              // TRAIN comes in here, r12 its two 
     // start as soon as SL is high.
     MA_FALL
     add     r3, r3, 8                       // 1
-    PADS    7                               // 2..8
+    jal     r10.w2, DLY_S6                  // 2..8
     DELAY_A
     MA_RISE
     NEXT_CLOCK                              // 1..4
-    PADS    3                               // 5..7
+    jal     r10.w2, DLY_S2                  // 5..7
     DELAY_B
     PAD
 WA_TOP:
@@ -478,12 +529,12 @@ WA_TOP:
     mov     r2, r31                         // 1
     qbne    ACK_FOUND, r2.b0, 0xff          // 2
     add     r3, r3, 8                       // 3
-    PADS    5                               // 4..8
+    jal     r10.w2, DLY_S4                  // 4..8
     DELAY_A
     MA_RISE
     qble    NO_ACK, r3, r7.w0               // 1: limit <= 8p: give up after this rise
     NEXT_CLOCK                              // 2..5
-    PADS    2                               // 6..7
+    jal     r10.w2, DLY_S1                  // 6..7
     DELAY_B
     qba     WA_TOP
 
@@ -529,7 +580,7 @@ ACK_FOUND:                                  // t = 3
 // ---- LAG: sample point and lag from the averaged ACK position ------------------
 LAG1:
     MA_FALL
-    add     r2, r1.w2, r10                  // 1  Q' + h0 + h1 + h2 + 2
+    add     r2, r1.w2, r4.w2                // 1  Q' + h0 + h1 + h2 + 2
     lsr     r2, r2, 2                       // 2  Qf': the 4-frame average
     sub     r2, r2, 4                       // 3
     and     r10, r2, 7                      // 4
@@ -542,8 +593,8 @@ LAG1:
     max     r3, r3, r6                      // 1
     sub     r3, r3, r6                      // 2  idle periods before the first read
     ldi     r6, 0                           // 3  busy clocks
-    rsb     r5.w0, r10, 29                  // 4  R31 >> r5.w0: bit 2 the sample point
-    PADS    3                               // 5..7
+    rsb     r5.w0, r10.b0, 29               // 4  R31 >> r5.w0: bit 2 the sample point
+    jal     r10.w2, DLY_S2                  // 5..7
     DELAY_B
     qbeq    SW_TOP, r3, 0
 
@@ -552,7 +603,7 @@ LAG1:
 // frame's r12 keeps bit 30 set, see ACK_FOUND).
 LAG_TOP:
     MA_FALL
-    PADS    8                               // 1..8
+    jal     r10.w2, DLY_S7                  // 1..8
     DELAY_A
     MA_RISE
     sub     r3, r3, 1                       // 1
@@ -578,11 +629,11 @@ SW_TOP:
     mov     r3, MAJORITY5                   // 3..4
     qbbs    START_FOUND, r3, r2             // 5  three of the five are 1
     add     r6, r6, 1                       // 6
-    PADS    2                               // 7..8
+    jal     r10.w2, DLY_S1                  // 7..8
     DELAY_A
     MA_RISE
     qblt    PROC_ERROR, r6, r7.w2           // 1: limit < busy: give up after this rise
-    PADS    6                               // 2..7
+    jal     r10.w2, DLY_S5                  // 2..7
     DELAY_B
     qba     SW_TOP
 
@@ -685,7 +736,7 @@ FRAME_END:
     mov     r3.b0, r2.b0
     RESULT_ADDR r2, r4                      // the result buffer
     sbbo    r3.b0, r2, BISS_R_CDM, 1
-    rsb     r3, r10, 31 - 8 * LAG           // sample point 0..7 within the bit
+    rsb     r3, r10.b0, 31 - 8 * LAG        // sample point 0..7 within the bit
     sbbo    r3.b0, r2, BISS_R_SAMPLE_POINT, 1
     sbbo    r1.b1, r2, BISS_R_CDS, 1
     ldi     r12, BISS_RF_VALID              // frame flags

@@ -33,12 +33,12 @@ clock:
     // low half: clr + loop setup + (HALF - 2) loop bodies = HALF cycles
     clr     r30, r30, MA_BIT
     loop    low_end, HALF - 2
-    add     r4, r4, 0
+    mov     r4, r4
 low_end:
     // high half: set + loop setup + (HALF - 4) bodies + sub + qbne = HALF
     set     r30, r30, MA_BIT
     loop    high_end, HALF - 4
-    add     r4, r4, 0
+    mov     r4, r4
 high_end:
     sub     r2, r2, 1
     qbne    clock, r2, 0

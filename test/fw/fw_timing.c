@@ -257,16 +257,15 @@ void fw_cover_free(struct fw_cover *cv) {
     memset(cv, 0, sizeof(*cv));
 }
 
-/* Whether word pc lies in the body of a LOOP counted by a register (a
- * delay of H - 10 turns: none at H = 10). */
-static int in_register_loop(const struct fw *f, uint32_t pc) {
-    for (uint32_t a = pc > 255 ? pc - 255 : 0; a < pc; a++) {
-        if (!f->ok[a] || pru_optable[f->dec[a].op].fmt != PRU_FMT_LOOP || f->dec[a].io)
-            continue;
-        if (pc < a + f->dec[a].loop_end)
-            return 1;
-    }
-    return 0;
+/* Whether word pc is a delay site's test: a quick branch on a field of r0
+ * (the delay's entry r0.w0, or a switch's flag r0.b2) against 0. It goes
+ * one way at a given H (r0.w0 is 0 exactly at H = 10), so each H covers one
+ * way; the switch flag's both ways are required by the runs themselves
+ * (switches cut short and full). */
+static int is_delay_test(const struct fw *f, uint32_t pc) {
+    const struct pru_insn *in = &f->dec[pc];
+    return is_cond_branch(f, pc) && pru_optable[in->op].fmt == PRU_FMT_QB && in->rs1 == 0 &&
+           in->io && in->imm == 0;
 }
 
 int fw_cover_check(const struct fw_cover *cv, const struct fw *f, unsigned half, char *err,
@@ -274,11 +273,14 @@ int fw_cover_check(const struct fw_cover *cv, const struct fw *f, unsigned half,
     for (uint32_t pc = f->lo; pc < f->hi; pc++) {
         char where[400];
         const char *miss = NULL;
-        if (!(cv->seen[pc] & 1) && (half > 10 || !in_register_loop(f, pc)))
+        /* at H = 10 no delay is called: the call after a delay test is not run */
+        int delay_call = half == 10 && pc > f->lo && is_delay_test(f, pc - 1);
+        int branch = is_cond_branch(f, pc) && !is_delay_test(f, pc);
+        if (!(cv->seen[pc] & 1) && !delay_call)
             miss = "never executed";
-        else if (is_cond_branch(f, pc) && !(cv->seen[pc] & 2))
+        else if (branch && !(cv->seen[pc] & 2))
             miss = "a branch never taken";
-        else if (is_cond_branch(f, pc) && !(cv->seen[pc] & 4))
+        else if (branch && !(cv->seen[pc] & 4))
             miss = "a branch that never fell through";
         if (miss) {
             fw_describe_pc(&f->lst, pc, where, sizeof(where));
@@ -433,8 +435,9 @@ int fw_run(const struct fw *f, struct pru_core *c, const uint32_t regs[30], unsi
     for (n = 0; n < STEP_LIMIT; n++) {
         uint32_t pc = pru_pc(c);
         if (!hooked && pc == hook) {
+            /* r4.w0 the CDM edges, r4.w2 the ACK history sum (FRAME_REGS) */
             if (r->hsum >= 0)
-                pru_set_reg(c, 10, (uint32_t)r->hsum);
+                pru_set_reg(c, 4, (pru_reg(c, 4) & 0xffffu) | (uint32_t)r->hsum << 16);
             if (r->cdm >= 0)
                 pru_set_reg(c, 4, (pru_reg(c, 4) & 0xffff0000u) | (uint32_t)r->cdm);
             hooked = 1;

@@ -73,7 +73,7 @@ struct fw_run {
     const char *start;   /* label to start at */
     uint32_t start_r12;  /* r12 (FRAME_REGS's return address when starting there) */
     const char *hook;    /* label at which hsum/cdm below are set (NULL: none) */
-    int64_t hsum;        /* r10 at hook: the ACK history sum (-1: as set up) */
+    int64_t hsum;        /* r4.w2 at hook: the ACK history sum (-1: as set up) */
     int64_t cdm;         /* r4.w0 at hook: CDM edges for CDS 0 / CDS 1 (-1: as set up) */
     unsigned ack_at;     /* WA_TOP period (1, 2, ...) whose samples hold the ACK; FW_NEVER */
     uint8_t ack_pattern; /* R31.b0 then */
