@@ -29,8 +29,17 @@ enum {
     PD_BAD = PRU_OP_COUNT, /* no V3 instruction: a fault when executed */
     PD_SLOW,               /* fast loop: hand over to exec_one() */
     PD_R31_READ,           /* fast loop: refresh R31, then run `kind` */
+    /* fast loop: the same ops when the destination and rs1 are whole
+     * registers (rN, no field), without the field shifts and masks */
+    PD_ADD32,
+    PD_SUB32,
+    PD_QBNE32,
+    PD_QBEQ32,
+    PD_QBBS32,
+    PD_QBBC32,
+    PD_KIND_END,
 };
-_Static_assert(PD_R31_READ <= UINT8_MAX, "struct pd keeps kinds in a uint8_t");
+_Static_assert(PD_KIND_END <= UINT8_MAX, "struct pd keeps kinds in a uint8_t");
 
 /* Flags of a predecoded instruction that need work outside the handler. */
 #define PD_READS_R31  0x01u /* refresh R31 from the inputs before executing */
@@ -263,6 +272,25 @@ int64_t intc_next_change(struct pru_core *c, int64_t cycle);
 
 /* ff.c */
 void ff_backward_branch(struct pru_core *c, uint32_t pc, uint32_t top, int64_t limit);
+/*
+ * The common case of ff_backward_branch() done in line: a branch back to
+ * the top it came to last time with no probe running and none to start
+ * (no input read since, or a backoff pending) only counts the backoff down
+ * and forgets the reads; returns false when the full call is needed. Pure
+ * countdown loops and busy loops in backoff take only this.
+ */
+static inline bool ff_backward_quick(struct pru_core *c, uint32_t pc, uint32_t top) {
+    struct ff_probe *f = &c->ff;
+    if (f->top != top || f->have_snap || pc - top >= FF_MAX_BODY)
+        return false;
+    if (f->backoff)
+        f->backoff--;
+    else if (f->saw_input)
+        return false;
+    f->saw_input = false;
+    f->dirty = false;
+    return true;
+}
 /* Called when a LOOP instruction (ending before `limit`) has entered its
  * loop: runs the iterations of a pure delay at once. */
 void ff_loop_entered(struct pru_core *c, int64_t limit);

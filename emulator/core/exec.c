@@ -114,7 +114,7 @@ static inline __attribute__((always_inline)) bool exec_simple(uint32_t *restrict
                                                               unsigned kind, uint32_t *pc,
                                                               int *carry) {
     uint32_t p = *pc;
-    switch ((enum pru_op)kind) {
+    switch (kind) {
     case PRU_OP_ADD:
         wr(r, d, add_c(carry, d, rs1v(r, d), op2v(r, d), 0));
         break;
@@ -206,6 +206,27 @@ static inline __attribute__((always_inline)) bool exec_simple(uint32_t *restrict
         QB((rs1v(r, d) >> (op2v(r, d) & 31u)) & 1u);
     case PRU_OP_QBBC:
         QB(!((rs1v(r, d) >> (op2v(r, d) & 31u)) & 1u));
+    /* the whole-register forms (fast loop only): carry from bit 32 */
+    case PD_ADD32: {
+        uint64_t sum = (uint64_t)r[d->rs1] + op2v(r, d);
+        *carry = (int)(sum >> 32);
+        r[d->rd] = (uint32_t)sum;
+        break;
+    }
+    case PD_SUB32: {
+        uint64_t dif = (uint64_t)r[d->rs1] - op2v(r, d);
+        *carry = (int)((dif >> 32) & 1u) ^ 1;
+        r[d->rd] = (uint32_t)dif;
+        break;
+    }
+    case PD_QBNE32:
+        QB(op2v(r, d) != r[d->rs1]);
+    case PD_QBEQ32:
+        QB(op2v(r, d) == r[d->rs1]);
+    case PD_QBBS32:
+        QB((r[d->rs1] >> (op2v(r, d) & 31u)) & 1u);
+    case PD_QBBC32:
+        QB(!((r[d->rs1] >> (op2v(r, d) & 31u)) & 1u));
 #undef QB
     default:
         return false;
@@ -225,7 +246,7 @@ static __attribute__((noinline)) void exec_one(struct pru_core *c, const struct 
         c->r[31] = gpi_r31(c, c->cycle);
 
     if (exec_simple(c->r, d, d->kind, &c->pc, &c->carry)) {
-        if (c->pc <= pc && c->ff_on) /* a backward jump or branch */
+        if (c->pc <= pc && c->ff_on && !ff_backward_quick(c, pc, c->pc)) /* a backward jump */
             ff_backward_branch(c, pc, c->pc, limit);
     } else {
         switch ((enum pru_fmt)(d->kind == PD_BAD ? PRU_FMT_PSEUDO : pru_optable[d->kind].fmt)) {
@@ -357,12 +378,16 @@ static void run_fast(struct pru_core *c, int64_t limit) {
     uint32_t pc = c->pc;
     int carry = c->carry;
     int64_t cyc = c->cycle;
-    uint64_t ins = c->insns;
+    /* instructions - cycles: changes only where an instruction takes
+     * more than one cycle, so the loop counts cycles alone */
+    uint64_t ins_less = c->insns - (uint64_t)c->cycle;
     uint32_t loop_end = c->loop_end;
 
-#define SYNC_OUT() (c->pc = pc, c->carry = carry, c->cycle = cyc, c->insns = ins)
+#define SYNC_OUT()                                                                                 \
+    (c->pc = pc, c->carry = carry, c->cycle = cyc, c->insns = (uint64_t)cyc + ins_less)
 #define SYNC_IN()                                                                                  \
-    (pc = c->pc, carry = c->carry, cyc = c->cycle, ins = c->insns, loop_end = c->loop_end)
+    (pc = c->pc, carry = c->carry, cyc = c->cycle, ins_less = c->insns - (uint64_t)c->cycle,       \
+     loop_end = c->loop_end)
     while (cyc < limit && pc < n) {
         const struct pd *d = &pd[pc];
         uint32_t old = pc;
@@ -372,13 +397,12 @@ static void run_fast(struct pru_core *c, int64_t limit) {
             done = exec_simple(r, d, d->kind, &pc, &carry);
         }
         if (done) {
-            if (pc <= old && ff) {
+            if (pc <= old && ff && !ff_backward_quick(c, old, pc)) {
                 SYNC_OUT();
                 ff_backward_branch(c, old, pc, limit);
                 SYNC_IN();
             }
             cyc++;
-            ins++;
             if (pc == loop_end) {
                 SYNC_OUT();
                 loop_back(c);
@@ -396,7 +420,7 @@ static void run_fast(struct pru_core *c, int64_t limit) {
                 if (c->fault.cause != PRU_FAULT_NONE)
                     break;
                 c->carry = carry;
-                c->insns = ins;
+                c->insns = (uint64_t)cyc + ins_less;
                 c->pc++;
                 c->cycle += cost;
                 c->stall_total += cost - 1;
@@ -408,7 +432,7 @@ static void run_fast(struct pru_core *c, int64_t limit) {
             }
             pc++;
             cyc += cost;
-            ins++;
+            ins_less -= cost - 1;
             c->stall_total += cost - 1;
             if (pc == loop_end) {
                 SYNC_OUT();

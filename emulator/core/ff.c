@@ -262,17 +262,17 @@ void ff_backward_branch(struct pru_core *c, uint32_t pc, uint32_t top, int64_t l
 }
 
 /* A delay: AND/OR of a whole register (not R30/R31) with itself into it. */
-static bool is_delay(uint32_t word) {
-    struct pru_insn in;
-    if (pru_decode(word, &in) != 0 || (in.op != PRU_OP_AND && in.op != PRU_OP_OR) || in.io)
+static bool is_delay(const struct pd *d) {
+    const struct pru_insn *in = &d->in; /* the word as predecoded (kept up to date with IRAM) */
+    if (d->kind == PD_BAD || (in->op != PRU_OP_AND && in->op != PRU_OP_OR) || in->io)
         return false;
-    return in.rd == in.rs1 && in.rs1 == in.rs2 && in.rd < 30 && in.rdsel == in.rs1sel &&
-           in.rs1sel == in.rs2sel;
+    return in->rd == in->rs1 && in->rs1 == in->rs2 && in->rd < 30 && in->rdsel == in->rs1sel &&
+           in->rs1sel == in->rs2sel;
 }
 
 void ff_loop_entered(struct pru_core *c, int64_t limit) {
     if (!c->p.ff_loop_delay || c->loop_end != c->loop_top + 1 || c->pc != c->loop_top ||
-        c->loop_top >= c->iram_words || !is_delay(c->iram0[c->loop_top]))
+        c->loop_top >= c->iram_words || !is_delay(&c->pd[c->loop_top]))
         return;
     /* the LOOP instruction's own cycle is counted after this */
     int64_t room = limit - (c->cycle + 1);

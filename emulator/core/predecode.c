@@ -114,6 +114,29 @@ static void decode_into(struct pd *d, const struct pru_insn *in, uint32_t pc) {
     d->kind = PD_BAD;
 }
 
+/* The whole-register form of a fast kind (PD_ADD32 ...), or the kind. A
+ * further split by immediate op2 measured slower on the countdown loop. */
+static uint8_t whole_register_kind(const struct pd *d) {
+    bool rs1 = d->rs1sh == 0 && d->rs1mask == 0xffffffffu;
+    bool rd = d->rdsh == 0 && d->rdmask == 0xffffffffu;
+    switch (d->fast) {
+    case PRU_OP_ADD:
+        return rs1 && rd ? PD_ADD32 : d->fast;
+    case PRU_OP_SUB:
+        return rs1 && rd ? PD_SUB32 : d->fast;
+    case PRU_OP_QBNE:
+        return rs1 ? PD_QBNE32 : d->fast;
+    case PRU_OP_QBEQ:
+        return rs1 ? PD_QBEQ32 : d->fast;
+    case PRU_OP_QBBS:
+        return rs1 ? PD_QBBS32 : d->fast;
+    case PRU_OP_QBBC:
+        return rs1 ? PD_QBBC32 : d->fast;
+    default:
+        return d->fast;
+    }
+}
+
 void predecode_word(struct pru_core *c, uint32_t pc) {
     struct pd *d = &c->pd[pc];
     memset(d, 0, sizeof *d);
@@ -129,6 +152,7 @@ void predecode_word(struct pru_core *c, uint32_t pc) {
               : d->flags == 0                                     ? d->kind
               : d->flags == PD_READS_R31                          ? PD_R31_READ
                                                                   : PD_SLOW;
+    d->fast = whole_register_kind(d);
 }
 
 void predecode_all(struct pru_core *c) {

@@ -9,48 +9,51 @@ static int before(const eq_event *a, const eq_event *b) {
     return a->t < b->t || (a->t == b->t && a->id < b->id);
 }
 
-static void swap(eq_event *a, eq_event *b) {
-    eq_event tmp = *a;
-    *a = *b;
-    *b = tmp;
-}
-
+/* Sifts move a hole instead of swapping: one copy per level, not three. */
 static void sift_up(event_queue *q, size_t i) {
+    eq_event e = q->heap[i];
     while (i > 0) {
         size_t parent = (i - 1) / 2;
-        if (!before(&q->heap[i], &q->heap[parent])) {
+        if (!before(&e, &q->heap[parent])) {
             break;
         }
-        swap(&q->heap[i], &q->heap[parent]);
+        q->heap[i] = q->heap[parent];
         i = parent;
     }
+    q->heap[i] = e;
 }
 
 static void sift_down(event_queue *q, size_t i) {
+    eq_event e = q->heap[i];
     for (;;) {
-        size_t l = 2 * i + 1, r = l + 1, m = i;
-        if (l < q->len && before(&q->heap[l], &q->heap[m])) {
-            m = l;
+        size_t l = 2 * i + 1, r = l + 1, m = l;
+        if (l >= q->len) {
+            break;
         }
-        if (r < q->len && before(&q->heap[r], &q->heap[m])) {
+        if (r < q->len && before(&q->heap[r], &q->heap[l])) {
             m = r;
         }
-        if (m == i) {
-            return;
+        if (!before(&q->heap[m], &e)) {
+            break;
         }
-        swap(&q->heap[i], &q->heap[m]);
+        q->heap[i] = q->heap[m];
         i = m;
     }
+    q->heap[i] = e;
 }
 
+/* The last event fills slot i and moves down or up to its place. */
 static void remove_at(event_queue *q, size_t i) {
     q->len--;
     if (i == q->len) {
         return;
     }
     q->heap[i] = q->heap[q->len];
-    sift_down(q, i);
-    sift_up(q, i);
+    if (i > 0 && before(&q->heap[i], &q->heap[(i - 1) / 2])) {
+        sift_up(q, i);
+    } else {
+        sift_down(q, i);
+    }
 }
 
 void eq_init(event_queue *q) {

@@ -117,6 +117,12 @@ void line_dir_init(line_dir *l, const line_params *p, event_queue *q, uint64_t s
     l->in_level = idle_level;
     l->last_in = eq_now(q);
     l->filt_level = idle_level;
+    for (int i = 0; i < 2; i++) {
+        l->memo_dt[i] = -1;
+        l->memo_exp[i] = 0.0;
+        l->memo_ratio[i] = 0.0;
+        l->memo_cross[i] = 0;
+    }
     l->pending = 0;
     l->pending_cross = 0;
     l->pending_ev = 0;
@@ -140,25 +146,35 @@ void line_dir_set_fault(line_dir *l, sim_ps t, line_fault f) {
     eq_schedule(l->q, t, on_fault, l, (int64_t)f);
 }
 
-/* Filter value at time t (>= t0). */
-static double filter_value(const line_dir *l, sim_ps t) {
+/* Filter value at time t (>= t0), taken when the input goes to `level`. */
+static double filter_value(line_dir *l, sim_ps t, int level) {
     if (l->tau <= 0.0) {
         return l->target;
     }
-    double dt = (double)(t - l->t0);
-    return l->target + (l->v0 - l->target) * exp(-dt / l->tau);
+    sim_ps gap = t - l->t0;
+    if (gap != l->memo_dt[level]) {
+        l->memo_dt[level] = gap;
+        l->memo_exp[level] = exp(-(double)gap / l->tau);
+    }
+    return l->target + (l->v0 - l->target) * l->memo_exp[level];
 }
 
 /* Time after t at which a filter at value v heading for target crosses 1/2. */
-static sim_ps crossing_after(const line_dir *l, double v, int target) {
+static sim_ps crossing_after(line_dir *l, double v, int target) {
     if (l->tau <= 0.0) {
         return 0;
     }
-    double ratio = (v - target) / (0.5 - target); /* > 1 when a crossing lies ahead */
+    /* (v - target) / (0.5 - target), > 1 when a crossing lies ahead; the
+     * divisor is +-1/2, so multiplying by +-2 gives the same bits, faster */
+    double ratio = (v - target) * (target ? -2.0 : 2.0);
     if (ratio <= 1.0) {
         return 0;
     }
-    return (sim_ps)llround(l->tau * log(ratio));
+    if (ratio != l->memo_ratio[target]) {
+        l->memo_ratio[target] = ratio;
+        l->memo_cross[target] = (sim_ps)llround(l->tau * log(ratio));
+    }
+    return l->memo_cross[target];
 }
 
 void line_dir_input(line_dir *l, sim_ps t, int level) {
@@ -189,7 +205,7 @@ void line_dir_input(line_dir *l, sim_ps t, int level) {
         l->pending = 0;
     }
 
-    double v = filter_value(l, te);
+    double v = filter_value(l, te, level);
     l->v0 = v;
     l->t0 = te;
     l->target = level;

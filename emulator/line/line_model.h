@@ -76,6 +76,15 @@ typedef struct {
     int in_level;   /* last input level */
     sim_ps last_in; /* time of the last effective input edge */
 
+    /* The last exp() and crossing, per edge direction (index: the new
+     * level): a clocked line sees the same gap and the same filter value
+     * edge after edge, and the same argument gives the same result, so a
+     * hit is exact. memo_dt < 0 / memo_ratio 0: empty. */
+    sim_ps memo_dt[2];
+    double memo_exp[2];
+    double memo_ratio[2];
+    sim_ps memo_cross[2];
+
     int filt_level; /* receiver decision after the last committed crossing */
     int pending;    /* a crossing is computed but may still be cancelled */
     sim_ps pending_cross;

@@ -68,6 +68,71 @@ START_TEST(sub_not_borrow) {
 }
 END_TEST
 
+/*
+ * The fast loop runs ADD/SUB/QBNE/QBEQ/QBBS/QBBC on whole registers
+ * through their own predecoded kinds; single steps run every instruction
+ * through the generic path. Both must give the same registers, carries
+ * (captured by ADC r0 after each op) and counts.
+ */
+static const uint32_t *whole_register_prog(unsigned *n) {
+    static uint32_t w[64];
+    *n = 0;
+    mov32(w, n, 1, 0xFFFFFFFFu);
+    mov32(w, n, 2, 1);
+    w[(*n)++] = alu(PRU_OP_ADD, R(3), R(1), R(2)); /* 0, carry 1 */
+    w[(*n)++] = alui(PRU_OP_ADC, R(20), R(0), 0);
+    w[(*n)++] = alui(PRU_OP_ADD, R(4), R(1), 1); /* 0, carry 1 */
+    w[(*n)++] = alui(PRU_OP_ADC, R(21), R(0), 0);
+    w[(*n)++] = alu(PRU_OP_ADD, R(5), R(2), R(2)); /* 2, carry 0 */
+    w[(*n)++] = alui(PRU_OP_ADC, R(22), R(0), 0);
+    w[(*n)++] = alu(PRU_OP_SUB, R(6), R(2), R(1)); /* 2, borrow: carry 0 */
+    w[(*n)++] = alui(PRU_OP_ADC, R(23), R(0), 0);
+    w[(*n)++] = alui(PRU_OP_SUB, R(7), R(1), 1); /* 0xFFFFFFFE, carry 1 */
+    w[(*n)++] = alui(PRU_OP_ADC, R(24), R(0), 0);
+    w[(*n)++] = alu(PRU_OP_SUB, R(8), R(2), W0(2)); /* 0, carry 1 */
+    w[(*n)++] = alui(PRU_OP_ADC, R(25), R(0), 0);
+    w[(*n)++] = qb(PRU_OP_QBNE, 2, R(3), R(2)); /* taken */
+    w[(*n)++] = ldi(R(11), 1);
+    w[(*n)++] = qbi(PRU_OP_QBEQ, 2, R(4), 0); /* taken */
+    w[(*n)++] = ldi(R(12), 1);
+    w[(*n)++] = qbi(PRU_OP_QBBS, 2, R(1), 31); /* taken */
+    w[(*n)++] = ldi(R(13), 1);
+    w[(*n)++] = qbi(PRU_OP_QBBC, 2, R(2), 0); /* not taken */
+    w[(*n)++] = ldi(R(14), 1);
+    w[(*n)++] = qbi(PRU_OP_QBNE, 2, R(2), 1); /* not taken */
+    w[(*n)++] = ldi(R(15), 1);
+    w[(*n)++] = ldi(R(9), 5);
+    w[(*n)++] = alui(PRU_OP_SUB, R(9), R(9), 1); /* a countdown: backward QBNE */
+    w[(*n)++] = qbi(PRU_OP_QBNE, -1, R(9), 0);
+    w[(*n)++] = halt();
+    return w;
+}
+
+START_TEST(whole_register_kinds_match_stepping) {
+    unsigned n;
+    const uint32_t *w = whole_register_prog(&n);
+    struct pru_core *fast = run_prog(w, n);
+    struct pru_core *step = core_with(PRU_SOC_AM335X, w, n);
+    int guard = 1000;
+    while (pru_step(step) == PRU_STOP_STEP && --guard > 0)
+        ;
+    ck_assert_int_gt(guard, 0);
+    const uint32_t want[16] = {0, 0xFFFFFFFFu, 1, 0, 0, 2, 2, 0xFFFFFFFEu, 0, 0, 0, 0, 0, 0, 1, 1};
+    for (unsigned i = 0; i < 16; i++)
+        ck_assert_msg(REG(fast, i) == want[i], "r%u = 0x%x", i, REG(fast, i));
+    const uint32_t carries[6] = {1, 1, 0, 0, 1, 1};
+    for (unsigned i = 0; i < 6; i++)
+        ck_assert_uint_eq(REG(fast, 20 + i), carries[i]);
+    for (unsigned i = 0; i < 31; i++)
+        ck_assert_uint_eq(REG(fast, i), REG(step, i));
+    ck_assert_int_eq(pru_carry(fast), pru_carry(step));
+    ck_assert_int_eq(pru_cycles(fast), pru_cycles(step));
+    ck_assert_uint_eq(pru_instructions(fast), pru_instructions(step));
+    pru_core_free(fast);
+    pru_core_free(step);
+}
+END_TEST
+
 START_TEST(suc_rsb_rsc) {
     /* set carry (5-3), suc 10-4-0 = 6; clear carry (3-5), suc 10-4-1 = 5 */
     struct pru_core *c =
@@ -429,6 +494,7 @@ Suite *insn_suite(void) {
     TCase *t = tcase_create("alu");
     tcase_add_test(t, add_carry_byte_field);
     tcase_add_test(t, add_carry_word_and_full);
+    tcase_add_test(t, whole_register_kinds_match_stepping);
     tcase_add_test(t, sub_not_borrow);
     tcase_add_test(t, suc_rsb_rsc);
     tcase_add_test(t, logic_does_not_touch_carry);
