@@ -1,6 +1,6 @@
 /*
  * fw_cd.h - control communication with the encoder models through the
- * BiSS-C master firmware on the bench: a CDM program (host/biss_cd.h) is
+ * BiSS-C master firmware on the bench: a CDM program (proto/biss_cd.h) is
  * handed to the firmware as a host would and its answers parsed when it
  * has run, while position frames go on.
  */
