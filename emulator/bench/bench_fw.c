@@ -19,6 +19,14 @@ struct biss_proto_io bench_fw_io(struct bench *b) {
     return (struct biss_proto_io){.read = io_read, .write = io_write, .ctx = b};
 }
 
+struct biss_proto_word bench_fw_word(const biss_slave_cfg *s) {
+    return (struct biss_proto_word){.pos_bits = s->pos_bits,
+                                    .fill_bits = s->fill_bits,
+                                    .lc_bits = s->lc_bits,
+                                    .has_err = s->has_err,
+                                    .has_warn = s->has_warn};
+}
+
 void bench_fw_layout(const struct bench *b, struct biss_config *c) {
     const scenario *sc = &bench_link((struct bench *)b)->sc;
     if (sc->protocol == SCENARIO_SSI) {
@@ -31,11 +39,7 @@ void bench_fw_layout(const struct bench *b, struct biss_config *c) {
     c->nslaves = sc->biss.n;
     for (unsigned i = 0; i < sc->biss.n && i < BISS_API_MAX_SLAVES; i++) {
         const biss_slave_cfg *s = &sc->biss.s[i];
-        struct biss_proto_word w = {.pos_bits = s->pos_bits,
-                                    .fill_bits = s->fill_bits,
-                                    .lc_bits = s->lc_bits,
-                                    .has_err = s->has_err,
-                                    .has_warn = s->has_warn};
+        struct biss_proto_word w = bench_fw_word(s);
         biss_proto_slave_layout(&w, s->crc_poly, s->crc_start, &c->slave[i]);
     }
 }

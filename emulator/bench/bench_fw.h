@@ -22,6 +22,9 @@ struct bench_fw_settings {
 /* The bench's PRU0 data RAM, through host accesses at the SoC's address. */
 struct biss_proto_io bench_fw_io(struct bench *b);
 
+/* A model slave's data-word fields, for proto's layout rule. */
+struct biss_proto_word bench_fw_word(const biss_slave_cfg *s);
+
 /* The chain's layout as libbiss describes it: nslaves, each slave's data
  * word (proto's layout rule), or the SSI encoder with the line's round
  * trip from the model (an SSI slave gives no ACK to measure it by). */

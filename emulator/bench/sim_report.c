@@ -208,7 +208,8 @@ static void print_read(const struct sim_result *r) {
     for (unsigned i = 0; fw->frames && i < c->n && i < 8; i++) {
         uint64_t pos;
         int nE, nW;
-        fw_check_split(&c->s[i], fw->data[i], &pos, &nE, &nW);
+        struct biss_proto_word w = bench_fw_word(&c->s[i]);
+        biss_proto_word_split(&w, fw->data[i], &pos, &nE, &nW);
         printf("slave %u              position %llu (0x%llx), error %s, warning %s, CRC %s "
                "(encoder sent %llu)\n",
                i, (unsigned long long)pos, (unsigned long long)pos, nE ? "no" : "YES",
@@ -385,7 +386,8 @@ static size_t firmware_notes(const struct sim_result *r, char (*notes)[160], siz
     for (unsigned i = 0; i < c->n && i < f->nslaves && n < max; i++) {
         uint64_t pos;
         int nE, nW;
-        fw_check_split(&c->s[i], f->data[i], &pos, &nE, &nW);
+        struct biss_proto_word w = bench_fw_word(&c->s[i]);
+        biss_proto_word_split(&w, f->data[i], &pos, &nE, &nW);
         snprintf(notes[n++], 160, "  slave %u read: position %llu (0x%llx), nE %d, nW %d, CRC %s",
                  i, (unsigned long long)pos, (unsigned long long)pos, nE, nW,
                  (f->status[i] & BISS_RS_CRC_OK) ? "ok" : "WRONG");
