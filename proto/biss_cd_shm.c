@@ -1,20 +1,31 @@
-/* The control-communication words of the firmware's data RAM, as
- * include/biss/biss_shm.h lays them out (little-endian). */
-#include "biss_cd.h"
+/* biss_cd_shm.c - the control-communication words of a data RAM image
+ * (biss_cd.h): proto's transfers (biss_proto_io.c) on a byte array. */
+#include "biss_proto.h"
 
 #include <string.h>
 
-static void put16(uint8_t *at, uint16_t v) {
-    at[0] = (uint8_t)v;
-    at[1] = (uint8_t)(v >> 8);
+struct image {
+    uint8_t *dram;
+    const uint8_t *cdram;
+    size_t len;
+};
+
+static int img_read(void *ctx, uint32_t off, void *buf, size_t n) {
+    struct image *m = ctx;
+    if (off > m->len || n > m->len - off) {
+        return BISS_E_INVAL;
+    }
+    memcpy(buf, m->cdram + off, n);
+    return BISS_OK;
 }
 
-static uint16_t get16(const uint8_t *at) {
-    return (uint16_t)(at[0] | at[1] << 8);
-}
-
-static uint32_t get32(const uint8_t *at) {
-    return (uint32_t)get16(at) | (uint32_t)get16(at + 2) << 16;
+static int img_write(void *ctx, uint32_t off, const void *buf, size_t n) {
+    struct image *m = ctx;
+    if (!m->dram || off > m->len || n > m->len - off) {
+        return BISS_E_INVAL;
+    }
+    memcpy(m->dram + off, buf, n);
+    return BISS_OK;
 }
 
 void biss_cd_pack(const biss_cd_prog *p, uint8_t prog[BISS_CD_PROG_BYTES]) {
@@ -39,23 +50,18 @@ biss_cd_err biss_cd_shm_put(const biss_cd_prog *p, uint16_t wait_limit, uint8_t 
     if (p->len < 1 || p->len > BISS_CD_MAX_STEPS) {
         return BISS_CD_E_TOO_LONG;
     }
-    biss_cd_pack(p, dram + BISS_CD_PROG);
-    put16(dram + BISS_CD_STEPS, p->len);
-    put16(dram + BISS_CD_WAIT_LIMIT, wait_limit);
-    uint32_t ida = biss_cd_ida_word(p);
-    put16(dram + BISS_CD_IDA_STEP, (uint16_t)ida);
-    put16(dram + BISS_CD_IDA_EXPECT, (uint16_t)(ida >> 16));
-    return BISS_CD_OK;
+    struct image m = {dram, dram, dram_len};
+    struct biss_proto_io io = {.read = img_read, .write = img_write, .ctx = &m};
+    uint8_t none[BISS_CD_PROG_BYTES] = {0}; /* an image holds no stale steps */
+    img_write(&m, BISS_CD_PROG, none, sizeof none);
+    return biss_proto_cd_load(&io, p, wait_limit) ? BISS_CD_E_ARG : BISS_CD_OK;
 }
 
 biss_cd_err biss_cd_shm_get(const uint8_t *dram, size_t dram_len, biss_cd_answer *a) {
     if (!dram || dram_len < BISS_CD_RESP + BISS_CD_RESP_BYTES) {
         return BISS_CD_E_ARG;
     }
-    a->seq = get32(dram + BISS_ST_CD_SEQ);
-    a->status = dram[BISS_ST_CD_STATUS];
-    a->bytes = dram[BISS_ST_CD_STATUS + 1];
-    a->steps = get16(dram + BISS_ST_CD_STATUS + 2);
-    memcpy(a->resp, dram + BISS_CD_RESP, BISS_CD_RESP_BYTES);
-    return BISS_CD_OK;
+    struct image m = {NULL, dram, dram_len};
+    struct biss_proto_io io = {.read = img_read, .write = img_write, .ctx = &m};
+    return biss_proto_cd_answer(&io, a) ? BISS_CD_E_ARG : BISS_CD_OK;
 }

@@ -115,11 +115,17 @@ int biss_proto_pub_seq(const struct biss_proto_io *io, uint32_t *seq);
  * firmware never writes. */
 int biss_proto_result_get(const struct biss_proto_io *io, unsigned nslaves,
                           struct biss_shm_result *r);
-/* A control program: BISS_E_CD_BUSY while the last one runs, else puts
+/* A control program: BISS_E_CD_STEPS for a length outside
+ * 1..BISS_CD_MAX_STEPS, BISS_E_CD_BUSY while the last one runs, else puts
  * PROG, STEPS, WAIT_LIMIT and the IDA test, then CD_CMD = *cmd (the next
  * command number). */
 int biss_proto_cd_put(const struct biss_proto_io *io, const biss_cd_prog *p, unsigned wait_limit,
                       uint32_t *cmd);
+/* The program's words alone (PROG, STEPS and WAIT_LIMIT, the IDA test),
+ * CD_CMD left alone. */
+int biss_proto_cd_load(const struct biss_proto_io *io, const biss_cd_prog *p, unsigned wait_limit);
+/* The firmware's answer words (ST_CD_*, the answers), whatever their seq. */
+int biss_proto_cd_answer(const struct biss_proto_io *io, biss_cd_answer *a);
 /* Whether the firmware has ended command cmd (1, 0 not yet, or an error);
  * with 1 the answer is read into *a. */
 int biss_proto_cd_ended(const struct biss_proto_io *io, uint32_t cmd, biss_cd_answer *a);

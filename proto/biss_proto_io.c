@@ -80,20 +80,14 @@ int biss_proto_result_get(const struct biss_proto_io *io, unsigned nslaves,
     return rd(io, BISS_RES0 + buf * BISS_RES_SIZE, r, n);
 }
 
-int biss_proto_cd_put(const struct biss_proto_io *io, const biss_cd_prog *p, unsigned wait_limit,
-                      uint32_t *cmd) {
-    struct biss_shm_cd cd;
-    int rc = rd(io, BISS_CD_CMD, &cd, sizeof cd);
-    if (rc) {
-        return rc;
-    }
-    if (cd.cmd != cd.seq) {
-        return BISS_E_CD_BUSY;
+int biss_proto_cd_load(const struct biss_proto_io *io, const biss_cd_prog *p, unsigned wait_limit) {
+    if (p->len < 1 || p->len > BISS_CD_MAX_STEPS) {
+        return BISS_E_CD_STEPS; /* the firmware would refuse it (BISS_CDST_ERR_STEPS) */
     }
     uint8_t prog[BISS_CD_PROG_BYTES];
     biss_cd_pack(p, prog);
     /* the words the steps use */
-    rc = wr(io, BISS_CD_PROG, prog, (p->len + 7u) / 8u * 4u);
+    int rc = wr(io, BISS_CD_PROG, prog, (p->len + 7u) / 8u * 4u);
     uint32_t steps = p->len | (uint32_t)wait_limit << 16;
     uint32_t ida = biss_cd_ida_word(p);
     if (!rc) {
@@ -102,6 +96,23 @@ int biss_proto_cd_put(const struct biss_proto_io *io, const biss_cd_prog *p, uns
     if (!rc) {
         rc = wr(io, BISS_CD_IDA_STEP, &ida, 4);
     }
+    return rc;
+}
+
+int biss_proto_cd_put(const struct biss_proto_io *io, const biss_cd_prog *p, unsigned wait_limit,
+                      uint32_t *cmd) {
+    if (p->len < 1 || p->len > BISS_CD_MAX_STEPS) {
+        return BISS_E_CD_STEPS;
+    }
+    struct biss_shm_cd cd;
+    int rc = rd(io, BISS_CD_CMD, &cd, sizeof cd);
+    if (rc) {
+        return rc;
+    }
+    if (cd.cmd != cd.seq) {
+        return BISS_E_CD_BUSY;
+    }
+    rc = biss_proto_cd_load(io, p, wait_limit);
     atomic_thread_fence(memory_order_seq_cst);
     *cmd = cd.cmd + 1;
     if (!rc) {
@@ -111,16 +122,25 @@ int biss_proto_cd_put(const struct biss_proto_io *io, const biss_cd_prog *p, uns
     return rc;
 }
 
+int biss_proto_cd_answer(const struct biss_proto_io *io, biss_cd_answer *a) {
+    struct biss_shm_cd cd;
+    int rc = rd(io, BISS_CD_CMD, &cd, sizeof cd);
+    if (!rc) {
+        rc = rd(io, BISS_CD_RESP, a->resp, sizeof a->resp);
+    }
+    a->seq = cd.seq;
+    a->status = cd.status;
+    a->bytes = cd.bytes;
+    a->steps = cd.steps_done;
+    return rc;
+}
+
 int biss_proto_cd_ended(const struct biss_proto_io *io, uint32_t cmd, biss_cd_answer *a) {
     struct biss_shm_cd cd;
     int rc = rd(io, BISS_CD_CMD, &cd, sizeof cd);
     if (rc || cd.seq != cmd) {
         return rc;
     }
-    rc = rd(io, BISS_CD_RESP, a->resp, sizeof a->resp);
-    a->seq = cd.seq;
-    a->status = cd.status;
-    a->bytes = cd.bytes;
-    a->steps = cd.steps_done;
+    rc = biss_proto_cd_answer(io, a);
     return rc ? rc : 1;
 }
