@@ -67,9 +67,7 @@ static int configure_locked(biss_t *h, const struct biss_config *c) {
         rc = biss_fw_cfg_error(st.cfg_error);
     }
     if (!rc) {
-        rc = biss_dram_read32(h, BISS_ST_SEQ, &h->cfg_pub_seq);
-    }
-    if (!rc) {
+        h->cfg_pub_seq = st.seq; /* publications from here on are of this layout */
         h->cfg = *c;
         h->configured = true;
         h->cfg_pub_seq_valid = true;
