@@ -28,20 +28,6 @@ static int img_write(void *ctx, uint32_t off, const void *buf, size_t n) {
     return BISS_OK;
 }
 
-void biss_cd_pack(const biss_cd_prog *p, uint8_t prog[BISS_CD_PROG_BYTES]) {
-    memset(prog, 0, BISS_CD_PROG_BYTES);
-    for (unsigned i = 0; i < p->len && i < BISS_CD_MAX_STEPS; i++) {
-        prog[i / 2] |= (uint8_t)((p->op[i] & 15u) << 4 * (i % 2));
-    }
-}
-
-uint32_t biss_cd_ida_word(const biss_cd_prog *p) {
-    if (p->kind != BISS_CD_COMMAND || !p->ida_test) {
-        return 0;
-    }
-    return p->end | (uint32_t)p->ids << 16;
-}
-
 biss_cd_err biss_cd_shm_put(const biss_cd_prog *p, uint16_t wait_limit, uint8_t *dram,
                             size_t dram_len) {
     if (!dram || dram_len < BISS_CD_RESP) {
