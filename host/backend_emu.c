@@ -5,6 +5,7 @@
 #include "libbiss-emu.h"
 
 #include "bench.h"
+#include "bench_fw.h"
 #include "scenario_json.h"
 
 #include <stdlib.h>
@@ -109,25 +110,6 @@ struct bench *biss_emu_bench(biss_t *h) {
     return h ? h->be.bench : NULL;
 }
 
-/* The single-cycle data layout of each slave the scenario wired up: data
- * word = position, fill, nE, nW, life counter (everything before the CRC). */
-static void layout_of(const biss_slave_cfg *s, struct biss_slave_config *o) {
-    unsigned crc_bits = 0;
-    while (s->crc_poly >> (crc_bits + 1)) {
-        crc_bits++;
-    }
-    *o = (struct biss_slave_config){
-        .data_bits = s->pos_bits + s->fill_bits + s->has_err + s->has_warn + s->lc_bits,
-        .crc_bits = s->crc_poly ? crc_bits : 0,
-        .crc_poly = s->crc_poly,
-        .crc_start = s->crc_start,
-        /* the firmware knows nE and nW only as a pair */
-        .has_ew = s->has_err && s->has_warn,
-        .ew_shift = s->has_err && s->has_warn ? s->lc_bits : 0,
-        .pos_bits = s->pos_bits,
-    };
-}
-
 int biss_config_from_emu(biss_t *h, struct biss_config *c) {
     if (!h || !c) {
         return BISS_E_INVAL;
@@ -136,20 +118,10 @@ int biss_config_from_emu(biss_t *h, struct biss_config *c) {
         return BISS_E_NOT_EMU;
     }
     pthread_mutex_lock(&h->lock);
-    const scenario *sc = &bench_link(h->be.bench)->sc;
+    /* the chain's layout by proto's rule; the SSI round trip the bench's
+     * line gives, as a user would measure it */
+    bench_fw_layout(h->be.bench, c);
     int rc = BISS_OK;
-    if (sc->protocol == SCENARIO_SSI) {
-        /* the round trip the bench's line gives, as a user would measure it */
-        c->nslaves = 1;
-        c->slave[0] = (struct biss_slave_config){
-            .data_bits = sc->ssi.bits, .ssi = true, .gray = sc->ssi.gray};
-        c->ssi_delay_ns = bench_ssi_delay_ns(h->be.bench);
-    } else {
-        c->nslaves = sc->biss.n;
-        for (unsigned i = 0; i < sc->biss.n && i < BISS_API_MAX_SLAVES; i++) {
-            layout_of(&sc->biss.s[i], &c->slave[i]);
-        }
-    }
     pthread_mutex_unlock(&h->lock);
     return rc;
 }

@@ -22,33 +22,20 @@
 #include <time.h>
 #include <unistd.h>
 
-struct soc_info {
-    off_t base;              /* physical address of the PRU-ICSS */
-    uint32_t window;         /* its size */
-    uint32_t iram_bytes;     /* PRU0 instruction RAM */
-    uint32_t dram_bytes;     /* PRU0 data RAM */
-    off_t clkctrl;           /* CM_PER_PRU_ICSS_CLKCTRL */
-    unsigned long iram_phys; /* PRU0 IRAM: pru_rproc names the instance after it */
-    const char *fw_name;     /* the firmware name the kernel's device tree gives PRU0 */
-};
-
-/* docs/pru-facts.md §5.4. AM335x: one 512 KB PRU-ICSS. AM437x: ICSS1 at
- * 0x54400000 and ICSS0 at 0x54440000, 256 KB each, one clock control for
- * both (Linux am4372.dtsi; dt-bindings/clock/am4.h AM4_PRUSS_CLKCTRL at
- * CM_PER + 0x320). Firmware names: Linux am33xx-l4.dtsi / am4372.dtsi. */
-static int soc_of(enum biss_target t, struct soc_info *s) {
+/* docs/pru-facts.md §5.4 and the map in proto/biss_soc.h. */
+static int soc_of(enum biss_target t, struct biss_soc_icss *s) {
+    static const struct biss_soc_icss am335x = BISS_SOC_AM335X;
+    static const struct biss_soc_icss icss1 = BISS_SOC_AM437X_ICSS1;
+    static const struct biss_soc_icss icss0 = BISS_SOC_AM437X_ICSS0;
     switch (t) {
     case BISS_TARGET_AM335X:
-        *s = (struct soc_info){0x4A300000, 0x80000,    8 * 1024,        8 * 1024,
-                               0x44E000E8, 0x4A334000, "am335x-pru0-fw"};
+        *s = am335x;
         return BISS_OK;
     case BISS_TARGET_AM437X_ICSS1:
-        *s = (struct soc_info){0x54400000, 0x40000,    12 * 1024,         8 * 1024,
-                               0x44DF8B20, 0x54434000, "am437x-pru1_0-fw"};
+        *s = icss1;
         return BISS_OK;
     case BISS_TARGET_AM437X_ICSS0:
-        *s = (struct soc_info){0x54440000, 0x40000,    4 * 1024,          4 * 1024,
-                               0x44DF8B20, 0x54474000, "am437x-pru0_0-fw"};
+        *s = icss0;
         return BISS_OK;
     case BISS_TARGET_EMU:
         break;
@@ -239,8 +226,8 @@ static int file_covers(const struct stat *st, off_t end) {
 /* The pruss driver bound (it keeps the module powered), or else the PRCM
  * clock control says the module is enabled and functional (MODULEMODE = 2,
  * IDLEST = 0; AM335x TRM 8.1.12.1, CM_PER_PRU_ICSS_CLKCTRL). */
-static int check_powered(const struct soc_info *s, const char *sysfs, int fd, const struct stat *st,
-                         const char *path, struct biss_errbuf *e) {
+static int check_powered(const struct biss_soc_icss *s, const char *sysfs, int fd,
+                         const struct stat *st, const char *path, struct biss_errbuf *e) {
     char drv[PATH_MAX];
     snprintf(drv, sizeof drv, "%s/bus/platform/drivers/pruss/%lx.pruss", sysfs,
              (unsigned long)s->base);
@@ -279,8 +266,8 @@ static int check_powered(const struct soc_info *s, const char *sysfs, int fd, co
 }
 
 /* Remoteproc: the instance, not running someone else's firmware. */
-static int rproc_prepare(struct lnx *l, const struct soc_info *s, const struct biss_open_params *p,
-                         struct biss_errbuf *e) {
+static int rproc_prepare(struct lnx *l, const struct biss_soc_icss *s,
+                         const struct biss_open_params *p, struct biss_errbuf *e) {
     int rc = biss_rproc_find(sysfs_root(p), s->iram_phys, l->dir, e);
     if (rc) {
         return rc;
@@ -323,7 +310,7 @@ static int rproc_prepare(struct lnx *l, const struct soc_info *s, const struct b
     return BISS_OK;
 }
 
-static int open_mem(struct lnx *l, const struct soc_info *s, const struct biss_open_params *p,
+static int open_mem(struct lnx *l, const struct biss_soc_icss *s, const struct biss_open_params *p,
                     struct biss_errbuf *e) {
     const char *path = p->devmem && *p->devmem ? p->devmem : "/dev/mem";
     /* O_SYNC: uncached mapping of /dev/mem, as device memory must be */
@@ -373,7 +360,7 @@ static int open_mem(struct lnx *l, const struct soc_info *s, const struct biss_o
 }
 
 int biss_linux_backend_open(const struct biss_open_params *p, struct biss_backend *be) {
-    struct soc_info soc;
+    struct biss_soc_icss soc;
     int rc = soc_of(p->target, &soc);
     if (rc) {
         return rc;

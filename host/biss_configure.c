@@ -4,7 +4,6 @@
 
 #include "biss/biss_shm_struct.h"
 
-#include <stdatomic.h>
 #include <stddef.h>
 
 /* The firmware treats CFG_SEQ 0 as "nothing written yet" and starts with
@@ -17,34 +16,29 @@ static uint32_t next_seq(uint32_t seq) {
 }
 
 static int acked(biss_t *h, void *arg) {
-    uint32_t ack;
-    int rc = biss_dram_read32(h, BISS_ST_CFG_ACK, &ack);
+    struct biss_proto_io io = biss_io(h);
+    struct biss_shm_status st;
+    int rc = biss_proto_status_get(&io, &st);
     if (rc) {
         return rc;
     }
-    return ack == *(const uint32_t *)arg;
+    return st.cfg_ack == *(const uint32_t *)arg;
 }
 
 /* A timeout means one thing when the firmware never came up, another when
  * it runs but did not take the block. */
 static int timeout_reason(biss_t *h) {
-    uint32_t magic = 0;
-    biss_dram_read32(h, BISS_ST_MAGIC, &magic);
-    return magic == BISS_MAGIC ? BISS_E_TIMEOUT : BISS_E_NOT_RUNNING;
+    struct biss_proto_io io = biss_io(h);
+    struct biss_shm_status st = {0};
+    biss_proto_status_get(&io, &st);
+    return st.magic == BISS_MAGIC ? BISS_E_TIMEOUT : BISS_E_NOT_RUNNING;
 }
 
 static int write_block(biss_t *h, const struct biss_config *c, uint32_t seq) {
     struct biss_shm_config blk;
     biss_config_encode(c, &blk);
-    /* everything after CFG_SEQ, then (ordered after it) CFG_SEQ itself */
-    int rc = biss_dram_write(h, BISS_CFG_HALF, (const uint8_t *)&blk + BISS_CFG_HALF,
-                             sizeof blk - BISS_CFG_HALF);
-    atomic_thread_fence(memory_order_seq_cst);
-    if (!rc) {
-        rc = biss_dram_write32(h, BISS_CFG_SEQ, seq);
-    }
-    atomic_thread_fence(memory_order_seq_cst);
-    return rc;
+    struct biss_proto_io io = biss_io(h);
+    return biss_proto_config_put(&io, &blk, seq);
 }
 
 static int configure_locked(biss_t *h, const struct biss_config *c) {
@@ -66,15 +60,14 @@ static int configure_locked(biss_t *h, const struct biss_config *c) {
     if (rc) {
         return rc;
     }
-    uint32_t err;
-    rc = biss_dram_read32(h, BISS_ST_CFG_ERROR, &err);
+    struct biss_proto_io io = biss_io(h);
+    struct biss_shm_status st;
+    rc = biss_proto_status_get(&io, &st);
     if (!rc) {
-        rc = biss_fw_cfg_error(err);
+        rc = biss_fw_cfg_error(st.cfg_error);
     }
     if (!rc) {
-        rc = biss_dram_read32(h, BISS_ST_SEQ, &h->cfg_pub_seq);
-    }
-    if (!rc) {
+        h->cfg_pub_seq = st.seq; /* publications from here on are of this layout */
         h->cfg = *c;
         h->configured = true;
         h->cfg_pub_seq_valid = true;

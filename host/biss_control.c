@@ -5,7 +5,6 @@
 
 #include "biss/biss_shm_struct.h"
 
-#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -19,65 +18,25 @@ _Static_assert(BISS_CD_CL_DATA == BISS_CDCL_DATA << 2 && BISS_CD_CL_CHECK == BIS
 struct cd_wait {
     uint32_t cmd;
     bool host_trigger;
+    biss_cd_answer *a; /* filled when it ended */
 };
 
 /* Done when the firmware echoes the command; in host-trigger mode each
  * step needs a frame, so ask for the next one whenever the last started. */
 static int cd_ended(biss_t *h, void *arg) {
     struct cd_wait *w = arg;
-    uint32_t seq;
-    int rc = biss_dram_read32(h, BISS_ST_CD_SEQ, &seq);
-    if (rc || seq == w->cmd) {
-        return rc ? rc : 1;
-    }
-    if (w->host_trigger) {
-        uint32_t pending;
-        rc = biss_dram_read32(h, BISS_CMD_TRIGGER, &pending);
-        if (!rc && pending == 0) {
-            rc = biss_dram_write32(h, BISS_CMD_TRIGGER, 1);
-        }
-    }
-    return rc;
-}
-
-/* PROG (the words the steps use), STEPS and WAIT_LIMIT, then CD_CMD. */
-static int put_program(biss_t *h, const biss_cd_prog *p, unsigned wait_limit, uint32_t *cmd) {
-    struct biss_shm_cd cd;
-    int rc = biss_dram_read(h, BISS_CD_CMD, &cd, sizeof cd);
+    struct biss_proto_io io = biss_io(h);
+    int rc = biss_proto_cd_ended(&io, w->cmd, w->a);
     if (rc) {
         return rc;
     }
-    if (cd.cmd != cd.seq) {
-        return BISS_E_CD_BUSY;
+    if (w->host_trigger) {
+        uint32_t pending;
+        rc = biss_proto_trigger_get(&io, &pending);
+        if (!rc && pending == 0) {
+            rc = biss_proto_trigger(&io);
+        }
     }
-    uint8_t prog[BISS_CD_PROG_BYTES];
-    biss_cd_pack(p, prog);
-    rc = biss_dram_write(h, BISS_CD_PROG, prog, (p->len + 7u) / 8u * 4u);
-    if (!rc) {
-        rc = biss_dram_write32(h, BISS_CD_STEPS, p->len | (uint32_t)wait_limit << 16);
-    }
-    if (!rc) {
-        rc = biss_dram_write32(h, BISS_CD_IDA_STEP, biss_cd_ida_word(p));
-    }
-    atomic_thread_fence(memory_order_seq_cst);
-    *cmd = cd.cmd + 1;
-    if (!rc) {
-        rc = biss_dram_write32(h, BISS_CD_CMD, *cmd);
-    }
-    atomic_thread_fence(memory_order_seq_cst);
-    return rc;
-}
-
-static int get_answer(biss_t *h, biss_cd_answer *a) {
-    struct biss_shm_cd cd;
-    int rc = biss_dram_read(h, BISS_CD_CMD, &cd, sizeof cd);
-    if (!rc) {
-        rc = biss_dram_read(h, BISS_CD_RESP, a->resp, sizeof a->resp);
-    }
-    a->seq = cd.seq;
-    a->status = cd.status;
-    a->bytes = cd.bytes;
-    a->steps = cd.steps_done;
     return rc;
 }
 
@@ -90,17 +49,18 @@ static int begin_locked(biss_t *h, const biss_cd_prog *p, unsigned wait_limit, u
         return BISS_E_NOT_CONFIGURED;
     }
     int rc = biss_exclusive(h);
-    return rc ? rc : put_program(h, p, wait_limit, cmd);
+    if (rc) {
+        return rc;
+    }
+    struct biss_proto_io io = biss_io(h);
+    return biss_proto_cd_put(&io, p, wait_limit, cmd);
 }
 
 static int exchange_locked(biss_t *h, const biss_cd_prog *p, unsigned wait_limit,
                            unsigned timeout_ms, biss_cd_answer *a) {
-    struct cd_wait w = {.host_trigger = h->cfg.trigger == BISS_TRIGGER_HOST};
+    struct cd_wait w = {.host_trigger = h->cfg.trigger == BISS_TRIGGER_HOST, .a = a};
     int rc = begin_locked(h, p, wait_limit, &w.cmd);
-    if (!rc) {
-        rc = biss_wait_for(h, timeout_ms, cd_ended, &w);
-    }
-    return rc ? rc : get_answer(h, a);
+    return rc ? rc : biss_wait_for(h, timeout_ms, cd_ended, &w);
 }
 
 int biss_cd_exchange(biss_t *h, const biss_cd_prog *p, unsigned wait_limit, unsigned timeout_ms,
@@ -120,15 +80,14 @@ int biss_cd_begin(biss_t *h, const biss_cd_prog *p, unsigned wait_limit, uint32_
 }
 
 int biss_cd_check(biss_t *h, uint32_t cmd, biss_cd_answer *a) {
-    struct cd_wait w = {.cmd = cmd};
+    struct cd_wait w = {.cmd = cmd, .a = a};
     biss_op_begin(h);
     w.host_trigger = h->cfg.trigger == BISS_TRIGGER_HOST;
-    int rc = cd_ended(h, &w);
+    int rc = cd_ended(h, &w); /* 1: the answer is in *a */
     if (rc == 0) {
         rc = BISS_E_CD_BUSY;
     } else if (rc == 1) {
-        memset(a, 0, sizeof *a);
-        rc = get_answer(h, a);
+        rc = BISS_OK;
     }
     biss_op_end(h);
     return rc;

@@ -9,6 +9,18 @@ int biss_dram_write(biss_t *h, uint32_t off, const void *buf, size_t n) {
     return h->be.ops->write(h->be.ctx, ICSS_DRAM0 + off, buf, n);
 }
 
+static int io_read(void *ctx, uint32_t off, void *buf, size_t n) {
+    return biss_dram_read(ctx, off, buf, n);
+}
+
+static int io_write(void *ctx, uint32_t off, const void *buf, size_t n) {
+    return biss_dram_write(ctx, off, buf, n);
+}
+
+struct biss_proto_io biss_io(biss_t *h) {
+    return (struct biss_proto_io){.read = io_read, .write = io_write, .ctx = h};
+}
+
 int biss_dram_read32(biss_t *h, uint32_t off, uint32_t *v) {
     return biss_dram_read(h, off, v, 4);
 }

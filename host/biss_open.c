@@ -157,18 +157,17 @@ static int open_backend(const struct biss_open_params *p, biss_backend_open_fn e
 /* Attached: the configuration in force is the block in data RAM, read as
  * untrusted input (another process, or another firmware, wrote it). */
 static int adopt_running_config(biss_t *h, struct biss_errbuf *e) {
+    struct biss_proto_io io = biss_io(h);
     struct biss_shm_config blk;
-    uint32_t ack = 0, err = 1;
-    int rc = biss_dram_read(h, 0, &blk, sizeof blk);
+    struct biss_shm_status st;
+    int rc = biss_proto_config_get(&io, &blk);
     if (!rc) {
-        rc = biss_dram_read32(h, BISS_ST_CFG_ACK, &ack);
-    }
-    if (!rc) {
-        rc = biss_dram_read32(h, BISS_ST_CFG_ERROR, &err);
+        rc = biss_proto_status_get(&io, &st);
     }
     if (rc) {
         return rc;
     }
+    uint32_t ack = st.cfg_ack, err = st.cfg_error;
     h->cfg_seq = blk.seq;
     if (blk.seq == 0 || ack != blk.seq || err != BISS_CFGERR_NONE) {
         return BISS_OK; /* not configured (yet, or refused): nothing to adopt */
@@ -187,8 +186,9 @@ static int adopt_running_config(biss_t *h, struct biss_errbuf *e) {
  * firmware, built with this library's BISS_SHM_VERSION, and the image the
  * host expects when it has one. */
 static int check_identity(biss_t *h, struct biss_errbuf *e) {
+    struct biss_proto_io io = biss_io(h);
     struct biss_shm_id id;
-    int rc = biss_dram_read(h, BISS_ID, &id, sizeof id);
+    int rc = biss_proto_id_get(&io, &id);
     if (rc) {
         return rc;
     }
@@ -220,9 +220,10 @@ static int check_identity(biss_t *h, struct biss_errbuf *e) {
 
 static int magic_seen(biss_t *h, void *arg) {
     (void)arg;
-    uint32_t magic = 0;
-    int rc = biss_dram_read32(h, BISS_ST_MAGIC, &magic);
-    return rc ? rc : magic == BISS_MAGIC;
+    struct biss_proto_io io = biss_io(h);
+    struct biss_shm_status st;
+    int rc = biss_proto_status_get(&io, &st);
+    return rc ? rc : st.magic == BISS_MAGIC;
 }
 
 /* The image the host expects: loaded by the devmem loader; for the

@@ -12,18 +12,12 @@
 #include "libbiss.h"
 
 #include "biss_cd.h"
+#include "biss_proto.h"
+#include "biss_soc.h"
 
 #include <pthread.h>
 #include <stddef.h>
 #include <stdint.h>
-
-/* PRU-ICSS layout, offsets from its base (same for AM335x and AM437x). */
-#define ICSS_DRAM0        0x00000u
-#define ICSS_CTRL0        0x22000u /* PRU0 CONTROL */
-#define ICSS_IRAM0        0x34000u
-#define ICSS_WINDOW       0x80000u /* the largest PRU-ICSS (AM335x) */
-#define ICSS_CTRL_RESET_N (1u << 0)
-#define ICSS_CTRL_ENABLE  (1u << 1)
 
 struct biss_backend_ops {
     /* n bytes at offset off from the PRU-ICSS base; 0 or BISS_E_*. Word
@@ -102,6 +96,8 @@ int biss_dram_read(biss_t *h, uint32_t off, void *buf, size_t n);
 int biss_dram_write(biss_t *h, uint32_t off, const void *buf, size_t n);
 int biss_dram_read32(biss_t *h, uint32_t off, uint32_t *v);
 int biss_dram_write32(biss_t *h, uint32_t off, uint32_t v);
+/* The same as the protocol layer's reader/writer (proto/biss_proto.h). */
+struct biss_proto_io biss_io(biss_t *h);
 
 /* PRU control and image loading (biss_pru.c). */
 int biss_pru_halt(biss_t *h);
@@ -122,16 +118,6 @@ void biss_op_end(biss_t *h);
 /* Re-sends the handle's configuration after a restart (handle locked). */
 int biss_reconfigure_locked(biss_t *h);
 
-/* Encoding of a checked config into the shm block (biss_config_encode.c). */
-struct biss_shm_config;
-void biss_config_encode(const struct biss_config *c, struct biss_shm_config *out);
-/* Decodes a block read back from data RAM, as untrusted input: 0,
- * BISS_E_NOT_CONFIGURED (no rate: never configured) or BISS_E_SHM_CONFIG
- * (*field names the first bad field). */
-int biss_config_decode(const struct biss_shm_config *in, struct biss_config *c, const char **field);
-/* Maps ST_CFG_ERROR to BISS_E_FW_* (0 stays 0). */
-int biss_fw_cfg_error(uint32_t cfgerr);
-
 /* Control communication transport (biss_control.c): puts the program in
  * data RAM, starts it, waits (triggering frames in host-trigger mode) and
  * reads the firmware's answer back. The codec (biss_cd.h) builds programs
@@ -146,13 +132,5 @@ int biss_cd_begin(biss_t *h, const biss_cd_prog *p, unsigned wait_limit, uint32_
 int biss_cd_check(biss_t *h, uint32_t cmd, biss_cd_answer *a);
 /* A codec verdict as a BISS_E_* code. */
 int biss_cd_error(biss_cd_err e);
-
-/* Sample decoding (biss_sample_decode.c). */
-struct biss_shm_result;
-/* 0, or BISS_E_SHM_RESULT for a result no firmware with this
- * configuration publishes (slave count). */
-int biss_sample_decode(const struct biss_config *c, bool configured, uint32_t seq,
-                       const struct biss_shm_result *r, struct biss_sample *s);
-void biss_delay_decode(uint16_t raw, uint16_t avg, unsigned half, struct biss_line_delay *d);
 
 #endif

@@ -50,12 +50,12 @@ static int load_iram(biss_t *h) {
 
 /* What remoteproc's loader puts at BISS_ID from the ELF (pru-elf). */
 int biss_pru_write_id(biss_t *h) {
-    uint8_t blk[BISS_ID_END - BISS_ID];
+    uint8_t rsc[16];
     struct biss_shm_id id;
     biss_image_id(h->image, h->image_bytes, &id);
-    memcpy(blk, &id, sizeof id);
-    biss_rsc_table(blk + sizeof id);
-    return biss_dram_write(h, BISS_ID, blk, sizeof blk);
+    biss_rsc_table(rsc);
+    struct biss_proto_io io = biss_io(h);
+    return biss_proto_id_put(&io, &id, rsc);
 }
 
 /* Config, commands, status, results and the control-communication area

@@ -68,7 +68,8 @@ int biss_trigger(biss_t *h) {
         rc = BISS_E_NOT_HOST_TRIG;
     } else {
         atomic_thread_fence(memory_order_seq_cst);
-        rc = biss_dram_write32(h, BISS_CMD_TRIGGER, 1);
+        struct biss_proto_io io = biss_io(h);
+        rc = biss_proto_trigger(&io);
     }
     pthread_mutex_unlock(&h->lock);
     return rc;
@@ -91,21 +92,24 @@ int biss_run_ms(biss_t *h, unsigned ms) {
 }
 
 static int status_locked(biss_t *h, struct biss_status *st) {
+    struct biss_proto_io io = biss_io(h);
     struct biss_shm_status s;
+    struct biss_shm_config blk;
     struct biss_shm_id id;
-    int rc = biss_dram_read(h, BISS_ST_MAGIC, &s, sizeof s);
+    int rc = biss_proto_status_get(&io, &s);
     if (!rc) {
         rc = biss_pru_enabled(h, &st->pru_enabled);
     }
     if (!rc) {
-        rc = biss_dram_read32(h, BISS_CFG_SEQ, &st->cfg_seq);
+        rc = biss_proto_config_get(&io, &blk);
     }
     if (!rc) {
-        rc = biss_dram_read(h, BISS_ID, &id, sizeof id);
+        rc = biss_proto_id_get(&io, &id);
     }
     if (rc) {
         return rc;
     }
+    st->cfg_seq = blk.seq;
     st->shm_version = id.magic == BISS_ID_MAGIC ? id.shm_version : 0;
     st->image_crc = id.magic == BISS_ID_MAGIC ? id.image_crc : 0;
     st->firmware_running = s.magic == BISS_MAGIC;
@@ -132,7 +136,8 @@ int biss_get_stats(biss_t *h, struct biss_stats *st) {
     }
     struct biss_shm_status s;
     pthread_mutex_lock(&h->lock);
-    int rc = biss_dram_read(h, BISS_ST_MAGIC, &s, sizeof s);
+    struct biss_proto_io io = biss_io(h);
+    int rc = biss_proto_status_get(&io, &s);
     pthread_mutex_unlock(&h->lock);
     if (rc) {
         return rc;

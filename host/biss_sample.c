@@ -11,20 +11,15 @@
  * many times in a row means something else is wrong. */
 #define MAX_TRIES 1000
 
-/* Header and only the slaves that can be in it: fewer bus reads on
- * silicon, so fewer races with the next publication. */
-static size_t result_bytes(const biss_t *h) {
-    unsigned n = h->configured ? h->cfg.nslaves : BISS_MAX_SLAVES;
-    return offsetof(struct biss_shm_result, slave) + n * sizeof(struct biss_shm_slave_result);
-}
-
 /* Reads ST_SEQ, ST_BUF, that buffer, ST_SEQ again; equal sequence numbers
  * mean the firmware did not start refilling the buffer meanwhile (it only
  * does so after publishing the other one, which bumps ST_SEQ). */
 static int read_consistent(biss_t *h, struct biss_shm_result *r, uint32_t *seq) {
+    struct biss_proto_io io = biss_io(h);
+    unsigned n = h->configured ? h->cfg.nslaves : BISS_MAX_SLAVES;
     for (int i = 0; i < MAX_TRIES; i++) {
-        uint32_t s1, buf, s2;
-        int rc = biss_dram_read32(h, BISS_ST_SEQ, &s1);
+        uint32_t s1, s2;
+        int rc = biss_proto_pub_seq(&io, &s1);
         if (rc) {
             return rc;
         }
@@ -32,20 +27,12 @@ static int read_consistent(biss_t *h, struct biss_shm_result *r, uint32_t *seq) 
             return BISS_E_NO_SAMPLE;
         }
         atomic_thread_fence(memory_order_acquire);
-        rc = biss_dram_read32(h, BISS_ST_BUF, &buf);
-        if (rc) {
-            return rc;
-        }
-        if (buf > 1) {
-            return BISS_E_SHM_RESULT; /* the firmware only ever writes 0 or 1 */
-        }
-        *r = (struct biss_shm_result){0};
-        rc = biss_dram_read(h, BISS_RES0 + buf * BISS_RES_SIZE, r, result_bytes(h));
+        rc = biss_proto_result_get(&io, n, r);
         if (rc) {
             return rc;
         }
         atomic_thread_fence(memory_order_acquire);
-        rc = biss_dram_read32(h, BISS_ST_SEQ, &s2);
+        rc = biss_proto_pub_seq(&io, &s2);
         if (rc) {
             return rc;
         }
@@ -92,7 +79,8 @@ struct wait_arg {
 static int newer_published(biss_t *h, void *arg) {
     struct wait_arg *w = arg;
     uint32_t seq;
-    int rc = biss_dram_read32(h, BISS_ST_SEQ, &seq);
+    struct biss_proto_io io = biss_io(h);
+    int rc = biss_proto_pub_seq(&io, &seq);
     if (rc) {
         return rc;
     }

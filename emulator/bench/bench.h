@@ -101,7 +101,7 @@ uint64_t bench_current_frame(const struct bench *b);
  * models: MA line + slave output delay + SL line, nominal (no jitter). */
 double bench_round_trip_ps(const struct bench *b);
 /* The same to the nearest ns: what a user measures and configures as an SSI
- * encoder's line delay (BISS_CFG_SSI_DELAY_NS). */
+ * encoder's line delay (the configuration's ssi_delay_ns). */
 uint32_t bench_ssi_delay_ns(const struct bench *b);
 
 /* Arms a capture of all four pins around frame k (k counts the frames the

@@ -13,8 +13,8 @@
 #include "biss/biss_shm.h"
 #include "fw_cd.h"
 #include "fw_check.h"
-#include "fw_config.h"
 #include "pru_isa.h"
+#include "bench_fw.h"
 #include "scenario_json.h"
 #include "sim_image.h"
 #include "sim_report.h"
@@ -423,12 +423,6 @@ static size_t print_strict_log(struct pru_core *c) {
     return n + (size_t)lost;
 }
 
-static uint32_t dram32(struct bench *b, uint32_t off) {
-    uint32_t v = 0;
-    pru_host_read(bench_core(b), pru_soc_base(bench_config(b)->soc) + off, &v, 4);
-    return v;
-}
-
 /* Runs until the firmware has published `frames` valid frames after its
  * first one (whose training and start-up the statistics leave out). */
 static enum pru_stop run_firmware(struct bench *b, struct fw_check *fc, uint64_t frames,
@@ -452,7 +446,7 @@ static enum pru_stop run_firmware(struct bench *b, struct fw_check *fc, uint64_t
         if (started && fc->frames >= frames && (!prog || fw_cd_poll(cd))) {
             break;
         }
-        if (dram32(b, BISS_ST_STATE) == BISS_STATE_CFG_ERROR) {
+        if (bench_fw_status(b).state == BISS_STATE_CFG_ERROR) {
             break;
         }
         int64_t next = pru_time_ps(bench_core(b)) + step;
@@ -477,7 +471,7 @@ static int run(const struct options *o) {
         return die("--freq %g: 100 MHz / f must be a whole number of PRU cycles, 5..%d", o->freq_hz,
                    BISS_MAX_HALF);
     }
-    const char *why_not = o->image ? NULL : fw_config_half_problem(half);
+    const char *why_not = o->image ? NULL : biss_proto_half_problem(half);
     if (why_not) {
         return die("--freq %.10g: the firmware cannot clock it: %s", o->freq_hz, why_not);
     }
@@ -510,8 +504,9 @@ static int run(const struct options *o) {
     struct fw_check fc;
     if (rc == 0 && fw_mode) {
         fw_check_attach(&fc, b);
-        struct fw_settings s = {.half = half, .trigger = BISS_TRIG_FREERUN, .proc_limit = 1000};
-        fw_config_write(b, &s);
+        struct bench_fw_settings s = {
+            .half = half, .trigger = BISS_TRIG_FREERUN, .proc_limit = 1000};
+        bench_fw_configure(b, &s);
         if (o->cd_set && cfg.link.protocol == SCENARIO_SSI) {
             rc = die("%s: an SSI encoder has no control communication", o->cd_what);
         }
@@ -560,10 +555,10 @@ static int run(const struct options *o) {
         fprintf(stderr, "biss-sim: contention: %llu PRU accesses stalled, %llu cycles\n",
                 (unsigned long long)n, (unsigned long long)stall);
     }
-    if (fw_mode && dram32(b, BISS_ST_STATE) == BISS_STATE_CFG_ERROR) {
-        uint32_t code = dram32(b, BISS_ST_CFG_ERROR);
+    if (fw_mode && bench_fw_status(b).state == BISS_STATE_CFG_ERROR) {
+        uint32_t code = bench_fw_status(b).cfg_error;
         rc = die("the firmware refused the configuration (error %u, %s)", code,
-                 fw_config_error_text(code));
+                 biss_proto_cfg_error_text(code));
     }
     if (o->svg && sim_write_svg(&res, o->svg, o->svg_frame, err, sizeof(err)) != 0) {
         rc = die("%s", err);

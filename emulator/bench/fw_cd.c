@@ -1,28 +1,16 @@
-/* fw_cd.c - control communication on the bench (see fw_cd.h). */
+/* fw_cd.c - control communication on the bench (see fw_cd.h): the
+ * program goes in and the answer comes back through proto's transfers, as
+ * libbiss does it. */
 #include "fw_cd.h"
-
-#include "biss/biss_shm.h"
 
 #include <string.h>
 
-static uint32_t base(struct bench *b) {
-    return pru_soc_base(bench_config(b)->soc);
-}
-
 void fw_cd_issue(struct fw_cd *cd, struct bench *b, const biss_cd_prog *p, uint16_t wait_limit) {
-    static uint8_t dram[BISS_DRAM_BYTES];
     memset(cd, 0, sizeof(*cd));
     cd->b = b;
     cd->prog = p;
-    struct pru_core *c = bench_core(b);
-    pru_host_read(c, base(b), dram, sizeof dram);
-    biss_cd_shm_put(p, wait_limit, dram, sizeof dram);
-    pru_host_write(c, base(b) + BISS_CD_PROG, dram + BISS_CD_PROG, BISS_CD_PROG_BYTES);
-    pru_host_write(c, base(b) + BISS_CD_STEPS, dram + BISS_CD_STEPS, 4); /* length, limit */
-    pru_host_write(c, base(b) + BISS_CD_IDA_STEP, dram + BISS_CD_IDA_STEP, 4);
-    pru_host_read(c, base(b) + BISS_CD_CMD, &cd->cmd, 4);
-    cd->cmd++;
-    pru_host_write(c, base(b) + BISS_CD_CMD, &cd->cmd, 4);
+    struct biss_proto_io io = bench_fw_io(b);
+    cd->put_error = biss_proto_cd_put(&io, p, wait_limit, &cd->cmd);
     cd->frame0 = link_frames(bench_link(b));
 }
 
@@ -30,18 +18,16 @@ int fw_cd_poll(struct fw_cd *cd) {
     if (cd->done) {
         return 1;
     }
-    static uint8_t dram[BISS_DRAM_BYTES];
-    struct pru_core *c = bench_core(cd->b);
-    uint32_t seq;
-    pru_host_read(c, base(cd->b) + BISS_ST_CD_SEQ, &seq, 4);
-    if (seq != cd->cmd) {
+    static biss_cd_answer a;
+    struct biss_proto_io io = bench_fw_io(cd->b);
+    if (cd->put_error) {
+        cd->err = BISS_CD_E_REFUSED; /* never handed over */
+    } else if (biss_proto_cd_ended(&io, cd->cmd, &a) != 1) {
         return 0;
+    } else {
+        cd->err = biss_cd_parse(cd->prog, &a, &cd->result);
+        cd->status = a.status;
     }
-    pru_host_read(c, base(cd->b), dram, sizeof dram);
-    biss_cd_answer a;
-    biss_cd_shm_get(dram, sizeof dram, &a);
-    cd->err = biss_cd_parse(cd->prog, &a, &cd->result);
-    cd->status = a.status;
     cd->frames = link_frames(bench_link(cd->b)) - cd->frame0;
     cd->done = 1;
     return 1;

@@ -1,6 +1,6 @@
 /*
  * fw_cd.h - control communication with the encoder models through the
- * BiSS-C master firmware on the bench: a CDM program (host/biss_cd.h) is
+ * BiSS-C master firmware on the bench: a CDM program (proto/biss_cd.h) is
  * handed to the firmware as a host would and its answers parsed when it
  * has run, while position frames go on.
  */
@@ -8,12 +8,13 @@
 #define FW_CD_H
 
 #include "bench.h"
-#include "biss_cd.h"
+#include "bench_fw.h"
 
 struct fw_cd {
     struct bench *b;
     const biss_cd_prog *prog;
     uint32_t cmd;    /* CD_CMD written for it */
+    int put_error;   /* proto's refusal to hand it over (BISS_E_CD_BUSY: one still runs) */
     uint64_t frame0; /* slave frames when it was issued */
     uint64_t frames; /* frames it took, once done */
     int done;

@@ -5,32 +5,39 @@
  * A store watch on the firmware's publication counter (BISS_ST_SEQ) fires
  * at the instant of each publication; the frame it publishes is the one the
  * master began last (bench_current_frame), whose record the slave model
- * holds (closed, or still in its timeout). A data word the firmware passes
- * as right (its CRC checked) must equal the word the model put on the wire;
- * one whose CRC failed counts as a CRC error, not a mismatch.
+ * holds (closed, or still in its timeout). The published buffer is read
+ * and decoded by the protocol layer (proto/biss_proto.h), as libbiss does;
+ * a data word the firmware passes as right (its CRC checked) must equal
+ * the word the model put on the wire (proto's layout rule); one whose CRC
+ * failed counts as a CRC error, not a mismatch.
  */
 #ifndef FW_CHECK_H
 #define FW_CHECK_H
 
 #include "bench.h"
+#include "bench_fw.h"
 
 #include <stdint.h>
 
-/* One publication as the firmware wrote it. */
+/* One publication as the firmware wrote it (proto's decoding). */
 struct fw_frame {
     int seen; /* 0: not published (yet) */
     uint32_t frame, flags, timestamp;
     unsigned delay_raw, delay_avg, sample_point, lag, half, nslaves;
     uint64_t data[8];
     uint32_t status[8];
+    struct biss_sample sample; /* the whole of it */
 };
 
 struct fw_check {
     struct bench *b;
-    uint64_t publications; /* every publication */
-    uint64_t frames;       /* valid frames, compared */
-    uint64_t crc_errors;   /* frames flagged with a CRC error */
-    uint64_t mismatches;   /* frames with a word passed as right (CRC) but unlike what was sent */
+    struct biss_config cfg; /* the chain's layout (bench_fw_layout), to decode by
+                               (freq_hz unused: the rate comes with each result) */
+    uint64_t bad_results;   /* publications proto refused (slave count, buffer index) */
+    uint64_t publications;  /* every publication */
+    uint64_t frames;        /* valid frames, compared */
+    uint64_t crc_errors;    /* frames flagged with a CRC error */
+    uint64_t mismatches;    /* frames with a word passed as right (CRC) but unlike what was sent */
     uint64_t no_slave, proc_errors, training;
     uint64_t ack_jumps;     /* frames refused for an ACK away from the average */
     uint64_t ack_jump_good; /* of those, frames whose every word was right: good frames lost */
@@ -61,12 +68,8 @@ void fw_check_watch(struct fw_check *fc, uint64_t k);
  * watched frame stays). */
 void fw_check_restart(struct fw_check *fc, uint64_t limit);
 
-/* A data word split as slave s lays it out: position (fill dropped), nE,
- * nW (1 = no error / no warning; 1 when the slave has none). */
-void fw_check_split(const biss_slave_cfg *s, uint64_t word, uint64_t *position, int *nE, int *nW);
-
-/* The data word slave i sent in the frame record r: position, fill, nE,
- * nW, life counter, as on the wire before the CRC. */
+/* The data word slave s sent in the frame record `sent`, as on the wire
+ * before the CRC (proto's layout rule). */
 uint64_t fw_check_sent_word(const biss_slave_cfg *s, const biss_slave_sent *sent);
 
 #endif

@@ -26,10 +26,15 @@ static const char *stop_name(enum pru_stop why) {
     return "?";
 }
 
+/* The averaged round trip as proto converts it (biss_delay_decode). */
+static struct biss_line_delay line_delay(unsigned raw, unsigned avg, unsigned half) {
+    struct biss_line_delay d;
+    biss_delay_decode((uint16_t)raw, (uint16_t)avg, half, &d);
+    return d;
+}
+
 double sim_fw_line_delay_ns(const struct fw_check *fw) {
-    double cycles =
-        ((double)fw->delay_avg - BISS_DELAY_ZERO) * fw->half / 4.0 - BISS_DELAY_ADJ_CYCLES;
-    return cycles * 5.0;
+    return line_delay(fw->delay_raw, fw->delay_avg, fw->half).ns;
 }
 
 /* The last closed frame, per slave: what went over the wire (and, with the
@@ -208,7 +213,8 @@ static void print_read(const struct sim_result *r) {
     for (unsigned i = 0; fw->frames && i < c->n && i < 8; i++) {
         uint64_t pos;
         int nE, nW;
-        fw_check_split(&c->s[i], fw->data[i], &pos, &nE, &nW);
+        struct biss_proto_word w = bench_fw_word(&c->s[i]);
+        biss_proto_word_split(&w, fw->data[i], &pos, &nE, &nW);
         printf("slave %u              position %llu (0x%llx), error %s, warning %s, CRC %s "
                "(encoder sent %llu)\n",
                i, (unsigned long long)pos, (unsigned long long)pos, nE ? "no" : "YES",
@@ -311,9 +317,9 @@ static size_t rises(waveform *w, sim_ps t0, sim_ps t1, sim_ps *out, size_t max) 
  * master's SL and the line delay it measured, from what it published for
  * this frame. A bit goes out on SL at the slave on the MA rise that clocks
  * it; the firmware places that bit's edge at the master one measured round
- * trip after the rise at the master pin (biss_shm.h, BISS_R_DELAY_AVG: the
- * 4-frame average it samples by) and samples half a bit (H cycles) later,
- * to 1/8 bit (BISS_R_SAMPLE_POINT). */
+ * trip after the rise at the master pin (the 4-frame average it samples
+ * by, converted by proto) and samples half a bit (H cycles) later, to 1/8
+ * bit (its published sample point). */
 struct svg_fw {
     sim_ps marks[FRAME_LABELS_MAX];
     size_t nmarks;
@@ -326,8 +332,7 @@ static void firmware_marks(const struct sim_result *r, const struct svg_label *l
                            struct svg_fw *out) {
     const struct fw_frame *f = &r->fw->watched;
     link_model *l = bench_link(r->b);
-    double rt_cycles =
-        ((double)f->delay_avg - BISS_DELAY_ZERO) * f->half / 4.0 - BISS_DELAY_ADJ_CYCLES;
+    double rt_cycles = line_delay(f->delay_raw, f->delay_avg, f->half).cycles;
     sim_ps rt = (sim_ps)(rt_cycles * PRU_PS_PER_CYCLE);
     sim_ps half = (sim_ps)f->half * PRU_PS_PER_CYCLE;
     sim_ps out_delay =
@@ -368,9 +373,7 @@ static size_t firmware_notes(const struct sim_result *r, char (*notes)[160], siz
     snprintf(notes[n++], 160,
              "firmware: frame %u, flags 0x%02x, line delay %.1f ns, sample point %u/8, lag %u, "
              "timestamp %.3f us (IEP %u)",
-             f->frame, f->flags,
-             (((double)f->delay_avg - BISS_DELAY_ZERO) * f->half / 4.0 - BISS_DELAY_ADJ_CYCLES) *
-                 5.0,
+             f->frame, f->flags, line_delay(f->delay_raw, f->delay_avg, f->half).ns,
              f->sample_point, f->lag, f->timestamp * 5e-3, f->timestamp);
     if (!(f->flags & BISS_RF_VALID)) {
         snprintf(notes[n++], 160, "  no data in this frame (%s)",
@@ -385,7 +388,8 @@ static size_t firmware_notes(const struct sim_result *r, char (*notes)[160], siz
     for (unsigned i = 0; i < c->n && i < f->nslaves && n < max; i++) {
         uint64_t pos;
         int nE, nW;
-        fw_check_split(&c->s[i], f->data[i], &pos, &nE, &nW);
+        struct biss_proto_word w = bench_fw_word(&c->s[i]);
+        biss_proto_word_split(&w, f->data[i], &pos, &nE, &nW);
         snprintf(notes[n++], 160, "  slave %u read: position %llu (0x%llx), nE %d, nW %d, CRC %s",
                  i, (unsigned long long)pos, (unsigned long long)pos, nE, nW,
                  (f->status[i] & BISS_RS_CRC_OK) ? "ok" : "WRONG");

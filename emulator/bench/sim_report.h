@@ -30,7 +30,7 @@ int sim_write_svg(const struct sim_result *r, const char *path, uint64_t k, char
                   size_t errlen);
 
 /* The firmware's line delay in ns from its averaged ACK position
- * (biss_shm.h: BISS_R_DELAY_AVG, BISS_DELAY_ZERO, BISS_DELAY_ADJ_CYCLES). */
+ * (proto's biss_delay_decode of the published DELAY_AVG). */
 double sim_fw_line_delay_ns(const struct fw_check *fw);
 
 /* The shortest frame period the encoders and the line allow for what the

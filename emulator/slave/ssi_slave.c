@@ -28,13 +28,6 @@ uint64_t ssi_to_gray(uint64_t v) {
     return v ^ (v >> 1);
 }
 
-uint64_t ssi_from_gray(uint64_t g) {
-    for (unsigned s = 1; s < 64; s <<= 1) {
-        g ^= g >> s;
-    }
-    return g;
-}
-
 uint64_t ssi_slave_position_at(const ssi_slave *s, sim_ps t) {
     return slave_position_at(s->cfg.pos0, s->cfg.speed_cps, s->cfg.bits, t);
 }

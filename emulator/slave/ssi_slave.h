@@ -59,6 +59,5 @@ const ssi_frame_record *ssi_slave_record(const ssi_slave *s, uint64_t n);
 uint64_t ssi_slave_position_at(const ssi_slave *s, sim_ps t);
 
 uint64_t ssi_to_gray(uint64_t v);
-uint64_t ssi_from_gray(uint64_t g);
 
 #endif

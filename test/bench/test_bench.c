@@ -3,7 +3,7 @@
  * image's exact timing and the models' delays. */
 #include "bench.h"
 #include "biss/biss_shm.h"
-#include "fw_config.h"
+#include "bench_fw.h"
 #include "pruasm.h"
 
 #include "check_run.h"
@@ -117,22 +117,22 @@ END_TEST
 START_TEST(test_fw_rates_and_error_names) {
     static const unsigned good[] = {10, 12, 16, 20, 50, 100, 125, 500, 1024};
     for (size_t i = 0; i < sizeof good / sizeof good[0]; i++) {
-        ck_assert_msg(fw_config_half_problem(good[i]) == NULL, "H = %u", good[i]);
+        ck_assert_msg(biss_proto_half_problem(good[i]) == NULL, "H = %u", good[i]);
     }
-    ck_assert_ptr_nonnull(strstr(fw_config_half_problem(5), "faster than"));
-    ck_assert_ptr_nonnull(strstr(fw_config_half_problem(9), "faster than"));
-    ck_assert_ptr_nonnull(strstr(fw_config_half_problem(1025), "slower than"));
+    ck_assert_ptr_nonnull(strstr(biss_proto_half_problem(5), "faster than"));
+    ck_assert_ptr_nonnull(strstr(biss_proto_half_problem(9), "faster than"));
+    ck_assert_ptr_nonnull(strstr(biss_proto_half_problem(1025), "slower than"));
     /* 11 is prime and 1000 has no factor pair within 2..32; 62 = 2 x 31 has one */
-    ck_assert_ptr_nonnull(strstr(fw_config_half_problem(11), "no exact 8x shift clock"));
-    ck_assert_ptr_nonnull(strstr(fw_config_half_problem(1000), "no exact 8x shift clock"));
-    ck_assert_ptr_null(fw_config_half_problem(62));
-    ck_assert_str_eq(fw_config_error_text(BISS_CFGERR_HALF),
+    ck_assert_ptr_nonnull(strstr(biss_proto_half_problem(11), "no exact 8x shift clock"));
+    ck_assert_ptr_nonnull(strstr(biss_proto_half_problem(1000), "no exact 8x shift clock"));
+    ck_assert_ptr_null(biss_proto_half_problem(62));
+    ck_assert_str_eq(biss_proto_cfg_error_text(BISS_CFGERR_HALF),
                      "BISS_CFGERR_HALF: MA half period out of range or no exact 8x shift clock "
                      "for it");
     for (uint32_t e = BISS_CFGERR_NSLAVES; e <= BISS_CFGERR_SSI; e++) {
-        ck_assert_msg(!strncmp(fw_config_error_text(e), "BISS_CFGERR_", 12), "code %u", e);
+        ck_assert_msg(!strncmp(biss_proto_cfg_error_text(e), "BISS_CFGERR_", 12), "code %u", e);
     }
-    ck_assert_str_eq(fw_config_error_text(99), "an error code the header does not define");
+    ck_assert_str_eq(biss_proto_cfg_error_text(99), "an error code the header does not define");
 }
 END_TEST
 

@@ -48,14 +48,11 @@ struct bench *e2e_bench_scenario(struct e2e_run *r, const scenario *sc,
     return r->b;
 }
 
-uint32_t e2e_dram32(struct bench *b, uint32_t off) {
-    uint32_t v = 0;
-    pru_host_read(bench_core(b), pru_soc_base(bench_config(b)->soc) + off, &v, 4);
-    return v;
-}
-
-void e2e_put(struct bench *b, uint32_t off, uint32_t v, unsigned bytes) {
-    pru_host_write(bench_core(b), pru_soc_base(bench_config(b)->soc) + off, &v, bytes);
+uint32_t e2e_cfg_seq(struct bench *b) {
+    struct biss_proto_io io = bench_fw_io(b);
+    struct biss_shm_config blk;
+    ck_assert_int_eq(biss_proto_config_get(&io, &blk), 0);
+    return blk.seq;
 }
 
 void e2e_run_publications(struct e2e_run *r, uint64_t n, int64_t max_ps) {
@@ -67,20 +64,21 @@ void e2e_run_publications(struct e2e_run *r, uint64_t n, int64_t max_ps) {
     }
 }
 
-void e2e_configure(struct e2e_run *r, const struct fw_settings *s) {
-    ck_assert_int_eq(fw_config_write(r->b, s), 0);
-    uint32_t seq = e2e_dram32(r->b, BISS_CFG_SEQ);
+void e2e_configure(struct e2e_run *r, const struct bench_fw_settings *s) {
+    ck_assert_int_eq(bench_fw_configure(r->b, s), 0);
+    uint32_t seq = e2e_cfg_seq(r->b);
     int64_t end = pru_time_ps(bench_core(r->b)) + 10 * SIM_PS_PER_MS;
-    while (e2e_dram32(r->b, BISS_ST_CFG_ACK) != seq && pru_time_ps(bench_core(r->b)) < end) {
+    while (bench_fw_status(r->b).cfg_ack != seq && pru_time_ps(bench_core(r->b)) < end) {
         ck_assert_int_eq(bench_run_until(r->b, pru_time_ps(bench_core(r->b)) + 5 * SIM_PS_PER_US),
                          PRU_STOP_LIMIT);
     }
-    ck_assert_uint_eq(e2e_dram32(r->b, BISS_ST_CFG_ACK), seq);
+    ck_assert_uint_eq(bench_fw_status(r->b).cfg_ack, seq);
 }
 
 uint64_t e2e_run_frames(struct e2e_run *r, unsigned half, unsigned proc_limit, uint64_t frames) {
-    struct fw_settings s = {.half = half, .trigger = BISS_TRIG_FREERUN, .proc_limit = proc_limit};
-    ck_assert_int_eq(fw_config_write(r->b, &s), 0);
+    struct bench_fw_settings s = {
+        .half = half, .trigger = BISS_TRIG_FREERUN, .proc_limit = proc_limit};
+    ck_assert_int_eq(bench_fw_configure(r->b, &s), 0);
     /* start-up: training, then the first valid frame */
     int64_t end = pru_time_ps(bench_core(r->b)) + 20 * SIM_PS_PER_MS;
     while (r->fc.frames == 0 && pru_time_ps(bench_core(r->b)) < end) {
@@ -88,7 +86,7 @@ uint64_t e2e_run_frames(struct e2e_run *r, unsigned half, unsigned proc_limit, u
                          PRU_STOP_LIMIT);
     }
     ck_assert_msg(r->fc.frames > 0, "no valid frame within 20 ms (state %u, error %u)",
-                  e2e_dram32(r->b, BISS_ST_STATE), e2e_dram32(r->b, BISS_ST_CFG_ERROR));
+                  bench_fw_status(r->b).state, bench_fw_status(r->b).cfg_error);
     fw_check_restart(&r->fc, frames);
     bench_reset_stats(r->b);
     bench_set_frame_limit(r->b, bench_current_frame(r->b) + frames + 1);

@@ -5,7 +5,7 @@
 
 #include "bench.h"
 #include "fw_check.h"
-#include "fw_config.h"
+#include "bench_fw.h"
 
 #include <stdint.h>
 
@@ -31,14 +31,14 @@ uint64_t e2e_run_frames(struct e2e_run *r, unsigned half, unsigned proc_limit, u
 
 /* Writes the configuration and runs until the firmware has taken it (its
  * ST_CFG_ACK), at most 10 ms of simulated time. */
-void e2e_configure(struct e2e_run *r, const struct fw_settings *s);
+void e2e_configure(struct e2e_run *r, const struct bench_fw_settings *s);
 
 /* Simulated time until the firmware publishes `n` more frames of any kind,
  * at most max_ps. */
 void e2e_run_publications(struct e2e_run *r, uint64_t n, int64_t max_ps);
 
-uint32_t e2e_dram32(struct bench *b, uint32_t off);
-void e2e_put(struct bench *b, uint32_t off, uint32_t v, unsigned bytes);
+/* CFG_SEQ as the firmware's data RAM holds it. */
+uint32_t e2e_cfg_seq(struct bench *b);
 
 /* Frames per cell: E2E_FRAMES from the environment, else def. */
 uint64_t e2e_frames(uint64_t def);

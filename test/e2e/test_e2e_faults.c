@@ -78,7 +78,7 @@ START_TEST(test_stuck_low_scheduled) {
     run_to(&r, until);
     ck_assert_uint_ge(r.fc.no_slave, 3);
     ck_assert_uint_le(r.fc.frames, good + 1); /* the frame under way when it broke */
-    ck_assert_uint_eq(e2e_dram32(r.b, BISS_ST_STATE), BISS_STATE_RUNNING);
+    ck_assert_uint_eq(bench_fw_status(r.b).state, BISS_STATE_RUNNING);
     run_to(&r, until + 3 * MS);
     ck_assert_uint_gt(r.fc.frames, good + 50);
     ck_assert_uint_eq(r.fc.mismatches, 0);

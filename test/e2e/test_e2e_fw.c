@@ -11,7 +11,9 @@
 #include "check_run.h"
 
 #include <check.h>
+#include <stddef.h>
 #include <stdlib.h>
+#include <string.h>
 
 static uint64_t frames_per_case(void) {
     uint64_t n = e2e_frames(10000) / 20;
@@ -101,24 +103,27 @@ START_TEST(test_data_word_widths) {
 }
 END_TEST
 
-/* ---- configurations the host library would refuse, written raw ---- */
+/* ---- configurations the host library would refuse, written raw (one
+ * field of proto's encoded block broken) ---- */
 struct bad_cfg {
-    uint32_t off, value, bytes;
+    size_t off, bytes; /* a field of struct biss_shm_config */
+    uint32_t value;
     uint32_t want_error;
 };
 
+#define CFG_FIELD(f) offsetof(struct biss_shm_config, f), sizeof(((struct biss_shm_config *)0)->f)
 static const struct bad_cfg bad[] = {
-    {BISS_CFG_NSLAVES, 0, 1, BISS_CFGERR_NSLAVES},
-    {BISS_CFG_NSLAVES, 9, 1, BISS_CFGERR_NSLAVES},
-    {BISS_CFG_HALF, 9, 2, BISS_CFGERR_HALF},    /* above 10 MHz */
-    {BISS_CFG_HALF, 11, 2, BISS_CFGERR_HALF},   /* 9.09 MHz: no exact 8x clock */
-    {BISS_CFG_HALF, 1000, 2, BISS_CFGERR_HALF}, /* 100 kHz: 1000 = 8 x 125 */
-    {BISS_CFG_HALF, 1025, 2, BISS_CFGERR_HALF},
-    {BISS_CFG_TRIGGER, 3, 1, BISS_CFGERR_TRIGGER},
-    {BISS_CFG_SLAVE0 + BISS_CFG_S_DATA_BITS, 0, 1, BISS_CFGERR_DATA_BITS},
-    {BISS_CFG_SLAVE0 + BISS_CFG_S_DATA_BITS, 65, 1, BISS_CFGERR_DATA_BITS},
-    {BISS_CFG_SLAVE0 + BISS_CFG_S_CRC_BITS, 17, 1, BISS_CFGERR_CRC_BITS},
-    {BISS_CFG_SLAVE0 + BISS_CFG_S_EW_SHIFT, 13, 1, BISS_CFGERR_EW}, /* nE past bit 13 */
+    {CFG_FIELD(nslaves), 0, BISS_CFGERR_NSLAVES},
+    {CFG_FIELD(nslaves), 9, BISS_CFGERR_NSLAVES},
+    {CFG_FIELD(half), 9, BISS_CFGERR_HALF},    /* above 10 MHz */
+    {CFG_FIELD(half), 11, BISS_CFGERR_HALF},   /* 9.09 MHz: no exact 8x clock */
+    {CFG_FIELD(half), 1000, BISS_CFGERR_HALF}, /* 100 kHz: 1000 = 8 x 125 */
+    {CFG_FIELD(half), 1025, BISS_CFGERR_HALF},
+    {CFG_FIELD(trigger), 3, BISS_CFGERR_TRIGGER},
+    {CFG_FIELD(slave[0].data_bits), 0, BISS_CFGERR_DATA_BITS},
+    {CFG_FIELD(slave[0].data_bits), 65, BISS_CFGERR_DATA_BITS},
+    {CFG_FIELD(slave[0].crc_bits), 17, BISS_CFGERR_CRC_BITS},
+    {CFG_FIELD(slave[0].ew_shift), 13, BISS_CFGERR_EW}, /* nE past bit 13 */
 };
 
 START_TEST(test_bad_config_is_flagged) {
@@ -126,24 +131,26 @@ START_TEST(test_bad_config_is_flagged) {
     struct bench *b = e2e_bench(&r, "tidep0022-test-encoder", 2, NULL);
     /* first a good one, running */
     ck_assert_uint_eq(e2e_run_frames(&r, 10, 1000, 20), 20);
-    uint32_t seq = e2e_dram32(b, BISS_CFG_SEQ);
+    uint32_t seq = e2e_cfg_seq(b);
     /* the good block again, with one field broken */
-    struct fw_settings s = {.half = 10, .trigger = BISS_TRIG_FREERUN, .proc_limit = 1000};
-    ck_assert_int_eq(fw_config_write(b, &s), 0);
-    e2e_put(b, bad[_i].off, bad[_i].value, bad[_i].bytes);
-    e2e_put(b, BISS_CFG_SEQ, seq + 2, 4);
+    struct bench_fw_settings s = {.half = 10, .trigger = BISS_TRIG_FREERUN, .proc_limit = 1000};
+    struct biss_shm_config blk;
+    bench_fw_block(b, &s, &blk);
+    memcpy((uint8_t *)&blk + bad[_i].off, &bad[_i].value, bad[_i].bytes); /* little-endian */
+    ck_assert_int_eq(bench_fw_put_block(b, &blk), 0);
     uint64_t pubs = r.fc.publications;
     ck_assert_int_eq(bench_run_until(b, pru_time_ps(bench_core(b)) + 2 * SIM_PS_PER_MS),
                      PRU_STOP_LIMIT); /* no fault, no halt: it goes on */
-    ck_assert_uint_eq(e2e_dram32(b, BISS_ST_CFG_ACK), seq + 2);
-    ck_assert_uint_eq(e2e_dram32(b, BISS_ST_CFG_ERROR), bad[_i].want_error);
-    ck_assert_uint_eq(e2e_dram32(b, BISS_ST_STATE), BISS_STATE_CFG_ERROR);
+    struct biss_shm_status st = bench_fw_status(b);
+    ck_assert_uint_eq(st.cfg_ack, seq + 1);
+    ck_assert_uint_eq(st.cfg_error, bad[_i].want_error);
+    ck_assert_uint_eq(st.state, BISS_STATE_CFG_ERROR);
     ck_assert_uint_le(r.fc.publications, pubs + 1); /* no frames on a refused config */
     /* and a good configuration brings it back */
     uint64_t frames = r.fc.frames;
     fw_check_restart(&r.fc, UINT64_MAX);
     ck_assert_uint_eq(e2e_run_frames(&r, 20, 1000, 20), 20);
-    ck_assert_uint_eq(e2e_dram32(b, BISS_ST_CFG_ERROR), BISS_CFGERR_NONE);
+    ck_assert_uint_eq(bench_fw_status(b).cfg_error, BISS_CFGERR_NONE);
     ck_assert_uint_eq(r.fc.mismatches, 0);
     (void)frames;
     e2e_free(&r);
@@ -159,13 +166,13 @@ START_TEST(test_processing_time_limit) {
     ck_assert_uint_eq(r.fc.proc_clocks_max, 23);
     ck_assert_uint_eq(r.fc.proc_errors, 0);
     ck_assert_uint_eq(r.fc.mismatches, 0);
-    struct fw_settings s = {.half = 10, .trigger = BISS_TRIG_FREERUN, .proc_limit = 22};
+    struct bench_fw_settings s = {.half = 10, .trigger = BISS_TRIG_FREERUN, .proc_limit = 22};
     e2e_configure(&r, &s);
     fw_check_restart(&r.fc, UINT64_MAX);
     e2e_run_publications(&r, 20, 20 * SIM_PS_PER_MS);
     ck_assert_uint_ge(r.fc.proc_errors, 19); /* all but the training */
     ck_assert_uint_eq(r.fc.frames, 0);
-    ck_assert_uint_ge(e2e_dram32(b, BISS_ST_PROC_ERRORS), 19);
+    ck_assert_uint_ge(bench_fw_status(b).proc_errors, 19);
     e2e_free(&r);
 }
 END_TEST
@@ -184,7 +191,7 @@ START_TEST(test_disconnect_and_reconnect) {
     ck_assert_int_eq(bench_run_until(b, t + 5 * SIM_PS_PER_MS), PRU_STOP_LIMIT);
     ck_assert_uint_gt(r.fc.no_slave, 0);
     ck_assert_uint_eq(r.fc.mismatches, 0);
-    ck_assert_uint_eq(e2e_dram32(b, BISS_ST_STATE), BISS_STATE_RUNNING);
+    ck_assert_uint_eq(bench_fw_status(b).state, BISS_STATE_RUNNING);
     /* reconnected: valid frames again */
     line_dir_set_fault(_i == 2 ? &l->ma_line : &l->sl_line, t + 5 * SIM_PS_PER_MS, LINE_OK);
     uint64_t before = r.fc.frames;
@@ -199,17 +206,20 @@ END_TEST
 START_TEST(test_host_trigger) {
     struct e2e_run r;
     struct bench *b = e2e_bench(&r, "tidep0022-test-encoder", 2, NULL);
-    struct fw_settings s = {.half = 10, .trigger = BISS_TRIG_HOST, .proc_limit = 1000};
-    ck_assert_int_eq(fw_config_write(b, &s), 0);
+    struct bench_fw_settings s = {.half = 10, .trigger = BISS_TRIG_HOST, .proc_limit = 1000};
+    ck_assert_int_eq(bench_fw_configure(b, &s), 0);
     ck_assert_int_eq(bench_run_until(b, 2 * SIM_PS_PER_MS), PRU_STOP_LIMIT);
     ck_assert_uint_eq(r.fc.training, 1);
     ck_assert_uint_eq(r.fc.frames, 0); /* nothing without a trigger */
     for (unsigned i = 1; i <= 5; i++) {
-        e2e_put(b, BISS_CMD_TRIGGER, 1, 4);
+        struct biss_proto_io io = bench_fw_io(b);
+        uint32_t pending = 1;
+        ck_assert_int_eq(biss_proto_trigger(&io), 0);
         ck_assert_int_eq(bench_run_until(b, pru_time_ps(bench_core(b)) + SIM_PS_PER_MS),
                          PRU_STOP_LIMIT);
         ck_assert_uint_eq(r.fc.frames, i);
-        ck_assert_uint_eq(e2e_dram32(b, BISS_CMD_TRIGGER), 0); /* cleared */
+        ck_assert_int_eq(biss_proto_trigger_get(&io, &pending), 0);
+        ck_assert_uint_eq(pending, 0); /* cleared */
     }
     ck_assert_uint_eq(r.fc.mismatches, 0);
     e2e_free(&r);
@@ -219,9 +229,9 @@ END_TEST
 START_TEST(test_iep_trigger_period) {
     struct e2e_run r;
     struct bench *b = e2e_bench(&r, "hengstler-ad38", 2, NULL);
-    struct fw_settings s = {
+    struct bench_fw_settings s = {
         .half = 10, .trigger = BISS_TRIG_IEP, .iep_period = 10000, .proc_limit = 1000};
-    ck_assert_int_eq(fw_config_write(b, &s), 0);
+    ck_assert_int_eq(bench_fw_configure(b, &s), 0);
     e2e_run_publications(&r, 3, 10 * SIM_PS_PER_MS);
     bench_reset_stats(b);
     fw_check_restart(&r.fc, UINT64_MAX);

@@ -40,7 +40,7 @@ START_TEST(test_sl_stuck_low_brought_back_by_init) {
     ck_assert(flags_seen & BISS_RF_TRAINING);
     ck_assert(!l->biss.lost);
     ck_assert_uint_eq(r.fc.mismatches, 0);
-    ck_assert_uint_eq(e2e_dram32(b, BISS_ST_STATE), BISS_STATE_RUNNING);
+    ck_assert_uint_eq(bench_fw_status(b).state, BISS_STATE_RUNNING);
     ck_assert_int_eq(bench_stats(b)->half_min_ps, (int64_t)half * PRU_PS_PER_CYCLE);
     ck_assert_int_eq(bench_stats(b)->half_max_ps, (int64_t)half * PRU_PS_PER_CYCLE);
     e2e_free(&r);

@@ -49,8 +49,9 @@ START_TEST(test_cell) {
             e2e_free(&r);
             return;
         }
-        struct fw_settings s = {.half = half, .trigger = BISS_TRIG_FREERUN, .proc_limit = 1000};
-        ck_assert_int_eq(fw_config_write(b, &s), 0);
+        struct bench_fw_settings s = {
+            .half = half, .trigger = BISS_TRIG_FREERUN, .proc_limit = 1000};
+        ck_assert_int_eq(bench_fw_configure(b, &s), 0);
         e2e_run_publications(&r, 200, 50 * SIM_PS_PER_MS);
         ck_assert_uint_eq(r.fc.mismatches, 0);
         e2e_free(&r);

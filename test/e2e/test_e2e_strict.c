@@ -58,15 +58,15 @@ static void first_frame_hits(unsigned half, char *out, size_t size, uint32_t *fr
     p.strict_log = 1;
     struct e2e_run r;
     struct bench *b = e2e_bench(&r, "tidep0022-test-encoder", 2, &p);
-    struct fw_settings s = {.half = half, .trigger = BISS_TRIG_FREERUN, .proc_limit = 1000};
-    ck_assert_int_eq(fw_config_write(b, &s), 0);
-    uint32_t seq = e2e_dram32(b, BISS_CFG_SEQ);
+    struct bench_fw_settings s = {.half = half, .trigger = BISS_TRIG_FREERUN, .proc_limit = 1000};
+    ck_assert_int_eq(bench_fw_configure(b, &s), 0);
+    uint32_t seq = e2e_cfg_seq(b);
     int64_t end = pru_time_ps(bench_core(b)) + 5 * SIM_PS_PER_MS;
-    while (e2e_dram32(b, BISS_ST_CFG_ACK) != seq && pru_time_ps(bench_core(b)) < end) {
+    while (bench_fw_status(b).cfg_ack != seq && pru_time_ps(bench_core(b)) < end) {
         ck_assert_int_eq(bench_run_until(b, pru_time_ps(bench_core(b)) + SIM_PS_PER_US),
                          PRU_STOP_LIMIT);
     }
-    ck_assert_uint_eq(e2e_dram32(b, BISS_ST_CFG_ACK), seq);
+    ck_assert_uint_eq(bench_fw_status(b).cfg_ack, seq);
     /* Frame by frame until the first valid one; the log is cleared at each
      * publication before it (the next frame starts microseconds after a
      * publication: SL must be idle first), so it ends with that frame's. */
@@ -80,7 +80,7 @@ static void first_frame_hits(unsigned half, char *out, size_t size, uint32_t *fr
         }
     }
     ck_assert_uint_eq(r.fc.frames, 1);
-    *frame = e2e_dram32(b, BISS_ST_FRAMES);
+    *frame = bench_fw_status(b).frames;
     hits_text(bench_core(b), out, size);
     e2e_free(&r);
 }
@@ -139,8 +139,8 @@ START_TEST(strict_stops_at_first) {
     p.strict = PRU_STRICT_ALL;
     struct e2e_run r;
     struct bench *b = e2e_bench(&r, "tidep0022-test-encoder", 2, &p);
-    struct fw_settings s = {.half = 10, .trigger = BISS_TRIG_FREERUN, .proc_limit = 1000};
-    ck_assert_int_eq(fw_config_write(b, &s), 0);
+    struct bench_fw_settings s = {.half = 10, .trigger = BISS_TRIG_FREERUN, .proc_limit = 1000};
+    ck_assert_int_eq(bench_fw_configure(b, &s), 0);
     ck_assert_int_eq(bench_run_until(b, pru_time_ps(bench_core(b)) + SIM_PS_PER_MS),
                      PRU_STOP_FAULT);
     const struct pru_fault *f = pru_get_fault(bench_core(b));

@@ -1,7 +1,7 @@
 /* fw_timing.c - the clocked blocks stepped and timed (see fw_timing.h). */
 #include "fw_timing.h"
 
-#include "biss_shm.h"
+#include "biss_proto.h"
 
 #include <stdarg.h>
 #include <stdio.h>
@@ -148,29 +148,24 @@ static uint32_t dram(const struct pru_core *c) {
     return pru_soc_base(PRU_SOC_AM335X) + PRU_OFS_DRAM0;
 }
 
-static void put(struct pru_core *c, uint32_t ofs, const void *v, size_t n) {
-    pru_host_write(c, dram(c) + ofs, v, n);
+/* The core's data RAM for the protocol layer (proto/biss_proto.h): the
+ * configuration goes in and the verdict comes back as a host's would. */
+static int io_read(void *ctx, uint32_t off, void *buf, size_t n) {
+    struct pru_core *c = ctx;
+    return pru_host_read(c, dram(c) + off, buf, n) ? BISS_E_IO : BISS_OK;
 }
 
-static uint32_t get32(struct pru_core *c, uint32_t ofs) {
-    uint32_t v = 0;
-    pru_host_read32(c, dram(c) + ofs, &v);
-    return v;
+static int io_write(void *ctx, uint32_t off, const void *buf, size_t n) {
+    struct pru_core *c = ctx;
+    return pru_host_write(c, dram(c) + off, buf, n) ? BISS_E_IO : BISS_OK;
 }
 
-struct cfg_watch {
-    struct pru_core *c;
-    uint32_t seq;
-    int acked;
-};
-
-/* ST_CFG_ACK written: acked once it names our configuration (start-up
- * writes ~0 there first). */
-static void on_cfg_ack(void *ctx, uint32_t addr) {
-    struct cfg_watch *w = ctx;
-    (void)addr;
-    if (get32(w->c, BISS_ST_CFG_ACK) == w->seq)
-        w->acked = 1;
+static struct biss_shm_status status_of(struct pru_core *c) {
+    struct biss_proto_io io = {.read = io_read, .write = io_write, .ctx = c};
+    struct biss_shm_status st;
+    if (biss_proto_status_get(&io, &st) != BISS_OK)
+        memset(&st, 0, sizeof st);
+    return st;
 }
 
 /* A CRC polynomial (without its top term) that fits w bits. */
@@ -194,43 +189,51 @@ struct pru_core *fw_configure(const struct fw *f, const struct fw_config *cf, ui
         pru_core_free(c);
         return NULL;
     }
-    uint16_t half = (uint16_t)cf->half, proc = (uint16_t)cf->proc_limit, ssi_ns = 150;
-    uint8_t nsl = (uint8_t)cf->nslaves, trig = BISS_TRIG_HOST;
-    put(c, BISS_CFG_HALF, &half, 2);
-    put(c, BISS_CFG_NSLAVES, &nsl, 1);
-    put(c, BISS_CFG_TRIGGER, &trig, 1);
-    put(c, BISS_CFG_PROC_LIMIT, &proc, 2);
-    put(c, BISS_CFG_SSI_DELAY_NS, &ssi_ns, 2);
-    for (unsigned i = 0; i < cf->nslaves; i++) {
-        uint8_t s[8] = {(uint8_t)cf->s[i].n, (uint8_t)cf->s[i].w, 0,
-                        (uint8_t)(cf->ssi && i == 0 ? BISS_SF_SSI : 0)};
-        uint16_t poly = poly_for(cf->s[i].w);
-        memcpy(s + 4, &poly, 2);
-        put(c, BISS_CFG_SLAVE0 + i * BISS_CFG_SLAVE_SIZE, s, sizeof(s));
+    /* the block proto encodes (the half period as given: it is what is
+     * timed), then CFG_SEQ */
+    struct biss_config bc;
+    biss_config_default(&bc);
+    bc.nslaves = cf->nslaves;
+    bc.trigger = BISS_TRIGGER_HOST;
+    bc.proc_limit = cf->proc_limit;
+    bc.ssi_delay_ns = 150;
+    for (unsigned i = 0; i < cf->nslaves && i < BISS_MAX_SLAVES; i++) {
+        unsigned w = cf->s[i].w;
+        bc.slave[i] = (struct biss_slave_config){
+            .data_bits = cf->s[i].n,
+            .crc_bits = w,
+            .crc_poly = w ? (uint32_t)poly_for(w) | 1u << w : 0,
+            .ssi = cf->ssi && i == 0,
+        };
     }
+    struct biss_shm_config blk;
+    biss_config_encode(&bc, &blk);
+    blk.half = (uint16_t)cf->half;
     uint32_t seq = 1;
-    put(c, BISS_CFG_SEQ, &seq, 4);
+    struct biss_proto_io io = {.read = io_read, .write = io_write, .ctx = c};
+    if (biss_proto_config_put(&io, &blk, seq) != BISS_OK) {
+        fail(err, errlen, "configuring H=%u: data RAM not writable", cf->half);
+        goto out;
+    }
     pru_set_inputs(c, 0x3fffffffu); /* SL high: idle */
-    struct cfg_watch watch = {c, seq, 0};
-    pru_set_store_watch(c, BISS_ST_CFG_ACK, on_cfg_ack, &watch);
     pru_start(c);
     uint32_t main_pc;
     if (need_label(f, "MAIN", &main_pc, err, errlen) != 0)
         goto out;
     for (long n = 0; n < STEP_LIMIT; n++) {
-        if (watch.acked && pru_pc(c) == main_pc)
+        /* start-up writes ~0 to ST_CFG_ACK first: acked once it names ours */
+        if (pru_pc(c) == main_pc && status_of(c).cfg_ack == seq)
             break;
         if (pru_step(c) != PRU_STOP_STEP) {
             fail(err, errlen, "configuring H=%u: the core stopped at %#x", cf->half, pru_pc(c));
             goto out;
         }
     }
-    pru_set_store_watch(c, 0, NULL, NULL);
-    if (!watch.acked || pru_pc(c) != main_pc) {
+    if (pru_pc(c) != main_pc || status_of(c).cfg_ack != seq) {
         fail(err, errlen, "configuring H=%u: no ST_CFG_ACK / back in MAIN", cf->half);
         goto out;
     }
-    uint32_t e = get32(c, BISS_ST_CFG_ERROR);
+    uint32_t e = status_of(c).cfg_error;
     if (cfg_error)
         *cfg_error = e;
     if (e != BISS_CFGERR_NONE) {

@@ -5,7 +5,7 @@
 #include "biss_cd.h"
 #include "e2e_util.h"
 #include "fw_cd.h"
-#include "fw_config.h"
+#include "bench_fw.h"
 
 #include "check_run.h"
 
@@ -30,8 +30,8 @@ static void rig_start(fw_rig *r, unsigned reg_proc_frames) {
     bench_config_default(&cfg);
     cfg.pru.fast_forward = 1;
     e2e_bench_scenario(&r->run, &sc, &cfg.pru);
-    struct fw_settings set = {.half = 10, .trigger = BISS_TRIG_FREERUN, .proc_limit = 200};
-    fw_config_write(r->run.b, &set);
+    struct bench_fw_settings set = {.half = 10, .trigger = BISS_TRIG_FREERUN, .proc_limit = 200};
+    bench_fw_configure(r->run.b, &set);
     bench_run_until(r->run.b, pru_time_ps(bench_core(r->run.b)) + 200 * SIM_PS_PER_US);
 }
 

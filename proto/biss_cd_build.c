@@ -168,3 +168,19 @@ biss_cd_err biss_cd_build_raw(biss_cd_prog *p, const uint8_t *ops, unsigned n) {
     }
     return BISS_CD_OK;
 }
+
+/* ---- the program as the firmware reads it (biss_shm.h, BISS_CD_PROG, BISS_CD_IDA_STEP) ---- */
+
+void biss_cd_pack(const biss_cd_prog *p, uint8_t prog[BISS_CD_PROG_BYTES]) {
+    memset(prog, 0, BISS_CD_PROG_BYTES);
+    for (unsigned i = 0; i < p->len && i < BISS_CD_MAX_STEPS; i++) {
+        prog[i / 2] |= (uint8_t)((p->op[i] & 15u) << 4 * (i % 2));
+    }
+}
+
+uint32_t biss_cd_ida_word(const biss_cd_prog *p) {
+    if (p->kind != BISS_CD_COMMAND || !p->ida_test) {
+        return 0;
+    }
+    return p->end | (uint32_t)p->ids << 16;
+}

@@ -1,8 +1,6 @@
 /* biss_config_check.c - validation of a configuration before the firmware
  * sees it: every field, each with its own error code. */
-#include "libbiss.h"
-
-#include "biss/biss_shm.h"
+#include "biss_proto.h"
 
 void biss_config_default(struct biss_config *c) {
     if (!c) {

@@ -1,8 +1,6 @@
 /* biss_config_encode.c - a checked biss_config to the firmware's block and
  * back, and the firmware's verdict as an error code. */
-#include "biss_priv.h"
-
-#include "biss/biss_shm_struct.h"
+#include "biss_proto.h"
 
 #include <string.h>
 

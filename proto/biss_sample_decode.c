@@ -1,8 +1,6 @@
 /* biss_sample_decode.c - a published result buffer to biss_sample: flags,
  * line delay, and per slave the data word split by the configuration. */
-#include "biss_priv.h"
-
-#include "biss/biss_shm_struct.h"
+#include "biss_proto.h"
 
 #include <string.h>
 
@@ -40,13 +38,6 @@ static uint64_t position_of(const struct biss_slave_config *c, uint64_t data) {
     return (data >> shift) & low_mask(pos);
 }
 
-static uint64_t from_gray(uint64_t g) {
-    for (unsigned s = 1; s < 64; s <<= 1) {
-        g ^= g >> s;
-    }
-    return g;
-}
-
 static void decode_slave(const struct biss_slave_config *c, const struct biss_shm_slave_result *r,
                          struct biss_slave_result *o) {
     o->data = (uint64_t)r->data_hi << 32 | r->data_lo;
@@ -61,7 +52,7 @@ static void decode_slave(const struct biss_slave_config *c, const struct biss_sh
         o->position = o->data;
         return;
     }
-    o->position = position_of(c, c->gray ? from_gray(o->data) : o->data);
+    o->position = position_of(c, c->gray ? biss_proto_from_gray(o->data) : o->data);
     /* nE and nW are active low on the wire; the firmware reports them as
      * received, and 0 for a slave that sends none */
     o->error = c->has_ew && !(r->status & BISS_RS_NE);

@@ -1,0 +1,80 @@
+/* bench_fw.c - the bench as the firmware's host (bench_fw.h). */
+#include "bench_fw.h"
+
+#include <string.h>
+
+static int io_read(void *ctx, uint32_t off, void *buf, size_t n) {
+    struct bench *b = ctx;
+    uint32_t at = pru_soc_base(bench_config(b)->soc) + ICSS_DRAM0 + off;
+    return pru_host_read(bench_core(b), at, buf, n) ? BISS_E_IO : BISS_OK;
+}
+
+static int io_write(void *ctx, uint32_t off, const void *buf, size_t n) {
+    struct bench *b = ctx;
+    uint32_t at = pru_soc_base(bench_config(b)->soc) + ICSS_DRAM0 + off;
+    return pru_host_write(bench_core(b), at, buf, n) ? BISS_E_IO : BISS_OK;
+}
+
+struct biss_proto_io bench_fw_io(struct bench *b) {
+    return (struct biss_proto_io){.read = io_read, .write = io_write, .ctx = b};
+}
+
+struct biss_proto_word bench_fw_word(const biss_slave_cfg *s) {
+    return (struct biss_proto_word){.pos_bits = s->pos_bits,
+                                    .fill_bits = s->fill_bits,
+                                    .lc_bits = s->lc_bits,
+                                    .has_err = s->has_err,
+                                    .has_warn = s->has_warn};
+}
+
+void bench_fw_layout(const struct bench *b, struct biss_config *c) {
+    const scenario *sc = &bench_link((struct bench *)b)->sc;
+    if (sc->protocol == SCENARIO_SSI) {
+        c->nslaves = 1;
+        c->slave[0] = (struct biss_slave_config){
+            .data_bits = sc->ssi.bits, .ssi = true, .gray = sc->ssi.gray};
+        c->ssi_delay_ns = bench_ssi_delay_ns(b);
+        return;
+    }
+    c->nslaves = sc->biss.n;
+    for (unsigned i = 0; i < sc->biss.n && i < BISS_API_MAX_SLAVES; i++) {
+        const biss_slave_cfg *s = &sc->biss.s[i];
+        struct biss_proto_word w = bench_fw_word(s);
+        biss_proto_slave_layout(&w, s->crc_poly, s->crc_start, &c->slave[i]);
+    }
+}
+
+void bench_fw_block(const struct bench *b, const struct bench_fw_settings *s,
+                    struct biss_shm_config *blk) {
+    struct biss_config c;
+    biss_config_default(&c);
+    bench_fw_layout(b, &c);
+    c.freq_hz = s->half ? BISS_HALF_CLOCK_HZ / s->half : 0;
+    c.trigger = (enum biss_trigger)s->trigger;
+    c.iep_period_ns = s->iep_period * 5u; /* 5 ns IEP counts */
+    c.proc_limit = s->proc_limit;
+    biss_config_encode(&c, blk);
+    blk->half = (uint16_t)s->half;
+}
+
+int bench_fw_put_block(struct bench *b, const struct biss_shm_config *blk) {
+    struct biss_proto_io io = bench_fw_io(b);
+    struct biss_shm_config cur;
+    int rc = biss_proto_config_get(&io, &cur);
+    return rc ? rc : biss_proto_config_put(&io, blk, cur.seq + 1);
+}
+
+int bench_fw_configure(struct bench *b, const struct bench_fw_settings *s) {
+    struct biss_shm_config blk;
+    bench_fw_block(b, s, &blk);
+    return bench_fw_put_block(b, &blk);
+}
+
+struct biss_shm_status bench_fw_status(struct bench *b) {
+    struct biss_proto_io io = bench_fw_io(b);
+    struct biss_shm_status st;
+    if (biss_proto_status_get(&io, &st)) {
+        memset(&st, 0, sizeof st);
+    }
+    return st;
+}

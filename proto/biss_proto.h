@@ -1,0 +1,135 @@
+/*
+ * biss_proto.h - the host side of the firmware's shared-memory contract
+ * (include/biss/biss_shm.h), written once: configuration encoding and
+ * validation (with the MA rate / shift-clock rule), the slave data-word
+ * layout, sample and line-delay decoding (Gray too), and the transfers of
+ * the configuration block, the control-communication program and a
+ * published result through any data-RAM reader/writer. The control
+ * program codec is biss_cd.h; the PRU-ICSS/SoC map is biss_soc.h.
+ *
+ * libbiss drives the firmware through it on silicon and in the emulator;
+ * the bench and the end-to-end tests drive it through it on the emulated
+ * PRU. Nothing here does I/O of its own or knows the emulator.
+ */
+#ifndef BISS_PROTO_H
+#define BISS_PROTO_H
+
+#include "libbiss.h"
+
+#include "biss/biss_shm_struct.h"
+#include "biss_cd.h"
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+/* The layer's own calls are no part of libbiss.so's API (libbiss.map). */
+#pragma GCC visibility push(hidden)
+
+/* ---- configuration (biss_config_encode.c, biss_rate.c) ---- */
+
+/* A checked config into the shm block (out->seq left 0: the caller writes
+ * CFG_SEQ last, on its own). */
+void biss_config_encode(const struct biss_config *c, struct biss_shm_config *out);
+/* Decodes a block read back from data RAM, as untrusted input: 0,
+ * BISS_E_NOT_CONFIGURED (no rate: never configured) or BISS_E_SHM_CONFIG
+ * (*field names the first bad field). */
+int biss_config_decode(const struct biss_shm_config *in, struct biss_config *c, const char **field);
+/* Maps ST_CFG_ERROR to BISS_E_FW_* (0 stays 0). */
+int biss_fw_cfg_error(uint32_t cfgerr);
+/* "BISS_CFGERR_HALF: ..." for a code the firmware reports in
+ * BISS_ST_CFG_ERROR. */
+const char *biss_proto_cfg_error_text(uint32_t code);
+/* The firmware's rule for an MA half period in PRU cycles: BISS_OK, or
+ * BISS_E_RATE_RANGE (outside BISS_MIN_HALF..BISS_MAX_HALF) or
+ * BISS_E_RATE_SHIFT (no exact 8x shift clock). */
+int biss_proto_half_check(unsigned half);
+/* The same as a sentence, NULL when the firmware takes it. */
+const char *biss_proto_half_problem(unsigned half);
+
+/* ---- the slave's data word (biss_layout.c) ---- */
+
+/* A BiSS slave's single-cycle data, MSB first on the wire: position, fill
+ * bits, nE, nW, life counter, then the CRC. */
+struct biss_proto_word {
+    unsigned pos_bits, fill_bits, lc_bits;
+    bool has_err, has_warn;
+};
+
+/* The firmware's view of such a slave: data_bits, the nW bit (the
+ * firmware knows nE and nW only as a pair), CRC width from the polynomial
+ * written with its top term (0 for none). */
+void biss_proto_slave_layout(const struct biss_proto_word *w, uint32_t crc_poly, uint32_t crc_start,
+                             struct biss_slave_config *o);
+/* The data word for those fields (nE/nW: 1 = no error / no warning, as on
+ * the line). */
+uint64_t biss_proto_word_compose(const struct biss_proto_word *w, uint64_t position, int nE, int nW,
+                                 uint32_t lc);
+/* And back: position (fill dropped), nE, nW (1 when the slave has none). */
+void biss_proto_word_split(const struct biss_proto_word *w, uint64_t word, uint64_t *position,
+                           int *nE, int *nW);
+/* Gray code to binary (SSI encoders). */
+uint64_t biss_proto_from_gray(uint64_t g);
+/* Degree of a CRC polynomial written with its top term (0x43 -> 6), 0 for 0. */
+unsigned biss_proto_crc_bits(uint32_t poly);
+
+/* ---- samples and line delay (biss_sample_decode.c) ---- */
+
+/* 0, or BISS_E_SHM_RESULT for a result no firmware with this
+ * configuration publishes (slave count). configured false: no layout,
+ * the whole words and no nE/nW claims. */
+int biss_sample_decode(const struct biss_config *c, bool configured, uint32_t seq,
+                       const struct biss_shm_result *r, struct biss_sample *s);
+void biss_delay_decode(uint16_t raw, uint16_t avg, unsigned half, struct biss_line_delay *d);
+
+/* ---- transfers through data RAM (biss_proto_io.c) ---- */
+
+/* Reads and writes n bytes at a data-RAM offset (0 or a negative code);
+ * word-aligned transfers of whole words. */
+struct biss_proto_io {
+    int (*read)(void *ctx, uint32_t off, void *buf, size_t n);
+    int (*write)(void *ctx, uint32_t off, const void *buf, size_t n);
+    void *ctx;
+};
+
+/* The block (all but its seq), then CFG_SEQ = seq. */
+int biss_proto_config_put(const struct biss_proto_io *io, const struct biss_shm_config *blk,
+                          uint32_t seq);
+/* The configuration block as it is in data RAM. */
+int biss_proto_config_get(const struct biss_proto_io *io, struct biss_shm_config *blk);
+/* The firmware's status words. */
+int biss_proto_status_get(const struct biss_proto_io *io, struct biss_shm_status *st);
+/* The identification block. */
+int biss_proto_id_get(const struct biss_proto_io *io, struct biss_shm_id *id);
+/* The block and the remoteproc resource table after it (16 bytes), as the
+ * kernel's loader puts them from the ELF. */
+int biss_proto_id_put(const struct biss_proto_io *io, const struct biss_shm_id *id,
+                      const uint8_t rsc[16]);
+/* CMD_TRIGGER: read (nonzero while a frame is pending) and set. */
+int biss_proto_trigger_get(const struct biss_proto_io *io, uint32_t *pending);
+int biss_proto_trigger(const struct biss_proto_io *io);
+/* The publication counter alone. */
+int biss_proto_pub_seq(const struct biss_proto_io *io, uint32_t *seq);
+/* The result buffer ST_BUF names, its header and nslaves slave results
+ * (the rest zeroed): 0, or BISS_E_SHM_RESULT for a buffer index the
+ * firmware never writes. */
+int biss_proto_result_get(const struct biss_proto_io *io, unsigned nslaves,
+                          struct biss_shm_result *r);
+/* A control program: BISS_E_CD_STEPS for a length outside
+ * 1..BISS_CD_MAX_STEPS, BISS_E_CD_BUSY while the last one runs, else puts
+ * PROG, STEPS, WAIT_LIMIT and the IDA test, then CD_CMD = *cmd (the next
+ * command number). */
+int biss_proto_cd_put(const struct biss_proto_io *io, const biss_cd_prog *p, unsigned wait_limit,
+                      uint32_t *cmd);
+/* The program's words alone (PROG, STEPS and WAIT_LIMIT, the IDA test),
+ * CD_CMD left alone. */
+int biss_proto_cd_load(const struct biss_proto_io *io, const biss_cd_prog *p, unsigned wait_limit);
+/* The firmware's answer words (ST_CD_*, the answers), whatever their seq. */
+int biss_proto_cd_answer(const struct biss_proto_io *io, biss_cd_answer *a);
+/* Whether the firmware has ended command cmd (1, 0 not yet, or an error);
+ * with 1 the answer is read into *a. */
+int biss_proto_cd_ended(const struct biss_proto_io *io, uint32_t cmd, biss_cd_answer *a);
+
+#pragma GCC visibility pop
+
+#endif

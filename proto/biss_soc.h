@@ -1,0 +1,41 @@
+/*
+ * biss_soc.h - the PRU-ICSS and SoC memory map the host side of the
+ * firmware uses: where each supported PRU-ICSS sits, its sizes, and the
+ * offsets of PRU0's data RAM, CONTROL register and instruction RAM inside
+ * it (docs/pru-facts.md §5.4; Linux am33xx-l4.dtsi / am4372.dtsi for the
+ * clock controls and remoteproc names).
+ */
+#ifndef BISS_SOC_H
+#define BISS_SOC_H
+
+#include <stdint.h>
+
+/* PRU-ICSS layout, offsets from its base (same for AM335x and AM437x). */
+#define ICSS_DRAM0        0x00000u
+#define ICSS_CTRL0        0x22000u /* PRU0 CONTROL */
+#define ICSS_IRAM0        0x34000u
+#define ICSS_WINDOW       0x80000u /* the largest PRU-ICSS (AM335x) */
+#define ICSS_CTRL_RESET_N (1u << 0)
+#define ICSS_CTRL_ENABLE  (1u << 1)
+
+/* One PRU-ICSS of a SoC, as the host sees it. */
+struct biss_soc_icss {
+    uint32_t base;       /* physical address of the PRU-ICSS */
+    uint32_t window;     /* its size */
+    uint32_t iram_bytes; /* PRU0 instruction RAM */
+    uint32_t dram_bytes; /* PRU0 data RAM */
+    uint32_t clkctrl;    /* CM_PER_PRU_ICSS_CLKCTRL (AM437x: AM4_PRUSS_CLKCTRL) */
+    uint32_t iram_phys;  /* PRU0 IRAM: pru_rproc names the instance after it */
+    const char *fw_name; /* the firmware name the kernel's device tree gives PRU0 */
+};
+
+/* AM335x: one 512 KB PRU-ICSS. AM437x: ICSS1 at 0x54400000 and ICSS0 at
+ * 0x54440000, 256 KB each, one clock control for both. */
+#define BISS_SOC_AM335X                                                                            \
+    { 0x4A300000u, 0x80000u, 8 * 1024, 8 * 1024, 0x44E000E8u, 0x4A334000u, "am335x-pru0-fw" }
+#define BISS_SOC_AM437X_ICSS1                                                                      \
+    { 0x54400000u, 0x40000u, 12 * 1024, 8 * 1024, 0x44DF8B20u, 0x54434000u, "am437x-pru1_0-fw" }
+#define BISS_SOC_AM437X_ICSS0                                                                      \
+    { 0x54440000u, 0x40000u, 4 * 1024, 4 * 1024, 0x44DF8B20u, 0x54474000u, "am437x-pru0_0-fw" }
+
+#endif
