@@ -57,7 +57,7 @@ struct options {
     int cd_set;
     const char *cd_what; /* the option that asked for it */
     /* fast paths switched off (--no-fast-path) */
-    int no_ff, no_ff_counted, no_ff_r31_bits, no_ff_loop_delay;
+    int no_ff, no_ff_counted, no_ff_r31_bits, no_ff_loop_delay, no_ff_count_loop;
     /* strict and contention modes (emulator/core/TIMING.md) */
     unsigned strict, strict_window;
     int strict_log;
@@ -89,9 +89,10 @@ static void usage(FILE *f) {
                "  --json             print the results as one JSON object\n"
                "  --no-fast-path P   run without the emulator's fast path P (results are the\n"
                "                     same, only slower): ff (idle loops, and with it the\n"
-               "                     next three), ff-counted (polls with a time-out counter),\n"
+               "                     next four), ff-counted (polls with a time-out counter),\n"
                "                     ff-r31-bits (horizons of the R31 bits a loop tests),\n"
-               "                     ff-loop-delay (LOOP delays run at once)\n"
+               "                     ff-loop-delay (LOOP delays run at once),\n"
+               "                     ff-count-loop (countdown delays run at once)\n"
                "  --max-ms T         stop after T ms of simulated time (default: ample)\n"
                "  --strict[=RULES]   stop with a fault report on a construct of uncertain\n"
                "                     silicon behaviour in clocked code (between two MA edges\n"
@@ -280,8 +281,11 @@ static int set_option(struct options *o, const char *a, const char *v) {
             o->no_ff_r31_bits = 1;
         } else if (!strcmp(v, "ff-loop-delay")) {
             o->no_ff_loop_delay = 1;
+        } else if (!strcmp(v, "ff-count-loop")) {
+            o->no_ff_count_loop = 1;
         } else {
-            return die("--no-fast-path: '%s' is not ff, ff-counted, ff-r31-bits or ff-loop-delay",
+            return die("--no-fast-path: '%s' is not ff, ff-counted, ff-r31-bits, ff-loop-delay "
+                       "or ff-count-loop",
                        v);
         }
     } else if (!strcmp(a, "--strict-window")) {
@@ -369,6 +373,7 @@ static int build_config(const struct options *o, struct bench_config *cfg) {
     cfg->pru.ff_counted = !o->no_ff_counted;
     cfg->pru.ff_r31_bits = !o->no_ff_r31_bits;
     cfg->pru.ff_loop_delay = !o->no_ff_loop_delay;
+    cfg->pru.ff_count_loop = !o->no_ff_count_loop;
     cfg->pru.strict = o->strict;
     cfg->pru.strict_log = o->strict_log;
     if (o->strict_window) {

@@ -122,6 +122,9 @@ struct ff_body {
     int counter;       /* a counted poll's counter register, -1 if it is none */
     uint32_t step;     /* ... added to it per iteration (mod 2^32) */
     uint32_t end;      /* ... the value that ends the loop */
+    int cl_reg;        /* a count loop's counter register (ff.c), -1 if it is none */
+    uint8_t cl_sel;    /* ... its field */
+    uint32_t cl_step;  /* ... subtracted from it per turn (> 0) */
 };
 
 /* Fast-forward probe of an idle polling loop (ff.c). */

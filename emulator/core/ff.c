@@ -22,6 +22,10 @@
  * And a third kind of skip (ff_loop_delay): a LOOP over one instruction
  * that changes nothing (AND/OR of a register with itself, pasm's
  * "mov rN, rN") is a delay of one cycle an iteration, run at once.
+ * And a fourth (ff_count_loop): a delay written without LOOP, a backward
+ * QBNE on a counter field against 0 whose body only steps that counter
+ * down by one SUB of a constant and otherwise does what gives the same
+ * result every turn (pads), runs its turns at once but the last.
  */
 #include "core_priv.h"
 #include "pru_isa.h"
@@ -113,6 +117,77 @@ static void counted(struct ff_body *b, const struct pru_insn *in, uint32_t n) {
     }
 }
 
+/* The instructions that write the carry (docs/pru-facts.md §1.3) ... */
+static bool writes_carry(unsigned op) {
+    return op == PRU_OP_ADD || op == PRU_OP_ADC || op == PRU_OP_SUB || op == PRU_OP_SUC ||
+           op == PRU_OP_RSB || op == PRU_OP_RSC;
+}
+
+/* ... and those that read it. */
+static bool reads_carry(unsigned op) {
+    return op == PRU_OP_ADC || op == PRU_OP_SUC || op == PRU_OP_RSC;
+}
+
+/* AND/OR of a field with itself into it: writes what was there. */
+static bool is_identity(const struct pru_insn *a) {
+    return (a->op == PRU_OP_AND || a->op == PRU_OP_OR) && !a->io && a->rd == a->rs1 &&
+           a->rs1 == a->rs2 && a->rdsel == a->rs1sel && a->rs1sel == a->rs2sel;
+}
+
+/* A count loop (see the top): the closing branch in[n-1] is QBNE top,
+ * x.f, 0; one SUB x.f, x.f, k (k > 0) steps it; every other instruction is
+ * an ALU one or LDI (one cycle, registers only: no branch, no R31 read, no
+ * R30/R31 write), neither reads nor writes the carry, and reads nothing
+ * the body writes (counter included) unless it writes a field back to
+ * itself (a pad). Then every turn gives the other registers the same
+ * values, so only the counter, time and the carry differ from turn to
+ * turn. Sets b->cl_reg (-1 if the body is no such loop), cl_sel, cl_step. */
+static void count_loop(struct ff_body *b, const struct pru_insn *in, uint32_t n) {
+    b->cl_reg = -1;
+    const struct pru_insn *br = &in[n - 1];
+    if (br->op != PRU_OP_QBNE || !br->io || br->imm != 0 || br->rs1 > 29)
+        return;
+    uint32_t written[32] = {0};
+    int sub = -1;
+    for (uint32_t i = 0; i + 1 < n; i++) {
+        const struct pru_insn *a = &in[i];
+        enum pru_fmt f = pru_optable[a->op].fmt;
+        if ((f != PRU_FMT_ALU && f != PRU_FMT_LDI) || !pru_op_register_only(a->op))
+            return;
+        if (is_identity(a))
+            continue;
+        if (a->rd > 29)
+            return;
+        if (a->op == PRU_OP_SUB && a->rd == br->rs1 && a->rdsel == br->rs1sel)
+            sub = sub < 0 ? (int)i : -2; /* the counter's step; two: none */
+        written[a->rd] |= field_bits(a->rdsel);
+    }
+    if (sub < 0)
+        return;
+    const struct pru_insn *s = &in[sub];
+    if (s->rs1 != s->rd || s->rs1sel != s->rdsel || !s->io || s->imm == 0)
+        return;
+    uint32_t cmask = field_bits(br->rs1sel);
+    if (written[br->rs1] != cmask)
+        return; /* another instruction writes part of the counter's register */
+    for (uint32_t i = 0; i + 1 < n; i++) {
+        const struct pru_insn *a = &in[i];
+        if ((int)i == sub || is_identity(a))
+            continue;
+        if (writes_carry(a->op) || reads_carry(a->op))
+            return;
+        if (pru_optable[a->op].fmt == PRU_FMT_LDI)
+            continue;
+        if (a->rs1 == 31 || (written[a->rs1] & field_bits(a->rs1sel)))
+            return;
+        if (!a->io && (a->rs2 == 31 || (written[a->rs2] & field_bits(a->rs2sel))))
+            return;
+    }
+    b->cl_reg = br->rs1;
+    b->cl_sel = br->rs1sel;
+    b->cl_step = s->imm;
+}
+
 /* The body [top, pc] analysed, from the cache while IRAM is unchanged;
  * NULL if it does not decode. */
 static const struct ff_body *body(struct pru_core *c, uint32_t top, uint32_t pc) {
@@ -136,6 +211,7 @@ static const struct ff_body *body(struct pru_core *c, uint32_t top, uint32_t pc)
     b->pc = pc;
     b->r31_mask = r31_mask(in, n);
     counted(b, in, n);
+    count_loop(b, in, n);
     return b;
 }
 
@@ -215,6 +291,38 @@ static int64_t repeat_room(struct pru_core *c, uint32_t top, uint32_t pc, int *x
     return counted_room(c, top, pc, *x, *step);
 }
 
+/* A count loop's branch from pc back to top was taken, before its cycle
+ * is counted: runs the turns after this one but the last (whose exit is
+ * left to the core) at once, up to `limit` (which the caller has already
+ * bounded by every event that may be observed). A turn takes one cycle an
+ * instruction and leaves the counter 1..k above 0 while it goes on, with
+ * no borrow: carry 1. Returns false if the body is no count loop. */
+static bool count_loop_skip(struct pru_core *c, uint32_t pc, uint32_t top, int64_t limit) {
+    if (c->loop_end >= top && c->loop_end <= pc)
+        return false; /* a LOOP ends inside: its turns are not alike */
+    const struct ff_body *b = body(c, top, pc);
+    if (!b || b->cl_reg < 0)
+        return false;
+    uint32_t mask = field_bits(b->cl_sel);
+    unsigned sh = (unsigned)__builtin_ctz(mask);
+    uint32_t v = (c->r[b->cl_reg] & mask) >> sh; /* > 0: the branch was taken */
+    int64_t len = (int64_t)(pc - top + 1);
+    int64_t now = c->cycle + 1; /* the branch itself takes one cycle */
+    int64_t n = v ? (int64_t)((v - 1) / b->cl_step) : 0;
+    int64_t room = limit > now ? (limit - now) / len : 0;
+    if (room < n)
+        n = room;
+    if (n > 0) {
+        v -= (uint32_t)n * b->cl_step;
+        c->r[b->cl_reg] = (c->r[b->cl_reg] & ~mask) | v << sh;
+        c->carry = 1;
+        c->cycle += n * len;
+        c->insns += (uint64_t)(n * len);
+        c->ff.skipped += (uint64_t)n;
+    }
+    return true;
+}
+
 /* Called by a taken branch from pc back to top, before its cycle is counted. */
 void ff_backward_branch(struct pru_core *c, uint32_t pc, uint32_t top, int64_t limit) {
     struct ff_probe *f = &c->ff;
@@ -222,6 +330,14 @@ void ff_backward_branch(struct pru_core *c, uint32_t pc, uint32_t top, int64_t l
     uint64_t insns = c->insns + 1;
 
     if (pc - top >= FF_MAX_BODY) {
+        f->top = NO_LOOP;
+        f->have_snap = false;
+        f->r31_mask = ~0u;
+        return;
+    }
+    if (c->p.ff_count_loop && count_loop_skip(c, pc, top, limit)) {
+        /* unarmed, so that the next arrival here (the next call of the
+         * delay) comes back through this function, not the in-line one */
         f->top = NO_LOOP;
         f->have_snap = false;
         f->r31_mask = ~0u;

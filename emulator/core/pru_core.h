@@ -73,6 +73,11 @@ struct pru_params {
      * nothing (AND/OR of a register with itself: a delay) runs its
      * iterations at once. */
     int ff_loop_delay;
+    /* With fast_forward, a register-only countdown loop (a backward QBNE
+     * on a counter field against 0, the counter stepped down by one SUB of
+     * a constant, every other instruction of the body giving the same
+     * result each turn: a delay) runs its turns at once. */
+    int ff_count_loop;
 
     /* Strict mode (TIMING.md "Strict mode"): the PRU_STRICT_* rules checked,
      * 0 = off. A rule broken stops the core with PRU_FAULT_STRICT, or with

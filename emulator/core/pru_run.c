@@ -50,6 +50,9 @@ static void usage(FILE *f) {
             "  --contend K,S[,periodic[:PHASE]|random[:SEED]]\n"
             "                   a host reads the data RAM every K cycles; a PRU load/store\n"
             "                   meeting one stalls S cycles (emulator/core/TIMING.md)\n"
+            "  --no-fast-path P run without the fast path P (the same results, only\n"
+            "                   slower): ff (all), ff-counted, ff-r31-bits, ff-loop-delay,\n"
+            "                   ff-count-loop (emulator/core/TIMING.md \"Fast-forward\")\n"
             "  --help           this text\n"
             "\n"
             "exit status: 0 halted, 2 no HALT within the cycle limit, 3 fault, 1 usage\n",
@@ -74,6 +77,25 @@ static int bad(const char *msg, const char *arg) {
     fprintf(stderr, "pru-run: %s%s%s\n", msg, arg ? ": " : "", arg ? arg : "");
     fprintf(stderr, "try 'pru-run --help'\n");
     return -1;
+}
+
+/* Turns the fast path `name` off; -1 if there is none of that name. */
+static int no_fast_path(const char *name, struct pru_params *p) {
+    if (!name)
+        return -1;
+    if (strcmp(name, "ff") == 0)
+        p->fast_forward = 0;
+    else if (strcmp(name, "ff-counted") == 0)
+        p->ff_counted = 0;
+    else if (strcmp(name, "ff-r31-bits") == 0)
+        p->ff_r31_bits = 0;
+    else if (strcmp(name, "ff-loop-delay") == 0)
+        p->ff_loop_delay = 0;
+    else if (strcmp(name, "ff-count-loop") == 0)
+        p->ff_count_loop = 0;
+    else
+        return -1;
+    return 0;
 }
 
 static int parse_args(int argc, char **argv, struct opts *o) {
@@ -111,6 +133,12 @@ static int parse_args(int argc, char **argv, struct opts *o) {
             char err[200];
             if (pru_contend_parse(val, &o->params, err, sizeof err))
                 return bad("--contend", err);
+            i++;
+        } else if (strcmp(a, "--no-fast-path") == 0) {
+            if (no_fast_path(val, &o->params))
+                return bad("--no-fast-path must be ff, ff-counted, ff-r31-bits, ff-loop-delay or "
+                           "ff-count-loop",
+                           val);
             i++;
         } else if (strcmp(a, "--max-cycles") == 0) {
             if (parse_u64(val, &u) || u == 0)

@@ -49,7 +49,7 @@ cases = [
     ("image-1MHz", ["--image", os.path.join(os.path.dirname(__file__), "clock_frames.p"),
                     "--freq", "1000000", "--frames", "10"]),
 ]
-paths = ["ff-counted", "ff-r31-bits", "ff-loop-delay", "ff"]
+paths = ["ff-counted", "ff-r31-bits", "ff-loop-delay", "ff-count-loop", "ff"]
 skips_less = {p: [] for p in paths}  # the cases in which the path skipped something
 for name, args in cases:
     ref, ref_vcd, ref_skip = run(name, args, [])
@@ -68,6 +68,8 @@ for path, where in skips_less.items():
 # MA half periods are mostly LOOP delays
 check("default-10MHz" in skips_less["ff-counted"], "ff-counted at 10 MHz: %s" % skips_less)
 check("image-1MHz" in skips_less["ff-loop-delay"], "ff-loop-delay at 1 MHz: %s" % skips_less)
+# the firmware's clocked periods at 1 MHz wait in its countdown delay
+check("default-1MHz-100m" in skips_less["ff-count-loop"], "ff-count-loop at 1 MHz: %s" % skips_less)
 
 print("%d failed" % failures if failures else "all fast-path checks passed")
 sys.exit(1 if failures else 0)

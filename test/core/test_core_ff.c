@@ -2,7 +2,7 @@
  * Check suite: the fast-forward's skips (emulator/core/ff.c, TIMING.md
  * "Fast-forward") give exactly the cycles, instructions and registers of
  * running every instruction: counted polls, polls on one R31 bit of a
- * shift-mode input, LOOP delays; and loops that look alike but are not
+ * shift-mode input, LOOP delays, countdown loops; and loops that look alike but are not
  * skippable run as they are.
  */
 #include "check_run.h"
@@ -28,7 +28,7 @@ static int64_t in_next(void *ctx, int64_t t) {
     return t < e->t_fall ? e->t_fall : INT64_MAX;
 }
 
-enum path { ALL, NO_COUNTED, NO_R31_BITS, NO_LOOP_DELAY, NONE, PATHS };
+enum path { ALL, NO_COUNTED, NO_R31_BITS, NO_LOOP_DELAY, NO_COUNT_LOOP, NONE, PATHS };
 
 static struct pru_core *ff_core(enum path p, struct edge_in *in) {
     struct pru_params prm;
@@ -37,6 +37,7 @@ static struct pru_core *ff_core(enum path p, struct edge_in *in) {
     prm.ff_counted = p != NO_COUNTED;
     prm.ff_r31_bits = p != NO_R31_BITS;
     prm.ff_loop_delay = p != NO_LOOP_DELAY;
+    prm.ff_count_loop = p != NO_COUNT_LOOP;
     struct pru_core *c = pru_core_new(PRU_SOC_AM335X, &prm);
     ck_assert_ptr_nonnull(c);
     if (in) {
@@ -207,6 +208,105 @@ START_TEST(loop_with_work_runs) {
 }
 END_TEST
 
+/* The whole state a countdown loop leaves. */
+struct count_end {
+    int64_t cycles;
+    uint64_t insns, skipped;
+    uint32_t r[30];
+};
+
+/*
+ * A delay as the firmware writes it (pru_fw/biss_master.p DLY_TURN), with a
+ * work instruction `work` among the pads: r10 = 0x00ab00cd with `count`
+ * in r10.b1, r6/r7 inputs; the turns: sub r10.b1, r10.b1, step; work; mov
+ * r0, r0; qbne TURN, r10.b1, 0; then adc r8, r8, 0 shows the carry. Run
+ * in pieces of `piece` cycles.
+ */
+static struct count_end count_run(enum path p, uint32_t work, unsigned count, unsigned step,
+                                  int64_t piece) {
+    struct pru_core *c = ff_core(p, NULL);
+    uint32_t prog[24];
+    unsigned n = 0;
+    mov32(prog, &n, 10, 0x00ab00cdu | count << 8);
+    mov32(prog, &n, 6, 0x12345678u);
+    prog[n++] = ldi(R(7), 0x5a5a);
+    prog[n++] = alui(PRU_OP_SUB, B1(10), B1(10), step);
+    prog[n++] = work;
+    prog[n++] = alu(PRU_OP_AND, R(0), R(0), R(0));
+    prog[n++] = qbi(PRU_OP_QBNE, -3, B1(10), 0);
+    prog[n++] = alui(PRU_OP_ADC, R(8), R(8), 0);
+    prog[n++] = halt();
+    pru_load_image(c, prog, n * 4);
+    pru_start(c);
+    enum pru_stop st = PRU_STOP_LIMIT;
+    for (int64_t limit = piece; st == PRU_STOP_LIMIT && limit < 10000000; limit += piece) {
+        st = pru_run_until_cycle(c, limit);
+        ck_assert_int_le(pru_cycles(c), limit);
+    }
+    ck_assert_int_eq(st, PRU_STOP_HALT);
+    struct count_end e = {pru_cycles(c), pru_instructions(c), pru_ff_skipped(c), {0}};
+    for (unsigned i = 0; i < 30; i++)
+        e.r[i] = pru_reg(c, i);
+    pru_core_free(c);
+    return e;
+}
+
+static void same_end(const struct count_end *a, const struct count_end *b, const char *what,
+                     int64_t piece) {
+    ck_assert_msg(a->cycles == b->cycles && a->insns == b->insns,
+                  "%s, pieces of %lld: %lld cycles %llu insns vs %lld %llu", what, (long long)piece,
+                  (long long)a->cycles, (unsigned long long)a->insns, (long long)b->cycles,
+                  (unsigned long long)b->insns);
+    for (unsigned i = 0; i < 30; i++)
+        ck_assert_msg(a->r[i] == b->r[i], "%s, pieces of %lld: r%u = 0x%x vs 0x%x", what,
+                      (long long)piece, i, a->r[i], b->r[i]);
+}
+
+/* A countdown delay runs at once, never past a run's limit, with the
+ * registers, carry, cycles and instructions of running it: with a pad or
+ * an invariant write (xor r5, r6, r7; ldi r4) in the body, with steps that
+ * end on 0 and ones that wrap the field first. */
+START_TEST(count_loop_exact) {
+    const uint32_t works[] = {alu(PRU_OP_AND, R(0), R(0), R(0)), alu(PRU_OP_XOR, R(5), R(6), R(7)),
+                              ldi(R(4), 0x4321), alui(PRU_OP_LSR, W2(9), W0(6), 3)};
+    const unsigned steps[] = {1, 3, 5};
+    for (unsigned w = 0; w < sizeof works / sizeof works[0]; w++) {
+        for (unsigned s = 0; s < 3; s++) {
+            for (int64_t piece = 5; piece <= 100005; piece += 20000) {
+                struct count_end ref = count_run(NONE, works[w], 200, steps[s], piece);
+                struct count_end off = count_run(NO_COUNT_LOOP, works[w], 200, steps[s], piece);
+                struct count_end all = count_run(ALL, works[w], 200, steps[s], piece);
+                same_end(&off, &ref, "countdown, no count-loop path", piece);
+                same_end(&all, &ref, "countdown, all fast paths", piece);
+                ck_assert_uint_eq(off.skipped, 0);
+                ck_assert_uint_eq(ref.r[10], 0x00ab00cdu);
+                ck_assert_uint_eq(ref.r[8], 1); /* the last turn: no borrow */
+                if (piece > 1000)
+                    ck_assert_uint_ge(all.skipped, 200 / steps[s] - 2);
+            }
+        }
+    }
+    /* step 1 from 200: 200 turns of 4 cycles */
+    struct count_end ref = count_run(NONE, works[0], 200, 1, 1000000);
+    ck_assert_int_eq(ref.cycles, 4 + 1 + 200 * 4 + 2);
+}
+END_TEST
+
+/* A body that carries other state from turn to turn (add r5, r5, 1: r5
+ * counts the turns; adc: reads the carry; a write to the counter's
+ * register elsewhere) runs as it is. */
+START_TEST(count_loop_with_state_runs) {
+    const uint32_t works[] = {alui(PRU_OP_ADD, R(5), R(5), 1), alui(PRU_OP_ADC, R(5), R(6), 0),
+                              alui(PRU_OP_OR, B0(10), B0(10), 1)};
+    for (unsigned w = 0; w < sizeof works / sizeof works[0]; w++) {
+        struct count_end ref = count_run(NONE, works[w], 200, 1, 1000000);
+        struct count_end all = count_run(ALL, works[w], 200, 1, 1000000);
+        same_end(&all, &ref, "countdown with state", 1000000);
+        ck_assert_uint_eq(all.skipped, 0);
+    }
+}
+END_TEST
+
 int main(void) {
     Suite *s = suite_create("core_ff");
     TCase *tc = tcase_create("ff");
@@ -216,6 +316,8 @@ int main(void) {
     tcase_add_test(tc, counter_read_elsewhere_runs);
     tcase_add_test(tc, loop_delay_exact);
     tcase_add_test(tc, loop_with_work_runs);
+    tcase_add_test(tc, count_loop_exact);
+    tcase_add_test(tc, count_loop_with_state_runs);
     suite_add_tcase(s, tc);
     return check_run(s);
 }

@@ -187,6 +187,30 @@ START_TEST(usage_errors) {
 }
 END_TEST
 
+/* --no-fast-path: a countdown delay gives the same registers, cycles and
+ * instructions without each fast path; an unknown name is refused. */
+START_TEST(no_fast_path) {
+    const uint32_t w[] = {ldi(R(1), 50000), alui(PRU_OP_SUB, R(1), R(1), 1),
+                          alu(PRU_OP_AND, R(0), R(0), R(0)), qbi(PRU_OP_QBNE, -2, R(1), 0), halt()};
+    const char *img = write_file("count.bin", w, sizeof w);
+    char args[800], ref[8192];
+    snprintf(args, sizeof args, "--dump-regs '%s'", img);
+    ck_assert_int_eq(run(args), 0);
+    snprintf(ref, sizeof ref, "%s", slurp(outf));
+    ck_assert_ptr_nonnull(strstr(ref, "\ncycles=150002\ninstructions=150002\n"));
+    const char *names[] = {"ff", "ff-counted", "ff-r31-bits", "ff-loop-delay", "ff-count-loop"};
+    for (unsigned i = 0; i < 5; i++) {
+        snprintf(args, sizeof args, "--no-fast-path %s --dump-regs '%s'", names[i], img);
+        ck_assert_int_eq(run(args), 0);
+        ck_assert_str_eq(slurp(outf), ref);
+    }
+    snprintf(args, sizeof args, "--no-fast-path ff-bogus '%s'", img);
+    ck_assert_int_ne(run(args), 0);
+    ck_assert_ptr_nonnull(strstr(slurp(errf), "--no-fast-path must be"));
+    ck_assert_ptr_nonnull(strstr(slurp(errf), "ff-bogus"));
+}
+END_TEST
+
 /* Any count of 1 .. 2^64-1 cycles is a limit (the core caps it); anything
  * else is refused with the value named. */
 START_TEST(max_cycles_range) {
@@ -262,6 +286,7 @@ Suite *cli_suite(void) {
     tcase_add_test(t, usage_errors);
     tcase_add_test(t, trace_output);
     tcase_add_test(t, max_cycles_range);
+    tcase_add_test(t, no_fast_path);
     tcase_add_test(t, bad_image_files);
     suite_add_tcase(s, t);
     return s;
