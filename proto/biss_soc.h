@@ -8,13 +8,15 @@
 #ifndef BISS_SOC_H
 #define BISS_SOC_H
 
+#include "biss/pruss_map.h"
+
 #include <stdint.h>
 
 /* PRU-ICSS layout, offsets from its base (same for AM335x and AM437x). */
-#define ICSS_DRAM0        0x00000u
-#define ICSS_CTRL0        0x22000u /* PRU0 CONTROL */
-#define ICSS_IRAM0        0x34000u
-#define ICSS_WINDOW       0x80000u /* the largest PRU-ICSS (AM335x) */
+#define ICSS_DRAM0        PRUSS_OFS_DRAM0
+#define ICSS_CTRL0        PRUSS_OFS_CTRL0 /* PRU0 CONTROL */
+#define ICSS_IRAM0        PRUSS_OFS_IRAM0
+#define ICSS_WINDOW       PRUSS_AM335X_WINDOW /* the largest PRU-ICSS (AM335x) */
 #define ICSS_CTRL_RESET_N (1u << 0)
 #define ICSS_CTRL_ENABLE  (1u << 1)
 
@@ -32,10 +34,22 @@ struct biss_soc_icss {
 /* AM335x: one 512 KB PRU-ICSS. AM437x: ICSS1 at 0x54400000 and ICSS0 at
  * 0x54440000, 256 KB each, one clock control for both. */
 #define BISS_SOC_AM335X                                                                            \
-    { 0x4A300000u, 0x80000u, 8 * 1024, 8 * 1024, 0x44E000E8u, 0x4A334000u, "am335x-pru0-fw" }
+    {                                                                                              \
+        PRUSS_AM335X_BASE, PRUSS_AM335X_WINDOW, PRUSS_AM335X_IRAM0_BYTES,                          \
+            PRUSS_AM335X_DRAM0_BYTES, 0x44E000E8u, PRUSS_AM335X_BASE + PRUSS_OFS_IRAM0,            \
+            "am335x-pru0-fw"                                                                       \
+    }
 #define BISS_SOC_AM437X_ICSS1                                                                      \
-    { 0x54400000u, 0x40000u, 12 * 1024, 8 * 1024, 0x44DF8B20u, 0x54434000u, "am437x-pru1_0-fw" }
+    {                                                                                              \
+        PRUSS_AM437X_ICSS1_BASE, PRUSS_AM437X_ICSS1_WINDOW, PRUSS_AM437X_ICSS1_IRAM0_BYTES,        \
+            PRUSS_AM437X_ICSS1_DRAM0_BYTES, 0x44DF8B20u,                                           \
+            PRUSS_AM437X_ICSS1_BASE + PRUSS_OFS_IRAM0, "am437x-pru1_0-fw"                          \
+    }
 #define BISS_SOC_AM437X_ICSS0                                                                      \
-    { 0x54440000u, 0x40000u, 4 * 1024, 4 * 1024, 0x44DF8B20u, 0x54474000u, "am437x-pru0_0-fw" }
+    {                                                                                              \
+        PRUSS_AM437X_ICSS0_BASE, PRUSS_AM437X_ICSS0_WINDOW, PRUSS_AM437X_ICSS0_IRAM0_BYTES,        \
+            PRUSS_AM437X_ICSS0_DRAM0_BYTES, 0x44DF8B20u,                                           \
+            PRUSS_AM437X_ICSS0_BASE + PRUSS_OFS_IRAM0, "am437x-pru0_0-fw"                          \
+    }
 
 #endif

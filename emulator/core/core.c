@@ -41,9 +41,14 @@ static const struct {
     const char *name;
     uint32_t base, iram, dram, shared;
 } socs[] = {
-    [PRU_SOC_AM335X] = {"am335x", 0x4A300000u, 8192, 8192, 12288},
-    [PRU_SOC_AM437X_ICSS0] = {"am437x-icss0", 0x54440000u, 4096, 4096, 0},
-    [PRU_SOC_AM437X_ICSS1] = {"am437x-icss1", 0x54400000u, 12288, 8192, 32768},
+    [PRU_SOC_AM335X] = {"am335x", PRUSS_AM335X_BASE, PRUSS_AM335X_IRAM0_BYTES,
+                        PRUSS_AM335X_DRAM0_BYTES, PRUSS_AM335X_SHARED_BYTES},
+    [PRU_SOC_AM437X_ICSS0] = {"am437x-icss0", PRUSS_AM437X_ICSS0_BASE,
+                              PRUSS_AM437X_ICSS0_IRAM0_BYTES, PRUSS_AM437X_ICSS0_DRAM0_BYTES,
+                              PRUSS_AM437X_ICSS0_SHARED_BYTES},
+    [PRU_SOC_AM437X_ICSS1] = {"am437x-icss1", PRUSS_AM437X_ICSS1_BASE,
+                              PRUSS_AM437X_ICSS1_IRAM0_BYTES, PRUSS_AM437X_ICSS1_DRAM0_BYTES,
+                              PRUSS_AM437X_ICSS1_SHARED_BYTES},
 };
 
 int pru_soc_from_name(const char *name, enum pru_soc *soc) {

@@ -16,6 +16,8 @@
 #ifndef PRU_CORE_H
 #define PRU_CORE_H
 
+#include "biss/pruss_map.h"
+
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -212,18 +214,18 @@ uint32_t pru_iram_bytes(const struct pru_core *c);
 uint32_t pru_dram_bytes(const struct pru_core *c);
 uint32_t pru_shared_bytes(const struct pru_core *c);
 
-/* Global (ARM view) offsets inside the PRU-ICSS. */
-#define PRU_OFS_DRAM0  0x00000u
-#define PRU_OFS_DRAM1  0x02000u
-#define PRU_OFS_SHARED 0x10000u
-#define PRU_OFS_INTC   0x20000u
-#define PRU_OFS_CTRL0  0x22000u
-#define PRU_OFS_DEBUG0 0x22400u
-#define PRU_OFS_CTRL1  0x24000u
-#define PRU_OFS_CFG    0x26000u
-#define PRU_OFS_IEP    0x2E000u
-#define PRU_OFS_IRAM0  0x34000u
-#define PRU_OFS_IRAM1  0x38000u
+/* Global (ARM view) offsets inside the PRU-ICSS: include/biss/pruss_map.h. */
+#define PRU_OFS_DRAM0  PRUSS_OFS_DRAM0
+#define PRU_OFS_DRAM1  PRUSS_OFS_DRAM1
+#define PRU_OFS_SHARED PRUSS_OFS_SHARED
+#define PRU_OFS_INTC   PRUSS_OFS_INTC
+#define PRU_OFS_CTRL0  PRUSS_OFS_CTRL0
+#define PRU_OFS_DEBUG0 PRUSS_OFS_DEBUG0
+#define PRU_OFS_CTRL1  PRUSS_OFS_CTRL1
+#define PRU_OFS_CFG    PRUSS_OFS_CFG
+#define PRU_OFS_IEP    PRUSS_OFS_IEP
+#define PRU_OFS_IRAM0  PRUSS_OFS_IRAM0
+#define PRU_OFS_IRAM1  PRUSS_OFS_IRAM1
 
 /* CONTROL bits */
 #define PRU_CTRL_SOFT_RST_N  (1u << 0)
