@@ -327,7 +327,7 @@ int biss_cd_run(biss_t *h, const uint8_t *ops, unsigned n, unsigned wait_limit, 
 /* Register access of the slave with control-frame ID id (0..7), addresses
  * 0x00..0x7F; n > 1 is a sequential access of n consecutive addresses (at
  * most 64; the address wraps after 0x7F as the slave's does). Each byte's
- * answer is checked (echo, CRC4); the codec is host/biss_cd.h. A slave
+ * answer is checked (echo, CRC4); the codec is proto/biss_cd.h. A slave
  * does not tell a refused write (read-only register): read it back. */
 #define BISS_REG_MAX_SEQ 64
 int biss_reg_read(biss_t *h, unsigned id, uint8_t addr, uint8_t *buf, unsigned n);
