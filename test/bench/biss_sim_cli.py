@@ -9,16 +9,10 @@ import tempfile
 
 sys.path.insert(0, os.path.dirname(__file__))
 from vcd_check import read_vcd  # noqa: E402
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
+from checks import check, finish  # noqa: E402
 
 SIM = sys.argv[1]
-failures = 0
-
-
-def check(cond, what):
-    global failures
-    if not cond:
-        failures += 1
-        print("FAIL:", what)
 
 
 def run(*args):
@@ -192,5 +186,4 @@ for args, words in [(["--strict=loop9"], "--strict: unknown rule 'loop9'"),
     r = run("--frames", "3", *args)
     check(r.returncode == 1 and words in r.stderr, "%s -> %r (got %d %r)" % (args, words, r.returncode, r.stderr))
 
-print("%d failed" % failures if failures else "all biss-sim checks passed")
-sys.exit(1 if failures else 0)
+finish("biss-sim")

@@ -8,16 +8,10 @@ import os
 import subprocess
 import sys
 import tempfile
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
+from checks import check, finish  # noqa: E402
 
 SIM = sys.argv[1]
-failures = 0
-
-
-def check(cond, what):
-    global failures
-    if not cond:
-        failures += 1
-        print("FAIL:", what)
 
 
 tmp = tempfile.mkdtemp()
@@ -71,5 +65,4 @@ check("image-1MHz" in skips_less["ff-loop-delay"], "ff-loop-delay at 1 MHz: %s" 
 # the firmware's clocked periods at 1 MHz wait in its countdown delay
 check("default-1MHz-100m" in skips_less["ff-count-loop"], "ff-count-loop at 1 MHz: %s" % skips_less)
 
-print("%d failed" % failures if failures else "all fast-path checks passed")
-sys.exit(1 if failures else 0)
+finish("fast-path")

@@ -11,16 +11,10 @@ import tempfile
 
 sys.path.insert(0, os.path.dirname(__file__))
 from vcd_check import read_vcd  # noqa: E402
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
+from checks import check, finish  # noqa: E402
 
 SIM = sys.argv[1]
-failures = 0
-
-
-def check(cond, what):
-    global failures
-    if not cond:
-        failures += 1
-        print("FAIL:", what)
 
 
 def run(*args):
@@ -121,5 +115,4 @@ _, data_back = read_vcd(back)
 check({k: edges(v) for k, v in data_back.items()} == {k: edges(v) for k, v in data.items()},
       "fst2vcd gives the same changes back")
 
-print("%d failed" % failures if failures else "all VCD client checks passed")
-sys.exit(1 if failures else 0)
+finish("VCD client")

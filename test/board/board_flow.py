@@ -20,20 +20,12 @@ import tempfile
 import threading
 import time
 
-try:
-    from elftools.elf.elffile import ELFFile
-except ImportError:  # a python3 of its own (pyenv) beside Debian's python3-pyelftools
-    sys.path.append("/usr/lib/python3/dist-packages")
-    from elftools.elf.elffile import ELFFile
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
+from checks import check, finish, use_debian_pyelftools  # noqa: E402
 
-failures = 0
+use_debian_pyelftools()
+from elftools.elf.elffile import ELFFile  # noqa: E402
 
-
-def check(cond, what):
-    global failures
-    if not cond:
-        failures += 1
-        print("FAIL:", what)
 
 
 ctl, elf_path, bin_path = sys.argv[1:4]
@@ -179,5 +171,4 @@ if arm:
     check(qemu is not None, "qemu-arm on PATH (Debian: qemu-user)")
     if qemu:
         flow([qemu, arm], "arm")
-print("board flow: %d failure(s)" % failures)
-sys.exit(1 if failures else 0)
+finish("board flow")

@@ -15,15 +15,9 @@ import shutil
 import subprocess
 import sys
 import tempfile
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
+from checks import check, finish  # noqa: E402
 
-failures = 0
-
-
-def check(cond, what):
-    global failures
-    if not cond:
-        failures += 1
-        print("FAIL:", what)
 
 
 CONTROL = 0x44E10000   # control module; pinctrl-single's base is CONTROL + 0x800
@@ -122,5 +116,4 @@ with tempfile.TemporaryDirectory() as tmp:
         got = dict(re.findall(r"^config-pin (P\d_\d+) (\w+)$", text, re.M))
         check(got == pins, "%s: %r" % (script, got))
 
-print("board overlays: %d failure(s)" % failures)
-sys.exit(1 if failures else 0)
+finish("board overlays")

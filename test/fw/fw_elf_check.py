@@ -15,21 +15,13 @@ import sys
 import tempfile
 import zlib
 
-try:
-    from elftools.elf.elffile import ELFFile
-except ImportError:  # a python3 of its own (pyenv) beside Debian's python3-pyelftools
-    sys.path.append("/usr/lib/python3/dist-packages")
-    from elftools.elf.elffile import ELFFile
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
+from checks import check, finish, use_debian_pyelftools  # noqa: E402
+
+use_debian_pyelftools()
+from elftools.elf.elffile import ELFFile  # noqa: E402
 from elftools.elf.constants import P_FLAGS
 
-failures = 0
-
-
-def check(cond, what):
-    global failures
-    if not cond:
-        failures += 1
-        print("FAIL:", what)
 
 
 elf_path, bin_path, shm_h = sys.argv[1:4]
@@ -127,5 +119,4 @@ if pru_elf:
               "mode %o" % (os.stat(out).st_mode & 0o777 if os.path.exists(out) else 0))
         check(open(out, "rb").read() == open(elf_path, "rb").read(), "reproducible output")
 
-print("fw ELF: %d failure(s)" % failures)
-sys.exit(1 if failures else 0)
+finish("fw ELF")

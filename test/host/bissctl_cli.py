@@ -7,16 +7,10 @@ import re
 import subprocess
 import sys
 import tempfile
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
+from checks import check, finish  # noqa: E402
 
 CTL = sys.argv[1]
-failures = 0
-
-
-def check(cond, what):
-    global failures
-    if not cond:
-        failures += 1
-        print("FAIL:", what)
 
 
 def run(*args, env=None):
@@ -237,5 +231,4 @@ with tempfile.TemporaryDirectory() as tmp:
     r = run("--loader", "uio", "info")
     check(r.returncode == 2 and "remoteproc or devmem" in r.stderr, "bad loader: %r" % r.stderr)
 
-print("bissctl CLI: %d failure(s)" % failures)
-sys.exit(1 if failures else 0)
+finish("bissctl CLI")

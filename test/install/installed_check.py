@@ -22,16 +22,9 @@ import struct
 import subprocess
 import sys
 import tempfile
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
+from checks import check, finish  # noqa: E402
 
-failures = 0
-
-
-def check(cond, what):
-    global failures
-    if not cond:
-        failures += 1
-        print("FAIL:", what)
-    return cond
 
 
 ap = argparse.ArgumentParser()
@@ -196,5 +189,4 @@ with tempfile.TemporaryDirectory() as tmp:
             with open(os.path.join(prefix, "lib", "firmware", f), "rb") as x, \
                  open(os.path.join(a.same_firmware, "pru_fw", f), "rb") as y:
                 check(x.read() == y.read(), "%s byte-identical to %s's" % (f, a.same_firmware))
-print("installed tree %s: %d failure(s)" % (a.prefix or "(temporary)", failures))
-sys.exit(1 if failures else 0)
+finish("installed tree %s" % (a.prefix or "(temporary)"))
