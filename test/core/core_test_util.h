@@ -50,6 +50,18 @@ static inline uint32_t ldi(unsigned d, unsigned imm) {
     return enc(
         (struct pru_insn){.op = PRU_OP_LDI, .rd = d & 31, .rdsel = d >> 5, .imm = (uint16_t)imm});
 }
+/* MVIB/MVIW/MVID: d and s as R()/B0().. with the pointer modes. */
+static inline uint32_t mvi(int op, unsigned dmode, unsigned d, unsigned smode, unsigned s) {
+    return enc((struct pru_insn){.op = (uint8_t)op,
+                                 .mvi_dmode = (uint8_t)dmode,
+                                 .mvi_smode = (uint8_t)smode,
+                                 .rd = d & 31,
+                                 .rdsel = d >> 5,
+                                 .rs1 = s & 31,
+                                 .rs1sel = s >> 5,
+                                 .mvi_size = (uint8_t)(op - PRU_OP_MVIB)});
+}
+
 static inline uint32_t halt(void) {
     return 0x2A000000u;
 }

@@ -443,17 +443,6 @@ START_TEST(xfr_scratch_zero_fill) {
 }
 END_TEST
 
-static uint32_t mvi(int op, unsigned dmode, unsigned d, unsigned smode, unsigned s) {
-    return enc((struct pru_insn){.op = (uint8_t)op,
-                                 .mvi_dmode = (uint8_t)dmode,
-                                 .mvi_smode = (uint8_t)smode,
-                                 .rd = d & 31,
-                                 .rdsel = d >> 5,
-                                 .rs1 = s & 31,
-                                 .rs1sel = s >> 5,
-                                 .mvi_size = (uint8_t)(op - PRU_OP_MVIB)});
-}
-
 START_TEST(mvi_pointer_forms) {
     /* r1.b0 points at r4 (byte 16) */
     struct pru_core *c =

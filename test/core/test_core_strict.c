@@ -7,17 +7,6 @@
 #include "check_run.h"
 #include "core_test_util.h"
 
-static uint32_t mvi(int op, unsigned dmode, unsigned d, unsigned smode, unsigned s) {
-    return enc((struct pru_insn){.op = (uint8_t)op,
-                                 .mvi_dmode = (uint8_t)dmode,
-                                 .mvi_smode = (uint8_t)smode,
-                                 .rd = d & 31,
-                                 .rdsel = d >> 5,
-                                 .rs1 = s & 31,
-                                 .rs1sel = s >> 5,
-                                 .mvi_size = (uint8_t)(op - PRU_OP_MVIB)});
-}
-
 static struct pru_core *core_params(const struct pru_params *p, const uint32_t *w, size_t n) {
     struct pru_core *c = pru_core_new(PRU_SOC_AM335X, p);
     ck_assert_ptr_nonnull(c);
