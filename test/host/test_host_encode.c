@@ -209,15 +209,20 @@ START_TEST(test_delay_decode) {
 }
 END_TEST
 
-START_TEST(test_aborted_frame_has_no_slave_data) {
+/* The two-slave result buffer published with only `flags`, decoded. */
+static void decode_with_flags(uint32_t flags, struct biss_sample *s) {
     uint8_t b[BISS_RES_SIZE];
     result_bytes(b);
-    put32(b, BISS_R_FLAGS, BISS_RF_NO_SLAVE);
+    put32(b, BISS_R_FLAGS, flags);
     struct biss_shm_result r;
     memcpy(&r, b, sizeof r);
     struct biss_config c = two_slaves();
+    ck_assert_int_eq(biss_sample_decode(&c, true, 1, &r, s), BISS_OK);
+}
+
+START_TEST(test_aborted_frame_has_no_slave_data) {
     struct biss_sample s;
-    ck_assert_int_eq(biss_sample_decode(&c, true, 1, &r, &s), BISS_OK);
+    decode_with_flags(BISS_RF_NO_SLAVE, &s);
     ck_assert(!s.valid && s.no_slave);
     ck_assert_uint_eq(s.slave[0].data, 0);
     ck_assert_uint_eq(s.slave[0].position, 0);
@@ -321,14 +326,8 @@ START_TEST(test_junk_result_refused) {
 END_TEST
 
 START_TEST(test_ack_jump_frame_is_not_valid) {
-    uint8_t b[BISS_RES_SIZE];
-    result_bytes(b);
-    put32(b, BISS_R_FLAGS, BISS_RF_ACK_JUMP);
-    struct biss_shm_result r;
-    memcpy(&r, b, sizeof r);
-    struct biss_config c = two_slaves();
     struct biss_sample s;
-    ck_assert_int_eq(biss_sample_decode(&c, true, 1, &r, &s), BISS_OK);
+    decode_with_flags(BISS_RF_ACK_JUMP, &s);
     ck_assert(!s.valid && s.ack_jump && !s.no_slave);
     ck_assert_uint_eq(s.slave[0].data, 0); /* words read at the wrong place: none */
 }
