@@ -9,6 +9,7 @@ import sys
 import tempfile
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
 from checks import check, finish  # noqa: E402
+from memfile import rd, wr  # noqa: E402
 
 CTL = sys.argv[1]
 
@@ -130,18 +131,6 @@ for args, text in [(["--freq", "3000000", "read"], "not 100 MHz divided by a who
 # (CM_PER_PRU_ICSS_CLKCTRL = 2, as the pruss driver leaves it); the lock
 # files in a directory of the test's own
 BASE, CTRL0, CLKCTRL = 0x4A300000, 0x22000, 0x44E000E8
-
-
-def rd(mem, at, n=4):
-    with open(mem, "rb") as f:
-        f.seek(at)
-        return int.from_bytes(f.read(n), "little")
-
-
-def wr(mem, at, v, n=4):
-    with open(mem, "r+b") as f:
-        f.seek(at)
-        f.write(v.to_bytes(n, "little"))
 
 
 with tempfile.TemporaryDirectory() as tmp:

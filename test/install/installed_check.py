@@ -24,6 +24,7 @@ import sys
 import tempfile
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
 from checks import check, finish  # noqa: E402
+from memfile import rd, wr  # noqa: E402
 
 
 
@@ -48,18 +49,6 @@ RES0, RF_VALID, RS_CRC_OK, R_SLAVE0 = 0x100, 0x01, 0x01, 0x20
 
 def run(*args, **kw):
     return subprocess.run([*runner, *args], capture_output=True, text=True, timeout=120, **kw)
-
-
-def rd(mem, at, n=4):
-    with open(mem, "rb") as f:
-        f.seek(at)
-        return int.from_bytes(f.read(n), "little")
-
-
-def wr(mem, at, v, n=4):
-    with open(mem, "r+b") as f:
-        f.seek(at)
-        f.write(v.to_bytes(n, "little"))
 
 
 def check_tree(prefix, tmp):
