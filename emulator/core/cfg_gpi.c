@@ -25,8 +25,21 @@
 /* input changes this late count as never (keeps edge arithmetic in range) */
 #define NEVER_PS (PRU_MAX_CYCLE * PRU_PS_PER_CYCLE)
 
+/* Each PRU's GPI follows its own GPCFG (GPCFG0 PRU0, GPCFG1 PRU1) in the
+ * one CFG block of its PRU-ICSS (docs/pru-facts.md §4.5). */
+static uint32_t gpcfg_ofs(const struct pru_core *c) {
+    return GPCFG0 + 4u * c->pru_idx;
+}
+
 static unsigned gpi_mode(const struct pru_core *c) {
-    return c->cfg_regs[GPCFG0 / 4] & 3u;
+    return c->pru0->cfg_regs[gpcfg_ofs(c) / 4] & 3u;
+}
+
+/* The PRU whose GPI a GPCFG offset drives, NULL for none. */
+static struct pru_core *gpcfg_owner(struct pru_core *c, uint32_t ofs) {
+    if (ofs == GPCFG0)
+        return c->pru0;
+    return ofs == GPCFG1 ? c->pru0->pru1 : NULL;
 }
 
 void cfg_reset(struct pru_core *c) {
@@ -125,7 +138,7 @@ static void shift_apply(struct pru_core *c, int64_t k_from, int64_t k_to) {
         k += m;
     }
     if (cnt16_in(s, k_from, k_to))
-        intc_event(c, 1); /* PRU0 Cnt_16 */
+        intc_event(c, 1 + c->pru_idx); /* Cnt_16 of PRU0 / PRU1 */
 }
 
 void gpi_sync(struct pru_core *c, int64_t cycle) {
@@ -229,7 +242,8 @@ static int64_t shift_stable_until(struct pru_core *c, int64_t cycle, uint32_t ma
 int64_t gpi_bits_stable_until(struct pru_core *c, int64_t cycle, uint32_t mask) {
     int64_t h = gpi_mode(c) == MODE_SHIFT ? shift_stable_until(c, cycle, mask)
                                           : input_change_cycle(c, cycle);
-    if ((mask & 3u << 30) && (c->intc.ger & 1u) && (c->intc.hier & 3u)) { /* R31[31:30] can move */
+    if ((mask & 3u << 30) && (c->pru0->intc.ger & 1u) &&
+        (c->pru0->intc.hier & 3u)) { /* R31[31:30] can move */
         int64_t hi = intc_next_change(c, cycle);
         if (hi < h)
             h = hi;
@@ -255,18 +269,21 @@ int64_t gpi_next_cnt16(struct pru_core *c, int64_t cycle) {
 /* ---- CFG registers ---- */
 
 uint32_t cfg_read(struct pru_core *c, uint32_t ofs, int64_t at) {
-    if (ofs == GPCFG0) {
-        gpi_sync(c, at);
-        return (c->cfg_regs[GPCFG0 / 4] & ~(GP_SB | GP_GPO_SEL)) | (c->sh.sb ? GP_SB : 0);
+    struct pru_core *g = gpcfg_owner(c, ofs);
+    if (g) {
+        gpi_sync(g, at);
+        return (c->pru0->cfg_regs[ofs / 4] & ~(GP_SB | GP_GPO_SEL)) | (g->sh.sb ? GP_SB : 0);
     }
-    return c->cfg_regs[ofs / 4];
+    return c->pru0->cfg_regs[ofs / 4];
 }
 
-static void gpcfg0_write(struct pru_core *c, uint32_t v, uint32_t bm, int64_t at) {
-    uint32_t old = c->cfg_regs[GPCFG0 / 4];
+/* A write to GPCFG0/1 (ofs) by core w: the GPI of core c follows it. */
+static void gpcfg_write(struct pru_core *c, struct pru_core *w, uint32_t ofs, uint32_t v,
+                        uint32_t bm, int64_t at) {
+    uint32_t old = c->pru0->cfg_regs[ofs / 4];
     uint32_t nv = ((old & ~bm) | (v & bm)) & ~(GP_SB | GP_GPO_SEL);
     gpi_sync(c, at);
-    c->cfg_regs[GPCFG0 / 4] = nv;
+    c->pru0->cfg_regs[ofs / 4] = nv;
     if ((old ^ nv) & 0x1fffu & ~GP_SB) {
         /* mode or divider changed: the shift clock restarts from here */
         unsigned c0 = (nv >> 3) & 0x1fu, c1 = (nv >> 8) & 0x1fu;
@@ -281,20 +298,21 @@ static void gpcfg0_write(struct pru_core *c, uint32_t v, uint32_t bm, int64_t at
         c->sh.cnt16_k = -1;
     }
     if (nv & GP_GPO_MODE)
-        core_fault(c, PRU_FAULT_GPO_SHIFT, 0x26000u + GPCFG0);
+        core_fault(w, PRU_FAULT_GPO_SHIFT, 0x26000u + ofs);
     unsigned mode = nv & 3u;
     if (mode == 1u || mode == 3u)
-        core_fault(c, PRU_FAULT_UNSUPPORTED, 0x26000u + GPCFG0);
+        core_fault(w, PRU_FAULT_UNSUPPORTED, 0x26000u + ofs);
 }
 
 void cfg_write(struct pru_core *c, uint32_t ofs, uint32_t val, uint32_t bmask, int64_t at) {
     ff_dirty(c);
-    if (ofs == GPCFG0) {
-        gpcfg0_write(c, val, bmask, at);
+    struct pru_core *g = gpcfg_owner(c, ofs);
+    if (g) {
+        gpcfg_write(g, c, ofs, val, bmask, at);
         return;
     }
     if (ofs == 0x00u)
         return; /* REVID is read-only */
-    uint32_t *r = &c->cfg_regs[ofs / 4];
+    uint32_t *r = &c->pru0->cfg_regs[ofs / 4];
     *r = (*r & ~bmask) | (val & bmask);
 }

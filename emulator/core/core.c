@@ -92,6 +92,7 @@ struct pru_core *pru_core_new(enum pru_soc soc, const struct pru_params *params)
     else
         pru_params_default(&c->p);
     c->soc = soc;
+    c->pru0 = c; /* alone until pruss.c pairs it */
     c->watch_addr = UINT32_MAX;
     c->iram_bytes = socs[soc].iram;
     c->dram_bytes = socs[soc].dram;
@@ -126,9 +127,11 @@ struct pru_core *pru_core_new(enum pru_soc soc, const struct pru_params *params)
 void pru_core_free(struct pru_core *c) {
     if (!c)
         return;
-    free(c->dram0);
-    free(c->dram1);
-    free(c->shared);
+    if (!c->borrowed) {
+        free(c->dram0);
+        free(c->dram1);
+        free(c->shared);
+    }
     free(c->iram0);
     free(c->iram1);
     free(c->pd);
@@ -186,7 +189,8 @@ int pru_load_image(struct pru_core *c, const void *image, size_t bytes) {
     if (!buf)
         return -1;
     memcpy(buf, image, bytes);
-    int rc = pru_host_write(c, pru_soc_base(c->soc) + PRU_OFS_IRAM0, buf, c->iram_bytes);
+    uint32_t iram = c->pru_idx ? PRU_OFS_IRAM1 : PRU_OFS_IRAM0;
+    int rc = pru_host_write(c, pru_soc_base(c->soc) + iram, buf, c->iram_bytes);
     free(buf);
     return rc;
 }

@@ -209,6 +209,14 @@ struct pru_core {
     struct ff_probe ff;
     bool checked; /* strict or contention on: every instruction through exec_checked() */
     struct strict_state st;
+
+    /* The PRU-ICSS around the core (pruss.c): pru0 holds the blocks both
+     * PRUs share (INTC, CFG, IEP; itself when the core is alone), pru1 is
+     * PRU1 when there is one (NULL alone); pru_idx says which this is.
+     * A borrowed core uses pru0's data and shared RAMs (not freed here). */
+    struct pru_core *pru0, *pru1;
+    unsigned pru_idx;
+    bool borrowed;
 };
 
 /* core.c */

@@ -23,7 +23,7 @@
 #define U32_MAX  0xffffffffu
 
 void iep_reset(struct pru_core *c) {
-    struct iep *e = &c->iep;
+    struct iep *e = &c->pru0->iep; /* one IEP per PRU-ICSS */
     memset(e, 0, sizeof *e);
     e->global_cfg = 0x550u;
 }
@@ -95,7 +95,7 @@ static int64_t quiet_ticks(const struct iep *e) {
 }
 
 void iep_sync(struct pru_core *c, int64_t cycle) {
-    struct iep *e = &c->iep;
+    struct iep *e = &c->pru0->iep;
     while (e->synced < cycle) {
         if (!counting(e)) {
             e->synced = cycle;
@@ -117,7 +117,7 @@ void iep_sync(struct pru_core *c, int64_t cycle) {
 }
 
 uint32_t iep_read(struct pru_core *c, uint32_t ofs, int64_t at) {
-    struct iep *e = &c->iep;
+    struct iep *e = &c->pru0->iep;
     iep_sync(c, at);
     switch (ofs) {
     case G_CFG:
@@ -142,7 +142,7 @@ uint32_t iep_read(struct pru_core *c, uint32_t ofs, int64_t at) {
 }
 
 void iep_write(struct pru_core *c, uint32_t ofs, uint32_t val, uint32_t bm, int64_t at) {
-    struct iep *e = &c->iep;
+    struct iep *e = &c->pru0->iep;
     uint32_t v = val & bm;
     iep_sync(c, at);
     if (e->synced < at)
@@ -183,7 +183,7 @@ void iep_write(struct pru_core *c, uint32_t ofs, uint32_t val, uint32_t bm, int6
 
 /* First cycle after `cycle` at which register `ofs` may read differently. */
 int64_t iep_next_change(struct pru_core *c, int64_t cycle, uint32_t ofs) {
-    struct iep *e = &c->iep;
+    struct iep *e = &c->pru0->iep;
     iep_sync(c, cycle);
     if (!counting(e))
         return CYCLE_NEVER;

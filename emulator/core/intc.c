@@ -11,19 +11,19 @@
 #include <string.h>
 
 void intc_reset(struct pru_core *c) {
-    memset(&c->intc, 0, sizeof c->intc);
+    memset(&c->pru0->intc, 0, sizeof c->pru0->intc);
 }
 
 void intc_event(struct pru_core *c, unsigned ev) {
     if (ev < 64)
-        c->intc.raw[ev / 32] |= 1u << (ev % 32);
+        c->pru0->intc.raw[ev / 32] |= 1u << (ev % 32);
 }
 
 /* Bring level sources up to `cycle`. */
 static void intc_sync(struct pru_core *c, int64_t cycle) {
     gpi_sync(c, cycle);
     iep_sync(c, cycle);
-    if (c->iep.cmp_status)
+    if (c->pru0->iep.cmp_status)
         intc_event(c, 7);
 }
 
@@ -44,7 +44,7 @@ static bool host_pending(const struct intc *n, unsigned host) {
 }
 
 uint32_t intc_host_bits(struct pru_core *c, int64_t cycle) {
-    struct intc *n = &c->intc;
+    struct intc *n = &c->pru0->intc;
     if (!(n->ger & 1u) || !(n->hier & 3u))
         return 0;
     intc_sync(c, cycle);
@@ -70,7 +70,7 @@ static void byte_regs_write(uint8_t *a, uint32_t first, uint32_t v, uint32_t bm)
 }
 
 uint32_t intc_read(struct pru_core *c, uint32_t ofs, int64_t at) {
-    struct intc *n = &c->intc;
+    struct intc *n = &c->pru0->intc;
     intc_sync(c, at);
     switch (ofs) {
     case 0x10:
@@ -101,7 +101,7 @@ uint32_t intc_read(struct pru_core *c, uint32_t ofs, int64_t at) {
 }
 
 void intc_write(struct pru_core *c, uint32_t ofs, uint32_t val, uint32_t bm, int64_t at) {
-    struct intc *n = &c->intc;
+    struct intc *n = &c->pru0->intc;
     uint32_t v = val & bm;
     unsigned idx = v & 63u;
     intc_sync(c, at);
@@ -164,6 +164,6 @@ void intc_write(struct pru_core *c, uint32_t ofs, uint32_t val, uint32_t bm, int
             byte_regs_write(n->regs, ofs, val, bm);
         break;
     }
-    if (c->iep.cmp_status) /* the IEP event is a level: it sets again */
+    if (c->pru0->iep.cmp_status) /* the IEP event is a level: it sets again */
         intc_event(c, 7);
 }

@@ -137,12 +137,20 @@ static uint32_t debug_read(struct pru_core *c, uint32_t ofs) {
     return 0;
 }
 
+/* The core whose CONTROL block rg is in this PRU-ICSS: PRU0's at 0x22000,
+ * PRU1's at 0x24000 for both PRUs (docs/pru-facts.md §5.1); NULL for a
+ * core alone, whose PRU1 block is plain storage. */
+static struct pru_core *ctrl_owner(struct pru_core *c, enum region rg) {
+    return rg == RG_CTRL0 ? c->pru0 : c->pru0->pru1;
+}
+
 static uint32_t reg_read(struct pru_core *c, enum region rg, uint32_t ofs, int64_t at) {
+    struct pru_core *k = rg == RG_CTRL0 || rg == RG_CTRL1 ? ctrl_owner(c, rg) : NULL;
+    if (k)
+        return ofs >= 0x400u ? debug_read(k, ofs) : ctrl_read(k, ofs, at);
     switch (rg) {
     case RG_INTC:
         return intc_read(c, ofs, at);
-    case RG_CTRL0:
-        return ofs >= 0x400u ? debug_read(c, ofs) : ctrl_read(c, ofs, at);
     case RG_CTRL1: {
         uint32_t v;
         memcpy(&v, c->ctrl1 + ofs, 4);
@@ -159,17 +167,19 @@ static uint32_t reg_read(struct pru_core *c, enum region rg, uint32_t ofs, int64
 
 static void reg_write(struct pru_core *c, enum region rg, uint32_t ofs, uint32_t v, uint32_t bm,
                       int64_t at) {
+    struct pru_core *k = rg == RG_CTRL0 || rg == RG_CTRL1 ? ctrl_owner(c, rg) : NULL;
+    if (k) {
+        if (ofs < 0x400u) {
+            ctrl_write(k, ofs, v, bm, at);
+        } else if (ofs < 0x47cu) { /* GPREG0..30 (host debug access) */
+            unsigned i = (ofs - 0x400u) / 4u;
+            k->r[i] = (k->r[i] & ~bm) | (v & bm);
+        }
+        return;
+    }
     switch (rg) {
     case RG_INTC:
         intc_write(c, ofs, v, bm, at);
-        break;
-    case RG_CTRL0:
-        if (ofs < 0x400u) {
-            ctrl_write(c, ofs, v, bm, at);
-        } else if (ofs < 0x47cu) { /* GPREG0..30 (host debug access) */
-            unsigned i = (ofs - 0x400u) / 4u;
-            c->r[i] = (c->r[i] & ~bm) | (v & bm);
-        }
         break;
     case RG_CTRL1: {
         uint32_t old;
@@ -354,11 +364,29 @@ static bool running(const struct pru_core *c) {
     return (c->ctrl.control & PRU_CTRL_ENABLE) != 0;
 }
 
+/* The host sees a PRU-ICSS at global addresses, which are PRU0's local
+ * view (docs/pru-facts.md §5.4), whichever core it is asked through.
+ * Returns the core whose IRAM h is in (NULL: h is no IRAM); a PRU1 that is
+ * a core of its own gets its IRAM1 hit moved to that core's IRAM. */
+static struct pru_core *host_iram(struct pru_core *c, struct hit *h) {
+    if (h->rg == RG_IRAM0)
+        return c;
+    if (h->rg != RG_IRAM1)
+        return NULL;
+    if (!c->pru1)
+        return NULL; /* a core alone: PRU1's IRAM is plain storage */
+    h->rg = RG_IRAM0;
+    h->mem = (uint8_t *)c->pru1->iram0 + h->ofs;
+    return c->pru1;
+}
+
 int pru_host_read(struct pru_core *c, uint32_t addr, void *buf, size_t n) {
     struct hit h;
+    c = c->pru0;
     if (!host_find(c, addr, n, &h))
         return -1;
-    if (h.rg == RG_IRAM0 && running(c))
+    struct pru_core *ic = host_iram(c, &h);
+    if (ic && running(ic))
         return -2; /* locked out while RUNSTATE is 1, as on the SoC */
     if (h.mem)
         memcpy(buf, h.mem, n);
@@ -369,19 +397,21 @@ int pru_host_read(struct pru_core *c, uint32_t addr, void *buf, size_t n) {
 
 int pru_host_write(struct pru_core *c, uint32_t addr, const void *buf, size_t n) {
     struct hit h;
+    c = c->pru0;
     if (!host_find(c, addr, n, &h))
         return -1;
-    if (h.rg == RG_IRAM0 && running(c)) {
-        core_fault(c, PRU_FAULT_IRAM_RUNNING, addr);
+    struct pru_core *ic = host_iram(c, &h);
+    if (ic && running(ic)) {
+        core_fault(ic, PRU_FAULT_IRAM_RUNNING, addr);
         return -2;
     }
     if (h.mem)
         memcpy(h.mem, buf, n);
     else
         regs_store(c, &h, buf, (unsigned)n, c->cycle);
-    if (h.rg == RG_IRAM0) {
+    if (ic) {
         for (uint32_t w = h.ofs / 4u; w < (h.ofs + (uint32_t)n + 3u) / 4u; w++)
-            predecode_word(c, w);
+            predecode_word(ic, w);
     }
     return 0;
 }

@@ -1,0 +1,196 @@
+/*
+ * Check suite: both PRUs of one PRU-ICSS (pruss.h): the cross-mapped data
+ * RAMs and the shared RAM, one IEP read by both in the same cycle, each
+ * PRU's GPI following its own GPCFG, each PRU's own CONTROL block and
+ * constant table, and the host's view of PRU1 (IRAM1, CTRL1, data RAM1).
+ */
+#include "check_run.h"
+#include "core_test_util.h"
+#include "pruss.h"
+
+#define BASE   0x4A300000u
+#define DRAM1  (BASE + 0x2000u)
+#define SHARED (BASE + 0x10000u)
+#define CTRL1  (BASE + 0x24000u)
+#define CFG    (BASE + 0x26000u)
+#define IEP    (BASE + 0x2E000u)
+#define COUNT  0x0Cu
+
+static struct pru_icss *icss_with(const uint32_t *w0, size_t n0, const uint32_t *w1, size_t n1) {
+    struct pru_icss *s = pru_icss_new(PRU_SOC_AM335X, NULL);
+    ck_assert_ptr_nonnull(s);
+    struct pru_core *c0 = pru_icss_core(s, 0), *c1 = pru_icss_core(s, 1);
+    ck_assert_uint_eq(pru_core_index(c0), 0);
+    ck_assert_uint_eq(pru_core_index(c1), 1);
+    if (w0) {
+        ck_assert_int_eq(pru_load_image(c0, w0, n0 * 4), 0);
+        pru_start(c0);
+    }
+    if (w1) {
+        ck_assert_int_eq(pru_load_image(c1, w1, n1 * 4), 0);
+        pru_start(c1);
+    }
+    return s;
+}
+
+static uint32_t host32(struct pru_core *c, uint32_t addr) {
+    uint32_t v = 0;
+    ck_assert_int_eq(pru_host_read32(c, addr, &v), 0);
+    return v;
+}
+
+/* Each PRU reads its own data RAM at 0x0 (a value, and where in the
+ * shared RAM to put it) and the other's at 0x2000, and stores both there. */
+START_TEST(data_rams_cross_mapped) {
+    uint32_t w[16];
+    unsigned n = 0;
+    w[n++] = ldi(R(1), 0);
+    w[n++] = burst(PRU_OP_LBBO, 4 * 2, 1, 0, 8); /* own: r2 value, r3 place */
+    mov32(w, &n, 1, 0x2000);
+    w[n++] = burst(PRU_OP_LBBO, 4 * 4, 1, 0, 4); /* the other's value */
+    mov32(w, &n, 1, 0x10000);
+    w[n++] = alu(PRU_OP_ADD, R(1), R(1), R(3));
+    w[n++] = burst(PRU_OP_SBBO, 4 * 2, 1, 0, 4);
+    w[n++] = burst(PRU_OP_SBBO, 4 * 4, 1, 4, 4);
+    w[n++] = halt();
+    struct pru_icss *s = icss_with(w, n, w, n);
+    struct pru_core *c0 = pru_icss_core(s, 0), *c1 = pru_icss_core(s, 1);
+    ck_assert_int_eq(pru_host_write32(c0, BASE, 0x11111111u), 0);
+    ck_assert_int_eq(pru_host_write32(c0, BASE + 4, 0), 0);
+    ck_assert_int_eq(pru_host_write32(c1, DRAM1, 0x22222222u), 0);
+    ck_assert_int_eq(pru_host_write32(c1, DRAM1 + 4, 8), 0);
+    ck_assert_int_eq(pru_icss_run_until_cycle(s, 1000), PRU_STOP_HALT);
+    ck_assert(pru_halted(c0) && pru_halted(c1));
+    ck_assert_uint_eq(host32(c0, SHARED + 0), 0x11111111u);
+    ck_assert_uint_eq(host32(c0, SHARED + 4), 0x22222222u);
+    ck_assert_uint_eq(host32(c1, SHARED + 8), 0x22222222u);
+    ck_assert_uint_eq(host32(c1, SHARED + 12), 0x11111111u);
+    ck_assert_int_eq(pru_icss_cycles(s), 1000);
+    pru_icss_free(s);
+}
+END_TEST
+
+/* Both read COUNT in the same cycle and get the same value; PRU1 three
+ * cycles later gets three more. */
+START_TEST(one_iep_same_cycle) {
+    for (unsigned late = 0; late <= 3; late += 3) {
+        uint32_t w0[8], w1[8];
+        unsigned n0 = 0, n1 = 0;
+        w0[n0++] = burst(PRU_OP_LBCO, 4 * 2, 26, COUNT, 4);
+        w0[n0++] = halt();
+        for (unsigned i = 0; i < late; i++)
+            w1[n1++] = alu(PRU_OP_ADD, R(0), R(0), R(0));
+        w1[n1++] = burst(PRU_OP_LBCO, 4 * 2, 26, COUNT, 4);
+        w1[n1++] = halt();
+        struct pru_icss *s = icss_with(w0, n0, w1, n1);
+        struct pru_core *c0 = pru_icss_core(s, 0), *c1 = pru_icss_core(s, 1);
+        ck_assert_int_eq(pru_host_write32(c0, IEP, 0x111), 0); /* count by 1 */
+        ck_assert_int_eq(pru_icss_run_until_cycle(s, 100), PRU_STOP_HALT);
+        ck_assert_uint_eq(pru_reg(c0, 2), 0); /* the host enabled it at boundary 0 */
+        ck_assert_uint_eq(pru_reg(c1, 2), late);
+        /* the host sees one counter through either core */
+        ck_assert_uint_eq(host32(c0, IEP + COUNT), host32(c1, IEP + COUNT));
+        pru_icss_free(s);
+    }
+}
+END_TEST
+
+/* PRU1 polls COUNT until it reaches 500 while PRU0 counts its own loop
+ * turns: they leave their loops within one poll turn of each other. */
+START_TEST(iep_poll_in_lock_step) {
+    uint32_t w[16];
+    unsigned n = 0;
+    w[n++] = ldi(R(3), 500);
+    w[n++] = burst(PRU_OP_LBCO, 4 * 2, 26, COUNT, 4); /* 3 cycles */
+    w[n++] = qb(PRU_OP_QBGT, -1, R(2), R(3));         /* while 500 > count */
+    w[n++] = halt();
+    struct pru_icss *s = icss_with(w, n, w, n);
+    struct pru_core *c0 = pru_icss_core(s, 0), *c1 = pru_icss_core(s, 1);
+    ck_assert_int_eq(pru_host_write32(c0, IEP, 0x111), 0);
+    ck_assert_int_eq(pru_icss_run_until_cycle(s, 2000), PRU_STOP_HALT);
+    ck_assert_uint_ge(pru_reg(c0, 2), 500);
+    ck_assert_uint_eq(pru_reg(c0, 2), pru_reg(c1, 2));
+    ck_assert_uint_eq(pru_instructions(c0), pru_instructions(c1));
+    pru_icss_free(s);
+}
+END_TEST
+
+/* GPCFG0 puts PRU0's GPI in shift mode, GPCFG1 PRU1's: each samples its
+ * own input bit 0. */
+START_TEST(gpcfg_per_pru) {
+    uint32_t w[4] = {alu(PRU_OP_ADD, R(0), R(0), R(0)), jmpi(0)};
+    struct pru_icss *s = icss_with(w, 2, w, 2);
+    struct pru_core *c0 = pru_icss_core(s, 0), *c1 = pru_icss_core(s, 1);
+    pru_set_inputs(c0, 1);
+    pru_set_inputs(c1, 1);
+    ck_assert_int_eq(pru_host_write32(c0, CFG + 0x0C, 2), 0); /* PRU1: shift, divider 1 */
+    ck_assert_int_eq(pru_icss_run_until_cycle(s, 100), PRU_STOP_LIMIT);
+    ck_assert_uint_eq(pru_reg(c0, 31) & 0x3fffffffu, 1);       /* direct: the pin */
+    ck_assert_uint_eq(pru_reg(c1, 31) & (1u << 29), 1u << 29); /* SB */
+    ck_assert_uint_eq(pru_reg(c1, 31) & 0x0fffffffu, 0x0fffffffu);
+    ck_assert_uint_eq(host32(c0, CFG + 0x0C) & (1u << 13), 1u << 13); /* GPCFG1.SB */
+    ck_assert_uint_eq(host32(c0, CFG + 0x08) & (1u << 13), 0);
+    pru_icss_free(s);
+}
+END_TEST
+
+/* PRU1 points its C28 through its own CTPPR0 (0x24028); PRU0's stays. */
+START_TEST(own_control_block) {
+    uint32_t w[16];
+    unsigned n = 0;
+    mov32(w, &n, 1, 0x24028);
+    w[n++] = ldi(R(2), 0x0100); /* C28 -> 0x10000 */
+    w[n++] = burst(PRU_OP_SBBO, 4 * 2, 1, 0, 4);
+    w[n++] = ldi(R(3), 0x5A5A);
+    w[n++] = burst(PRU_OP_SBCO, 4 * 3, 28, 0, 4);
+    w[n++] = halt();
+    struct pru_icss *s = icss_with(NULL, 0, w, n);
+    struct pru_core *c0 = pru_icss_core(s, 0), *c1 = pru_icss_core(s, 1);
+    ck_assert_int_eq(pru_icss_run_until_cycle(s, 100), PRU_STOP_HALT);
+    ck_assert(pru_halted(c1) && !pru_halted(c0));
+    ck_assert_uint_eq(host32(c0, SHARED), 0x5A5A);
+    ck_assert_uint_eq(host32(c0, CTRL1 + 0x28), 0x0100);
+    ck_assert_uint_eq(host32(c0, BASE + 0x22028), 0);
+    /* PRU1's registers through its debug block, its IRAM through IRAM1 */
+    ck_assert_uint_eq(host32(c0, CTRL1 + 0x400 + 4 * 3), 0x5A5A);
+    ck_assert_uint_eq(host32(c0, BASE + 0x38000u), w[0]);
+    ck_assert_uint_eq(host32(c0, BASE + 0x34000u), 0);
+    ck_assert_int_eq(pru_cycles(c0), 100); /* PRU0 never ran: its time passed */
+    pru_icss_free(s);
+}
+END_TEST
+
+/* The host starts PRU1 through CTRL1 and may not write IRAM1 while it runs. */
+START_TEST(host_controls_pru1) {
+    uint32_t w[2] = {alu(PRU_OP_ADD, R(0), R(0), R(0)), jmpi(0)};
+    struct pru_icss *s = icss_with(NULL, 0, NULL, 0);
+    struct pru_core *c0 = pru_icss_core(s, 0), *c1 = pru_icss_core(s, 1);
+    ck_assert_int_eq(pru_host_write(c0, BASE + 0x38000u, w, sizeof w), 0);
+    ck_assert_int_eq(pru_host_write32(c0, CTRL1, 2), 0); /* ENABLE, reset: PC 0 */
+    ck_assert_int_eq(pru_icss_run_until_cycle(s, 50), PRU_STOP_LIMIT);
+    ck_assert_uint_eq(pru_instructions(c1), 50);
+    ck_assert_uint_eq(pru_instructions(c0), 0);
+    ck_assert_int_eq(pru_host_write(c0, BASE + 0x38000u, w, 4), -2);
+    ck_assert_int_eq(pru_get_fault(c1)->cause, PRU_FAULT_IRAM_RUNNING);
+    ck_assert_int_eq(pru_get_fault(c0)->cause, PRU_FAULT_NONE);
+    ck_assert_int_eq(pru_icss_run_until_cycle(s, 60), PRU_STOP_FAULT);
+    pru_icss_free(s);
+}
+END_TEST
+
+Suite *pruss_suite(void) {
+    Suite *s = suite_create("core_pruss");
+    TCase *t = tcase_create("pruss");
+    tcase_add_test(t, data_rams_cross_mapped);
+    tcase_add_test(t, one_iep_same_cycle);
+    tcase_add_test(t, iep_poll_in_lock_step);
+    tcase_add_test(t, gpcfg_per_pru);
+    tcase_add_test(t, own_control_block);
+    tcase_add_test(t, host_controls_pru1);
+    suite_add_tcase(s, t);
+    return s;
+}
+
+int main(void) {
+    return check_run(pruss_suite());
+}
