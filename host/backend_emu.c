@@ -78,6 +78,7 @@ static int build_scenario(const struct biss_open_params *p, scenario *sc) {
 static int emu_backend_open(const struct biss_open_params *p, struct biss_backend *be) {
     struct bench_config cfg;
     bench_config_default(&cfg);
+    cfg.pru_index = p->pru; /* the bench's line on that PRU of the PRU-ICSS */
     int rc = build_scenario(p, &cfg.link);
     if (rc) {
         return rc;
@@ -97,6 +98,7 @@ static int emu_backend_open(const struct biss_open_params *p, struct biss_backen
         .ops = &emu_ops,
         .ctx = e,
         .iram_bytes = pru_iram_bytes(bench_core(e->bench)),
+        .pru = p->pru,
         .bench = e->bench,
     };
     return BISS_OK;

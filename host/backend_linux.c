@@ -268,12 +268,15 @@ static int check_powered(const struct biss_soc_icss *s, const char *sysfs, int f
 /* Remoteproc: the instance, not running someone else's firmware. */
 static int rproc_prepare(struct lnx *l, const struct biss_soc_icss *s,
                          const struct biss_open_params *p, struct biss_errbuf *e) {
-    int rc = biss_rproc_find(sysfs_root(p), s->iram_phys, l->dir, e);
+    /* pru_rproc names an instance after its PRU's IRAM */
+    int rc =
+        biss_rproc_find(sysfs_root(p), s->iram_phys + ICSS_IRAM(p->pru) - ICSS_IRAM0, l->dir, e);
     if (rc) {
         return rc;
     }
+    const char *own = p->pru ? s->fw_name1 : s->fw_name;
     snprintf(l->fw_name, sizeof l->fw_name, "%s",
-             p->rproc_firmware && *p->rproc_firmware ? p->rproc_firmware : s->fw_name);
+             p->rproc_firmware && *p->rproc_firmware ? p->rproc_firmware : own);
     char state[32], fw[256];
     rc = biss_rproc_get(l->dir, "state", state, sizeof state, e);
     if (!rc) {
@@ -325,10 +328,11 @@ static int open_mem(struct lnx *l, const struct biss_soc_icss *s, const struct b
         int err = errno;
         return biss_err(e, BISS_E_DEVMEM, "%s: %s (errno %d)", path, strerror(err), err);
     }
-    /* one lock per PRU: the memory file and the PRU-ICSS base name it */
+    /* one lock per PRU: the memory file and the PRU's data RAM address
+     * (for PRU0 the PRU-ICSS base) name it */
     char key[96];
     snprintf(key, sizeof key, "biss-%llx-%llx-%lx.lock", (unsigned long long)st.st_dev,
-             (unsigned long long)st.st_ino, (unsigned long)s->base);
+             (unsigned long long)st.st_ino, (unsigned long)(s->base + ICSS_DRAM(p->pru)));
     l->shared = p->attach;
     int rc = biss_lock_take(p->lock_dir, key, l->shared, &l->lock_fd, e);
     if (!rc) {
@@ -340,7 +344,8 @@ static int open_mem(struct lnx *l, const struct biss_soc_icss *s, const struct b
     if (rc) {
         return rc;
     }
-    l->map_len = l->rproc ? s->dram_bytes : s->window;
+    /* remoteproc: the data RAMs up to this PRU's; devmem: everything */
+    l->map_len = l->rproc ? ICSS_DRAM(p->pru) + s->dram_bytes : s->window;
     if (!file_covers(&st, s->base + (off_t)l->map_len)) {
         return biss_err(e, BISS_E_DEVMEM,
                         "%s: %lld bytes, ends before the PRU-ICSS window "
@@ -381,7 +386,9 @@ int biss_linux_backend_open(const struct biss_open_params *p, struct biss_backen
         lnx_close(l);
         return rc;
     }
-    *be = (struct biss_backend){
-        .ops = l->rproc ? &rproc_ops : &devmem_ops, .ctx = l, .iram_bytes = soc.iram_bytes};
+    *be = (struct biss_backend){.ops = l->rproc ? &rproc_ops : &devmem_ops,
+                                .ctx = l,
+                                .iram_bytes = soc.iram_bytes,
+                                .pru = p->pru};
     return BISS_OK;
 }

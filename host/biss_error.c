@@ -34,7 +34,7 @@ static const struct err_text errors[] = {
     {BISS_E_CRC_START, "CRC start value wider than the CRC"},
     {BISS_E_EW, "nE/nW position outside the data word"},
     {BISS_E_POS_BITS, "position bits do not fit in the data word above nE/nW"},
-    {BISS_E_TRIGGER, "unknown trigger mode (host, iep, free)"},
+    {BISS_E_TRIGGER, "unknown trigger mode (host, iep, iep-follow, free)"},
     {BISS_E_IEP_PERIOD, "IEP period not a multiple of 5 ns or shorter than one frame"},
     {BISS_E_PROC_LIMIT, "processing-time limit above 65535 MA clocks"},
     {BISS_E_SSI, "SSI: one slave only, without CRC or nE/nW, delay at most 65535 ns"},
@@ -127,6 +127,8 @@ int biss_trigger_from_name(const char *name, enum biss_trigger *t) {
         *t = BISS_TRIGGER_HOST;
     } else if (strcmp(name, "iep") == 0) {
         *t = BISS_TRIGGER_IEP;
+    } else if (strcmp(name, "iep-follow") == 0) {
+        *t = BISS_TRIGGER_IEP_FOLLOW;
     } else if (strcmp(name, "free") == 0 || strcmp(name, "freerun") == 0) {
         *t = BISS_TRIGGER_FREERUN;
     } else {
@@ -141,6 +143,8 @@ const char *biss_trigger_name(enum biss_trigger t) {
         return "host";
     case BISS_TRIGGER_IEP:
         return "iep";
+    case BISS_TRIGGER_IEP_FOLLOW:
+        return "iep-follow";
     case BISS_TRIGGER_FREERUN:
         return "free";
     }

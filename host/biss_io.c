@@ -2,11 +2,11 @@
 #include "biss_priv.h"
 
 int biss_dram_read(biss_t *h, uint32_t off, void *buf, size_t n) {
-    return h->be.ops->read(h->be.ctx, ICSS_DRAM0 + off, buf, n);
+    return h->be.ops->read(h->be.ctx, ICSS_DRAM(h->be.pru) + off, buf, n);
 }
 
 int biss_dram_write(biss_t *h, uint32_t off, const void *buf, size_t n) {
-    return h->be.ops->write(h->be.ctx, ICSS_DRAM0 + off, buf, n);
+    return h->be.ops->write(h->be.ctx, ICSS_DRAM(h->be.pru) + off, buf, n);
 }
 
 static int io_read(void *ctx, uint32_t off, void *buf, size_t n) {

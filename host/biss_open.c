@@ -283,6 +283,9 @@ int biss_open_with(const struct biss_open_params *p, biss_backend_open_fn emu, b
         p->errbuf[0] = '\0';
     }
     struct biss_errbuf e = {p->errbuf, p->errbuf_len};
+    if (p->pru > 1) {
+        return biss_err(&e, BISS_E_INVAL, "pru %u: a PRU-ICSS has PRU 0 and PRU 1", p->pru);
+    }
     struct biss_backend be;
     int rc = open_backend(p, emu, &be, &e);
     if (rc) {

@@ -50,6 +50,7 @@ struct biss_backend {
     const struct biss_backend_ops *ops;
     void *ctx;
     uint32_t iram_bytes;
+    unsigned pru;        /* the PRU driven: its data RAM, CONTROL and IRAM */
     struct bench *bench; /* emulator only */
 };
 

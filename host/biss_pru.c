@@ -1,6 +1,6 @@
-/* biss_pru.c - PRU0 control through its CONTROL register, and loading the
- * image into IRAM; the same register writes on silicon and in the
- * emulator. */
+/* biss_pru.c - the handle's PRU (0 or 1) controlled through its CONTROL
+ * register, and loading the image into its IRAM; the same register writes
+ * on silicon and in the emulator. */
 #include "biss_priv.h"
 
 #include "biss/biss_shm_struct.h"
@@ -10,7 +10,7 @@
 #include <string.h>
 
 static int write_control(biss_t *h, uint32_t v) {
-    return h->be.ops->write(h->be.ctx, ICSS_CTRL0, &v, 4);
+    return h->be.ops->write(h->be.ctx, ICSS_CTRL(h->be.pru), &v, 4);
 }
 
 int biss_exclusive(biss_t *h) {
@@ -30,7 +30,7 @@ int biss_pru_enabled(biss_t *h, bool *on) {
         return h->be.ops->pru_enabled(h->be.ctx, on);
     }
     uint32_t control = 0;
-    int rc = h->be.ops->read(h->be.ctx, ICSS_CTRL0, &control, 4);
+    int rc = h->be.ops->read(h->be.ctx, ICSS_CTRL(h->be.pru), &control, 4);
     *on = (control & ICSS_CTRL_ENABLE) != 0;
     return rc;
 }
@@ -43,7 +43,7 @@ static int load_iram(biss_t *h) {
         return BISS_E_NOMEM;
     }
     memcpy(buf, h->image, h->image_bytes);
-    int rc = h->be.ops->write(h->be.ctx, ICSS_IRAM0, buf, h->be.iram_bytes);
+    int rc = h->be.ops->write(h->be.ctx, ICSS_IRAM(h->be.pru), buf, h->be.iram_bytes);
     free(buf);
     return rc;
 }
@@ -63,7 +63,12 @@ int biss_pru_write_id(biss_t *h) {
  * magic or ack would lie). */
 static int clear_shared(biss_t *h) {
     static const uint8_t zeros[sizeof(struct biss_shm)] = {0};
-    return biss_dram_write(h, 0, zeros, sizeof zeros);
+    int rc = biss_dram_write(h, 0, zeros, sizeof zeros);
+    if (!rc) { /* the start-up takes its CONTROL block and GPCFG by it */
+        struct biss_proto_io io = biss_io(h);
+        rc = biss_proto_pru_index_put(&io, h->be.pru);
+    }
+    return rc;
 }
 
 int biss_pru_load_and_start(biss_t *h) {

@@ -24,7 +24,7 @@ static int start_locked(biss_t *h) {
     if (!h->image || h->attached) {
         /* attached to a firmware someone else loaded: resume it */
         uint32_t v = ICSS_CTRL_RESET_N | ICSS_CTRL_ENABLE;
-        return h->be.ops->write(h->be.ctx, ICSS_CTRL0, &v, 4);
+        return h->be.ops->write(h->be.ctx, ICSS_CTRL(h->be.pru), &v, 4);
     }
     rc = biss_pru_load_and_start(h);
     if (!rc) {

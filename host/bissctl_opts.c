@@ -14,6 +14,7 @@ static const char *const commands[] = {"info",      "read",    "stats", "run",
 static const char common_help[] =
     "Target:\n"
     "  --target T         emu (default), am335x, am437x (= am437x-icss0), am437x-icss1\n"
+    "  --pru N            the PRU of that PRU-ICSS: 0 (default) or 1 (its own line)\n"
     "  --devmem PATH      file mapped at the PRU-ICSS base (default /dev/mem)\n"
     "  --attach           use the firmware already running (no load, no restart);\n"
     "                     info, stats, read and stop attach by default when one runs\n"
@@ -39,7 +40,8 @@ static const char common_help[] =
     "                     (if the slave has nE/nW), position bits\n"
     "  --ssi BITS[,gray]  an SSI encoder instead: its word length, Gray-coded or not\n"
     "  --ssi-delay-ns NS  SSI: the line's round trip (no ACK to measure it by)\n"
-    "  --trigger MODE     host, iep, free (default free)\n"
+    "  --trigger MODE     host, iep, iep-follow, free (default free); iep-follow: the\n"
+    "                     IEP period the other PRU's channel (--trigger iep) set up\n"
     "  --iep-period-ns NS frame period for --trigger iep\n"
     "  --proc-limit N     longest processing time accepted, MA clocks (default 1000)\n"
     "  --no-configure     leave the configuration as it is\n";
@@ -228,6 +230,7 @@ enum {
     OPT_SYSFS,
     OPT_FWDIR,
     OPT_RPROC_FW,
+    OPT_PRU,
 };
 
 static const struct option long_opts[] = {
@@ -256,6 +259,7 @@ static const struct option long_opts[] = {
     {"sysfs", required_argument, NULL, OPT_SYSFS},
     {"firmware-dir", required_argument, NULL, OPT_FWDIR},
     {"rproc-firmware", required_argument, NULL, OPT_RPROC_FW},
+    {"pru", required_argument, NULL, OPT_PRU},
     {"help", no_argument, NULL, 'h'},
     {NULL, 0, NULL, 0},
 };
@@ -306,6 +310,12 @@ static int take_target_opt(int c, const char *arg, struct bissctl_opts *o) {
                    : 0;
     case OPT_DEVMEM:
         o->open.devmem = arg;
+        return 0;
+    case OPT_PRU:
+        if (strcmp(arg, "0") != 0 && strcmp(arg, "1") != 0) {
+            return usage_error("--pru '%s': expected 0 or 1", arg);
+        }
+        o->open.pru = (unsigned)(arg[0] - '0');
         return 0;
     case OPT_ATTACH:
         o->open.attach = true;

@@ -113,7 +113,7 @@ int biss_config_check(const struct biss_config *c) {
         return BISS_E_NSLAVES;
     }
     if (c->trigger != BISS_TRIGGER_HOST && c->trigger != BISS_TRIGGER_IEP &&
-        c->trigger != BISS_TRIGGER_FREERUN) {
+        c->trigger != BISS_TRIGGER_FREERUN && c->trigger != BISS_TRIGGER_IEP_FOLLOW) {
         return BISS_E_TRIGGER;
     }
     if (c->proc_limit > 0xffff) {

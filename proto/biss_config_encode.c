@@ -5,7 +5,8 @@
 #include <string.h>
 
 _Static_assert(BISS_TRIGGER_HOST == BISS_TRIG_HOST && BISS_TRIGGER_IEP == BISS_TRIG_IEP &&
-                   BISS_TRIGGER_FREERUN == BISS_TRIG_FREERUN,
+                   BISS_TRIGGER_FREERUN == BISS_TRIG_FREERUN &&
+                   BISS_TRIGGER_IEP_FOLLOW == BISS_TRIG_IEP_FOLLOW,
                "trigger enum matches the shm codes");
 _Static_assert(BISS_API_MAX_SLAVES == BISS_MAX_SLAVES, "slave limit matches the shm");
 
@@ -69,7 +70,7 @@ static const char *bad_block(const struct biss_shm_config *in) {
     if (in->nslaves < 1 || in->nslaves > BISS_MAX_SLAVES) {
         return "slave count";
     }
-    if (in->trigger > BISS_TRIG_FREERUN) {
+    if (in->trigger > BISS_TRIG_IEP_FOLLOW) {
         return "trigger mode";
     }
     if ((in->slave[0].flags & BISS_SF_SSI) && in->nslaves != 1) {

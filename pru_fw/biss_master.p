@@ -1,9 +1,10 @@
-// biss_master.p - BiSS-C interface master for PRU0 of an AM335x/AM437x
+// biss_master.p - BiSS-C interface master for either PRU of an AM335x/AM437x
 // PRU-ICSS (pasm dialect).
 //
 // MA is R30 bit MA_BIT (default 1), SL is R31 bit 0 in 28-bit shift mode,
 // sampled at 8x the MA rate. The host configures and reads results through
-// PRU0's data RAM, laid out in include/biss/biss_shm.h.
+// the PRU's own data RAM, laid out in include/biss/biss_shm.h; the same
+// image runs on PRU0 and PRU1, each with its own line (BISS_PRU_INDEX).
 //
 // A frame (MA period p = 0, 1, ...; each period exactly 2H PRU cycles):
 //   WAIT_ACK    clock until the newest 8 samples show SL low (the ACK edge);
@@ -77,7 +78,8 @@
 #define P_SSI           0x7c                // u16 the ACK position an SSI frame reads by
                                             //   (0: BiSS-C), u16 MA edges after period 0
 #define P_SLAVES        0x80                // 8 x 16: mask lo, mask hi, residue, [n, w, ew, flags]
-#define PRU0_CTPPR0     0x22028             // C28 = 0x00nnnn00 with nnnn = CTPPR0[15:0]
+#define PRU0_CTPPR0     0x22028             // C28 = 0x00nnnn00 with nnnn = CTPPR0[15:0];
+                                            // PRU1's is 0x2000 higher (docs/pru-facts.md §5.1)
 
 // (after the equates: macro bodies take equates as they are read)
 #include "biss_periods.hp"
@@ -86,9 +88,11 @@
 // ============================================================================
 START:
     zero    &r0, 120                        // r0..r29
+    lbco    r27, c24, BISS_PRU_INDEX, 4     // this PRU, 0 or 1 (the host wrote it before the
+    lsl     r27, r27, 13                    // start): its CONTROL block is 0x2000 x that higher
     mov     r28, PRU0_CTPPR0
     ldi     r29, BISS_PRIV >> 8
-    sbbo    r29, r28, 0, 4                  // C28 -> the private area
+    sbbo    r29, r28, r27, 4                // C28 -> the private area
     set     r30, r30, MA_BIT                // MA idles high
     // status and private areas start clear: stores of r0.. (zero)
     sbco    r0, c24, BISS_ST_SEQ, BISS_ST_END - BISS_ST_SEQ
@@ -120,6 +124,7 @@ TRIGGER_DONE:
     lbco    r2, c28, P_NSLAVES, 4
     qbeq    WAIT_HOST, r2.b1, BISS_TRIG_HOST
     qbeq    WAIT_IEP, r2.b1, BISS_TRIG_IEP
+    qbeq    WAIT_FOLLOW, r2.b1, BISS_TRIG_IEP_FOLLOW
     jmp     FRAME                           // free-run
 WAIT_HOST:
     lbco    r3, c24, BISS_CMD_TRIGGER, 4
@@ -134,6 +139,7 @@ WAIT_IEP:
     sbco    r3, c26, IEP_CMP_STATUS, 4      // clear the CMP0 hit
     // The hit was seen up to one turn of MAIN late; start every frame at
     // the same count after the period's reset instead, so periods are exact.
+IEP_AT_ALIGN:
     lbco    r3, c26, IEP_COUNT, 4
     rsb     r3, r3, IEP_ALIGN               // d: cycles to wait; none if later
     qbne    FRAME, r3.w2, 0                 // upper half set: late, go now
@@ -149,6 +155,14 @@ IEP_WAIT:
     qbne    IEP_WAIT, r3, 0
 IEP_ALIGNED:
     jmp     FRAME
+// The other PRU owns the IEP and its CMP0 status: a new period is a count
+// below IEP_ALIGN (a MAIN turn is far shorter than the window, and the
+// 5 cycles to the count read above leave d >= 4). From there on the same
+// code as the owner's: both frames start on the same count.
+WAIT_FOLLOW:
+    lbco    r3, c26, IEP_COUNT, 4
+    qble    MAIN, r3, IEP_ALIGN - 8         // count >= IEP_ALIGN - 8: not yet
+    qba     IEP_AT_ALIGN
 
 // ============================================================================
 // Configuration: check the host's block, derive everything the clocked code
@@ -162,7 +176,7 @@ APPLY_CONFIG:
     qbeq    CFG_FAIL, r20.b2, 0
     qblt    CFG_FAIL, r20.b2, BISS_MAX_SLAVES   // 8 < slaves
     ldi     r28, BISS_CFGERR_TRIGGER
-    qblt    CFG_FAIL, r20.b3, BISS_TRIG_FREERUN
+    qblt    CFG_FAIL, r20.b3, BISS_TRIG_IEP_FOLLOW
     ldi     r28, BISS_CFGERR_HALF
     qbgt    CFG_FAIL, r20.w0, BISS_MIN_HALF     // H < 10
     mov     r2, BISS_MAX_HALF
@@ -383,7 +397,10 @@ CFG_PROC:
     sbco    r27, c28, P_SSI, 4
     sbco    r2, c28, P_PROC, 4
     lbco    r2, c28, P_GPCFG, 4
-    sbco    r2, c4, GPCFG0, 4               // shift mode at 8x the new rate
+    lbco    r3, c24, BISS_PRU_INDEX, 4      // GPCFG0 for PRU0, GPCFG1 for PRU1
+    lsl     r3, r3, 2
+    add     r3, r3, GPCFG0
+    sbco    r2, c4, r3, 4                   // shift mode at 8x the new rate
     ldi     r28, BISS_CFGERR_NONE
     ldi     r2, BISS_STATE_RUNNING
     qba     CFG_REPORT

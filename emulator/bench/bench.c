@@ -2,6 +2,7 @@
  * on the way (see bench.h). */
 #include "bench.h"
 
+#include "pruss.h"
 #include "vcd.h"
 
 #include <errno.h>
@@ -23,6 +24,11 @@ struct bench {
     struct bench_config cfg;
     struct pru_core *core;
     link_model link;
+    /* a core of a PRU-ICSS (NULL: a core alone), owned by this bench or
+     * by its peer, the bench on the other PRU (NULL: none) */
+    struct pru_icss *icss;
+    bool owns_icss;
+    struct bench *peer;
 
     /* master-side MA edge times by edge number modulo MA_RING, so an edge
      * the slave takes as part of a frame is timed where the PRU drove it */
@@ -296,7 +302,10 @@ static void pins_outputs(void *ctx, int64_t t, uint32_t r30) {
 
 /* ---- life cycle --------------------------------------------------------- */
 
-struct bench *bench_new(const struct bench_config *cfg, char *err, size_t errlen) {
+/* A bench on core (a core alone when icss is NULL); it owns what it is
+ * given unless a peer does. */
+static struct bench *bench_on(const struct bench_config *cfg, struct pru_core *core,
+                              struct pru_icss *icss, char *err, size_t errlen) {
     if (cfg->ma_bit > 15) {
         snprintf(err, errlen, "ma_bit %u: MA must be an R30 output pin, 0..15", cfg->ma_bit);
         return NULL;
@@ -307,17 +316,13 @@ struct bench *bench_new(const struct bench_config *cfg, char *err, size_t errlen
         return NULL;
     }
     b->cfg = *cfg;
+    b->cfg.pru_index = pru_core_index(core);
+    b->core = core;
+    b->icss = icss;
     b->frame_limit = UINT64_MAX;
     b->current_frame = UINT64_MAX;
     if (link_init(&b->link, &cfg->link, err, errlen) != 0) {
         free(b);
-        return NULL;
-    }
-    b->core = pru_core_new(cfg->soc, &cfg->pru);
-    if (!b->core) {
-        link_free(&b->link);
-        free(b);
-        snprintf(err, errlen, "out of memory");
         return NULL;
     }
     link_set_observer(&b->link, on_pin, b);
@@ -326,13 +331,74 @@ struct bench *bench_new(const struct bench_config *cfg, char *err, size_t errlen
     return b;
 }
 
+struct bench *bench_new(const struct bench_config *cfg, char *err, size_t errlen) {
+    if (cfg->pru_index > 1) {
+        snprintf(err, errlen, "pru %u: a PRU-ICSS has PRU 0 and PRU 1", cfg->pru_index);
+        return NULL;
+    }
+    struct pru_icss *icss = NULL;
+    struct pru_core *core;
+    if (cfg->pru_index == 1) {
+        icss = pru_icss_new(cfg->soc, &cfg->pru);
+        core = icss ? pru_icss_core(icss, 1) : NULL;
+    } else {
+        core = pru_core_new(cfg->soc, &cfg->pru);
+    }
+    if (!core) {
+        snprintf(err, errlen, "out of memory");
+        return NULL;
+    }
+    struct bench *b = bench_on(cfg, core, icss, err, errlen);
+    if (!b) {
+        if (icss) {
+            pru_icss_free(icss);
+        } else {
+            pru_core_free(core);
+        }
+        return NULL;
+    }
+    b->owns_icss = icss != NULL;
+    return b;
+}
+
+int bench_new_pair(const struct bench_config cfg[2], struct bench *b[2], char *err, size_t errlen) {
+    b[0] = b[1] = NULL;
+    struct pru_icss *icss = pru_icss_new(cfg[0].soc, &cfg[0].pru);
+    if (!icss) {
+        snprintf(err, errlen, "out of memory");
+        return -1;
+    }
+    struct bench_config c1 = cfg[1];
+    c1.soc = cfg[0].soc;
+    c1.pru = cfg[0].pru; /* the PRU-ICSS's parameters */
+    b[0] = bench_on(&cfg[0], pru_icss_core(icss, 0), icss, err, errlen);
+    b[1] = b[0] ? bench_on(&c1, pru_icss_core(icss, 1), icss, err, errlen) : NULL;
+    if (!b[1]) {
+        bench_free(b[0]);
+        pru_icss_free(icss);
+        b[0] = NULL;
+        return -1;
+    }
+    b[0]->owns_icss = true;
+    b[0]->peer = b[1];
+    b[1]->peer = b[0];
+    return 0;
+}
+
 void bench_free(struct bench *b) {
     if (!b) {
         return;
     }
     capture_free(b);
     bench_close_vcd(b);
-    pru_core_free(b->core);
+    if (b->peer) {
+        b->peer->peer = NULL;
+    }
+    if (b->owns_icss) {
+        pru_icss_free(b->icss);
+    } else if (!b->icss) {
+        pru_core_free(b->core);
+    }
     link_free(&b->link);
     free(b);
 }
@@ -386,8 +452,24 @@ int bench_start_image(struct bench *b, const void *image, size_t bytes) {
     return 0;
 }
 
+/* The link catches up with the core and drops old pin history. */
+static void bench_caught_up(struct bench *b);
+
 enum pru_stop bench_run_until(struct bench *b, int64_t t_ps) {
+    if (b->icss) { /* both PRUs together; each bench's link follows its core */
+        enum pru_stop why = pru_icss_run_until_time(b->icss, t_ps);
+        bench_caught_up(b);
+        if (b->peer) {
+            bench_caught_up(b->peer);
+        }
+        return why;
+    }
     enum pru_stop why = pru_run_until_time(b->core, t_ps);
+    bench_caught_up(b);
+    return why;
+}
+
+static void bench_caught_up(struct bench *b) {
     /* the link catches up with the core (a halted core leaves it behind) */
     int64_t now = pru_time_ps(b->core);
     link_sl(&b->link, now);
@@ -400,7 +482,6 @@ enum pru_stop bench_run_until(struct bench *b, int64_t t_ps) {
         link_forget_before(&b->link, now - SIM_PS_PER_MS);
         b->forgot_at = now;
     }
-    return why;
 }
 
 enum pru_stop bench_run_frames(struct bench *b, uint64_t frames, int64_t max_ps,
@@ -448,6 +529,10 @@ void bench_reset_stats(struct bench *b) {
 
 uint64_t bench_current_frame(const struct bench *b) {
     return b->current_frame;
+}
+
+int64_t bench_frame_start_ps(const struct bench *b) {
+    return b->have_frame_start ? b->frame_start_t : -1;
 }
 
 const struct bench_config *bench_config(const struct bench *b) {

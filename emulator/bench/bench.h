@@ -30,6 +30,9 @@ struct bench_config {
     struct pru_params pru;
     unsigned ma_bit; /* R30 bit that drives MA, default 1 */
     scenario link;   /* cable, slave(s), seed */
+    /* The PRU of the PRU-ICSS wired to the line: 0 (default: a core alone)
+     * or 1 (PRU1 of a PRU-ICSS whose PRU0 stays idle, emulator/core/pruss.h) */
+    unsigned pru_index;
 };
 
 /* Defaults: AM335x, MA on R30 bit 1, the "generic" profile. */
@@ -53,6 +56,14 @@ struct bench;
 /* Returns NULL and a message in err when cfg is invalid or memory ran out. */
 struct bench *bench_new(const struct bench_config *cfg, char *err, size_t errlen);
 void bench_free(struct bench *b);
+
+/* Two lines and their slaves on the two PRUs of one PRU-ICSS: b[0] on
+ * PRU0 with cfg[0], b[1] on PRU1 with cfg[1] (soc and the core
+ * parameters are cfg[0]'s; the pru_index fields are ignored). Running either
+ * bench runs both PRUs and both links, cycle by cycle together, sharing
+ * the IEP and the RAMs. Free b[1] first, then b[0]. Returns 0, or -1 with
+ * a message in err (and b[] NULL). */
+int bench_new_pair(const struct bench_config cfg[2], struct bench *b[2], char *err, size_t errlen);
 
 /* Records MA_master, SL_master, MA_slave, SL_slave and frame (scope
  * "bench") from now on, with the timescale unit_ps (1, 10, 100 or 1000 ps:
@@ -96,6 +107,9 @@ const struct bench_config *bench_config(const struct bench *b);
 /* The slave's number for the frame the master began last (its first MA
  * edge has reached the slave), or UINT64_MAX before the first. */
 uint64_t bench_current_frame(const struct bench *b);
+/* When that frame's first MA edge left the master pin (ps), -1 before the
+ * first frame measured. */
+int64_t bench_frame_start_ps(const struct bench *b);
 
 /* Round trip the master sees from an MA edge to the SL answer, per the
  * models: MA line + slave output delay + SL line, nominal (no jitter). */

@@ -5,18 +5,31 @@
 
 static int io_read(void *ctx, uint32_t off, void *buf, size_t n) {
     struct bench *b = ctx;
-    uint32_t at = pru_soc_base(bench_config(b)->soc) + ICSS_DRAM0 + off;
+    uint32_t at = pru_soc_base(bench_config(b)->soc) + ICSS_DRAM(bench_config(b)->pru_index) + off;
     return pru_host_read(bench_core(b), at, buf, n) ? BISS_E_IO : BISS_OK;
 }
 
 static int io_write(void *ctx, uint32_t off, const void *buf, size_t n) {
     struct bench *b = ctx;
-    uint32_t at = pru_soc_base(bench_config(b)->soc) + ICSS_DRAM0 + off;
+    uint32_t at = pru_soc_base(bench_config(b)->soc) + ICSS_DRAM(bench_config(b)->pru_index) + off;
     return pru_host_write(bench_core(b), at, buf, n) ? BISS_E_IO : BISS_OK;
 }
 
 struct biss_proto_io bench_fw_io(struct bench *b) {
     return (struct biss_proto_io){.read = io_read, .write = io_write, .ctx = b};
+}
+
+int bench_fw_start(struct bench *b, const void *image, size_t bytes) {
+    struct pru_core *c = bench_core(b);
+    if (pru_load_image(c, image, bytes) != 0) {
+        return -1;
+    }
+    struct biss_proto_io io = bench_fw_io(b);
+    if (biss_proto_pru_index_put(&io, bench_config(b)->pru_index) != 0) {
+        return -1;
+    }
+    pru_start(c);
+    return 0;
 }
 
 struct biss_proto_word bench_fw_word(const biss_slave_cfg *s) {

@@ -19,7 +19,11 @@ struct bench_fw_settings {
     unsigned proc_limit; /* longest processing time accepted, MA clocks */
 };
 
-/* The bench's PRU0 data RAM, through host accesses at the SoC's address. */
+/* Starts the firmware image on the bench's PRU as a host does: loads it,
+ * tells it which PRU it is on (PRU_INDEX), starts it. 0 or -1 (too big). */
+int bench_fw_start(struct bench *b, const void *image, size_t bytes);
+
+/* The bench's PRU's data RAM, through host accesses at the SoC's address. */
 struct biss_proto_io bench_fw_io(struct bench *b);
 
 /* A model slave's data-word fields, for proto's layout rule. */

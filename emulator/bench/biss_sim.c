@@ -47,6 +47,7 @@ struct options {
     const char *image;    /* any image, run as is */
     const char *firmware; /* the BiSS master firmware (default: this tree's) */
     const char *soc;
+    unsigned pru; /* the PRU of the PRU-ICSS that runs the image */
     const char *vcd;
     int64_t vcd_unit_ps;
     const char *svg;
@@ -80,6 +81,8 @@ static void usage(FILE *f) {
                "  --image FILE       any PRU image (.bin, or .p assembled with -D HALF, CLOCKS,\n"
                "                     GAP, FRAMES, MA_BIT), run as is: nothing is decoded\n"
                "  --soc NAME         am335x (default), am437x-icss0, am437x-icss1\n"
+               "  --pru N            run it on PRU N of the PRU-ICSS: 0 (default) or 1 (PRU0\n"
+               "                     idle; the line on PRU1's pins, GPCFG1, data RAM1)\n"
                "  --vcd FILE         write MA/SL at master and slave and a frame wire (high\n"
                "                     while a frame is clocked) as VCD (scope bench)\n"
                "  --vcd-timescale U  1ps, 10ps, 100ps or 1ns (default); edges keep their order\n"
@@ -157,7 +160,7 @@ static const char *const valued[] = {"--profile",  "--scenario", "--freq",      
                                      "--firmware", "--reg-read", "--reg-write", "--command"};
 /* ... and those of the waveform output and the fast paths */
 static const char *const valued_out[] = {"--vcd-timescale", "--no-fast-path", "--strict-window",
-                                         "--contend"};
+                                         "--contend", "--pru"};
 
 static int takes_value(const char *a) {
     for (size_t i = 0; i < sizeof(valued) / sizeof(valued[0]); i++) {
@@ -254,6 +257,11 @@ static int set_option(struct options *o, const char *a, const char *v) {
         o->seed_set = 1;
     } else if (!strcmp(a, "--image")) {
         o->image = v;
+    } else if (!strcmp(a, "--pru")) {
+        if (strcmp(v, "0") && strcmp(v, "1")) {
+            return die("--pru: '%s' is not 0 or 1", v);
+        }
+        o->pru = (unsigned)(v[0] - '0');
     } else if (!strcmp(a, "--firmware")) {
         o->firmware = v;
     } else if (!strcmp(a, "--reg-read") || !strcmp(a, "--reg-write") || !strcmp(a, "--command")) {
@@ -353,6 +361,7 @@ static int parse_args(int argc, char **argv, struct options *o) {
 static int build_config(const struct options *o, struct bench_config *cfg) {
     char err[256];
     bench_config_default(cfg);
+    cfg->pru_index = o->pru;
     if (pru_soc_from_name(o->soc, &cfg->soc) != 0) {
         return die("--soc: unknown SoC '%s' (am335x, am437x-icss0, am437x-icss1)", o->soc);
     }
@@ -501,7 +510,8 @@ static int run(const struct options *o) {
         bench_free(b);
         return die("%s", err);
     }
-    if (bench_start_image(b, img.words, img.nwords * 4) != 0) {
+    if ((fw_mode ? bench_fw_start(b, img.words, img.nwords * 4)
+                 : bench_start_image(b, img.words, img.nwords * 4)) != 0) {
         rc = die("image of %zu words does not fit the IRAM of %s", img.nwords, o->soc);
     } else if (o->vcd && bench_open_vcd(b, o->vcd, o->vcd_unit_ps) != 0) {
         rc = die("cannot write '%s'", o->vcd);

@@ -156,6 +156,11 @@ struct biss_open_params {
     /* If set, an open error's detail (path, errno, hint) lands here. */
     char *errbuf;
     size_t errbuf_len;
+    /* Which PRU of the PRU-ICSS runs the firmware and drives this handle's
+     * line: 0 (default) or 1. Each PRU has its own data RAM, so two handles
+     * on PRU0 and PRU1 are two independent channels (two axes per PRU-ICSS);
+     * on the emulator PRU0 stays idle when pru is 1. */
+    unsigned pru;
 };
 
 void biss_open_params_default(struct biss_open_params *p);
@@ -184,9 +189,13 @@ enum biss_trigger {
     BISS_TRIGGER_HOST = 0,    /* one frame per biss_trigger() */
     BISS_TRIGGER_IEP = 1,     /* one frame every iep_period_ns */
     BISS_TRIGGER_FREERUN = 2, /* next frame as soon as the slave is ready */
+    /* one frame per IEP period that the channel on the other PRU of this
+     * PRU-ICSS set up with BISS_TRIGGER_IEP, starting on the same IEP count
+     * as its frames (iep_period_ns is not used: that channel owns the IEP) */
+    BISS_TRIGGER_IEP_FOLLOW = 3,
 };
 
-/* "host", "iep", "free" (or "freerun"). */
+/* "host", "iep", "iep-follow", "free" (or "freerun"). */
 int biss_trigger_from_name(const char *name, enum biss_trigger *t);
 const char *biss_trigger_name(enum biss_trigger t);
 

@@ -64,9 +64,18 @@
 #define BISS_TRIG_HOST          0       // one frame per write of CMD_TRIGGER
 #define BISS_TRIG_IEP           1       // one frame every CFG_IEP_PERIOD IEP counts (IEP CMP0)
 #define BISS_TRIG_FREERUN       2       // next frame as soon as the slave is ready
+#define BISS_TRIG_IEP_FOLLOW    3       // one frame per IEP period that the other PRU of this
+                                        // PRU-ICSS set up with BISS_TRIG_IEP, starting on the same
+                                        // IEP count as its frames; this channel leaves the IEP alone
 
 // ---- commands (host writes, firmware clears) ---------------------------
 #define BISS_CMD_TRIGGER        0x050   // u32: nonzero: start one frame (BISS_TRIG_HOST)
+
+// ---- which PRU (host writes before it starts the PRU) -------------------
+#define BISS_PRU_INDEX          0x054   // u32: 0 or 1, the PRU of its PRU-ICSS this copy runs on
+                                        // (the same image runs on both): the start-up takes its own
+                                        // CONTROL block (PRU0 0x22000, PRU1 0x24000) and GPCFG
+                                        // (GPCFG0, GPCFG1) by it. Zero (PRU0) unless written.
 
 // ---- status (firmware writes) -------------------------------------------
 #define BISS_ST_MAGIC           0x080   // u32: BISS_MAGIC once the firmware runs

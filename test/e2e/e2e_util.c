@@ -13,14 +13,14 @@
 #endif
 
 /* The built firmware into the bench's IRAM, and the PRU started. */
-static void start_image(struct e2e_run *r) {
+void e2e_start_firmware(struct e2e_run *r) {
     char *image;
     size_t n;
     ck_assert_msg(read_file(FIRMWARE_IMAGE, 1u << 16, &image, &n) == READ_FILE_OK, "cannot read %s",
                   FIRMWARE_IMAGE);
     ck_assert_uint_gt(n, 0);
     r->image_words = (uint32_t)(n / 4);
-    ck_assert_int_eq(bench_start_image(r->b, image, n), 0);
+    ck_assert_int_eq(bench_fw_start(r->b, image, n), 0);
     free(image);
 }
 
@@ -43,7 +43,7 @@ struct bench *e2e_bench_scenario(struct e2e_run *r, const scenario *sc,
     char err[256];
     r->b = bench_new(&cfg, err, sizeof(err));
     ck_assert_msg(r->b != NULL, "%s", err);
-    start_image(r);
+    e2e_start_firmware(r);
     fw_check_attach(&r->fc, r->b);
     return r->b;
 }

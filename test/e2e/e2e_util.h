@@ -24,6 +24,9 @@ struct bench *e2e_bench(struct e2e_run *r, const char *profile, double cable_m,
 struct bench *e2e_bench_scenario(struct e2e_run *r, const scenario *sc,
                                  const struct pru_params *params);
 
+/* Loads the built firmware into r->b's PRU and starts it. */
+void e2e_start_firmware(struct e2e_run *r);
+
 /* Configures free-run at half period `half`, waits for the training and the
  * first valid frame, then checks `frames` frames. Returns the number of
  * valid frames checked (fewer if time ran out). */

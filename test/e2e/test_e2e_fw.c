@@ -119,7 +119,7 @@ static const struct bad_cfg bad[] = {
     {CFG_FIELD(half), 11, BISS_CFGERR_HALF},   /* 9.09 MHz: no exact 8x clock */
     {CFG_FIELD(half), 1000, BISS_CFGERR_HALF}, /* 100 kHz: 1000 = 8 x 125 */
     {CFG_FIELD(half), 1025, BISS_CFGERR_HALF},
-    {CFG_FIELD(trigger), 3, BISS_CFGERR_TRIGGER},
+    {CFG_FIELD(trigger), 4, BISS_CFGERR_TRIGGER},
     {CFG_FIELD(slave[0].data_bits), 0, BISS_CFGERR_DATA_BITS},
     {CFG_FIELD(slave[0].data_bits), 65, BISS_CFGERR_DATA_BITS},
     {CFG_FIELD(slave[0].crc_bits), 17, BISS_CFGERR_CRC_BITS},

@@ -34,7 +34,8 @@ for args, text in [(["frobnicate"], "unknown command"),
                    (["--target", "pi", "info"], "unknown target"),
                    (["--slave", "14,6", "info"], "--slave"),
                    (["read", "-n", "0"], "-n"),
-                   (["--freq"], "needs a value")]:
+                   (["--freq"], "needs a value"),
+                   (["--pru", "2", "info"], "--pru")]:
     r = run(*args)
     check(r.returncode == 2 and text in r.stderr, "%r: rc %d, %r" % (args, r.returncode, r.stderr))
 
@@ -56,6 +57,10 @@ for l in data:
 # an explicit slave layout (the profile's own: 14 data bits, CRC6 0x43, nE/nW at 0)
 r = run("--freq", "10000000", "--slave", "14,6,0x43,0,0", "read", "-n", "3")
 check(r.returncode == 0 and r.stdout.count("s0.crc=ok") >= 2, "--slave read: %r %r" % (r.stdout, r.stderr))
+
+# PRU1 of the emulated PRU-ICSS: its own line, data RAM and GPCFG
+r = run("--pru", "1", "--freq", "10000000", "--profile", "hengstler-ad38", "read", "-n", "3")
+check(r.returncode == 0 and r.stdout.count("s2.crc=ok") >= 2, "--pru 1 read: %r %r" % (r.stdout, r.stderr))
 
 # host trigger: one frame per trigger
 r = run("--freq", "10000000", "--trigger", "host", "trigger")

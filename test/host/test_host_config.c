@@ -191,7 +191,7 @@ END_TEST
 
 START_TEST(test_trigger_proc) {
     struct biss_config c = good();
-    c.trigger = (enum biss_trigger)3;
+    c.trigger = (enum biss_trigger)4;
     ck_assert_int_eq(biss_config_check(&c), BISS_E_TRIGGER);
     c = good();
     c.proc_limit = 65535;

@@ -149,6 +149,45 @@ START_TEST(test_image_lands_in_iram) {
 }
 END_TEST
 
+/* --pru 1: PRU1's IRAM, CONTROL and data RAM, and the firmware told which
+ * PRU it is on; PRU0's left alone, so a second handle can drive it. */
+START_TEST(test_pru1_offsets) {
+    const off_t dram1 = AM335X_BASE + 0x2000, ctrl1 = AM335X_BASE + 0x24000,
+                iram1 = AM335X_BASE + 0x38000;
+    make_devmem(AM335X_BASE + WINDOW);
+    make_image(1000);
+    file_write32(AM335X_BASE + BISS_ST_MAGIC, BISS_MAGIC); /* PRU0's: kept */
+    file_write32(dram1 + BISS_ST_MAGIC, BISS_MAGIC);       /* PRU1's: cleared */
+    struct biss_open_params p = params(BISS_TARGET_AM335X);
+    p.pru = 1;
+    biss_t *h;
+    ck_assert_int_eq(biss_open(&p, &h), BISS_OK);
+    for (uint32_t i = 0; i < 250; i++) {
+        ck_assert_uint_eq(file32(iram1 + 4 * i), 0x1000 + i);
+    }
+    ck_assert_uint_eq(file32(AM335X_BASE + IRAM0), 0);
+    ck_assert_uint_eq(file32(ctrl1), 0x2);
+    ck_assert_uint_eq(file32(AM335X_BASE + CTRL0), 0);
+    ck_assert_uint_eq(file32(dram1 + BISS_ST_MAGIC), 0);
+    ck_assert_uint_eq(file32(AM335X_BASE + BISS_ST_MAGIC), BISS_MAGIC);
+    ck_assert_uint_eq(file32(dram1 + BISS_PRU_INDEX), 1);
+    /* PRU0 at the same time: its own lock, its own index */
+    struct biss_open_params p0 = params(BISS_TARGET_AM335X);
+    biss_t *h0;
+    ck_assert_int_eq(biss_open(&p0, &h0), BISS_OK);
+    ck_assert_uint_eq(file32(AM335X_BASE + BISS_PRU_INDEX), 0);
+    ck_assert_uint_eq(file32(AM335X_BASE + CTRL0), 0x2);
+    ck_assert_int_eq(biss_stop(h), BISS_OK);
+    ck_assert_uint_eq(file32(ctrl1), 0x1);
+    ck_assert_uint_eq(file32(AM335X_BASE + CTRL0), 0x2);
+    biss_close(h0);
+    biss_close(h);
+    p.pru = 2;
+    ck_assert_int_eq(biss_open(&p, &h), BISS_E_INVAL);
+    cleanup();
+}
+END_TEST
+
 START_TEST(test_config_bytes_in_data_ram) {
     make_devmem(AM335X_BASE + WINDOW);
     make_image(64);
@@ -493,6 +532,7 @@ int main(void) {
     tcase_set_timeout(tc, 60);
     tcase_add_test(tc, test_image_lands_in_iram);
     tcase_add_test(tc, test_config_bytes_in_data_ram);
+    tcase_add_test(tc, test_pru1_offsets);
     tcase_add_test(tc, test_virtual_board);
     tcase_add_test(tc, test_am437x_bases_and_iram_sizes);
     tcase_add_test(tc, test_open_errors);

@@ -1,0 +1,195 @@
+/*
+ * End-to-end: two encoders on the two PRUs of one PRU-ICSS
+ * (emulator/core/pruss.h). The same firmware image runs on PRU0 and PRU1,
+ * each with its own line, encoder, configuration and results; PRU0 owns
+ * the IEP (BISS_TRIG_IEP), PRU1 follows its period (BISS_TRIG_IEP_FOLLOW).
+ * Every published frame of each is checked against its own encoder model,
+ * the MA half periods at both master pins are exact, and the frames of the
+ * two start on the same PRU cycle.
+ */
+#include "check_run.h"
+#include "e2e_util.h"
+
+#include "biss/biss_shm.h"
+
+#include <check.h>
+#include <stdlib.h>
+
+#define PERIOD  10000u /* IEP counts: 50 us */
+#define MATCHED 40u    /* frame starts compared */
+
+struct pair {
+    struct e2e_run r[2];
+};
+
+static void pair_new(struct pair *p, const char *profile0, const char *profile1) {
+    struct bench_config cfg[2];
+    const char *profile[2] = {profile0, profile1};
+    for (unsigned i = 0; i < 2; i++) {
+        bench_config_default(&cfg[i]);
+        ck_assert_int_eq(profile_by_name(profile[i], &cfg[i].link), 0);
+        scenario_set_cable(&cfg[i].link, i ? 25 : 5); /* different line delays too */
+        cfg[i].link.seed = 11 + i;
+    }
+    struct bench *b[2];
+    char err[256];
+    ck_assert_msg(bench_new_pair(cfg, b, err, sizeof err) == 0, "%s", err);
+    for (unsigned i = 0; i < 2; i++) {
+        p->r[i].b = b[i];
+        ck_assert_uint_eq(bench_config(b[i])->pru_index, i);
+        e2e_start_firmware(&p->r[i]);
+        fw_check_attach(&p->r[i].fc, b[i]);
+    }
+}
+
+static void pair_free(struct pair *p) {
+    bench_free(p->r[1].b); /* PRU1's first: PRU0's bench owns the PRU-ICSS */
+    bench_free(p->r[0].b);
+}
+
+/* Runs both (running either bench runs the PRU-ICSS) by step_ps until
+ * each has published n more frames, at most max_ps. */
+static void pair_run(struct pair *p, uint64_t n, int64_t step_ps, int64_t max_ps,
+                     void (*each)(struct pair *p, void *ctx), void *ctx) {
+    uint64_t want[2] = {p->r[0].fc.publications + n, p->r[1].fc.publications + n};
+    struct bench *b = p->r[0].b;
+    int64_t end = pru_time_ps(bench_core(b)) + max_ps;
+    while ((p->r[0].fc.publications < want[0] || p->r[1].fc.publications < want[1]) &&
+           pru_time_ps(bench_core(b)) < end) {
+        ck_assert_int_eq(bench_run_until(b, pru_time_ps(bench_core(b)) + step_ps), PRU_STOP_LIMIT);
+        if (each)
+            each(p, ctx);
+    }
+    ck_assert_uint_ge(p->r[0].fc.publications, want[0]);
+    ck_assert_uint_ge(p->r[1].fc.publications, want[1]);
+}
+
+static void configure(struct pair *p, unsigned half0, unsigned half1) {
+    struct bench_fw_settings s0 = {
+        .half = half0, .trigger = BISS_TRIG_IEP, .iep_period = PERIOD, .proc_limit = 1000};
+    struct bench_fw_settings s1 = {
+        .half = half1, .trigger = BISS_TRIG_IEP_FOLLOW, .proc_limit = 1000};
+    ck_assert_int_eq(bench_fw_configure(p->r[0].b, &s0), 0);
+    ck_assert_int_eq(bench_fw_configure(p->r[1].b, &s1), 0);
+    /* training frames, the IEP set up, the first periods */
+    pair_run(p, 3, 5 * SIM_PS_PER_US, 10 * SIM_PS_PER_MS, NULL, NULL);
+    for (unsigned i = 0; i < 2; i++) {
+        struct biss_shm_status st = bench_fw_status(p->r[i].b);
+        ck_assert_uint_eq(st.state, BISS_STATE_RUNNING);
+        ck_assert_uint_eq(st.cfg_error, BISS_CFGERR_NONE);
+        bench_reset_stats(p->r[i].b);
+        fw_check_restart(&p->r[i].fc, UINT64_MAX);
+    }
+}
+
+/* The frame starts of both, as the steps see them (one frame a step at
+ * most: a step is far shorter than a period). */
+struct starts {
+    int64_t t[2][MATCHED + 8];
+    unsigned n[2];
+};
+
+static void note_starts(struct pair *p, void *ctx) {
+    struct starts *s = ctx;
+    for (unsigned i = 0; i < 2; i++) {
+        int64_t t = bench_frame_start_ps(p->r[i].b);
+        unsigned k = s->n[i];
+        if (t >= 0 && (k == 0 || s->t[i][k - 1] != t) && k < MATCHED + 8)
+            s->t[i][s->n[i]++] = t;
+    }
+}
+
+static void check_pair(struct pair *p, unsigned half0, unsigned half1) {
+    struct starts s = {.n = {0, 0}};
+    pair_run(p, MATCHED, 5 * SIM_PS_PER_US, 20 * SIM_PS_PER_MS, note_starts, &s);
+    /* the same frames on both, each started on the same PRU cycle: the same
+     * IEP count (5 ns each) read by both */
+    ck_assert_uint_ge(s.n[0], MATCHED - 1);
+    ck_assert_uint_eq(s.n[0], s.n[1]);
+    for (unsigned k = 0; k < s.n[0]; k++) {
+        int64_t d = s.t[0][k] - s.t[1][k];
+        ck_assert_msg(llabs(d) <= PRU_PS_PER_CYCLE, "frame %u: PRU0 at %lld ps, PRU1 at %lld ps", k,
+                      (long long)s.t[0][k], (long long)s.t[1][k]);
+        if (k > 0) /* one IEP period apart (CMP0 + 1 counts: TIMING.md) */
+            ck_assert_int_le(llabs(s.t[0][k] - s.t[0][k - 1] - PERIOD * PRU_PS_PER_CYCLE),
+                             PRU_PS_PER_CYCLE);
+    }
+    unsigned half[2] = {half0, half1};
+    for (unsigned i = 0; i < 2; i++) {
+        const struct bench_stats *st = bench_stats(p->r[i].b);
+        ck_assert_uint_gt(st->half_periods, 100);
+        ck_assert_int_eq(st->half_min_ps, (int64_t)half[i] * PRU_PS_PER_CYCLE);
+        ck_assert_int_eq(st->half_max_ps, (int64_t)half[i] * PRU_PS_PER_CYCLE);
+        const struct fw_check *fc = &p->r[i].fc;
+        ck_assert_uint_ge(fc->frames, MATCHED - 1);
+        ck_assert_uint_eq(fc->mismatches, 0);
+        ck_assert_uint_eq(fc->crc_errors, 0);
+        ck_assert_uint_eq(fc->half, half[i]);
+    }
+}
+
+/* Two different encoders (one slave of 12 bits + CRC6; a chain with a
+ * CRC16 slave) at the same rate. */
+START_TEST(test_two_encoders_same_rate) {
+    struct pair p;
+    pair_new(&p, "tidep0022-test-encoder", "hengstler-ad38");
+    configure(&p, 10, 10);
+    check_pair(&p, 10, 10);
+    pair_free(&p);
+}
+END_TEST
+
+/* Each PRU at its own rate (its own GPCFG divider): starts still match. */
+START_TEST(test_two_encoders_own_rates) {
+    struct pair p;
+    pair_new(&p, "posital-kit-layout-biss-c", "tidep0022-test-encoder");
+    configure(&p, 20, 10);
+    check_pair(&p, 20, 10);
+    pair_free(&p);
+}
+END_TEST
+
+/* PRU0's data RAM as a host reads it, whichever bench's core is asked. */
+static int pru0_read(void *ctx, uint32_t off, void *buf, size_t n) {
+    struct bench *b = ctx;
+    return pru_host_read(bench_core(b), pru_soc_base(bench_config(b)->soc) + off, buf, n);
+}
+
+/* PRU1 alone on a PRU-ICSS (PRU0 idle), free-running: the line on PRU1's
+ * pins, GPCFG1, data RAM1. */
+START_TEST(test_pru1_alone) {
+    struct e2e_run r;
+    struct bench_config cfg;
+    bench_config_default(&cfg);
+    ck_assert_int_eq(profile_by_name("hengstler-ad38", &cfg.link), 0);
+    cfg.pru_index = 1;
+    char err[256];
+    r.b = bench_new(&cfg, err, sizeof err);
+    ck_assert_msg(r.b != NULL, "%s", err);
+    e2e_start_firmware(&r);
+    fw_check_attach(&r.fc, r.b);
+    ck_assert_uint_eq(e2e_run_frames(&r, 10, 1000, 200), 200);
+    ck_assert_uint_eq(r.fc.mismatches, 0);
+    ck_assert_uint_eq(r.fc.crc_errors, 0);
+    ck_assert_int_eq(bench_stats(r.b)->half_max_ps, 10 * PRU_PS_PER_CYCLE);
+    ck_assert_int_eq(bench_stats(r.b)->half_min_ps, 10 * PRU_PS_PER_CYCLE);
+    /* PRU0's data RAM untouched: the firmware used its own */
+    struct biss_proto_io pru0 = {.read = pru0_read, .ctx = r.b};
+    struct biss_shm_status st0;
+    ck_assert_int_eq(biss_proto_status_get(&pru0, &st0), 0);
+    ck_assert_uint_eq(st0.magic, 0);
+    ck_assert_uint_eq(bench_fw_status(r.b).magic, BISS_MAGIC);
+    e2e_free(&r);
+}
+END_TEST
+
+int main(void) {
+    Suite *s = suite_create("e2e_twopru");
+    TCase *tc = tcase_create("twopru");
+    tcase_set_timeout(tc, 600);
+    tcase_add_test(tc, test_two_encoders_same_rate);
+    tcase_add_test(tc, test_two_encoders_own_rates);
+    tcase_add_test(tc, test_pru1_alone);
+    suite_add_tcase(s, tc);
+    return check_run(s);
+}
