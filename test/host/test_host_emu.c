@@ -65,10 +65,11 @@ static const biss_frame_record *sent_for(biss_t *h, const struct biss_sample *s)
     link_model *l = bench_link(biss_emu_bench(h));
     ck_assert_uint_ge(s->frame, 1);
     const biss_frame_record *rec = biss_slave_record(&l->biss, s->frame - 1);
-    ck_assert_msg(rec != NULL, "no slave record for frame %u", s->frame);
+    ck_assert_msg(rec != NULL, "no slave record for frame %u (%llu recorded)", s->frame,
+                  (unsigned long long)link_frames(l));
     struct biss_config c;
     ck_assert_int_eq(biss_get_config(h, &c), BISS_OK);
-    if (c.trigger == BISS_TRIGGER_IEP) {
+    if (c.trigger == BISS_TRIGGER_IEP || c.trigger == BISS_TRIGGER_IEP_FOLLOW) {
         return rec;
     }
     assert_starts_after(s, rec->start_ps);
@@ -224,6 +225,57 @@ START_TEST(test_iep_trigger) {
     ck_assert_int_eq(biss_run_ms(h, 1), BISS_OK);
     assert_matches_slave(h, &s);
     biss_close(h);
+}
+END_TEST
+
+/* Two handles on the two PRUs of one emulated PRU-ICSS, two encoders of
+ * different layouts: PRU0 owns the IEP, PRU1 follows it; every frame of
+ * each is its own encoder's, and the frames of both start on the same IEP
+ * count (their timestamps are equal). */
+START_TEST(test_two_prus_one_iep) {
+    static const char *const profile[2] = {PROFILE, "posital-kit-layout-biss-c"};
+    struct biss_open_params p[2];
+    for (unsigned i = 0; i < 2; i++) {
+        biss_open_params_default(&p[i]);
+        p[i].target = BISS_TARGET_EMU;
+        p[i].profile = profile[i];
+        p[i].cable_m = 5.0 + 20.0 * i;
+    }
+    biss_t *h[2];
+    int rc = biss_emu_open_pair(p, h);
+    ck_assert_msg(rc == BISS_OK, "open pair: %s", biss_strerror(rc));
+    ck_assert_ptr_ne(biss_emu_bench(h[0]), biss_emu_bench(h[1]));
+    configure(h[0], 10000000, BISS_TRIGGER_IEP, 50000);
+    configure(h[1], 5000000, BISS_TRIGGER_IEP_FOLLOW, 0);
+    struct biss_sample s[2];
+    uint32_t after[2] = {0, 0};
+    for (unsigned i = 0; i < 2; i++) { /* past the training frames */
+        ck_assert_int_eq(biss_wait_sample(h[i], 0, 2, &s[i]), BISS_OK);
+        ck_assert_int_eq(biss_wait_sample(h[i], s[i].frame, 2, &s[i]), BISS_OK);
+        after[i] = s[i].frame;
+    }
+    struct biss_sample got[2][20];
+    for (int k = 0; k < 20; k++) {
+        for (unsigned i = 0; i < 2; i++) {
+            ck_assert_int_eq(biss_wait_sample(h[i], after[i], 1, &got[i][k]), BISS_OK);
+            ck_assert_uint_eq(got[i][k].frame, after[i] + 1); /* none missed */
+            after[i] = got[i][k].frame;
+        }
+        ck_assert_uint_eq(got[0][k].timestamp, got[1][k].timestamp);
+    }
+    /* the slaves close their frames when their timeouts end */
+    ck_assert_int_eq(biss_run_ms(h[0], 1), BISS_OK);
+    for (int k = 0; k < 20; k++) {
+        for (unsigned i = 0; i < 2; i++) {
+            assert_matches_slave(h[i], &got[i][k]);
+        }
+    }
+    biss_close(h[0]); /* the PRU-ICSS goes with the last handle */
+    ck_assert_int_eq(biss_wait_sample(h[1], after[1], 1, &s[1]), BISS_OK);
+    biss_close(h[1]);
+    p[1].target = BISS_TARGET_AM335X;
+    ck_assert_int_eq(biss_emu_open_pair(p, h), BISS_E_TARGET);
+    ck_assert_ptr_null(h[0]);
 }
 END_TEST
 
@@ -418,6 +470,7 @@ int main(int argc, char **argv) {
     tcase_add_test(tc, test_iep_trigger);
     tcase_add_test(tc, test_stop_start);
     tcase_add_test(tc, test_emu_open_errors);
+    tcase_add_test(tc, test_two_prus_one_iep);
     tcase_add_test(tc, test_reconfigure_other_layout);
     tcase_add_test(tc, test_ssi_binary);
     tcase_add_test(tc, test_ssi_gray);
