@@ -17,6 +17,7 @@
 #include "bench_fw.h"
 #include "scenario_json.h"
 #include "sim_image.h"
+#include "sim_pair.h"
 #include "sim_report.h"
 
 #include <errno.h>
@@ -48,6 +49,9 @@ struct options {
     const char *firmware; /* the BiSS master firmware (default: this tree's) */
     const char *soc;
     unsigned pru; /* the PRU of the PRU-ICSS that runs the image */
+    /* a second encoder on PRU1's line (sim_pair.h), and the IEP period */
+    const char *pru1_profile, *pru1_scenario;
+    double iep_period_ns;
     const char *vcd;
     int64_t vcd_unit_ps;
     const char *svg;
@@ -83,6 +87,12 @@ static void usage(FILE *f) {
                "  --soc NAME         am335x (default), am437x-icss0, am437x-icss1\n"
                "  --pru N            run it on PRU N of the PRU-ICSS: 0 (default) or 1 (PRU0\n"
                "                     idle; the line on PRU1's pins, GPCFG1, data RAM1)\n"
+               "  --pru1-profile NAME, --pru1-scenario FILE\n"
+               "                     a second encoder on its own line to PRU1: the firmware\n"
+               "                     on both PRUs, PRU0's frames on the IEP, PRU1's following\n"
+               "                     them; both checked, and their frame starts compared\n"
+               "  --iep-period-ns NS with a second encoder: the IEP period (default: twice\n"
+               "                     the longer frame)\n"
                "  --vcd FILE         write MA/SL at master and slave and a frame wire (high\n"
                "                     while a frame is clocked) as VCD (scope bench)\n"
                "  --vcd-timescale U  1ps, 10ps, 100ps or 1ns (default); edges keep their order\n"
@@ -160,7 +170,8 @@ static const char *const valued[] = {"--profile",  "--scenario", "--freq",      
                                      "--firmware", "--reg-read", "--reg-write", "--command"};
 /* ... and those of the waveform output and the fast paths */
 static const char *const valued_out[] = {"--vcd-timescale", "--no-fast-path", "--strict-window",
-                                         "--contend", "--pru"};
+                                         "--contend",       "--pru",          "--pru1-profile",
+                                         "--pru1-scenario", "--iep-period-ns"};
 
 static int takes_value(const char *a) {
     for (size_t i = 0; i < sizeof(valued) / sizeof(valued[0]); i++) {
@@ -257,6 +268,15 @@ static int set_option(struct options *o, const char *a, const char *v) {
         o->seed_set = 1;
     } else if (!strcmp(a, "--image")) {
         o->image = v;
+    } else if (!strcmp(a, "--pru1-profile")) {
+        o->pru1_profile = v;
+    } else if (!strcmp(a, "--pru1-scenario")) {
+        o->pru1_scenario = v;
+    } else if (!strcmp(a, "--iep-period-ns")) {
+        if (parse_double(v, &o->iep_period_ns) || o->iep_period_ns < 5 || o->iep_period_ns > 2e7 ||
+            fmod(o->iep_period_ns, 5) != 0) {
+            return die("--iep-period-ns: '%s' is not a multiple of 5 ns up to 20 ms", v);
+        }
     } else if (!strcmp(a, "--pru")) {
         if (strcmp(v, "0") && strcmp(v, "1")) {
             return die("--pru: '%s' is not 0 or 1", v);
@@ -475,6 +495,42 @@ static enum pru_stop run_firmware(struct bench *b, struct fw_check *fc, uint64_t
     return why;
 }
 
+/* A second encoder on PRU1 (sim_pair.h): the firmware on both PRUs. */
+static int run_pair(const struct options *o, const struct bench_config *cfg, unsigned half) {
+    if (o->image || o->json || o->vcd || o->svg || o->cd_set || o->pru) {
+        return die("--pru1-profile/--pru1-scenario run the firmware on both PRUs: not with "
+                   "--image, --json, --vcd, --svg, --pru or control frames");
+    }
+    struct sim_pair_run r = {.cfg = {*cfg, *cfg},
+                             .half = half,
+                             .iep_period = (uint32_t)(o->iep_period_ns / 5),
+                             .frames = o->frames};
+    char err[512];
+    if (o->pru1_scenario) {
+        if (scenario_load_file(o->pru1_scenario, &r.cfg[1].link, err, sizeof(err)) != 0) {
+            return die("%s", err);
+        }
+    } else if (profile_by_name(o->pru1_profile, &r.cfg[1].link) != 0) {
+        return die("unknown profile '%s' (see --list-profiles)", o->pru1_profile);
+    }
+    if (o->cable_m >= 0) {
+        scenario_set_cable(&r.cfg[1].link, o->cable_m);
+    }
+    if (o->seed_set) {
+        r.cfg[1].link.seed = o->seed + 1; /* a noise of its own */
+    }
+    struct pruasm_image img;
+    const char *path = o->firmware ? o->firmware : BISS_SIM_FIRMWARE;
+    if (sim_load_image(path, &(struct sim_defines){.n = 0}, &img, err, sizeof(err)) != 0) {
+        return die("%s", err);
+    }
+    r.max_ps = (int64_t)(o->max_ms * 1e9); /* 0: ample (sim_pair) */
+    r.cap_ps = (int64_t)(MAX_SIM_MS * 1e9);
+    int rc = sim_pair(&r, img.words, img.nwords * 4);
+    pruasm_image_free(&img);
+    return rc;
+}
+
 static int run(const struct options *o) {
     struct bench_config cfg;
     if (build_config(o, &cfg) != 0) {
@@ -490,6 +546,9 @@ static int run(const struct options *o) {
         return die("--freq %.10g: the firmware cannot clock it: %s", o->freq_hz, why_not);
     }
     char err[512];
+    if (o->pru1_profile || o->pru1_scenario) {
+        return run_pair(o, &cfg, half);
+    }
     struct bench *b = bench_new(&cfg, err, sizeof(err));
     if (!b) {
         return die("%s", err);

@@ -186,4 +186,23 @@ for args, words in [(["--strict=loop9"], "--strict: unknown rule 'loop9'"),
     r = run("--frames", "3", *args)
     check(r.returncode == 1 and words in r.stderr, "%s -> %r (got %d %r)" % (args, words, r.returncode, r.stderr))
 
+# two encoders on the two PRUs of one PRU-ICSS: both checked, the IEP
+# frames of both starting on the same cycle; PRU1 alone
+r = run("--pru1-profile", "hengstler-ad38", "--frames", "50", "--cable-m", "20")
+check(r.returncode == 0 and r.stdout.count("0 CRC errors, 0 position mismatches") == 2
+      and r.stdout.count("MA half period       10 .. 10 cycles") == 2
+      and "PRU1 - PRU0 = 0 .. 0 ps" in r.stdout and "50 pairs" in r.stdout,
+      "--pru1-profile: %d %r %r" % (r.returncode, r.stdout, r.stderr))
+r = run("--pru1-profile", "hengstler-ad38", "--iep-period-ns", "10000", "--frames", "5")
+check(r.returncode == 5, "a period too short for PRU1's chain: %d %r" % (r.returncode, r.stdout))
+r = run("--pru", "1", "--profile", "hengstler-ad38", "--frames", "30", "--json")
+check(r.returncode == 0 and json.loads(r.stdout)["frames"] == 30
+      and json.loads(r.stdout)["position_mismatches"] == 0, "--pru 1: %d %r" % (r.returncode, r.stderr))
+for args, words in [(["--pru", "2"], "--pru: '2'"),
+                    (["--pru1-profile", "nope"], "unknown profile 'nope'"),
+                    (["--pru1-profile", "generic", "--json"], "not with"),
+                    (["--pru1-profile", "generic", "--iep-period-ns", "12"], "multiple of 5 ns")]:
+    r = run("--frames", "3", *args)
+    check(r.returncode == 1 and words in r.stderr, "%s -> %r (got %d %r)" % (args, words, r.returncode, r.stderr))
+
 finish("biss-sim")

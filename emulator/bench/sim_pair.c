@@ -1,0 +1,165 @@
+/* sim_pair.c - two encoders on the two PRUs of one PRU-ICSS (sim_pair.h). */
+#include "sim_pair.h"
+
+#include "bench_fw.h"
+#include "fw_check.h"
+#include "sim_image.h"
+#include "sim_report.h"
+
+#include <math.h>
+#include <stdbool.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <time.h>
+
+struct starts {
+    int64_t *t[2];
+    uint64_t n[2], cap;
+};
+
+/* A step is a quarter period: each sees at most one new frame start. */
+static void note_starts(struct bench *b[2], struct starts *s) {
+    for (unsigned i = 0; i < 2; i++) {
+        int64_t t = bench_frame_start_ps(b[i]);
+        uint64_t k = s->n[i];
+        if (t >= 0 && (k == 0 || s->t[i][k - 1] != t) && k < s->cap) {
+            s->t[i][s->n[i]++] = t;
+        }
+    }
+}
+
+static double seconds(void) {
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
+}
+
+/* Both configured; runs until both checked r->frames valid frames after
+ * their first ones, noting the frame starts from there on. */
+static enum pru_stop run(struct bench *b[2], struct fw_check fc[2], const struct sim_pair_run *r,
+                         int64_t step, struct starts *s) {
+    int64_t end = pru_time_ps(bench_core(b[0])) + r->max_ps;
+    int started = 0;
+    while (pru_time_ps(bench_core(b[0])) < end) {
+        if (!started && fc[0].frames > 0 && fc[1].frames > 0) {
+            started = 1;
+            for (unsigned i = 0; i < 2; i++) {
+                fw_check_restart(&fc[i], r->frames);
+                bench_reset_stats(b[i]);
+                bench_set_frame_limit(b[i], bench_current_frame(b[i]) + r->frames + 1);
+            }
+        }
+        if (started && fc[0].frames >= r->frames && fc[1].frames >= r->frames) {
+            break;
+        }
+        enum pru_stop why = bench_run_until(b[0], pru_time_ps(bench_core(b[0])) + step);
+        if (why != PRU_STOP_LIMIT) {
+            return why;
+        }
+        if (started) {
+            note_starts(b, s);
+        }
+    }
+    return PRU_STOP_LIMIT;
+}
+
+/* Frame k of PRU0 and of PRU1, in order: the start differences. Lines of
+ * one protocol start on the same cycle; an SSI frame's first MA edge comes
+ * a fixed number of cycles after a BiSS-C frame's (its own code path), so
+ * a mixed pair must keep that offset to within a cycle. */
+static int report_starts(const struct starts *s, uint32_t period, bool mixed) {
+    uint64_t n = s->n[0] < s->n[1] ? s->n[0] : s->n[1];
+    int64_t lo = INT64_MAX, hi = INT64_MIN;
+    for (uint64_t k = 0; k < n; k++) {
+        int64_t d = s->t[1][k] - s->t[0][k];
+        lo = d < lo ? d : lo;
+        hi = d > hi ? d : hi;
+    }
+    if (n == 0) {
+        printf("frame starts         none measured\n");
+        return 5;
+    }
+    printf("frame starts         %llu pairs on an IEP period of %.3f us (PRU0 owns the IEP, PRU1 "
+           "follows): PRU1 - PRU0 = %lld .. %lld ps%s\n",
+           (unsigned long long)n, period * 5e-3, (long long)lo, (long long)hi,
+           mixed ? " (BiSS-C and SSI: SSI's first edge comes later, a fixed time)" : "");
+    bool together = mixed ? hi - lo <= PRU_PS_PER_CYCLE
+                          : llabs(lo) <= PRU_PS_PER_CYCLE && llabs(hi) <= PRU_PS_PER_CYCLE;
+    return s->n[0] == s->n[1] && together ? 0 : 5;
+}
+
+int sim_pair(const struct sim_pair_run *r, const void *image, size_t bytes) {
+    struct bench *b[2];
+    char err[256];
+    if (bench_new_pair(r->cfg, b, err, sizeof err) != 0) {
+        fprintf(stderr, "biss-sim: %s\n", err);
+        return 1;
+    }
+    uint32_t period = r->iep_period;
+    if (period == 0) { /* twice the longer frame, in whole microseconds */
+        double f = fmax(sim_clock_frame_ps(b[0], r->half), sim_clock_frame_ps(b[1], r->half));
+        period = (uint32_t)ceil(2 * f / SIM_PS_PER_US) * 200u;
+    }
+    struct sim_pair_run rr = *r;
+    if (rr.max_ps <= 0) { /* start-up and training take a few periods */
+        rr.max_ps =
+            2 * (int64_t)period * PRU_PS_PER_CYCLE * ((int64_t)r->frames + 8) + SIM_PS_PER_MS;
+    }
+    if (rr.max_ps > r->cap_ps) {
+        rr.max_ps = r->cap_ps;
+    }
+    r = &rr;
+    struct fw_check fc[2];
+    struct bench_fw_settings set[2] = {
+        {.half = r->half, .trigger = BISS_TRIG_IEP, .iep_period = period, .proc_limit = 1000},
+        {.half = r->half, .trigger = BISS_TRIG_IEP_FOLLOW, .proc_limit = 1000},
+    };
+    int rc = 0;
+    for (unsigned i = 0; i < 2 && rc == 0; i++) {
+        if (bench_fw_start(b[i], image, bytes) != 0) {
+            fprintf(stderr, "biss-sim: the image does not fit PRU%u's IRAM\n", i);
+            rc = 1;
+        } else {
+            fw_check_attach(&fc[i], b[i]);
+            bench_fw_configure(b[i], &set[i]);
+        }
+    }
+    struct starts s = {.cap = r->frames + 8};
+    s.t[0] = calloc(s.cap, sizeof(int64_t));
+    s.t[1] = calloc(s.cap, sizeof(int64_t));
+    if (rc == 0 && (!s.t[0] || !s.t[1])) {
+        fprintf(stderr, "biss-sim: out of memory\n");
+        rc = 1;
+    }
+    if (rc == 0) {
+        double t0 = seconds();
+        int64_t step = (int64_t)period * PRU_PS_PER_CYCLE / 4;
+        enum pru_stop why = run(b, fc, r, step, &s);
+        double host = seconds() - t0;
+        for (unsigned i = 0; i < 2; i++) {
+            struct sim_result res = {b[i], &fc[i], why, 100e6 / r->half, host, NULL};
+            printf("PRU%u%s\n", i, i ? " (IEP follow)" : " (IEP)");
+            sim_print_text(&res);
+            if (why == PRU_STOP_FAULT && pru_get_fault(bench_core(b[i]))->cause) {
+                pru_print_fault(bench_core(b[i]), stderr);
+                rc = 3;
+            }
+            if (rc == 0 && fc[i].frames < r->frames) {
+                fprintf(stderr, "biss-sim: PRU%u: only %llu of %llu frames in time\n", i,
+                        (unsigned long long)fc[i].frames, (unsigned long long)r->frames);
+                rc = 2;
+            }
+            if (rc == 0 && (fc[i].mismatches || fc[i].crc_errors || fc[i].bad_results)) {
+                rc = 5;
+            }
+        }
+        bool mixed = r->cfg[0].link.protocol != r->cfg[1].link.protocol;
+        int starts = report_starts(&s, period, mixed);
+        rc = rc ? rc : starts;
+    }
+    free(s.t[0]);
+    free(s.t[1]);
+    bench_free(b[1]);
+    bench_free(b[0]);
+    return rc;
+}

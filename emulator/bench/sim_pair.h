@@ -1,0 +1,32 @@
+/*
+ * sim_pair.h - biss-sim with a second encoder: the firmware on both PRUs of
+ * one PRU-ICSS (bench_new_pair), each with its own line and encoder(s);
+ * PRU0's channel owns the IEP (BISS_TRIG_IEP), PRU1's follows it
+ * (BISS_TRIG_IEP_FOLLOW), so the frames of both start together.
+ */
+#ifndef SIM_PAIR_H
+#define SIM_PAIR_H
+
+#include "bench.h"
+
+#include <stddef.h>
+#include <stdint.h>
+
+struct sim_pair_run {
+    struct bench_config cfg[2]; /* PRU0's line and PRU1's (soc and core parameters: cfg[0]) */
+    unsigned half;              /* MA half period of both, PRU cycles */
+    uint32_t iep_period;        /* IEP counts (5 ns); 0: twice the longer frame, whole us */
+    uint64_t frames;            /* valid frames each, checked and measured */
+    int64_t max_ps;             /* simulated time limit; 0: twice the periods the frames take */
+    int64_t cap_ps;             /* ... but never more than this */
+};
+
+/* Runs the firmware image on both, checks every frame of each against its
+ * own encoder, and prints each PRU's summary (sim_report) and how far
+ * apart the frame starts of the two were. Returns biss-sim's exit code:
+ * 0, 1 (a message printed), 2 (frames not done in time), 3 (a PRU fault),
+ * 5 (a frame check failed, or frame starts more than one PRU cycle apart;
+ * for a BiSS-C and an SSI line, their offset varying by more than one). */
+int sim_pair(const struct sim_pair_run *r, const void *image, size_t bytes);
+
+#endif
