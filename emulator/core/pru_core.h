@@ -1,6 +1,8 @@
 /*
- * pru_core.h - cycle-exact emulator of one PRU core (PRU0) of an AM335x or
- * AM437x PRU-ICSS, with the ICSS blocks the BiSS-C firmware touches.
+ * pru_core.h - cycle-exact emulator of one PRU core of an AM335x or AM437x
+ * PRU-ICSS, with the ICSS blocks the BiSS-C firmware touches. A core made
+ * here is PRU0 with the PRU-ICSS to itself; both PRUs together, sharing the
+ * blocks: pruss.h.
  *
  * Time: 1 PRU cycle = 5000 ps; cycle c starts at t = c * 5000 ps. The core
  * keeps one clock (pru_cycles()) that advances while the PRU runs, sleeps or
@@ -262,7 +264,7 @@ void pru_set_pins(struct pru_core *c, const struct pru_pins *pins);
 void pru_set_inputs(struct pru_core *c, uint32_t levels);
 
 /* Calls fn(ctx, addr) right after every PRU store that writes the byte at
- * local data RAM address addr (PRU0's own data RAM), e.g. a firmware's
+ * local data RAM address addr (the core's own data RAM), e.g. a firmware's
  * publication counter. The callback may read memory (pru_host_read) but
  * must not run or stop the core. fn NULL removes the watch. */
 void pru_set_store_watch(struct pru_core *c, uint32_t addr, void (*fn)(void *ctx, uint32_t addr),

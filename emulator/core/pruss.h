@@ -17,7 +17,8 @@
  * Two accesses issued in the same cycle are done PRU0's first.
  *
  * Not modelled as shared: the scratch-pad banks (each core has its own),
- * the system-bus windows (pru_map_ext() maps for one core).
+ * the system-bus windows (pru_map_ext() maps for one core). A PRU's
+ * Cnt_16 event reaches the INTC when that PRU's GPI is next evaluated.
  */
 #ifndef PRUSS_H
 #define PRUSS_H

@@ -1,12 +1,13 @@
 // biss_shm.h - the shared-memory interface between the BiSS-C master
-// firmware (PRU0) and the host: byte offsets into PRU0's data RAM, flags,
-// error codes and limits.
+// firmware (on PRU0 or PRU1) and the host: byte offsets into that PRU's
+// data RAM, flags, error codes and limits.
 //
 // This one file is read by both sides: by the PRU assembler (pasm dialect,
 // so it holds nothing but #define lines and // comments) and by C (the
 // struct view in biss_shm_struct.h checks every offset at compile time).
-// All values are little-endian; offsets are from the start of PRU0's data
-// RAM (local address 0, constant table entry C24).
+// All values are little-endian; offsets are from the start of the PRU's
+// own data RAM (local address 0, constant table entry C24; the host sees
+// PRU1's 0x2000 above PRU0's).
 // (Laid out by hand, in columns: clang-format leaves it alone.)
 // clang-format off
 //

@@ -25,6 +25,7 @@
 #define IRAM0       0x34000L
 
 static char root[64], devmem[128], image[128], rp[128], fwdir[128];
+static off_t kdram; /* the data RAM of the PRU the stand-in kernel runs (PRU1: + 0x2000) */
 static const uint8_t image_bytes[16] = {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16};
 
 /* Whole at once (a rename), as sysfs attributes read: never half written. */
@@ -160,14 +161,14 @@ static void *kernel_thread(void *arg) {
             /* pru_rproc loads the ELF's data segment: the id block */
             struct biss_shm_id id;
             biss_image_id(image_bytes, sizeof image_bytes, &id);
-            mem_write(AM335X_BASE + BISS_ID, &id, sizeof id);
+            mem_write(AM335X_BASE + kdram + BISS_ID, &id, sizeof id);
             atomic_fetch_add(&k->starts, 1);
             set_attr("state", "running\n");
             uint32_t magic = BISS_MAGIC; /* the firmware's start-up, last */
-            mem_write(AM335X_BASE + BISS_ST_MAGIC, &magic, 4);
+            mem_write(AM335X_BASE + kdram + BISS_ST_MAGIC, &magic, 4);
         } else if (strcmp(state, "stop") == 0) {
             uint32_t zero = 0;
-            mem_write(AM335X_BASE + BISS_ST_MAGIC, &zero, 4);
+            mem_write(AM335X_BASE + kdram + BISS_ST_MAGIC, &zero, 4);
             set_attr("state", "offline\n");
         }
         nanosleep(&(struct timespec){.tv_nsec = 100000}, NULL);
@@ -265,6 +266,43 @@ START_TEST(test_attach_leaves_it_running) {
 }
 END_TEST
 
+/* --pru 1: PRU1's instance (named after its IRAM, 4a338000) and firmware
+ * name, its data RAM; PRU0's instance left alone. */
+START_TEST(test_pru1_instance) {
+    make_tree();
+    snprintf(rp, sizeof rp, "%s/sys/class/remoteproc/remoteproc2", root);
+    kdram = 0x2000;
+    char path[256];
+    snprintf(path, sizeof path, "%s/am335x-pru1-fw", fwdir);
+    put_file(path, "an ELF");
+    struct kernel k = {0};
+    pthread_t t;
+    ck_assert_int_eq(pthread_create(&t, NULL, kernel_thread, &k), 0);
+    struct biss_open_params p = params();
+    p.pru = 1;
+    biss_t *h;
+    ck_assert_msg(biss_open(&p, &h) == BISS_OK, "%s", err);
+    char buf[64];
+    attr("firmware", buf, sizeof buf);
+    ck_assert_str_eq(buf, "am335x-pru1-fw");
+    ck_assert_int_eq(atomic_load(&k.starts), 1);
+    ck_assert_uint_eq(mem32(AM335X_BASE + 0x2000 + BISS_PRU_INDEX), 1);
+    struct biss_status st;
+    ck_assert_int_eq(biss_get_status(h, &st), BISS_OK);
+    ck_assert(st.firmware_running);
+    biss_close(h);
+    wait_state("offline\n");
+    snprintf(path, sizeof path, "%s/sys/class/remoteproc/remoteproc1/firmware", root);
+    get_file(path, buf, sizeof buf);
+    ck_assert_str_eq(buf, "am335x-pru-fw-old\n"); /* PRU0's instance untouched */
+    ck_assert_uint_eq(mem32(AM335X_BASE + CTRL0), 0x5a5a5a5a);
+    atomic_store(&k.stop, 1);
+    pthread_join(t, NULL);
+    kdram = 0;
+    remove_tree();
+}
+END_TEST
+
 START_TEST(test_refusals) {
     make_tree();
     struct biss_open_params p = params();
@@ -311,6 +349,7 @@ int main(void) {
     tcase_set_timeout(tc, 60);
     tcase_add_test(tc, test_start_stop_firmware_name);
     tcase_add_test(tc, test_attach_leaves_it_running);
+    tcase_add_test(tc, test_pru1_instance);
     tcase_add_test(tc, test_refusals);
     suite_add_tcase(s, tc);
     return check_run(s);
