@@ -344,8 +344,9 @@ static int open_mem(struct lnx *l, const struct biss_soc_icss *s, const struct b
     if (rc) {
         return rc;
     }
-    /* remoteproc: the data RAMs up to this PRU's; devmem: everything */
-    l->map_len = l->rproc ? ICSS_DRAM(p->pru) + s->dram_bytes : s->window;
+    /* remoteproc: both data RAMs (the other PRU's says who owns the IEP);
+     * devmem: everything */
+    l->map_len = l->rproc ? ICSS_DRAM(1) + s->dram_bytes : s->window;
     if (!file_covers(&st, s->base + (off_t)l->map_len)) {
         return biss_err(e, BISS_E_DEVMEM,
                         "%s: %lld bytes, ends before the PRU-ICSS window "

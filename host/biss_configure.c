@@ -4,6 +4,7 @@
 
 #include "biss/biss_shm_struct.h"
 
+#include <stdbool.h>
 #include <stddef.h>
 
 /* The firmware treats CFG_SEQ 0 as "nothing written yet" and starts with
@@ -41,8 +42,32 @@ static int write_block(biss_t *h, const struct biss_config *c, uint32_t seq) {
     return biss_proto_config_put(&io, &blk, seq);
 }
 
+/* The other PRU's data RAM (the IEP is one per PRU-ICSS). */
+static int other_read(void *ctx, uint32_t off, void *buf, size_t n) {
+    biss_t *h = ctx;
+    return h->be.ops->read(h->be.ctx, ICSS_DRAM(1u - h->be.pru) + off, buf, n);
+}
+
+/* One channel of a PRU-ICSS owns the IEP: BISS_TRIGGER_IEP is refused while
+ * the other PRU's firmware runs with it in force. The other PRU leaves the
+ * IEP free when it cannot be read (not mapped) or runs nothing. */
+static int iep_free(biss_t *h) {
+    struct biss_proto_io io = {.read = other_read, .ctx = h};
+    struct biss_shm_status st;
+    struct biss_shm_config blk;
+    if (biss_proto_status_get(&io, &st) || st.magic != BISS_MAGIC ||
+        st.state != BISS_STATE_RUNNING || biss_proto_config_get(&io, &blk)) {
+        return BISS_OK;
+    }
+    bool owns = st.cfg_ack == blk.seq && blk.trigger == BISS_TRIGGER_IEP;
+    return owns ? BISS_E_IEP_OWNED : BISS_OK;
+}
+
 static int configure_locked(biss_t *h, const struct biss_config *c) {
     int rc = biss_exclusive(h);
+    if (!rc && c->trigger == BISS_TRIGGER_IEP) {
+        rc = iep_free(h);
+    }
     if (rc) {
         return rc;
     }

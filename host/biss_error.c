@@ -75,6 +75,7 @@ static const struct err_text errors[] = {
     {BISS_E_FW_IMAGE, "the running firmware image is not the expected one (CRC-32 differs)"},
     {BISS_E_SHM_CONFIG, "the configuration block read back from data RAM is invalid"},
     {BISS_E_SHM_RESULT, "a published result contradicts the configuration (junk in data RAM)"},
+    {BISS_E_IEP_OWNED, "the other PRU's channel owns the IEP (trigger iep): use iep-follow"},
 };
 
 const char *biss_strerror(int err) {

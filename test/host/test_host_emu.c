@@ -246,6 +246,14 @@ START_TEST(test_two_prus_one_iep) {
     ck_assert_msg(rc == BISS_OK, "open pair: %s", biss_strerror(rc));
     ck_assert_ptr_ne(biss_emu_bench(h[0]), biss_emu_bench(h[1]));
     configure(h[0], 10000000, BISS_TRIGGER_IEP, 50000);
+    /* one channel owns the IEP: PRU1 may only follow */
+    struct biss_config c;
+    biss_config_default(&c);
+    c.freq_hz = 5000000;
+    c.trigger = BISS_TRIGGER_IEP;
+    c.iep_period_ns = 50000;
+    ck_assert_int_eq(biss_config_from_emu(h[1], &c), BISS_OK);
+    ck_assert_int_eq(biss_configure(h[1], &c), BISS_E_IEP_OWNED);
     configure(h[1], 5000000, BISS_TRIGGER_IEP_FOLLOW, 0);
     struct biss_sample s[2];
     uint32_t after[2] = {0, 0};
