@@ -22,11 +22,12 @@ struct pair {
     struct e2e_run r[2];
 };
 
-static void pair_new(struct pair *p, const char *profile0, const char *profile1) {
+static void pair_new(struct pair *p, enum pru_soc soc, const char *profile0, const char *profile1) {
     struct bench_config cfg[2];
     const char *profile[2] = {profile0, profile1};
     for (unsigned i = 0; i < 2; i++) {
         bench_config_default(&cfg[i]);
+        cfg[i].soc = soc;
         ck_assert_int_eq(profile_by_name(profile[i], &cfg[i].link), 0);
         scenario_set_cable(&cfg[i].link, i ? 25 : 5); /* different line delays too */
         cfg[i].link.seed = 11 + i;
@@ -129,10 +130,13 @@ static void check_pair(struct pair *p, unsigned half0, unsigned half1) {
 }
 
 /* Two different encoders (one slave of 12 bits + CRC6; a chain with a
- * CRC16 slave) at the same rate. */
+ * CRC16 slave) at the same rate, on every PRU-ICSS: two axes per AM335x,
+ * four per AM437x (each of its PRU-ICSS with its own IEP). */
+static const enum pru_soc socs[] = {PRU_SOC_AM335X, PRU_SOC_AM437X_ICSS0, PRU_SOC_AM437X_ICSS1};
+
 START_TEST(test_two_encoders_same_rate) {
     struct pair p;
-    pair_new(&p, "tidep0022-test-encoder", "hengstler-ad38");
+    pair_new(&p, socs[_i], "tidep0022-test-encoder", "hengstler-ad38");
     configure(&p, 10, 10);
     check_pair(&p, 10, 10);
     pair_free(&p);
@@ -142,7 +146,7 @@ END_TEST
 /* Each PRU at its own rate (its own GPCFG divider): starts still match. */
 START_TEST(test_two_encoders_own_rates) {
     struct pair p;
-    pair_new(&p, "posital-kit-layout-biss-c", "tidep0022-test-encoder");
+    pair_new(&p, PRU_SOC_AM335X, "posital-kit-layout-biss-c", "tidep0022-test-encoder");
     configure(&p, 20, 10);
     check_pair(&p, 20, 10);
     pair_free(&p);
@@ -187,7 +191,7 @@ int main(void) {
     Suite *s = suite_create("e2e_twopru");
     TCase *tc = tcase_create("twopru");
     tcase_set_timeout(tc, 600);
-    tcase_add_test(tc, test_two_encoders_same_rate);
+    tcase_add_loop_test(tc, test_two_encoders_same_rate, 0, (int)(sizeof socs / sizeof socs[0]));
     tcase_add_test(tc, test_two_encoders_own_rates);
     tcase_add_test(tc, test_pru1_alone);
     suite_add_tcase(s, tc);
