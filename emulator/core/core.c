@@ -93,6 +93,8 @@ struct pru_core *pru_core_new(enum pru_soc soc, const struct pru_params *params)
         pru_params_default(&c->p);
     c->soc = soc;
     c->pru0 = c; /* alone until pruss.c pairs it */
+    c->cfg_regs = c->own_cfg;
+    c->spad = c->own_spad;
     c->watch_addr = UINT32_MAX;
     c->iram_bytes = socs[soc].iram;
     c->dram_bytes = socs[soc].dram;

@@ -187,14 +187,18 @@ struct pru_core {
     uint32_t dram_bytes, shared_bytes, iram_bytes;
     uint8_t *dram0, *dram1, *shared;
     uint32_t *iram0, *iram1;
-    uint8_t spad[3][SPAD_BYTES];
+    /* the PRU-ICSS's three scratch-pad banks, one set for both PRUs:
+     * own_spad, or PRU0's (pruss.c) */
+    uint8_t (*spad)[SPAD_BYTES];
+    uint8_t own_spad[3][SPAD_BYTES];
 
     bool halted, sleeping, sleep_wake_on_event;
     struct pru_fault fault;
 
     struct ctrl ctrl;
     uint8_t ctrl1[CTRL_BYTES];
-    uint32_t cfg_regs[CFG_BYTES / 4];
+    uint32_t *cfg_regs; /* the PRU-ICSS's CFG block: own_cfg, or PRU0's (pruss.c) */
+    uint32_t own_cfg[CFG_BYTES / 4];
     struct gpi_shift sh;
     struct iep iep;
     struct intc intc;

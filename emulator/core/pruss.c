@@ -24,13 +24,16 @@ struct pru_icss *pru_icss_new(enum pru_soc soc, const struct pru_params *params)
     }
     struct pru_core *p0 = s->core[0], *p1 = s->core[1];
     /* PRU1 sees data RAM1 at 0x0 and data RAM0 at 0x2000, the one shared
-     * RAM, and the INTC, CFG and IEP of PRU0's core (docs/pru-facts.md §5.1) */
+     * RAM, the scratch-pad banks, and the INTC, CFG and IEP of PRU0's core
+     * (docs/pru-facts.md §5.1, §3) */
     free(p1->dram0);
     free(p1->dram1);
     free(p1->shared);
     p1->dram0 = p0->dram1;
     p1->dram1 = p0->dram0;
     p1->shared = p0->shared;
+    p1->cfg_regs = p0->cfg_regs; /* one CFG block, one set of scratch-pad banks */
+    p1->spad = p0->spad;
     p1->borrowed = true;
     p1->pru0 = p0;
     p1->pru1 = p1;
@@ -61,12 +64,13 @@ int64_t pru_icss_cycles(const struct pru_icss *s) {
 }
 
 /*
- * The core behind runs until it reaches the cycle the other is at, plus
- * one: it issues every instruction up to and including that cycle (the
- * last may end a few cycles later). So whenever a core issues an
+ * The core behind runs: PRU0 up to and including the cycle PRU1 is at,
+ * PRU1 up to but not including the cycle PRU0 is at (an instruction may
+ * end a few cycles after its limit). So whenever a core issues an
  * instruction in cycle t, the other has issued everything before t and
- * nothing after it: reads of the IEP and of the other's RAM see that
- * cycle's state. Each turn moves one core on by at least one cycle.
+ * nothing after it, and within t PRU0's comes first: reads of the IEP and
+ * of the other's RAM see that cycle's state. Each turn moves one core on
+ * by at least one cycle (PRU1 runs only when it is behind).
  */
 enum pru_stop pru_icss_run_until_cycle(struct pru_icss *s, int64_t cycle) {
     if (cycle >= PRU_MAX_CYCLE)
@@ -76,7 +80,8 @@ enum pru_stop pru_icss_run_until_cycle(struct pru_icss *s, int64_t cycle) {
         struct pru_core *c = s->core[a], *o = s->core[1 - a];
         if (c->cycle >= cycle)
             break; /* the one behind is there: both are */
-        int64_t to = o->cycle + 1 < cycle ? o->cycle + 1 : cycle;
+        int64_t other = a == 0 ? o->cycle + 1 : o->cycle;
+        int64_t to = other < cycle ? other : cycle;
         if (exec_run(c, to, false) == PRU_STOP_FAULT)
             return PRU_STOP_FAULT;
     }

@@ -3,8 +3,10 @@
  *
  * Two cores (pru_core.h) that share what the subsystem has once: the IEP
  * timer, the INTC, the CFG block (GPCFG0 drives PRU0's GPI, GPCFG1
- * PRU1's), the shared RAM and the two data RAMs, each PRU seeing its own
- * at local 0x0 and the other's at 0x2000 (docs/pru-facts.md §5.1). Each
+ * PRU1's), the three scratch-pad banks (XIN/XOUT 10..12: what one PRU
+ * puts there the other reads), the shared RAM and the two data RAMs, each
+ * PRU seeing its own at local 0x0 and the other's at 0x2000
+ * (docs/pru-facts.md §5.1). Each
  * core keeps its own registers, CONTROL block, IRAM, pins and constant
  * table. The host reaches the whole subsystem through either core at the
  * global addresses (PRU1's data RAM at +0x2000, its CONTROL at +0x24000,
@@ -16,8 +18,9 @@
  * IEP count, the other's stores and shared RAM as they are in that cycle.
  * Two accesses issued in the same cycle are done PRU0's first.
  *
- * Not modelled as shared: the scratch-pad banks (each core has its own),
- * the system-bus windows (pru_map_ext() maps for one core). A PRU's
+ * Not modelled: the stall of PRU1 when both use one bank in a cycle
+ * (docs/pru-facts.md §3); not shared: the system-bus windows (pru_map_ext()
+ * maps for one core). A PRU's
  * Cnt_16 event reaches the INTC when that PRU's GPI is next evaluated.
  */
 #ifndef PRUSS_H

@@ -160,6 +160,23 @@ START_TEST(own_control_block) {
 }
 END_TEST
 
+/* One set of scratch-pad banks: what PRU0 puts in bank 0 in cycle 1,
+ * PRU1 reads there from cycle 2 on, and not before. */
+START_TEST(scratch_pad_shared) {
+    uint32_t w0[4] = {ldi(R(2), 0x1234), xfr(PRU_OP_XOUT, 10, 4 * 2, 4), halt()};
+    uint32_t w1[4] = {xfr(PRU_OP_XIN, 10, 4 * 3, 4), xfr(PRU_OP_XIN, 10, 4 * 2, 4),
+                      xfr(PRU_OP_XIN, 11, 4 * 4, 4), halt()};
+    struct pru_icss *s = icss_with(w0, 3, w1, 4);
+    struct pru_core *c1 = pru_icss_core(s, 1);
+    pru_set_reg(c1, 4, 0xffffffffu);
+    ck_assert_int_eq(pru_icss_run_until_cycle(s, 100), PRU_STOP_HALT);
+    ck_assert_uint_eq(pru_reg(c1, 3), 0);      /* cycle 0: not yet there */
+    ck_assert_uint_eq(pru_reg(c1, 2), 0x1234); /* cycle 1: PRU0's XOUT came first */
+    ck_assert_uint_eq(pru_reg(c1, 4), 0);      /* another bank */
+    pru_icss_free(s);
+}
+END_TEST
+
 /* The host starts PRU1 through CTRL1 and may not write IRAM1 while it runs. */
 START_TEST(host_controls_pru1) {
     uint32_t w[2] = {alu(PRU_OP_ADD, R(0), R(0), R(0)), jmpi(0)};
@@ -187,6 +204,7 @@ Suite *pruss_suite(void) {
     tcase_add_test(t, gpcfg_per_pru);
     tcase_add_test(t, own_control_block);
     tcase_add_test(t, host_controls_pru1);
+    tcase_add_test(t, scratch_pad_shared);
     suite_add_tcase(s, t);
     return s;
 }
