@@ -97,7 +97,7 @@ enum biss_error {
     BISS_E_FW_IMAGE = -58,    /* the running image is not the expected one (CRC-32) */
     BISS_E_SHM_CONFIG = -59,  /* the configuration block in data RAM is invalid */
     BISS_E_SHM_RESULT = -60,  /* a published result contradicts the configuration */
-    BISS_E_IEP_OWNED = -61,   /* trigger iep: the other PRU's channel owns the IEP */
+    BISS_E_IEP_OWNED = -64,   /* trigger iep: the other PRU's channel owns the IEP */
 };
 
 /* Static text for any return value of this library (never NULL). */
