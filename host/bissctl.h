@@ -5,6 +5,8 @@
 
 #include "libbiss.h"
 
+#include "biss_proto.h" /* the safety checks' command-line spellings */
+
 #include <stdbool.h>
 
 struct bissctl_opts {
@@ -23,8 +25,10 @@ struct bissctl_opts {
     char **args;         /* words after the command */
     int nargs;
     bool help;
-    bool attach_given; /* --attach on the command line */
-    char errbuf[1024]; /* open's detail */
+    bool attach_given;         /* --attach on the command line */
+    struct biss_config checks; /* --check-life, --check-pair: only their fields, added to
+                                  the layout (command line or profile) when it is known */
+    char errbuf[1024];         /* open's detail */
 };
 
 /* Exit codes */
