@@ -186,4 +186,22 @@ for args, words in [(["--strict=loop9"], "--strict: unknown rule 'loop9'"),
     r = run("--frames", "3", *args)
     check(r.returncode == 1 and words in r.stderr, "%s -> %r (got %d %r)" % (args, words, r.returncode, r.stderr))
 
+# safety checks: the scenario's and the command line's, in JSON and text
+SCEN = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scenarios")
+r = run("--scenario", os.path.join(SCEN, "safety-disagree.json"), "--frames", "400", "--json")
+j = json.loads(r.stdout) if r.returncode == 0 else {}
+sf = j.get("safety", {})
+pair = (sf.get("pairs") or [{}])[0]
+check(sf.get("first_flagged_frame") == 200 and pair.get("disagree", 0) > 190
+      and pair.get("checked") == 400 and all(l["frozen"] + l["skipped"] == 0 for l in sf["life_counter"]),
+      "disagreement in JSON: %r %r" % (sf, r.stderr))
+r = run("--profile", "hengstler-ad38", "--freq", "5000000", "--frames", "50", "--check-life", "2")
+check(r.returncode == 0 and "life counter 2       49 frames checked, 0 frozen, 0 skipped" in r.stdout,
+      "healthy AD38 text: %r %r" % (r.stdout, r.stderr))
+for args, words in [(["--check-life", "0"], "BISS_E_SAFETY_LIFE"),
+                    (["--profile", "biss-safety-two-channel", "--check-pair", "0,0,1"], "BISS_E_SAFETY_PAIR"),
+                    (["--check-pair", "0,1"], "--check-pair: '0,1' is not")]:
+    r = run("--frames", "3", *args)
+    check(r.returncode == 1 and words in r.stderr, "%s -> %r (got %d %r)" % (args, words, r.returncode, r.stderr))
+
 finish("biss-sim")
