@@ -179,15 +179,29 @@ int bissctl_read(biss_t *h, const struct bissctl_opts *o) {
     if (biss_read_sample(h, &s) == BISS_OK) {
         after = s.frame;
     }
+    if (o->json) {
+        printf("{\n  \"frames\": [");
+    }
     for (unsigned i = 0; i < o->count; i++) {
         int rc = next_sample(h, o, after, &s);
         if (rc) {
+            if (o->json) {
+                printf("\n  ]\n}\n"); /* what was read stays valid JSON */
+            }
             return bissctl_fail("read", rc);
         }
-        print_sample(&s, layout ? &c : NULL);
+        if (o->json) {
+            bissctl_json_frame(&s, layout ? &c : NULL, i == 0);
+        } else {
+            print_sample(&s, layout ? &c : NULL);
+        }
         after = s.frame;
     }
-    print_safety_stats(h);
+    if (o->json) {
+        bissctl_json_end(h);
+    } else {
+        print_safety_stats(h);
+    }
     return BISSCTL_OK;
 }
 

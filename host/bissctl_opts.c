@@ -57,13 +57,15 @@ static const char *command_help(const char *command) {
                "  Firmware state, configuration ack and error, counters.\n";
     }
     if (strcmp(command, "read") == 0) {
-        return "bissctl [options] read [-n N]\n"
+        return "bissctl [options] read [-n N] [--json]\n"
                "  Prints N published frames (default 1), one line each: frame (1 is the\n"
                "  first, a training frame after each configuration), flags,\n"
                "  per slave position, data, nE/nW, CRC (\"none\" where the layout has\n"
                "  none); line delay, sample point (1/8 bit), lag (periods), the IEP\n"
                "  timestamp (counts of 5 ns) and the time it stands for.\n"
-               "  In host-trigger mode each frame is triggered first.\n";
+               "  In host-trigger mode each frame is triggered first. With safety checks\n"
+               "  (--check-life, --check-pair) each frame's verdicts and, after the last,\n"
+               "  their counts. --json: one JSON object, {\"frames\": [...], \"safety\": {...}}.\n";
     }
     if (strcmp(command, "stats") == 0) {
         return "bissctl [options] stats\n"
@@ -233,6 +235,7 @@ enum {
     OPT_ID,
     OPT_DUMP,
     OPT_IDA_TEST,
+    OPT_JSON,
     OPT_LOADER,
     OPT_SYSFS,
     OPT_FWDIR,
@@ -263,6 +266,7 @@ static const struct option long_opts[] = {
     {"id", required_argument, NULL, OPT_ID},
     {"dump", no_argument, NULL, OPT_DUMP},
     {"ida-test", no_argument, NULL, OPT_IDA_TEST},
+    {"json", no_argument, NULL, OPT_JSON},
     {"loader", required_argument, NULL, OPT_LOADER},
     {"sysfs", required_argument, NULL, OPT_SYSFS},
     {"firmware-dir", required_argument, NULL, OPT_FWDIR},
@@ -452,6 +456,9 @@ static int take_command_opt(int c, const char *arg, struct bissctl_opts *o) {
         return 0;
     case OPT_IDA_TEST:
         o->ida_test = true;
+        return 0;
+    case OPT_JSON:
+        o->json = true;
         return 0;
     case 'h':
         o->help = true;

@@ -2,6 +2,7 @@
 """bissctl as a user runs it: help for every command, reading frames from
 the emulator, clear errors with non-zero exits, and the same subcommands
 against a file standing in for /dev/mem."""
+import json
 import os
 import re
 import subprocess
@@ -237,6 +238,19 @@ r = run("--profile", "biss-safety-two-channel", "--freq", "10000000", "--check-l
 check(r.returncode == 0 and r.stdout.count(" s1.life=ok") >= 18 and r.stdout.count(" pair0=ok") >= 19
       and "life=frozen" not in r.stdout and "pair0.disagree=0" in r.stdout,
       "healthy two channels: %r %r" % (r.stdout[-300:], r.stderr))
+r = run("--scenario", os.path.join(SCEN, "safety-skip.json"), "--freq", "10000000", "read",
+        "-n", "220", "--json")
+try:
+    j = json.loads(r.stdout)
+except ValueError:
+    j = {}
+fr = j.get("frames", [])
+skips = [f["frame"] for f in fr if f.get("slaves") and f["slaves"][1].get("life") == "skip"]
+life = (j.get("safety") or {}).get("life_counter") or [{}, {}]
+check(r.returncode == 0 and len(fr) == 220 and skips and min(skips) == 200
+      and life[1].get("skipped") == len(skips) and life[0].get("skipped") == 0
+      and all(p == "ok" for f in fr for p in f.get("pairs", []) if p != "-"),
+      "read --json, skipping counter: rc %d %r %r" % (r.returncode, life, r.stderr))
 for args, text in [(["--check-pair", "0,1", "read"], "--check-pair"),
                    (["--check-life", "9", "read"], "--check-life")]:
     r = run(*args)
