@@ -39,11 +39,6 @@
                                         // a period, longer than any glitch of under 3 samples
 #define IDLE_TURNS      25000           // SL idle polls (4 cycles): 500 us, then no slave
 
-// offsets from a result buffer (r9) to the current slave's result
-#define RES_DATA_LO     (BISS_R_SLAVE0 + BISS_R_S_DATA_LO)
-#define RES_DATA_HI     (BISS_R_SLAVE0 + BISS_R_S_DATA_HI)
-#define RES_CRC         (BISS_R_SLAVE0 + BISS_R_S_CRC_REG)
-
 // PRU-ICSS registers
 #define GPCFG0          0x08            // CFG (C4)
 #define SHIFT_MODE      2               // GPCFG GPI_MODE: 28-bit shift
@@ -80,7 +75,7 @@
 #define PRU0_CTPPR0     0x22028             // C28 = 0x00nnnn00 with nnnn = CTPPR0[15:0]
 #define CFG_SPP         0x34                // CFG (C4): scratch-pad priority and shift
 #define SPP_XFR_SHIFT   2                   // XFR_SHIFT_EN (bit 1) with PRU1_PAD_HP_EN (bit 0) 0
-#define XFR_SLOT        3                   // a slave's result: 3 registers of bank 0 (XOUT_RESULT)
+#define XFR_SLOT        3                   // a slave's result: 3 registers of bank 0 (r4..r6)
 
 // (after the equates: macro bodies take equates as they are read)
 #include "biss_periods.hp"
