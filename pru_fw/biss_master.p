@@ -384,20 +384,22 @@ CFG_DELAY_SAVE:
     ldi     r2.w2, 0x0101                   // running, training due (BiSS-C)
     // The step between the slaves' result slots in scratch-pad bank 0, for
     // the XFR shift (R0[4:0]). TI calls R0[4:0] "the number of 32-bit
-    // offset" for XIN and XOUT but gives no direction, so look: register 3
-    // written with a shift of 1 lands in bank register 4 (up: step 3, slot
-    // k at 4 + 3k) or 2 (down: step 29 = -3 mod 32, bank 4 - 29k = 4 + 3k
-    // mod 32). Either way slave k's result (registers 4..6) fills bank
-    // registers 4 + 3k .. 6 + 3k, below 30 (docs/silicon-assumptions.md A6).
+    // offset" for XIN and XOUT but gives no direction. Up, slot k sits at
+    // bank registers 4 + 3k .. 6 + 3k (k <= 7: at most 27, never past the
+    // bank's 30). Down, the step must be 29: 4 - 29k = 4 + 3k only modulo
+    // 32, so look for exactly that: register 3 written with a shift of 29
+    // lands in bank register 6 only if the shift goes down and wraps as a
+    // 5-bit offset (up, it is bank register 0). Found: step 29; else 3
+    // (docs/silicon-assumptions.md A6).
     ldi     r0, 0
-    ldi     r4, 0
-    xout    10, r4, 4                       // bank register 4 cleared
-    ldi     r0, 1
+    ldi     r6, 0
+    xout    10, r6, 4                       // bank register 6 cleared
+    ldi     r0, 32 - XFR_SLOT
     ldi     r3, 32 - 2 * XFR_SLOT
-    xout    10, r3, 4                       // 26 to bank register 4 (up) or 2 (down)
+    xout    10, r3, 4                       // 26 to bank register 6 (down) or 0 (up)
     ldi     r0, 0
-    xin     10, r4, 4
-    rsb     r2.b3, r4, 32 - XFR_SLOT        // running = the step: 3 up, 29 down
+    xin     10, r6, 4
+    add     r2.b3, r6, XFR_SLOT             // running = the step: 3 up, 29 down
     qbeq    CFG_PROC, r27.w0, 0
     ldi     r2.b2, 0                        // SSI: the delay is given, nothing to train
     mov     r1.w2, r27.w0                   // and the history holds it (r0, r1 are
