@@ -17,6 +17,8 @@ void pru_params_default(struct pru_params *p) {
     p->load_iep_cycles = 3;
     p->load_ext_cycles = 36;
     p->xchg_swaps = 1;
+    p->xfr_shift_sub = 0;
+    p->xfr_shift_fill = 0;
     p->gpi_delay_ps = 2 * PRU_PS_PER_CYCLE;
     p->gpo_delay_ps = 0;
     p->shift_phase_ps = 0;
