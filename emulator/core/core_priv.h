@@ -37,6 +37,12 @@ enum {
     PD_QBEQ32,
     PD_QBBS32,
     PD_QBBC32,
+    /* ... and with an immediate op2 */
+    PD_ADD32I,
+    PD_SUB32I,
+    PD_QBNE32I,
+    PD_QBEQ32I,
+    PD_END, /* fast loop: one past the end of IRAM (leave the loop) */
     PD_KIND_END,
 };
 _Static_assert(PD_KIND_END <= UINT8_MAX, "struct pd keeps kinds in a uint8_t");
