@@ -29,6 +29,7 @@ enum {
     PD_BAD = PRU_OP_COUNT, /* no V3 instruction: a fault when executed */
     PD_SLOW,               /* fast loop: hand over to exec_one() */
     PD_R31_READ,           /* fast loop: refresh R31, then run `kind` */
+    PD_R30_WRITE,          /* fast loop: run `kind` (ALU or LDI), then tell the pins */
     /* fast loop: the same ops when the destination and rs1 are whole
      * registers (rN, no field), without the field shifts and masks */
     PD_ADD32,

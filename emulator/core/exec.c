@@ -431,6 +431,7 @@ static void run_fast(struct pru_core *c, int64_t limit) {
         [PRU_OP_QBBS] = &&k_qbbs,
         [PRU_OP_QBBC] = &&k_qbbc,
         [PD_R31_READ] = &&k_r31,
+        [PD_R30_WRITE] = &&k_r30,
         [PD_ADD32] = &&k_add32,
         [PD_SUB32] = &&k_sub32,
         [PD_QBNE32] = &&k_qbne32,
@@ -600,6 +601,24 @@ k_r31: /* R31 read first; kept off the path of the others */
         goto jumped;
     NEXT();
 
+k_r30: /* as exec_one(): the pins see the new R30 at the end of its cycle */
+    exec_simple(r, d, d->kind, &pc, &carry);
+    if (r[30] != c->r30_pins) {
+        SYNC_OUT();
+        exec_r30_changed(c, cyc + 1);
+        SYNC_IN();
+        if (c->stop) { /* a pin callback stopped the core */
+            cyc++;
+            if (pc == loop_end) {
+                SYNC_OUT();
+                loop_back(c);
+                SYNC_IN();
+            }
+            goto out;
+        }
+    }
+    NEXT();
+
 at_loop_end:
     SYNC_OUT();
     loop_back(c);
@@ -680,7 +699,7 @@ enum pru_stop exec_run(struct pru_core *c, int64_t limit, bool one_step) {
             return PRU_STOP_FAULT;
         }
         bool stepping = one_step || (c->ctrl.control & PRU_CTRL_SINGLE_STEP);
-        if (c->trace_on || stepping || c->checked) {
+        if (c->trace_on || stepping || c->checked || !c->p.fast_loop) {
             const struct pd *d = &c->pd[c->pc];
             if (c->checked)
                 exec_checked(c, d, limit);

@@ -157,6 +157,9 @@ void predecode_word(struct pru_core *c, uint32_t pc) {
     /* a branch out of IRAM faults: exec_one() takes it, the fast loop
      * checks only the targets of JMP and JAL */
     enum pru_fmt f = d->kind == PD_BAD ? PRU_FMT_PSEUDO : (enum pru_fmt)pru_optable[d->kind].fmt;
+    if (d->fast == PD_SLOW && d->flags == PD_WRITES_R30 && (f == PRU_FMT_ALU || f == PRU_FMT_LDI) &&
+        pru_op_register_only(d->kind))
+        d->fast = PD_R30_WRITE; /* the MA edges of a clocked loop */
     if ((f == PRU_FMT_QB || f == PRU_FMT_QBA || f == PRU_FMT_QBB) && d->target >= c->iram_words)
         d->fast = PD_SLOW;
     d->fast = whole_register_kind(d);
