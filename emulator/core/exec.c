@@ -590,6 +590,8 @@ k_jal:
 jumped: /* a register target may lie outside IRAM: exec_run() faults */
     if (pc >= n) {
         cyc++;
+        if (pc == loop_end) /* (a LOOP may end there too) */
+            goto at_loop_end;
         goto out;
     }
     BRANCHED();
