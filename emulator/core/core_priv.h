@@ -119,12 +119,12 @@ struct ext_window {
 };
 
 /* A loop body as the fast-forward decoded it (ff.c), kept while IRAM
- * holds the same words there. */
+ * is not written (pru_core.iram_gen). */
 #define FF_MAX_BODY 16u /* words; longer loops are not idle polls */
 #define FF_BODIES   8u  /* loop bodies kept (a firmware's period loops and its polls) */
 struct ff_body {
-    uint32_t top, pc; /* [top, pc], pc the closing branch; top > pc: none */
-    uint32_t words[FF_MAX_BODY];
+    uint32_t top, pc;  /* [top, pc], pc the closing branch; top > pc: none */
+    uint64_t iram_gen; /* IRAM's generation when decoded */
     uint32_t r31_mask; /* R31 bits it looks at */
     int counter;       /* a counted poll's counter register, -1 if it is none */
     uint32_t step;     /* ... added to it per iteration (mod 2^32) */
@@ -182,6 +182,7 @@ struct pru_core {
     int64_t stall_total; /* cycles in which no instruction was fetched */
     uint32_t loop_end, loop_top, loop_count;
     uint32_t iram_words;
+    uint64_t iram_gen; /* counts IRAM word changes (predecode_word) */
     struct pd *pd;
     bool stop;    /* leave the run loop after this instruction */
     bool recheck; /* ... and re-evaluate enable/sleep/step (not a stop) */

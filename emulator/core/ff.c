@@ -197,7 +197,7 @@ static const struct ff_body *body(struct pru_core *c, uint32_t top, uint32_t pc)
     if (pc >= c->iram_words || n > FF_MAX_BODY)
         return NULL;
     const uint32_t *w = &c->iram0[top];
-    if (b->top == top && b->pc == pc && memcmp(b->words, w, n * 4) == 0)
+    if (b->top == top && b->pc == pc && b->iram_gen == c->iram_gen)
         return b;
     struct pru_insn in[FF_MAX_BODY];
     for (uint32_t i = 0; i < n; i++) {
@@ -207,7 +207,7 @@ static const struct ff_body *body(struct pru_core *c, uint32_t top, uint32_t pc)
             return NULL;
         }
     }
-    memcpy(b->words, w, n * 4);
+    b->iram_gen = c->iram_gen;
     b->top = top;
     b->pc = pc;
     b->r31_mask = r31_mask(in, n);

@@ -141,6 +141,7 @@ static uint8_t whole_register_kind(const struct pd *d) {
 
 void predecode_word(struct pru_core *c, uint32_t pc) {
     struct pd *d = &c->pd[pc];
+    c->iram_gen++; /* what ff.c decoded from IRAM may be out of date */
     memset(d, 0, sizeof *d);
     struct pru_insn in;
     if (pru_decode(c->iram0[pc], &in) != 0) {
