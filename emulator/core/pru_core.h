@@ -89,6 +89,11 @@ struct pru_params {
      * a constant, every other instruction of the body giving the same
      * result each turn: a delay) runs its turns at once. */
     int ff_count_loop;
+    /* Run register-only instructions, fixed-length bursts and R30 writes of
+     * ALU instructions in the threaded fast loop (exec.c run_fast); 0: every
+     * instruction through the general path, one at a time (results are
+     * identical). */
+    int fast_loop;
 
     /* Strict mode (TIMING.md "Strict mode"): the PRU_STRICT_* rules checked,
      * 0 = off. A rule broken stops the core with PRU_FAULT_STRICT, or with

@@ -294,6 +294,14 @@ static void on_timeout(void *ctx, sim_ps t, int64_t arg) {
     (void)arg;
     biss_slave *b = ctx;
     b->timeout_ev = 0;
+    if (t < b->timeout_due) {
+        /* MA moved since this was scheduled: on to the deadline it moved
+         * to, in the order the event would have had if scheduled then */
+        b->timeout_ev =
+            eq_schedule_as(b->q, b->timeout_due, b->timeout_due_order, on_timeout, b, 0);
+        b->timeout_ev_at = b->timeout_due;
+        return;
+    }
     if (b->phase != BISS_ACTIVE) {
         return;
     }
@@ -316,9 +324,20 @@ static void on_timeout(void *ctx, sim_ps t, int64_t arg) {
     close_frame(b, t);
 }
 
+/* Every MA edge restarts the timeout. Rather than cancel and schedule an
+ * event each time, a pending event due no later than the new deadline stays
+ * and moves on when it fires (on_timeout); the deadline takes its order
+ * among events of its time now (eq_take_id), so everything runs as if
+ * the event had been scheduled here. */
 static void restart_timeout(biss_slave *b, sim_ps t) {
+    b->timeout_due = t + timeout_len(b);
+    b->timeout_due_order = eq_take_id(b->q);
+    if (b->timeout_ev && b->timeout_ev_at <= b->timeout_due) {
+        return;
+    }
     eq_cancel(b->q, b->timeout_ev);
-    b->timeout_ev = eq_schedule(b->q, t + timeout_len(b), on_timeout, b, 0);
+    b->timeout_ev = eq_schedule_as(b->q, b->timeout_due, b->timeout_due_order, on_timeout, b, 0);
+    b->timeout_ev_at = b->timeout_due;
 }
 
 /* ---- MA edges ---- */

@@ -143,10 +143,13 @@ typedef struct {
     bool started;
     unsigned bit, nbits;
     uint8_t bits[BISS_MAX_FRAME_BITS];
-    int sl_sched; /* SL level after the last scheduled change */
-    eq_id timeout_ev;
-    int cds;   /* CDS for the next frame */
-    bool lost; /* SL held low since lost_at (biss_slave_lose_sync) */
+    int sl_sched;            /* SL level after the last scheduled change */
+    eq_id timeout_ev;        /* the pending timeout event, 0 none */
+    sim_ps timeout_ev_at;    /* ... its time */
+    sim_ps timeout_due;      /* when the timeout is due: at or after timeout_ev_at */
+    eq_id timeout_due_order; /* ... the event's place among events at that time */
+    int cds;                 /* CDS for the next frame */
+    bool lost;               /* SL held low since lost_at (biss_slave_lose_sync) */
     sim_ps lost_at;
 
     biss_frame_record cur;
