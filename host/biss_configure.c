@@ -95,6 +95,7 @@ static int configure_locked(biss_t *h, const struct biss_config *c) {
         h->cfg_pub_seq = st.seq; /* publications from here on are of this layout */
         h->cfg = *c;
         h->configured = true;
+        biss_safety_restart(&h->safety); /* counters from a new layout's frames on */
         h->cfg_pub_seq_valid = true;
     }
     return rc;

@@ -75,6 +75,12 @@ static const struct err_text errors[] = {
     {BISS_E_FW_IMAGE, "the running firmware image is not the expected one (CRC-32 differs)"},
     {BISS_E_SHM_CONFIG, "the configuration block read back from data RAM is invalid"},
     {BISS_E_SHM_RESULT, "a published result contradicts the configuration (junk in data RAM)"},
+    {BISS_E_SAFETY_LIFE, "life-counter check: no such slave, or a width outside 1..32 or wider "
+                         "than the bits below nE/nW and the position"},
+    {BISS_E_SAFETY_PAIR, "pair check: a slave outside the chain or paired with itself, too "
+                         "many pairs, or a shifted position over 64 bits"},
+    {BISS_E_SAFETY_CRC, "pair check of two channels: both CRCs have the same polynomial and "
+                        "start value (the channels must differ)"},
     {BISS_E_IEP_OWNED, "the other PRU's channel owns the IEP (trigger iep): use iep-follow"},
 };
 

@@ -75,6 +75,8 @@ struct biss {
     uint32_t cfg_pub_seq;
     bool cfg_pub_seq_valid;
     bool attached;
+    /* the safety checks over the frames this handle read (biss_safety.c) */
+    struct biss_safety_state safety;
 };
 
 /* Asks the backend for the right to change the firmware's state. */

@@ -54,6 +54,9 @@ static int read_sample_locked(biss_t *h, struct biss_sample *s) {
     if (!rc) {
         rc = biss_sample_decode(&h->cfg, h->configured, seq, &r, s);
     }
+    if (!rc && h->configured) {
+        biss_safety_check(&h->cfg, &h->safety, s);
+    }
     return rc;
 }
 
@@ -124,5 +127,15 @@ int biss_line_delay(biss_t *h, struct biss_line_delay *d) {
         return BISS_E_NO_SAMPLE;
     }
     *d = s.delay;
+    return BISS_OK;
+}
+
+int biss_get_safety_stats(biss_t *h, struct biss_safety_stats *st) {
+    if (!h || !st) {
+        return BISS_E_INVAL;
+    }
+    pthread_mutex_lock(&h->lock);
+    *st = h->safety.stats;
+    pthread_mutex_unlock(&h->lock);
     return BISS_OK;
 }

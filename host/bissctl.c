@@ -49,6 +49,10 @@ static int apply_config(biss_t *h, struct bissctl_opts *o) {
         if (rc) {
             return bissctl_fail("slave layout", rc);
         }
+        rc = biss_safety_merge(&o->cfg, &o->checks);
+        if (rc) {
+            return bissctl_fail("safety checks", rc);
+        }
     }
     int rc = biss_configure(h, &o->cfg);
     return rc ? bissctl_fail("configure", rc) : BISSCTL_OK;

@@ -5,6 +5,8 @@
 
 #include "libbiss.h"
 
+#include "biss_proto.h" /* the safety checks' command-line spellings */
+
 #include <stdbool.h>
 
 struct bissctl_opts {
@@ -15,6 +17,7 @@ struct bissctl_opts {
     bool no_configure; /* --no-configure: use what the firmware runs */
     bool dump;         /* reg-read --dump: a hex dump */
     bool ida_test;     /* command --ida-test: withhold the command unless IDA = IDS */
+    bool json;         /* read --json: one JSON object */
     const char *command;
     unsigned count;      /* read -n */
     unsigned run_ms;     /* run --ms */
@@ -23,8 +26,10 @@ struct bissctl_opts {
     char **args;         /* words after the command */
     int nargs;
     bool help;
-    bool attach_given; /* --attach on the command line */
-    char errbuf[1024]; /* open's detail */
+    bool attach_given;         /* --attach on the command line */
+    struct biss_config checks; /* --check-life, --check-pair: only their fields, added to
+                                  the layout (command line or profile) when it is known */
+    char errbuf[1024];         /* open's detail */
 };
 
 /* Exit codes */
@@ -51,6 +56,11 @@ int bissctl_reg_read(biss_t *h, const struct bissctl_opts *o);
 int bissctl_reg_write(biss_t *h, const struct bissctl_opts *o);
 int bissctl_command(biss_t *h, const struct bissctl_opts *o);
 int bissctl_probe(biss_t *h, const struct bissctl_opts *o); /* bissctl_probe.c */
+
+/* read --json (bissctl_json.c): one frame of the "frames" array (after the
+ * opening, which the first prints), then the end with the safety counts. */
+void bissctl_json_frame(const struct biss_sample *s, const struct biss_config *c, bool first);
+void bissctl_json_end(biss_t *h);
 
 /* "bissctl: <what>: <strerror>" on stderr; returns BISSCTL_FAIL. */
 int bissctl_fail(const char *what, int err);

@@ -35,6 +35,28 @@ static void print_slave(unsigned i, const struct biss_slave_result *r,
                        : "bad");
 }
 
+/* The safety verdicts of a frame: each checked slave's life counter,
+ * each pair ("-": not judged in this frame: the first read, a bad CRC). */
+static void print_safety(const struct biss_sample *s, const struct biss_config *c) {
+    for (unsigned i = 0; i < s->nslaves && i < c->nslaves; i++) {
+        uint32_t f = s->slave[i].safety;
+        if (c->slave[i].life_check) {
+            printf(" s%u.life=%s", i,
+                   !(f & BISS_SAFE_LC_CHECKED) ? "-"
+                   : f & BISS_SAFE_LC_FROZEN   ? "frozen"
+                   : f & BISS_SAFE_LC_SKIP     ? "skip"
+                                               : "ok");
+        }
+    }
+    for (unsigned k = 0; k < c->npairs; k++) {
+        uint32_t f = s->slave[c->pair[k].a].safety & s->slave[c->pair[k].b].safety;
+        printf(" pair%u=%s", k,
+               !(f & BISS_SAFE_PAIR_CHECKED) ? "-"
+               : f & BISS_SAFE_DISAGREE      ? "disagree"
+                                             : "ok");
+    }
+}
+
 static void print_sample(const struct biss_sample *s, const struct biss_config *c) {
     printf("frame=%u flags=0x%02x %s", s->frame, s->flags,
            s->valid        ? (s->crc_error ? "crc-error" : "valid")
@@ -46,6 +68,9 @@ static void print_sample(const struct biss_sample *s, const struct biss_config *
     if (s->valid) {
         for (unsigned i = 0; i < s->nslaves; i++) {
             print_slave(i, &s->slave[i], c && i < c->nslaves ? &c->slave[i] : NULL);
+        }
+        if (c) {
+            print_safety(s, c);
         }
     }
     if (s->valid || s->training) {
@@ -62,6 +87,34 @@ static void print_sample(const struct biss_sample *s, const struct biss_config *
 static void print_stats(const struct biss_stats *st) {
     printf("frames=%u crc_errors=%u no_slave=%u proc_errors=%u training=%u\n", st->frames,
            st->crc_errors, st->no_slave, st->proc_errors, st->training);
+}
+
+/* The safety checks' counts over the frames this run read, for the
+ * checks configured (nothing without any). */
+static void print_safety_stats(biss_t *h) {
+    struct biss_config c;
+    struct biss_safety_stats st;
+    if (biss_get_config(h, &c) != BISS_OK || biss_get_safety_stats(h, &st) != BISS_OK) {
+        return;
+    }
+    bool any = false;
+    for (unsigned i = 0; i < c.nslaves; i++) {
+        if (c.slave[i].life_check) {
+            printf("%ss%u.life_checked=%u s%u.life_frozen=%u s%u.life_skipped=%u",
+                   any ? " " : "safety: ", i, st.lc_checked[i], i, st.lc_frozen[i], i,
+                   st.lc_skipped[i]);
+            any = true;
+        }
+    }
+    for (unsigned k = 0; k < c.npairs; k++) {
+        printf("%spair%u.checked=%u pair%u.disagree=%u pair%u.last_diff=%lld",
+               any ? " " : "safety: ", k, st.pair_checked[k], k, st.pair_disagree[k], k,
+               (long long)st.pair_last_diff[k]);
+        any = true;
+    }
+    if (any) {
+        printf("\n");
+    }
 }
 
 int bissctl_stats(biss_t *h, const struct bissctl_opts *o) {
@@ -126,13 +179,28 @@ int bissctl_read(biss_t *h, const struct bissctl_opts *o) {
     if (biss_read_sample(h, &s) == BISS_OK) {
         after = s.frame;
     }
+    if (o->json) {
+        printf("{\n  \"frames\": [");
+    }
     for (unsigned i = 0; i < o->count; i++) {
         int rc = next_sample(h, o, after, &s);
         if (rc) {
+            if (o->json) {
+                printf("\n  ]\n}\n"); /* what was read stays valid JSON */
+            }
             return bissctl_fail("read", rc);
         }
-        print_sample(&s, layout ? &c : NULL);
+        if (o->json) {
+            bissctl_json_frame(&s, layout ? &c : NULL, i == 0);
+        } else {
+            print_sample(&s, layout ? &c : NULL);
+        }
         after = s.frame;
+    }
+    if (o->json) {
+        bissctl_json_end(h);
+    } else {
+        print_safety_stats(h);
     }
     return BISSCTL_OK;
 }

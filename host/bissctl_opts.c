@@ -44,6 +44,13 @@ static const char common_help[] =
     "                     IEP period the other PRU's channel (--trigger iep) set up\n"
     "  --iep-period-ns NS frame period for --trigger iep\n"
     "  --proc-limit N     longest processing time accepted, MA clocks (default 1000)\n"
+    "Safety checks (host side, on every frame read; host/README.md):\n"
+    "  --check-life S[,BITS]\n"
+    "                     slave S's life counter (the BITS at its data word's LSB,\n"
+    "                     default its nW bit) must advance by the frames run\n"
+    "  --check-pair A,B,TOL[,SHIFT_A,SHIFT_B]\n"
+    "                     slaves A and B (two channels: their CRCs must differ) agree\n"
+    "                     within TOL counts after shifting their positions left\n"
     "  --no-configure     leave the configuration as it is\n";
 
 static const char *command_help(const char *command) {
@@ -52,13 +59,15 @@ static const char *command_help(const char *command) {
                "  Firmware state, configuration ack and error, counters.\n";
     }
     if (strcmp(command, "read") == 0) {
-        return "bissctl [options] read [-n N]\n"
+        return "bissctl [options] read [-n N] [--json]\n"
                "  Prints N published frames (default 1), one line each: frame (1 is the\n"
                "  first, a training frame after each configuration), flags,\n"
                "  per slave position, data, nE/nW, CRC (\"none\" where the layout has\n"
                "  none); line delay, sample point (1/8 bit), lag (periods), the IEP\n"
                "  timestamp (counts of 5 ns) and the time it stands for.\n"
-               "  In host-trigger mode each frame is triggered first.\n";
+               "  In host-trigger mode each frame is triggered first. With safety checks\n"
+               "  (--check-life, --check-pair) each frame's verdicts and, after the last,\n"
+               "  their counts. --json: one JSON object, {\"frames\": [...], \"safety\": {...}}.\n";
     }
     if (strcmp(command, "stats") == 0) {
         return "bissctl [options] stats\n"
@@ -221,11 +230,14 @@ enum {
     OPT_TRIGGER,
     OPT_IEP,
     OPT_PROC,
+    OPT_CHECK_LIFE,
+    OPT_CHECK_PAIR,
     OPT_NOCONF,
     OPT_MS,
     OPT_ID,
     OPT_DUMP,
     OPT_IDA_TEST,
+    OPT_JSON,
     OPT_LOADER,
     OPT_SYSFS,
     OPT_FWDIR,
@@ -250,11 +262,14 @@ static const struct option long_opts[] = {
     {"trigger", required_argument, NULL, OPT_TRIGGER},
     {"iep-period-ns", required_argument, NULL, OPT_IEP},
     {"proc-limit", required_argument, NULL, OPT_PROC},
+    {"check-life", required_argument, NULL, OPT_CHECK_LIFE},
+    {"check-pair", required_argument, NULL, OPT_CHECK_PAIR},
     {"no-configure", no_argument, NULL, OPT_NOCONF},
     {"ms", required_argument, NULL, OPT_MS},
     {"id", required_argument, NULL, OPT_ID},
     {"dump", no_argument, NULL, OPT_DUMP},
     {"ida-test", no_argument, NULL, OPT_IDA_TEST},
+    {"json", no_argument, NULL, OPT_JSON},
     {"loader", required_argument, NULL, OPT_LOADER},
     {"sysfs", required_argument, NULL, OPT_SYSFS},
     {"firmware-dir", required_argument, NULL, OPT_FWDIR},
@@ -367,7 +382,7 @@ static int take_target_opt(int c, const char *arg, struct bissctl_opts *o) {
 /* Configuration options */
 static int take_config_opt(int c, const char *arg, struct bissctl_opts *o) {
     struct biss_config *cfg = &o->cfg;
-    if (c < OPT_FREQ || c > OPT_PROC) {
+    if (c < OPT_FREQ || c > OPT_CHECK_PAIR) {
         return 1; /* not a configuration option */
     }
     o->config_given = true;
@@ -409,6 +424,22 @@ static int take_config_opt(int c, const char *arg, struct bissctl_opts *o) {
         return parse_u32(arg, &cfg->proc_limit)
                    ? usage_error("--proc-limit '%s': expected MA clocks", arg)
                    : 0;
+    case OPT_CHECK_LIFE:
+        return biss_safety_parse_life(arg, &o->checks)
+                   ? usage_error("--check-life '%s': expected S[,BITS] (slave 0..7, 1..32 bits)",
+                                 arg)
+                   : 0;
+    case OPT_CHECK_PAIR:
+        switch (biss_safety_parse_pair(arg, &o->checks)) {
+        case BISS_OK:
+            return 0;
+        case BISS_E_SAFETY_PAIR:
+            return usage_error("--check-pair %s: at most 4 pairs", arg);
+        default:
+            return usage_error("--check-pair '%s': expected A,B,TOL[,SHIFT_A,SHIFT_B] (slaves "
+                               "0..7, shifts 0..63)",
+                               arg);
+        }
     }
     return 1;
 }
@@ -435,6 +466,9 @@ static int take_command_opt(int c, const char *arg, struct bissctl_opts *o) {
         return 0;
     case OPT_IDA_TEST:
         o->ida_test = true;
+        return 0;
+    case OPT_JSON:
+        o->json = true;
         return 0;
     case 'h':
         o->help = true;
@@ -505,6 +539,11 @@ int bissctl_parse(int argc, char **argv, struct bissctl_opts *o) {
     }
     if (!o->command && !o->help) {
         return usage_error("%s", "no command given");
+    }
+    /* a layout from the command line takes the checks now (to be checked
+     * with it); the profile's takes them when the emulator gives it */
+    if (o->slaves_given && biss_safety_merge(&o->cfg, &o->checks)) {
+        return usage_error("%s", "at most 4 --check-pair in all");
     }
     return BISSCTL_OK;
 }

@@ -130,7 +130,10 @@ int biss_config_check(const struct biss_config *c) {
         }
     }
     if (c->trigger == BISS_TRIGGER_IEP) {
-        return check_iep(c, half);
+        rc = check_iep(c, half);
+        if (rc) {
+            return rc;
+        }
     }
-    return BISS_OK;
+    return biss_safety_config_check(c);
 }

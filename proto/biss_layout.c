@@ -50,6 +50,16 @@ void biss_proto_word_split(const struct biss_proto_word *w, uint64_t word, uint6
     *position = word >> w->fill_bits;
 }
 
+/* pos_bits of it, or (pos_bits 0) everything above nE/nW, or the whole
+ * word for a slave without them. */
+unsigned biss_proto_pos_bits(const struct biss_slave_config *c) {
+    unsigned low = c->has_ew ? c->ew_shift + 2 : 0;
+    if (low >= c->data_bits) {
+        return 0;
+    }
+    return c->pos_bits ? c->pos_bits : c->data_bits - low;
+}
+
 uint64_t biss_proto_from_gray(uint64_t g) {
     for (unsigned s = 1; s < 64; s <<= 1) {
         g ^= g >> s;

@@ -68,6 +68,9 @@ uint64_t biss_proto_word_compose(const struct biss_proto_word *w, uint64_t posit
 /* And back: position (fill dropped), nE, nW (1 when the slave has none). */
 void biss_proto_word_split(const struct biss_proto_word *w, uint64_t word, uint64_t *position,
                            int *nE, int *nW);
+/* Width of the position field of a configured slave (its pos_bits, or
+ * everything above nE/nW, or the whole word without them). */
+unsigned biss_proto_pos_bits(const struct biss_slave_config *c);
 /* Gray code to binary (SSI encoders). */
 uint64_t biss_proto_from_gray(uint64_t g);
 /* Degree of a CRC polynomial written with its top term (0x43 -> 6), 0 for 0. */
@@ -81,6 +84,45 @@ unsigned biss_proto_crc_bits(uint32_t poly);
 int biss_sample_decode(const struct biss_config *c, bool configured, uint32_t seq,
                        const struct biss_shm_result *r, struct biss_sample *s);
 void biss_delay_decode(uint16_t raw, uint16_t avg, unsigned half, struct biss_line_delay *d);
+
+/* ---- safety checks (biss_safety.c) ---- */
+
+/* What the checks remember between frames: per slave the last life
+ * counter trusted (CRC good) and its frame number; the last frame judged
+ * (read again, it keeps its verdict and is not counted twice); the counts. */
+struct biss_safety_state {
+    bool ref[BISS_API_MAX_SLAVES];
+    uint32_t ref_frame[BISS_API_MAX_SLAVES], ref_lc[BISS_API_MAX_SLAVES];
+    bool seen;
+    uint32_t last_frame;
+    uint32_t last_flags[BISS_API_MAX_SLAVES];
+    struct biss_safety_stats stats;
+};
+
+/* The safety fields of a configuration against its layout: 0,
+ * BISS_E_SAFETY_LIFE, BISS_E_SAFETY_PAIR or BISS_E_SAFETY_CRC. */
+int biss_safety_config_check(const struct biss_config *c);
+/* Width of a slave's life counter: life_bits, else ew_shift (0 without nE/nW). */
+unsigned biss_safety_life_width(const struct biss_slave_config *s);
+/* Everything forgotten, counts cleared. */
+void biss_safety_init(struct biss_safety_state *st);
+/* A new configuration: the references forgotten, the counts kept. */
+void biss_safety_restart(struct biss_safety_state *st);
+/* Judges a decoded sample: sets s->slave[i].safety and s->safety, counts.
+ * Frames need not be consecutive (the frame numbers say how many ran); a
+ * no-slave or aborted frame forgets the life counters (the slave may not
+ * have counted it). */
+void biss_safety_check(const struct biss_config *c, struct biss_safety_state *st,
+                       struct biss_sample *s);
+/* Command-line spellings: "S[,BITS]" (life counter of slave S, width
+ * BITS, default its ew_shift) and "A,B,TOL[,SHIFT_A,SHIFT_B]" (a pair,
+ * distinct_crc set) into c: 0, BISS_E_INVAL (not that form) or
+ * BISS_E_SAFETY_PAIR (too many pairs). */
+int biss_safety_parse_life(const char *arg, struct biss_config *c);
+int biss_safety_parse_pair(const char *arg, struct biss_config *c);
+/* The checks of `checks` added to dst (a layout from elsewhere): 0 or
+ * BISS_E_SAFETY_PAIR (too many pairs). */
+int biss_safety_merge(struct biss_config *dst, const struct biss_config *checks);
 
 /* ---- transfers through data RAM (biss_proto_io.c) ---- */
 

@@ -26,14 +26,13 @@ static uint64_t low_mask(unsigned bits) {
     return bits >= 64 ? ~0ull : (1ull << bits) - 1u;
 }
 
-/* The position is the top of the data word: pos_bits of it, or (pos_bits
- * 0) everything above nE/nW, or the whole word for a slave without them. */
+/* The position is the top of the data word (biss_proto_pos_bits). */
 static uint64_t position_of(const struct biss_slave_config *c, uint64_t data) {
     unsigned low = c->has_ew ? c->ew_shift + 2 : 0;
     if (low >= c->data_bits) {
         return 0;
     }
-    unsigned pos = c->pos_bits ? c->pos_bits : c->data_bits - low;
+    unsigned pos = biss_proto_pos_bits(c);
     unsigned shift = c->data_bits - pos;
     return (data >> shift) & low_mask(pos);
 }

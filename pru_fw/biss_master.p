@@ -40,11 +40,6 @@
                                         // a period, longer than any glitch of under 3 samples
 #define IDLE_TURNS      25000           // SL idle polls (4 cycles): 500 us, then no slave
 
-// offsets from a result buffer (r9) to the current slave's result
-#define RES_DATA_LO     (BISS_R_SLAVE0 + BISS_R_S_DATA_LO)
-#define RES_DATA_HI     (BISS_R_SLAVE0 + BISS_R_S_DATA_HI)
-#define RES_CRC         (BISS_R_SLAVE0 + BISS_R_S_CRC_REG)
-
 // PRU-ICSS registers
 #define GPCFG0          0x08            // CFG (C4)
 #define SHIFT_MODE      2               // GPCFG GPI_MODE: 28-bit shift
@@ -80,6 +75,9 @@
 #define P_SLAVES        0x80                // 8 x 16: mask lo, mask hi, residue, [n, w, ew, flags]
 #define PRU0_CTPPR0     0x22028             // C28 = 0x00nnnn00 with nnnn = CTPPR0[15:0];
                                             // PRU1's is 0x2000 higher (docs/pru-facts.md §5.1)
+#define CFG_SPP         0x34                // CFG (C4): scratch-pad priority and shift
+#define SPP_XFR_SHIFT   2                   // XFR_SHIFT_EN (bit 1) with PRU1_PAD_HP_EN (bit 0) 0
+#define XFR_SLOT        3                   // a slave's result: 3 registers of bank 0 (r4..r6)
 
 // (after the equates: macro bodies take equates as they are read)
 #include "biss_periods.hp"
@@ -87,6 +85,7 @@
 
 // ============================================================================
 START:
+    ldi     r0, 0                           // R0[4:0] = 0: no XFR shift, whatever SPP holds
     zero    &r0, 120                        // r0..r29
     lbco    r27, c24, BISS_PRU_INDEX, 4     // this PRU, 0 or 1 (the host wrote it before the
     lsl     r27, r27, 13                    // start): its CONTROL block is 0x2000 x that higher
@@ -108,6 +107,11 @@ CLEAR_PRIV:
     // IEP: count PRU cycles (increment 1), free running
     ldi     r2, 0x0111
     sbco    r2, c26, IEP_GLOBAL_CFG, 4
+    // Scratch pad: XIN/XOUT shifted by R0[4:0] registers (the slaves'
+    // result slots: CFG_PROC); PRU0 keeps priority over PRU1 on a bank
+    // (docs/silicon-assumptions.md A6).
+    ldi     r2, SPP_XFR_SHIFT
+    sbco    r2, c4, CFG_SPP, 4
 
 // ---- the main loop: configuration, trigger, frame --------------------------
 MAIN:
@@ -135,8 +139,8 @@ WAIT_HOST:
 WAIT_IEP:
     lbco    r3, c26, IEP_CMP_STATUS, 4
     qbbc    MAIN, r3, 0
-    ldi     r3, 1
-    sbco    r3, c26, IEP_CMP_STATUS, 4      // clear the CMP0 hit
+    sbco    r3, c26, IEP_CMP_STATUS, 4      // clear the CMP0 hit (write 1 to clear: any
+                                            // other compare's too; none is used)
     // The hit was seen up to one turn of MAIN late; start every frame at
     // the same count after the period's reset instead, so periods are exact.
 IEP_AT_ALIGN:
@@ -219,6 +223,8 @@ FACTOR_FOUND:
     mov     r26, BISS_PRIV + P_RECORDS
     mov     r27, BISS_PRIV + P_SLAVES
     ldi     r11, FRAME_END                  // the end record's entry
+    ldi     r0, 0                           // R0[4:0] = 0 for FILL: whether the XFR
+                                            // shift moves it is not documented
 CFG_SLAVE:
     lbbo    r2, r25, 0, 8                   // r2.b0 n, r2.b1 w, r2.b2 ew, r2.b3 flags, r3 poly|start
     ldi     r28, BISS_CFGERR_DATA_BITS
@@ -351,7 +357,8 @@ CFG_IEP_OK:
     // Accepted: commit everything.
     // The tails of the half periods (DELAY_A in biss_periods.hp): none at
     // H = 10 (r0 = 0), else the routine's entry for L = H - 11 cycles
-    // (r0.w0), r0.b2 = 1, and its 4-cycle turns (r0.b3).
+    // (r0.w0), r0.b2 = 1, and its 4-cycle turns (r0.b3); the frame keeps
+    // this word in r9.
     ldi     r0, 0
     qbeq    CFG_DELAY_SAVE, r20.w0, 10
     ldi     r0.b2, 1
@@ -389,6 +396,24 @@ CFG_DELAY_SAVE:
     sbco    r7, c28, P_HALF, 4
     mov     r2.w0, r22.w0                   // processing-time limit
     ldi     r2.w2, 0x0101                   // running, training due (BiSS-C)
+    // The step between the slaves' result slots in scratch-pad bank 0, for
+    // the XFR shift (R0[4:0]). TI calls R0[4:0] "the number of 32-bit
+    // offset" for XIN and XOUT but gives no direction. Up, slot k sits at
+    // bank registers 4 + 3k .. 6 + 3k (k <= 7: at most 27, never past the
+    // bank's 30). Down, the step must be 29: 4 - 29k = 4 + 3k only modulo
+    // 32, so look for exactly that: register 3 written with a shift of 29
+    // lands in bank register 6 only if the shift goes down and wraps as a
+    // 5-bit offset (up, it is bank register 0). Found: step 29; else 3
+    // (docs/silicon-assumptions.md A6).
+    ldi     r0, 0
+    ldi     r6, 0
+    xout    10, r6, 4                       // bank register 6 cleared
+    ldi     r0, 32 - XFR_SLOT
+    ldi     r3, 32 - 2 * XFR_SLOT
+    xout    10, r3, 4                       // 26 to bank register 6 (down) or 0 (up)
+    ldi     r0, 0
+    xin     10, r6, 4
+    add     r2.b3, r6, XFR_SLOT             // running = the step: 3 up, 29 down
     qbeq    CFG_PROC, r27.w0, 0
     ldi     r2.b2, 0                        // SSI: the delay is given, nothing to train
     mov     r1.w2, r27.w0                   // and the history holds it (r0, r1 are
@@ -427,7 +452,7 @@ DIVIDE_DONE:
 
 // The shared delay of the clocked periods: called by `jal r10.w2, entry`,
 // it costs from its entry to its return included: DLY_Sk k cycles (k =
-// 1..7), DLY_Lr 2 + r + 4 r0.b3 cycles (r = 0..3, r0.b3 >= 1, so the turn
+// 1..7), DLY_Lr 2 + r + 4 r9.b3 cycles (r = 0..3, r9.b3 >= 1, so the turn
 // counter never starts at 0 nor wraps). Single-cycle instructions only
 // (docs/pru-facts.md §3): no LOOP. It writes r10.b1 and the carry.
 DLY_S7:
@@ -451,7 +476,7 @@ DLY_L2:
 DLY_L1:
     mov     r0, r0
 DLY_L0:
-    mov     r10.b1, r0.b3
+    mov     r10.b1, r9.b3
 DLY_TURN:                                   // 4 cycles a turn
     sub     r10.b1, r10.b1, 1
     mov     r0, r0
@@ -487,13 +512,13 @@ DLY_TURN:                                   // 4 cycles a turn
 FRAME_REGS:
     lbco    r3, c28, P_DELAYS, 32           // r3 delays, r4 r5 history (r5.w2 = K), r6 its
                                             // sum, r7 P_BUF, r8 P_NSLAVES, r9 P_HALF, r10 P_PROC
-    mov     r0, r3
+    ldi     r0, 0                           // XFR shift 0: slave 0's slot,
+    mov     r0.b1, r10.b3                   // and the step to the next (CFG_PROC)
     ldi     r11, MA_MASK | (MA_MASK << 8)   // period 0 clocks
     mov     r11.b2, r8.b2                   // the end record (SWITCH_SHORT)
-    RESULT_ADDR r8, r7                      // the result buffer (r7 = P_BUF)
     mov     r7.w0, r9.w2                    // ACK limit
     mov     r7.w2, r10.w0                   // processing-time limit
-    mov     r9, r8
+    mov     r9, r3                          // the tails (DELAY_A)
     mov     r4.w2, r6.w0                    // history sum (r10 is the delay's)
     lbco    r4.w0, c28, P_CDM, 2            // the CDM edge for either CDS
     ldi     r1.w0, REC_BASE                 // r1.b1 = 0
@@ -501,11 +526,13 @@ FRAME_REGS:
     ldi     r8, 0
     jmp     r12.w0
 
-// The timestamp, then the first period.
+// The timestamp, then the first period. It waits in scratch-pad bank 1
+// (r0.b0 = 0: unshifted) for FRAME_END or ABORT_FRAME: no data-RAM store
+// between the IEP read and the first MA edge.
 .macro FRAME_STAMP
     ldi     r3, 0
     lbco    r2, c26, IEP_COUNT, 4
-    sbbo    r2, r9, BISS_R_TIMESTAMP, 4
+    xout    11, r2, 4
 .endm
 
 FRAME:
@@ -609,7 +636,7 @@ LAG1:
     MA_RISE
     max     r3, r3, r6                      // 1
     sub     r3, r3, r6                      // 2  idle periods before the first read
-    ldi     r6, 0                           // 3  busy clocks
+    PAD                                     // 3
     rsb     r5.w0, r10.b0, 29               // 4  R31 >> r5.w0: bit 2 the sample point
     jal     r10.w2, DLY_S2                  // 5..7
     DELAY_B
@@ -645,11 +672,11 @@ SW_TOP:
     and     r2, r2, 0x1f                    // 2
     mov     r3, MAJORITY5                   // 3..4
     qbbs    START_FOUND, r3, r2             // 5  three of the five are 1
-    add     r6, r6, 1                       // 6
+    add     r0.w2, r0.w2, 1                 // 6  busy clocks (0 from FRAME_REGS)
     jal     r10.w2, DLY_S1                  // 7..8
     DELAY_A
     MA_RISE
-    qblt    PROC_ERROR, r6, r7.w2           // 1: limit < busy: give up after this rise
+    qblt    PROC_ERROR, r0.w2, r7.w2        // 1: limit < busy: give up after this rise
     jal     r10.w2, DLY_S5                  // 2..7
     DELAY_B
     qba     SW_TOP
@@ -666,7 +693,7 @@ START_FOUND:                                // t = 6
     MA_RISE
     ldi     r8, 0                           // 1  (r8.w0 stays 0 from here on)
     NEXT_CLOCK                              // 2..5
-    sbbo    r6, r9, BISS_R_PROC_CLOCKS, 2   // 6  busy clocks before the start bit
+    PAD                                     // 6
     ldi     r6, 0                           // 7  (r6.w0 stays 0 from here on)
     DELAY_B
     PAD
@@ -715,8 +742,9 @@ ENTRY_PLAIN1:                               // w = 0, n = 1
 // put its sample at bit 31) holds them 8 and 16 samples newer, at bits 23
 // and 15 (indices 8 (LAG - 1) + s and 8 (LAG - 2) + s: sampled, and the
 // same samples as reads one and two periods later would take at 8 LAG + s,
-// 16 shift edges falling in every 2 periods). The switch has moved r9 to
-// the next slave's result and loaded the end record. Not clocked: this
+// 16 shift edges falling in every 2 periods). The switch has stored the
+// slave's result in its slot, moved r0.b0 to the next one and loaded the
+// end record. Not clocked: this
 // comes at t = 0 of the period after the switch, whose MA edge (the CDM,
 // if the line delay is under two periods: m = 1) is made here; otherwise
 // r11.b0 = 0, and SWITCH_SHORT may have cut the switch short.
@@ -727,7 +755,8 @@ FINAL_PLAIN2:
 FINAL_PLAIN:
     lsl     r2, r2, 8
     SHIFT_IN
-    sbbo    r4, r9, RES_DATA_LO - BISS_R_SLAVE_SIZE, 8
+    sub     r0.b0, r0.b0, r0.b1             // the last slave's slot
+    xout    10, r4, 12
     qba     FRAME_END
 FINAL_CRC2:
     MA_FALL
@@ -736,7 +765,8 @@ FINAL_CRC2:
 FINAL_CRC:
     ldi     r7.b0, 1
 FINAL_CRC_GO:
-    lbbo    r6, r9, RES_CRC - BISS_R_SLAVE_SIZE, 4
+    sub     r0.b0, r0.b0, r0.b1             // the last slave's slot:
+    xin     10, r6, 4                       // its CRC register
     sub     r1.b0, r1.b0, 12                // the last slave's polynomial
     mviw    r8.w2, *r1.b0++
 FINAL_CRC_BIT:
@@ -744,15 +774,14 @@ FINAL_CRC_BIT:
     CRC_STEP
     sub     r7.b0, r7.b0, 1
     qbne    FINAL_CRC_BIT, r7.b0, 0
-    sbbo    r6, r9, RES_CRC - BISS_R_SLAVE_SIZE, 4
+    xout    10, r6, 4
 
 FRAME_END:
-    jal     r0.w0, CD_COMMIT               // r1.b1 = CDS; r2.b0 = the CDM sent
-    lbco    r4, c28, P_BUF, 8               // r4 P_BUF, r5 P_NSLAVES
-    mov     r1.b0, r5.b0                    // slaves to check
-    mov     r3.b0, r2.b0
-    RESULT_ADDR r2, r4                      // the result buffer
-    sbbo    r3.b0, r2, BISS_R_CDM, 1
+    jal     r0.w0, CD_COMMIT               // r1.b1 = CDS; r1.b0 = the CDM sent
+    jal     r3.w0, BUF_STAMP               // r2 = the result buffer, r0.w0 = 0:
+    lbco    r0.b1, c28, P_PROC + 3, 1       // slave 0's slot, and the step to the next
+    sbbo    r1.b0, r2, BISS_R_CDM, 1
+    lbco    r1.b0, c28, P_NSLAVES, 1        // slaves to check
     rsb     r3, r10.b0, 31 - 8 * LAG        // sample point 0..7 within the bit
     sbbo    r3.b0, r2, BISS_R_SAMPLE_POINT, 1
     sbbo    r1.b1, r2, BISS_R_CDS, 1
@@ -760,37 +789,35 @@ FRAME_END:
     add     r3, r2, BISS_R_SLAVE0           // slave result
     mov     r11, BISS_PRIV + P_SLAVES       // slave check data
 FE_SLAVE:
-    lbbo    r4, r3, 0, 12                   // data lo, data hi, CRC register
+    xin     10, r4, 12                      // data lo, data hi, CRC register: its slot
+    add     r0.b0, r0.b0, r0.b1             // the next slave's
     lbbo    r7, r11, 0, 16                  // mask lo, mask hi, residue, [n, w, ew, flags]
     and     r4, r4, r7
     and     r5, r5, r8
-    ldi     r0, 0                           // slave status
-    qbeq    FE_CRC_OK, r10.b1, 0            // no CRC
-    qbeq    FE_CRC_OK, r6, r9
+    ldi     r7, BISS_RS_CRC_OK              // slave status (r4..r7: the slave's result)
+    qbeq    FE_CRC_DONE, r10.b1, 0          // no CRC
+    qbeq    FE_CRC_DONE, r6, r9
+    ldi     r7, 0
     or      r12, r12, BISS_RF_CRC_ERROR
-    qba     FE_CRC_DONE
-FE_CRC_OK:
-    or      r0.b0, r0.b0, BISS_RS_CRC_OK
 FE_CRC_DONE:
     qbbc    FE_EW_DONE, r10.b3, 0           // no nE/nW
-    // nW (data bit ew) to r7 bit 0, nE (bit ew + 1) to bit 1
+    // nW (data bit ew) to r8 bit 0, nE (bit ew + 1) to bit 1
     qble    FE_EW_HI, r10.b2, 32            // 32 <= ew
-    lsr     r7, r4, r10.b2
+    lsr     r8, r4, r10.b2
     qbne    FE_EW_GOT, r10.b2, 31
-    lsl     r6, r5, 1                       // ew = 31: nE is bit 0 of the high word
-    or      r7, r7, r6
+    lsl     r9, r5, 1                       // ew = 31: nE is bit 0 of the high word
+    or      r8, r8, r9
     qba     FE_EW_GOT
 FE_EW_HI:
-    lsr     r7, r5, r10.b2                  // the shift uses ew & 31
+    lsr     r8, r5, r10.b2                  // the shift uses ew & 31
 FE_EW_GOT:
-    and     r6, r7, BISS_RS_NE              // nE: bit 1 already
-    or      r0.b0, r0.b0, r6
-    and     r7, r7, 1
-    lsl     r7, r7, 2                       // nW: bit 2 (BISS_RS_NW)
-    or      r0.b0, r0.b0, r7
+    and     r9, r8, BISS_RS_NE              // nE: bit 1 already
+    or      r7.b0, r7.b0, r9
+    and     r8, r8, 1
+    lsl     r8, r8, 2                       // nW: bit 2 (BISS_RS_NW)
+    or      r7.b0, r7.b0, r8
 FE_EW_DONE:
-    sbbo    r4, r3, BISS_R_S_DATA_LO, 8
-    sbbo    r0, r3, BISS_R_S_STATUS, 4
+    sbbo    r4, r3, BISS_R_S_DATA_LO, 16    // data, CRC register, status
     add     r3, r3, BISS_R_SLAVE_SIZE
     add     r11, r11, 16
     sub     r1.b0, r1.b0, 1
@@ -828,8 +855,8 @@ FE_NO_CRC_ERR:
     add     r8.b3, r8.b3, 1
     qba     FE_HIST_SAVE
 FE_ACK_JUMP:
-    xor     r12, r12, BISS_RF_VALID         // set since FRAME_END: now clear
-    or      r12, r12, BISS_RF_ACK_JUMP
+    xor     r12, r12, BISS_RF_VALID | BISS_RF_ACK_JUMP  // VALID set since FRAME_END,
+                                            // ACK_JUMP not: one clear, one set
     qbbs    FE_HIST_RESET, r8, 31           // the second in a row
     set     r8, r8, 31
     qba     FE_NO_SMA                       // the history stays as it was
@@ -865,9 +892,9 @@ FE_IDLE_POLL:
     qbne    FE_IDLE_POLL, r2, 0
     qba     FE_MAIN                         // not in time: MAIN and FRAME find it so again
 FE_IDLE_YES:
+    lbco    r2, c24, BISS_CFG_SEQ, 4        // (loaded before MA may rise: no data-RAM
+    lbco    r3, c24, BISS_ST_CFG_ACK, 4     // access between that edge and the frame's)
     set     r30, r30, MA_BIT                // CDM done: MA idles high
-    lbco    r2, c24, BISS_CFG_SEQ, 4
-    lbco    r3, c24, BISS_ST_CFG_ACK, 4
     qbne    FE_MAIN, r2, r3                 // a new configuration: MAIN applies it
     jmp     FRAME_STAMPED
 FE_SLOW:
@@ -929,6 +956,19 @@ SLAVE_IDLE_POLL:
 SLAVE_IDLE_YES:
     jmp     r0.w0
 
+// r2 = the result buffer being filled, with the frame's timestamp (bank 1,
+// FRAME_STAMP) and busy clocks (r0.w2, START_WAIT) stored in it: the
+// clocked part stores nothing. r0.w0 = 0 after (no XFR shift), r5 = r2.
+// Returns through r3.w0.
+BUF_STAMP:
+    ldi     r0.w0, 0
+    xin     11, r2, 4
+    RESULT_BASE r5
+    sbbo    r2, r5, BISS_R_TIMESTAMP, 4
+    sbbo    r0.w2, r5, BISS_R_PROC_CLOCKS, 2
+    mov     r2, r5
+    jmp     r3.w0
+
 // ---- frames that end early ---------------------------------------------------
 // r12 = flags, r3 = the counter to increment; publish, wait for the slave.
 ABORT_FRAME:
@@ -936,15 +976,16 @@ ABORT_FRAME:
     lbbo    r4, r3, 0, 4
     add     r4, r4, 1
     sbbo    r4, r3, 0, 4
-    RESULT_BASE r2
+    jal     r3.w0, BUF_STAMP               // r2 = the result buffer
     jal     r0.w0, PUBLISH
     jal     r0.w0, CD_PREPARE
     jmp     FE_SLOW                         // wait for the slave, MA high, MAIN
 
 // No slave: the line delay is measured again once one answers (a slave
 // may come back on another cable, or in the middle of a frame).
+NO_SLAVE_IDLE:                              // SL low before a frame:
+    ldi     r0, 0                           // no busy clocks (BUF_STAMP)
 NO_ACK:                                     // after a rising edge: MA stays high
-NO_SLAVE_IDLE:                              // or SL low before a frame
     ldi     r2, 1
     sbco    r2.b0, c28, P_PROC + 2, 1       // training due
     ldi     r12, BISS_RF_NO_SLAVE
@@ -955,7 +996,6 @@ NO_SLAVE_IDLE:                              // or SL low before a frame
 // measurement all the same, and the average starts afresh from it (an
 // average gone wrong would make every frame miss its start bit).
 PROC_ERROR:                                 // after a rising edge: MA stays high
-    sbbo    r6, r9, BISS_R_PROC_CLOCKS, 2   // r9: the result buffer (no slave moved it)
     jal     r0.w0, HIST_FILL
     ldi     r12, BISS_RF_PROC_ERROR
     ldi     r3, BISS_ST_PROC_ERRORS
@@ -975,11 +1015,12 @@ TRAIN_GO:
     jal     r12.w0, FRAME_REGS
     ldi     r12, 2 * MA_MASK                // one clock after period 0's
     jmp     FRAME_CLOCKED
-TRAIN_DONE:                                 // r9: the result buffer (no slave moved it)
+TRAIN_DONE:
     lbco    r2.b0, c28, P_PROC + 2, 1
     qbne    SL_INIT_DONE, r2.b0, 1          // it was the INIT of a low SL
     jal     r0.w0, HIST_FILL                // r4.w0, r4.w2 = Q' too
-    sbbo    r4, r9, BISS_R_DELAY_RAW, 4     // and DELAY_AVG
+    jal     r3.w0, BUF_STAMP               // r2 = the result buffer (r4 kept)
+    sbbo    r4, r2, BISS_R_DELAY_RAW, 4     // and DELAY_AVG
     ldi     r2, 0
     sbco    r2.b0, c28, P_PROC + 2, 1       // training done
     sbco    r2.b0, c28, P_NSLAVES + 3, 1    // the average starts at this frame
@@ -1049,7 +1090,7 @@ CD_OP:
 CD_OP_LOW:
     and     r7, r7, 0x0f
 CD_OP_DONE:
-    jmp     r0.w2
+    jmp     r10.w2
 
 CD_PREPARE:
     lbco    r2, c28, P_CD, 20
@@ -1072,7 +1113,7 @@ CD_PREPARE:
     sbco    r7, c24, BISS_ST_CD_STATUS, 4
 CDP_RUN:
     mov     r8, r3.w0
-    jal     r0.w2, CD_OP
+    jal     r10.w2, CD_OP
     qbbs    CDP_OUT, r7, 4                  // past the end: CDM 0
     qbgt    CDP_STEP, r6.b2, CD_ERR
     qbeq    CDP_OUT, r7, BISS_CDOP_1        // an error ends the frame at the next master S
@@ -1102,7 +1143,7 @@ CDP_WAIT:
     // BISSC_SKIP_CTRL_SB?). CDS 1 ends the wait: send the next step now.
     ldi     r5.b0, MA_MASK
     add     r8, r3.w0, 1
-    jal     r0.w2, CD_OP
+    jal     r10.w2, CD_OP
     and     r7, r7, CD_PAST_END | 3
     qbeq    CDP_OUT, r7, BISS_CDOP_1        // 1 either way
     ldi     r5.b1, MA_MASK                  // 0 once CDS is 1
@@ -1116,8 +1157,9 @@ CDP_BAD:
     qba     CDP_OUT
 
 // After a frame with CDS r1.b1: returns the CDM it sent in r2.b0.
-// (Calls nest through r0.w0 and r0.w2: r0 is free outside the clocked part,
-// r13..r29 hold the slave records; r10 is the caller's.)
+// (Calls nest through r0.w0 and r10.w2 (CD_OP): r0.w2 keeps the busy
+// clocks for BUF_STAMP, r13..r29 hold the slave records, r10.b0 is the
+// caller's.)
 CD_COMMIT:
     lbco    r2, c28, P_CD, 20
     rsb     r7, r1.b1, 0                    // the CDM edge that went out
@@ -1147,7 +1189,7 @@ CDC_BIT0:
     ldi     r11, BISS_CDST_ERR_IDA << 4
     qbbs    CDC_ERR, r9, 0
 CDC_CLASS:
-    jal     r0.w2, CD_OP
+    jal     r10.w2, CD_OP
     lsr     r7, r7, 2
     qbeq    CDC_SENT_STEP, r7, BISS_CDCL_NONE
     qbne    CDC_FEED_S, r7, BISS_CDCL_CHECK
@@ -1171,7 +1213,7 @@ CDC_SENT_STEP:
     // the step that went out in this frame
     ldi     r3.w2, 0
     mov     r8, r3.w0
-    jal     r0.w2, CD_OP
+    jal     r10.w2, CD_OP
     qbbs    CDC_END, r7, 4
     qbgt    CDC_NOT_END, r6.b2, CD_ERR      // an error pending: a master S sent as 0
     qbne    CDC_NOT_END, r1.b0, 0           // ended the control frame (one that went out
@@ -1190,7 +1232,7 @@ CDC_WAITED:
     ldi     r6.w0, 0                        // the byte's CRCs start afresh
     set     r6.b2, r6.b2, CD_F_OPEN
     mov     r8, r3.w0
-    jal     r0.w2, CD_OP
+    jal     r10.w2, CD_OP
     qbbs    CDC_END, r7, 4
 CDC_SENT:
     clr     r6.b2, r6.b2, CD_F_CDM

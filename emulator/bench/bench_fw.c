@@ -54,6 +54,18 @@ void bench_fw_layout(const struct bench *b, struct biss_config *c) {
         const biss_slave_cfg *s = &sc->biss.s[i];
         struct biss_proto_word w = bench_fw_word(s);
         biss_proto_slave_layout(&w, s->crc_poly, s->crc_start, &c->slave[i]);
+        /* the scenario's safety checks (the host's, not the models') */
+        c->slave[i].life_check = sc->checks.life[i];
+        c->slave[i].life_bits = sc->checks.life[i] ? s->lc_bits : 0;
+    }
+    c->npairs = sc->checks.npairs;
+    for (unsigned k = 0; k < sc->checks.npairs && k < BISS_API_MAX_PAIRS; k++) {
+        c->pair[k] = (struct biss_pair_check){.a = sc->checks.pair[k].a,
+                                              .b = sc->checks.pair[k].b,
+                                              .shift_a = sc->checks.pair[k].shift_a,
+                                              .shift_b = sc->checks.pair[k].shift_b,
+                                              .tolerance = sc->checks.pair[k].tolerance,
+                                              .distinct_crc = sc->checks.pair[k].distinct_crc};
     }
 }
 

@@ -63,10 +63,12 @@ struct options {
     const char *cd_what; /* the option that asked for it */
     /* fast paths switched off (--no-fast-path) */
     int no_ff, no_ff_counted, no_ff_r31_bits, no_ff_loop_delay, no_ff_count_loop;
+    int no_fast_loop;
     /* strict and contention modes (emulator/core/TIMING.md) */
     unsigned strict, strict_window;
     int strict_log;
     const char *contend;
+    struct biss_config checks; /* --check-life, --check-pair (their fields only) */
 };
 
 static void usage(FILE *f) {
@@ -100,12 +102,18 @@ static void usage(FILE *f) {
                "  --svg-frame K      which frame the SVG shows (default 2); frames count from 1,\n"
                "                     as bissctl's: frame 1 is the first (BiSS-C: training)\n"
                "  --json             print the results as one JSON object\n"
+               "  --check-life S[,BITS]        the host's safety check of slave S's life\n"
+               "                               counter on every frame (as bissctl's)\n"
+               "  --check-pair A,B,TOL[,SA,SB] slaves A and B agree within TOL counts after\n"
+               "                               shifting left by SA, SB (their CRCs differ)\n"
                "  --no-fast-path P   run without the emulator's fast path P (results are the\n"
                "                     same, only slower): ff (idle loops, and with it the\n"
                "                     next four), ff-counted (polls with a time-out counter),\n"
                "                     ff-r31-bits (horizons of the R31 bits a loop tests),\n"
                "                     ff-loop-delay (LOOP delays run at once),\n"
-               "                     ff-count-loop (countdown delays run at once)\n"
+               "                     ff-count-loop (countdown delays run at once),\n"
+               "                     fast-loop (the core's threaded execute loop: every\n"
+               "                     instruction the general way)\n"
                "  --max-ms T         stop after T ms of simulated time (default: ample)\n"
                "  --strict[=RULES]   stop with a fault report on a construct of uncertain\n"
                "                     silicon behaviour in clocked code (between two MA edges\n"
@@ -164,10 +172,10 @@ static void list_profiles(void) {
 }
 
 /* Options that take a value. */
-static const char *const valued[] = {"--profile",  "--scenario", "--freq",      "--cable-m",
-                                     "--frames",   "--seed",     "--image",     "--soc",
-                                     "--vcd",      "--svg",      "--svg-frame", "--max-ms",
-                                     "--firmware", "--reg-read", "--reg-write", "--command"};
+static const char *const valued[] = {
+    "--profile",  "--scenario", "--freq",      "--cable-m", "--frames",     "--seed",
+    "--image",    "--soc",      "--vcd",       "--svg",     "--svg-frame",  "--max-ms",
+    "--firmware", "--reg-read", "--reg-write", "--command", "--check-life", "--check-pair"};
 /* ... and those of the waveform output and the fast paths */
 static const char *const valued_out[] = {"--vcd-timescale", "--no-fast-path", "--strict-window",
                                          "--contend",       "--pru",          "--pru1-profile",
@@ -284,6 +292,16 @@ static int set_option(struct options *o, const char *a, const char *v) {
         o->pru = (unsigned)(v[0] - '0');
     } else if (!strcmp(a, "--firmware")) {
         o->firmware = v;
+    } else if (!strcmp(a, "--check-life")) {
+        if (biss_safety_parse_life(v, &o->checks)) {
+            return die("--check-life: '%s' is not S[,BITS] (slave 0..7, 1..32 bits)", v);
+        }
+    } else if (!strcmp(a, "--check-pair")) {
+        if (biss_safety_parse_pair(v, &o->checks)) {
+            return die("--check-pair: '%s' is not A,B,TOL[,SHIFT_A,SHIFT_B] (slaves 0..7, shifts "
+                       "0..63; at most 4 pairs)",
+                       v);
+        }
     } else if (!strcmp(a, "--reg-read") || !strcmp(a, "--reg-write") || !strcmp(a, "--command")) {
         return set_control(o, a, v);
     } else if (!strcmp(a, "--soc")) {
@@ -311,9 +329,11 @@ static int set_option(struct options *o, const char *a, const char *v) {
             o->no_ff_loop_delay = 1;
         } else if (!strcmp(v, "ff-count-loop")) {
             o->no_ff_count_loop = 1;
+        } else if (!strcmp(v, "fast-loop")) {
+            o->no_fast_loop = 1;
         } else {
-            return die("--no-fast-path: '%s' is not ff, ff-counted, ff-r31-bits, ff-loop-delay "
-                       "or ff-count-loop",
+            return die("--no-fast-path: '%s' is not ff, ff-counted, ff-r31-bits, ff-loop-delay, "
+                       "ff-count-loop or fast-loop",
                        v);
         }
     } else if (!strcmp(a, "--strict-window")) {
@@ -403,6 +423,7 @@ static int build_config(const struct options *o, struct bench_config *cfg) {
     cfg->pru.ff_r31_bits = !o->no_ff_r31_bits;
     cfg->pru.ff_loop_delay = !o->no_ff_loop_delay;
     cfg->pru.ff_count_loop = !o->no_ff_count_loop;
+    cfg->pru.fast_loop = !o->no_fast_loop;
     cfg->pru.strict = o->strict;
     cfg->pru.strict_log = o->strict_log;
     if (o->strict_window) {
@@ -531,6 +552,28 @@ static int run_pair(const struct options *o, const struct bench_config *cfg, uns
     return rc;
 }
 
+/* The scenario's safety checks and the command line's, against the
+ * chain's layout: a specific message for each bad one. */
+static int safety_checks(const struct options *o, struct biss_config *c) {
+    int rc = biss_safety_merge(c, &o->checks);
+    if (!rc) {
+        rc = biss_safety_config_check(c);
+    }
+    switch (rc) {
+    case BISS_OK:
+        return 0;
+    case BISS_E_SAFETY_LIFE:
+        return die("safety checks: a life-counter check names a slave outside the chain or "
+                   "one without that many life-counter bits (BISS_E_SAFETY_LIFE)");
+    case BISS_E_SAFETY_CRC:
+        return die("safety checks: the two channels of a pair have the same CRC polynomial and "
+                   "start value; BiSS Safety tells them apart by it (BISS_E_SAFETY_CRC)");
+    default:
+        return die("safety checks: a pair names a slave outside the chain or a slave twice, "
+                   "more than 4 pairs, or a shifted position over 64 bits (BISS_E_SAFETY_PAIR)");
+    }
+}
+
 static int run(const struct options *o) {
     struct bench_config cfg;
     if (build_config(o, &cfg) != 0) {
@@ -578,6 +621,7 @@ static int run(const struct options *o) {
     struct fw_check fc;
     if (rc == 0 && fw_mode) {
         fw_check_attach(&fc, b);
+        rc = safety_checks(o, &fc.cfg);
         struct bench_fw_settings s = {
             .half = half, .trigger = BISS_TRIG_FREERUN, .proc_limit = 1000};
         bench_fw_configure(b, &s);

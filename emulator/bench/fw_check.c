@@ -118,8 +118,7 @@ static void keep(struct fw_frame *f, const struct biss_sample *smp) {
 }
 
 /* Counts one publication (below the limit). */
-static void count(struct fw_check *fc, const struct biss_shm_result *res,
-                  const struct biss_sample *smp) {
+static void count(struct fw_check *fc, const struct biss_shm_result *res, struct biss_sample *smp) {
     uint32_t flags = smp->flags;
     fc->publications++;
     fc->last_flags = flags;
@@ -140,6 +139,11 @@ static void count(struct fw_check *fc, const struct biss_shm_result *res,
     fc->sample_point = smp->sample_point;
     fc->lag = smp->lag_periods;
     fc->nslaves = smp->nslaves;
+    biss_safety_check(&fc->cfg, &fc->safety, smp);
+    if (smp->safety & BISS_SAFE_FAULTS) {
+        fc->safety_faults++;
+        fc->safety_first_fault = fc->safety_first_fault ? fc->safety_first_fault : smp->frame;
+    }
     if (!smp->valid) {
         return;
     }

@@ -132,6 +132,62 @@ static void add_firmware(cJSON *j, struct bench *b, const struct fw_check *fw) {
     cJSON_AddNumberToObject(f, "master_overhead_cycles", (mean - minimum) / PRU_PS_PER_CYCLE);
 }
 
+/* The host's safety checks over every publication, when any is set. */
+static bool any_safety(const struct fw_check *fw) {
+    bool any = fw->cfg.npairs > 0;
+    for (unsigned i = 0; i < fw->cfg.nslaves; i++) {
+        any = any || fw->cfg.slave[i].life_check;
+    }
+    return any;
+}
+
+static void add_safety(cJSON *j, const struct fw_check *fw) {
+    const struct biss_safety_stats *st = &fw->safety.stats;
+    cJSON *o = cJSON_AddObjectToObject(j, "safety");
+    cJSON_AddNumberToObject(o, "frames_flagged", (double)fw->safety_faults);
+    cJSON_AddNumberToObject(o, "first_flagged_frame", fw->safety_first_fault);
+    cJSON *lc = cJSON_AddArrayToObject(o, "life_counter");
+    for (unsigned i = 0; i < fw->cfg.nslaves; i++) {
+        if (fw->cfg.slave[i].life_check) {
+            cJSON *s = cJSON_CreateObject();
+            cJSON_AddNumberToObject(s, "slave", i);
+            cJSON_AddNumberToObject(s, "checked", st->lc_checked[i]);
+            cJSON_AddNumberToObject(s, "frozen", st->lc_frozen[i]);
+            cJSON_AddNumberToObject(s, "skipped", st->lc_skipped[i]);
+            cJSON_AddItemToArray(lc, s);
+        }
+    }
+    cJSON *pairs = cJSON_AddArrayToObject(o, "pairs");
+    for (unsigned k = 0; k < fw->cfg.npairs; k++) {
+        cJSON *p = cJSON_CreateObject();
+        cJSON_AddNumberToObject(p, "a", fw->cfg.pair[k].a);
+        cJSON_AddNumberToObject(p, "b", fw->cfg.pair[k].b);
+        cJSON_AddNumberToObject(p, "checked", st->pair_checked[k]);
+        cJSON_AddNumberToObject(p, "disagree", st->pair_disagree[k]);
+        cJSON_AddNumberToObject(p, "last_diff", (double)st->pair_last_diff[k]);
+        cJSON_AddItemToArray(pairs, p);
+    }
+}
+
+static void print_safety(const struct fw_check *fw) {
+    const struct biss_safety_stats *st = &fw->safety.stats;
+    for (unsigned i = 0; i < fw->cfg.nslaves; i++) {
+        if (fw->cfg.slave[i].life_check) {
+            printf("life counter %u       %u frames checked, %u frozen, %u skipped\n", i,
+                   st->lc_checked[i], st->lc_frozen[i], st->lc_skipped[i]);
+        }
+    }
+    for (unsigned k = 0; k < fw->cfg.npairs; k++) {
+        printf("pair %u (slaves %u, %u) %u frames checked, %u disagree, last difference %lld\n", k,
+               fw->cfg.pair[k].a, fw->cfg.pair[k].b, st->pair_checked[k], st->pair_disagree[k],
+               (long long)st->pair_last_diff[k]);
+    }
+    if (fw->safety_faults) {
+        printf("safety               %llu frames flagged, the first frame %u\n",
+               (unsigned long long)fw->safety_faults, fw->safety_first_fault);
+    }
+}
+
 static void add_control(cJSON *j, const struct fw_cd *cd) {
     cJSON *c = cJSON_AddObjectToObject(j, "control");
     const biss_cd_result *res = &cd->result;
@@ -173,6 +229,9 @@ void sim_print_json(const struct sim_result *r) {
     cJSON_AddItemToObject(j, "slaves", slaves_json(r));
     if (fw) {
         add_firmware(j, b, fw);
+    }
+    if (fw && any_safety(fw)) {
+        add_safety(j, fw);
     }
     if (r->cd) {
         add_control(j, r->cd);
@@ -294,6 +353,9 @@ void sim_print_text(const struct sim_result *r) {
            r->host_seconds);
     if (fw) {
         print_read(r);
+        if (any_safety(fw)) {
+            print_safety(fw);
+        }
     } else {
         print_sent(r);
     }

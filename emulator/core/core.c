@@ -17,6 +17,8 @@ void pru_params_default(struct pru_params *p) {
     p->load_iep_cycles = 3;
     p->load_ext_cycles = 36;
     p->xchg_swaps = 1;
+    p->xfr_shift_sub = 0;
+    p->xfr_shift_fill = 0;
     p->gpi_delay_ps = 2 * PRU_PS_PER_CYCLE;
     p->gpo_delay_ps = 0;
     p->shift_phase_ps = 0;
@@ -26,6 +28,7 @@ void pru_params_default(struct pru_params *p) {
     p->ff_r31_bits = 1;
     p->ff_loop_delay = 1;
     p->ff_count_loop = 1;
+    p->fast_loop = 1;
     p->strict = 0;
     p->strict_everywhere = 0;
     p->strict_window = PRU_STRICT_DEFAULT_WINDOW;
@@ -105,7 +108,7 @@ struct pru_core *pru_core_new(enum pru_soc soc, const struct pru_params *params)
     c->shared = calloc(1, c->shared_bytes ? c->shared_bytes : 1);
     c->iram0 = calloc(c->iram_words, 4);
     c->iram1 = calloc(c->iram_words, 4);
-    c->pd = calloc(c->iram_words, sizeof *c->pd);
+    c->pd = calloc(c->iram_words + 1u, sizeof *c->pd); /* + the end of IRAM (predecode.c) */
     if (!c->dram0 || !c->dram1 || !c->shared || !c->iram0 || !c->iram1 || !c->pd) {
         pru_core_free(c);
         return NULL;

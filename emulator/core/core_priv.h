@@ -29,6 +29,7 @@ enum {
     PD_BAD = PRU_OP_COUNT, /* no V3 instruction: a fault when executed */
     PD_SLOW,               /* fast loop: hand over to exec_one() */
     PD_R31_READ,           /* fast loop: refresh R31, then run `kind` */
+    PD_R30_WRITE,          /* fast loop: run `kind` (ALU or LDI), then tell the pins */
     /* fast loop: the same ops when the destination and rs1 are whole
      * registers (rN, no field), without the field shifts and masks */
     PD_ADD32,
@@ -37,6 +38,12 @@ enum {
     PD_QBEQ32,
     PD_QBBS32,
     PD_QBBC32,
+    /* ... and with an immediate op2 */
+    PD_ADD32I,
+    PD_SUB32I,
+    PD_QBNE32I,
+    PD_QBEQ32I,
+    PD_END, /* fast loop: one past the end of IRAM (leave the loop) */
     PD_KIND_END,
 };
 _Static_assert(PD_KIND_END <= UINT8_MAX, "struct pd keeps kinds in a uint8_t");
@@ -112,12 +119,12 @@ struct ext_window {
 };
 
 /* A loop body as the fast-forward decoded it (ff.c), kept while IRAM
- * holds the same words there. */
+ * is not written (pru_core.iram_gen). */
 #define FF_MAX_BODY 16u /* words; longer loops are not idle polls */
 #define FF_BODIES   8u  /* loop bodies kept (a firmware's period loops and its polls) */
 struct ff_body {
-    uint32_t top, pc; /* [top, pc], pc the closing branch; top > pc: none */
-    uint32_t words[FF_MAX_BODY];
+    uint32_t top, pc;  /* [top, pc], pc the closing branch; top > pc: none */
+    uint64_t iram_gen; /* IRAM's generation when decoded */
     uint32_t r31_mask; /* R31 bits it looks at */
     int counter;       /* a counted poll's counter register, -1 if it is none */
     uint32_t step;     /* ... added to it per iteration (mod 2^32) */
@@ -175,6 +182,7 @@ struct pru_core {
     int64_t stall_total; /* cycles in which no instruction was fetched */
     uint32_t loop_end, loop_top, loop_count;
     uint32_t iram_words;
+    uint64_t iram_gen; /* counts IRAM word changes (predecode_word) */
     struct pd *pd;
     bool stop;    /* leave the run loop after this instruction */
     bool recheck; /* ... and re-evaluate enable/sleep/step (not a stop) */

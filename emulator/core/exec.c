@@ -206,23 +206,40 @@ static inline __attribute__((always_inline)) bool exec_simple(uint32_t *restrict
         QB((rs1v(r, d) >> (op2v(r, d) & 31u)) & 1u);
     case PRU_OP_QBBC:
         QB(!((rs1v(r, d) >> (op2v(r, d) & 31u)) & 1u));
-    /* the whole-register forms (fast loop only): carry from bit 32 */
+    /* the whole-register forms (fast loop only): carry from bit 32 (ADD),
+     * NOT borrow (SUB) */
     case PD_ADD32: {
-        uint64_t sum = (uint64_t)r[d->rs1] + op2v(r, d);
-        *carry = (int)(sum >> 32);
-        r[d->rd] = (uint32_t)sum;
+        uint32_t a = r[d->rs1], sum = a + op2v(r, d);
+        *carry = sum < a;
+        r[d->rd] = sum;
         break;
     }
     case PD_SUB32: {
-        uint64_t dif = (uint64_t)r[d->rs1] - op2v(r, d);
-        *carry = (int)((dif >> 32) & 1u) ^ 1;
-        r[d->rd] = (uint32_t)dif;
+        uint32_t a = r[d->rs1], b = op2v(r, d);
+        *carry = a >= b;
+        r[d->rd] = a - b;
+        break;
+    }
+    case PD_ADD32I: {
+        uint32_t a = r[d->rs1];
+        *carry = a + d->imm < a;
+        r[d->rd] = a + d->imm;
+        break;
+    }
+    case PD_SUB32I: {
+        uint32_t a = r[d->rs1];
+        *carry = a >= d->imm;
+        r[d->rd] = a - d->imm;
         break;
     }
     case PD_QBNE32:
         QB(op2v(r, d) != r[d->rs1]);
     case PD_QBEQ32:
         QB(op2v(r, d) == r[d->rs1]);
+    case PD_QBNE32I:
+        QB(d->imm != r[d->rs1]);
+    case PD_QBEQ32I:
+        QB(d->imm == r[d->rs1]);
     case PD_QBBS32:
         QB((r[d->rs1] >> (op2v(r, d) & 31u)) & 1u);
     case PD_QBBC32:
@@ -369,8 +386,65 @@ void exec_recheck(struct pru_core *c) {
  * The hot path (no trace, no single step): register-only instructions run
  * here with PC, carry and counters in local variables; everything else goes
  * through exec_one(). Stops on limit, end of IRAM or anything setting stop.
+ *
+ * Threaded dispatch (computed goto, a GNU C extension that GCC and Clang
+ * have): every handler ends in its own jump to the next one, so the host's
+ * branch predictor sees one indirect jump per kind instead of one for all.
+ * A straight-line instruction never compares pc with the end of IRAM: the
+ * predecoded word one past it leaves the loop (PD_END), and quick branches
+ * out of IRAM go through exec_one() (predecode.c); only JMP and JAL check.
  */
 static void run_fast(struct pru_core *c, int64_t limit) {
+    /* every kind not named (PD_SLOW, ...) goes the slow way */
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Woverride-init"
+    static const void *const kinds[PD_KIND_END] = {
+        [0 ... PD_KIND_END - 1] = &&k_slow,
+        [PRU_OP_ADD] = &&k_add,
+        [PRU_OP_ADC] = &&k_adc,
+        [PRU_OP_SUB] = &&k_sub,
+        [PRU_OP_SUC] = &&k_suc,
+        [PRU_OP_LSL] = &&k_lsl,
+        [PRU_OP_LSR] = &&k_lsr,
+        [PRU_OP_RSB] = &&k_rsb,
+        [PRU_OP_RSC] = &&k_rsc,
+        [PRU_OP_AND] = &&k_and,
+        [PRU_OP_OR] = &&k_or,
+        [PRU_OP_XOR] = &&k_xor,
+        [PRU_OP_NOT] = &&k_not,
+        [PRU_OP_MIN] = &&k_min,
+        [PRU_OP_MAX] = &&k_max,
+        [PRU_OP_CLR] = &&k_clr,
+        [PRU_OP_SET] = &&k_set,
+        [PRU_OP_NOP0] = &&k_nop,
+        [PRU_OP_LDI] = &&k_ldi,
+        [PRU_OP_LMBD] = &&k_lmbd,
+        [PRU_OP_JMP] = &&k_jmp,
+        [PRU_OP_JAL] = &&k_jal,
+        [PRU_OP_QBGT] = &&k_qbgt,
+        [PRU_OP_QBGE] = &&k_qbge,
+        [PRU_OP_QBLT] = &&k_qblt,
+        [PRU_OP_QBLE] = &&k_qble,
+        [PRU_OP_QBEQ] = &&k_qbeq,
+        [PRU_OP_QBNE] = &&k_qbne,
+        [PRU_OP_QBA] = &&k_qba,
+        [PRU_OP_QBBS] = &&k_qbbs,
+        [PRU_OP_QBBC] = &&k_qbbc,
+        [PD_R31_READ] = &&k_r31,
+        [PD_R30_WRITE] = &&k_r30,
+        [PD_ADD32] = &&k_add32,
+        [PD_SUB32] = &&k_sub32,
+        [PD_QBNE32] = &&k_qbne32,
+        [PD_QBEQ32] = &&k_qbeq32,
+        [PD_QBBS32] = &&k_qbbs32,
+        [PD_QBBC32] = &&k_qbbc32,
+        [PD_ADD32I] = &&k_add32i,
+        [PD_SUB32I] = &&k_sub32i,
+        [PD_QBNE32I] = &&k_qbne32i,
+        [PD_QBEQ32I] = &&k_qbeq32i,
+        [PD_END] = &&out,
+    };
+#pragma GCC diagnostic pop
     const struct pd *pd = c->pd;
     const uint32_t n = c->iram_words;
     const bool ff = c->ff_on;
@@ -382,74 +456,222 @@ static void run_fast(struct pru_core *c, int64_t limit) {
      * more than one cycle, so the loop counts cycles alone */
     uint64_t ins_less = c->insns - (uint64_t)c->cycle;
     uint32_t loop_end = c->loop_end;
+    const struct pd *d;
+    uint32_t old;
 
 #define SYNC_OUT()                                                                                 \
     (c->pc = pc, c->carry = carry, c->cycle = cyc, c->insns = (uint64_t)cyc + ins_less)
 #define SYNC_IN()                                                                                  \
     (pc = c->pc, carry = c->carry, cyc = c->cycle, ins_less = c->insns - (uint64_t)c->cycle,       \
      loop_end = c->loop_end)
-    while (cyc < limit && pc < n) {
-        const struct pd *d = &pd[pc];
-        uint32_t old = pc;
-        bool done = exec_simple(r, d, d->fast, &pc, &carry);
-        if (!done && d->fast == PD_R31_READ) { /* kept off the path of the others */
-            r[31] = gpi_r31(c, cyc);
-            done = exec_simple(r, d, d->kind, &pc, &carry);
-        }
-        if (done) {
-            if (pc <= old && ff && !ff_backward_quick(c, old, pc)) {
-                SYNC_OUT();
-                ff_backward_branch(c, old, pc, limit);
-                SYNC_IN();
-            }
+    /* the next instruction, if the run has cycles left */
+#define DISPATCH()                                                                                 \
+    do {                                                                                           \
+        if (__builtin_expect(cyc >= limit, 0))                                                     \
+            goto out;                                                                              \
+        d = &pd[pc];                                                                               \
+        goto *kinds[d->fast];                                                                      \
+    } while (0)
+    /* after a one-cycle instruction that went on to pc + 1 */
+#define NEXT()                                                                                     \
+    do {                                                                                           \
+        cyc++;                                                                                     \
+        if (__builtin_expect(pc == loop_end, 0))                                                   \
+            goto at_loop_end;                                                                      \
+        DISPATCH();                                                                                \
+    } while (0)
+    /* after a branch from `old` (its target in IRAM): the fast-forward
+     * looks at a jump back before the branch's cycle is counted */
+#define BRANCHED()                                                                                 \
+    do {                                                                                           \
+        if (pc <= old && ff && !ff_backward_quick(c, old, pc)) {                                   \
+            SYNC_OUT();                                                                            \
+            ff_backward_branch(c, old, pc, limit);                                                 \
+            SYNC_IN();                                                                             \
+        }                                                                                          \
+        NEXT();                                                                                    \
+    } while (0)
+#define STRAIGHT(kind)                                                                             \
+    exec_simple(r, d, kind, &pc, &carry);                                                          \
+    NEXT()
+#define BRANCH(kind)                                                                               \
+    old = pc;                                                                                      \
+    exec_simple(r, d, kind, &pc, &carry);                                                          \
+    BRANCHED()
+
+top:
+    if (pc >= n)
+        goto out;
+    DISPATCH();
+
+k_add:
+    STRAIGHT(PRU_OP_ADD);
+k_adc:
+    STRAIGHT(PRU_OP_ADC);
+k_sub:
+    STRAIGHT(PRU_OP_SUB);
+k_suc:
+    STRAIGHT(PRU_OP_SUC);
+k_lsl:
+    STRAIGHT(PRU_OP_LSL);
+k_lsr:
+    STRAIGHT(PRU_OP_LSR);
+k_rsb:
+    STRAIGHT(PRU_OP_RSB);
+k_rsc:
+    STRAIGHT(PRU_OP_RSC);
+k_and:
+    STRAIGHT(PRU_OP_AND);
+k_or:
+    STRAIGHT(PRU_OP_OR);
+k_xor:
+    STRAIGHT(PRU_OP_XOR);
+k_not:
+    STRAIGHT(PRU_OP_NOT);
+k_min:
+    STRAIGHT(PRU_OP_MIN);
+k_max:
+    STRAIGHT(PRU_OP_MAX);
+k_clr:
+    STRAIGHT(PRU_OP_CLR);
+k_set:
+    STRAIGHT(PRU_OP_SET);
+k_nop:
+    STRAIGHT(PRU_OP_NOP0);
+k_ldi:
+    STRAIGHT(PRU_OP_LDI);
+k_lmbd:
+    STRAIGHT(PRU_OP_LMBD);
+k_add32:
+    STRAIGHT(PD_ADD32);
+k_sub32:
+    STRAIGHT(PD_SUB32);
+k_add32i:
+    STRAIGHT(PD_ADD32I);
+k_sub32i:
+    STRAIGHT(PD_SUB32I);
+k_qbgt:
+    BRANCH(PRU_OP_QBGT);
+k_qbge:
+    BRANCH(PRU_OP_QBGE);
+k_qblt:
+    BRANCH(PRU_OP_QBLT);
+k_qble:
+    BRANCH(PRU_OP_QBLE);
+k_qbeq:
+    BRANCH(PRU_OP_QBEQ);
+k_qbne:
+    BRANCH(PRU_OP_QBNE);
+k_qba:
+    BRANCH(PRU_OP_QBA);
+k_qbbs:
+    BRANCH(PRU_OP_QBBS);
+k_qbbc:
+    BRANCH(PRU_OP_QBBC);
+k_qbne32:
+    BRANCH(PD_QBNE32);
+k_qbeq32:
+    BRANCH(PD_QBEQ32);
+k_qbbs32:
+    BRANCH(PD_QBBS32);
+k_qbbc32:
+    BRANCH(PD_QBBC32);
+k_qbne32i:
+    BRANCH(PD_QBNE32I);
+k_qbeq32i:
+    BRANCH(PD_QBEQ32I);
+k_jmp:
+    old = pc;
+    exec_simple(r, d, PRU_OP_JMP, &pc, &carry);
+    goto jumped;
+k_jal:
+    old = pc;
+    exec_simple(r, d, PRU_OP_JAL, &pc, &carry);
+jumped: /* a register target may lie outside IRAM: exec_run() faults */
+    if (pc >= n) {
+        cyc++;
+        if (pc == loop_end) /* (a LOOP may end there too) */
+            goto at_loop_end;
+        goto out;
+    }
+    BRANCHED();
+k_r31: /* R31 read first; kept off the path of the others */
+    r[31] = gpi_r31(c, cyc);
+    old = pc;
+    exec_simple(r, d, d->kind, &pc, &carry);
+    if (pc != old + 1)
+        goto jumped;
+    NEXT();
+
+k_r30: /* as exec_one(): the pins see the new R30 at the end of its cycle */
+    exec_simple(r, d, d->kind, &pc, &carry);
+    if (r[30] != c->r30_pins) {
+        SYNC_OUT();
+        exec_r30_changed(c, cyc + 1);
+        SYNC_IN();
+        if (c->stop) { /* a pin callback stopped the core */
             cyc++;
             if (pc == loop_end) {
                 SYNC_OUT();
                 loop_back(c);
                 SYNC_IN();
             }
-            continue;
+            goto out;
         }
-        if (d->burst_bytes && (d->flags & PD_EFFECTS) == 0) {
-            /* a fixed-length burst without R31 or pin effects: what
-             * exec_one() does, without its checks, for speed */
-            unsigned cost = exec_burst(c, d, pc, cyc);
-            if (c->stop) {
-                /* a fault, or a store to a control register (which may have
-                 * reset the core): finish as exec_one() does, on the core */
-                if (c->fault.cause != PRU_FAULT_NONE)
-                    break;
-                c->carry = carry;
-                c->insns = (uint64_t)cyc + ins_less;
-                c->pc++;
-                c->cycle += cost;
-                c->stall_total += cost - 1;
-                c->insns++;
-                if (c->pc == c->loop_end)
-                    loop_back(c);
-                SYNC_IN();
-                break;
-            }
-            pc++;
-            cyc += cost;
-            ins_less -= cost - 1;
-            c->stall_total += cost - 1;
-            if (pc == loop_end) {
-                SYNC_OUT();
-                loop_back(c);
-                SYNC_IN();
-            }
-            continue;
-        }
-        SYNC_OUT();
-        exec_one(c, d, limit);
-        SYNC_IN();
-        if (c->stop)
-            break;
     }
+    NEXT();
+
+at_loop_end:
+    SYNC_OUT();
+    loop_back(c);
+    SYNC_IN();
+    goto top;
+
+k_slow:
+    if (d->burst_bytes && (d->flags & PD_EFFECTS) == 0) {
+        /* a fixed-length burst without R31 or pin effects: what
+         * exec_one() does, without its checks, for speed */
+        unsigned cost = exec_burst(c, d, pc, cyc);
+        if (c->stop) {
+            /* a fault, or a store to a control register (which may have
+             * reset the core): finish as exec_one() does, on the core */
+            if (c->fault.cause != PRU_FAULT_NONE)
+                goto out;
+            c->carry = carry;
+            c->insns = (uint64_t)cyc + ins_less;
+            c->pc++;
+            c->cycle += cost;
+            c->stall_total += cost - 1;
+            c->insns++;
+            if (c->pc == c->loop_end)
+                loop_back(c);
+            SYNC_IN();
+            goto out;
+        }
+        pc++;
+        cyc += cost;
+        ins_less -= cost - 1;
+        c->stall_total += cost - 1;
+        if (pc == loop_end)
+            goto at_loop_end;
+        goto top;
+    }
+    SYNC_OUT();
+    exec_one(c, d, limit);
+    SYNC_IN();
+    if (c->stop)
+        goto out;
+    goto top;
+
+out:
     SYNC_OUT();
 #undef SYNC_OUT
 #undef SYNC_IN
+#undef DISPATCH
+#undef NEXT
+#undef BRANCHED
+#undef STRAIGHT
+#undef BRANCH
 }
 
 enum pru_stop exec_run(struct pru_core *c, int64_t limit, bool one_step) {
@@ -479,7 +701,7 @@ enum pru_stop exec_run(struct pru_core *c, int64_t limit, bool one_step) {
             return PRU_STOP_FAULT;
         }
         bool stepping = one_step || (c->ctrl.control & PRU_CTRL_SINGLE_STEP);
-        if (c->trace_on || stepping || c->checked) {
+        if (c->trace_on || stepping || c->checked || !c->p.fast_loop) {
             const struct pd *d = &c->pd[c->pc];
             if (c->checked)
                 exec_checked(c, d, limit);

@@ -33,26 +33,53 @@ void rf_after_write(struct pru_core *c, unsigned start, unsigned n, int64_t end_
     }
 }
 
-/* XIN/XOUT on a scratch-pad bank (device 10, 11, 12). */
-static void xfr_spad(struct pru_core *c, unsigned op, uint8_t *bank, unsigned start, unsigned n) {
+#define CFG_SPP          0x34u     /* CFG scratch-pad priority and shift */
+#define SPP_XFR_SHIFT_EN (1u << 1) /* R0[4:0] offsets XFR to/from the banks */
+
+/* The register offset of the XFR shift: R0[4:0] with SPP.XFR_SHIFT_EN, else
+ * 0; negative when pru_params.xfr_shift_sub says the shift goes down. */
+static int xfr_shift(const struct pru_core *c) {
+    if (!(c->cfg_regs[CFG_SPP / 4] & SPP_XFR_SHIFT_EN))
+        return 0;
+    int s = (int)(c->r[0] & 0x1fu);
+    return c->p.xfr_shift_sub ? -s : s;
+}
+
+/* Bank byte for register-file byte b under shift s (modulo 32 registers);
+ * -1 for bank registers 30 and 31, which do not exist. */
+static int bank_byte(unsigned b, int s) {
+    unsigned reg = (unsigned)((int)(b / 4u) + s) & 0x1fu;
+    return 4u * reg >= SPAD_BYTES ? -1 : (int)(4u * reg + b % 4u);
+}
+
+/* XIN/XOUT/XCHG on a scratch-pad bank (device 10, 11, 12), register-file
+ * bytes [start, start + n), bank bytes shifted by s registers. */
+static int xfr_spad(struct pru_core *c, unsigned op, uint8_t *bank, unsigned start, unsigned n,
+                    int s) {
     bool in = op == PRU_OP_XIN || op == PRU_OP_SXIN;
     bool out = op == PRU_OP_XOUT || op == PRU_OP_SXOUT;
-    if (in || (!out && !c->p.xchg_swaps)) {
-        memcpy(rf(c) + start, bank + start, n);
-        rf_after_write(c, start, n, c->cycle + 1);
-    } else if (out) {
+    int map[RF_BYTES];
+    for (unsigned i = 0; i < n; i++)
+        if ((map[i] = bank_byte(start + i, s)) < 0)
+            return -1;
+    if (!in)
         rf_before_read(c, start, n);
-        memcpy(bank + start, rf(c) + start, n);
-        ff_dirty(c);
-    } else {
-        uint8_t tmp[RF_BYTES];
-        rf_before_read(c, start, n);
-        memcpy(tmp, rf(c) + start, n);
-        memcpy(rf(c) + start, bank + start, n);
-        memcpy(bank + start, tmp, n);
-        rf_after_write(c, start, n, c->cycle + 1);
-        ff_dirty(c);
+    for (unsigned i = 0; i < n; i++) {
+        uint8_t r = rf(c)[start + i], b = bank[map[i]];
+        if (in || (!out && !c->p.xchg_swaps)) {
+            rf(c)[start + i] = b;
+        } else if (out) {
+            bank[map[i]] = r;
+        } else {
+            rf(c)[start + i] = b;
+            bank[map[i]] = r;
+        }
     }
+    if (!out)
+        rf_after_write(c, start, n, c->cycle + 1);
+    if (!in)
+        ff_dirty(c);
+    return 0;
 }
 
 void exec_xfr(struct pru_core *c, const struct pd *d) {
@@ -61,20 +88,28 @@ void exec_xfr(struct pru_core *c, const struct pd *d) {
     unsigned start = 4u * in->rx + in->rxbyte;
     unsigned dev = in->dev;
     bool is_in = in->op == PRU_OP_XIN || in->op == PRU_OP_SXIN;
+    int s = xfr_shift(c);
 
     if (n == 0 || start + n > RF_BYTES) {
         core_fault(c, PRU_FAULT_BURST, dev);
         return;
     }
     if ((dev == 254u || dev == 255u) && is_in) { /* FILL / ZERO */
+        if (c->p.xfr_shift_fill && s) {
+            int at = (int)start + 4 * s;
+            if (at < 0 || at + (int)n > (int)RF_BYTES) {
+                core_fault(c, PRU_FAULT_BURST, dev);
+                return;
+            }
+            start = (unsigned)at;
+        }
         memset(rf(c) + start, dev == 255u ? 0x00 : 0xff, n);
         rf_after_write(c, start, n, c->cycle + 1);
     } else if (dev >= 10u && dev <= 12u) {
-        if (start + n > SPAD_BYTES) {
+        if (start + n > SPAD_BYTES || xfr_spad(c, in->op, c->spad[dev - 10u], start, n, s)) {
             core_fault(c, PRU_FAULT_BURST, dev);
             return;
         }
-        xfr_spad(c, in->op, c->spad[dev - 10u], start, n);
     } else {
         core_fault(c, PRU_FAULT_XFR_DEVICE, dev);
         return;

@@ -25,7 +25,8 @@
  * And a fourth (ff_count_loop): a delay written without LOOP, a backward
  * QBNE on a counter field against 0 whose body only steps that counter
  * down by one SUB of a constant and otherwise does what gives the same
- * result every turn (pads), runs its turns at once but the last.
+ * result every turn (pads), runs its turns at once (the last with them
+ * when the counter ends on 0 exactly).
  */
 #include "core_priv.h"
 #include "pru_isa.h"
@@ -196,7 +197,7 @@ static const struct ff_body *body(struct pru_core *c, uint32_t top, uint32_t pc)
     if (pc >= c->iram_words || n > FF_MAX_BODY)
         return NULL;
     const uint32_t *w = &c->iram0[top];
-    if (b->top == top && b->pc == pc && memcmp(b->words, w, n * 4) == 0)
+    if (b->top == top && b->pc == pc && b->iram_gen == c->iram_gen)
         return b;
     struct pru_insn in[FF_MAX_BODY];
     for (uint32_t i = 0; i < n; i++) {
@@ -206,7 +207,7 @@ static const struct ff_body *body(struct pru_core *c, uint32_t top, uint32_t pc)
             return NULL;
         }
     }
-    memcpy(b->words, w, n * 4);
+    b->iram_gen = c->iram_gen;
     b->top = top;
     b->pc = pc;
     b->r31_mask = r31_mask(in, n);
@@ -292,11 +293,14 @@ static int64_t repeat_room(struct pru_core *c, uint32_t top, uint32_t pc, int *x
 }
 
 /* A count loop's branch from pc back to top was taken, before its cycle
- * is counted: runs the turns after this one but the last (whose exit is
- * left to the core) at once, up to `limit` (which the caller has already
- * bounded by every event that may be observed). A turn takes one cycle an
- * instruction and leaves the counter 1..k above 0 while it goes on, with
- * no borrow: carry 1. Returns false if the body is no count loop. */
+ * is counted: runs the turns after this one at once, up to `limit` (which
+ * the caller has already bounded by every event that may be observed). A
+ * turn takes one cycle an instruction and leaves the counter 1..k above 0
+ * while it goes on, with no borrow: carry 1. When the counter ends on 0
+ * exactly and the limit allows, the last turn runs too (counter 0, no
+ * borrow: carry 1) and the core goes on after the loop (c->pc = pc + 1);
+ * otherwise the last turn and its exit are left to the core. Returns false
+ * if the body is no count loop. */
 static bool count_loop_skip(struct pru_core *c, uint32_t pc, uint32_t top, int64_t limit) {
     if (c->loop_end >= top && c->loop_end <= pc)
         return false; /* a LOOP ends inside: its turns are not alike */
@@ -310,6 +314,17 @@ static bool count_loop_skip(struct pru_core *c, uint32_t pc, uint32_t top, int64
     int64_t now = c->cycle + 1; /* the branch itself takes one cycle */
     int64_t n = v ? (int64_t)((v - 1) / b->cl_step) : 0;
     int64_t room = limit > now ? (limit - now) / len : 0;
+    if (v && v % b->cl_step == 0 && room > n) {
+        /* every turn to the end: the counter ends on 0 */
+        n++;
+        c->r[b->cl_reg] &= ~mask;
+        c->carry = 1;
+        c->cycle += n * len;
+        c->insns += (uint64_t)(n * len);
+        c->ff.skipped += (uint64_t)n;
+        c->pc = pc + 1;
+        return true;
+    }
     if (room < n)
         n = room;
     if (n > 0) {

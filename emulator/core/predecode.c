@@ -114,20 +114,22 @@ static void decode_into(struct pd *d, const struct pru_insn *in, uint32_t pc) {
     d->kind = PD_BAD;
 }
 
-/* The whole-register form of a fast kind (PD_ADD32 ...), or the kind. A
- * further split by immediate op2 measured slower on the countdown loop. */
+/* The whole-register form of a fast kind (PD_ADD32 ...), or the kind; with
+ * the threaded dispatch of the fast loop, an immediate op2 has forms of its
+ * own too (PD_ADD32I ...). */
 static uint8_t whole_register_kind(const struct pd *d) {
     bool rs1 = d->rs1sh == 0 && d->rs1mask == 0xffffffffu;
     bool rd = d->rdsh == 0 && d->rdmask == 0xffffffffu;
+    bool imm = d->rs2 == ZERO_REG;
     switch (d->fast) {
     case PRU_OP_ADD:
-        return rs1 && rd ? PD_ADD32 : d->fast;
+        return rs1 && rd ? (imm ? PD_ADD32I : PD_ADD32) : d->fast;
     case PRU_OP_SUB:
-        return rs1 && rd ? PD_SUB32 : d->fast;
+        return rs1 && rd ? (imm ? PD_SUB32I : PD_SUB32) : d->fast;
     case PRU_OP_QBNE:
-        return rs1 ? PD_QBNE32 : d->fast;
+        return rs1 ? (imm ? PD_QBNE32I : PD_QBNE32) : d->fast;
     case PRU_OP_QBEQ:
-        return rs1 ? PD_QBEQ32 : d->fast;
+        return rs1 ? (imm ? PD_QBEQ32I : PD_QBEQ32) : d->fast;
     case PRU_OP_QBBS:
         return rs1 ? PD_QBBS32 : d->fast;
     case PRU_OP_QBBC:
@@ -139,6 +141,7 @@ static uint8_t whole_register_kind(const struct pd *d) {
 
 void predecode_word(struct pru_core *c, uint32_t pc) {
     struct pd *d = &c->pd[pc];
+    c->iram_gen++; /* what ff.c decoded from IRAM may be out of date */
     memset(d, 0, sizeof *d);
     struct pru_insn in;
     if (pru_decode(c->iram0[pc], &in) != 0) {
@@ -152,10 +155,24 @@ void predecode_word(struct pru_core *c, uint32_t pc) {
               : d->flags == 0                                     ? d->kind
               : d->flags == PD_READS_R31                          ? PD_R31_READ
                                                                   : PD_SLOW;
+    /* a branch out of IRAM faults: exec_one() takes it, the fast loop
+     * checks only the targets of JMP and JAL */
+    enum pru_fmt f = d->kind == PD_BAD ? PRU_FMT_PSEUDO : (enum pru_fmt)pru_optable[d->kind].fmt;
+    if (d->fast == PD_SLOW && d->flags == PD_WRITES_R30 && (f == PRU_FMT_ALU || f == PRU_FMT_LDI) &&
+        pru_op_register_only(d->kind))
+        d->fast = PD_R30_WRITE; /* the MA edges of a clocked loop */
+    if ((f == PRU_FMT_QB || f == PRU_FMT_QBA || f == PRU_FMT_QBB) && d->target >= c->iram_words)
+        d->fast = PD_SLOW;
     d->fast = whole_register_kind(d);
 }
 
 void predecode_all(struct pru_core *c) {
     for (uint32_t pc = 0; pc < c->iram_words; pc++)
         predecode_word(c, pc);
+    /* one past the last word: the fast loop leaves there, so that it never
+     * compares pc with the end of IRAM after a straight-line instruction */
+    struct pd *end = &c->pd[c->iram_words];
+    memset(end, 0, sizeof *end);
+    end->kind = PD_BAD;
+    end->fast = PD_END;
 }

@@ -53,6 +53,15 @@ struct pru_params {
     unsigned load_ext_cycles;
     /* XCHG to a scratch pad: 1 swaps register and bank, 0 behaves like XIN. */
     int xchg_swaps;
+    /* The scratch-pad register shift (CFG SPP bit 1, XFR_SHIFT_EN: R0[4:0] is
+     * an offset in 32-bit registers for XIN/XOUT/XCHG on banks 10-12; TIMING.md
+     * "Scratch pad"). TI states the offset, not its direction: 0 (default)
+     * bank register = register + R0[4:0], 1 = register - R0[4:0]; either way
+     * modulo 32 (a 5-bit field), and a byte landing on bank register 30 or 31
+     * (no such register) faults. xfr_shift_fill 1: ZERO/FILL move by the
+     * same offset in the register file (default 0: unaffected). */
+    int xfr_shift_sub;
+    int xfr_shift_fill;
     /* GPI synchronizer: R31 read at cycle c sees the pins at c*5000 - gpi_delay_ps;
      * the shift register samples DATAIN at edge - gpi_delay_ps. */
     int64_t gpi_delay_ps;
@@ -82,6 +91,11 @@ struct pru_params {
      * a constant, every other instruction of the body giving the same
      * result each turn: a delay) runs its turns at once. */
     int ff_count_loop;
+    /* Run register-only instructions, fixed-length bursts and R30 writes of
+     * ALU instructions in the threaded fast loop (exec.c run_fast); 0: every
+     * instruction through the general path, one at a time (results are
+     * identical). */
+    int fast_loop;
 
     /* Strict mode (TIMING.md "Strict mode"): the PRU_STRICT_* rules checked,
      * 0 = off. A rule broken stops the core with PRU_FAULT_STRICT, or with

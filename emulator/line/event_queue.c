@@ -69,7 +69,11 @@ void eq_free(event_queue *q) {
     q->len = q->cap = 0;
 }
 
-eq_id eq_schedule(event_queue *q, sim_ps t, eq_fn fn, void *ctx, int64_t arg) {
+eq_id eq_take_id(event_queue *q) {
+    return q->next_id++;
+}
+
+eq_id eq_schedule_as(event_queue *q, sim_ps t, eq_id id, eq_fn fn, void *ctx, int64_t arg) {
     if (q->len == q->cap) {
         size_t cap = q->cap ? q->cap * 2 : 16;
         eq_event *heap = realloc(q->heap, cap * sizeof *heap);
@@ -79,9 +83,6 @@ eq_id eq_schedule(event_queue *q, sim_ps t, eq_fn fn, void *ctx, int64_t arg) {
         q->heap = heap;
         q->cap = cap;
     }
-    /* The id is taken before sifting: the new event may move up the heap,
-     * and the slot it was written to then holds another event. */
-    eq_id id = q->next_id++;
     q->heap[q->len] = (eq_event){
         .t = t < q->now ? q->now : t, /* never schedule into the past */
         .id = id,
@@ -91,6 +92,12 @@ eq_id eq_schedule(event_queue *q, sim_ps t, eq_fn fn, void *ctx, int64_t arg) {
     };
     sift_up(q, q->len++);
     return id;
+}
+
+eq_id eq_schedule(event_queue *q, sim_ps t, eq_fn fn, void *ctx, int64_t arg) {
+    /* The id is taken before sifting: the new event may move up the heap,
+     * and the slot it was written to then holds another event. */
+    return eq_schedule_as(q, t, eq_take_id(q), fn, ctx, arg);
 }
 
 int eq_cancel(event_queue *q, eq_id id) {

@@ -39,6 +39,17 @@ void eq_free(event_queue *q);
  * Returns the event's id, or 0 if memory ran out. */
 eq_id eq_schedule(event_queue *q, sim_ps t, eq_fn fn, void *ctx, int64_t arg);
 
+/* The id the next eq_schedule() would give, taken now without scheduling
+ * anything: with eq_schedule_as() an event can be scheduled later where it
+ * would have run had it been scheduled now (among events at its time). A
+ * component that moves one deadline often (a timeout restarted by every
+ * edge) keeps one event pending and, when it fires early, schedules it
+ * again under the id it took when the deadline last moved. */
+eq_id eq_take_id(event_queue *q);
+
+/* eq_schedule() under an id from eq_take_id() (not otherwise used). */
+eq_id eq_schedule_as(event_queue *q, sim_ps t, eq_id id, eq_fn fn, void *ctx, int64_t arg);
+
 /* Removes a pending event. Returns 1 if it was pending, 0 otherwise (already
  * run, cancelled, or id 0), so callers may cancel unconditionally. */
 int eq_cancel(event_queue *q, eq_id id);

@@ -13,6 +13,8 @@ void biss_slave_cfg_default(biss_slave_cfg *s, uint8_t id) {
     s->has_err = s->has_warn = true;
     s->crc_poly = 0x43;
     s->cmd_exec = BISS_CTRL_CMD_EXEC_DEFAULT;
+    s->lc_fault_frame = 1;
+    s->pos_fault_frame = 1;
     regfile_init(&s->regs, 1);
 }
 
@@ -64,6 +66,9 @@ const char *biss_slave_cfg_check(const biss_slave_cfg *s) {
     }
     if (s->lc_bits > 32) {
         return "life_counter_bits: must be 0..32";
+    }
+    if (s->lc_fault != BISS_LC_FAULT_NONE && s->lc_bits == 0) {
+        return "life_counter_fault: the slave has no life counter (life_counter_bits 0)";
     }
     if (biss_slave_cfg_data_bits(s) > 64) {
         return "position_bits: with fill_bits, nE, nW and life_counter_bits more than 64 data "
@@ -194,11 +199,31 @@ static void push_bits(biss_slave *b, uint64_t v, unsigned n, uint32_t *crc, uint
     }
 }
 
+/* How far the life counter moves from frame n - 1 to frame n (n from 1):
+ * one, or what an injected fault makes of it. */
+static uint32_t lc_step(const biss_slave_cfg *s, uint64_t n) {
+    if (s->lc_fault == BISS_LC_FAULT_NONE || n < s->lc_fault_frame) {
+        return 1;
+    }
+    return s->lc_fault == BISS_LC_FAULT_FROZEN ? 0 : 2;
+}
+
+/* The position as sent: the sensor's, or off by the injected fault (one
+ * channel of a two-channel encoder disagreeing with the other). */
+static uint64_t sent_position(const biss_slave *b, unsigned i, sim_ps t) {
+    const biss_slave_cfg *s = &b->cfg.s[i];
+    uint64_t p = biss_slave_position_at(b, i, t);
+    if (s->pos_fault_offset && b->cur.frame + 1 >= s->pos_fault_frame) {
+        p = (p + s->pos_fault_offset) & mask_bits(s->pos_bits);
+    }
+    return p;
+}
+
 static void build_slave_data(biss_slave *b, unsigned i, sim_ps t) {
     const biss_slave_cfg *s = &b->cfg.s[i];
     biss_slave_sent *rec = &b->cur.s[i];
     uint32_t crc = s->crc_start;
-    rec->position = biss_slave_position_at(b, i, t);
+    rec->position = sent_position(b, i, t);
     push_bits(b, rec->position, s->pos_bits, &crc, s->crc_poly);
     push_bits(b, 0, s->fill_bits, &crc, s->crc_poly);
     rec->nE = s->has_err ? !s->error : -1;
@@ -211,7 +236,7 @@ static void build_slave_data(biss_slave *b, unsigned i, sim_ps t) {
     }
     rec->lc = (uint32_t)(b->lc[i] & mask_bits(s->lc_bits));
     push_bits(b, rec->lc, s->lc_bits, &crc, s->crc_poly);
-    b->lc[i]++;
+    b->lc[i] += lc_step(s, b->cur.frame + 2); /* the value of the next frame */
     unsigned w = biss_crc_width(s->crc_poly);
     rec->crc = (uint32_t)(~crc & mask_bits(w));
     push_bits(b, rec->crc, w, NULL, 0);
@@ -269,6 +294,14 @@ static void on_timeout(void *ctx, sim_ps t, int64_t arg) {
     (void)arg;
     biss_slave *b = ctx;
     b->timeout_ev = 0;
+    if (t < b->timeout_due) {
+        /* MA moved since this was scheduled: on to the deadline it moved
+         * to, in the order the event would have had if scheduled then */
+        b->timeout_ev =
+            eq_schedule_as(b->q, b->timeout_due, b->timeout_due_order, on_timeout, b, 0);
+        b->timeout_ev_at = b->timeout_due;
+        return;
+    }
     if (b->phase != BISS_ACTIVE) {
         return;
     }
@@ -291,9 +324,20 @@ static void on_timeout(void *ctx, sim_ps t, int64_t arg) {
     close_frame(b, t);
 }
 
+/* Every MA edge restarts the timeout. Rather than cancel and schedule an
+ * event each time, a pending event due no later than the new deadline stays
+ * and moves on when it fires (on_timeout); the deadline takes its order
+ * among events of its time now (eq_take_id), so everything runs as if
+ * the event had been scheduled here. */
 static void restart_timeout(biss_slave *b, sim_ps t) {
+    b->timeout_due = t + timeout_len(b);
+    b->timeout_due_order = eq_take_id(b->q);
+    if (b->timeout_ev && b->timeout_ev_at <= b->timeout_due) {
+        return;
+    }
     eq_cancel(b->q, b->timeout_ev);
-    b->timeout_ev = eq_schedule(b->q, t + timeout_len(b), on_timeout, b, 0);
+    b->timeout_ev = eq_schedule_as(b->q, b->timeout_due, b->timeout_due_order, on_timeout, b, 0);
+    b->timeout_ev_at = b->timeout_due;
 }
 
 /* ---- MA edges ---- */

@@ -40,6 +40,13 @@
 #define BISS_MAX_FRAME_BITS 2048
 #define BISS_RECORD_RING    256
 
+/* An injected life-counter fault (for the master's safety checks). */
+typedef enum {
+    BISS_LC_FAULT_NONE,
+    BISS_LC_FAULT_FROZEN, /* the counter stops: frame N sends frame N-1's value, and on */
+    BISS_LC_FAULT_SKIP,   /* the counter advances by 2 per frame from frame N on */
+} biss_lc_fault;
+
 typedef struct {
     uint8_t id;             /* control-frame ID, 0..7 */
     unsigned pos_bits;      /* 1..64: position / data word (MT+ST, A/D, ...) */
@@ -57,6 +64,12 @@ typedef struct {
                                  communication is another chain slave's
                                  (same ID); it never answers a CDM */
     regfile regs;
+    /* Faults injected from a frame on (frames count from 1, as biss-sim
+     * and bissctl count them: 1 is the first frame the slave sees). */
+    biss_lc_fault lc_fault;
+    unsigned lc_fault_frame;
+    uint64_t pos_fault_offset; /* added to the position sent (mod 2^pos_bits) ... */
+    unsigned pos_fault_frame;  /* ... from this frame on */
 } biss_slave_cfg;
 
 typedef enum { BISS_TIMEOUT_FIXED, BISS_TIMEOUT_ADAPTIVE } biss_timeout_mode;
@@ -130,10 +143,13 @@ typedef struct {
     bool started;
     unsigned bit, nbits;
     uint8_t bits[BISS_MAX_FRAME_BITS];
-    int sl_sched; /* SL level after the last scheduled change */
-    eq_id timeout_ev;
-    int cds;   /* CDS for the next frame */
-    bool lost; /* SL held low since lost_at (biss_slave_lose_sync) */
+    int sl_sched;            /* SL level after the last scheduled change */
+    eq_id timeout_ev;        /* the pending timeout event, 0 none */
+    sim_ps timeout_ev_at;    /* ... its time */
+    sim_ps timeout_due;      /* when the timeout is due: at or after timeout_ev_at */
+    eq_id timeout_due_order; /* ... the event's place among events at that time */
+    int cds;                 /* CDS for the next frame */
+    bool lost;               /* SL held low since lost_at (biss_slave_lose_sync) */
     sim_ps lost_at;
 
     biss_frame_record cur;

@@ -127,6 +127,32 @@ static void ad38(scenario *s) {
     b->s[2].id = 0;
 }
 
+/* A BiSS Safety style encoder: two position words from two daisy-chained
+ * sensors, the control position word (CPW, slave 0) and the safety
+ * position word (SPW, slave 1), each with nE/nW, a sign-of-life counter
+ * and its own CRC (biss-interface.com, "BiSS Safety", System and Data
+ * Channels; iC-Haus "BiSS Safety Concept" A3: one or two BiSS slaves).
+ * Both CRCs are the 16-bit 0x190D9, told apart by their start values as
+ * the iC-MB4 datasheet describes ("CRC start value", Table 16: start
+ * values "to safely differentiate between single-cycle data words e.g.
+ * two position words provided by two different sensors"). Resolutions,
+ * counter width, start value 0x5A5A and speed: model choices (MODELS.md). */
+static void biss_safety(scenario *s) {
+    base(s, "biss-safety-two-channel");
+    biss_chain_cfg *b = &s->biss;
+    b->n = 2;
+    b->s[0].pos_bits = 24; /* CPW: the fine sensor */
+    b->s[0].lc_bits = 6;
+    b->s[0].crc_poly = 0x190D9;
+    b->s[0].crc_start = 0x0000;    /* [MB4]: "a typical default slave CRC start value" */
+    b->s[0].speed_cps = 1048576.0; /* 2^20 counts/s: 1/16 turn per second */
+    b->s[1].pos_bits = 20;         /* SPW: a coarser second sensor on the same shaft */
+    b->s[1].lc_bits = 6;
+    b->s[1].crc_poly = 0x190D9;
+    b->s[1].crc_start = 0x5A5A;
+    b->s[1].speed_cps = 65536.0; /* the same motion at 1/16 the resolution */
+}
+
 static void generic(scenario *s) {
     base(s, "generic");
     s->biss.s[0].speed_cps = 50000.0;
@@ -146,6 +172,7 @@ static const struct {
     {"tidep0022-test-encoder", tidep0022},
     {"posital-kit-layout-biss-c", posital},
     {"hengstler-ad38", ad38},
+    {"biss-safety-two-channel", biss_safety},
     {"generic", generic},
     {"ssi", ssi},
 };

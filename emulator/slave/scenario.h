@@ -14,6 +14,20 @@
 
 typedef enum { SCENARIO_BISS, SCENARIO_SSI } scenario_protocol;
 
+/* The master's safety checks for this set-up (JSON "checks"): not the
+ * models', but the host's (libbiss's biss_config: life_check, pair), so
+ * that a scenario with a fault also says what must catch it. */
+#define SCENARIO_MAX_PAIRS 4
+typedef struct {
+    bool life[BISS_MAX_SLAVES]; /* check slave i's life counter (its life_counter_bits) */
+    unsigned npairs;
+    struct {
+        unsigned a, b, shift_a, shift_b;
+        uint64_t tolerance;
+        bool distinct_crc; /* default true: two channels, their CRCs differ */
+    } pair[SCENARIO_MAX_PAIRS];
+} scenario_checks;
+
 typedef struct {
     char profile[48]; /* name of the profile it started from */
     scenario_protocol protocol;
@@ -22,6 +36,7 @@ typedef struct {
     line_params ma_line; /* master -> slave */
     line_params sl_line; /* slave -> master */
     uint64_t seed;
+    scenario_checks checks;
 } scenario;
 
 /* Fills s with the named profile. Returns 0, or -1 for an unknown name. */

@@ -64,6 +64,40 @@ static int check_biss(const biss_chain_cfg *b, char *err, size_t errlen) {
     return 0;
 }
 
+/* The checks name slaves of the chain; a life counter checked exists. */
+static int check_checks(const scenario *s, char *err, size_t errlen) {
+    const scenario_checks *c = &s->checks;
+    unsigned n = s->protocol == SCENARIO_BISS ? s->biss.n : 0;
+    for (unsigned i = 0; i < BISS_MAX_SLAVES; i++) {
+        if (c->life[i] && i >= n) {
+            snprintf(err, errlen, "checks.life_counter: slave %u is not in the chain (%u slaves)",
+                     i, n);
+            return -1;
+        }
+        if (c->life[i] && s->biss.s[i].lc_bits == 0) {
+            snprintf(err, errlen,
+                     "checks.life_counter: slave %u has no life counter (life_counter_bits 0)", i);
+            return -1;
+        }
+    }
+    for (unsigned k = 0; k < c->npairs; k++) {
+        unsigned a = c->pair[k].a, b = c->pair[k].b;
+        if (a >= n || b >= n || a == b) {
+            snprintf(err, errlen,
+                     "checks.pairs[%u]: slaves %u and %u: two different slaves of the chain "
+                     "(%u slaves)",
+                     k, a, b, n);
+            return -1;
+        }
+        if (s->biss.s[a].pos_bits + c->pair[k].shift_a > 64 ||
+            s->biss.s[b].pos_bits + c->pair[k].shift_b > 64) {
+            snprintf(err, errlen, "checks.pairs[%u]: a shifted position wider than 64 bits", k);
+            return -1;
+        }
+    }
+    return 0;
+}
+
 int scenario_check(const scenario *s, char *err, size_t errlen) {
     if (sf_check_all(sf_top, s, "", err, errlen) || check_lines(s, err, errlen)) {
         return -1;
@@ -77,7 +111,10 @@ int scenario_check(const scenario *s, char *err, size_t errlen) {
             snprintf(err, errlen, "ssi.%s", e);
             return -1;
         }
-        return 0;
+        return check_checks(s, err, errlen);
     }
-    return check_biss(&s->biss, err, errlen);
+    if (check_biss(&s->biss, err, errlen)) {
+        return -1;
+    }
+    return check_checks(s, err, errlen);
 }

@@ -28,6 +28,8 @@
  * 2.3e6 s) this stays below 2^63. */
 #define MAX_SPEED 1e12
 #define U64_MAX_D 18446744073709551615.0
+/* Frame numbers as biss-sim counts them (1 = the first), in an unsigned. */
+#define MAX_FRAME_NO 4294967295.0
 
 const sf_field sf_line[] = {
     L("length_m", SF_DOUBLE, length_m, 1, 0, 1000),
@@ -72,6 +74,9 @@ const sf_field sf_slave[] = {
     S("speed_cps", SF_DOUBLE, speed_cps, 1, -MAX_SPEED, MAX_SPEED),
     S("register_processing_frames", SF_UNSIGNED, reg_proc_frames, 0, 0, 1000),
     S("command_execute_bit", SF_U8, cmd_exec, 0, 0, 1),
+    S("life_counter_fault_frame", SF_UNSIGNED, lc_fault_frame, 0, 1, MAX_FRAME_NO),
+    S("position_fault_offset", SF_U64, pos_fault_offset, 0, 0, U64_MAX_D),
+    S("position_fault_frame", SF_UNSIGNED, pos_fault_frame, 0, 1, MAX_FRAME_NO),
     END,
 };
 

@@ -228,6 +228,19 @@ static int parse_flags(ctx *c, const cJSON *arr, const char *field, regfile *r, 
     return 0;
 }
 
+static int parse_lc_fault(ctx *c, const cJSON *item, biss_lc_fault *f) {
+    static const char *names[] = {"none", "frozen", "skip"};
+    if (cJSON_IsString(item)) {
+        for (int i = 0; i < 3; i++) {
+            if (strcmp(item->valuestring, names[i]) == 0) {
+                *f = (biss_lc_fault)i;
+                return 0;
+            }
+        }
+    }
+    return fail(c, "life_counter_fault", "expected \"none\", \"frozen\" or \"skip\"");
+}
+
 static int parse_slave(ctx *c, const cJSON *obj, biss_slave_cfg *s) {
     /* the bank count first, so "registers" may fill any bank whatever the
      * order of the fields */
@@ -266,6 +279,8 @@ static int parse_slave(ctx *c, const cJSON *obj, biss_slave_cfg *s) {
             r = parse_flags(c, it, k, &s->regs, REG_WP);
         } else if (!strcmp(k, "protect")) {
             r = get_bool(c, it, k, &s->regs.protect);
+        } else if (!strcmp(k, "life_counter_fault")) {
+            r = parse_lc_fault(c, it, &s->lc_fault);
         } else {
             r = fail(c, k, "unknown field");
         }
@@ -358,6 +373,92 @@ static int parse_ssi(ctx *c, const cJSON *obj, ssi_cfg *s) {
     return 0;
 }
 
+/* ---- the master's safety checks ---- */
+
+static const sf_field sf_pair[] = {
+    {"a", SF_UNSIGNED, 0, 0, 0, BISS_MAX_SLAVES - 1},
+    {"b", SF_UNSIGNED, 0, 0, 0, BISS_MAX_SLAVES - 1},
+    {"shift_a", SF_UNSIGNED, 0, 0, 0, 63},
+    {"shift_b", SF_UNSIGNED, 0, 0, 0, 63},
+    {"tolerance", SF_U64, 0, 0, 0, 18446744073709551615.0},
+};
+
+static int parse_pair(ctx *c, const cJSON *obj, scenario_checks *k, unsigned i) {
+    k->pair[i].distinct_crc = true;
+    void *where[] = {&k->pair[i].a, &k->pair[i].b, &k->pair[i].shift_a, &k->pair[i].shift_b,
+                     &k->pair[i].tolerance};
+    bool has_a = false, has_b = false;
+    const cJSON *it;
+    cJSON_ArrayForEach(it, obj) {
+        const char *n = it->string;
+        int r = -1;
+        size_t f = 0;
+        while (f < 5 && strcmp(sf_pair[f].name, n)) {
+            f++;
+        }
+        if (f < 5) {
+            r = parse_field(c, it, &sf_pair[f], where[f]);
+            has_a |= f == 0;
+            has_b |= f == 1;
+        } else if (!strcmp(n, "distinct_crc")) {
+            r = get_bool(c, it, n, &k->pair[i].distinct_crc);
+        } else {
+            r = fail(c, n, "unknown field");
+        }
+        if (r) {
+            return -1;
+        }
+    }
+    return has_a && has_b ? 0 : fail(c, has_a ? "b" : "a", "missing (the pair's two slaves)");
+}
+
+static int parse_checks(ctx *c, const cJSON *obj, scenario_checks *k) {
+    const cJSON *it;
+    cJSON_ArrayForEach(it, obj) {
+        const char *n = it->string;
+        size_t saved = strlen(c->path);
+        int r = 0;
+        if (!strcmp(n, "life_counter")) {
+            if (!cJSON_IsArray(it)) {
+                r = fail(c, n, "expected an array of slave indices (0..7)");
+            }
+            const cJSON *e;
+            int i = 0;
+            cJSON_ArrayForEach(e, it) {
+                unsigned v = 0;
+                char name[32];
+                snprintf(name, sizeof name, "life_counter[%d]", i++);
+                if (!r && !(r = get_whole(c, e, name, BISS_MAX_SLAVES - 1, &v))) {
+                    k->life[v] = true;
+                }
+            }
+        } else if (!strcmp(n, "pairs")) {
+            int cnt = cJSON_GetArraySize(it);
+            if (!cJSON_IsArray(it) || cnt > SCENARIO_MAX_PAIRS) {
+                r = fail(c, n, "expected an array of at most 4 pair objects");
+            } else {
+                k->npairs = (unsigned)cnt;
+                for (int i = 0; i < cnt && !r; i++) {
+                    const cJSON *po = cJSON_GetArrayItem(it, i);
+                    push(c, "pairs[%d]", i);
+                    r = cJSON_IsObject(po) ? parse_pair(c, po, k, (unsigned)i)
+                                           : fail(c, NULL, "expected an object");
+                    if (!r) {
+                        pop(c, saved);
+                    }
+                }
+            }
+        } else {
+            r = fail(c, n, "unknown field");
+        }
+        if (r) {
+            return -1;
+        }
+        pop(c, saved);
+    }
+    return 0;
+}
+
 /* ---- top level ---- */
 
 static int parse_top(ctx *c, const cJSON *root, scenario *s) {
@@ -407,6 +508,11 @@ static int parse_top(ctx *c, const cJSON *root, scenario *s) {
             if (!(r = expect_object(c, it, k))) {
                 push(c, "ssi");
                 r = parse_ssi(c, it, &s->ssi);
+            }
+        } else if (!strcmp(k, "checks")) {
+            if (!(r = expect_object(c, it, k))) {
+                push(c, "checks");
+                r = parse_checks(c, it, &s->checks);
             }
         } else {
             r = fail(c, k, "unknown field");

@@ -97,6 +97,15 @@ enum biss_error {
     BISS_E_FW_IMAGE = -58,    /* the running image is not the expected one (CRC-32) */
     BISS_E_SHM_CONFIG = -59,  /* the configuration block in data RAM is invalid */
     BISS_E_SHM_RESULT = -60,  /* a published result contradicts the configuration */
+    /* safety checks (biss_config: life_check, pair) */
+    BISS_E_SAFETY_LIFE = -61, /* life-counter check on no slave of the chain, or its width
+                                 outside 1..32 or more than the bits below nE/nW and the
+                                 position */
+    BISS_E_SAFETY_PAIR = -62, /* pair check: a slave outside the chain, a slave with itself,
+                                 more than BISS_API_MAX_PAIRS, a shifted position over 64 bits */
+    BISS_E_SAFETY_CRC = -63,  /* pair check of two channels (distinct_crc) whose CRCs have the
+                                 same polynomial and start value */
+    /* two channels on one PRU-ICSS */
     BISS_E_IEP_OWNED = -64,   /* trigger iep: the other PRU's channel owns the IEP */
 };
 
@@ -218,6 +227,29 @@ struct biss_slave_config {
      * word from the first rising edge, read with ssi_delay_ns below. */
     bool ssi;
     bool gray; /* SSI: the word is Gray code; positions are decoded to binary */
+    /* Safety check (host side, every frame read): the life counter (sign
+     * of life) at the LSB of the data word advanced by the frame-number
+     * difference since the last frame read, modulo 2^width (frames the
+     * host did not read are no fault). life_bits: its width, 1..32; 0 =
+     * ew_shift (the bits below nW, as the firmware's layout has it). */
+    bool life_check;
+    unsigned life_bits;
+};
+
+/* Safety check (host side): two slaves' positions, e.g. a BiSS Safety
+ * encoder's control and safety position words, agree within tolerance
+ * after shifting both to one resolution: (pos_a << shift_a) and (pos_b <<
+ * shift_b) are compared modulo 2^W, W the wider of the two, so a wrap of
+ * one word before the other is no disagreement. */
+#define BISS_API_MAX_PAIRS 4
+struct biss_pair_check {
+    unsigned a, b;             /* slave indices, a != b */
+    unsigned shift_a, shift_b; /* left shifts to one resolution */
+    uint64_t tolerance;        /* largest |difference| accepted, counts after shifting */
+    /* The two words are one safety encoder's two channels: their CRCs must
+     * differ (start value or polynomial), so one channel's data can never
+     * pass as the other's (iC-MB4 datasheet, "CRC start value"). */
+    bool distinct_crc;
 };
 
 struct biss_config {
@@ -229,6 +261,8 @@ struct biss_config {
     uint32_t proc_limit;    /* longest processing time (busy) accepted, MA clocks, <= 65535 */
     uint32_t ssi_delay_ns;  /* SSI only: the line's round trip in ns (<= 65535); an SSI
                                slave sends no ACK the firmware could measure it by */
+    unsigned npairs;        /* safety: position pair checks, 0..BISS_API_MAX_PAIRS */
+    struct biss_pair_check pair[BISS_API_MAX_PAIRS];
 };
 
 /* 1 MHz, no slaves, free-run, processing-time limit 1000 clocks. */
@@ -238,7 +272,8 @@ void biss_config_default(struct biss_config *c);
 int biss_rate_half(uint32_t freq_hz, unsigned *half);
 
 /* Checks every field as the firmware would, and more (polynomial degree,
- * start value, position bits). 0 or the first specific error. */
+ * start value, position bits, the safety checks). 0 or the first specific
+ * error. */
 int biss_config_check(const struct biss_config *c);
 
 /* Validates, writes the block, bumps CFG_SEQ and waits for the firmware's
@@ -282,7 +317,17 @@ struct biss_slave_result {
     bool warning;      /* nW active (low) */
     uint32_t crc_reg;  /* firmware's CRC register (left-aligned) */
     uint32_t status;   /* BISS_RS_* as published */
+    uint32_t safety;   /* BISS_SAFE_* of this frame (the configured checks) */
 };
+
+/* Safety verdicts per slave and frame. A check that could not run (the
+ * first frame read, a word with a bad CRC, an invalid frame) sets nothing. */
+#define BISS_SAFE_LC_CHECKED   0x01 /* the life counter was compared */
+#define BISS_SAFE_LC_FROZEN    0x02 /* ... and had not moved */
+#define BISS_SAFE_LC_SKIP      0x04 /* ... and had moved, but not by the frames run */
+#define BISS_SAFE_PAIR_CHECKED 0x08 /* the position was compared with its pair's */
+#define BISS_SAFE_DISAGREE     0x10 /* ... and differed by more than the tolerance */
+#define BISS_SAFE_FAULTS       (BISS_SAFE_LC_FROZEN | BISS_SAFE_LC_SKIP | BISS_SAFE_DISAGREE)
 
 struct biss_sample {
     uint32_t seq;   /* ST_SEQ as first read; the frame may be the publication in
@@ -300,6 +345,7 @@ struct biss_sample {
     struct biss_line_delay delay;
     unsigned nslaves;
     struct biss_slave_result slave[BISS_API_MAX_SLAVES];
+    uint32_t safety; /* the slaves' BISS_SAFE_* or'ed */
 };
 
 /* The latest published frame, consistent (ST_SEQ/ST_BUF protocol). */
@@ -396,6 +442,18 @@ struct biss_stats {
 
 int biss_get_status(biss_t *h, struct biss_status *st);
 int biss_get_stats(biss_t *h, struct biss_stats *st);
+
+/* The safety checks' counts since the handle was opened, over the frames
+ * it read (biss_read_sample, biss_wait_sample; each frame once). */
+struct biss_safety_stats {
+    uint32_t lc_checked[BISS_API_MAX_SLAVES]; /* frames whose life counter was compared */
+    uint32_t lc_frozen[BISS_API_MAX_SLAVES];
+    uint32_t lc_skipped[BISS_API_MAX_SLAVES];
+    uint32_t pair_checked[BISS_API_MAX_PAIRS]; /* frames whose pair was compared */
+    uint32_t pair_disagree[BISS_API_MAX_PAIRS];
+    int64_t pair_last_diff[BISS_API_MAX_PAIRS]; /* shifted a - b of the last comparison */
+};
+int biss_get_safety_stats(biss_t *h, struct biss_safety_stats *st);
 
 #ifdef __cplusplus
 }

@@ -44,6 +44,10 @@ cases = [
                     "--freq", "1000000", "--frames", "10"]),
 ]
 paths = ["ff-counted", "ff-r31-bits", "ff-loop-delay", "ff-count-loop", "ff"]
+# the core's threaded execute loop (and its kinds: whole-register and
+# immediate forms, R30 writes) against the general path: it skips no
+# iterations, so only the results and the VCD are compared
+loops = ["fast-loop"]
 skips_less = {p: [] for p in paths}  # the cases in which the path skipped something
 for name, args in cases:
     ref, ref_vcd, ref_skip = run(name, args, [])
@@ -56,6 +60,12 @@ for name, args in cases:
             skips_less[path].append(name)
         if path == "ff":
             check(skip == 0, "%s: still skipped %d" % (what, skip))
+    for path in loops:
+        j, vcd, skip = run(name, args, [path])
+        what = "%s without %s" % (name, path)
+        check(j == ref, "%s: other results: %s vs %s" % (what, j, ref))
+        check(vcd == ref_vcd, "%s: another VCD" % what)
+        check(skip == ref_skip, "%s: skipped %d, not %d" % (what, skip, ref_skip))
 for path, where in skips_less.items():
     check(where, "%s skipped nothing in any case" % path)
 # the default run at 10 MHz idles in a counted poll; at 1 MHz the image's

@@ -70,7 +70,8 @@ END_TEST
 
 /*
  * The fast loop runs ADD/SUB/QBNE/QBEQ/QBBS/QBBC on whole registers
- * through their own predecoded kinds; single steps run every instruction
+ * through their own predecoded kinds (ADD/SUB/QBNE/QBEQ with an immediate
+ * op2 through others again); single steps run every instruction
  * through the generic path. Both must give the same registers, carries
  * (captured by ADC r0 after each op) and counts.
  */
@@ -91,6 +92,10 @@ static const uint32_t *whole_register_prog(unsigned *n) {
     w[(*n)++] = alui(PRU_OP_ADC, R(24), R(0), 0);
     w[(*n)++] = alu(PRU_OP_SUB, R(8), R(2), W0(2)); /* 0, carry 1 */
     w[(*n)++] = alui(PRU_OP_ADC, R(25), R(0), 0);
+    w[(*n)++] = alui(PRU_OP_SUB, R(16), R(2), 5); /* 0xFFFFFFFC, borrow: carry 0 */
+    w[(*n)++] = alui(PRU_OP_ADC, R(26), R(0), 0);
+    w[(*n)++] = alui(PRU_OP_ADD, R(17), R(2), 7); /* 8, carry 0 */
+    w[(*n)++] = alui(PRU_OP_ADC, R(27), R(0), 0);
     w[(*n)++] = qb(PRU_OP_QBNE, 2, R(3), R(2)); /* taken */
     w[(*n)++] = ldi(R(11), 1);
     w[(*n)++] = qbi(PRU_OP_QBEQ, 2, R(4), 0); /* taken */
@@ -120,9 +125,11 @@ START_TEST(whole_register_kinds_match_stepping) {
     const uint32_t want[16] = {0, 0xFFFFFFFFu, 1, 0, 0, 2, 2, 0xFFFFFFFEu, 0, 0, 0, 0, 0, 0, 1, 1};
     for (unsigned i = 0; i < 16; i++)
         ck_assert_msg(REG(fast, i) == want[i], "r%u = 0x%x", i, REG(fast, i));
-    const uint32_t carries[6] = {1, 1, 0, 0, 1, 1};
-    for (unsigned i = 0; i < 6; i++)
+    const uint32_t carries[8] = {1, 1, 0, 0, 1, 1, 0, 0};
+    for (unsigned i = 0; i < 8; i++)
         ck_assert_uint_eq(REG(fast, 20 + i), carries[i]);
+    ck_assert_uint_eq(REG(fast, 16), 0xFFFFFFFCu);
+    ck_assert_uint_eq(REG(fast, 17), 8);
     for (unsigned i = 0; i < 31; i++)
         ck_assert_uint_eq(REG(fast, i), REG(step, i));
     ck_assert_int_eq(pru_carry(fast), pru_carry(step));

@@ -265,6 +265,11 @@ START_TEST(faults) {
     expect_fault(bad2, 1, PRU_FAULT_BAD_OPCODE, 0, 0);
     const uint32_t past[] = {jmpi(0x1FFF)};
     expect_fault(past, 1, PRU_FAULT_PC_RANGE, 0x1FFF, 1);
+    /* quick branches out of IRAM (taken, and with an R31 read) */
+    const uint32_t before_start[] = {ldi(R(1), 1), qbi(PRU_OP_QBNE, -2, R(1), 0)};
+    expect_fault(before_start, 2, PRU_FAULT_PC_RANGE, 0xFFFF, 2);
+    const uint32_t r31_out[] = {qbi(PRU_OP_QBBC, -1, R(31), 7)};
+    expect_fault(r31_out, 1, PRU_FAULT_PC_RANGE, 0xFFFF, 1);
     const uint32_t zero_len[] = {burstr(PRU_OP_LBBO, 8, 1, W0(3), 124)};
     expect_fault(zero_len, 1, PRU_FAULT_BURST, 0, 0);
     const uint32_t overrun[] = {burst(PRU_OP_LBCO, 4 * 30, 24, 0, 12)};

@@ -108,7 +108,11 @@ START_TEST(test_noise_never_valid_and_wrong) {
     uint64_t frames = 2 * e2e_frames(10000);
     uint64_t got = e2e_run_frames(&r, 10, 1000, frames);
     ck_assert_uint_eq(got, frames);
-    ck_assert_uint_le(r.fc.mismatches, frames * c->wrong_per_1e4 / 10000);
+    /* at most wrong_per_1e4 in 10^4, rounded up: the sanitizer build's 600
+     * frames would otherwise allow none where 2 in 10^4 are allowed (the
+     * 700 kHz case passes some 0.7 in 10^4: 23 and 22 in 3 x 10^5 frames of
+     * three seeds, before and after the stores left the clocked periods) */
+    ck_assert_uint_le(r.fc.mismatches, (frames * c->wrong_per_1e4 + 9999) / 10000);
     double good = (double)(r.fc.frames - r.fc.crc_errors) / (double)r.fc.publications;
     ck_assert_msg(good >= c->min_good, "%s: %.4f of the frames good", c->file, good);
     ck_assert_uint_le(r.fc.ack_jump_good, r.fc.ack_jumps);

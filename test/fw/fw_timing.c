@@ -260,14 +260,14 @@ void fw_cover_free(struct fw_cover *cv) {
     memset(cv, 0, sizeof(*cv));
 }
 
-/* Whether word pc is a delay site's test: a quick branch on a field of r0
- * (the delay's entry r0.w0, or a switch's flag r0.b2) against 0. It goes
- * one way at a given H (r0.w0 is 0 exactly at H = 10), so each H covers one
+/* Whether word pc is a delay site's test: a quick branch on a field of r9
+ * (the delay's entry r9.w0, or a switch's flag r9.b2) against 0. It goes
+ * one way at a given H (r9.w0 is 0 exactly at H = 10), so each H covers one
  * way; the switch flag's both ways are required by the runs themselves
  * (switches cut short and full). */
 static int is_delay_test(const struct fw *f, uint32_t pc) {
     const struct pru_insn *in = &f->dec[pc];
-    return is_cond_branch(f, pc) && pru_optable[in->op].fmt == PRU_FMT_QB && in->rs1 == 0 &&
+    return is_cond_branch(f, pc) && pru_optable[in->op].fmt == PRU_FMT_QB && in->rs1 == 9 &&
            in->io && in->imm == 0;
 }
 

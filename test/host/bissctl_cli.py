@@ -2,6 +2,7 @@
 """bissctl as a user runs it: help for every command, reading frames from
 the emulator, clear errors with non-zero exits, and the same subcommands
 against a file standing in for /dev/mem."""
+import json
 import os
 import re
 import subprocess
@@ -224,5 +225,45 @@ with tempfile.TemporaryDirectory() as tmp:
           "no remoteproc: %r" % r.stderr)
     r = run("--loader", "uio", "info")
     check(r.returncode == 2 and "remoteproc or devmem" in r.stderr, "bad loader: %r" % r.stderr)
+
+# safety checks (host/README.md): a frozen life counter flagged from its frame on
+# and counted, a healthy two-channel encoder flagging nothing, bad checks refused
+SCEN = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scenarios")
+r = run("--scenario", os.path.join(SCEN, "safety-frozen.json"), "--freq", "5000000",
+        "read", "-n", "260")
+lines = r.stdout.splitlines()
+frozen = [int(re.match(r"frame=(\d+) ", l).group(1)) for l in lines if " s2.life=frozen" in l]
+check(r.returncode == 0 and frozen and min(frozen) == 200 and len(frozen) >= 55,
+      "frozen counter: rc %d, frames %r %r" % (r.returncode, frozen[:3], r.stderr))
+check(not any(" s2.life=skip" in l for l in lines), "frozen is not skip")
+m = re.search(r"^safety: s2.life_checked=(\d+) s2.life_frozen=(\d+) s2.life_skipped=0$", r.stdout, re.M)
+check(m and int(m.group(2)) == len(frozen), "frozen count: %r" % (lines[-1:],))
+r = run("--profile", "biss-safety-two-channel", "--freq", "10000000", "--check-life", "0",
+        "--check-life", "1", "--check-pair", "0,1,16,0,4", "read", "-n", "20")
+check(r.returncode == 0 and r.stdout.count(" s1.life=ok") >= 18 and r.stdout.count(" pair0=ok") >= 19
+      and "life=frozen" not in r.stdout and "pair0.disagree=0" in r.stdout,
+      "healthy two channels: %r %r" % (r.stdout[-300:], r.stderr))
+r = run("--scenario", os.path.join(SCEN, "safety-skip.json"), "--freq", "10000000", "read",
+        "-n", "220", "--json")
+try:
+    j = json.loads(r.stdout)
+except ValueError:
+    j = {}
+fr = j.get("frames", [])
+skips = [f["frame"] for f in fr if f.get("slaves") and f["slaves"][1].get("life") == "skip"]
+life = (j.get("safety") or {}).get("life_counter") or [{}, {}]
+check(r.returncode == 0 and len(fr) == 220 and skips and min(skips) == 200
+      and life[1].get("skipped") == len(skips) and life[0].get("skipped") == 0
+      and all(p == "ok" for f in fr for p in f.get("pairs", []) if p != "-"),
+      "read --json, skipping counter: rc %d %r %r" % (r.returncode, life, r.stderr))
+for args, text in [(["--check-pair", "0,1", "read"], "--check-pair"),
+                   (["--check-life", "9", "read"], "--check-life")]:
+    r = run(*args)
+    check(r.returncode == 2 and text in r.stderr, "%r: rc %d, %r" % (args, r.returncode, r.stderr))
+r = run("--slave", "32,16,0x190D9,0,6", "--slave", "28,16,0x190D9,0,6", "--check-pair", "0,1,16,0,4",
+        "read")
+check(r.returncode == 1 and "same polynomial and start value" in r.stderr, "one CRC: %r" % r.stderr)
+r = run("--check-life", "0", "read")  # the default encoder has no life counter
+check(r.returncode == 1 and "life-counter check" in r.stderr, "no counter: %r" % r.stderr)
 
 finish("bissctl CLI")

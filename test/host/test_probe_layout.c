@@ -117,7 +117,7 @@ START_TEST(every_profile) {
         ew += ew_ok;
     }
     printf("profiles: %u BiSS, %u recovered, %u with nE/nW right\n", biss, recovered, ew);
-    ck_assert_uint_eq(biss, 4);
+    ck_assert_uint_eq(biss, 5);
     ck_assert_uint_eq(recovered, biss);
     ck_assert_uint_eq(ew, biss);
 }

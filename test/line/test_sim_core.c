@@ -62,6 +62,30 @@ START_TEST(queue_cancel_removes_only_that_event) {
 }
 END_TEST
 
+/* An id taken early places an event scheduled later where it would have
+ * run had it been scheduled then: before events at its time scheduled in
+ * between, after those scheduled before the id was taken. */
+START_TEST(queue_schedule_under_an_earlier_id) {
+    event_queue q;
+    log_t g = {.n = 0};
+    eq_init(&q);
+    eq_schedule(&q, 100, note, &g, 1);
+    eq_id early = eq_take_id(&q);
+    eq_schedule(&q, 100, note, &g, 3);
+    eq_schedule(&q, 50, note, &g, 0);
+    eq_run_until(&q, 60);
+    ck_assert_uint_eq(eq_schedule_as(&q, 100, early, note, &g, 2), early);
+    eq_schedule(&q, 100, note, &g, 4);
+    eq_run_until(&q, 1000);
+    ck_assert_int_eq(g.n, 5);
+    for (int i = 0; i < 5; i++) {
+        ck_assert_int_eq(g.order[i], i);
+    }
+    ck_assert_int_eq(eq_cancel(&q, early), 0); /* it ran */
+    eq_free(&q);
+}
+END_TEST
+
 START_TEST(queue_cancel_of_an_event_that_sifted_up) {
     /* B is earlier than A, so it moves to the heap's top when scheduled:
      * its id must still be its own. */
@@ -285,6 +309,7 @@ int main(void) {
     tcase_add_test(tc, queue_cancel_removes_only_that_event);
     tcase_add_test(tc, queue_runs_events_scheduled_while_running);
     tcase_add_test(tc, queue_cancel_of_an_event_that_sifted_up);
+    tcase_add_test(tc, queue_schedule_under_an_earlier_id);
     tcase_add_loop_test(tc, queue_agrees_with_reference_model, 0, 20);
     tcase_add_test(tc, waveform_lookups);
     tcase_add_test(tc, waveform_many_edges_binary_search);

@@ -20,7 +20,7 @@ START_TEST(every_profile_loads_and_checks) {
         ck_assert_str_eq(sc.profile, name);
         ck_assert_msg(scenario_check(&sc, err, sizeof err) == 0, "%s: %s", name, err);
     }
-    ck_assert_uint_eq(n, 5);
+    ck_assert_uint_eq(n, 6);
     ck_assert_int_eq(profile_by_name("nope", &sc), -1);
 }
 END_TEST

@@ -1,0 +1,251 @@
+/* biss_safety.c - the BiSS Safety checks on published frames (biss_proto.h):
+ * the life counter (sign of life) and pairs of redundant position words.
+ *
+ * The life counter is judged by the firmware's frame numbers: between two
+ * frames read it must have advanced by their difference (modulo its width),
+ * so frames the host did not read (it polls) are no fault, and a counter
+ * that stood still or jumped is. The BiSS Safety profile's two position
+ * words (biss-interface.com, "BiSS Safety": control and safety position
+ * word from two daisy-chained sensors, each with its own CRC) are compared
+ * after shifting both to one resolution; their CRCs must differ (iC-MB4
+ * datasheet, "CRC start value": start values tell single-cycle data words
+ * of two sensors apart). */
+#include "biss_proto.h"
+
+#include <errno.h>
+#include <stdlib.h>
+#include <string.h>
+
+static uint64_t low_mask(unsigned bits) {
+    return bits >= 64 ? ~0ull : (1ull << bits) - 1u;
+}
+
+unsigned biss_safety_life_width(const struct biss_slave_config *s) {
+    if (s->life_bits) {
+        return s->life_bits;
+    }
+    return s->has_ew ? s->ew_shift : 0;
+}
+
+static int check_life(const struct biss_config *c, unsigned i) {
+    const struct biss_slave_config *s = &c->slave[i];
+    if (!s->life_check) {
+        return BISS_OK;
+    }
+    unsigned w = biss_safety_life_width(s);
+    if (i >= c->nslaves || w < 1 || w > 32) {
+        return BISS_E_SAFETY_LIFE;
+    }
+    unsigned below = s->data_bits - biss_proto_pos_bits(s); /* under the position */
+    if (w > below || (s->has_ew && w > s->ew_shift)) {
+        return BISS_E_SAFETY_LIFE;
+    }
+    return BISS_OK;
+}
+
+static bool same_crc(const struct biss_slave_config *a, const struct biss_slave_config *b) {
+    return a->crc_bits == b->crc_bits && a->crc_poly == b->crc_poly && a->crc_start == b->crc_start;
+}
+
+static int check_pair(const struct biss_config *c, const struct biss_pair_check *p) {
+    if (p->a >= c->nslaves || p->b >= c->nslaves || p->a == p->b || p->shift_a > 63 ||
+        p->shift_b > 63) {
+        return BISS_E_SAFETY_PAIR;
+    }
+    const struct biss_slave_config *a = &c->slave[p->a], *b = &c->slave[p->b];
+    if (biss_proto_pos_bits(a) + p->shift_a > 64 || biss_proto_pos_bits(b) + p->shift_b > 64) {
+        return BISS_E_SAFETY_PAIR;
+    }
+    if (p->distinct_crc && same_crc(a, b)) {
+        return BISS_E_SAFETY_CRC;
+    }
+    return BISS_OK;
+}
+
+int biss_safety_config_check(const struct biss_config *c) {
+    for (unsigned i = 0; i < BISS_API_MAX_SLAVES; i++) {
+        int rc = check_life(c, i);
+        if (rc) {
+            return rc;
+        }
+    }
+    if (c->npairs > BISS_API_MAX_PAIRS) {
+        return BISS_E_SAFETY_PAIR;
+    }
+    for (unsigned k = 0; k < c->npairs; k++) {
+        int rc = check_pair(c, &c->pair[k]);
+        if (rc) {
+            return rc;
+        }
+    }
+    return BISS_OK;
+}
+
+void biss_safety_init(struct biss_safety_state *st) {
+    memset(st, 0, sizeof *st);
+}
+
+void biss_safety_restart(struct biss_safety_state *st) {
+    struct biss_safety_stats keep = st->stats;
+    biss_safety_init(st);
+    st->stats = keep;
+}
+
+/* One slave's life counter against the last one trusted. */
+static uint32_t life(const struct biss_slave_config *c, struct biss_safety_state *st, unsigned i,
+                     uint32_t frame, const struct biss_slave_result *r) {
+    if (!c->life_check || !r->crc_ok) {
+        return 0; /* a word with a bad CRC tells nothing; the reference stays */
+    }
+    uint64_t m = low_mask(biss_safety_life_width(c));
+    uint32_t lc = (uint32_t)(r->data & m);
+    uint32_t flags = 0;
+    if (st->ref[i]) {
+        uint32_t want = (uint32_t)((frame - st->ref_frame[i]) & m);
+        uint32_t moved = (uint32_t)((lc - st->ref_lc[i]) & m);
+        flags = BISS_SAFE_LC_CHECKED;
+        if (moved != want) {
+            flags |= moved == 0 ? BISS_SAFE_LC_FROZEN : BISS_SAFE_LC_SKIP;
+        }
+        st->stats.lc_checked[i]++;
+        st->stats.lc_frozen[i] += moved != want && moved == 0;
+        st->stats.lc_skipped[i] += moved != want && moved != 0;
+    }
+    st->ref[i] = true;
+    st->ref_frame[i] = frame;
+    st->ref_lc[i] = lc;
+    return flags;
+}
+
+/* (a << shift_a) - (b << shift_b) modulo 2^W as a signed number, W the
+ * wider shifted position: the circular distance of the two. */
+static int64_t pair_diff(const struct biss_config *c, const struct biss_pair_check *p,
+                         const struct biss_sample *s) {
+    unsigned wa = biss_proto_pos_bits(&c->slave[p->a]) + p->shift_a;
+    unsigned wb = biss_proto_pos_bits(&c->slave[p->b]) + p->shift_b;
+    unsigned w = wa > wb ? wa : wb;
+    uint64_t m = low_mask(w);
+    uint64_t d =
+        ((s->slave[p->a].position << p->shift_a) - (s->slave[p->b].position << p->shift_b)) & m;
+    if (w < 64 && w > 0 && (d >> (w - 1))) {
+        return (int64_t)(d | ~m); /* sign-extend */
+    }
+    return (int64_t)d;
+}
+
+static void pairs(const struct biss_config *c, struct biss_safety_state *st,
+                  struct biss_sample *s) {
+    for (unsigned k = 0; k < c->npairs && k < BISS_API_MAX_PAIRS; k++) {
+        const struct biss_pair_check *p = &c->pair[k];
+        if (p->a >= s->nslaves || p->b >= s->nslaves || !s->slave[p->a].crc_ok ||
+            !s->slave[p->b].crc_ok) {
+            continue;
+        }
+        int64_t d = pair_diff(c, p, s);
+        uint64_t mag = d < 0 ? 0 - (uint64_t)d : (uint64_t)d;
+        uint32_t flags = BISS_SAFE_PAIR_CHECKED | (mag > p->tolerance ? BISS_SAFE_DISAGREE : 0);
+        s->slave[p->a].safety |= flags;
+        s->slave[p->b].safety |= flags;
+        st->stats.pair_checked[k]++;
+        st->stats.pair_disagree[k] += mag > p->tolerance;
+        st->stats.pair_last_diff[k] = d;
+    }
+}
+
+void biss_safety_check(const struct biss_config *c, struct biss_safety_state *st,
+                       struct biss_sample *s) {
+    s->safety = 0;
+    if (st->seen && s->frame == st->last_frame) {
+        /* the same frame read again: the same verdicts, counted once */
+        for (unsigned i = 0; i < s->nslaves && i < BISS_API_MAX_SLAVES; i++) {
+            s->slave[i].safety = st->last_flags[i];
+            s->safety |= st->last_flags[i];
+        }
+        return;
+    }
+    if (!s->valid) {
+        /* a frame the slave may not have seen (no ACK, aborted): the
+         * counter's next value is not known from the frame numbers */
+        if (s->no_slave || s->proc_error) {
+            memset(st->ref, 0, sizeof st->ref);
+        }
+        return;
+    }
+    for (unsigned i = 0; i < s->nslaves && i < BISS_API_MAX_SLAVES && i < c->nslaves; i++) {
+        s->slave[i].safety = life(&c->slave[i], st, i, s->frame, &s->slave[i]);
+    }
+    pairs(c, st, s);
+    st->seen = true;
+    st->last_frame = s->frame;
+    for (unsigned i = 0; i < BISS_API_MAX_SLAVES; i++) {
+        st->last_flags[i] = i < s->nslaves ? s->slave[i].safety : 0;
+        s->safety |= st->last_flags[i];
+    }
+}
+
+/* ---- the command-line spellings bissctl and biss-sim share ---- */
+
+/* Comma-separated whole numbers: how many (at most max), or -1. */
+static int numbers(const char *arg, unsigned long long *v, int max) {
+    int n = 0;
+    const char *p = arg;
+    while (*p) {
+        char *end;
+        if (n == max || *p == '-' || *p == ',') {
+            return -1;
+        }
+        errno = 0;
+        v[n++] = strtoull(p, &end, 0);
+        if (errno || end == p || (*end && *end != ',') || (*end == ',' && !end[1])) {
+            return -1;
+        }
+        p = *end ? end + 1 : end;
+    }
+    return n;
+}
+
+int biss_safety_parse_life(const char *arg, struct biss_config *c) {
+    unsigned long long v[2];
+    int n = numbers(arg, v, 2);
+    if (n < 1 || v[0] >= BISS_API_MAX_SLAVES || (n == 2 && (v[1] < 1 || v[1] > 32))) {
+        return BISS_E_INVAL;
+    }
+    c->slave[v[0]].life_check = true;
+    c->slave[v[0]].life_bits = n == 2 ? (unsigned)v[1] : 0;
+    return BISS_OK;
+}
+
+int biss_safety_parse_pair(const char *arg, struct biss_config *c) {
+    unsigned long long v[5] = {0};
+    int n = numbers(arg, v, 5);
+    if ((n != 3 && n != 5) || v[0] >= BISS_API_MAX_SLAVES || v[1] >= BISS_API_MAX_SLAVES ||
+        v[3] > 63 || v[4] > 63) {
+        return BISS_E_INVAL;
+    }
+    if (c->npairs >= BISS_API_MAX_PAIRS) {
+        return BISS_E_SAFETY_PAIR;
+    }
+    c->pair[c->npairs++] = (struct biss_pair_check){.a = (unsigned)v[0],
+                                                    .b = (unsigned)v[1],
+                                                    .tolerance = v[2],
+                                                    .shift_a = (unsigned)v[3],
+                                                    .shift_b = (unsigned)v[4],
+                                                    .distinct_crc = true};
+    return BISS_OK;
+}
+
+int biss_safety_merge(struct biss_config *dst, const struct biss_config *checks) {
+    for (unsigned i = 0; i < BISS_API_MAX_SLAVES; i++) {
+        if (checks->slave[i].life_check) {
+            dst->slave[i].life_check = true;
+            dst->slave[i].life_bits = checks->slave[i].life_bits;
+        }
+    }
+    for (unsigned k = 0; k < checks->npairs && k < BISS_API_MAX_PAIRS; k++) {
+        if (dst->npairs >= BISS_API_MAX_PAIRS) {
+            return BISS_E_SAFETY_PAIR;
+        }
+        dst->pair[dst->npairs++] = checks->pair[k];
+    }
+    return BISS_OK;
+}
