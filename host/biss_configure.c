@@ -85,9 +85,12 @@ static int configure_locked(biss_t *h, const struct biss_config *c) {
     if (rc) {
         return rc;
     }
+    rc = biss_pru_image_check(h, NULL);
     struct biss_proto_io io = biss_io(h);
     struct biss_shm_status st;
-    rc = biss_proto_status_get(&io, &st);
+    if (!rc) {
+        rc = biss_proto_status_get(&io, &st);
+    }
     if (!rc) {
         rc = biss_fw_cfg_error(st.cfg_error);
     }

@@ -82,6 +82,8 @@ static const struct err_text errors[] = {
     {BISS_E_SAFETY_CRC, "pair check of two channels: both CRCs have the same polynomial and "
                         "start value (the channels must differ)"},
     {BISS_E_IEP_OWNED, "the other PRU's channel owns the IEP (trigger iep): use iep-follow"},
+    {BISS_E_FW_PRU, "the running image was assembled for the other PRU (PRU0: biss_master, "
+                    "PRU1: biss_master_pru1)"},
 };
 
 const char *biss_strerror(int err) {

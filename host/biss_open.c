@@ -15,17 +15,21 @@
 #include <unistd.h>
 
 /* Where the image is when nothing names it (host/CMakeLists.txt sets all
- * three): the build tree's, the installed one relative to an installed
- * program's bin directory, and the one under the configured prefix. */
+ * of them): the build tree's, the installed one relative to an installed
+ * program's bin directory, and the one under the configured prefix; each
+ * for PRU0 and for PRU1 (one image per PRU: pru_fw/README.md). */
 #ifndef BISS_BUILD_DIR
-#define BISS_BUILD_DIR      "/nonexistent"
-#define BISS_BUILD_FIRMWARE "biss_master.bin"
+#define BISS_BUILD_DIR           "/nonexistent"
+#define BISS_BUILD_FIRMWARE      "biss_master.bin"
+#define BISS_BUILD_FIRMWARE_PRU1 "biss_master_pru1.bin"
 #endif
 #ifndef BISS_BIN_TO_FIRMWARE
-#define BISS_BIN_TO_FIRMWARE "../lib/firmware/biss_master.bin"
+#define BISS_BIN_TO_FIRMWARE      "../lib/firmware/biss_master.bin"
+#define BISS_BIN_TO_FIRMWARE_PRU1 "../lib/firmware/biss_master_pru1.bin"
 #endif
 #ifndef BISS_INSTALLED_FIRMWARE
-#define BISS_INSTALLED_FIRMWARE "/usr/local/lib/firmware/biss_master.bin"
+#define BISS_INSTALLED_FIRMWARE      "/usr/local/lib/firmware/biss_master.bin"
+#define BISS_INSTALLED_FIRMWARE_PRU1 "/usr/local/lib/firmware/biss_master_pru1.bin"
 #endif
 #define DEFAULT_TIMEOUT_MS 100
 
@@ -40,23 +44,24 @@ void biss_open_params_default(struct biss_open_params *p) {
 }
 
 /* With no image named: a program of the build tree takes the build's
- * image; any other takes the one installed beside it (<its bin>/../lib/
- * firmware, so a moved prefix still works) when there is one, else the
- * configured prefix's. buf holds the candidate beside the program. */
-static const char *default_firmware(char *buf, size_t len) {
+ * image of the PRU; any other takes the one installed beside it (<its
+ * bin>/../lib/firmware, so a moved prefix still works) when there is one,
+ * else the configured prefix's. buf holds the candidate beside the program. */
+static const char *default_firmware(unsigned pru, char *buf, size_t len) {
+    const char *installed = pru ? BISS_INSTALLED_FIRMWARE_PRU1 : BISS_INSTALLED_FIRMWARE;
     char exe[PATH_MAX];
     ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
     if (n <= 0) {
-        return BISS_INSTALLED_FIRMWARE;
+        return installed;
     }
     exe[n] = '\0';
     size_t b = strlen(BISS_BUILD_DIR);
     if (strncmp(exe, BISS_BUILD_DIR, b) == 0 && exe[b] == '/') {
-        return BISS_BUILD_FIRMWARE;
+        return pru ? BISS_BUILD_FIRMWARE_PRU1 : BISS_BUILD_FIRMWARE;
     }
     /* <prefix>/lib/..., not <prefix>/bin/../lib/...: each leading "../"
      * of the relative path takes one directory off the program's */
-    const char *rel = BISS_BIN_TO_FIRMWARE;
+    const char *rel = pru ? BISS_BIN_TO_FIRMWARE_PRU1 : BISS_BIN_TO_FIRMWARE;
     char *slash = strrchr(exe, '/');
     while (slash && strncmp(rel, "../", 3) == 0) {
         *slash = '\0';
@@ -70,7 +75,7 @@ static const char *default_firmware(char *buf, size_t len) {
             return buf;
         }
     }
-    return BISS_INSTALLED_FIRMWARE;
+    return installed;
 }
 
 /* The params win, then $BISS_FIRMWARE, then default_firmware(). */
@@ -82,7 +87,7 @@ static const char *firmware_path(const struct biss_open_params *p, char *buf, si
     if (env && *env) {
         return env;
     }
-    return default_firmware(buf, len);
+    return default_firmware(p->pru, buf, len);
 }
 
 static int read_image(biss_t *h, const char *path, struct biss_errbuf *e) {
@@ -248,6 +253,9 @@ static int open_linux(biss_t *h, const struct biss_open_params *p, struct biss_e
     if (p->attach) {
         h->attached = true;
         rc = check_identity(h, e);
+        if (!rc) {
+            rc = biss_pru_image_check(h, e);
+        }
         return rc ? rc : adopt_running_config(h, e);
     }
     rc = biss_pru_load_and_start(h);
@@ -264,7 +272,10 @@ static int open_linux(biss_t *h, const struct biss_open_params *p, struct biss_e
                         "biss_master.elf?",
                         h->timeout_ms);
     }
-    return rc ? rc : check_identity(h, e);
+    if (!rc) {
+        rc = check_identity(h, e);
+    }
+    return rc ? rc : biss_pru_image_check(h, e);
 }
 
 int biss_open(const struct biss_open_params *p, biss_t **out) {

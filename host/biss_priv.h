@@ -108,6 +108,11 @@ int biss_pru_load_and_start(biss_t *h);
 int biss_pru_enabled(biss_t *h, bool *on);
 /* Writes the identification block of the handle's image (devmem loader). */
 int biss_pru_write_id(biss_t *h);
+/* BISS_E_FW_PRU (with a message in e, which may be NULL) when the running
+ * firmware says it was assembled for the other PRU; BISS_OK when it was
+ * for this one or no firmware runs (no magic). */
+struct biss_errbuf;
+int biss_pru_image_check(biss_t *h, struct biss_errbuf *e);
 
 /* Waits (handle locked) until done(h, arg) returns nonzero or timeout_ms
  * of backend time passed; returns 0, BISS_E_TIMEOUT, or done's error if

@@ -5,6 +5,7 @@
 
 #include "biss/biss_shm_struct.h"
 #include "biss_image_id.h"
+#include "biss_oserr.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -63,12 +64,27 @@ int biss_pru_write_id(biss_t *h) {
  * magic or ack would lie). */
 static int clear_shared(biss_t *h) {
     static const uint8_t zeros[sizeof(struct biss_shm)] = {0};
-    int rc = biss_dram_write(h, 0, zeros, sizeof zeros);
-    if (!rc) { /* the start-up takes its CONTROL block and GPCFG by it */
-        struct biss_proto_io io = biss_io(h);
-        rc = biss_proto_pru_index_put(&io, h->be.pru);
+    return biss_dram_write(h, 0, zeros, sizeof zeros);
+}
+
+/* Each PRU has its own image (its CONTROL block, GPCFG and scratch-pad
+ * bank are in the instruction words, pru_fw/README.md): the other PRU's
+ * would set up the other PRU's C28 and line, and use its bank. */
+int biss_pru_image_check(biss_t *h, struct biss_errbuf *e) {
+    struct biss_proto_io io = biss_io(h);
+    struct biss_shm_status st;
+    uint32_t pru;
+    int rc = biss_proto_status_get(&io, &st);
+    if (!rc) {
+        rc = biss_proto_fw_pru_get(&io, &pru);
     }
-    return rc;
+    if (rc || st.magic != BISS_MAGIC || pru == h->be.pru) {
+        return rc;
+    }
+    return biss_err(e, BISS_E_FW_PRU,
+                    "PRU%u runs an image assembled for PRU%u (BISS_ST_PRU): load "
+                    "%s on PRU%u",
+                    h->be.pru, pru, h->be.pru ? "biss_master_pru1" : "biss_master", h->be.pru);
 }
 
 int biss_pru_load_and_start(biss_t *h) {

@@ -147,9 +147,8 @@ int biss_proto_id_get(const struct biss_proto_io *io, struct biss_shm_id *id);
  * kernel's loader puts them from the ELF. */
 int biss_proto_id_put(const struct biss_proto_io *io, const struct biss_shm_id *id,
                       const uint8_t rsc[16]);
-/* PRU_INDEX: which PRU (0 or 1) the firmware is about to start on; written
- * before the start, after the shared area is cleared. */
-int biss_proto_pru_index_put(const struct biss_proto_io *io, unsigned pru);
+/* ST_PRU: the PRU (0 or 1) the running image was assembled for. */
+int biss_proto_fw_pru_get(const struct biss_proto_io *io, uint32_t *pru);
 /* CMD_TRIGGER: read (nonzero while a frame is pending) and set. */
 int biss_proto_trigger_get(const struct biss_proto_io *io, uint32_t *pending);
 int biss_proto_trigger(const struct biss_proto_io *io);

@@ -47,9 +47,8 @@ int biss_proto_id_put(const struct biss_proto_io *io, const struct biss_shm_id *
     return wr(io, BISS_ID, blk, sizeof blk);
 }
 
-int biss_proto_pru_index_put(const struct biss_proto_io *io, unsigned pru) {
-    uint32_t v = pru;
-    return wr(io, BISS_PRU_INDEX, &v, 4);
+int biss_proto_fw_pru_get(const struct biss_proto_io *io, uint32_t *pru) {
+    return rd(io, BISS_ST_PRU, pru, 4);
 }
 
 int biss_proto_trigger_get(const struct biss_proto_io *io, uint32_t *pending) {

@@ -3,8 +3,10 @@
 //
 // MA is R30 bit MA_BIT (default 1), SL is R31 bit 0 in 28-bit shift mode,
 // sampled at 8x the MA rate. The host configures and reads results through
-// the PRU's own data RAM, laid out in include/biss/biss_shm.h; the same
-// image runs on PRU0 and PRU1, each with its own line (BISS_PRU_INDEX).
+// the PRU's own data RAM, laid out in include/biss/biss_shm.h. Assembled
+// once per PRU (-DPRU_NUM=0, the default, or -DPRU_NUM=1): the PRU's CONTROL
+// block, GPCFG and scratch-pad bank are in the instruction words, so each
+// image runs only on the PRU it was built for (it says which in BISS_ST_PRU).
 //
 // A frame (MA period p = 0, 1, ...; each period exactly 2H PRU cycles):
 //   WAIT_ACK    clock until the newest 8 samples show SL low (the ACK edge);
@@ -32,6 +34,16 @@
 #ifndef MA_BIT
 #define MA_BIT          1               // R30 bit driving MA: 0..7
 #endif
+#ifndef PRU_NUM
+#define PRU_NUM         0               // the PRU of its PRU-ICSS this image is for: 0 or 1
+#endif
+// This PRU's scratch-pad bank: PRU0 bank 0 (XFR device 10), PRU1 bank 1 (11).
+// Both PRUs on one bank in one cycle stall PRU1 (docs/pru-facts.md §3), and
+// the bank is part of the XIN/XOUT word: one bank each, never the other's.
+// (-DXFR_BANK=n only for test_e2e_twopru's image that breaks this rule.)
+#ifndef XFR_BANK
+#define XFR_BANK        (10 + PRU_NUM)
+#endif
 #define MA_MASK         (1 << MA_BIT)
 #define LAG             2               // extra whole periods between a bit and its read
 #define CLOCK_FOREVER   0x7fff0000      // r12 while the start bit is awaited
@@ -41,7 +53,8 @@
 #define IDLE_TURNS      25000           // SL idle polls (4 cycles): 500 us, then no slave
 
 // PRU-ICSS registers
-#define GPCFG0          0x08            // CFG (C4)
+#define GPCFG0          0x08            // CFG (C4); GPCFG1 at 0x0c for PRU1 (docs/pru-facts.md §4.5)
+#define GPCFG_OWN       (GPCFG0 + 4 * PRU_NUM)
 #define SHIFT_MODE      2               // GPCFG GPI_MODE: 28-bit shift
 #define IEP_GLOBAL_CFG  0x00            // IEP (C26)
 #define IEP_COUNT       0x0c
@@ -73,11 +86,11 @@
 #define P_SSI           0x7c                // u16 the ACK position an SSI frame reads by
                                             //   (0: BiSS-C), u16 MA edges after period 0
 #define P_SLAVES        0x80                // 8 x 16: mask lo, mask hi, residue, [n, w, ew, flags]
-#define PRU0_CTPPR0     0x22028             // C28 = 0x00nnnn00 with nnnn = CTPPR0[15:0];
-                                            // PRU1's is 0x2000 higher (docs/pru-facts.md §5.1)
+#define PRU_CTPPR0      (0x22028 + 0x2000 * PRU_NUM)    // C28 = 0x00nnnn00, nnnn = CTPPR0[15:0]:
+                                            // PRU1's CONTROL block is 0x2000 above PRU0's (§5.1)
 #define CFG_SPP         0x34                // CFG (C4): scratch-pad priority and shift
 #define SPP_XFR_SHIFT   2                   // XFR_SHIFT_EN (bit 1) with PRU1_PAD_HP_EN (bit 0) 0
-#define XFR_SLOT        3                   // a slave's result: 3 registers of bank 0 (r4..r6)
+#define XFR_SLOT        3                   // a slave's result: 3 registers of the bank (r4..r6)
 
 // (after the equates: macro bodies take equates as they are read)
 #include "biss_periods.hp"
@@ -87,11 +100,9 @@
 START:
     ldi     r0, 0                           // R0[4:0] = 0: no XFR shift, whatever SPP holds
     zero    &r0, 120                        // r0..r29
-    lbco    r27, c24, BISS_PRU_INDEX, 4     // this PRU, 0 or 1 (the host wrote it before the
-    lsl     r27, r27, 13                    // start): its CONTROL block is 0x2000 x that higher
-    mov     r28, PRU0_CTPPR0
+    mov     r28, PRU_CTPPR0
     ldi     r29, BISS_PRIV >> 8
-    sbbo    r29, r28, r27, 4                // C28 -> the private area
+    sbbo    r29, r28, 0, 4                  // C28 -> the private area
     set     r30, r30, MA_BIT                // MA idles high
     // status and private areas start clear: stores of r0.. (zero)
     sbco    r0, c24, BISS_ST_SEQ, BISS_ST_END - BISS_ST_SEQ
@@ -102,14 +113,16 @@ START:
 CLEAR_PRIV:
     not     r2, r0                          // ~0: no configuration applied yet
     sbco    r2, c24, BISS_ST_CFG_ACK, 4
-    mov     r2, BISS_MAGIC                  // last: a host that sees it sees a clear status
-    sbco    r2, c24, BISS_ST_MAGIC, 4
+    ldi     r1, PRU_NUM                     // the PRU this image is for, and last the
+    mov     r2, BISS_MAGIC                  // magic: a host that sees it sees a clear status
+    sbco    r1, c24, BISS_ST_PRU, 8
     // IEP: count PRU cycles (increment 1), free running
     ldi     r2, 0x0111
     sbco    r2, c26, IEP_GLOBAL_CFG, 4
     // Scratch pad: XIN/XOUT shifted by R0[4:0] registers (the slaves'
     // result slots: CFG_PROC); PRU0 keeps priority over PRU1 on a bank
-    // (docs/silicon-assumptions.md A6).
+    // (docs/silicon-assumptions.md A6), though each PRU uses only its own
+    // (XFR_BANK). Both PRUs write this same value.
     ldi     r2, SPP_XFR_SHIFT
     sbco    r2, c4, CFG_SPP, 4
 
@@ -396,7 +409,7 @@ CFG_DELAY_SAVE:
     sbco    r7, c28, P_HALF, 4
     mov     r2.w0, r22.w0                   // processing-time limit
     ldi     r2.w2, 0x0101                   // running, training due (BiSS-C)
-    // The step between the slaves' result slots in scratch-pad bank 0, for
+    // The step between the slaves' result slots in this PRU's bank, for
     // the XFR shift (R0[4:0]). TI calls R0[4:0] "the number of 32-bit
     // offset" for XIN and XOUT but gives no direction. Up, slot k sits at
     // bank registers 4 + 3k .. 6 + 3k (k <= 7: at most 27, never past the
@@ -407,12 +420,12 @@ CFG_DELAY_SAVE:
     // (docs/silicon-assumptions.md A6).
     ldi     r0, 0
     ldi     r6, 0
-    xout    10, r6, 4                       // bank register 6 cleared
+    xout    XFR_BANK, r6, 4                       // bank register 6 cleared
     ldi     r0, 32 - XFR_SLOT
     ldi     r3, 32 - 2 * XFR_SLOT
-    xout    10, r3, 4                       // 26 to bank register 6 (down) or 0 (up)
+    xout    XFR_BANK, r3, 4                       // 26 to bank register 6 (down) or 0 (up)
     ldi     r0, 0
-    xin     10, r6, 4
+    xin     XFR_BANK, r6, 4
     add     r2.b3, r6, XFR_SLOT             // running = the step: 3 up, 29 down
     qbeq    CFG_PROC, r27.w0, 0
     ldi     r2.b2, 0                        // SSI: the delay is given, nothing to train
@@ -422,10 +435,7 @@ CFG_PROC:
     sbco    r27, c28, P_SSI, 4
     sbco    r2, c28, P_PROC, 4
     lbco    r2, c28, P_GPCFG, 4
-    lbco    r3, c24, BISS_PRU_INDEX, 4      // GPCFG0 for PRU0, GPCFG1 for PRU1
-    lsl     r3, r3, 2
-    add     r3, r3, GPCFG0
-    sbco    r2, c4, r3, 4                   // shift mode at 8x the new rate
+    sbco    r2, c4, GPCFG_OWN, 4            // shift mode at 8x the new rate
     ldi     r28, BISS_CFGERR_NONE
     ldi     r2, BISS_STATE_RUNNING
     qba     CFG_REPORT
@@ -526,13 +536,13 @@ FRAME_REGS:
     ldi     r8, 0
     jmp     r12.w0
 
-// The timestamp, then the first period. It waits in scratch-pad bank 1
-// (r0.b0 = 0: unshifted) for FRAME_END or ABORT_FRAME: no data-RAM store
-// between the IEP read and the first MA edge.
+// The timestamp, then the first period. It waits in bank register 2 (r0.b0
+// = 0: unshifted; the slots start at 4) for FRAME_END or ABORT_FRAME: no
+// data-RAM store between the IEP read and the first MA edge.
 .macro FRAME_STAMP
     ldi     r3, 0
     lbco    r2, c26, IEP_COUNT, 4
-    xout    11, r2, 4
+    xout    XFR_BANK, r2, 4
 .endm
 
 FRAME:
@@ -756,7 +766,7 @@ FINAL_PLAIN:
     lsl     r2, r2, 8
     SHIFT_IN
     sub     r0.b0, r0.b0, r0.b1             // the last slave's slot
-    xout    10, r4, 12
+    xout    XFR_BANK, r4, 12
     qba     FRAME_END
 FINAL_CRC2:
     MA_FALL
@@ -766,7 +776,7 @@ FINAL_CRC:
     ldi     r7.b0, 1
 FINAL_CRC_GO:
     sub     r0.b0, r0.b0, r0.b1             // the last slave's slot:
-    xin     10, r6, 4                       // its CRC register
+    xin     XFR_BANK, r6, 4                       // its CRC register
     sub     r1.b0, r1.b0, 12                // the last slave's polynomial
     mviw    r8.w2, *r1.b0++
 FINAL_CRC_BIT:
@@ -774,7 +784,7 @@ FINAL_CRC_BIT:
     CRC_STEP
     sub     r7.b0, r7.b0, 1
     qbne    FINAL_CRC_BIT, r7.b0, 0
-    xout    10, r6, 4
+    xout    XFR_BANK, r6, 4
 
 FRAME_END:
     jal     r0.w0, CD_COMMIT               // r1.b1 = CDS; r1.b0 = the CDM sent
@@ -789,7 +799,7 @@ FRAME_END:
     add     r3, r2, BISS_R_SLAVE0           // slave result
     mov     r11, BISS_PRIV + P_SLAVES       // slave check data
 FE_SLAVE:
-    xin     10, r4, 12                      // data lo, data hi, CRC register: its slot
+    xin     XFR_BANK, r4, 12                      // data lo, data hi, CRC register: its slot
     add     r0.b0, r0.b0, r0.b1             // the next slave's
     lbbo    r7, r11, 0, 16                  // mask lo, mask hi, residue, [n, w, ew, flags]
     and     r4, r4, r7
@@ -956,13 +966,13 @@ SLAVE_IDLE_POLL:
 SLAVE_IDLE_YES:
     jmp     r0.w0
 
-// r2 = the result buffer being filled, with the frame's timestamp (bank 1,
-// FRAME_STAMP) and busy clocks (r0.w2, START_WAIT) stored in it: the
+// r2 = the result buffer being filled, with the frame's timestamp (bank
+// register 2, FRAME_STAMP) and busy clocks (r0.w2, START_WAIT) stored in it: the
 // clocked part stores nothing. r0.w0 = 0 after (no XFR shift), r5 = r2.
 // Returns through r3.w0.
 BUF_STAMP:
     ldi     r0.w0, 0
-    xin     11, r2, 4
+    xin     XFR_BANK, r2, 4
     RESULT_BASE r5
     sbbo    r2, r5, BISS_R_TIMESTAMP, 4
     sbbo    r0.w2, r5, BISS_R_PROC_CLOCKS, 2

@@ -24,10 +24,6 @@ int bench_fw_start(struct bench *b, const void *image, size_t bytes) {
     if (pru_load_image(c, image, bytes) != 0) {
         return -1;
     }
-    struct biss_proto_io io = bench_fw_io(b);
-    if (biss_proto_pru_index_put(&io, bench_config(b)->pru_index) != 0) {
-        return -1;
-    }
     pru_start(c);
     return 0;
 }

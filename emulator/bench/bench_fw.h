@@ -19,8 +19,9 @@ struct bench_fw_settings {
     unsigned proc_limit; /* longest processing time accepted, MA clocks */
 };
 
-/* Starts the firmware image on the bench's PRU as a host does: loads it,
- * tells it which PRU it is on (PRU_INDEX), starts it. 0 or -1 (too big). */
+/* Starts the firmware image on the bench's PRU as a host does: loads it
+ * and starts it (the image must be the one built for that PRU,
+ * pru_fw/README.md). 0 or -1 (too big). */
 int bench_fw_start(struct bench *b, const void *image, size_t bytes);
 
 /* The bench's PRU's data RAM, through host accesses at the SoC's address. */

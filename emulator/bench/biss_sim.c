@@ -34,7 +34,8 @@
 #define MAX_SIM_MS 1e9
 
 #ifndef BISS_SIM_FIRMWARE
-#define BISS_SIM_FIRMWARE "biss_master.bin"
+#define BISS_SIM_FIRMWARE      "biss_master.bin"
+#define BISS_SIM_FIRMWARE_PRU1 "biss_master_pru1.bin"
 #endif
 
 struct options {
@@ -45,8 +46,9 @@ struct options {
     uint64_t frames;
     uint64_t seed;
     int seed_set;
-    const char *image;    /* any image, run as is */
-    const char *firmware; /* the BiSS master firmware (default: this tree's) */
+    const char *image;         /* any image, run as is */
+    const char *firmware;      /* the BiSS master firmware (default: this tree's) */
+    const char *pru1_firmware; /* PRU1's, with a second encoder */
     const char *soc;
     unsigned pru; /* the PRU of the PRU-ICSS that runs the image */
     /* a second encoder on PRU1's line (sim_pair.h), and the IEP period */
@@ -82,8 +84,10 @@ static void usage(FILE *f) {
                "  --cable-m M        cable length in metres, both directions (default: profile's)\n"
                "  --frames N         frames to run (default 100)\n"
                "  --seed S           random seed for noise and jitter (default: scenario's)\n"
-               "  --firmware FILE    BiSS master firmware, .bin or .p (default: this build's);\n"
-               "                     configured for the profile and checked frame by frame\n"
+               "  --firmware FILE    BiSS master firmware, .bin or .p (default: this build's\n"
+               "                     image for the PRU); configured for the profile and\n"
+               "                     checked frame by frame; a .p is assembled for the PRU\n"
+               "                     (-D PRU_NUM)\n"
                "  --image FILE       any PRU image (.bin, or .p assembled with -D HALF, CLOCKS,\n"
                "                     GAP, FRAMES, MA_BIT), run as is: nothing is decoded\n"
                "  --soc NAME         am335x (default), am437x-icss0, am437x-icss1\n"
@@ -95,6 +99,9 @@ static void usage(FILE *f) {
                "                     them; both checked, and their frame starts compared\n"
                "  --iep-period-ns NS with a second encoder: the IEP period (default: twice\n"
                "                     the longer frame)\n"
+               "  --pru1-firmware FILE\n"
+               "                     with a second encoder: PRU1's image (default: this\n"
+               "                     build's PRU1 image, or --firmware's .p for PRU1)\n"
                "  --vcd FILE         write MA/SL at master and slave and a frame wire (high\n"
                "                     while a frame is clocked) as VCD (scope bench)\n"
                "  --vcd-timescale U  1ps, 10ps, 100ps or 1ns (default); edges keep their order\n"
@@ -118,7 +125,7 @@ static void usage(FILE *f) {
                "  --strict[=RULES]   stop with a fault report on a construct of uncertain\n"
                "                     silicon behaviour in clocked code (between two MA edges\n"
                "                     at most --strict-window cycles apart, default 1024):\n"
-               "                     loop1, loop0, loopfield, mvi, dram (default: all)\n"
+               "                     loop1, loop0, loopfield, mvi, dram, spad (default: all)\n"
                "  --strict-log       with --strict: record every violation, run on, list them\n"
                "  --contend K,S[,periodic[:PHASE]|random[:SEED]]\n"
                "                     the host reads the data RAM every K cycles; a PRU\n"
@@ -177,9 +184,9 @@ static const char *const valued[] = {
     "--image",    "--soc",      "--vcd",       "--svg",     "--svg-frame",  "--max-ms",
     "--firmware", "--reg-read", "--reg-write", "--command", "--check-life", "--check-pair"};
 /* ... and those of the waveform output and the fast paths */
-static const char *const valued_out[] = {"--vcd-timescale", "--no-fast-path", "--strict-window",
-                                         "--contend",       "--pru",          "--pru1-profile",
-                                         "--pru1-scenario", "--iep-period-ns"};
+static const char *const valued_out[] = {"--vcd-timescale", "--no-fast-path",  "--strict-window",
+                                         "--contend",       "--pru",           "--pru1-profile",
+                                         "--pru1-scenario", "--iep-period-ns", "--pru1-firmware"};
 
 static int takes_value(const char *a) {
     for (size_t i = 0; i < sizeof(valued) / sizeof(valued[0]); i++) {
@@ -292,6 +299,8 @@ static int set_option(struct options *o, const char *a, const char *v) {
         o->pru = (unsigned)(v[0] - '0');
     } else if (!strcmp(a, "--firmware")) {
         o->firmware = v;
+    } else if (!strcmp(a, "--pru1-firmware")) {
+        o->pru1_firmware = v;
     } else if (!strcmp(a, "--check-life")) {
         if (biss_safety_parse_life(v, &o->checks)) {
             return die("--check-life: '%s' is not S[,BITS] (slave 0..7, 1..32 bits)", v);
@@ -383,7 +392,8 @@ static int parse_args(int argc, char **argv, struct options *o) {
         } else if (!strcmp(a, "--strict") || !strncmp(a, "--strict=", 9)) {
             const char *bad;
             if (pru_strict_parse(a[8] ? a + 9 : NULL, &o->strict, &bad) != 0) {
-                return die("--strict: unknown rule '%s' (loop1, loop0, loopfield, mvi, dram)", bad);
+                return die("--strict: unknown rule '%s' (loop1, loop0, loopfield, mvi, dram, spad)",
+                           bad);
             }
         } else if (!strcmp(a, "--strict-log")) {
             o->strict_log = 1;
@@ -516,6 +526,16 @@ static enum pru_stop run_firmware(struct bench *b, struct fw_check *fc, uint64_t
     return why;
 }
 
+static bool is_bin(const char *path) {
+    size_t n = strlen(path);
+    return n >= 4 && !strcmp(path + n - 4, ".bin");
+}
+
+/* The firmware source is assembled for the PRU it runs on (PRU_NUM). */
+static void pru_num_define(unsigned pru, struct sim_defines *d) {
+    snprintf(d->text[d->n++], sizeof d->text[0], "PRU_NUM=%u", pru);
+}
+
 /* A second encoder on PRU1 (sim_pair.h): the firmware on both PRUs. */
 static int run_pair(const struct options *o, const struct bench_config *cfg, unsigned half) {
     if (o->image || o->json || o->vcd || o->svg || o->cd_set || o->pru) {
@@ -540,15 +560,30 @@ static int run_pair(const struct options *o, const struct bench_config *cfg, uns
     if (o->seed_set) {
         r.cfg[1].link.seed = o->seed + 1; /* a noise of its own */
     }
-    struct pruasm_image img;
-    const char *path = o->firmware ? o->firmware : BISS_SIM_FIRMWARE;
-    if (sim_load_image(path, &(struct sim_defines){.n = 0}, &img, err, sizeof(err)) != 0) {
-        return die("%s", err);
+    /* one image per PRU (pru_fw/README.md) */
+    struct pruasm_image img[2];
+    const char *path[2] = {o->firmware ? o->firmware : BISS_SIM_FIRMWARE,
+                           o->pru1_firmware ? o->pru1_firmware : BISS_SIM_FIRMWARE_PRU1};
+    if (!o->pru1_firmware && o->firmware && !is_bin(o->firmware)) {
+        path[1] = o->firmware; /* the source, assembled for PRU1 */
+    }
+    for (unsigned i = 0; i < 2; i++) {
+        struct sim_defines d = {.n = 0};
+        pru_num_define(i, &d);
+        if (sim_load_image(path[i], &d, &img[i], err, sizeof(err)) != 0) {
+            if (i) {
+                pruasm_image_free(&img[0]);
+            }
+            return die("%s", err);
+        }
+        r.image[i] = img[i].words;
+        r.bytes[i] = img[i].nwords * 4;
     }
     r.max_ps = (int64_t)(o->max_ms * 1e9); /* 0: ample (sim_pair) */
     r.cap_ps = (int64_t)(MAX_SIM_MS * 1e9);
-    int rc = sim_pair(&r, img.words, img.nwords * 4);
-    pruasm_image_free(&img);
+    int rc = sim_pair(&r);
+    pruasm_image_free(&img[0]);
+    pruasm_image_free(&img[1]);
     return rc;
 }
 
@@ -607,7 +642,11 @@ static int run(const struct options *o) {
     }
     struct pruasm_image img;
     int rc = 0;
-    const char *path = fw_mode ? (o->firmware ? o->firmware : BISS_SIM_FIRMWARE) : o->image;
+    const char *own = o->pru ? BISS_SIM_FIRMWARE_PRU1 : BISS_SIM_FIRMWARE; /* one per PRU */
+    const char *path = fw_mode ? (o->firmware ? o->firmware : own) : o->image;
+    if (fw_mode) {
+        pru_num_define(o->pru, &defs);
+    }
     if (sim_load_image(path, &defs, &img, err, sizeof(err)) != 0) {
         bench_free(b);
         return die("%s", err);

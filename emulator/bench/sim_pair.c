@@ -88,7 +88,7 @@ static int report_starts(const struct starts *s, uint32_t period, bool mixed) {
     return s->n[0] == s->n[1] && together ? 0 : 5;
 }
 
-int sim_pair(const struct sim_pair_run *r, const void *image, size_t bytes) {
+int sim_pair(const struct sim_pair_run *r) {
     struct bench *b[2];
     char err[256];
     if (bench_new_pair(r->cfg, b, err, sizeof err) != 0) {
@@ -116,7 +116,7 @@ int sim_pair(const struct sim_pair_run *r, const void *image, size_t bytes) {
     };
     int rc = 0;
     for (unsigned i = 0; i < 2 && rc == 0; i++) {
-        if (bench_fw_start(b[i], image, bytes) != 0) {
+        if (bench_fw_start(b[i], r->image[i], r->bytes[i]) != 0) {
             fprintf(stderr, "biss-sim: the image does not fit PRU%u's IRAM\n", i);
             rc = 1;
         } else {

@@ -19,14 +19,16 @@ struct sim_pair_run {
     uint64_t frames;            /* valid frames each, checked and measured */
     int64_t max_ps;             /* simulated time limit; 0: twice the periods the frames take */
     int64_t cap_ps;             /* ... but never more than this */
+    const void *image[2];       /* the firmware image of PRU0 and of PRU1 */
+    size_t bytes[2];
 };
 
-/* Runs the firmware image on both, checks every frame of each against its
+/* Runs the firmware images on both, checks every frame of each against its
  * own encoder, and prints each PRU's summary (sim_report) and how far
  * apart the frame starts of the two were. Returns biss-sim's exit code:
  * 0, 1 (a message printed), 2 (frames not done in time), 3 (a PRU fault),
  * 5 (a frame check failed, or frame starts more than one PRU cycle apart;
  * for a BiSS-C and an SSI line, their offset varying by more than one). */
-int sim_pair(const struct sim_pair_run *r, const void *image, size_t bytes);
+int sim_pair(const struct sim_pair_run *r);
 
 #endif

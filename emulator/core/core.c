@@ -19,6 +19,7 @@ void pru_params_default(struct pru_params *p) {
     p->xchg_swaps = 1;
     p->xfr_shift_sub = 0;
     p->xfr_shift_fill = 0;
+    p->spad_stall_cycles = 1;
     p->gpi_delay_ps = 2 * PRU_PS_PER_CYCLE;
     p->gpo_delay_ps = 0;
     p->shift_phase_ps = 0;
@@ -98,6 +99,8 @@ struct pru_core *pru_core_new(enum pru_soc soc, const struct pru_params *params)
     c->pru0 = c; /* alone until pruss.c pairs it */
     c->cfg_regs = c->own_cfg;
     c->spad = c->own_spad;
+    for (unsigned i = 0; i < 3; i++)
+        c->spad_cycle[i] = -1;
     c->watch_addr = UINT32_MAX;
     c->iram_bytes = socs[soc].iram;
     c->dram_bytes = socs[soc].dram;

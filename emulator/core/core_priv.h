@@ -199,6 +199,10 @@ struct pru_core {
      * own_spad, or PRU0's (pruss.c) */
     uint8_t (*spad)[SPAD_BYTES];
     uint8_t own_spad[3][SPAD_BYTES];
+    /* The issue cycle of this core's last XFR on each bank (-1: none):
+     * PRU1 looks at PRU0's to find a collision (exec_mem.c) */
+    int64_t spad_cycle[3];
+    uint64_t spad_collisions; /* stalls of this core for one (PRU1 only) */
 
     bool halted, sleeping, sleep_wake_on_event;
     struct pru_fault fault;
@@ -331,6 +335,10 @@ static inline void ff_horizon(struct pru_core *c, int64_t cycle) {
 static inline void ff_dirty(struct pru_core *c) {
     c->ff.dirty = true;
 }
+
+/* exec_mem.c: whether XFR device dev, issued by c in this cycle, meets
+ * PRU0 on the same scratch-pad bank (c is PRU1 of a PRU-ICSS). */
+bool spad_collides(const struct pru_core *c, unsigned dev);
 
 /* strict.c */
 void strict_reset(struct pru_core *c);

@@ -284,7 +284,7 @@ static __attribute__((noinline)) void exec_one(struct pru_core *c, const struct 
             break;
         }
         case PRU_FMT_XFR:
-            exec_xfr(c, d);
+            cost += exec_xfr(c, d);
             break;
         case PRU_FMT_MVI:
             exec_mvi(c, d);

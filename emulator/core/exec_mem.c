@@ -82,7 +82,24 @@ static int xfr_spad(struct pru_core *c, unsigned op, uint8_t *bank, unsigned sta
     return 0;
 }
 
-void exec_xfr(struct pru_core *c, const struct pd *d) {
+/* PRU0 issues before PRU1 within a cycle (pruss.c), so when PRU1 issues
+ * an XFR in cycle t, PRU0's mark for t on that bank is there already. */
+bool spad_collides(const struct pru_core *c, unsigned dev) {
+    return c->pru_idx == 1 && dev >= 10u && dev <= 12u &&
+           c->pru0->spad_cycle[dev - 10u] == c->cycle;
+}
+
+/* The documented collision: both PRUs on one bank in one cycle, PRU0 goes
+ * first and PRU1 stalls (pru_params.spad_stall_cycles). */
+static unsigned spad_arbitrate(struct pru_core *c, unsigned dev) {
+    c->spad_cycle[dev - 10u] = c->cycle;
+    if (!spad_collides(c, dev))
+        return 0;
+    c->spad_collisions++;
+    return c->p.spad_stall_cycles;
+}
+
+unsigned exec_xfr(struct pru_core *c, const struct pd *d) {
     const struct pru_insn *in = &d->in;
     unsigned n = pru_len_bytes(in->len, c->r[0]);
     unsigned start = 4u * in->rx + in->rxbyte;
@@ -90,16 +107,17 @@ void exec_xfr(struct pru_core *c, const struct pd *d) {
     bool is_in = in->op == PRU_OP_XIN || in->op == PRU_OP_SXIN;
     int s = xfr_shift(c);
 
+    unsigned stall = 0;
     if (n == 0 || start + n > RF_BYTES) {
         core_fault(c, PRU_FAULT_BURST, dev);
-        return;
+        return 0;
     }
     if ((dev == 254u || dev == 255u) && is_in) { /* FILL / ZERO */
         if (c->p.xfr_shift_fill && s) {
             int at = (int)start + 4 * s;
             if (at < 0 || at + (int)n > (int)RF_BYTES) {
                 core_fault(c, PRU_FAULT_BURST, dev);
-                return;
+                return 0;
             }
             start = (unsigned)at;
         }
@@ -108,13 +126,15 @@ void exec_xfr(struct pru_core *c, const struct pd *d) {
     } else if (dev >= 10u && dev <= 12u) {
         if (start + n > SPAD_BYTES || xfr_spad(c, in->op, c->spad[dev - 10u], start, n, s)) {
             core_fault(c, PRU_FAULT_BURST, dev);
-            return;
+            return 0;
         }
+        stall = spad_arbitrate(c, dev);
     } else {
         core_fault(c, PRU_FAULT_XFR_DEVICE, dev);
-        return;
+        return 0;
     }
     c->pc++;
+    return stall;
 }
 
 /* MVIx: register-file pointers are byte fields of r1; addresses wrap at 128. */

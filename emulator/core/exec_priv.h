@@ -11,7 +11,8 @@
 #define RF_BYTES 128u /* the register file, byte 4n + k is rn.bk */
 
 /* exec_mem.c: XIN/XOUT/XCHG/ZERO/FILL, MVIx; register-file side effects */
-void exec_xfr(struct pru_core *c, const struct pd *d);
+/* Returns the cycles PRU1 stalls for a scratch-pad collision (else 0). */
+unsigned exec_xfr(struct pru_core *c, const struct pd *d);
 void exec_mvi(struct pru_core *c, const struct pd *d);
 void rf_before_read(struct pru_core *c, unsigned start, unsigned n);
 void rf_after_write(struct pru_core *c, unsigned start, unsigned n, int64_t end_cycle);

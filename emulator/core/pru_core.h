@@ -62,6 +62,13 @@ struct pru_params {
      * same offset in the register file (default 0: unaffected). */
     int xfr_shift_sub;
     int xfr_shift_fill;
+    /* Both PRUs of a PRU-ICSS on one scratch-pad bank in one cycle: PRU0
+     * goes first and PRU1 stalls until PRU0's transfer is done (AM335x
+     * PRU-ICSS guide SPRUHF8A Table 20, AM64x TRM SPRUIM2 XFR collisions,
+     * AM62x TRM SPRUIV7: "PRU0 is given priority"; docs/pru-facts.md §3).
+     * PRU1's XFR then costs 1 + spad_stall_cycles (default 1: PRU0's
+     * transfer takes one cycle; TIMING.md "Scratch pad"). */
+    unsigned spad_stall_cycles;
     /* GPI synchronizer: R31 read at cycle c sees the pins at c*5000 - gpi_delay_ps;
      * the shift register samples DATAIN at edge - gpi_delay_ps. */
     int64_t gpi_delay_ps;
@@ -126,11 +133,12 @@ enum pru_strict_rule {
     PRU_STRICT_LOOPFIELD = 1u << 2, /* LOOP counted by a field not rN or rN.w0 (A2e) */
     PRU_STRICT_MVI = 1u << 3,       /* MVIB/MVIW/MVID (A3) */
     PRU_STRICT_DRAM = 1u << 4,      /* load/store to data RAM 0/1 or shared RAM (A4, A5) */
+    PRU_STRICT_SPAD = 1u << 5,      /* PRU1's XFR on the bank PRU0 uses in that cycle (A6) */
 };
-#define PRU_STRICT_ALL            0x1fu
+#define PRU_STRICT_ALL            0x3fu
 #define PRU_STRICT_DEFAULT_WINDOW 1024u /* the largest half period, H = 1024 */
 
-/* "loop1", "loop0", "loopfield", "mvi", "dram" (one rule bit), NULL else. */
+/* "loop1", "loop0", "loopfield", "mvi", "dram", "spad" (one rule bit), NULL else. */
 const char *pru_strict_rule_name(unsigned rule);
 /* A comma-separated list of rule names, or "all" (or NULL/"") for every
  * rule, into a mask. Returns 0, or -1 (*bad points at the unknown name). */
@@ -153,6 +161,9 @@ size_t pru_strict_hits(const struct pru_core *c, const struct pru_strict_hit **h
 void pru_strict_clear(struct pru_core *c);
 /* Contention so far: PRU accesses that met a host access, stall cycles added. */
 void pru_contend_stats(const struct pru_core *c, uint64_t *collisions, uint64_t *stall_cycles);
+/* Scratch-pad collisions this core stalled for (only PRU1 of a PRU-ICSS
+ * ever does: pru_params.spad_stall_cycles). */
+uint64_t pru_spad_collisions(const struct pru_core *c);
 /* Parses "K,S[,periodic[:PHASE]|random[:SEED]]" into p's contend_* fields.
  * Returns 0, or -1 with a message in err. */
 int pru_contend_parse(const char *spec, struct pru_params *p, char *err, size_t errlen);

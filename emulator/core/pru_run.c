@@ -41,7 +41,7 @@ static void usage(FILE *f) {
             "  --trace          print every executed instruction to stderr\n"
             "  --strict[=RULES] stop with a fault report on a construct of uncertain silicon\n"
             "                   behaviour (docs/silicon-assumptions.md): RULES is a comma\n"
-            "                   list of loop1, loop0, loopfield, mvi, dram (default: all)\n"
+            "                   list of loop1, loop0, loopfield, mvi, dram, spad (default: all)\n"
             "  --strict-scope S clocked (default: between two R30 changes at most\n"
             "                   --strict-window cycles apart) or all (every instruction)\n"
             "  --strict-window N  cycles (default %u)\n"
@@ -118,7 +118,7 @@ static int parse_args(int argc, char **argv, struct opts *o) {
         } else if (strcmp(a, "--strict") == 0 || strncmp(a, "--strict=", 9) == 0) {
             const char *bad_rule;
             if (pru_strict_parse(a[8] ? a + 9 : NULL, &o->params.strict, &bad_rule))
-                return bad("--strict: rules are loop1, loop0, loopfield, mvi, dram; unknown",
+                return bad("--strict: rules are loop1, loop0, loopfield, mvi, dram, spad; unknown",
                            bad_rule);
         } else if (strcmp(a, "--strict-scope") == 0) {
             if (!val || (strcmp(val, "clocked") && strcmp(val, "all")))

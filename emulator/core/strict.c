@@ -21,13 +21,14 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const char *const rule_names[] = {"loop1", "loop0", "loopfield", "mvi", "dram"};
+static const char *const rule_names[] = {"loop1", "loop0", "loopfield", "mvi", "dram", "spad"};
 static const char *const rule_what[] = {
     "LOOP whose body is one instruction",
     "LOOP with a register count of 0",
     "LOOP counted by a field other than rN or rN.w0",
     "MVI (register-pointer move)",
     "load or store to data or shared RAM",
+    "PRU1 on the scratch-pad bank PRU0 uses in this cycle: PRU1 stalls",
 };
 #define N_RULES (sizeof rule_names / sizeof rule_names[0])
 
@@ -87,6 +88,10 @@ void pru_strict_clear(struct pru_core *c) {
     c->st.lost = 0;
 }
 
+uint64_t pru_spad_collisions(const struct pru_core *c) {
+    return c->spad_collisions;
+}
+
 void pru_contend_stats(const struct pru_core *c, uint64_t *collisions, uint64_t *stall_cycles) {
     *collisions = c->st.collisions;
     *stall_cycles = c->st.stall_cycles;
@@ -130,6 +135,10 @@ static unsigned broken(struct pru_core *c, const struct pd *d) {
     case PRU_FMT_BURST:
         if (strict_local_ram(c, strict_burst_addr(c, d), burst_bytes(c, d)))
             r |= PRU_STRICT_DRAM;
+        break;
+    case PRU_FMT_XFR:
+        if (spad_collides(c, d->in.dev))
+            r |= PRU_STRICT_SPAD;
         break;
     default:
         break;

@@ -106,7 +106,8 @@ enum biss_error {
     BISS_E_SAFETY_CRC = -63,  /* pair check of two channels (distinct_crc) whose CRCs have the
                                  same polynomial and start value */
     /* two channels on one PRU-ICSS */
-    BISS_E_IEP_OWNED = -64,   /* trigger iep: the other PRU's channel owns the IEP */
+    BISS_E_IEP_OWNED = -64, /* trigger iep: the other PRU's channel owns the IEP */
+    BISS_E_FW_PRU = -65,    /* the running image was assembled for the other PRU */
 };
 
 /* Static text for any return value of this library (never NULL). */

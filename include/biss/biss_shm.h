@@ -72,13 +72,9 @@
 // ---- commands (host writes, firmware clears) ---------------------------
 #define BISS_CMD_TRIGGER        0x050   // u32: nonzero: start one frame (BISS_TRIG_HOST)
 
-// ---- which PRU (host writes before it starts the PRU) -------------------
-#define BISS_PRU_INDEX          0x054   // u32: 0 or 1, the PRU of its PRU-ICSS this copy runs on
-                                        // (the same image runs on both): the start-up takes its own
-                                        // CONTROL block (PRU0 0x22000, PRU1 0x24000) and GPCFG
-                                        // (GPCFG0, GPCFG1) by it. Zero (PRU0) unless written.
-
 // ---- status (firmware writes) -------------------------------------------
+#define BISS_ST_PRU             0x07C   // u32: the PRU this image was assembled for (PRU_NUM: 0 or
+                                        // 1), written with ST_MAGIC; the host refuses a mismatch
 #define BISS_ST_MAGIC           0x080   // u32: BISS_MAGIC once the firmware runs
 #define BISS_ST_SEQ             0x084   // u32: publication counter (see protocol above)
 #define BISS_ST_BUF             0x088   // u32: result buffer of the last publication (0/1)

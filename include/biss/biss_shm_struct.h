@@ -105,8 +105,8 @@ struct biss_shm_result {
 struct biss_shm {
     struct biss_shm_config cfg;
     uint32_t cmd_trigger;
-    uint32_t pru_index;
-    uint8_t gap_cmd[BISS_ST_MAGIC - BISS_PRU_INDEX - 4];
+    uint8_t gap_cmd[BISS_ST_PRU - BISS_CMD_TRIGGER - 4];
+    uint32_t st_pru;
     struct biss_shm_status st;
     uint8_t gap_st[BISS_CD_CMD - BISS_ST_END];
     struct biss_shm_cd cd;
@@ -152,7 +152,7 @@ BISS_SHM_SLAVE_CFG_AT(crc_poly, BISS_CFG_S_CRC_POLY);
 BISS_SHM_SLAVE_CFG_AT(crc_start, BISS_CFG_S_CRC_START);
 
 BISS_SHM_AT(cmd_trigger, BISS_CMD_TRIGGER);
-BISS_SHM_AT(pru_index, BISS_PRU_INDEX);
+BISS_SHM_AT(st_pru, BISS_ST_PRU);
 
 BISS_SHM_AT(st, BISS_ST_MAGIC);
 BISS_SHM_AT(st.magic, BISS_ST_MAGIC);

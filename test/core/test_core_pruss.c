@@ -2,7 +2,8 @@
  * Check suite: both PRUs of one PRU-ICSS (pruss.h): the cross-mapped data
  * RAMs and the shared RAM, one IEP read by both in the same cycle, each
  * PRU's GPI following its own GPCFG, each PRU's own CONTROL block and
- * constant table, and the host's view of PRU1 (IRAM1, CTRL1, data RAM1).
+ * constant table, the host's view of PRU1 (IRAM1, CTRL1, data RAM1), and
+ * PRU1's stall when both use one scratch-pad bank in a cycle.
  */
 #include "check_run.h"
 #include "core_test_util.h"
@@ -161,7 +162,8 @@ START_TEST(own_control_block) {
 END_TEST
 
 /* One set of scratch-pad banks: what PRU0 puts in bank 0 in cycle 1,
- * PRU1 reads there from cycle 2 on, and not before. */
+ * PRU1 reads there in cycle 1 (it stalls for PRU0, which comes first),
+ * and not before. */
 START_TEST(scratch_pad_shared) {
     uint32_t w0[4] = {ldi(R(2), 0x1234), xfr(PRU_OP_XOUT, 10, 4 * 2, 4), halt()};
     uint32_t w1[4] = {xfr(PRU_OP_XIN, 10, 4 * 3, 4), xfr(PRU_OP_XIN, 10, 4 * 2, 4),
@@ -173,6 +175,80 @@ START_TEST(scratch_pad_shared) {
     ck_assert_uint_eq(pru_reg(c1, 3), 0);      /* cycle 0: not yet there */
     ck_assert_uint_eq(pru_reg(c1, 2), 0x1234); /* cycle 1: PRU0's XOUT came first */
     ck_assert_uint_eq(pru_reg(c1, 4), 0);      /* another bank */
+    pru_icss_free(s);
+}
+END_TEST
+
+/* PRU0 and PRU1 issue an XOUT in cycle 0, on bank `bank1` for PRU1 (bank 0
+ * for PRU0), then PRU1 runs ADDs: the instructions PRU1 has issued before
+ * cycle 5 show its stall. */
+static struct pru_icss *xout_race(unsigned bank1, const struct pru_params *p) {
+    uint32_t a0[2] = {xfr(PRU_OP_XOUT, 10, 4 * 2, 4), halt()};
+    uint32_t a1[6] = {xfr(PRU_OP_XOUT, bank1, 4 * 3, 4), alu(PRU_OP_ADD, R(4), R(4), R(4)),
+                      alu(PRU_OP_ADD, R(4), R(4), R(4)), alu(PRU_OP_ADD, R(4), R(4), R(4)),
+                      alu(PRU_OP_ADD, R(4), R(4), R(4)), halt()};
+    struct pru_icss *s = pru_icss_new(PRU_SOC_AM335X, p);
+    ck_assert_ptr_nonnull(s);
+    struct pru_core *c0 = pru_icss_core(s, 0), *c1 = pru_icss_core(s, 1);
+    ck_assert_int_eq(pru_load_image(c0, a0, sizeof a0), 0);
+    ck_assert_int_eq(pru_load_image(c1, a1, sizeof a1), 0);
+    pru_set_reg(c0, 2, 0x00000a0au);
+    pru_set_reg(c1, 3, 0x00000b0bu);
+    pru_start(c0);
+    pru_start(c1);
+    return s;
+}
+
+/* Both PRUs on one scratch-pad bank in one cycle: PRU0 goes first, PRU1
+ * stalls spad_stall_cycles (TI: "PRU0 is given priority"); on different
+ * banks neither waits. PRU0 never stalls. */
+START_TEST(spad_collision_stalls_pru1) {
+    struct pru_params p;
+    pru_params_default(&p);
+    ck_assert_uint_eq(p.spad_stall_cycles, 1);
+    for (unsigned stall = 1; stall <= 3; stall += 2) {
+        p.spad_stall_cycles = stall;
+        struct pru_icss *s = xout_race(10, &p);
+        struct pru_core *c0 = pru_icss_core(s, 0), *c1 = pru_icss_core(s, 1);
+        ck_assert_int_eq(pru_icss_run_until_cycle(s, 5), PRU_STOP_HALT);
+        ck_assert_uint_eq(pru_instructions(c0), 2);         /* XOUT, HALT: no wait */
+        ck_assert_uint_eq(pru_instructions(c1), 5 - stall); /* XOUT took 1 + stall */
+        ck_assert_uint_eq(pru_spad_collisions(c1), 1);
+        ck_assert_uint_eq(pru_spad_collisions(c0), 0);
+        pru_icss_free(s);
+    }
+    struct pru_icss *s = xout_race(11, NULL);
+    struct pru_core *c0 = pru_icss_core(s, 0), *c1 = pru_icss_core(s, 1);
+    ck_assert_int_eq(pru_icss_run_until_cycle(s, 5), PRU_STOP_HALT);
+    ck_assert_uint_eq(pru_instructions(c1), 5);
+    ck_assert_uint_eq(pru_spad_collisions(c1), 0);
+    ck_assert_uint_eq(pru_spad_collisions(c0), 0);
+    pru_icss_free(s);
+}
+END_TEST
+
+/* Strict rule spad: PRU1's XOUT on PRU0's bank in the same cycle faults
+ * (PRU1's, at its PC 0); on another bank both run to the end. */
+START_TEST(spad_collision_strict) {
+    struct pru_params p;
+    pru_params_default(&p);
+    p.strict = PRU_STRICT_SPAD;
+    p.strict_everywhere = 1;
+    struct pru_icss *s = xout_race(10, &p);
+    struct pru_core *c0 = pru_icss_core(s, 0), *c1 = pru_icss_core(s, 1);
+    ck_assert_int_eq(pru_icss_run_until_cycle(s, 100), PRU_STOP_FAULT);
+    const struct pru_fault *f = pru_get_fault(c1);
+    ck_assert_int_eq(f->cause, PRU_FAULT_STRICT);
+    ck_assert_uint_eq(f->rule, PRU_STRICT_SPAD);
+    ck_assert_uint_eq(f->pc, 0);
+    ck_assert_int_eq(f->cycle, 0);
+    ck_assert_int_eq(pru_get_fault(c0)->cause, PRU_FAULT_NONE);
+    ck_assert_str_eq(pru_strict_rule_name(PRU_STRICT_SPAD), "spad");
+    pru_icss_free(s);
+    s = xout_race(11, &p);
+    ck_assert_int_eq(pru_icss_run_until_cycle(s, 100), PRU_STOP_HALT);
+    ck_assert(pru_halted(pru_icss_core(s, 0)) && pru_halted(pru_icss_core(s, 1)));
+    ck_assert_int_eq(pru_get_fault(pru_icss_core(s, 1))->cause, PRU_FAULT_NONE);
     pru_icss_free(s);
 }
 END_TEST
@@ -205,6 +281,8 @@ Suite *pruss_suite(void) {
     tcase_add_test(t, own_control_block);
     tcase_add_test(t, host_controls_pru1);
     tcase_add_test(t, scratch_pad_shared);
+    tcase_add_test(t, spad_collision_stalls_pru1);
+    tcase_add_test(t, spad_collision_strict);
     suite_add_tcase(s, t);
     return s;
 }

@@ -8,16 +8,20 @@
 #include <stdlib.h>
 #include <string.h>
 
-#ifndef FIRMWARE_IMAGE
-#error "FIRMWARE_IMAGE must name the built firmware"
+#if !defined(FIRMWARE_IMAGE) || !defined(FIRMWARE_IMAGE_PRU1)
+#error "FIRMWARE_IMAGE and FIRMWARE_IMAGE_PRU1 must name the built firmware images"
 #endif
 
-/* The built firmware into the bench's IRAM, and the PRU started. */
+const char *e2e_firmware_image(unsigned pru) {
+    return pru ? FIRMWARE_IMAGE_PRU1 : FIRMWARE_IMAGE;
+}
+
+/* The built firmware of the bench's PRU into its IRAM, and the PRU started. */
 void e2e_start_firmware(struct e2e_run *r) {
     char *image;
     size_t n;
-    ck_assert_msg(read_file(FIRMWARE_IMAGE, 1u << 16, &image, &n) == READ_FILE_OK, "cannot read %s",
-                  FIRMWARE_IMAGE);
+    const char *path = e2e_firmware_image(bench_config(r->b)->pru_index);
+    ck_assert_msg(read_file(path, 1u << 16, &image, &n) == READ_FILE_OK, "cannot read %s", path);
     ck_assert_uint_gt(n, 0);
     r->image_words = (uint32_t)(n / 4);
     ck_assert_int_eq(bench_fw_start(r->b, image, n), 0);

@@ -24,7 +24,9 @@ struct bench *e2e_bench(struct e2e_run *r, const char *profile, double cable_m,
 struct bench *e2e_bench_scenario(struct e2e_run *r, const scenario *sc,
                                  const struct pru_params *params);
 
-/* Loads the built firmware into r->b's PRU and starts it. */
+/* The built image for PRU pru (0: biss_master.bin, 1: biss_master_pru1.bin). */
+const char *e2e_firmware_image(unsigned pru);
+/* Loads the built firmware of r->b's PRU into its IRAM and starts it. */
 void e2e_start_firmware(struct e2e_run *r);
 
 /* Configures free-run at half period `half`, waits for the training and the

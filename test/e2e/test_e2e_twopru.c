@@ -1,16 +1,21 @@
 /*
  * End-to-end: two encoders on the two PRUs of one PRU-ICSS
- * (emulator/core/pruss.h). The same firmware image runs on PRU0 and PRU1,
- * each with its own line, encoder, configuration and results; PRU0 owns
- * the IEP (BISS_TRIG_IEP), PRU1 follows its period (BISS_TRIG_IEP_FOLLOW).
- * Every published frame of each is checked against its own encoder model,
- * the MA half periods at both master pins are exact, and the frames of the
- * two start on the same PRU cycle.
+ * (emulator/core/pruss.h). Each PRU runs the image built for it
+ * (biss_master.bin, biss_master_pru1.bin: its own CONTROL block, GPCFG and
+ * scratch-pad bank), each with its own line, encoder, configuration and
+ * results; PRU0 owns the IEP (BISS_TRIG_IEP), PRU1 follows its period
+ * (BISS_TRIG_IEP_FOLLOW). Both run under strict mode, the scratch-pad rule
+ * (spad: PRU1 on PRU0's bank in the same cycle) included, and PRU1 must
+ * never have stalled for PRU0 on a bank. Every published frame of each is
+ * checked against its own encoder model, the MA half periods at both
+ * master pins are exact, and the frames of the two start on the same PRU
+ * cycle.
  */
 #include "check_run.h"
 #include "e2e_util.h"
 
 #include "biss/biss_shm.h"
+#include "pruasm.h"
 
 #include <check.h>
 #include <stdlib.h>
@@ -22,14 +27,27 @@ struct pair {
     struct e2e_run r[2];
 };
 
-static void pair_new(struct pair *p, enum pru_soc soc, const char *profile0, const char *profile1) {
+/* Strict mode for both cores: every rule the firmware keeps to (all but
+ * mvi: MVIW stays, docs/silicon-assumptions.md A3), in the clocked code of
+ * the faster line at least (window: the longer half period). */
+static void strict_params(struct pru_params *pp, unsigned longest_half) {
+    pru_params_default(pp);
+    pp->strict = PRU_STRICT_ALL & ~PRU_STRICT_MVI;
+    pp->strict_window = longest_half;
+}
+
+/* The two benches of one PRU-ICSS, with cable[i] metres on PRU i's line;
+ * no firmware started yet. */
+static void pair_open(struct pair *p, enum pru_soc soc, const char *profile0, const char *profile1,
+                      const double cable[2], const struct pru_params *pp) {
     struct bench_config cfg[2];
     const char *profile[2] = {profile0, profile1};
     for (unsigned i = 0; i < 2; i++) {
         bench_config_default(&cfg[i]);
         cfg[i].soc = soc;
+        cfg[i].pru = *pp;
         ck_assert_int_eq(profile_by_name(profile[i], &cfg[i].link), 0);
-        scenario_set_cable(&cfg[i].link, i ? 25 : 5); /* different line delays too */
+        scenario_set_cable(&cfg[i].link, cable[i]);
         cfg[i].link.seed = 11 + i;
     }
     struct bench *b[2];
@@ -38,8 +56,18 @@ static void pair_new(struct pair *p, enum pru_soc soc, const char *profile0, con
     for (unsigned i = 0; i < 2; i++) {
         p->r[i].b = b[i];
         ck_assert_uint_eq(bench_config(b[i])->pru_index, i);
+    }
+}
+
+/* Each PRU with the image built for it, under strict mode. */
+static void pair_new(struct pair *p, enum pru_soc soc, const char *profile0, const char *profile1,
+                     unsigned longest_half) {
+    struct pru_params pp;
+    strict_params(&pp, longest_half);
+    pair_open(p, soc, profile0, profile1, (const double[2]){5, 25} /* line delays differ */, &pp);
+    for (unsigned i = 0; i < 2; i++) {
         e2e_start_firmware(&p->r[i]);
-        fw_check_attach(&p->r[i].fc, b[i]);
+        fw_check_attach(&p->r[i].fc, p->r[i].b);
     }
 }
 
@@ -117,6 +145,8 @@ static void check_pair(struct pair *p, unsigned half0, unsigned half1) {
     }
     unsigned half[2] = {half0, half1};
     for (unsigned i = 0; i < 2; i++) {
+        /* each image keeps to its own bank: PRU1 never waited for PRU0 */
+        ck_assert_uint_eq(pru_spad_collisions(bench_core(p->r[i].b)), 0);
         const struct bench_stats *st = bench_stats(p->r[i].b);
         ck_assert_uint_gt(st->half_periods, 100);
         ck_assert_int_eq(st->half_min_ps, (int64_t)half[i] * PRU_PS_PER_CYCLE);
@@ -136,7 +166,7 @@ static const enum pru_soc socs[] = {PRU_SOC_AM335X, PRU_SOC_AM437X_ICSS0, PRU_SO
 
 START_TEST(test_two_encoders_same_rate) {
     struct pair p;
-    pair_new(&p, socs[_i], "tidep0022-test-encoder", "hengstler-ad38");
+    pair_new(&p, socs[_i], "tidep0022-test-encoder", "hengstler-ad38", 10);
     configure(&p, 10, 10);
     check_pair(&p, 10, 10);
     pair_free(&p);
@@ -146,7 +176,7 @@ END_TEST
 /* Each PRU at its own rate (its own GPCFG divider): starts still match. */
 START_TEST(test_two_encoders_own_rates) {
     struct pair p;
-    pair_new(&p, PRU_SOC_AM335X, "posital-kit-layout-biss-c", "tidep0022-test-encoder");
+    pair_new(&p, PRU_SOC_AM335X, "posital-kit-layout-biss-c", "tidep0022-test-encoder", 20);
     configure(&p, 20, 10);
     check_pair(&p, 20, 10);
     pair_free(&p);
@@ -154,15 +184,58 @@ START_TEST(test_two_encoders_own_rates) {
 END_TEST
 
 /* A chain on PRU0 and a single encoder on PRU1 at 5 MHz: the slaves'
- * bits of the two lines are read at different times. Anything the
- * firmware kept for a frame in the PRU-ICSS's one set of scratch-pad banks
- * would be overwritten by the other PRU here (a CRC error on every frame
- * of the chain), so this pair shows whether each PRU keeps to its own. */
+ * bits of the two lines are read at different times. The slaves' results
+ * wait in the scratch pad, whose banks both PRUs share: with one bank for
+ * both, the other PRU would overwrite them here (a CRC error on every
+ * frame of the chain), so this pair shows that each PRU keeps to its own. */
 START_TEST(test_chain_and_single) {
     struct pair p;
-    pair_new(&p, PRU_SOC_AM335X, "hengstler-ad38", "posital-kit-layout-biss-c");
+    pair_new(&p, PRU_SOC_AM335X, "hengstler-ad38", "posital-kit-layout-biss-c", 20);
     configure(&p, 20, 20);
     check_pair(&p, 20, 20);
+    pair_free(&p);
+}
+END_TEST
+
+/* The same encoder and cable on both lines at the same rate, frames on the
+ * same cycle: the two PRUs store each slave's result in the same cycle.
+ * With their own banks nothing collides and both read right; PRU1's image
+ * assembled with PRU0's bank (-DXFR_BANK=10) meets PRU0 there, and strict
+ * mode's spad rule stops PRU1 at that XOUT: the rule the tests above run
+ * under does catch a shared bank. */
+START_TEST(test_same_line_both) {
+    struct pair p;
+    pair_new(&p, PRU_SOC_AM335X, "hengstler-ad38", "hengstler-ad38", 10);
+    configure(&p, 10, 10);
+    check_pair(&p, 10, 10);
+    pair_free(&p);
+
+    struct pru_params pp;
+    pru_params_default(&pp);
+    pp.strict = PRU_STRICT_SPAD;
+    pp.strict_everywhere = 1;
+    pair_open(&p, PRU_SOC_AM335X, "hengstler-ad38", "hengstler-ad38", (const double[2]){5, 5}, &pp);
+    e2e_start_firmware(&p.r[0]);
+    const char *defs[] = {"PRU_NUM=1", "XFR_BANK=10"};
+    struct pruasm_options opt = {.core = 3, .defines = defs, .ndefines = 2};
+    struct pruasm_image img;
+    struct pruasm_diag diag = {0};
+    ck_assert_msg(pruasm_assemble_file(&opt, FIRMWARE_SOURCE, &img, &diag) == 0, "%s",
+                  diag.first_error);
+    ck_assert_int_eq(bench_fw_start(p.r[1].b, img.words, img.nwords * 4), 0);
+    pruasm_image_free(&img);
+    struct bench_fw_settings s0 = {
+        .half = 10, .trigger = BISS_TRIG_IEP, .iep_period = PERIOD, .proc_limit = 1000};
+    struct bench_fw_settings s1 = {.half = 10, .trigger = BISS_TRIG_IEP_FOLLOW, .proc_limit = 1000};
+    ck_assert_int_eq(bench_fw_configure(p.r[0].b, &s0), 0);
+    ck_assert_int_eq(bench_fw_configure(p.r[1].b, &s1), 0);
+    struct bench *b = p.r[0].b;
+    ck_assert_int_eq(bench_run_until(b, pru_time_ps(bench_core(b)) + 5 * SIM_PS_PER_MS),
+                     PRU_STOP_FAULT);
+    const struct pru_fault *f = pru_get_fault(bench_core(p.r[1].b));
+    ck_assert_int_eq(f->cause, PRU_FAULT_STRICT);
+    ck_assert_uint_eq(f->rule, PRU_STRICT_SPAD);
+    ck_assert_int_eq(pru_get_fault(bench_core(b))->cause, PRU_FAULT_NONE);
     pair_free(&p);
 }
 END_TEST
@@ -197,6 +270,10 @@ START_TEST(test_pru1_alone) {
     ck_assert_int_eq(biss_proto_status_get(&pru0, &st0), 0);
     ck_assert_uint_eq(st0.magic, 0);
     ck_assert_uint_eq(bench_fw_status(r.b).magic, BISS_MAGIC);
+    uint32_t built_for = 0; /* the image says which PRU it was built for */
+    struct biss_proto_io io = bench_fw_io(r.b);
+    ck_assert_int_eq(biss_proto_fw_pru_get(&io, &built_for), 0);
+    ck_assert_uint_eq(built_for, 1);
     e2e_free(&r);
 }
 END_TEST
@@ -208,6 +285,7 @@ int main(void) {
     tcase_add_loop_test(tc, test_two_encoders_same_rate, 0, (int)(sizeof socs / sizeof socs[0]));
     tcase_add_test(tc, test_two_encoders_own_rates);
     tcase_add_test(tc, test_chain_and_single);
+    tcase_add_test(tc, test_same_line_both);
     tcase_add_test(tc, test_pru1_alone);
     suite_add_tcase(s, tc);
     return check_run(s);

@@ -54,15 +54,21 @@ static int is_cond_branch(const struct fw *f, uint32_t pc) {
     return fmt == PRU_FMT_QB || fmt == PRU_FMT_QBB;
 }
 
-int fw_load(struct fw *f, const char *src_dir, const char *text, char *err, size_t errlen) {
+int fw_load(struct fw *f, const char *src_dir, const char *text, unsigned pru, char *err,
+            size_t errlen) {
     memset(f, 0, sizeof(*f));
     char fw_dir[1024], path[1100], inc[1100];
     snprintf(fw_dir, sizeof(fw_dir), "%s/pru_fw", src_dir);
     snprintf(path, sizeof(path), "%s/biss_master.p", fw_dir);
     snprintf(inc, sizeof(inc), "%s/include/biss", src_dir);
     const char *dirs[] = {inc};
-    struct pruasm_options opt = {
-        .core = 3, .include_dirs = dirs, .ninclude_dirs = 1, .want_listing = 1};
+    const char *defs[] = {pru ? "PRU_NUM=1" : "PRU_NUM=0"};
+    struct pruasm_options opt = {.core = 3,
+                                 .include_dirs = dirs,
+                                 .ninclude_dirs = 1,
+                                 .defines = defs,
+                                 .ndefines = 1,
+                                 .want_listing = 1};
     struct pruasm_diag diag = {0};
     int rc = text ? pruasm_assemble_string(&opt, path, text, &f->img, &diag)
                   : pruasm_assemble_file(&opt, path, &f->img, &diag);

@@ -44,8 +44,10 @@ struct fw {
 };
 
 /* Assembles pru_fw/biss_master.p under src_dir (text: its source, or NULL
- * to read the file). Returns 0 or -1 with a message in err. */
-int fw_load(struct fw *f, const char *src_dir, const char *text, char *err, size_t errlen);
+ * to read the file) for PRU pru (-DPRU_NUM). Returns 0 or -1 with a
+ * message in err. */
+int fw_load(struct fw *f, const char *src_dir, const char *text, unsigned pru, char *err,
+            size_t errlen);
 void fw_free(struct fw *f);
 
 struct fw_slave {

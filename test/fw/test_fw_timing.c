@@ -24,6 +24,7 @@
 #include "fw_timing.h"
 
 #include <check.h>
+#include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -42,7 +43,7 @@ static const char *src_dir(void) {
 }
 
 static void setup(void) {
-    if (fw_load(&fw, src_dir(), NULL, err, sizeof(err)) != 0)
+    if (fw_load(&fw, src_dir(), NULL, 0, err, sizeof(err)) != 0)
         ck_abort_msg("%s", err);
 }
 
@@ -369,7 +370,7 @@ static const struct {
 START_TEST(extra_cycle_is_named) {
     char *src = mutated_source(mutations[_i].line, "    mov     r0, r0\n");
     struct fw bad;
-    int rc = fw_load(&bad, src_dir(), src, err, sizeof(err));
+    int rc = fw_load(&bad, src_dir(), src, 0, err, sizeof(err));
     free(src);
     ck_assert_msg(rc == 0, "%s", err);
     struct fw_config cf = {
@@ -405,6 +406,81 @@ START_TEST(extra_cycle_is_named) {
 }
 END_TEST
 
+/* ---- PRU1's image ---------------------------------------------------------- */
+
+/* The scratch-pad bank an XFR word uses (10..12), or 0 for any other word. */
+static unsigned bank_of(const struct fw *f, size_t pc) {
+    if (!f->ok[pc] || pru_optable[f->dec[pc].op].fmt != PRU_FMT_XFR)
+        return 0;
+    unsigned dev = f->dec[pc].dev;
+    return dev >= 10 && dev <= 12 ? dev : 0;
+}
+
+/* Whether a and b are the same instruction but for the device (XFR), the
+ * immediate (LDI) or the offset (SBCO): what PRU_NUM may change. */
+static bool same_but(const struct pru_insn *a, const struct pru_insn *b, unsigned fmt) {
+    struct pru_insn x = *a, y = *b;
+    if (fmt == PRU_FMT_XFR)
+        x.dev = y.dev = 0;
+    else
+        x.imm = y.imm = 0;
+    return memcmp(&x, &y, sizeof x) == 0;
+}
+
+/* PRU1's image (-DPRU_NUM=1) is PRU0's, word for word and label for label,
+ * except in the fields that do not change an instruction's cycles: every
+ * scratch-pad XFR on bank 1 (device 11) where PRU0's is on bank 0 (10),
+ * the low half of CTPPR0's address (0x22028 -> 0x24028, one LDI), the
+ * value published in ST_PRU (0 -> 1, one LDI) and the GPCFG offset (0x08
+ * -> 0x0c, one SBCO). So the timing proven above for
+ * PRU0's holds for PRU1's, and each image uses one bank only, never the
+ * other's. */
+START_TEST(pru1_image_times_as_pru0) {
+    struct fw f1;
+    if (fw_load(&f1, src_dir(), NULL, 1, err, sizeof(err)) != 0)
+        ck_abort_msg("%s", err);
+    ck_assert_uint_eq(f1.img.nwords, fw.img.nwords);
+    ck_assert_uint_eq(f1.lst.nlabels, fw.lst.nlabels);
+    for (size_t i = 0; i < fw.lst.nlabels; i++) {
+        ck_assert_str_eq(f1.lst.labels[i].name, fw.lst.labels[i].name);
+        ck_assert_uint_eq(f1.lst.labels[i].pc, fw.lst.labels[i].pc);
+    }
+    unsigned xfr = 0, ldi = 0, sbco = 0;
+    for (size_t pc = 0; pc < fw.img.nwords; pc++) {
+        unsigned b0 = bank_of(&fw, pc), b1 = bank_of(&f1, pc);
+        ck_assert_msg(b0 == 0 || b0 == 10, "PRU0's image uses bank %u at %#zx", b0 - 10, pc);
+        ck_assert_msg(b1 == 0 || b1 == 11, "PRU1's image uses bank %u at %#zx", b1 - 10, pc);
+        if (fw.img.words[pc] == f1.img.words[pc])
+            continue;
+        ck_assert_msg(fw.ok[pc] && f1.ok[pc] && fw.dec[pc].op == f1.dec[pc].op,
+                      "word %#zx: %08x vs %08x", pc, fw.img.words[pc], f1.img.words[pc]);
+        unsigned fmt = pru_optable[fw.dec[pc].op].fmt;
+        ck_assert_msg(same_but(&fw.dec[pc], &f1.dec[pc], fmt), "word %#zx: %08x vs %08x", pc,
+                      fw.img.words[pc], f1.img.words[pc]);
+        if (fmt == PRU_FMT_XFR) {
+            ck_assert(b0 == 10 && b1 == 11);
+            xfr++;
+        } else if (fmt == PRU_FMT_LDI) { /* CTPPR0's address, or ST_PRU's value */
+            unsigned i0 = fw.dec[pc].imm, i1 = f1.dec[pc].imm;
+            ck_assert_msg((i0 == 0x2028 && i1 == 0x4028) || (i0 == 0 && i1 == 1),
+                          "word %#zx: LDI %#x vs %#x", pc, i0, i1);
+            ldi++;
+        } else {
+            ck_assert_uint_eq(fw.dec[pc].op, PRU_OP_SBCO);
+            ck_assert_uint_eq(fw.dec[pc].base, 4); /* C4: CFG */
+            ck_assert_uint_eq(fw.dec[pc].imm, 0x08);
+            ck_assert_uint_eq(f1.dec[pc].imm, 0x0c);
+            sbco++;
+        }
+    }
+    ck_assert_uint_gt(xfr, 0);
+    ck_assert_uint_eq(ldi, 2);
+    ck_assert_uint_eq(sbco, 1);
+    fprintf(stderr, "PRU1's image: %u XFR on bank 1, 2 LDI, 1 SBCO differ from PRU0's\n", xfr);
+    fw_free(&f1);
+}
+END_TEST
+
 static Suite *suite(void) {
     Suite *s = suite_create("fw_timing");
     TCase *t = tcase_create("blocks");
@@ -412,6 +488,7 @@ static Suite *suite(void) {
     tcase_set_timeout(t, 600);
     tcase_add_loop_test(t, clocked_blocks, 0, (int)N_HALVES);
     tcase_add_test(t, h13_refused);
+    tcase_add_test(t, pru1_image_times_as_pru0);
     tcase_add_loop_test(t, extra_cycle_is_named, 0,
                         (int)(sizeof(mutations) / sizeof(mutations[0])));
     suite_add_tcase(s, t);

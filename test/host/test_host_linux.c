@@ -149,8 +149,8 @@ START_TEST(test_image_lands_in_iram) {
 }
 END_TEST
 
-/* --pru 1: PRU1's IRAM, CONTROL and data RAM, and the firmware told which
- * PRU it is on; PRU0's left alone, so a second handle can drive it. */
+/* --pru 1: PRU1's IRAM, CONTROL and data RAM; PRU0's left alone, so a
+ * second handle can drive it. */
 START_TEST(test_pru1_offsets) {
     const off_t dram1 = AM335X_BASE + 0x2000, ctrl1 = AM335X_BASE + 0x24000,
                 iram1 = AM335X_BASE + 0x38000;
@@ -170,12 +170,10 @@ START_TEST(test_pru1_offsets) {
     ck_assert_uint_eq(file32(AM335X_BASE + CTRL0), 0);
     ck_assert_uint_eq(file32(dram1 + BISS_ST_MAGIC), 0);
     ck_assert_uint_eq(file32(AM335X_BASE + BISS_ST_MAGIC), BISS_MAGIC);
-    ck_assert_uint_eq(file32(dram1 + BISS_PRU_INDEX), 1);
-    /* PRU0 at the same time: its own lock, its own index */
+    /* PRU0 at the same time: its own lock */
     struct biss_open_params p0 = params(BISS_TARGET_AM335X);
     biss_t *h0;
     ck_assert_int_eq(biss_open(&p0, &h0), BISS_OK);
-    ck_assert_uint_eq(file32(AM335X_BASE + BISS_PRU_INDEX), 0);
     ck_assert_uint_eq(file32(AM335X_BASE + CTRL0), 0x2);
     ck_assert_int_eq(biss_stop(h), BISS_OK);
     ck_assert_uint_eq(file32(ctrl1), 0x1);

@@ -25,7 +25,8 @@
 #define IRAM0       0x34000L
 
 static char root[64], devmem[128], image[128], rp[128], fwdir[128];
-static off_t kdram; /* the data RAM of the PRU the stand-in kernel runs (PRU1: + 0x2000) */
+static off_t kdram;   /* the data RAM of the PRU the stand-in kernel runs (PRU1: + 0x2000) */
+static int kpru = -1; /* the PRU its firmware says it was built for (-1: kdram's) */
 static const uint8_t image_bytes[16] = {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16};
 
 /* Whole at once (a rename), as sysfs attributes read: never half written. */
@@ -164,8 +165,10 @@ static void *kernel_thread(void *arg) {
             mem_write(AM335X_BASE + kdram + BISS_ID, &id, sizeof id);
             atomic_fetch_add(&k->starts, 1);
             set_attr("state", "running\n");
-            uint32_t magic = BISS_MAGIC; /* the firmware's start-up, last */
-            mem_write(AM335X_BASE + kdram + BISS_ST_MAGIC, &magic, 4);
+            /* the firmware's start-up, last: the PRU it was built for
+             * (kpru, else the one whose data RAM it is) and the magic */
+            uint32_t st[2] = {kpru >= 0 ? (uint32_t)kpru : kdram != 0, BISS_MAGIC};
+            mem_write(AM335X_BASE + kdram + BISS_ST_PRU, st, sizeof st);
         } else if (strcmp(state, "stop") == 0) {
             uint32_t zero = 0;
             mem_write(AM335X_BASE + kdram + BISS_ST_MAGIC, &zero, 4);
@@ -286,7 +289,6 @@ START_TEST(test_pru1_instance) {
     attr("firmware", buf, sizeof buf);
     ck_assert_str_eq(buf, "am335x-pru1-fw");
     ck_assert_int_eq(atomic_load(&k.starts), 1);
-    ck_assert_uint_eq(mem32(AM335X_BASE + 0x2000 + BISS_PRU_INDEX), 1);
     struct biss_status st;
     ck_assert_int_eq(biss_get_status(h, &st), BISS_OK);
     ck_assert(st.firmware_running);
@@ -299,6 +301,34 @@ START_TEST(test_pru1_instance) {
     atomic_store(&k.stop, 1);
     pthread_join(t, NULL);
     kdram = 0;
+    remove_tree();
+}
+END_TEST
+
+/* PRU1 running an image built for PRU0 (the name linked to PRU0's ELF):
+ * refused once its start-up says so (BISS_ST_PRU), with the image to use. */
+START_TEST(test_pru1_wrong_image) {
+    make_tree();
+    snprintf(rp, sizeof rp, "%s/sys/class/remoteproc/remoteproc2", root);
+    kdram = 0x2000;
+    kpru = 0;
+    char path[256];
+    snprintf(path, sizeof path, "%s/am335x-pru1-fw", fwdir);
+    put_file(path, "an ELF");
+    struct kernel k = {0};
+    pthread_t t;
+    ck_assert_int_eq(pthread_create(&t, NULL, kernel_thread, &k), 0);
+    struct biss_open_params p = params();
+    p.pru = 1;
+    biss_t *h;
+    ck_assert_int_eq(biss_open(&p, &h), BISS_E_FW_PRU);
+    ck_assert_msg(strstr(err, "PRU1 runs an image assembled for PRU0") &&
+                      strstr(err, "biss_master_pru1"),
+                  "%s", err);
+    atomic_store(&k.stop, 1);
+    pthread_join(t, NULL);
+    kdram = 0;
+    kpru = -1;
     remove_tree();
 }
 END_TEST
@@ -350,6 +380,7 @@ int main(void) {
     tcase_add_test(tc, test_start_stop_firmware_name);
     tcase_add_test(tc, test_attach_leaves_it_running);
     tcase_add_test(tc, test_pru1_instance);
+    tcase_add_test(tc, test_pru1_wrong_image);
     tcase_add_test(tc, test_refusals);
     suite_add_tcase(s, tc);
     return check_run(s);

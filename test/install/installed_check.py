@@ -67,6 +67,8 @@ def check_tree(prefix, tmp):
     for f in ["bin/" + t for t in a.tools.split()] + [
             "include/libbiss.h", "lib/firmware/biss_master.bin", "lib/firmware/biss_master.elf",
             "lib/firmware/am335x-pru0-fw", "lib/firmware/BB-BISS-PRU0-00A0.dtbo",
+            "lib/firmware/biss_master_pru1.bin", "lib/firmware/biss_master_pru1.elf",
+            "lib/firmware/am335x-pru1-fw", "lib/firmware/am437x-pru0_1-fw",
             "share/doc/pru_biss/README.md", "share/doc/pru_biss/host/README.md"]:
         check(os.path.exists(os.path.join(prefix, f)), "installed: " + f)
     for f in ["libbiss.a", "libbiss.so"]:
@@ -174,7 +176,8 @@ with tempfile.TemporaryDirectory() as tmp:
         check(r.returncode == 0, "cmake --install: %r" % r.stderr)
     check_tree(prefix, tmp)
     if a.same_firmware:
-        for f in ["biss_master.bin", "biss_master.elf"]:
+        for f in ["biss_master.bin", "biss_master.elf", "biss_master_pru1.bin",
+                  "biss_master_pru1.elf"]:
             with open(os.path.join(prefix, "lib", "firmware", f), "rb") as x, \
                  open(os.path.join(a.same_firmware, "pru_fw", f), "rb") as y:
                 check(x.read() == y.read(), "%s byte-identical to %s's" % (f, a.same_firmware))

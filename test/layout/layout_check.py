@@ -46,7 +46,7 @@ EXEMPT_DIRS = ("proto/", "include/biss/", "pru_fw/", "build")
 SCANNED_DIRS = ("host", "emulator", "test", "examples", "boards")
 
 # status block, moved for the second build
-STATUS = ("MAGIC", "SEQ", "BUF", "CFG_ACK", "CFG_ERROR", "STATE", "FRAMES", "CRC_ERRORS",
+STATUS = ("PRU", "MAGIC", "SEQ", "BUF", "CFG_ACK", "CFG_ERROR", "STATE", "FRAMES", "CRC_ERRORS",
           "NO_SLAVE", "PROC_ERRORS", "TRAINING", "END")
 MOVE = 0x20
 

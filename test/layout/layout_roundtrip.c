@@ -65,6 +65,7 @@ static void status_words(const struct biss_proto_io *io) {
     put(BISS_ST_STATE, BISS_STATE_CFG_ERROR, 4);
     put(BISS_ST_FRAMES, 1234, 4);
     put(BISS_ST_TRAINING, 3, 4);
+    put(BISS_ST_PRU, 1, 4);
     struct biss_shm_status st;
     SAME(biss_proto_status_get(io, &st), 0);
     SAME(st.magic, BISS_MAGIC);
@@ -73,6 +74,9 @@ static void status_words(const struct biss_proto_io *io) {
     SAME(st.state, BISS_STATE_CFG_ERROR);
     SAME(st.frames, 1234);
     SAME(st.training, 3);
+    uint32_t pru = 0;
+    SAME(biss_proto_fw_pru_get(io, &pru), 0);
+    SAME(pru, 1);
 }
 
 static void configuration(const struct biss_proto_io *io) {
