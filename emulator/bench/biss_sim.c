@@ -712,7 +712,13 @@ static int run(const struct options *o) {
         fprintf(stderr, "biss-sim: contention: %llu PRU accesses stalled, %llu cycles\n",
                 (unsigned long long)n, (unsigned long long)stall);
     }
-    if (fw_mode && bench_fw_status(b).state == BISS_STATE_CFG_ERROR) {
+    uint32_t built_for = o->pru;
+    struct biss_proto_io io = bench_fw_io(b);
+    if (fw_mode && bench_fw_status(b).magic == BISS_MAGIC &&
+        biss_proto_fw_pru_get(&io, &built_for) == 0 && built_for != o->pru) {
+        rc = die("%s was assembled for PRU%u, not PRU%u (one image per PRU: %s)", path, built_for,
+                 o->pru, o->pru ? "biss_master_pru1.bin" : "biss_master.bin");
+    } else if (fw_mode && bench_fw_status(b).state == BISS_STATE_CFG_ERROR) {
         uint32_t code = bench_fw_status(b).cfg_error;
         rc = die("the firmware refused the configuration (error %u, %s)", code,
                  biss_proto_cfg_error_text(code));

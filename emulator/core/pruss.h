@@ -18,9 +18,9 @@
  * IEP count, the other's stores and shared RAM as they are in that cycle.
  * Two accesses issued in the same cycle are done PRU0's first.
  *
- * Not modelled: the stall of PRU1 when both use one bank in a cycle
- * (docs/pru-facts.md §3); not shared: the system-bus windows (pru_map_ext()
- * maps for one core). A PRU's
+ * Both on one scratch-pad bank in one cycle: PRU0 goes first and PRU1
+ * stalls (pru_params.spad_stall_cycles, docs/pru-facts.md §3). Not shared:
+ * the system-bus windows (pru_map_ext() maps for one core). A PRU's
  * Cnt_16 event reaches the INTC when that PRU's GPI is next evaluated.
  */
 #ifndef PRUSS_H

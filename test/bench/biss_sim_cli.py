@@ -198,7 +198,22 @@ check(r.returncode == 5, "a period too short for PRU1's chain: %d %r" % (r.retur
 r = run("--pru", "1", "--profile", "hengstler-ad38", "--frames", "30", "--json")
 check(r.returncode == 0 and json.loads(r.stdout)["frames"] == 30
       and json.loads(r.stdout)["position_mismatches"] == 0, "--pru 1: %d %r" % (r.returncode, r.stderr))
+# the firmware source given: assembled for the PRU it runs on (one image per PRU)
+FW_SRC = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "pru_fw", "biss_master.p")
+r = run("--pru", "1", "--firmware", FW_SRC, "--profile", "hengstler-ad38", "--frames", "20", "--json")
+check(r.returncode == 0 and json.loads(r.stdout)["position_mismatches"] == 0
+      and json.loads(r.stdout)["crc_errors"] == 0, "--pru 1 --firmware .p: %d %r" % (r.returncode, r.stderr))
+r = run("--pru1-profile", "hengstler-ad38", "--firmware", FW_SRC, "--frames", "20")
+check(r.returncode == 0 and r.stdout.count("0 CRC errors, 0 position mismatches") == 2,
+      "pair, --firmware .p for both: %d %r %r" % (r.returncode, r.stdout, r.stderr))
+# PRU0's image on PRU1: it says so (BISS_ST_PRU), and biss-sim does too
+PRU0_IMAGE = os.path.join(os.path.dirname(SIM), "..", "..", "pru_fw", "biss_master.bin")
+r = run("--pru", "1", "--firmware", PRU0_IMAGE, "--frames", "3")
+check(r.returncode == 1 and "was assembled for PRU0, not PRU1" in r.stderr,
+      "PRU0's image on PRU1: %d %r" % (r.returncode, r.stderr))
 for args, words in [(["--pru", "2"], "--pru: '2'"),
+                    (["--pru1-profile", "generic", "--pru1-firmware", "/nonexistent.bin"],
+                     "cannot read image '/nonexistent.bin'"),
                     (["--pru1-profile", "nope"], "unknown profile 'nope'"),
                     (["--pru1-profile", "generic", "--json"], "not with"),
                     (["--pru1-profile", "generic", "--iep-period-ns", "12"], "multiple of 5 ns")]:
