@@ -24,7 +24,7 @@ step() { # step MESSAGE COMMAND...: says what it does; shows the output if it fa
 }
 step "configuring build/ (cmake)" cmake -S . -B build -DCMAKE_BUILD_TYPE=RelWithDebInfo
 step "building the firmware image, biss-sim and bissctl" \
-    cmake --build build -j "$jobs" --target biss_master biss-sim bissctl
+    cmake --build build -j "$jobs" --target biss_master biss_master_pru1 biss-sim bissctl
 echo "run: running 1000 frames against the default encoder" >&2
 
 build/emulator/bench/biss-sim --profile tidep0022-test-encoder --freq 10000000 --cable-m 10 \
