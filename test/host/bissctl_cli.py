@@ -62,6 +62,13 @@ check(r.returncode == 0 and r.stdout.count("s0.crc=ok") >= 2, "--slave read: %r 
 # PRU1 of the emulated PRU-ICSS: its own line, data RAM and GPCFG
 r = run("--pru", "1", "--freq", "10000000", "--profile", "hengstler-ad38", "read", "-n", "3")
 check(r.returncode == 0 and r.stdout.count("s2.crc=ok") >= 2, "--pru 1 read: %r %r" % (r.stdout, r.stderr))
+# each PRU its own image by default; PRU0's on PRU1 is refused (BISS_E_FW_PRU)
+r = run("--pru", "1", "info")
+check(r.returncode == 0 and "/pru_fw/biss_master_pru1.bin\n" in r.stdout, "--pru 1 image: %r" % r.stdout)
+pru0_image = r.stdout.split("firmware=", 1)[1].split()[0].replace("_pru1.bin", ".bin")
+r = run("--pru", "1", "--firmware", pru0_image, "--freq", "10000000", "read", "-n", "1")
+check(r.returncode != 0 and "assembled for the other PRU" in r.stderr,
+      "PRU0's image on PRU1: %d %r" % (r.returncode, r.stderr))
 
 # host trigger: one frame per trigger
 r = run("--freq", "10000000", "--trigger", "host", "trigger")
