@@ -93,6 +93,24 @@ static void read_regs(biss_t *h, unsigned id, struct biss_probe_regs *r) {
     r->rc_serial = biss_reg_read(h, id, 0x44, r->serial, sizeof r->serial);
 }
 
+/* The first ID whose registers describe a layout, compared with the wire. */
+static void reg_layout(struct biss_probe_report *out) {
+    out->reg_verdict = BISS_PROBE_REG_NONE;
+    for (unsigned i = 0; i < out->nregs; i++) {
+        if (biss_probe_reg_layout_decode(&out->regs[i], &out->reg_layout, out->reg_why,
+                                         sizeof out->reg_why)) {
+            if (out->reg_layout.nchannels) {
+                out->reg_verdict =
+                    biss_probe_reg_compare(&out->reg_layout, &out->wire, &out->reg_agree_with,
+                                           out->reg_why, sizeof out->reg_why);
+            } else {
+                out->reg_verdict = BISS_PROBE_REG_INVALID;
+            }
+            return;
+        }
+    }
+}
+
 /* IDs 0..n-1 for the n slaves the wire shows, and ID n: an answer there
  * means more slaves than the wire layout has. */
 static void probe_regs(biss_t *h, const struct biss_probe_params *p,
@@ -118,6 +136,7 @@ static void probe_regs(biss_t *h, const struct biss_probe_params *p,
     if (wire_n && answering == wire_n) {
         note(out, "registers: IDs 0..%u answer, as the wire's %u slaves", wire_n - 1, wire_n);
     }
+    reg_layout(out);
 }
 
 int biss_probe(biss_t *h, const struct biss_probe_params *p, struct biss_probe_report *out) {

@@ -70,6 +70,27 @@ static void print_regs(const struct biss_probe_regs *r) {
     printf("\n");
 }
 
+/* The layout the registers describe and what the wire says to it. */
+static void print_reg_layout(const struct biss_probe_report *r) {
+    const struct biss_probe_reg_layout *rl = &r->reg_layout;
+    if (r->reg_verdict == BISS_PROBE_REG_NONE) {
+        return;
+    }
+    if (r->reg_verdict == BISS_PROBE_REG_INVALID) {
+        printf("register layout: %s\n", r->reg_why);
+        return;
+    }
+    printf("register layout (ID %u, %s): 0x78..0x7D = %02X %02X %02X %02X %02X %02X:", rl->id,
+           rl->format, rl->raw[0], rl->raw[1], rl->raw[2], rl->raw[3], rl->raw[4], rl->raw[5]);
+    for (unsigned i = 0; i < rl->nchannels; i++) {
+        const struct biss_probe_reg_channel *c = &rl->ch[i];
+        printf("%s slave %u %s %u + nE/nW = %u data bits, CRC %u", i ? ";" : "", i, c->what,
+               c->value_bits, c->data_bits, c->crc_bits);
+    }
+    printf(" (MT %u, ST %u); life counter %u bits\n", rl->mt_bits, rl->st_bits, rl->lc_bits);
+    printf("registers vs wire: %s: %s\n", biss_probe_reg_verdict_name(r->reg_verdict), r->reg_why);
+}
+
 static int write_scenario(const char *path, const char *json) {
     FILE *f = fopen(path, "w");
     if (!f) {
@@ -125,6 +146,7 @@ int bissctl_probe(biss_t *h, const struct bissctl_opts *o) {
     for (unsigned i = 0; i < r.nregs; i++) {
         print_regs(&r.regs[i]);
     }
+    print_reg_layout(&r);
     for (unsigned i = 0; i < r.nnotes; i++) {
         printf("note: %s\n", r.notes[i]);
     }

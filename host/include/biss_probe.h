@@ -106,6 +106,57 @@ struct biss_probe_regs {
     uint8_t serial[4];                                     /* 0x44..0x47 */
 };
 
+/* ---- layout from the registers (pure) -------------------------------------
+ * Some encoders describe their own format in the device-ID registers. The
+ * one format known: the Hengstler AD38's ([AD38] register table of the
+ * Slave ID 1 device, direct addresses): 0x78 A/D data length, 0x79 A/D CRC
+ * length, 0x7A MT resolution, 0x7B ST resolution, 0x7C life-counter length,
+ * 0x7D position CRC length, bits each; manufacturer 0x7E..0x7F "HE". Its
+ * channels come first in the chain, each with nE/nW after its data ([AD38]
+ * SCD tables: "Err + Warning 2 bit"). Polynomials and start values are not
+ * in these registers: only widths are compared with the wire. */
+#define BISS_PROBE_REG_CHANNELS 2
+
+struct biss_probe_reg_channel {
+    const char *what;    /* "A/D", "MT+ST position" */
+    unsigned value_bits; /* the value itself (A/D, MT + ST) */
+    unsigned data_bits;  /* value + nE/nW: what the wire's data word holds */
+    unsigned crc_bits;
+};
+
+struct biss_probe_reg_layout {
+    unsigned id;        /* the control-frame ID whose registers said it */
+    const char *format; /* which document's format */
+    uint8_t raw[6];     /* 0x78..0x7D as read */
+    unsigned mt_bits, st_bits, lc_bits;
+    unsigned nchannels; /* chain slaves described, from the first */
+    struct biss_probe_reg_channel ch[BISS_PROBE_REG_CHANNELS];
+};
+
+enum biss_probe_reg_verdict {
+    BISS_PROBE_REG_NONE,     /* no register set describes a layout */
+    BISS_PROBE_REG_INVALID,  /* a known format, but values no frame can have */
+    BISS_PROBE_REG_NO_WIRE,  /* described, but the wire gave no layout to compare */
+    BISS_PROBE_REG_AGREE,    /* the wire's first candidate has the described widths */
+    BISS_PROBE_REG_AGREE_K,  /* a later candidate (agree_with) has them, the first not */
+    BISS_PROBE_REG_DISAGREE, /* no candidate the wire kept has them */
+};
+
+/* The layout regs (of one ID) describe; false when they are of no format
+ * known. Values that make no frame (a data word over 64 bits, a CRC
+ * outside 3..16 bits, 0xFF "not used") are described too: *why then says
+ * which and the return is still true, with out->nchannels 0. */
+bool biss_probe_reg_layout_decode(const struct biss_probe_regs *regs,
+                                  struct biss_probe_reg_layout *out, char *why, size_t why_size);
+/* The described layout against the wire's candidates: the verdict, which
+ * candidate agrees (1-based; 0: none) and, for a disagreement, the first
+ * field that differs from candidate 1, in words. */
+enum biss_probe_reg_verdict biss_probe_reg_compare(const struct biss_probe_reg_layout *rl,
+                                                   const struct biss_probe_result *wire,
+                                                   unsigned *agree_with, char *why,
+                                                   size_t why_size);
+const char *biss_probe_reg_verdict_name(enum biss_probe_reg_verdict v);
+
 struct biss_probe_params {
     uint32_t freq_hz; /* MA rate for the capture (must be valid for biss_rate_half) */
     unsigned frames;  /* frames to capture (2..BISS_PROBE_MAX_FRAMES); 0: 1024 */
@@ -122,6 +173,11 @@ struct biss_probe_report {
     struct biss_probe_regs regs[BISS_API_MAX_SLAVES];
     unsigned nnotes;
     char notes[8][160]; /* where wire and registers disagree, and other remarks */
+    /* the first register set that describes a layout, and how it compares */
+    enum biss_probe_reg_verdict reg_verdict;
+    struct biss_probe_reg_layout reg_layout;
+    unsigned reg_agree_with; /* candidate (1-based) with the described widths; 0: none */
+    char reg_why[160];
 };
 
 /* Configures the capture layout (free-running frames), reads the frames

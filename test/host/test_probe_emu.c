@@ -140,6 +140,20 @@ static void probe_profile(const char *name) {
         ck_assert_mem_eq(r.regs[0].device, dev, 6);
         ck_assert_mem_eq(r.regs[0].profile, ((const uint8_t[]){0x02, 0x61, 0x29}), 3);
     }
+    /* the AD38 describes its A/D and position channels in ID 1's registers
+     * ([AD38] register table); they agree with the wire. Nobody else does. */
+    if (strcmp(name, "hengstler-ad38") == 0) {
+        printf("%s: %s: %s\n", name, biss_probe_reg_verdict_name(r.reg_verdict), r.reg_why);
+        ck_assert_int_eq(r.reg_verdict, BISS_PROBE_REG_AGREE);
+        ck_assert_uint_eq(r.reg_agree_with, 1);
+        ck_assert_uint_eq(r.reg_layout.id, 1);
+        ck_assert_uint_eq(r.reg_layout.nchannels, 2);
+        ck_assert_uint_eq(r.reg_layout.ch[0].data_bits, got.slave[0].data_bits);
+        ck_assert_uint_eq(r.reg_layout.ch[1].data_bits, got.slave[1].data_bits);
+        ck_assert_uint_eq(r.reg_layout.lc_bits, w->layout[0].slave[2].lc_bits);
+    } else {
+        ck_assert_int_eq(r.reg_verdict, BISS_PROBE_REG_NONE);
+    }
     read_with(h, &got);
     biss_close(h);
     scenario_round_trip(&w->layout[0], &got);
@@ -178,6 +192,23 @@ START_TEST(noisy_line) {
 }
 END_TEST
 
+/* An AD38 whose registers lie (0x78: a 20-bit A/D word, the wire sends
+ * 16): the wire's layout stands and the disagreement is reported. */
+START_TEST(registers_lie) {
+    biss_t *h = open_emu(NULL, PROBE_SCENARIO_DIR "/ad38-registers-lie.json");
+    struct biss_probe_params p = {.freq_hz = FREQ, .frames = FRAMES, .read_regs = true};
+    static struct biss_probe_report r;
+    ck_assert_int_eq(biss_probe(h, &p, &r), BISS_OK);
+    printf("ad38-registers-lie: %s: %s\n", biss_probe_reg_verdict_name(r.reg_verdict), r.reg_why);
+    ck_assert(r.wire.verdict == BISS_PROBE_UNIQUE || r.wire.verdict == BISS_PROBE_BEST);
+    ck_assert_uint_eq(r.wire.layout[0].slave[0].data_bits, 18);
+    ck_assert_int_eq(r.reg_verdict, BISS_PROBE_REG_DISAGREE);
+    ck_assert_uint_eq(r.reg_layout.ch[0].data_bits, 22);
+    ck_assert_msg(strstr(r.reg_why, "slave 0") && strstr(r.reg_why, "wire 18"), "%s", r.reg_why);
+    biss_close(h);
+}
+END_TEST
+
 /* A bad request is refused before anything is clocked. */
 START_TEST(bad_params) {
     biss_t *h = open_emu("generic", NULL);
@@ -200,6 +231,7 @@ int main(void) {
     tcase_set_timeout(tc, 600);
     tcase_add_test(tc, every_profile);
     tcase_add_test(tc, noisy_line);
+    tcase_add_test(tc, registers_lie);
     tcase_add_test(tc, bad_params);
     suite_add_tcase(s, tc);
     return check_run(s);
