@@ -5,9 +5,11 @@
  * The wire part is a pure analysis (biss_probe_analyse: no I/O) of raw
  * frames, each the bits after the start bit: CDS first, then everything
  * the chain sends. libbiss captures them with the normal firmware in a
- * capture layout (biss_probe below): 8 slaves x 64 data bits, no CRC, no
- * nE/nW, so the firmware clocks 512 bits after the CDS and publishes them
- * as data words. After the last slave's CRC the wire reads 0: the last
+ * capture layout (biss_probe below): 8 slaves x (64 data + 16 CRC bits),
+ * no nE/nW, so the firmware clocks 640 bits after the CDS and publishes
+ * the data words and, per slave, its CRC register, from which the 16 bits
+ * after each word follow (host/biss_probe.c). After the last slave's CRC
+ * the wire reads 0: the last
  * slave's SLI input is tied low and every slave passes it on ([MB4],
  * "BiSS C Frame"; the model, emulator/slave/biss_slave.h, sends 0 on every
  * further rising edge). So the frame ends after the last bit that is ever 1.
@@ -25,7 +27,11 @@
 extern "C" {
 #endif
 
-#define BISS_PROBE_MAX_BITS    (1 + BISS_API_MAX_SLAVES * 64) /* CDS + capture */
+#define BISS_PROBE_CAPTURE_DATA 64 /* per slave of the capture layout */
+#define BISS_PROBE_CAPTURE_CRC  16
+/* CDS + the capture: 640 bits, the longest frame the firmware clocks */
+#define BISS_PROBE_MAX_BITS                                                                        \
+    (1 + BISS_API_MAX_SLAVES * (BISS_PROBE_CAPTURE_DATA + BISS_PROBE_CAPTURE_CRC))
 #define BISS_PROBE_MAX_FRAMES  4096
 #define BISS_PROBE_MAX_LAYOUTS 16 /* candidates kept (more are counted) */
 #define BISS_PROBE_MIN_CRC     3
@@ -78,7 +84,7 @@ enum biss_probe_verdict {
 
 struct biss_probe_result {
     enum biss_probe_verdict verdict;
-    char reason[200];  /* why, in words */
+    char reason[320];  /* why, in words */
     unsigned frames;   /* frames analysed */
     unsigned end_bit;  /* frame length: bits after the CDS up to the last ever 1 */
     unsigned dropped;  /* frames left out as noise (1s after end_bit; see reason) */
@@ -96,6 +102,7 @@ const char *biss_probe_verdict_name(enum biss_probe_verdict v);
 void biss_probe_layout_config(const struct biss_probe_layout *l, struct biss_config *c);
 
 /* ---- on a handle --------------------------------------------------------- */
+
 /* The BiSS identification registers of one slave (read-only access). */
 struct biss_probe_regs {
     unsigned id;

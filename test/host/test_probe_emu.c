@@ -209,6 +209,40 @@ START_TEST(registers_lie) {
 }
 END_TEST
 
+/* A chain of 8 slaves whose frame (547 bits) is longer than 8 x 64: the
+ * bits after each data word come from the firmware's CRC register. Every
+ * slave is recovered (CRC-16s with an even number of terms and positions
+ * whose top bits never move: the layouts that fit are counted, not
+ * listed), and the layout reads the chain. */
+START_TEST(long_chain) {
+    biss_t *h = open_emu(NULL, PROBE_SCENARIO_DIR "/long-chain-547.json");
+    struct biss_config truth;
+    biss_config_default(&truth);
+    ck_assert_int_eq(biss_config_from_emu(h, &truth), BISS_OK);
+    struct biss_probe_params p = {.freq_hz = FREQ, .frames = FRAMES};
+    static struct biss_probe_report r;
+    ck_assert_int_eq(biss_probe(h, &p, &r), BISS_OK);
+    const struct biss_probe_result *w = &r.wire;
+    printf("long-chain-547: %u bits: %s: %s\n", w->end_bit, biss_probe_verdict_name(w->verdict),
+           w->reason);
+    ck_assert_uint_eq(w->end_bit, 547);
+    ck_assert_uint_eq(w->frames, FRAMES);
+    ck_assert_int_eq(w->verdict, BISS_PROBE_BEST);
+    struct biss_config got;
+    biss_config_default(&got);
+    biss_probe_layout_config(&w->layout[0], &got);
+    ck_assert_uint_eq(got.nslaves, 8);
+    unsigned bits = 0;
+    for (unsigned i = 0; i < 8; i++) {
+        assert_same_slave(&got.slave[i], &truth.slave[i], "long-chain-547", i);
+        bits += got.slave[i].data_bits + got.slave[i].crc_bits;
+    }
+    ck_assert_uint_eq(bits, 547);
+    read_with(h, &got);
+    biss_close(h);
+}
+END_TEST
+
 /* A bad request is refused before anything is clocked. */
 START_TEST(bad_params) {
     biss_t *h = open_emu("generic", NULL);
@@ -232,6 +266,7 @@ int main(void) {
     tcase_add_test(tc, every_profile);
     tcase_add_test(tc, noisy_line);
     tcase_add_test(tc, registers_lie);
+    tcase_add_test(tc, long_chain);
     tcase_add_test(tc, bad_params);
     suite_add_tcase(s, tc);
     return check_run(s);
