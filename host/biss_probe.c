@@ -193,6 +193,51 @@ static void probe_regs(biss_t *h, const struct biss_probe_params *p,
     reg_layout(out);
 }
 
+/* Nothing BiSS-like on the line: clock it as an SSI encoder's (slave 0 alone,
+ * 64 bits, no CRC) and look at the words. The SSI configuration is left in
+ * force. */
+static int probe_ssi(biss_t *h, const struct biss_probe_params *p, unsigned n,
+                     struct biss_probe_report *out) {
+    struct biss_config c;
+    biss_config_default(&c);
+    c.freq_hz = p->freq_hz;
+    c.nslaves = 1;
+    c.slave[0] = (struct biss_slave_config){.data_bits = 64, .ssi = true};
+    c.ssi_delay_ns = p->ssi_delay_ns ? p->ssi_delay_ns : BISS_PROBE_SSI_DELAY_NS;
+    c.trigger = BISS_TRIGGER_FREERUN;
+    int rc = biss_configure(h, &c);
+    if (rc) {
+        return rc;
+    }
+    uint64_t *w = calloc(n, sizeof *w);
+    uint32_t *fno = calloc(n, sizeof *fno);
+    unsigned got = 0;
+    rc = w && fno ? BISS_OK : BISS_E_NOMEM;
+    struct biss_sample s;
+    uint32_t after = biss_read_sample(h, &s) == BISS_OK ? s.frame : 0;
+    for (unsigned tries = 0; rc == BISS_OK && got < n && tries < 2 * n + 16; tries++) {
+        rc = biss_wait_sample(h, after, SAMPLE_TIMEOUT, &s);
+        if (rc == BISS_OK) {
+            after = s.frame;
+            if (s.valid && !s.training) {
+                w[got] = s.slave[0].data;
+                fno[got++] = s.frame;
+            }
+        }
+    }
+    out->ssi.delay_ns = c.ssi_delay_ns;
+    if (rc == BISS_OK && got) {
+        rc = biss_probe_ssi_analyse(w, fno, got, &out->ssi);
+    } else if (rc == BISS_OK) {
+        out->ssi.tried = true;
+        snprintf(out->ssi.verdict, sizeof out->ssi.verdict,
+                 "cannot decide: no valid SSI word in %u tries", 2 * n + 16);
+    }
+    free(w);
+    free(fno);
+    return rc;
+}
+
 int biss_probe(biss_t *h, const struct biss_probe_params *p, struct biss_probe_report *out) {
     if (!h || !p || !out || p->frames > BISS_PROBE_MAX_FRAMES || p->frames == 1) {
         return BISS_E_INVAL;
@@ -225,6 +270,15 @@ int biss_probe(biss_t *h, const struct biss_probe_params *p, struct biss_probe_r
     free(fno);
     if (rc == BISS_OK && p->read_regs) {
         probe_regs(h, p, out);
+    }
+    /* nothing BiSS-like: no layout, and no register device answered (an
+     * SSI encoder's word can pass for an ACK and a start bit) */
+    bool answered = false;
+    for (unsigned i = 0; i < out->nregs; i++) {
+        answered |= out->regs[i].rc_device == BISS_OK;
+    }
+    if (rc == BISS_OK && out->wire.verdict == BISS_PROBE_NONE && !answered && !p->no_ssi) {
+        rc = probe_ssi(h, p, n, out);
     }
     return rc;
 }

@@ -107,6 +107,20 @@ static int write_scenario(const char *path, const char *json) {
     return BISSCTL_OK;
 }
 
+/* An SSI encoder's options and scenario (the ssi profile with its word). */
+static int print_ssi(const struct bissctl_opts *o, const struct biss_probe_ssi *s) {
+    printf("options: --ssi %u%s --ssi-delay-ns %u\n", s->bits, s->gray ? ",gray" : "", s->delay_ns);
+    char json[160];
+    snprintf(json, sizeof json,
+             "{\n  \"profile\": \"ssi\",\n  \"ssi\": { \"bits\": %u, \"gray\": %s }\n}\n", s->bits,
+             s->gray ? "true" : "false");
+    if (o->nargs > 0) {
+        return write_scenario(o->args[0], json);
+    }
+    printf("scenario:\n%s", json);
+    return BISSCTL_OK;
+}
+
 int bissctl_probe(biss_t *h, const struct bissctl_opts *o) {
     if (o->nargs > 1) {
         fprintf(stderr, "bissctl: probe takes one FILE.json, not '%s'\n", o->args[1]);
@@ -116,6 +130,7 @@ int bissctl_probe(biss_t *h, const struct bissctl_opts *o) {
         .freq_hz = o->cfg.freq_hz,
         .frames = o->count > 1 ? o->count : DEFAULT_FRAMES,
         .read_regs = true,
+        .ssi_delay_ns = o->cfg.ssi_delay_ns,
     };
     static struct biss_probe_report r;
     int rc = biss_probe(h, &p, &r);
@@ -149,6 +164,13 @@ int bissctl_probe(biss_t *h, const struct bissctl_opts *o) {
     print_reg_layout(&r);
     for (unsigned i = 0; i < r.nnotes; i++) {
         printf("note: %s\n", r.notes[i]);
+    }
+    if (r.ssi.tried) {
+        printf("SSI capture (64 bits at %u ns round trip, %u words): %s\n", r.ssi.delay_ns,
+               r.ssi.frames, r.ssi.verdict);
+    }
+    if (r.ssi.decided) {
+        return print_ssi(o, &r.ssi);
     }
     if (w->verdict == BISS_PROBE_NONE || !w->nkept) {
         return BISSCTL_FAIL;

@@ -164,11 +164,38 @@ enum biss_probe_reg_verdict biss_probe_reg_compare(const struct biss_probe_reg_l
                                                    size_t why_size);
 const char *biss_probe_reg_verdict_name(enum biss_probe_reg_verdict v);
 
+/* ---- SSI (pure) -------------------------------------------------------------
+ * An encoder no BiSS layout fits and whose registers do not answer may be
+ * an SSI one (its word can pass for an ACK and start bit): its words
+ * (64 bits captured, MSB first, from the first rising edge) are looked at
+ * for their length, a CRC and the code (host/biss_probe_ssi.c). */
+struct biss_probe_ssi {
+    bool tried;         /* an SSI capture was made */
+    bool decided;       /* bits and code named (no CRC fits) */
+    bool gray;          /* the code, when decided */
+    unsigned frames;    /* words analysed */
+    uint32_t delay_ns;  /* the round trip the words were read with (set by the caller) */
+    unsigned bits;      /* word length: up to the last bit that is ever 1 */
+    unsigned fixed_top; /* leading bits that never changed */
+    unsigned pairs, irregular_bin, irregular_gray; /* steps looked at, irregular ones */
+    bool crc_fits;                                 /* the BiSS analysis found a data + CRC split */
+    unsigned crc_data_bits, crc_bits;
+    uint32_t crc_poly;
+    char verdict[240]; /* in words */
+};
+
+/* The words w[0..n-1] (fno: their frame numbers, or NULL); out->delay_ns
+ * is kept. 0, or BISS_E_INVAL. "Cannot decide" is in out->verdict. */
+int biss_probe_ssi_analyse(const uint64_t *w, const uint32_t *fno, unsigned n,
+                           struct biss_probe_ssi *out);
+
 struct biss_probe_params {
-    uint32_t freq_hz; /* MA rate for the capture (must be valid for biss_rate_half) */
-    unsigned frames;  /* frames to capture (2..BISS_PROBE_MAX_FRAMES); 0: 1024 */
-    bool read_regs;   /* also read the identification registers */
-    unsigned reg_ids; /* control-frame IDs 0..reg_ids-1 (0: one per slave found, else 1) */
+    uint32_t freq_hz;      /* MA rate for the capture (must be valid for biss_rate_half) */
+    unsigned frames;       /* frames to capture (2..BISS_PROBE_MAX_FRAMES); 0: 1024 */
+    bool read_regs;        /* also read the identification registers */
+    unsigned reg_ids;      /* control-frame IDs 0..reg_ids-1 (0: one per slave found, else 1) */
+    bool no_ssi;           /* no SSI capture when no layout fits and no register answers */
+    uint32_t ssi_delay_ns; /* SSI capture: the round trip (0: BISS_PROBE_SSI_DELAY_NS) */
 };
 
 struct biss_probe_report {
@@ -185,12 +212,18 @@ struct biss_probe_report {
     struct biss_probe_reg_layout reg_layout;
     unsigned reg_agree_with; /* candidate (1-based) with the described widths; 0: none */
     char reg_why[160];
+    struct biss_probe_ssi ssi; /* when nothing BiSS-like answered (see params.no_ssi) */
 };
+
+/* The SSI capture's round trip when none is given: a few metres of cable
+ * and the transceivers; the bits are read right within half a bit of it. */
+#define BISS_PROBE_SSI_DELAY_NS 60
 
 /* Configures the capture layout (free-running frames), reads the frames
  * through biss_wait_sample, analyses them, optionally reads the
- * identification registers, and leaves the capture configuration in force.
- * Returns 0 with *out filled (the verdict may still be "cannot decide"), or
+ * identification registers and the layout they describe, tries the line
+ * as SSI when nothing BiSS-like answered, and leaves the last capture
+ * configuration in force. Returns 0 with *out filled (the verdict may still be "cannot decide"), or
  * the first library error. */
 int biss_probe(biss_t *h, const struct biss_probe_params *p, struct biss_probe_report *out);
 

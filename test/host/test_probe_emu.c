@@ -82,6 +82,12 @@ static void scenario_round_trip(const struct biss_probe_layout *l, const struct 
     unlink(path);
 }
 
+static unsigned sc_bits(const char *profile) {
+    scenario sc;
+    ck_assert_int_eq(profile_by_name(profile, &sc), 0);
+    return sc.ssi.bits;
+}
+
 static void probe_profile(const char *name) {
     biss_t *h = open_emu(name, NULL);
     struct biss_config truth;
@@ -96,9 +102,14 @@ static void probe_profile(const char *name) {
     /* the bench's AD38 chain is busy 2.4 us (24 clocks at 10 MHz), the others not */
     ck_assert_uint_eq(r.busy_max > 20, strcmp(name, "hengstler-ad38") == 0);
     if (truth.slave[0].ssi) {
-        /* no BiSS frame, no CRC: nothing fits, and it says so */
+        /* no BiSS frame, no CRC: nothing fits, and it says so; read as
+         * SSI, the word's length and code come out */
         ck_assert_int_eq(w->verdict, BISS_PROBE_NONE);
         ck_assert_int_eq(r.regs[0].rc_device, BISS_E_CD_NO_ECHO);
+        printf("%s: %s\n", name, r.ssi.verdict);
+        ck_assert(r.ssi.tried && r.ssi.decided && !r.ssi.crc_fits);
+        ck_assert_uint_eq(r.ssi.bits, sc_bits(name));
+        ck_assert(!r.ssi.gray);
         biss_close(h);
         return;
     }
@@ -154,6 +165,7 @@ static void probe_profile(const char *name) {
     } else {
         ck_assert_int_eq(r.reg_verdict, BISS_PROBE_REG_NONE);
     }
+    ck_assert(!r.ssi.tried); /* a BiSS layout: no SSI capture */
     read_with(h, &got);
     biss_close(h);
     scenario_round_trip(&w->layout[0], &got);
@@ -243,6 +255,23 @@ START_TEST(long_chain) {
 }
 END_TEST
 
+/* A Gray-coded SSI encoder: named Gray, and its options read it. */
+START_TEST(ssi_gray) {
+    biss_t *h = open_emu(NULL, PROBE_SCENARIO_DIR "/ssi-gray.json");
+    struct biss_config truth;
+    biss_config_default(&truth);
+    ck_assert_int_eq(biss_config_from_emu(h, &truth), BISS_OK);
+    struct biss_probe_params p = {.freq_hz = FREQ, .frames = FRAMES, .read_regs = true};
+    static struct biss_probe_report r;
+    ck_assert_int_eq(biss_probe(h, &p, &r), BISS_OK);
+    printf("ssi-gray: %s\n", r.ssi.verdict);
+    ck_assert(r.ssi.decided && r.ssi.gray);
+    ck_assert_uint_eq(r.ssi.bits, truth.slave[0].data_bits);
+    ck_assert_uint_eq(r.ssi.delay_ns, BISS_PROBE_SSI_DELAY_NS);
+    biss_close(h);
+}
+END_TEST
+
 /* A bad request is refused before anything is clocked. */
 START_TEST(bad_params) {
     biss_t *h = open_emu("generic", NULL);
@@ -267,6 +296,7 @@ int main(void) {
     tcase_add_test(tc, noisy_line);
     tcase_add_test(tc, registers_lie);
     tcase_add_test(tc, long_chain);
+    tcase_add_test(tc, ssi_gray);
     tcase_add_test(tc, bad_params);
     suite_add_tcase(s, tc);
     return check_run(s);
