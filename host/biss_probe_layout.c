@@ -10,7 +10,9 @@
  * steps of the CRC register). No search over start values is needed.
  *
  * The search per slave offset: every width c = 3..16 and every polynomial
- * of that degree (top term set). A polynomial is first tried on the XOR of
+ * of that degree (top term set) with an x^0 term: one without it is x
+ * times another, its last CRC bit constant; no CRC uses one, and it would
+ * fit any constant bits after a slave. A polynomial is first tried on the XOR of
  * a reference frame with a few others ("probes"), where the start value
  * and the inversion cancel: the CRC register run over the difference must
  * equal the difference of the received CRCs, tested for all data lengths
@@ -272,7 +274,7 @@ static void search_offset(struct ctx *x, unsigned o, struct seglist *l) {
                 win[j][d] = w;
             }
         }
-        for (uint32_t low = 1; low < (1u << c); low += 2) { /* odd: see top */
+        for (uint32_t low = 1; low < (1u << c); low += 2) { /* with x^0: see top */
             uint64_t alive = fits_probes(diff, win, np, dmax, low, c);
             /* a split whose bits never change fits every polynomial: no evidence */
             if (first > c) {
@@ -678,8 +680,8 @@ static void verdict(struct ctx *x) {
         enough_evidence(x, a)) {
         r->verdict = BISS_PROBE_BEST;
         snprintf(r->reason, sizeof r->reason,
-                 "%.0f layouts fit (counted); the first is the only one checking %u CRC bits, the "
-                 "others fewer (evidence: %u independent differences)",
+                 "%.0f layouts fit (counted); the first is the only best one: %u CRC bits, none "
+                 "constant, every slave's data moving (evidence: %u independent differences)",
                  total, a->crc_total, min_rank(a));
         return;
     }
