@@ -10,7 +10,9 @@
  * steps of the CRC register). No search over start values is needed.
  *
  * The search per slave offset: every width c = 3..16 and every polynomial
- * of that degree (top term set). A polynomial is first tried on the XOR of
+ * of that degree (top term set) with an x^0 term: one without it is x
+ * times another, its last CRC bit constant; no CRC uses one, and it would
+ * fit any constant bits after a slave. A polynomial is first tried on the XOR of
  * a reference frame with a few others ("probes"), where the start value
  * and the inversion cancel: the CRC register run over the difference must
  * equal the difference of the received CRCs, tested for all data lengths
@@ -24,8 +26,8 @@
 #include <string.h>
 
 #define MAX_PROBES       6
-#define MAX_SEGS         64 /* candidate slaves kept per offset */
-#define MAX_OFFSETS      48 /* offsets searched (a chain's slave boundaries) */
+#define MAX_SEGS         256 /* candidate slaves kept per offset */
+#define MAX_OFFSETS      160 /* offsets searched (a chain's slave boundaries) */
 #define MAX_COUNTED      100000
 #define BEST_MIN_RANK    8   /* evidence to prefer the widest CRC (see verdict()) */
 #define SUPPORT_PERMILLE 900 /* a fit needs 90 % of the frames (noise) */
@@ -33,6 +35,7 @@
 
 static void evidence(const struct biss_probe_frames *f, unsigned o, unsigned d, unsigned *rank,
                      unsigned *distinct);
+static uint32_t gf2_mod(uint32_t a, uint32_t b);
 
 static int cmp_u64(const void *a, const void *b) {
     uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
@@ -51,13 +54,25 @@ struct seglist {
     struct seg s[MAX_SEGS];
 };
 
+/* The layouts from one offset on, with so many slaves before it. */
+struct dp {
+    bool done;
+    double total;  /* layouts */
+    double best;   /* the highest score (score()) */
+    double n_best; /* layouts with it */
+};
+
 struct ctx {
     const struct biss_probe_frames *f;
     unsigned ref;          /* the frame the probes differ from */
     unsigned end;          /* payload bits up to the last 1 */
     struct seglist *cache; /* per payload offset */
     unsigned offsets_searched;
-    bool cut; /* a limit was reached */
+    bool cut;           /* a limit was reached */
+    unsigned set_aside; /* fits dropped for a wider one they divide (drop_factors) */
+    bool cut_counted;   /* MAX_COUNTED among the limits reached */
+    bool cut_search;    /* MAX_OFFSETS or MAX_SEGS: fits never seen */
+    struct dp *dp;      /* per (offset, slaves so far): see count_layouts */
     struct biss_probe_result *r;
     struct biss_probe_layout cur;
 };
@@ -259,7 +274,7 @@ static void search_offset(struct ctx *x, unsigned o, struct seglist *l) {
                 win[j][d] = w;
             }
         }
-        for (uint32_t low = 0; low < (1u << c); low++) {
+        for (uint32_t low = 1; low < (1u << c); low += 2) { /* with x^0: see top */
             uint64_t alive = fits_probes(diff, win, np, dmax, low, c);
             /* a split whose bits never change fits every polynomial: no evidence */
             if (first > c) {
@@ -280,10 +295,57 @@ static void search_offset(struct ctx *x, unsigned o, struct seglist *l) {
                 struct seg s = {d, c, (1u << c) | low, start, sup, 0, 0, 0};
                 evidence(f, o, d, &s.rank, &s.distinct);
                 s.stuck = stuck_bits(f, o + d, c);
-                add_seg(l, &s, &x->cut);
+                add_seg(l, &s, &x->cut_search);
             }
         }
     }
+}
+
+/* The order layout_cmp ranks by, per slave. */
+static int seg_cmp(const void *pa, const void *pb) {
+    const struct seg *a = pa, *b = pb;
+    if (a->support != b->support) {
+        return a->support > b->support ? -1 : 1;
+    }
+    if ((a->rank < 2) != (b->rank < 2)) {
+        return a->rank < 2 ? 1 : -1;
+    }
+    if (a->stuck != b->stuck) {
+        return a->stuck < b->stuck ? -1 : 1;
+    }
+    if (a->c != b->c) {
+        return a->c > b->c ? -1 : 1;
+    }
+    return 0;
+}
+
+/* Whether g makes s redundant: the same bits, a wider CRC that s's
+ * polynomial divides (so s fits wherever g does: a polynomial with an even
+ * number of terms is (x + 1) times one of degree one less, and that one
+ * fits with one data bit more), at least s's support, no constant CRC bit,
+ * and the evidence verdict() asks for before it prefers the wider CRC. A
+ * chain of such slaves would otherwise multiply its layouts (2^8 for
+ * eight) past the search limits. */
+static bool dominates(const struct seg *g, const struct seg *s) {
+    return g->d + g->c == s->d + s->c && g->c > s->c && gf2_mod(g->poly, s->poly) == 0 &&
+           g->support >= s->support && g->stuck == 0 &&
+           (g->rank >= BEST_MIN_RANK || g->rank >= g->d);
+}
+
+static void drop_factors(struct ctx *x, struct seglist *l) {
+    unsigned kept = 0;
+    for (unsigned i = 0; i < l->n; i++) {
+        bool dropped = false;
+        for (unsigned j = 0; j < l->n && !dropped; j++) {
+            dropped = j != i && dominates(&l->s[j], &l->s[i]);
+        }
+        if (dropped) {
+            x->set_aside++;
+        } else {
+            l->s[kept++] = l->s[i];
+        }
+    }
+    l->n = kept;
 }
 
 static const struct seglist *segs_at(struct ctx *x, unsigned o) {
@@ -291,10 +353,15 @@ static const struct seglist *segs_at(struct ctx *x, unsigned o) {
     if (!l->done) {
         l->done = true;
         if (x->offsets_searched++ >= MAX_OFFSETS) {
-            x->cut = true;
+            x->cut = x->cut_search = true;
             return l;
         }
         search_offset(x, o, l);
+        x->cut |= x->cut_search;
+        drop_factors(x, l);
+        /* the likeliest first: when a long chain's layouts pass the search
+         * limits, the ones recorded are the best per slave */
+        qsort(l->s, l->n, sizeof l->s[0], seg_cmp);
     }
     return l;
 }
@@ -358,6 +425,7 @@ static void walk(struct ctx *x, unsigned o) {
         }
         if (x->r->nlayouts >= MAX_COUNTED) {
             x->cut = true;
+            x->cut_counted = true;
             return;
         }
         struct biss_probe_slave *ps = &x->cur.slave[x->cur.nslaves++];
@@ -378,6 +446,83 @@ static void walk(struct ctx *x, unsigned o) {
         }
         x->cur.nslaves--;
     }
+}
+
+/* ---- counting past the limit ------------------------------------------------
+ * A long chain whose slaves each fit a few ways (a CRC-16 with an even
+ * number of terms and a next slave whose first bits never change: the
+ * split moves by a bit) has more layouts than walk() may record. They are
+ * a product, so counting them is cheap: per offset and slaves so far, the
+ * number of completions and how many reach the best score. */
+
+/* layout_cmp's order after support, additive: no weak slave, fewer
+ * constant CRC bits, more CRC bits. */
+static double score(const struct seg *s) {
+    return (s->rank < 2 ? -1e6 : 0.0) - 1000.0 * s->stuck + s->c;
+}
+
+static const struct dp *count_from(struct ctx *x, unsigned o, unsigned depth) {
+    struct dp *e = &x->dp[(size_t)o * (BISS_API_MAX_SLAVES + 1) + depth];
+    if (e->done) {
+        return e;
+    }
+    e->done = true;
+    e->best = -1e300;
+    const struct seglist *l = segs_at(x, o);
+    for (unsigned i = 0; i < l->n; i++) {
+        const struct seg *s = &l->s[i];
+        unsigned next = o + s->d + s->c;
+        if (next > x->end || (next < x->end && depth + 1 >= BISS_API_MAX_SLAVES)) {
+            continue;
+        }
+        double total = 1.0, best = score(s), n_best = 1.0;
+        if (next < x->end) {
+            const struct dp *t = count_from(x, next, depth + 1);
+            total = t->total;
+            best += t->best;
+            n_best = t->n_best;
+            if (t->total == 0) {
+                continue;
+            }
+        }
+        e->total += total;
+        if (best > e->best) {
+            e->best = best;
+            e->n_best = n_best;
+        } else if (best == e->best) {
+            e->n_best += n_best;
+        }
+    }
+    return e;
+}
+
+static double layout_score(const struct biss_probe_layout *l) {
+    double v = 0;
+    for (unsigned i = 0; i < l->nslaves; i++) {
+        const struct biss_probe_slave *s = &l->slave[i];
+        struct seg g = {.c = s->crc_bits, .rank = s->rank, .stuck = s->crc_stuck};
+        v += score(&g);
+    }
+    return v;
+}
+
+/* After walk() stopped at MAX_COUNTED alone: the exact count, and whether
+ * the first layout recorded is the only one with the best score and fits
+ * every frame (then no layout left unseen ranks with it). */
+static bool count_layouts(struct ctx *x, double *total) {
+    x->dp = calloc((size_t)x->f->nbits * (BISS_API_MAX_SLAVES + 1), sizeof *x->dp);
+    if (!x->dp) {
+        return false;
+    }
+    const struct dp *e = count_from(x, 0, 0);
+    bool complete = !x->cut_search; /* no new search hit a limit */
+    *total = e->total;
+    const struct biss_probe_layout *a = &x->r->layout[0];
+    bool first_alone = complete && x->r->nkept && e->n_best == 1.0 && layout_score(a) == e->best &&
+                       a->support == x->r->frames;
+    free(x->dp);
+    x->dp = NULL;
+    return first_alone;
 }
 
 /* ---- per slave: evidence, life counter, nE/nW ---------------------------- */
@@ -529,6 +674,17 @@ static void verdict(struct ctx *x) {
         return;
     }
     const struct biss_probe_layout *a = &r->layout[0];
+    double total = 0;
+    bool only_counted = x->cut && x->cut_counted && !x->cut_search;
+    if (only_counted && count_layouts(x, &total) && !a->weak && a->crc_stuck == 0 &&
+        enough_evidence(x, a)) {
+        r->verdict = BISS_PROBE_BEST;
+        snprintf(r->reason, sizeof r->reason,
+                 "%.0f layouts fit (counted); the first is the only best one: %u CRC bits, none "
+                 "constant, every slave's data moving (evidence: %u independent differences)",
+                 total, a->crc_total, min_rank(a));
+        return;
+    }
     if (x->cut) { /* not every fit was seen: nothing can be called unique or best */
         r->verdict = BISS_PROBE_AMBIGUOUS;
         snprintf(r->reason, sizeof r->reason,
@@ -608,6 +764,11 @@ static int search(const struct biss_probe_frames *f, unsigned end, unsigned ref,
         }
     }
     verdict(&x);
+    if (x.set_aside) {
+        size_t len = strlen(r->reason);
+        snprintf(r->reason + len, sizeof r->reason - len,
+                 "; %u narrower CRC fits set aside (factors of a wider fitting one)", x.set_aside);
+    }
     free(x.cache);
     return BISS_OK;
 }

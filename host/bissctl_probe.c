@@ -70,6 +70,27 @@ static void print_regs(const struct biss_probe_regs *r) {
     printf("\n");
 }
 
+/* The layout the registers describe and what the wire says to it. */
+static void print_reg_layout(const struct biss_probe_report *r) {
+    const struct biss_probe_reg_layout *rl = &r->reg_layout;
+    if (r->reg_verdict == BISS_PROBE_REG_NONE) {
+        return;
+    }
+    if (r->reg_verdict == BISS_PROBE_REG_INVALID) {
+        printf("register layout: %s\n", r->reg_why);
+        return;
+    }
+    printf("register layout (ID %u, %s): 0x78..0x7D = %02X %02X %02X %02X %02X %02X:", rl->id,
+           rl->format, rl->raw[0], rl->raw[1], rl->raw[2], rl->raw[3], rl->raw[4], rl->raw[5]);
+    for (unsigned i = 0; i < rl->nchannels; i++) {
+        const struct biss_probe_reg_channel *c = &rl->ch[i];
+        printf("%s slave %u %s %u + nE/nW = %u data bits, CRC %u", i ? ";" : "", i, c->what,
+               c->value_bits, c->data_bits, c->crc_bits);
+    }
+    printf(" (MT %u, ST %u); life counter %u bits\n", rl->mt_bits, rl->st_bits, rl->lc_bits);
+    printf("registers vs wire: %s: %s\n", biss_probe_reg_verdict_name(r->reg_verdict), r->reg_why);
+}
+
 static int write_scenario(const char *path, const char *json) {
     FILE *f = fopen(path, "w");
     if (!f) {
@@ -86,6 +107,20 @@ static int write_scenario(const char *path, const char *json) {
     return BISSCTL_OK;
 }
 
+/* An SSI encoder's options and scenario (the ssi profile with its word). */
+static int print_ssi(const struct bissctl_opts *o, const struct biss_probe_ssi *s) {
+    printf("options: --ssi %u%s --ssi-delay-ns %u\n", s->bits, s->gray ? ",gray" : "", s->delay_ns);
+    char json[160];
+    snprintf(json, sizeof json,
+             "{\n  \"profile\": \"ssi\",\n  \"ssi\": { \"bits\": %u, \"gray\": %s }\n}\n", s->bits,
+             s->gray ? "true" : "false");
+    if (o->nargs > 0) {
+        return write_scenario(o->args[0], json);
+    }
+    printf("scenario:\n%s", json);
+    return BISSCTL_OK;
+}
+
 int bissctl_probe(biss_t *h, const struct bissctl_opts *o) {
     if (o->nargs > 1) {
         fprintf(stderr, "bissctl: probe takes one FILE.json, not '%s'\n", o->args[1]);
@@ -95,6 +130,7 @@ int bissctl_probe(biss_t *h, const struct bissctl_opts *o) {
         .freq_hz = o->cfg.freq_hz,
         .frames = o->count > 1 ? o->count : DEFAULT_FRAMES,
         .read_regs = true,
+        .ssi_delay_ns = o->cfg.ssi_delay_ns,
     };
     static struct biss_probe_report r;
     int rc = biss_probe(h, &p, &r);
@@ -125,8 +161,16 @@ int bissctl_probe(biss_t *h, const struct bissctl_opts *o) {
     for (unsigned i = 0; i < r.nregs; i++) {
         print_regs(&r.regs[i]);
     }
+    print_reg_layout(&r);
     for (unsigned i = 0; i < r.nnotes; i++) {
         printf("note: %s\n", r.notes[i]);
+    }
+    if (r.ssi.tried) {
+        printf("SSI capture (64 bits at %u ns round trip, %u words): %s\n", r.ssi.delay_ns,
+               r.ssi.frames, r.ssi.verdict);
+    }
+    if (r.ssi.decided) {
+        return print_ssi(o, &r.ssi);
     }
     if (w->verdict == BISS_PROBE_NONE || !w->nkept) {
         return BISSCTL_FAIL;

@@ -93,6 +93,29 @@ static void posital(scenario *s) {
      * contents are not in the manual and start as zeros */
 }
 
+/* The AD38's direct registers ([AD38] register tables, "Address /
+ * Content"). ID 1 (the A/D and position channels) describes its format at
+ * 0x78..0x7D: "Data length ADC", "Length CRC ADC", "Resolution MT",
+ * "Resolution ST", "Length Life counter", "Length CRC Position"; 0x7E..0x7F
+ * "Manufacturer ID (HE = Hengstler)". The notes print no values: model
+ * choice, each a bit count (what the names say) with the widths the
+ * notes' SCD tables give: A/D 16, CRC 5, MT 12, ST 24, life counter 6
+ * (SCD-Slave 3), CRC 6. ID 0 (the life-counter channel): 0x41..0x5F and
+ * 0x78..0x7F "0xFF (not used)". All read-only (identification). */
+static void ad38_registers(regfile *id1, regfile *id0) {
+    static const uint8_t id1_78[8] = {16, 5, 12, 24, 6, 6, 'H', 'E'};
+    for (unsigned i = 0; i < 8; i++) {
+        regfile_poke(id1, 0, (uint8_t)(0x78 + i), id1_78[i]);
+        id1->flags[0x78 + i] |= REG_RO;
+    }
+    for (unsigned a = 0x41; a <= 0x7F; a++) {
+        if (a <= 0x5F || a >= 0x78) {
+            regfile_poke(id0, 0, (uint8_t)a, 0xFF);
+            id0->flags[a] |= REG_RO;
+        }
+    }
+}
+
 /* Hengstler AD38 3-slave chain (application notes): A/D converter,
  * MT+ST position, ST + life counter; busy about 2.3-2.5 us, adaptive
  * timeout 650 ns. */
@@ -109,7 +132,7 @@ static void ad38(scenario *s) {
     b->s[0].crc_poly = 0x25;
     b->s[0].pos0 = 0x4000;
     b->s[0].speed_cps = 1000.0; /* model choice: slowly drifting reading */
-    b->s[1].pos_bits = 36;      /* MT 24 + ST 12 */
+    b->s[1].pos_bits = 36;      /* MT 12 + ST 24 ([AD38] SCD-Slave 2 table) */
     b->s[1].crc_poly = 0x43;
     b->s[1].speed_cps = 1e6;
     b->s[2].pos_bits = 9;
@@ -125,6 +148,7 @@ static void ad38(scenario *s) {
     b->s[0].no_control = true;
     b->s[1].id = 1;
     b->s[2].id = 0;
+    ad38_registers(&b->s[1].regs, &b->s[2].regs);
 }
 
 /* A BiSS Safety style encoder: two position words from two daisy-chained

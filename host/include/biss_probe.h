@@ -5,9 +5,11 @@
  * The wire part is a pure analysis (biss_probe_analyse: no I/O) of raw
  * frames, each the bits after the start bit: CDS first, then everything
  * the chain sends. libbiss captures them with the normal firmware in a
- * capture layout (biss_probe below): 8 slaves x 64 data bits, no CRC, no
- * nE/nW, so the firmware clocks 512 bits after the CDS and publishes them
- * as data words. After the last slave's CRC the wire reads 0: the last
+ * capture layout (biss_probe below): 8 slaves x (64 data + 16 CRC bits),
+ * no nE/nW, so the firmware clocks 640 bits after the CDS and publishes
+ * the data words and, per slave, its CRC register, from which the 16 bits
+ * after each word follow (host/biss_probe.c). After the last slave's CRC
+ * the wire reads 0: the last
  * slave's SLI input is tied low and every slave passes it on ([MB4],
  * "BiSS C Frame"; the model, emulator/slave/biss_slave.h, sends 0 on every
  * further rising edge). So the frame ends after the last bit that is ever 1.
@@ -25,7 +27,11 @@
 extern "C" {
 #endif
 
-#define BISS_PROBE_MAX_BITS    (1 + BISS_API_MAX_SLAVES * 64) /* CDS + capture */
+#define BISS_PROBE_CAPTURE_DATA 64 /* per slave of the capture layout */
+#define BISS_PROBE_CAPTURE_CRC  16
+/* CDS + the capture: 640 bits, the longest frame the firmware clocks */
+#define BISS_PROBE_MAX_BITS                                                                        \
+    (1 + BISS_API_MAX_SLAVES * (BISS_PROBE_CAPTURE_DATA + BISS_PROBE_CAPTURE_CRC))
 #define BISS_PROBE_MAX_FRAMES  4096
 #define BISS_PROBE_MAX_LAYOUTS 16 /* candidates kept (more are counted) */
 #define BISS_PROBE_MIN_CRC     3
@@ -78,7 +84,7 @@ enum biss_probe_verdict {
 
 struct biss_probe_result {
     enum biss_probe_verdict verdict;
-    char reason[200];  /* why, in words */
+    char reason[320];  /* why, in words */
     unsigned frames;   /* frames analysed */
     unsigned end_bit;  /* frame length: bits after the CDS up to the last ever 1 */
     unsigned dropped;  /* frames left out as noise (1s after end_bit; see reason) */
@@ -96,6 +102,7 @@ const char *biss_probe_verdict_name(enum biss_probe_verdict v);
 void biss_probe_layout_config(const struct biss_probe_layout *l, struct biss_config *c);
 
 /* ---- on a handle --------------------------------------------------------- */
+
 /* The BiSS identification registers of one slave (read-only access). */
 struct biss_probe_regs {
     unsigned id;
@@ -106,11 +113,89 @@ struct biss_probe_regs {
     uint8_t serial[4];                                     /* 0x44..0x47 */
 };
 
+/* ---- layout from the registers (pure) -------------------------------------
+ * Some encoders describe their own format in the device-ID registers. The
+ * one format known: the Hengstler AD38's ([AD38] register table of the
+ * Slave ID 1 device, direct addresses): 0x78 A/D data length, 0x79 A/D CRC
+ * length, 0x7A MT resolution, 0x7B ST resolution, 0x7C life-counter length,
+ * 0x7D position CRC length, bits each; manufacturer 0x7E..0x7F "HE". Its
+ * channels come first in the chain, each with nE/nW after its data ([AD38]
+ * SCD tables: "Err + Warning 2 bit"). Polynomials and start values are not
+ * in these registers: only widths are compared with the wire. */
+#define BISS_PROBE_REG_CHANNELS 2
+
+struct biss_probe_reg_channel {
+    const char *what;    /* "A/D", "MT+ST position" */
+    unsigned value_bits; /* the value itself (A/D, MT + ST) */
+    unsigned data_bits;  /* value + nE/nW: what the wire's data word holds */
+    unsigned crc_bits;
+};
+
+struct biss_probe_reg_layout {
+    unsigned id;        /* the control-frame ID whose registers said it */
+    const char *format; /* which document's format */
+    uint8_t raw[6];     /* 0x78..0x7D as read */
+    unsigned mt_bits, st_bits, lc_bits;
+    unsigned nchannels; /* chain slaves described, from the first */
+    struct biss_probe_reg_channel ch[BISS_PROBE_REG_CHANNELS];
+};
+
+enum biss_probe_reg_verdict {
+    BISS_PROBE_REG_NONE,     /* no register set describes a layout */
+    BISS_PROBE_REG_INVALID,  /* a known format, but values no frame can have */
+    BISS_PROBE_REG_NO_WIRE,  /* described, but the wire gave no layout to compare */
+    BISS_PROBE_REG_AGREE,    /* the wire's first candidate has the described widths */
+    BISS_PROBE_REG_AGREE_K,  /* a later candidate (agree_with) has them, the first not */
+    BISS_PROBE_REG_DISAGREE, /* no candidate the wire kept has them */
+};
+
+/* The layout regs (of one ID) describe; false when they are of no format
+ * known. Values that make no frame (a data word over 64 bits, a CRC
+ * outside 3..16 bits, 0xFF "not used") are described too: *why then says
+ * which and the return is still true, with out->nchannels 0. */
+bool biss_probe_reg_layout_decode(const struct biss_probe_regs *regs,
+                                  struct biss_probe_reg_layout *out, char *why, size_t why_size);
+/* The described layout against the wire's candidates: the verdict, which
+ * candidate agrees (1-based; 0: none) and, for a disagreement, the first
+ * field that differs from candidate 1, in words. */
+enum biss_probe_reg_verdict biss_probe_reg_compare(const struct biss_probe_reg_layout *rl,
+                                                   const struct biss_probe_result *wire,
+                                                   unsigned *agree_with, char *why,
+                                                   size_t why_size);
+const char *biss_probe_reg_verdict_name(enum biss_probe_reg_verdict v);
+
+/* ---- SSI (pure) -------------------------------------------------------------
+ * An encoder no BiSS layout fits and whose registers do not answer may be
+ * an SSI one (its word can pass for an ACK and start bit): its words
+ * (64 bits captured, MSB first, from the first rising edge) are looked at
+ * for their length, a CRC and the code (host/biss_probe_ssi.c). */
+struct biss_probe_ssi {
+    bool tried;         /* an SSI capture was made */
+    bool decided;       /* bits and code named (no CRC fits) */
+    bool gray;          /* the code, when decided */
+    unsigned frames;    /* words analysed */
+    uint32_t delay_ns;  /* the round trip the words were read with (set by the caller) */
+    unsigned bits;      /* word length: up to the last bit that is ever 1 */
+    unsigned fixed_top; /* leading bits that never changed */
+    unsigned pairs, irregular_bin, irregular_gray; /* steps looked at, irregular ones */
+    bool crc_fits;                                 /* the BiSS analysis found a data + CRC split */
+    unsigned crc_data_bits, crc_bits;
+    uint32_t crc_poly;
+    char verdict[240]; /* in words */
+};
+
+/* The words w[0..n-1] (fno: their frame numbers, or NULL); out->delay_ns
+ * is kept. 0, or BISS_E_INVAL. "Cannot decide" is in out->verdict. */
+int biss_probe_ssi_analyse(const uint64_t *w, const uint32_t *fno, unsigned n,
+                           struct biss_probe_ssi *out);
+
 struct biss_probe_params {
-    uint32_t freq_hz; /* MA rate for the capture (must be valid for biss_rate_half) */
-    unsigned frames;  /* frames to capture (2..BISS_PROBE_MAX_FRAMES); 0: 1024 */
-    bool read_regs;   /* also read the identification registers */
-    unsigned reg_ids; /* control-frame IDs 0..reg_ids-1 (0: one per slave found, else 1) */
+    uint32_t freq_hz;      /* MA rate for the capture (must be valid for biss_rate_half) */
+    unsigned frames;       /* frames to capture (2..BISS_PROBE_MAX_FRAMES); 0: 1024 */
+    bool read_regs;        /* also read the identification registers */
+    unsigned reg_ids;      /* control-frame IDs 0..reg_ids-1 (0: one per slave found, else 1) */
+    bool no_ssi;           /* no SSI capture when no layout fits and no register answers */
+    uint32_t ssi_delay_ns; /* SSI capture: the round trip (0: BISS_PROBE_SSI_DELAY_NS) */
 };
 
 struct biss_probe_report {
@@ -122,12 +207,23 @@ struct biss_probe_report {
     struct biss_probe_regs regs[BISS_API_MAX_SLAVES];
     unsigned nnotes;
     char notes[8][160]; /* where wire and registers disagree, and other remarks */
+    /* the first register set that describes a layout, and how it compares */
+    enum biss_probe_reg_verdict reg_verdict;
+    struct biss_probe_reg_layout reg_layout;
+    unsigned reg_agree_with; /* candidate (1-based) with the described widths; 0: none */
+    char reg_why[160];
+    struct biss_probe_ssi ssi; /* when nothing BiSS-like answered (see params.no_ssi) */
 };
+
+/* The SSI capture's round trip when none is given: a few metres of cable
+ * and the transceivers; the bits are read right within half a bit of it. */
+#define BISS_PROBE_SSI_DELAY_NS 60
 
 /* Configures the capture layout (free-running frames), reads the frames
  * through biss_wait_sample, analyses them, optionally reads the
- * identification registers, and leaves the capture configuration in force.
- * Returns 0 with *out filled (the verdict may still be "cannot decide"), or
+ * identification registers and the layout they describe, tries the line
+ * as SSI when nothing BiSS-like answered, and leaves the last capture
+ * configuration in force. Returns 0 with *out filled (the verdict may still be "cannot decide"), or
  * the first library error. */
 int biss_probe(biss_t *h, const struct biss_probe_params *p, struct biss_probe_report *out);
 

@@ -82,6 +82,12 @@ static void scenario_round_trip(const struct biss_probe_layout *l, const struct 
     unlink(path);
 }
 
+static unsigned sc_bits(const char *profile) {
+    scenario sc;
+    ck_assert_int_eq(profile_by_name(profile, &sc), 0);
+    return sc.ssi.bits;
+}
+
 static void probe_profile(const char *name) {
     biss_t *h = open_emu(name, NULL);
     struct biss_config truth;
@@ -96,9 +102,14 @@ static void probe_profile(const char *name) {
     /* the bench's AD38 chain is busy 2.4 us (24 clocks at 10 MHz), the others not */
     ck_assert_uint_eq(r.busy_max > 20, strcmp(name, "hengstler-ad38") == 0);
     if (truth.slave[0].ssi) {
-        /* no BiSS frame, no CRC: nothing fits, and it says so */
+        /* no BiSS frame, no CRC: nothing fits, and it says so; read as
+         * SSI, the word's length and code come out */
         ck_assert_int_eq(w->verdict, BISS_PROBE_NONE);
         ck_assert_int_eq(r.regs[0].rc_device, BISS_E_CD_NO_ECHO);
+        printf("%s: %s\n", name, r.ssi.verdict);
+        ck_assert(r.ssi.tried && r.ssi.decided && !r.ssi.crc_fits);
+        ck_assert_uint_eq(r.ssi.bits, sc_bits(name));
+        ck_assert(!r.ssi.gray);
         biss_close(h);
         return;
     }
@@ -140,6 +151,21 @@ static void probe_profile(const char *name) {
         ck_assert_mem_eq(r.regs[0].device, dev, 6);
         ck_assert_mem_eq(r.regs[0].profile, ((const uint8_t[]){0x02, 0x61, 0x29}), 3);
     }
+    /* the AD38 describes its A/D and position channels in ID 1's registers
+     * ([AD38] register table); they agree with the wire. Nobody else does. */
+    if (strcmp(name, "hengstler-ad38") == 0) {
+        printf("%s: %s: %s\n", name, biss_probe_reg_verdict_name(r.reg_verdict), r.reg_why);
+        ck_assert_int_eq(r.reg_verdict, BISS_PROBE_REG_AGREE);
+        ck_assert_uint_eq(r.reg_agree_with, 1);
+        ck_assert_uint_eq(r.reg_layout.id, 1);
+        ck_assert_uint_eq(r.reg_layout.nchannels, 2);
+        ck_assert_uint_eq(r.reg_layout.ch[0].data_bits, got.slave[0].data_bits);
+        ck_assert_uint_eq(r.reg_layout.ch[1].data_bits, got.slave[1].data_bits);
+        ck_assert_uint_eq(r.reg_layout.lc_bits, w->layout[0].slave[2].lc_bits);
+    } else {
+        ck_assert_int_eq(r.reg_verdict, BISS_PROBE_REG_NONE);
+    }
+    ck_assert(!r.ssi.tried); /* a BiSS layout: no SSI capture */
     read_with(h, &got);
     biss_close(h);
     scenario_round_trip(&w->layout[0], &got);
@@ -178,6 +204,74 @@ START_TEST(noisy_line) {
 }
 END_TEST
 
+/* An AD38 whose registers lie (0x78: a 20-bit A/D word, the wire sends
+ * 16): the wire's layout stands and the disagreement is reported. */
+START_TEST(registers_lie) {
+    biss_t *h = open_emu(NULL, PROBE_SCENARIO_DIR "/ad38-registers-lie.json");
+    struct biss_probe_params p = {.freq_hz = FREQ, .frames = FRAMES, .read_regs = true};
+    static struct biss_probe_report r;
+    ck_assert_int_eq(biss_probe(h, &p, &r), BISS_OK);
+    printf("ad38-registers-lie: %s: %s\n", biss_probe_reg_verdict_name(r.reg_verdict), r.reg_why);
+    ck_assert(r.wire.verdict == BISS_PROBE_UNIQUE || r.wire.verdict == BISS_PROBE_BEST);
+    ck_assert_uint_eq(r.wire.layout[0].slave[0].data_bits, 18);
+    ck_assert_int_eq(r.reg_verdict, BISS_PROBE_REG_DISAGREE);
+    ck_assert_uint_eq(r.reg_layout.ch[0].data_bits, 22);
+    ck_assert_msg(strstr(r.reg_why, "slave 0") && strstr(r.reg_why, "wire 18"), "%s", r.reg_why);
+    biss_close(h);
+}
+END_TEST
+
+/* A chain of 8 slaves whose frame (547 bits) is longer than 8 x 64: the
+ * bits after each data word come from the firmware's CRC register. Every
+ * slave is recovered (CRC-16s with an even number of terms and positions
+ * whose top bits never move: the layouts that fit are counted, not
+ * listed), and the layout reads the chain. */
+START_TEST(long_chain) {
+    biss_t *h = open_emu(NULL, PROBE_SCENARIO_DIR "/long-chain-547.json");
+    struct biss_config truth;
+    biss_config_default(&truth);
+    ck_assert_int_eq(biss_config_from_emu(h, &truth), BISS_OK);
+    struct biss_probe_params p = {.freq_hz = FREQ, .frames = FRAMES};
+    static struct biss_probe_report r;
+    ck_assert_int_eq(biss_probe(h, &p, &r), BISS_OK);
+    const struct biss_probe_result *w = &r.wire;
+    printf("long-chain-547: %u bits: %s: %s\n", w->end_bit, biss_probe_verdict_name(w->verdict),
+           w->reason);
+    ck_assert_uint_eq(w->end_bit, 547);
+    ck_assert_uint_eq(w->frames, FRAMES);
+    ck_assert_int_eq(w->verdict, BISS_PROBE_BEST);
+    struct biss_config got;
+    biss_config_default(&got);
+    biss_probe_layout_config(&w->layout[0], &got);
+    ck_assert_uint_eq(got.nslaves, 8);
+    unsigned bits = 0;
+    for (unsigned i = 0; i < 8; i++) {
+        assert_same_slave(&got.slave[i], &truth.slave[i], "long-chain-547", i);
+        bits += got.slave[i].data_bits + got.slave[i].crc_bits;
+    }
+    ck_assert_uint_eq(bits, 547);
+    read_with(h, &got);
+    biss_close(h);
+}
+END_TEST
+
+/* A Gray-coded SSI encoder: named Gray, and its options read it. */
+START_TEST(ssi_gray) {
+    biss_t *h = open_emu(NULL, PROBE_SCENARIO_DIR "/ssi-gray.json");
+    struct biss_config truth;
+    biss_config_default(&truth);
+    ck_assert_int_eq(biss_config_from_emu(h, &truth), BISS_OK);
+    struct biss_probe_params p = {.freq_hz = FREQ, .frames = FRAMES, .read_regs = true};
+    static struct biss_probe_report r;
+    ck_assert_int_eq(biss_probe(h, &p, &r), BISS_OK);
+    printf("ssi-gray: %s\n", r.ssi.verdict);
+    ck_assert(r.ssi.decided && r.ssi.gray);
+    ck_assert_uint_eq(r.ssi.bits, truth.slave[0].data_bits);
+    ck_assert_uint_eq(r.ssi.delay_ns, BISS_PROBE_SSI_DELAY_NS);
+    biss_close(h);
+}
+END_TEST
+
 /* A bad request is refused before anything is clocked. */
 START_TEST(bad_params) {
     biss_t *h = open_emu("generic", NULL);
@@ -200,6 +294,9 @@ int main(void) {
     tcase_set_timeout(tc, 600);
     tcase_add_test(tc, every_profile);
     tcase_add_test(tc, noisy_line);
+    tcase_add_test(tc, registers_lie);
+    tcase_add_test(tc, long_chain);
+    tcase_add_test(tc, ssi_gray);
     tcase_add_test(tc, bad_params);
     suite_add_tcase(s, tc);
     return check_run(s);

@@ -176,6 +176,60 @@ START_TEST(random_layouts) {
 }
 END_TEST
 
+/* A chain longer than 8 x 64 bits (547), as the 640-bit capture reads it:
+ * 8 slaves, CRC-16s with an even number of terms (so each also fits
+ * (x + 1)-factor splits) and positions whose top bits never move. The
+ * layouts that fit pass the listing limit; counted, the truth is the only
+ * best one. (Slave 2's speed is not 9e5: 72 counts per 80 us frame, a
+ * multiple of 8, would step its position bits above nE/nW in step with the
+ * life counter, and a 9-bit counter would fit 63 of 64 steps.) */
+START_TEST(long_chain) {
+    static const struct {
+        unsigned pos, lc;
+        bool ew;
+        uint32_t poly, start;
+        double speed;
+    } sl[8] = {{60, 0, true, 0x190D9, 0, 1e6},
+               {62, 0, false, 0x18005, 0x1234, 7e5},
+               {48, 6, true, 0x190D9, 0x5A5A, 9.13e5},
+               {40, 0, true, 0x43, 0, 8e5},
+               {58, 0, true, 0x190D9, 0, -1e6},
+               {62, 0, true, 0x11021, 0xFFFF, 6e5},
+               {30, 0, true, 0x25, 0, 5e5},
+               {60, 0, true, 0x190D9, 0x0F0F, 1.1e6}};
+    biss_chain_cfg cfg;
+    biss_chain_cfg_default(&cfg);
+    cfg.n = 8;
+    unsigned bits = 0;
+    for (unsigned i = 0; i < 8; i++) {
+        biss_slave_cfg *c = &cfg.s[i];
+        biss_slave_cfg_default(c, i);
+        c->pos_bits = sl[i].pos;
+        c->lc_bits = sl[i].lc;
+        c->has_err = c->has_warn = sl[i].ew;
+        c->crc_poly = sl[i].poly;
+        c->crc_start = sl[i].start;
+        c->speed_cps = sl[i].speed;
+        bits += biss_slave_cfg_data_bits(c) + biss_crc_width(c->crc_poly);
+    }
+    ck_assert_ptr_null(biss_chain_cfg_check(&cfg));
+    ck_assert_uint_eq(bits, 547);
+    static uint8_t frames[NFRAMES * BISS_PROBE_MAX_BITS];
+    static uint32_t fno[NFRAMES];
+    ck_assert_int_eq(
+        probe_frames_from_model(&cfg, NFRAMES, BISS_PROBE_MAX_BITS, HALF, PERIOD, frames, fno), 0);
+    struct biss_probe_frames f = {NFRAMES, BISS_PROBE_MAX_BITS, frames, fno};
+    static struct biss_probe_result r;
+    ck_assert_int_eq(biss_probe_analyse(&f, &r), 0);
+    print_result("long chain", &r);
+    ck_assert_uint_eq(r.end_bit, 547);
+    ck_assert_int_eq(r.verdict, BISS_PROBE_BEST);
+    ck_assert_uint_gt(r.nlayouts, r.nkept); /* more than listed: counted */
+    ck_assert_int_eq(judge(&r, &cfg), RECOVERED);
+    ck_assert(ew_matches(&r.layout[0], &cfg));
+}
+END_TEST
+
 /* What the analysis refuses to guess. */
 START_TEST(cannot_decide) {
     static uint8_t bits[8 * NBITS];
@@ -209,6 +263,7 @@ int main(void) {
     tcase_set_timeout(tc, 600);
     tcase_add_test(tc, every_profile);
     tcase_add_test(tc, random_layouts);
+    tcase_add_test(tc, long_chain);
     tcase_add_test(tc, cannot_decide);
     suite_add_tcase(s, tc);
     return check_run(s);
