@@ -81,6 +81,8 @@ static const struct err_text errors[] = {
                          "many pairs, or a shifted position over 64 bits"},
     {BISS_E_SAFETY_CRC, "pair check of two channels: both CRCs have the same polynomial and "
                         "start value (the channels must differ)"},
+    {BISS_E_SAFETY_EW, "nE/nW check (a slave that never sets them): no such slave, or the "
+                       "slave sends no nE/nW"},
 };
 
 const char *biss_strerror(int err) {
