@@ -81,6 +81,8 @@ static const struct err_text errors[] = {
                          "many pairs, or a shifted position over 64 bits"},
     {BISS_E_SAFETY_CRC, "pair check of two channels: both CRCs have the same polynomial and "
                         "start value (the channels must differ)"},
+    {BISS_E_SAFETY_EW, "nE/nW check (a slave that never sets them): no such slave, or the "
+                       "slave sends no nE/nW"},
     {BISS_E_IEP_OWNED, "the other PRU's channel owns the IEP (trigger iep): use iep-follow"},
     {BISS_E_FW_PRU, "the running image was assembled for the other PRU (PRU0: biss_master, "
                     "PRU1: biss_master_pru1)"},

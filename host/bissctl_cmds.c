@@ -64,6 +64,7 @@ static void print_sample(const struct biss_sample *s, const struct biss_config *
            : s->no_slave   ? "no-slave"
            : s->proc_error ? "proc-error"
            : s->ack_jump   ? "ack-jump"
+           : s->misframed  ? "misframed"
                            : "invalid");
     if (s->valid) {
         for (unsigned i = 0; i < s->nslaves; i++) {
@@ -103,6 +104,13 @@ static void print_safety_stats(biss_t *h) {
             printf("%ss%u.life_checked=%u s%u.life_frozen=%u s%u.life_skipped=%u",
                    any ? " " : "safety: ", i, st.lc_checked[i], i, st.lc_frozen[i], i,
                    st.lc_skipped[i]);
+            any = true;
+        }
+    }
+    for (unsigned i = 0; i < c.nslaves; i++) {
+        if (c.slave[i].ew_static) {
+            printf("%ss%u.ew_checked=%u s%u.misframed=%u", any ? " " : "safety: ", i,
+                   st.ew_checked[i], i, st.ew_set[i]);
             any = true;
         }
     }

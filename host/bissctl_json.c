@@ -11,6 +11,7 @@ static const char *state(const struct biss_sample *s) {
            : s->no_slave   ? "no-slave"
            : s->proc_error ? "proc-error"
            : s->ack_jump   ? "ack-jump"
+           : s->misframed  ? "misframed"
                            : "invalid";
 }
 
@@ -65,6 +66,15 @@ void bissctl_json_end(biss_t *h) {
             if (c.slave[i].life_check) {
                 printf("%s{\"slave\": %u, \"checked\": %u, \"frozen\": %u, \"skipped\": %u}",
                        any ? ", " : "", i, st.lc_checked[i], st.lc_frozen[i], st.lc_skipped[i]);
+                any = true;
+            }
+        }
+        printf("], \"ew_static\": [");
+        any = false;
+        for (unsigned i = 0; i < c.nslaves; i++) {
+            if (c.slave[i].ew_static) {
+                printf("%s{\"slave\": %u, \"checked\": %u, \"misframed\": %u}", any ? ", " : "", i,
+                       st.ew_checked[i], st.ew_set[i]);
                 any = true;
             }
         }

@@ -53,6 +53,8 @@ static const char common_help[] =
     "  --check-pair A,B,TOL[,SHIFT_A,SHIFT_B]\n"
     "                     slaves A and B (two channels: their CRCs must differ) agree\n"
     "                     within TOL counts after shifting their positions left\n"
+    "  --check-ew S       slave S never sets nE/nW: a frame where either reads active\n"
+    "                     was read one bit off (misframed) and is not valid\n"
     "  --no-configure     leave the configuration as it is\n";
 
 static const char *command_help(const char *command) {
@@ -68,8 +70,9 @@ static const char *command_help(const char *command) {
                "  none); line delay, sample point (1/8 bit), lag (periods), the IEP\n"
                "  timestamp (counts of 5 ns) and the time it stands for.\n"
                "  In host-trigger mode each frame is triggered first. With safety checks\n"
-               "  (--check-life, --check-pair) each frame's verdicts and, after the last,\n"
-               "  their counts. --json: one JSON object, {\"frames\": [...], \"safety\": {...}}.\n";
+               "  (--check-life, --check-pair, --check-ew) each frame's verdicts and, after\n"
+               "  the last, their counts. --json: one JSON object, {\"frames\": [...], \"safety\": "
+               "{...}}.\n";
     }
     if (strcmp(command, "stats") == 0) {
         return "bissctl [options] stats\n"
@@ -233,6 +236,7 @@ enum {
     OPT_IEP,
     OPT_PROC,
     OPT_CHECK_LIFE,
+    OPT_CHECK_EW,
     OPT_CHECK_PAIR,
     OPT_NOCONF,
     OPT_MS,
@@ -265,6 +269,7 @@ static const struct option long_opts[] = {
     {"iep-period-ns", required_argument, NULL, OPT_IEP},
     {"proc-limit", required_argument, NULL, OPT_PROC},
     {"check-life", required_argument, NULL, OPT_CHECK_LIFE},
+    {"check-ew", required_argument, NULL, OPT_CHECK_EW},
     {"check-pair", required_argument, NULL, OPT_CHECK_PAIR},
     {"no-configure", no_argument, NULL, OPT_NOCONF},
     {"ms", required_argument, NULL, OPT_MS},
@@ -430,6 +435,10 @@ static int take_config_opt(int c, const char *arg, struct bissctl_opts *o) {
         return biss_safety_parse_life(arg, &o->checks)
                    ? usage_error("--check-life '%s': expected S[,BITS] (slave 0..7, 1..32 bits)",
                                  arg)
+                   : 0;
+    case OPT_CHECK_EW:
+        return biss_safety_parse_ew(arg, &o->checks)
+                   ? usage_error("--check-ew '%s': expected S (slave 0..7)", arg)
                    : 0;
     case OPT_CHECK_PAIR:
         switch (biss_safety_parse_pair(arg, &o->checks)) {

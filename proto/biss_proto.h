@@ -96,11 +96,13 @@ struct biss_safety_state {
     bool seen;
     uint32_t last_frame;
     uint32_t last_flags[BISS_API_MAX_SLAVES];
+    bool last_misframed;
     struct biss_safety_stats stats;
 };
 
 /* The safety fields of a configuration against its layout: 0,
- * BISS_E_SAFETY_LIFE, BISS_E_SAFETY_PAIR or BISS_E_SAFETY_CRC. */
+ * BISS_E_SAFETY_LIFE, BISS_E_SAFETY_PAIR, BISS_E_SAFETY_CRC or
+ * BISS_E_SAFETY_EW. */
 int biss_safety_config_check(const struct biss_config *c);
 /* Width of a slave's life counter: life_bits, else ew_shift (0 without nE/nW). */
 unsigned biss_safety_life_width(const struct biss_slave_config *s);
@@ -111,7 +113,9 @@ void biss_safety_restart(struct biss_safety_state *st);
 /* Judges a decoded sample: sets s->slave[i].safety and s->safety, counts.
  * Frames need not be consecutive (the frame numbers say how many ran); a
  * no-slave or aborted frame forgets the life counters (the slave may not
- * have counted it). */
+ * have counted it). An ew_static slave's CRC-good word with nE or nW
+ * active makes the frame misframed: s->misframed set, s->valid cleared,
+ * and no life or pair check on it. */
 void biss_safety_check(const struct biss_config *c, struct biss_safety_state *st,
                        struct biss_sample *s);
 /* Command-line spellings: "S[,BITS]" (life counter of slave S, width
@@ -120,6 +124,8 @@ void biss_safety_check(const struct biss_config *c, struct biss_safety_state *st
  * BISS_E_SAFETY_PAIR (too many pairs). */
 int biss_safety_parse_life(const char *arg, struct biss_config *c);
 int biss_safety_parse_pair(const char *arg, struct biss_config *c);
+/* "S": slave S never sets nE/nW (ew_static): 0 or BISS_E_INVAL. */
+int biss_safety_parse_ew(const char *arg, struct biss_config *c);
 /* The checks of `checks` added to dst (a layout from elsewhere): 0 or
  * BISS_E_SAFETY_PAIR (too many pairs). */
 int biss_safety_merge(struct biss_config *dst, const struct biss_config *checks);

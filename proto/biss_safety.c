@@ -1,5 +1,6 @@
 /* biss_safety.c - the BiSS Safety checks on published frames (biss_proto.h):
- * the life counter (sign of life) and pairs of redundant position words.
+ * the life counter (sign of life) and pairs of redundant position words;
+ * and the misframing check of slaves that never set nE/nW.
  *
  * The life counter is judged by the firmware's frame numbers: between two
  * frames read it must have advanced by their difference (modulo its width),
@@ -9,7 +10,16 @@
  * word from two daisy-chained sensors, each with its own CRC) are compared
  * after shifting both to one resolution; their CRCs must differ (iC-MB4
  * datasheet, "CRC start value": start values tell single-cycle data words
- * of two sensors apart). */
+ * of two sensors apart).
+ *
+ * nE and nW are active low (BiSS C protocol description, single-cycle data:
+ * error and warning bits, low active). A slave that never sets them sends
+ * 1, 1 in every frame; a slave that got one MA clock the master never made
+ * (a glitch on MA) sends every later bit one period early, so the master
+ * reads the bit after each one in its place: nW's place then holds the
+ * first bit of what follows (life counter or inverted CRC), and a CRC6
+ * still passes 1 in 64 such words. Reading either bit 0 shows such a frame
+ * whatever its CRC says. */
 #include "biss_proto.h"
 
 #include <errno.h>
@@ -67,6 +77,9 @@ int biss_safety_config_check(const struct biss_config *c) {
         int rc = check_life(c, i);
         if (rc) {
             return rc;
+        }
+        if (c->slave[i].ew_static && (i >= c->nslaves || !c->slave[i].has_ew)) {
+            return BISS_E_SAFETY_EW;
         }
     }
     if (c->npairs > BISS_API_MAX_PAIRS) {
@@ -152,6 +165,36 @@ static void pairs(const struct biss_config *c, struct biss_safety_state *st,
     }
 }
 
+/* The nE/nW of every ew_static slave: any read active makes the frame
+ * misframed (counted per slave). */
+static bool ew_static(const struct biss_config *c, struct biss_safety_state *st,
+                      struct biss_sample *s) {
+    bool misframed = false;
+    for (unsigned i = 0; i < s->nslaves && i < BISS_API_MAX_SLAVES && i < c->nslaves; i++) {
+        const struct biss_slave_result *r = &s->slave[i];
+        if (!c->slave[i].ew_static || !c->slave[i].has_ew || !r->crc_ok) {
+            continue; /* a word with a bad CRC is refused already */
+        }
+        bool set = r->error || r->warning;
+        s->slave[i].safety |= BISS_SAFE_EW_CHECKED | (set ? BISS_SAFE_EW_SET : 0);
+        st->stats.ew_checked[i]++;
+        st->stats.ew_set[i] += set;
+        misframed = misframed || set;
+    }
+    return misframed;
+}
+
+/* The verdicts of the frame judged last, and what they say about it. */
+static void remember(struct biss_safety_state *st, struct biss_sample *s) {
+    st->seen = true;
+    st->last_frame = s->frame;
+    st->last_misframed = s->misframed;
+    for (unsigned i = 0; i < BISS_API_MAX_SLAVES; i++) {
+        st->last_flags[i] = i < s->nslaves ? s->slave[i].safety : 0;
+        s->safety |= st->last_flags[i];
+    }
+}
+
 void biss_safety_check(const struct biss_config *c, struct biss_safety_state *st,
                        struct biss_sample *s) {
     s->safety = 0;
@@ -160,6 +203,10 @@ void biss_safety_check(const struct biss_config *c, struct biss_safety_state *st
         for (unsigned i = 0; i < s->nslaves && i < BISS_API_MAX_SLAVES; i++) {
             s->slave[i].safety = st->last_flags[i];
             s->safety |= st->last_flags[i];
+        }
+        if (st->last_misframed) {
+            s->misframed = true;
+            s->valid = false;
         }
         return;
     }
@@ -171,16 +218,19 @@ void biss_safety_check(const struct biss_config *c, struct biss_safety_state *st
         }
         return;
     }
+    if (ew_static(c, st, s)) {
+        /* bits read one place off: no word of it is to be trusted, nor
+         * judged (the life counters keep their references) */
+        s->misframed = true;
+        s->valid = false;
+        remember(st, s);
+        return;
+    }
     for (unsigned i = 0; i < s->nslaves && i < BISS_API_MAX_SLAVES && i < c->nslaves; i++) {
-        s->slave[i].safety = life(&c->slave[i], st, i, s->frame, &s->slave[i]);
+        s->slave[i].safety |= life(&c->slave[i], st, i, s->frame, &s->slave[i]);
     }
     pairs(c, st, s);
-    st->seen = true;
-    st->last_frame = s->frame;
-    for (unsigned i = 0; i < BISS_API_MAX_SLAVES; i++) {
-        st->last_flags[i] = i < s->nslaves ? s->slave[i].safety : 0;
-        s->safety |= st->last_flags[i];
-    }
+    remember(st, s);
 }
 
 /* ---- the command-line spellings bissctl and biss-sim share ---- */
@@ -234,8 +284,18 @@ int biss_safety_parse_pair(const char *arg, struct biss_config *c) {
     return BISS_OK;
 }
 
+int biss_safety_parse_ew(const char *arg, struct biss_config *c) {
+    unsigned long long v[1];
+    if (numbers(arg, v, 1) != 1 || v[0] >= BISS_API_MAX_SLAVES) {
+        return BISS_E_INVAL;
+    }
+    c->slave[v[0]].ew_static = true;
+    return BISS_OK;
+}
+
 int biss_safety_merge(struct biss_config *dst, const struct biss_config *checks) {
     for (unsigned i = 0; i < BISS_API_MAX_SLAVES; i++) {
+        dst->slave[i].ew_static = dst->slave[i].ew_static || checks->slave[i].ew_static;
         if (checks->slave[i].life_check) {
             dst->slave[i].life_check = true;
             dst->slave[i].life_bits = checks->slave[i].life_bits;

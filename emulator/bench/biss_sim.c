@@ -70,7 +70,7 @@ struct options {
     unsigned strict, strict_window;
     int strict_log;
     const char *contend;
-    struct biss_config checks; /* --check-life, --check-pair (their fields only) */
+    struct biss_config checks; /* --check-life, --check-pair, --check-ew (their fields only) */
 };
 
 static void usage(FILE *f) {
@@ -113,6 +113,8 @@ static void usage(FILE *f) {
                "                               counter on every frame (as bissctl's)\n"
                "  --check-pair A,B,TOL[,SA,SB] slaves A and B agree within TOL counts after\n"
                "                               shifting left by SA, SB (their CRCs differ)\n"
+               "  --check-ew S                 slave S never sets nE/nW: a frame where either\n"
+               "                               reads active is misframed, not valid\n"
                "  --no-fast-path P   run without the emulator's fast path P (results are the\n"
                "                     same, only slower): ff (idle loops, and with it the\n"
                "                     next four), ff-counted (polls with a time-out counter),\n"
@@ -179,10 +181,11 @@ static void list_profiles(void) {
 }
 
 /* Options that take a value. */
-static const char *const valued[] = {
-    "--profile",  "--scenario", "--freq",      "--cable-m", "--frames",     "--seed",
-    "--image",    "--soc",      "--vcd",       "--svg",     "--svg-frame",  "--max-ms",
-    "--firmware", "--reg-read", "--reg-write", "--command", "--check-life", "--check-pair"};
+static const char *const valued[] = {"--profile",    "--scenario",   "--freq",      "--cable-m",
+                                     "--frames",     "--seed",       "--image",     "--soc",
+                                     "--vcd",        "--svg",        "--svg-frame", "--max-ms",
+                                     "--firmware",   "--reg-read",   "--reg-write", "--command",
+                                     "--check-life", "--check-pair", "--check-ew"};
 /* ... and those of the waveform output and the fast paths */
 static const char *const valued_out[] = {"--vcd-timescale", "--no-fast-path",  "--strict-window",
                                          "--contend",       "--pru",           "--pru1-profile",
@@ -304,6 +307,10 @@ static int set_option(struct options *o, const char *a, const char *v) {
     } else if (!strcmp(a, "--check-life")) {
         if (biss_safety_parse_life(v, &o->checks)) {
             return die("--check-life: '%s' is not S[,BITS] (slave 0..7, 1..32 bits)", v);
+        }
+    } else if (!strcmp(a, "--check-ew")) {
+        if (biss_safety_parse_ew(v, &o->checks)) {
+            return die("--check-ew: '%s' is not S (slave 0..7)", v);
         }
     } else if (!strcmp(a, "--check-pair")) {
         if (biss_safety_parse_pair(v, &o->checks)) {
@@ -600,6 +607,9 @@ static int safety_checks(const struct options *o, struct biss_config *c) {
     case BISS_E_SAFETY_LIFE:
         return die("safety checks: a life-counter check names a slave outside the chain or "
                    "one without that many life-counter bits (BISS_E_SAFETY_LIFE)");
+    case BISS_E_SAFETY_EW:
+        return die("safety checks: the nE/nW check (a slave that never sets them) names a slave "
+                   "outside the chain or one that sends no nE/nW (BISS_E_SAFETY_EW)");
     case BISS_E_SAFETY_CRC:
         return die("safety checks: the two channels of a pair have the same CRC polynomial and "
                    "start value; BiSS Safety tells them apart by it (BISS_E_SAFETY_CRC)");

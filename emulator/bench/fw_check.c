@@ -72,30 +72,34 @@ static void compare(struct fw_check *fc, const struct biss_sample *smp) {
     }
 }
 
-/* A frame the firmware refused for its ACK (BISS_RF_ACK_JUMP): was every
- * word right all the same (CRC good, and what was sent)? Then the rule
- * cost a good frame. */
-static void judge_refused(struct fw_check *fc, const struct biss_shm_result *res) {
+/* Whether every word of a decoded frame is right (CRC good, and what was
+ * sent): a frame refused all the same is a good frame lost. */
+static bool words_right(struct fw_check *fc, const struct biss_sample *smp) {
     link_model *l = bench_link(fc->b);
     const biss_frame_record *r = l->sc.protocol == SCENARIO_BISS ? frame_record(fc) : NULL;
     if (!r) {
-        return;
+        return false;
     }
-    /* a refused frame is not VALID, so decode its words as if it were:
-     * were they right all the same? */
+    for (unsigned i = 0; i < l->sc.biss.n && i < BISS_MAX_SLAVES; i++) {
+        if (smp->slave[i].data != fw_check_sent_word(&l->sc.biss.s[i], &r->s[i]) ||
+            !smp->slave[i].crc_ok) {
+            return false;
+        }
+    }
+    return true;
+}
+
+/* A frame the firmware refused for its ACK (BISS_RF_ACK_JUMP): was every
+ * word right all the same? Then the rule cost a good frame. */
+static void judge_refused(struct fw_check *fc, const struct biss_shm_result *res) {
+    /* a refused frame is not VALID, so decode its words as if it were */
     struct biss_shm_result as_valid = *res;
     as_valid.flags |= BISS_RF_VALID;
     struct biss_sample smp;
-    if (biss_sample_decode(&fc->cfg, true, 0, &as_valid, &smp) != BISS_OK) {
-        return;
+    if (biss_sample_decode(&fc->cfg, true, 0, &as_valid, &smp) == BISS_OK &&
+        words_right(fc, &smp)) {
+        fc->ack_jump_good++;
     }
-    for (unsigned i = 0; i < l->sc.biss.n && i < BISS_MAX_SLAVES; i++) {
-        if (smp.slave[i].data != fw_check_sent_word(&l->sc.biss.s[i], &r->s[i]) ||
-            !smp.slave[i].crc_ok) {
-            return;
-        }
-    }
-    fc->ack_jump_good++;
 }
 
 /* A decoded publication as struct fw_frame. */
@@ -143,6 +147,11 @@ static void count(struct fw_check *fc, const struct biss_shm_result *res, struct
     if (smp->safety & BISS_SAFE_FAULTS) {
         fc->safety_faults++;
         fc->safety_first_fault = fc->safety_first_fault ? fc->safety_first_fault : smp->frame;
+    }
+    if (smp->misframed) {
+        /* refused by the host's nE/nW check (its words stay decoded) */
+        fc->misframed++;
+        fc->misframed_good += words_right(fc, smp);
     }
     if (!smp->valid) {
         return;

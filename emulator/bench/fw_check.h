@@ -55,11 +55,13 @@ struct fw_check {
     uint64_t limit;                /* valid frames to check; later publications are ignored */
     uint64_t watch;                /* the slave's number of a frame to keep, UINT64_MAX none */
     struct fw_frame watched;       /* what the firmware published for it */
-    /* the host's safety checks (fc->cfg's life_check and pairs, by proto as
+    /* the host's safety checks (fc->cfg's life_check, ew_static and pairs, by proto as
      * libbiss runs them) over every publication */
     struct biss_safety_state safety;
     uint64_t safety_faults;      /* publications with a fault flagged */
     uint32_t safety_first_fault; /* the firmware's number of the first, 0 none */
+    uint64_t misframed;          /* valid publications the nE/nW check (ew_static) refused */
+    uint64_t misframed_good;     /* of those, frames whose every word was right: good lost */
 };
 
 /* Starts checking the bench's publications from now on (no limit). */

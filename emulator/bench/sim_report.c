@@ -136,7 +136,7 @@ static void add_firmware(cJSON *j, struct bench *b, const struct fw_check *fw) {
 static bool any_safety(const struct fw_check *fw) {
     bool any = fw->cfg.npairs > 0;
     for (unsigned i = 0; i < fw->cfg.nslaves; i++) {
-        any = any || fw->cfg.slave[i].life_check;
+        any = any || fw->cfg.slave[i].life_check || fw->cfg.slave[i].ew_static;
     }
     return any;
 }
@@ -157,6 +157,19 @@ static void add_safety(cJSON *j, const struct fw_check *fw) {
             cJSON_AddItemToArray(lc, s);
         }
     }
+    cJSON *ew = cJSON_AddArrayToObject(o, "ew_static");
+    for (unsigned i = 0; i < fw->cfg.nslaves; i++) {
+        if (fw->cfg.slave[i].ew_static) {
+            cJSON *s = cJSON_CreateObject();
+            cJSON_AddNumberToObject(s, "slave", i);
+            cJSON_AddNumberToObject(s, "checked", st->ew_checked[i]);
+            cJSON_AddNumberToObject(s, "misframed", st->ew_set[i]);
+            cJSON_AddItemToArray(ew, s);
+        }
+    }
+    /* frames, not slaves: a frame with two slaves flagged counts once */
+    cJSON_AddNumberToObject(o, "misframed_frames", (double)fw->misframed);
+    cJSON_AddNumberToObject(o, "misframed_good_lost", (double)fw->misframed_good);
     cJSON *pairs = cJSON_AddArrayToObject(o, "pairs");
     for (unsigned k = 0; k < fw->cfg.npairs; k++) {
         cJSON *p = cJSON_CreateObject();
@@ -176,6 +189,17 @@ static void print_safety(const struct fw_check *fw) {
             printf("life counter %u       %u frames checked, %u frozen, %u skipped\n", i,
                    st->lc_checked[i], st->lc_frozen[i], st->lc_skipped[i]);
         }
+    }
+    for (unsigned i = 0; i < fw->cfg.nslaves; i++) {
+        if (fw->cfg.slave[i].ew_static) {
+            printf("nE/nW %u              %u frames checked, %u misframed (nE or nW active)\n", i,
+                   st->ew_checked[i], st->ew_set[i]);
+        }
+    }
+    if (fw->misframed) {
+        printf("misframed            %llu frames refused (nE/nW of a slave that never sets "
+               "them), %llu of them good\n",
+               (unsigned long long)fw->misframed, (unsigned long long)fw->misframed_good);
     }
     for (unsigned k = 0; k < fw->cfg.npairs; k++) {
         printf("pair %u (slaves %u, %u) %u frames checked, %u disagree, last difference %lld\n", k,

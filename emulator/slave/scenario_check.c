@@ -64,7 +64,8 @@ static int check_biss(const biss_chain_cfg *b, char *err, size_t errlen) {
     return 0;
 }
 
-/* The checks name slaves of the chain; a life counter checked exists. */
+/* The checks name slaves of the chain; a life counter checked exists; a
+ * slave that never sets nE/nW has them and is not told to set them. */
 static int check_checks(const scenario *s, char *err, size_t errlen) {
     const scenario_checks *c = &s->checks;
     unsigned n = s->protocol == SCENARIO_BISS ? s->biss.n : 0;
@@ -77,6 +78,24 @@ static int check_checks(const scenario *s, char *err, size_t errlen) {
         if (c->life[i] && s->biss.s[i].lc_bits == 0) {
             snprintf(err, errlen,
                      "checks.life_counter: slave %u has no life counter (life_counter_bits 0)", i);
+            return -1;
+        }
+    }
+    for (unsigned i = 0; i < BISS_MAX_SLAVES; i++) {
+        const biss_slave_cfg *sl = &s->biss.s[i];
+        if (!c->ew_static[i]) {
+            continue;
+        }
+        if (i >= n || !sl->has_err || !sl->has_warn) {
+            snprintf(err, errlen, "checks.ew_static: slave %u %s", i,
+                     i >= n ? "is not in the chain" : "sends no nE/nW (error_bit, warning_bit)");
+            return -1;
+        }
+        /* the check says the slave never sets them: a model told to is
+         * a contradiction, every frame would be refused */
+        if (sl->error || sl->warning) {
+            snprintf(err, errlen,
+                     "checks.ew_static: slave %u drives nE/nW active (error/warning true)", i);
             return -1;
         }
     }

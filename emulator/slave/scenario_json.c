@@ -412,6 +412,25 @@ static int parse_pair(ctx *c, const cJSON *obj, scenario_checks *k, unsigned i) 
     return has_a && has_b ? 0 : fail(c, has_a ? "b" : "a", "missing (the pair's two slaves)");
 }
 
+/* An array of slave indices (0..7) into a per-slave set. */
+static int slave_set(ctx *c, const cJSON *it, const char *n, bool *set) {
+    if (!cJSON_IsArray(it)) {
+        return fail(c, n, "expected an array of slave indices (0..7)");
+    }
+    const cJSON *e;
+    int i = 0;
+    cJSON_ArrayForEach(e, it) {
+        unsigned v = 0;
+        char name[32];
+        snprintf(name, sizeof name, "%s[%d]", n, i++);
+        if (get_whole(c, e, name, BISS_MAX_SLAVES - 1, &v)) {
+            return -1;
+        }
+        set[v] = true;
+    }
+    return 0;
+}
+
 static int parse_checks(ctx *c, const cJSON *obj, scenario_checks *k) {
     const cJSON *it;
     cJSON_ArrayForEach(it, obj) {
@@ -419,19 +438,9 @@ static int parse_checks(ctx *c, const cJSON *obj, scenario_checks *k) {
         size_t saved = strlen(c->path);
         int r = 0;
         if (!strcmp(n, "life_counter")) {
-            if (!cJSON_IsArray(it)) {
-                r = fail(c, n, "expected an array of slave indices (0..7)");
-            }
-            const cJSON *e;
-            int i = 0;
-            cJSON_ArrayForEach(e, it) {
-                unsigned v = 0;
-                char name[32];
-                snprintf(name, sizeof name, "life_counter[%d]", i++);
-                if (!r && !(r = get_whole(c, e, name, BISS_MAX_SLAVES - 1, &v))) {
-                    k->life[v] = true;
-                }
-            }
+            r = slave_set(c, it, n, k->life);
+        } else if (!strcmp(n, "ew_static")) {
+            r = slave_set(c, it, n, k->ew_static);
         } else if (!strcmp(n, "pairs")) {
             int cnt = cJSON_GetArraySize(it);
             if (!cJSON_IsArray(it) || cnt > SCENARIO_MAX_PAIRS) {

@@ -105,9 +105,11 @@ enum biss_error {
                                  more than BISS_API_MAX_PAIRS, a shifted position over 64 bits */
     BISS_E_SAFETY_CRC = -63,  /* pair check of two channels (distinct_crc) whose CRCs have the
                                  same polynomial and start value */
+    BISS_E_SAFETY_EW = -64,   /* nE/nW check (ew_static) on a slave outside the chain or one
+                                 that sends no nE/nW */
     /* two channels on one PRU-ICSS */
-    BISS_E_IEP_OWNED = -64, /* trigger iep: the other PRU's channel owns the IEP */
-    BISS_E_FW_PRU = -65,    /* the running image was assembled for the other PRU */
+    BISS_E_IEP_OWNED = -65, /* trigger iep: the other PRU's channel owns the IEP */
+    BISS_E_FW_PRU = -66,    /* the running image was assembled for the other PRU */
 };
 
 /* Static text for any return value of this library (never NULL). */
@@ -235,6 +237,13 @@ struct biss_slave_config {
      * ew_shift (the bits below nW, as the firmware's layout has it). */
     bool life_check;
     unsigned life_bits;
+    /* Misframing check (host side, every frame read): this slave never
+     * sets nE or nW (they stay 1 on the wire), so a CRC-good word that
+     * reads either active (0) was read one place off, e.g. the slave got a
+     * clock the master never made and sends every later bit one period
+     * early: the frame is not valid (BISS_SAFE_EW_SET, biss_sample
+     * misframed). Needs has_ew. */
+    bool ew_static;
 };
 
 /* Safety check (host side): two slaves' positions, e.g. a BiSS Safety
@@ -328,7 +337,10 @@ struct biss_slave_result {
 #define BISS_SAFE_LC_SKIP      0x04 /* ... and had moved, but not by the frames run */
 #define BISS_SAFE_PAIR_CHECKED 0x08 /* the position was compared with its pair's */
 #define BISS_SAFE_DISAGREE     0x10 /* ... and differed by more than the tolerance */
-#define BISS_SAFE_FAULTS       (BISS_SAFE_LC_FROZEN | BISS_SAFE_LC_SKIP | BISS_SAFE_DISAGREE)
+#define BISS_SAFE_EW_CHECKED   0x20 /* nE/nW of an ew_static slave were looked at */
+#define BISS_SAFE_EW_SET       0x40 /* ... and one read active: misframed, the frame not valid */
+#define BISS_SAFE_FAULTS                                                                           \
+    (BISS_SAFE_LC_FROZEN | BISS_SAFE_LC_SKIP | BISS_SAFE_DISAGREE | BISS_SAFE_EW_SET)
 
 struct biss_sample {
     uint32_t seq;   /* ST_SEQ as first read; the frame may be the publication in
@@ -338,6 +350,9 @@ struct biss_sample {
     bool valid, crc_error, no_slave, proc_error, training, sma;
     bool ack_jump;         /* the ACK lay over half a bit from the average: bits read at
                               the wrong place, so not valid (a glitch, or the line changed) */
+    bool misframed;        /* host check: an ew_static slave's nE or nW read active, so its
+                              bits were read one place off; valid is cleared (flags keep
+                              the firmware's BISS_RF_VALID) */
     uint32_t timestamp;    /* IEP count when the first MA edge was due */
     unsigned proc_clocks;  /* slave busy time, MA clocks */
     unsigned cds;          /* CDS bit */
@@ -453,6 +468,8 @@ struct biss_safety_stats {
     uint32_t pair_checked[BISS_API_MAX_PAIRS]; /* frames whose pair was compared */
     uint32_t pair_disagree[BISS_API_MAX_PAIRS];
     int64_t pair_last_diff[BISS_API_MAX_PAIRS]; /* shifted a - b of the last comparison */
+    uint32_t ew_checked[BISS_API_MAX_SLAVES];   /* ew_static: CRC-good words looked at */
+    uint32_t ew_set[BISS_API_MAX_SLAVES];       /* ... with nE or nW active: misframed */
 };
 int biss_get_safety_stats(biss_t *h, struct biss_safety_stats *st);
 

@@ -126,11 +126,15 @@ r = run("--image", CLOCK_IMAGE, "--freq", "20000000", "--frames", "3")
 check(r.returncode == 0, "--image at 20 MHz: %d %r" % (r.returncode, r.stderr))
 
 
-def scenario(text):
-    path = os.path.join(tmp, "bad.json")
+def scenario_as(name, text):
+    path = os.path.join(tmp, name)
     with open(path, "w") as f:
         f.write(text)
     return path
+
+
+def scenario(text):
+    return scenario_as("bad.json", text)
 
 
 # scenario files: every bad value is named with the file and the JSON path
@@ -235,6 +239,40 @@ check(r.returncode == 0 and "life counter 2       49 frames checked, 0 frozen, 0
 for args, words in [(["--check-life", "0"], "BISS_E_SAFETY_LIFE"),
                     (["--profile", "biss-safety-two-channel", "--check-pair", "0,0,1"], "BISS_E_SAFETY_PAIR"),
                     (["--check-pair", "0,1"], "--check-pair: '0,1' is not")]:
+    r = run("--frames", "3", *args)
+    check(r.returncode == 1 and words in r.stderr, "%s -> %r (got %d %r)" % (args, words, r.returncode, r.stderr))
+
+# the nE/nW check of a slave that never sets them: checked and quiet on a
+# healthy encoder; a model that does set nE makes every frame misframed
+# (none valid: the run ends at its time limit); refused where it cannot hold
+r = run("--frames", "50", "--check-ew", "0", "--json")
+sf = json.loads(r.stdout).get("safety", {}) if r.returncode == 0 else {}
+check(sf.get("ew_static") == [{"slave": 0, "checked": 50, "misframed": 0}] and sf.get("misframed_frames") == 0,
+      "healthy encoder, --check-ew 0: %r %r" % (sf, r.stderr))
+r = run("--scenario", scenario('{"biss": {"slaves": [{"error": true}]}}'), "--check-ew", "0", "--frames", "3",
+        "--max-ms", "1", "--json")
+sf = json.loads(r.stdout).get("safety", {}) if r.stdout.startswith("{") else {}
+ew = (sf.get("ew_static") or [{}])[0]
+# (and each of those words was what the encoder sent: good frames lost)
+check(r.returncode == 2 and json.loads(r.stdout)["frames"] == 0 and sf.get("misframed_frames", 0) > 20
+      and ew.get("misframed") == sf.get("misframed_frames") == ew.get("checked")
+      == sf.get("misframed_good_lost"), "nE set, --check-ew 0: %d %r" % (r.returncode, sf))
+r = run("--scenario", scenario('{"biss": {"slaves": [{"error": true}]}}'), "--check-ew", "0", "--frames", "3",
+        "--max-ms", "1")
+check("misframed            " in r.stdout and "frames refused (nE/nW of a slave that never sets them)" in r.stdout,
+      "nE set, text: %r" % r.stdout)
+NO_EW = '{"biss": {"slaves": [{"error_bit": false, "warning_bit": false}]}}'
+for args, words in [(["--scenario", scenario_as("ew1.json", NO_EW), "--check-ew", "0"], "BISS_E_SAFETY_EW"),
+                    (["--check-ew", "1"], "BISS_E_SAFETY_EW"),
+                    (["--check-ew", "0,1"], "--check-ew: '0,1' is not S"),
+                    (["--scenario", scenario_as("ew2.json", '{"biss": {"slaves": [{"warning": true}]}, "checks": {"ew_static": [0]}}')],
+                     "ew2.json: checks.ew_static: slave 0 drives nE/nW active"),
+                    (["--scenario", scenario_as("ew3.json", '{"biss": {"slaves": [{"error_bit": false}]}, "checks": {"ew_static": [0]}}')],
+                     "ew3.json: checks.ew_static: slave 0 sends no nE/nW"),
+                    (["--scenario", scenario_as("ew4.json", '{"checks": {"ew_static": [1]}}')],
+                     "ew4.json: checks.ew_static: slave 1 is not in the chain"),
+                    (["--scenario", scenario_as("ew5.json", '{"checks": {"ew_static": 0}}')],
+                     "ew5.json: checks.ew_static: expected an array")]:
     r = run("--frames", "3", *args)
     check(r.returncode == 1 and words in r.stderr, "%s -> %r (got %d %r)" % (args, words, r.returncode, r.stderr))
 

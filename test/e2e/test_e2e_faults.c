@@ -86,26 +86,38 @@ START_TEST(test_stuck_low_scheduled) {
 }
 END_TEST
 
-/* ---- noise: the scenarios scripts/bench-noise runs for 10^6 frames ---- */
+/* ---- noise: the scenarios scripts/bench-noise runs for 10^6 frames ----
+ * Each scenario has the host's nE/nW check on (its encoder never sets
+ * them: "checks": {"ew_static": [0]}), which must never refuse a good
+ * frame. */
 static const struct noise_case {
     const char *file;
     double min_good;        /* share of publications valid with a good CRC */
     unsigned wrong_per_1e4; /* wrong positions passed as valid, at most */
+    uint64_t frames;        /* 0: twice E2E_FRAMES */
+    uint64_t min_misframed; /* frames the nE/nW check refused, at least */
 } noise[] = {
-    {SCENARIO_DIR "/noise-sl-10khz.json", 0.95, 0},
-    {SCENARIO_DIR "/noise-sl-100khz.json", 0.85, 0},
-    {SCENARIO_DIR "/noise-sl-30khz-jitter.json", 0.90, 0},
+    {SCENARIO_DIR "/noise-sl-10khz.json", 0.95, 0, 0, 0},
+    {SCENARIO_DIR "/noise-sl-100khz.json", 0.85, 0, 0, 0},
+    {SCENARIO_DIR "/noise-sl-30khz-jitter.json", 0.90, 0, 0, 0},
     /* a glitch every 1.4 us on average: frames started in the slave's
      * timeout once lost the slave for good (every frame then read an idle
      * line); now the frames go on, a few wrong ones pass the CRC6 */
-    {SCENARIO_DIR "/noise-sl-700khz.json", 0.50, 2},
+    {SCENARIO_DIR "/noise-sl-700khz.json", 0.50, 2, 0, 0},
+    /* glitches on MA too: an extra clock makes the encoder send every later
+     * bit one period early, which only the CRC6 and the nE/nW check see.
+     * About 1 in 3000 frames is caught by the nE/nW check (34, and 11 wrong
+     * left, in 10^5 frames; 45 wrong without it): 30 000 frames in both
+     * builds, so that it fires */
+    {SCENARIO_DIR "/noise-both-30khz-jitter.json", 0.85, 4, 30000, 1},
 };
 
 START_TEST(test_noise_never_valid_and_wrong) {
     const struct noise_case *c = &noise[_i];
     struct e2e_run r;
     bench_for(&r, c->file);
-    uint64_t frames = 2 * e2e_frames(10000);
+    ck_assert_msg(r.fc.cfg.slave[0].ew_static, "%s: no nE/nW check", c->file);
+    uint64_t frames = c->frames ? c->frames : 2 * e2e_frames(10000);
     uint64_t got = e2e_run_frames(&r, 10, 1000, frames);
     ck_assert_uint_eq(got, frames);
     /* at most wrong_per_1e4 in 10^4, rounded up: the sanitizer build's 600
@@ -117,6 +129,13 @@ START_TEST(test_noise_never_valid_and_wrong) {
     ck_assert_msg(good >= c->min_good, "%s: %.4f of the frames good", c->file, good);
     ck_assert_uint_le(r.fc.ack_jump_good, r.fc.ack_jumps);
     ck_assert_uint_eq(r.fc.no_slave, 0);
+    /* the nE/nW check: fires where MA is disturbed, and every frame it
+     * refused had a wrong word (the refusals are wrong positions that would
+     * otherwise have passed as valid) */
+    ck_assert_msg(r.fc.misframed >= c->min_misframed, "%s: %llu misframed", c->file,
+                  (unsigned long long)r.fc.misframed);
+    ck_assert_uint_eq(r.fc.misframed_good, 0);
+    ck_assert_uint_eq(r.fc.safety.stats.ew_set[0], r.fc.misframed);
     e2e_free(&r);
 }
 END_TEST

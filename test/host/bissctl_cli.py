@@ -273,4 +273,34 @@ check(r.returncode == 1 and "same polynomial and start value" in r.stderr, "one 
 r = run("--check-life", "0", "read")  # the default encoder has no life counter
 check(r.returncode == 1 and "life-counter check" in r.stderr, "no counter: %r" % r.stderr)
 
+# the nE/nW check of a slave that never sets them (--check-ew): quiet on a
+# healthy encoder, every frame "misframed" (not valid, no position) when the
+# model does set nE, refused for a layout without nE/nW
+r = run("--freq", "10000000", "--check-ew", "0", "read", "-n", "5")
+check(r.returncode == 0 and r.stdout.count(" valid ") == 4 and "misframed" not in r.stdout.split("safety:")[0]
+      and re.search(r"^safety: s0.ew_checked=[45] s0.misframed=0$", r.stdout, re.M),
+      "healthy encoder, --check-ew 0: %r %r" % (r.stdout, r.stderr))
+with tempfile.TemporaryDirectory() as d:
+    sets = os.path.join(d, "sets-ne.json")
+    with open(sets, "w") as f:
+        f.write('{"biss": {"slaves": [{"error": true}]}}')
+    r = run("--scenario", sets, "--freq", "10000000", "--check-ew", "0", "read", "-n", "5")
+    check(r.returncode == 0 and r.stdout.count(" misframed ") >= 4 and "pos=" not in r.stdout
+          and re.search(r"^safety: s0.ew_checked=([45]) s0.misframed=\1$", r.stdout, re.M),
+          "nE set, --check-ew 0: %r %r" % (r.stdout, r.stderr))
+    r = run("--scenario", sets, "--freq", "10000000", "--check-ew", "0", "read", "-n", "3", "--json")
+    try:
+        j = json.loads(r.stdout)
+    except ValueError:
+        j = {}
+    states = [f["state"] for f in j.get("frames", [])]
+    ew = ((j.get("safety") or {}).get("ew_static") or [{}])[0]
+    check(r.returncode == 0 and states.count("misframed") >= 2 and ew.get("slave") == 0
+          and ew.get("misframed") == ew.get("checked") == states.count("misframed"),
+          "nE set, --json: %r %r" % (states, ew))
+r = run("--slave", "14,6,0x43,0", "--check-ew", "0", "read")
+check(r.returncode == 1 and "nE/nW check" in r.stderr, "no nE/nW: %r" % r.stderr)
+r = run("--check-ew", "x", "read")
+check(r.returncode == 2 and "--check-ew" in r.stderr, "--check-ew x: %r" % r.stderr)
+
 finish("bissctl CLI")

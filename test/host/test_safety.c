@@ -2,7 +2,9 @@
  * counter judged by frame numbers (frames the host did not read, the
  * counter's and the frame number's wrap, a frame read twice, a bad CRC, a
  * lost slave), position pairs (shifts, tolerance, the circular distance),
- * the configuration errors and the command-line spellings. */
+ * the nE/nW check of slaves that never set them (through the decoding of a
+ * published result), the configuration errors and the command-line
+ * spellings. */
 #include "biss_proto.h"
 
 #include "check_run.h"
@@ -294,6 +296,124 @@ START_TEST(test_command_line_spellings) {
 }
 END_TEST
 
+/* ---- nE/nW of a slave that never sets them (ew_static) ---- */
+
+/* A published result of the two channels, as the firmware writes it: both
+ * CRCs good, slave 0's nE and nW as given (1: inactive), slave 1's 1, 1. */
+static struct biss_sample published(const struct biss_config *c, uint32_t n, int nE, int nW,
+                                    bool crc_ok) {
+    struct biss_shm_result r;
+    memset(&r, 0, sizeof r);
+    r.frame = n;
+    r.flags = BISS_RF_VALID | (crc_ok ? 0 : BISS_RF_CRC_ERROR);
+    r.nslaves = 2;
+    r.half = 5;
+    for (unsigned i = 0; i < 2; i++) {
+        unsigned e = i ? 1 : (unsigned)nE, w = i ? 1 : (unsigned)nW;
+        r.slave[i].data_lo = 1000u << 8 | e << 7 | w << 6 | (n & 63);
+        r.slave[i].status =
+            (i || crc_ok ? BISS_RS_CRC_OK : 0) | (e ? BISS_RS_NE : 0) | (w ? BISS_RS_NW : 0);
+    }
+    struct biss_sample s;
+    ck_assert_int_eq(biss_sample_decode(c, true, n, &r, &s), BISS_OK);
+    return s;
+}
+
+START_TEST(test_ew_static) {
+    struct biss_config c = two_channels();
+    c.npairs = 0;
+    c.slave[0].life_check = c.slave[1].life_check = false;
+    struct biss_safety_state st;
+    biss_safety_init(&st);
+    /* without the option an active nE/nW is the encoder's report: valid */
+    struct biss_sample s = published(&c, 1, 0, 1, true);
+    biss_safety_check(&c, &st, &s);
+    ck_assert(s.valid && !s.misframed && s.slave[0].error);
+    ck_assert_uint_eq(s.safety, 0);
+
+    c.slave[0].ew_static = true;
+    ck_assert_int_eq(biss_config_check(&c), BISS_OK);
+    biss_safety_restart(&st);
+    s = published(&c, 2, 1, 1, true); /* inactive: checked, valid */
+    biss_safety_check(&c, &st, &s);
+    ck_assert(s.valid && !s.misframed);
+    ck_assert_uint_eq(s.slave[0].safety, BISS_SAFE_EW_CHECKED);
+    ck_assert_uint_eq(s.slave[1].safety, 0); /* no option on slave 1 */
+    static const int bits[][2] = {{0, 1}, {1, 0}, {0, 0}};
+    for (unsigned k = 0; k < 3; k++) {
+        s = published(&c, 3 + k, bits[k][0], bits[k][1], true);
+        biss_safety_check(&c, &st, &s);
+        ck_assert_msg(!s.valid && s.misframed, "nE %d nW %d", bits[k][0], bits[k][1]);
+        ck_assert_uint_eq(s.slave[0].safety, BISS_SAFE_EW_CHECKED | BISS_SAFE_EW_SET);
+        ck_assert(s.safety & BISS_SAFE_FAULTS);
+        ck_assert_uint_eq(s.flags & BISS_RF_VALID, BISS_RF_VALID); /* as published */
+    }
+    /* read again: the same verdict, counted once */
+    s = published(&c, 5, 0, 0, true);
+    biss_safety_check(&c, &st, &s);
+    ck_assert(!s.valid && s.misframed);
+    /* a word with a bad CRC is refused already: not judged */
+    s = published(&c, 6, 0, 0, false);
+    biss_safety_check(&c, &st, &s);
+    ck_assert(s.valid && s.crc_error && !s.misframed);
+    ck_assert_uint_eq(s.slave[0].safety, 0);
+    ck_assert_uint_eq(st.stats.ew_checked[0], 4);
+    ck_assert_uint_eq(st.stats.ew_set[0], 3);
+    ck_assert_uint_eq(st.stats.ew_checked[1], 0);
+}
+END_TEST
+
+/* A misframed frame is not judged by the life counter, and the counter's
+ * reference stays: the next good frame is checked against the last good
+ * one. */
+START_TEST(test_ew_static_and_life) {
+    struct biss_config c = two_channels();
+    c.npairs = 0;
+    c.slave[0].ew_static = true;
+    struct biss_safety_state st;
+    biss_safety_init(&st);
+    struct biss_sample s = published(&c, 10, 1, 1, true);
+    biss_safety_check(&c, &st, &s);
+    s = published(&c, 11, 1, 0, true);
+    biss_safety_check(&c, &st, &s);
+    ck_assert(s.misframed);
+    ck_assert_uint_eq(s.slave[0].safety & BISS_SAFE_LC_CHECKED, 0);
+    ck_assert_uint_eq(s.slave[1].safety & BISS_SAFE_LC_CHECKED, 0);
+    s = published(&c, 12, 1, 1, true);
+    biss_safety_check(&c, &st, &s);
+    ck_assert(s.valid && !s.misframed);
+    ck_assert_uint_eq(s.slave[0].safety, BISS_SAFE_EW_CHECKED | BISS_SAFE_LC_CHECKED);
+    ck_assert_uint_eq(st.stats.lc_frozen[0] + st.stats.lc_skipped[0], 0);
+}
+END_TEST
+
+/* A slave that sends no nE/nW, or none at all, cannot take the option. */
+START_TEST(test_ew_static_config) {
+    struct biss_config c = two_channels();
+    c.slave[1].ew_static = true;
+    ck_assert_int_eq(biss_config_check(&c), BISS_OK);
+    c.slave[1].has_ew = false;
+    c.slave[1].life_bits = 6;
+    c.slave[1].pos_bits = 20;
+    ck_assert_int_eq(biss_config_check(&c), BISS_E_SAFETY_EW);
+    c = two_channels();
+    c.slave[2].ew_static = true; /* no slave 2 */
+    ck_assert_int_eq(biss_config_check(&c), BISS_E_SAFETY_EW);
+    ck_assert_str_ne(biss_strerror(BISS_E_SAFETY_EW), "unknown error");
+    struct biss_config k;
+    memset(&k, 0, sizeof k);
+    ck_assert_int_eq(biss_safety_parse_ew("1", &k), BISS_OK);
+    ck_assert(k.slave[1].ew_static && !k.slave[0].ew_static);
+    static const char *const bad[] = {"", "8", "-1", "1,2", "x", "1,"};
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        ck_assert_msg(biss_safety_parse_ew(bad[i], &k) == BISS_E_INVAL, "%s", bad[i]);
+    }
+    c = two_channels();
+    ck_assert_int_eq(biss_safety_merge(&c, &k), BISS_OK);
+    ck_assert(c.slave[1].ew_static && !c.slave[0].ew_static);
+}
+END_TEST
+
 int main(void) {
     Suite *s = suite_create("safety");
     TCase *tc = tcase_create("checks");
@@ -306,6 +426,9 @@ int main(void) {
     tcase_add_test(tc, test_pairs);
     tcase_add_test(tc, test_config_errors);
     tcase_add_test(tc, test_command_line_spellings);
+    tcase_add_test(tc, test_ew_static);
+    tcase_add_test(tc, test_ew_static_and_life);
+    tcase_add_test(tc, test_ew_static_config);
     suite_add_tcase(s, tc);
     return check_run(s);
 }
