@@ -240,14 +240,12 @@ CFG_NOCRC:
     qbne    CFG_REC, r2.b0, 1
     ldi     r4.w2, ENTRY_PLAIN1
 CFG_REC:
-    // polynomial and start value left-aligned to bit 15 (the w2 halves)
+    // polynomial and start value left-aligned to bit 15 (the w2 halves);
+    // no CRC (w = 0): both shifted by 16, out of the halves, so 0
     rsb     r6, r2.b1, 16                   // 16 - w
     lsl     r5, r3.w0, r6
     lsl     r7, r3.w2, r6
     mov     r5.w2, r7.w0
-    qbne    CFG_REC_STORE, r2.b1, 0
-    ldi     r5, 0                           // no CRC: no polynomial
-CFG_REC_STORE:
     // The last slave's last bits are read with the one before them, from
     // the same R31 snapshot (FINAL_CRC, FINAL_PLAIN): its chain is up to
     // two bits shorter, and the frame ends as many periods earlier. Only
