@@ -277,17 +277,15 @@ CFG_LAST_PLAIN1:
 CFG_LAST_DONE:
     sbbo    r4, r26, 0, 8
     add     r26, r26, 8
-    // data mask: n ones
+    // data mask: n ones. A shift takes its count & 31 (docs/pru-facts.md §1.3), so
+    // ~0 >> (64 - n) is the high word's mask for n > 32 and the low word's
+    // (~0 >> (32 - n)) for n <= 32 (n = 32, 64: a shift by 0).
     fill    &r6, 8
-    qbeq    CFG_MASK_DONE, r2.b0, 64
-    qblt    CFG_MASK_HI, r2.b0, 32          // 32 < n (n = 32 here: a shift by 0,
-    rsb     r8, r2.b0, 32                   // as the high word's by 32 would be by 0 too)
-    lsr     r6, r6, r8
-    ldi     r7, 0
-    qba     CFG_MASK_DONE
-CFG_MASK_HI:
     rsb     r8, r2.b0, 64
     lsr     r7, r7, r8
+    qblt    CFG_MASK_DONE, r2.b0, 32        // 32 < n: the low word all ones
+    mov     r6, r7
+    ldi     r7, 0
 CFG_MASK_DONE:
     // residue: the CRC register after w inverted CRC bits of a right frame
     // = w ones fed to a zero register (linearity)
