@@ -515,10 +515,8 @@ FRAME_REGS:
 .endm
 
 FRAME:
-    jal     r0.w0, SLAVE_IDLE
-    qbne    FRAME_GO, r3, 0
-    jmp     NO_SLAVE_IDLE
-FRAME_GO:
+    jal     r12.w0, SLAVE_IDLE
+    qbeq    NO_SLAVE_IDLE, r3, 0
     lbco    r2, c28, P_SSI, 2
     qbeq    FRAME_BISS, r2.w0, 0
     jmp     SSI_FRAME
@@ -863,13 +861,8 @@ FE_NO_SMA:
     lbco    r3, c28, P_SSI, 2
     qbne    FE_SLOW, r3.w0, 0
     jal     r12.w0, FRAME_REGS
-    mov     r2, IDLE_TURNS                  // as SLAVE_IDLE
-FE_IDLE_POLL:
-    and     r1.b3, r31.b0, IDLE_MASK
-    qbeq    FE_IDLE_YES, r1.b3, IDLE_MASK   // the slave's timeout has ended: SL high
-    sub     r2, r2, 1
-    qbne    FE_IDLE_POLL, r2, 0
-    qba     FE_MAIN                         // not in time: MAIN and FRAME find it so again
+    jal     r12.w0, SLAVE_IDLE              // the slave's timeout has ended: SL high,
+    qbeq    FE_MAIN, r3, 0                  // or not in time: MAIN and FRAME find it so again
 FE_IDLE_YES:
     lbco    r2, c24, BISS_CFG_SEQ, 4        // (loaded before MA may rise: no data-RAM
     lbco    r3, c24, BISS_ST_CFG_ACK, 4     // access between that edge and the frame's)
@@ -877,7 +870,7 @@ FE_IDLE_YES:
     qbne    FE_MAIN, r2, r3                 // a new configuration: MAIN applies it
     jmp     FRAME_STAMPED
 FE_SLOW:
-    jal     r0.w0, SLAVE_IDLE              // the slave's timeout ends: SL high
+    jal     r12.w0, SLAVE_IDLE              // the slave's timeout ends: SL high
 FE_MAIN:
     set     r30, r30, MA_BIT                // CDM done: MA idles high
     jmp     MAIN
@@ -924,7 +917,9 @@ PUBLISH:
 // a period keeps the master's overhead low at 1 MHz and still outlasts a
 // glitch of two samples (25 ns at 10 MHz). At most IDLE_TURNS turns of 4
 // cycles; r3 = 0 if SL did not come high (the turns left if it did). r2
-// is scratch.
+// is scratch. Returns through r12.w0: free before a frame (FRAME_STAMPED
+// and TRAIN_GO set r12), and FRAME_REGS leaves r0 .. r11 for the clocked
+// code when a free-run frame waits here (FE_NEXT).
 SLAVE_IDLE:
     mov     r3, IDLE_TURNS
 SLAVE_IDLE_POLL:
@@ -933,7 +928,7 @@ SLAVE_IDLE_POLL:
     sub     r3, r3, 1
     qbne    SLAVE_IDLE_POLL, r3, 0
 SLAVE_IDLE_YES:
-    jmp     r0.w0
+    jmp     r12.w0
 
 // r2 = the result buffer being filled, with the frame's timestamp (bank 1,
 // FRAME_STAMP) and busy clocks (r0.w2, START_WAIT) stored in it: the
@@ -988,7 +983,7 @@ PROC_ERROR:                                 // after a rising edge: MA stays hig
 // The frame's own WAIT_ACK and ACK periods make them: ACK_FOUND comes back
 // to TRAIN_DONE.
 TRAIN:
-    jal     r0.w0, SLAVE_IDLE
+    jal     r12.w0, SLAVE_IDLE
     qbeq    SL_INIT, r3, 0                  // SL stuck low: INIT first
 TRAIN_GO:
     jal     r12.w0, FRAME_REGS
