@@ -60,7 +60,7 @@
                                             //   u8 frames in the average
 #define P_HALF          0x5c                // u16 H, u16 ACK limit (periods x 8)
 #define P_PROC          0x60                // u16 processing-time limit, u8 training due, u8 running
-#define P_GPCFG         0x64                // u32: GPCFG0 value
+                                            // 0x64: 4 bytes free
 #define P_CD            0x68                // 20 bytes: control communication state:
                                             //   u32 CD_CMD being run (0: none), u16 next step,
                                             //   u16 step answered by this frame's CDS (+1, 0: none),
@@ -195,12 +195,12 @@ FACTOR_NEXT:
     jmp     CFG_FAIL                        // r28 is still CFGERR_HALF
 FACTOR_FOUND:
     // divisor codes (ratio = 1 + code / 2): a - 2 at bit 3, b - 2 at bit 8
+    // (r19 keeps it until the configuration is accepted: CFG_PROC)
     lsl     r7, r7, 5
-    add     r26, r6, r7
-    sub     r26, r26, 2 + (2 << 5)
-    lsl     r26, r26, 3
-    or      r26, r26, SHIFT_MODE
-    sbco    r26, c28, P_GPCFG, 4
+    add     r19, r6, r7
+    sub     r19, r19, 2 + (2 << 5)
+    lsl     r19, r19, 3
+    or      r19, r19, SHIFT_MODE
 
     // Slaves: records for the clocked code, verdict data for the checks.
     ldi     r23, 0                          // slave index
@@ -403,8 +403,7 @@ CFG_DELAY_SAVE:
 CFG_PROC:
     sbco    r27, c28, P_SSI, 4
     sbco    r2, c28, P_PROC, 4
-    lbco    r2, c28, P_GPCFG, 4
-    sbco    r2, c4, GPCFG0, 4               // shift mode at 8x the new rate
+    sbco    r19, c4, GPCFG0, 4              // shift mode at 8x the new rate (FACTOR_FOUND)
     ldi     r28, BISS_CFGERR_NONE
     ldi     r2, BISS_STATE_RUNNING
     qba     CFG_REPORT
