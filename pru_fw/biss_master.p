@@ -312,8 +312,33 @@ CFG_RESIDUE_DONE:
     // after the last slave: the end of the frame
     lsl     r4, r11, 16                     // entry r11.w0 (r11.w2 = 0), counts 0
     sbbo    r4, r26, 0, 4
-    jal     r0.w0, CFG_SSI                  // r27 = P_SSI word (0: BiSS-C)
-    qbne    CFG_FAIL, r28, BISS_CFGERR_NONE
+
+    // SSI (slave 0's BISS_SF_SSI): alone and without CRC. r27 = the P_SSI
+    // word: r27.w0 the ACK position a BiSS-C slave at this line delay would
+    // show (Q' = 4 (rt + BISS_DELAY_ADJ_CYCLES) / H + BISS_DELAY_ZERO, rt the
+    // round trip in cycles: biss_shm.h), r27.w2 the MA edges after period 0
+    // (2n, times MA_MASK); r27 = 0 for BiSS-C.
+CFG_SSI:
+    ldi     r27, 0
+    lbco    r2, c24, BISS_CFG_SLAVE0, 4     // n, w, ew, flags of slave 0
+    qbbc    CFG_SSI_DONE, r2.b3, 1          // BISS_SF_SSI
+    ldi     r28, BISS_CFGERR_SSI
+    qbne    CFG_FAIL, r20.b2, 1             // one slave
+    qbne    CFG_FAIL, r2.b1, 0              // no CRC
+    mov     r5, r22.w2                      // CFG_SSI_DELAY_NS
+    ldi     r6, 5
+    ldi     r7, 0
+    jal     r0.w2, DIVIDE                   // rt = ns / 5 cycles
+    add     r5, r7, BISS_DELAY_ADJ_CYCLES
+    lsl     r5, r5, 2                       // 4 (rt + adj) ...
+    mov     r6, r20.w0
+    ldi     r7, BISS_DELAY_ZERO
+    jal     r0.w2, DIVIDE                   // ... / H + zero
+    mov     r27.w0, r7.w0
+    // n + 1 clocks: the one after the last bit makes the slave send 0 until
+    // its monoflop ends (SL high again: ready), 2n edges after period 0's
+    lsl     r27.w2, r2.b0, MA_BIT + 1
+CFG_SSI_DONE:
 
     // IEP period: at least 2H (N + 8) cycles
     qbne    CFG_IEP_OK, r20.b3, BISS_TRIG_IEP
@@ -1271,36 +1296,7 @@ CDA_DONE:
 // reads bit j (rise j) m + LAG periods later at the sample point the
 // configured round trip gives (P_SSI), exactly as a BiSS-C frame's bits.
 
-// Config: an SSI slave (slave 0's BISS_SF_SSI) must be alone and without
-// CRC. Returns r27.w0 = the ACK position a BiSS-C slave at this line delay
-// would show (Q' = 4 (rt + 1) / H + 20, rt in cycles), r27.w2 = MA edges
-// after period 0 (2n, times MA_MASK); r27 = 0 for BiSS-C. r28 = error.
-CFG_SSI:
-    ldi     r27, 0
-    ldi     r28, BISS_CFGERR_NONE
-    mov     r2, BISS_CFG_SLAVE0
-    lbbo    r2, r2, 0, 4                    // n, w, ew, flags of slave 0
-    qbbc    CFG_SSI_DONE, r2.b3, 1
-    ldi     r28, BISS_CFGERR_SSI
-    qbne    CFG_SSI_DONE, r20.b2, 1         // one slave
-    qbne    CFG_SSI_DONE, r2.b1, 0          // no CRC
-    ldi     r28, BISS_CFGERR_NONE
-    mov     r5, r22.w2                      // CFG_SSI_DELAY_NS
-    ldi     r6, 5
-    ldi     r7, 0
-    jal     r0.w2, DIVIDE                   // rt = ns / 5 cycles
-    add     r5, r7, 1
-    lsl     r5, r5, 2                       // 4 (rt + 1) ...
-    mov     r6, r20.w0
-    ldi     r7, 20
-    jal     r0.w2, DIVIDE                   // ... / H + 20
-    mov     r27.w0, r7.w0
-    // n + 1 clocks: the one after the last bit makes the slave send 0 until
-    // its monoflop ends (SL high again: ready), 2n edges after period 0's
-    lsl     r27.w2, r2.b0, MA_BIT + 1
-CFG_SSI_DONE:
-    jmp     r0.w0
-
+// Its configuration: CFG_SSI (APPLY_CONFIG).
 SSI_FRAME:
     jal     r12.w0, FRAME_REGS
     FRAME_STAMP
