@@ -370,15 +370,13 @@ CFG_IEP_OK:
     qbeq    CFG_DELAY_SAVE, r20.w0, 10
     ldi     r0.b2, 1
     sub     r2, r20.w0, 11                  // L >= 1
-    qblt    CFG_DELAY_LONG, r2, 7
     ldi     r3, DLY_S1 + 1                  // short: entry DLY_S1 + 1 - L
-    sub     r0.w0, r3, r2
-    qba     CFG_DELAY_SAVE
-CFG_DELAY_LONG:
-    sub     r2, r2, 2                       // L - 2 = 4 n + r, n >= 1 (L >= 8)
+    qbge    CFG_DELAY_ENTRY, r2, 7
+    sub     r2, r2, 2                       // long: L - 2 = 4 n + r, n >= 1 (L >= 8)
     lsr     r0.b3, r2, 2                    // n <= (1013 - 2) / 4 = 252
     and     r2, r2, 3
     ldi     r3, DLY_L0                      // entry DLY_L0 - r
+CFG_DELAY_ENTRY:
     sub     r0.w0, r3, r2
 CFG_DELAY_SAVE:
     sbco    r0, c28, P_DELAYS, 4
