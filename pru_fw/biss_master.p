@@ -513,8 +513,8 @@ DLY_TURN:                                   // 4 cycles a turn
 FRAME_REGS:
     lbco    r3, c28, P_DELAYS, 32           // r3 delays, r4 r5 history (r5.w2 = K), r6 its
                                             // sum, r7 P_BUF, r8 P_NSLAVES, r9 P_HALF, r10 P_PROC
-    ldi     r0, 0                           // XFR shift 0: slave 0's slot,
-    mov     r0.b1, r10.b3                   // and the step to the next (CFG_PROC)
+    lsl     r0, r10.b3, 8                   // XFR shift 0: slave 0's slot, the step to
+                                            // the next (CFG_PROC), no busy clocks
     ldi     r11, MA_MASK | (MA_MASK << 8)   // period 0 clocks
     mov     r11.b2, r8.b2                   // the end record (SWITCH_SHORT)
     mov     r7.w0, r9.w2                    // ACK limit
