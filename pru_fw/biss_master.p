@@ -966,6 +966,17 @@ BUF_STAMP:
     jmp     r3.w0
 
 // ---- frames that end early ---------------------------------------------------
+// No slave: the line delay is measured again once one answers (a slave
+// may come back on another cable, or in the middle of a frame).
+NO_SLAVE_IDLE:                              // SL low before a frame:
+    ldi     r0, 0                           // no busy clocks (BUF_STAMP)
+NO_ACK:                                     // after a rising edge: MA stays high
+    ldi     r12, BISS_RF_NO_SLAVE
+NO_SLAVE_FLAGS:                             // (SL_INIT_DONE: r12 its own flags)
+    ldi     r2, 1
+    sbco    r2.b0, c28, P_PROC + 2, 1       // training due
+    ldi     r3, BISS_ST_NO_SLAVE
+
 // r12 = flags, r3 = the counter to increment; publish, wait for the slave.
 ABORT_FRAME:
     jal     r0.w0, CD_ABORT
@@ -976,17 +987,6 @@ ABORT_FRAME:
     jal     r0.w0, PUBLISH
     jal     r0.w0, CD_PREPARE
     jmp     FE_SLOW                         // wait for the slave, MA high, MAIN
-
-// No slave: the line delay is measured again once one answers (a slave
-// may come back on another cable, or in the middle of a frame).
-NO_SLAVE_IDLE:                              // SL low before a frame:
-    ldi     r0, 0                           // no busy clocks (BUF_STAMP)
-NO_ACK:                                     // after a rising edge: MA stays high
-    ldi     r2, 1
-    sbco    r2.b0, c28, P_PROC + 2, 1       // training due
-    ldi     r12, BISS_RF_NO_SLAVE
-    ldi     r3, BISS_ST_NO_SLAVE
-    jmp     ABORT_FRAME
 
 // The ACK came but the start bit did not: this frame's ACK position is a
 // measurement all the same, and the average starts afresh from it (an
@@ -1038,12 +1038,9 @@ SL_INIT:
     ldi     r2, 2                           // training due, as the INIT
     sbco    r2.b0, c28, P_PROC + 2, 1
     qba     TRAIN_GO
-SL_INIT_DONE:
-    ldi     r2, 1                           // a training proper next
-    sbco    r2.b0, c28, P_PROC + 2, 1
+SL_INIT_DONE:                               // a training proper next
     ldi     r12, BISS_RF_NO_SLAVE | BISS_RF_SL_INIT
-    ldi     r3, BISS_ST_NO_SLAVE
-    jmp     ABORT_FRAME
+    qba     NO_SLAVE_FLAGS
 
 // ============================================================================
 // Control communication: the CDM program (include/biss/biss_shm.h). Not
