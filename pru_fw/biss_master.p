@@ -1017,9 +1017,8 @@ TRAIN_DONE:
     jal     r0.w0, HIST_FILL                // r4.w0, r4.w2 = Q' too
     jal     r3.w0, BUF_STAMP               // r2 = the result buffer (r4 kept)
     sbbo    r4, r2, BISS_R_DELAY_RAW, 4     // and DELAY_AVG
-    ldi     r2, 0
-    sbco    r2.b0, c28, P_PROC + 2, 1       // training done
-    sbco    r2.b0, c28, P_NSLAVES + 3, 1    // the average starts at this frame
+    sbco    r0.b0, c28, P_PROC + 2, 1       // training done (r0.w0 = 0: BUF_STAMP)
+    sbco    r0.b0, c28, P_NSLAVES + 3, 1    // the average starts at this frame
     ldi     r12, BISS_RF_TRAINING
     ldi     r3, BISS_ST_TRAINING
     jmp     ABORT_FRAME
