@@ -123,14 +123,7 @@ MAIN_CFG_OK:
 TRIGGER_DONE:
     lbco    r2, c28, P_NSLAVES, 4
     qbeq    WAIT_HOST, r2.b1, BISS_TRIG_HOST
-    qbeq    WAIT_IEP, r2.b1, BISS_TRIG_IEP
-    jmp     FRAME                           // free-run
-WAIT_HOST:
-    lbco    r3, c24, BISS_CMD_TRIGGER, 4
-    qbeq    MAIN, r3, 0
-    ldi     r3, 0
-    sbco    r3, c24, BISS_CMD_TRIGGER, 4
-    jmp     FRAME
+    qbne    FRAME, r2.b1, BISS_TRIG_IEP     // free-run
 WAIT_IEP:
     lbco    r3, c26, IEP_CMP_STATUS, 4
     qbbc    MAIN, r3, 0
@@ -152,6 +145,12 @@ IEP_WAIT:
     sub     r3, r3, 1                       // 2 cycles a turn
     qbne    IEP_WAIT, r3, 0
 IEP_ALIGNED:
+    jmp     FRAME
+WAIT_HOST:
+    lbco    r3, c24, BISS_CMD_TRIGGER, 4
+    qbeq    MAIN, r3, 0
+    ldi     r3, 0
+    sbco    r3, c24, BISS_CMD_TRIGGER, 4
     jmp     FRAME
 
 // ============================================================================
