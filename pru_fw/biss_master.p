@@ -1141,10 +1141,9 @@ CDP_WAIT:
 CDP_OUT:
     sbco    r2, c28, P_CD, 20
     jmp     r0.w0
-CDP_BAD:
-    sbco    r7, c24, BISS_ST_CD_SEQ, 4      // refused
-    ldi     r7, BISS_CDST_ERR_STEPS
-    sbco    r7, c24, BISS_ST_CD_STATUS, 4
+CDP_BAD:                                    // refused: ST_CD_SEQ, then ST_CD_STATUS
+    ldi     r8, BISS_CDST_ERR_STEPS         // (the next word: one store, in that order)
+    sbco    r7, c24, BISS_ST_CD_SEQ, 8
     qba     CDP_OUT
 
 // After a frame with CDS r1.b1: returns the CDM it sent in r2.b0.
