@@ -1291,9 +1291,8 @@ CDA_DONE:
 SSI_FRAME:
     jal     r12.w0, FRAME_REGS
     FRAME_STAMP
-    lbco    r1.w2, c28, P_SSI, 2            // Q' (and r1.w2 is what FRAME_END records)
-    lbco    r12, c28, P_SSI, 4
-    lsr     r12, r12, 16                    // the clocks
+    lbco    r1.w2, c28, P_SSI, 4            // Q' (and r1.w2 is what FRAME_END records),
+    mov     r12, r2.w0                      // the clocks (to r2.w0: docs/pru-facts.md §1.7)
     sub     r2, r1.w2, 4                    // sample point and lag as LAG1 derives them
     and     r10, r2, 7
     add     r10, r10, 8
