@@ -224,20 +224,42 @@ CFG_SLAVE:
 CFG_EW_OK:
     add     r24, r24, r2.b0
     add     r24, r24, r2.b1
-    // record: counts and entry by the slave's shape
-    mov     r4.b0, r2.b0                    // data bits counted by the data loop
-    ldi     r4.b1, 0
+    // record: counts and entry by the slave's shape. r6 = d, the bits of
+    // its last kind (CRC, or data without CRC) that the loop leaves out: the
+    // switch's, and for the last slave up to two more, read with the one
+    // before them from the same R31 snapshot (FINAL_CRC, FINAL_PLAIN): its
+    // chain is up to two bits shorter, and the frame ends as many periods
+    // earlier. Only bits of the switch's kind: none where the bit before the
+    // last is a data bit with CRC (w = 1) or another slave's (n = 1, w = 0).
+    mov     r4.w0, r2.w0                    // n data bits, w CRC bits
+    ldi     r6, 1                           // the switch's bit
+    add     r7, r23, 1
+    qbne    CFG_SHAPE, r7, r20.b2           // not the last slave
+    ldi     r6, 3                           // the last: up to two more
+CFG_SHAPE:
     qbeq    CFG_NOCRC, r2.b1, 0
-    ldi     r4.w2, ENTRY_CRC1
-    qbeq    CFG_REC, r2.b1, 1
-    sub     r4.b1, r2.b1, 1                 // CRC bits before the last
+    min     r6, r6, r2.b1
+    sub     r4.b1, r4.b1, r6                // CRC bits before the switch
     ldi     r4.w2, ENTRY_CRC2
+    qbne    CFG_CRC_FINAL, r4.b1, 0
+    ldi     r4.w2, ENTRY_CRC1
+CFG_CRC_FINAL:
+    qbeq    CFG_REC, r6, 1
+    ldi     r11.w0, FINAL_CRC               // one bit after the switch
+    qbeq    CFG_REC, r6, 2
+    ldi     r11.w0, FINAL_CRC2              // two
     qba     CFG_REC
 CFG_NOCRC:
-    sub     r4.b0, r2.b0, 1                 // data bits before the last
+    min     r6, r6, r2.b0
+    sub     r4.b0, r4.b0, r6                // data bits before the switch
     ldi     r4.w2, ENTRY_PLAIN
-    qbne    CFG_REC, r2.b0, 1
+    qbne    CFG_PLAIN_FINAL, r4.b0, 0
     ldi     r4.w2, ENTRY_PLAIN1
+CFG_PLAIN_FINAL:
+    qbeq    CFG_REC, r6, 1
+    ldi     r11.w0, FINAL_PLAIN             // one bit after the switch
+    qbeq    CFG_REC, r6, 2
+    ldi     r11.w0, FINAL_PLAIN2            // two
 CFG_REC:
     // polynomial and start value left-aligned to bit 15 (the w2 halves);
     // no CRC (w = 0): both shifted by 16, out of the halves, so 0
@@ -245,35 +267,6 @@ CFG_REC:
     lsl     r5, r3.w0, r6
     lsl     r7, r3.w2, r6
     mov     r5.w2, r7.w0
-    // The last slave's last bits are read with the one before them, from
-    // the same R31 snapshot (FINAL_CRC, FINAL_PLAIN): its chain is up to
-    // two bits shorter, and the frame ends as many periods earlier. Only
-    // bits of the switch's kind: none where the bit before the last is a
-    // data bit with CRC (w = 1) or another slave's (n = 1, w = 0).
-    add     r6, r23, 1
-    qbne    CFG_LAST_DONE, r6, r20.b2       // not the last slave
-    qbeq    CFG_LAST_PLAIN, r2.b1, 0
-    qbeq    CFG_LAST_DONE, r2.b1, 1
-    ldi     r11.w0, FINAL_CRC               // w = 2: one bit after the switch
-    sub     r4.b1, r4.b1, 1
-    qbeq    CFG_LAST_CRC1, r4.b1, 0
-    ldi     r11.w0, FINAL_CRC2              // w >= 3: two
-    sub     r4.b1, r4.b1, 1                 // w - 3 CRC bits before the switch
-    qbne    CFG_LAST_DONE, r4.b1, 0
-CFG_LAST_CRC1:
-    ldi     r4.w2, ENTRY_CRC1
-    qba     CFG_LAST_DONE
-CFG_LAST_PLAIN:
-    qbeq    CFG_LAST_DONE, r2.b0, 1
-    ldi     r11.w0, FINAL_PLAIN             // n = 2: one bit after the switch
-    sub     r4.b0, r4.b0, 1
-    qbeq    CFG_LAST_PLAIN1, r4.b0, 0
-    ldi     r11.w0, FINAL_PLAIN2            // n >= 3: two
-    sub     r4.b0, r4.b0, 1                 // n - 3 data bits before the switch
-    qbne    CFG_LAST_DONE, r4.b0, 0
-CFG_LAST_PLAIN1:
-    ldi     r4.w2, ENTRY_PLAIN1
-CFG_LAST_DONE:
     sbbo    r4, r26, 0, 8
     add     r26, r26, 8
     // data mask: n ones. A shift takes its count & 31 (docs/pru-facts.md §1.3), so
@@ -736,7 +729,7 @@ ENTRY_PLAIN1:                               // w = 0, n = 1
 // Nothing below is clocked.
 
 // The last slave's last one or two bits, when its switch read the bit
-// before them (CFG_LAST_DONE). That switch's R31 snapshot (r2, shifted to
+// before them (CFG_SHAPE). That switch's R31 snapshot (r2, shifted to
 // put its sample at bit 31) holds them 8 and 16 samples newer, at bits 23
 // and 15 (indices 8 (LAG - 1) + s and 8 (LAG - 2) + s: sampled, and the
 // same samples as reads one and two periods later would take at 8 LAG + s,
