@@ -1079,11 +1079,9 @@ CD_PREPARE:
     lbco    r2, c28, P_CD, 20
     ldi     r5.w0, 0                        // CDM 0 whatever the CDS
     qbne    CDP_RUN, r2, 0
-    lbco    r7, c24, BISS_CD_CMD, 4         // a new program?
-    lbco    r8, c24, BISS_ST_CD_SEQ, 4
-    qbeq    CDP_OUT, r7, r8
+    lbco    r7, c24, BISS_CD_CMD, 12        // r7 CD_CMD, r8.w0 CD_STEPS, r9 ST_CD_SEQ
+    qbeq    CDP_OUT, r7, r9                 // no new program
     qbgt    CDP_OUT, r4.w0, 14              // not before 14 frames with CDM 0
-    lbco    r8, c24, BISS_CD_STEPS, 2
     mov     r9, BISS_CD_MAX_STEPS
     qbeq    CDP_BAD, r8.w0, 0
     qblt    CDP_BAD, r8.w0, r9
