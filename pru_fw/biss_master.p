@@ -1062,6 +1062,8 @@ CRC4_FEED_END:
 
 // r7 = step r8 of the program: bits 1..0 its op, 3..2 its class;
 // CD_PAST_END past the length. (biss_shm_struct.h asserts BISS_CD_PROG.)
+CD_OP_STEP:                                 // the same for step r8 = r3.w0
+    mov     r8, r3.w0
 CD_OP:
     ldi     r7, CD_PAST_END
     qble    CD_OP_DONE, r8, r5.w2           // length <= step
@@ -1093,8 +1095,7 @@ CD_PREPARE:
     ldi     r7, BISS_CDST_BUSY
     sbco    r7, c24, BISS_ST_CD_STATUS, 4
 CDP_RUN:
-    mov     r8, r3.w0
-    jal     r10.w2, CD_OP
+    jal     r10.w2, CD_OP_STEP
     qbbs    CDP_OUT, r7, 4                  // past the end: CDM 0
     qbgt    CDP_STEP, r6.b2, CD_ERR
     qbeq    CDP_OUT, r7, BISS_CDOP_1        // an error ends the frame at the next master S
@@ -1192,8 +1193,7 @@ CDC_ERR:
 CDC_SENT_STEP:
     // the step that went out in this frame
     ldi     r3.w2, 0
-    mov     r8, r3.w0
-    jal     r10.w2, CD_OP
+    jal     r10.w2, CD_OP_STEP
     qbbs    CDC_END, r7, 4
     qbgt    CDC_NOT_END, r6.b2, CD_ERR      // an error pending: a master S sent as 0
     qbne    CDC_NOT_END, r1.b0, 0           // ended the control frame (one that went out
@@ -1211,8 +1211,7 @@ CDC_WAITED:
     ldi     r4.w2, 0
     ldi     r6.w0, 0                        // the byte's CRCs start afresh
     set     r6.b2, r6.b2, CD_F_OPEN
-    mov     r8, r3.w0
-    jal     r10.w2, CD_OP
+    jal     r10.w2, CD_OP_STEP
     qbbs    CDC_END, r7, 4
 CDC_SENT:
     clr     r6.b2, r6.b2, CD_F_CDM
