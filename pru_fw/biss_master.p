@@ -157,7 +157,7 @@ WAIT_HOST:
 // Configuration: check the host's block, derive everything the clocked code
 // needs, and report the verdict.
 APPLY_CONFIG:
-    mov     r29, r2                         // the sequence number being applied
+    mov     r18, r2                         // the sequence number being applied
     lbco    r20, c24, BISS_CFG_HALF, 12     // r20.w0 H, r20.b2 slaves, r20.b3 trigger,
                                             // r21 IEP period, r22.w0 proc limit,
                                             // r22.w2 SSI round trip
@@ -420,16 +420,15 @@ CFG_PROC:
     sbco    r2, c28, P_PROC, 4
     sbco    r19, c4, GPCFG0, 4              // shift mode at 8x the new rate (FACTOR_FOUND)
     ldi     r28, BISS_CFGERR_NONE
-    ldi     r2, BISS_STATE_RUNNING
+    ldi     r29, BISS_STATE_RUNNING
     qba     CFG_REPORT
 CFG_FAIL:
     ldi     r2, 0
     sbco    r2, c28, P_PROC, 4              // not running
-    ldi     r2, BISS_STATE_CFG_ERROR
+    ldi     r29, BISS_STATE_CFG_ERROR
 CFG_REPORT:
-    sbco    r2, c24, BISS_ST_STATE, 4
-    sbco    r28, c24, BISS_ST_CFG_ERROR, 4
-    sbco    r29, c24, BISS_ST_CFG_ACK, 4
+    sbco    r28, c24, BISS_ST_CFG_ERROR, 8  // r28 the error, r29 ST_STATE (the next word)
+    sbco    r18, c24, BISS_ST_CFG_ACK, 4    // then the sequence number: the verdict is out
     lbco    r13, c28, P_RECORDS, 68         // slave records into r13..r29
     jmp     MAIN
 
