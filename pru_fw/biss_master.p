@@ -33,7 +33,6 @@
 #endif
 #define MA_MASK         (1 << MA_BIT)
 #define LAG             2               // extra whole periods between a bit and its read
-#define CLOCK_FOREVER   0x7fff0000      // r12 while the start bit is awaited
 #define MAJORITY5       0xfee8e880      // bit k set: three or more of k's five bits are 1
 #define IDLE_MASK       0x0f            // R31 samples that must all be high for SL idle: half
                                         // a period, longer than any glitch of under 3 samples
@@ -500,7 +499,7 @@ DLY_TURN:                                   // 4 cycles a turn
 //   r3 = 8p (ACK position base), r4.w0/w2, r5.w0 = history, r5.w2 = K,
 //   r7.w0 = ACK limit, r7.w2 = processing-time limit, r4.w2 = history sum.
 // A subroutine (returns through r12.w0; r2 it leaves alone) so that a
-// free-run frame can have it done before SL is high (FE_NEXT).
+// free-run frame can have it done before SL is high (FE_IDLE_YES).
 FRAME_REGS:
     lbco    r3, c28, P_DELAYS, 32           // r3 delays, r4 r5 history (r5.w2 = K), r6 its
                                             // sum, r7 P_BUF, r8 P_NSLAVES, r9 P_HALF, r10 P_PROC
@@ -535,8 +534,9 @@ FRAME:
     jmp     SSI_FRAME
 FRAME_BISS:
     jal     r12.w0, FRAME_REGS
-FRAME_STAMPED:                              // FE_NEXT comes in here
-    mov     r12, CLOCK_FOREVER
+FRAME_STAMPED:                              // the free-run path comes in here
+    fill    &r12, 4                         // r12 all ones while the start bit is
+                                            // awaited (r0.b0 = 0: no XFR shift)
 FRAME_CLOCKED:                              // TRAIN comes in here, r12 its two clocks
     FRAME_STAMP
     // fall into the first period
@@ -599,7 +599,7 @@ WA_TOP:
 .endm
 
 // From here to the start bit MA clocks on (r11 stays MA_MASK both ways): r12
-// is CLOCK_FOREVER less 2 MA_MASK for each period that counted it down, a
+// is all ones (FRAME_STAMPED) less 2 MA_MASK for each period that counted it down, a
 // few hundred at most (the ACK limit is some 400 periods, the lag as many),
 // so its bit 30 stays set. A training frame has made its two clocks (r11 =
 // 0, r12 = 0) and ends after this period.
@@ -931,7 +931,7 @@ PUBLISH:
 // cycles; r3 = 0 if SL did not come high (the turns left if it did). r2
 // is scratch. Returns through r12.w0: free before a frame (FRAME_STAMPED
 // and TRAIN_GO set r12), and FRAME_REGS leaves r0 .. r11 for the clocked
-// code when a free-run frame waits here (FE_NEXT).
+// code when a free-run frame waits here (FE_IDLE_YES).
 SLAVE_IDLE:
     mov     r3, IDLE_TURNS
 SLAVE_IDLE_POLL:
