@@ -792,20 +792,18 @@ FE_SLAVE:
 FE_CRC_DONE:
     qbbc    FE_EW_DONE, r10.b3, 0           // no nE/nW
     // nW (data bit ew) to r8 bit 0, nE (bit ew + 1) to bit 1
-    qble    FE_EW_HI, r10.b2, 32            // 32 <= ew
+    lsr     r8, r5, r10.b2                  // 32 <= ew: the shift uses ew & 31
+    qble    FE_EW_GOT, r10.b2, 32
     lsr     r8, r4, r10.b2
+    lsl     r9, r5, 1
     qbne    FE_EW_GOT, r10.b2, 31
-    lsl     r9, r5, 1                       // ew = 31: nE is bit 0 of the high word
-    or      r8, r8, r9
-    qba     FE_EW_GOT
-FE_EW_HI:
-    lsr     r8, r5, r10.b2                  // the shift uses ew & 31
+    or      r8, r8, r9                      // ew = 31: nE is bit 0 of the high word
 FE_EW_GOT:
-    and     r9, r8, BISS_RS_NE              // nE: bit 1 already
-    or      r7.b0, r7.b0, r9
-    and     r8, r8, 1
-    lsl     r8, r8, 2                       // nW: bit 2 (BISS_RS_NW)
-    or      r7.b0, r7.b0, r8
+    qbbc    FE_NE_DONE, r8, 1
+    set     r7, r7, 1                       // nE: BISS_RS_NE (0x02)
+FE_NE_DONE:
+    qbbc    FE_EW_DONE, r8, 0
+    set     r7, r7, 2                       // nW: BISS_RS_NW (0x04)
 FE_EW_DONE:
     sbbo    r4, r3, BISS_R_S_DATA_LO, 16    // data, CRC register, status
     add     r3, r3, BISS_R_SLAVE_SIZE
