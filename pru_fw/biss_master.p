@@ -994,7 +994,10 @@ PROC_ERROR:                                 // after a rising edge: MA stays hig
 // to TRAIN_DONE.
 TRAIN:
     jal     r12.w0, SLAVE_IDLE
-    qbeq    SL_INIT, r3, 0                  // SL stuck low: INIT first
+    qbne    TRAIN_GO, r3, 0
+SL_INIT:                                    // SL stuck low: INIT first (see SL_INIT_DONE)
+    ldi     r2, 2                           // training due, as the INIT
+    sbco    r2.b0, c28, P_PROC + 2, 1
 TRAIN_GO:
     jal     r12.w0, FRAME_REGS
     ldi     r12, 2 * MA_MASK                // one clock after period 0's
@@ -1020,11 +1023,8 @@ TRAIN_DONE:
 // frame's two clocks are that sequence; with SL low from the start its
 // ACK position means nothing, so it is published flagged (SL_INIT and
 // NO_SLAVE, counted as no slave) and training stays due: the next MAIN
-// trains at once, with SL high if the slave came back.
-SL_INIT:
-    ldi     r2, 2                           // training due, as the INIT
-    sbco    r2.b0, c28, P_PROC + 2, 1
-    qba     TRAIN_GO
+// trains at once, with SL high if the slave came back. (SL_INIT, above,
+// marks the training frame as that INIT.)
 SL_INIT_DONE:                               // a training proper next
     ldi     r12, BISS_RF_NO_SLAVE | BISS_RF_SL_INIT
     qba     NO_SLAVE_FLAGS
