@@ -268,9 +268,9 @@ CFG_REC:
     mov     r5.w2, r7.w0
     sbbo    r4, r26, 0, 8
     add     r26, r26, 8
-    // data mask: n ones. A shift takes its count & 31 (docs/pru-facts.md §1.3), so
-    // ~0 >> (64 - n) is the high word's mask for n > 32 and the low word's
-    // (~0 >> (32 - n)) for n <= 32 (n = 32, 64: a shift by 0).
+    // data mask: n ones. A shift takes its count & 31 (docs/pru-facts.md
+    // §1.3), so ~0 >> (64 - n) is the high word's mask for n > 32 and the
+    // low word's (~0 >> (32 - n)) for n <= 32 (n = 32, 64: a shift by 0).
     fill    &r6, 8
     rsb     r8, r2.b0, 64
     lsr     r7, r7, r8
@@ -599,9 +599,9 @@ WA_TOP:
 .endm
 
 // From here to the start bit MA clocks on (r11 stays MA_MASK both ways): r12
-// is all ones (FRAME_STAMPED) less 2 MA_MASK for each period that counted it down, a
-// few hundred at most (the ACK limit is some 400 periods, the lag as many),
-// so its bit 30 stays set. A training frame has made its two clocks (r11 =
+// is all ones (FRAME_STAMPED) less 2 MA_MASK for each period that counted it
+// down, a few hundred at most (the ACK limit is some 400 periods, the lag as
+// many), so its bit 30 stays set. A training frame has made its two clocks (r11 =
 // 0, r12 = 0) and ends after this period.
 ACK_FOUND:                                  // t = 3
     ONES_A                                  // 3..8
@@ -928,8 +928,8 @@ PUBLISH:
 // glitch of two samples (25 ns at 10 MHz). At most IDLE_TURNS turns of 4
 // cycles; r3 = 0 if SL did not come high (the turns left if it did). r2
 // is scratch. Returns through r12.w0: free before a frame (FRAME_STAMPED
-// and TRAIN_GO set r12), and FRAME_REGS leaves r0 .. r11 for the clocked
-// code when a free-run frame waits here (FE_IDLE_YES).
+// and TRAIN_GO set r12). A free-run frame waits here after FRAME_REGS
+// (FE_IDLE_YES): of what that sets up, r2, r3 and r12 are not used.
 SLAVE_IDLE:
     mov     r3, IDLE_TURNS
 SLAVE_IDLE_POLL:
