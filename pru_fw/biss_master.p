@@ -858,8 +858,7 @@ FE_HIST_SAVE:
 FE_NO_SMA:
     sbco    r8, c28, P_NSLAVES, 4
     jal     r0.w0, HIST_SAVE
-    jal     r0.w0, PUBLISH
-    jal     r0.w0, CD_PREPARE              // the next frame's CDM
+    jal     r0.w0, PUBLISH                 // and CD_PREPARE: the next frame's CDM
     // The next frame, when it is a free-run BiSS-C one with no training due,
     // is set up now, while the slave's timeout runs: all MAIN and FRAME look
     // at changes only with a configuration, so once SL is high only a new
@@ -901,6 +900,8 @@ HIST_SAVE:
 
 // Publish the result buffer r2 with the flags in r12: header words, then
 // the sequence number (its low bit names the buffer), then the next buffer.
+// Every publication is followed by CD_PREPARE (the next frame's CDM): it
+// goes on there, and returns through r0.w0 from it.
 PUBLISH:
     lbco    r3, c24, BISS_ST_FRAMES, 4
     add     r3, r3, 1
@@ -918,7 +919,7 @@ PUBLISH:
     sbco    r4, c28, P_BUF, 4
     ldi     r3, BISS_STATE_RUNNING
     sbco    r3, c24, BISS_ST_STATE, 4
-    jmp     r0.w0
+    jmp     CD_PREPARE                      // which returns through r0.w0
 
 // Wait for SL high: the slave's timeout has ended. High means the newest
 // 4 samples (IDLE_MASK, half an MA period) are all 1, not just the newest:
@@ -972,8 +973,7 @@ ABORT_FRAME:
     add     r4, r4, 1
     sbbo    r4, r3, 0, 4
     jal     r3.w0, BUF_STAMP               // r2 = the result buffer
-    jal     r0.w0, PUBLISH
-    jal     r0.w0, CD_PREPARE
+    jal     r0.w0, PUBLISH                 // and CD_PREPARE
     jmp     FE_SLOW                         // wait for the slave, MA high, MAIN
 
 // The ACK came but the start bit did not: this frame's ACK position is a
