@@ -46,7 +46,6 @@
 #endif
 #define MA_MASK         (1 << MA_BIT)
 #define LAG             2               // extra whole periods between a bit and its read
-#define CLOCK_FOREVER   0x7fff0000      // r12 while the start bit is awaited
 #define MAJORITY5       0xfee8e880      // bit k set: three or more of k's five bits are 1
 #define IDLE_MASK       0x0f            // R31 samples that must all be high for SL idle: half
                                         // a period, longer than any glitch of under 3 samples
@@ -74,7 +73,7 @@
                                             //   u8 frames in the average
 #define P_HALF          0x5c                // u16 H, u16 ACK limit (periods x 8)
 #define P_PROC          0x60                // u16 processing-time limit, u8 training due, u8 running
-#define P_GPCFG         0x64                // u32: GPCFG0 value
+                                            // 0x64: 4 bytes free
 #define P_CD            0x68                // 20 bytes: control communication state:
                                             //   u32 CD_CMD being run (0: none), u16 next step,
                                             //   u16 step answered by this frame's CDS (+1, 0: none),
@@ -141,14 +140,15 @@ TRIGGER_DONE:
     lbco    r2, c28, P_NSLAVES, 4
     qbeq    WAIT_HOST, r2.b1, BISS_TRIG_HOST
     qbeq    WAIT_IEP, r2.b1, BISS_TRIG_IEP
-    qbeq    WAIT_FOLLOW, r2.b1, BISS_TRIG_IEP_FOLLOW
-    jmp     FRAME                           // free-run
-WAIT_HOST:
-    lbco    r3, c24, BISS_CMD_TRIGGER, 4
-    qbeq    MAIN, r3, 0
-    ldi     r3, 0
-    sbco    r3, c24, BISS_CMD_TRIGGER, 4
-    jmp     FRAME
+    qbne    FRAME, r2.b1, BISS_TRIG_IEP_FOLLOW  // free-run
+// The other PRU owns the IEP and its CMP0 status: a new period is a count
+// below IEP_ALIGN (a MAIN turn is far shorter than the window, and the
+// 5 cycles to the count read in IEP_AT_ALIGN leave d >= 4). From there on
+// the same code as the owner's: both frames start on the same count.
+WAIT_FOLLOW:
+    lbco    r3, c26, IEP_COUNT, 4
+    qble    MAIN, r3, IEP_ALIGN - 8         // count >= IEP_ALIGN - 8: not yet
+    qba     IEP_AT_ALIGN
 WAIT_IEP:
     lbco    r3, c26, IEP_CMP_STATUS, 4
     qbbc    MAIN, r3, 0
@@ -172,20 +172,18 @@ IEP_WAIT:
     qbne    IEP_WAIT, r3, 0
 IEP_ALIGNED:
     jmp     FRAME
-// The other PRU owns the IEP and its CMP0 status: a new period is a count
-// below IEP_ALIGN (a MAIN turn is far shorter than the window, and the
-// 5 cycles to the count read above leave d >= 4). From there on the same
-// code as the owner's: both frames start on the same count.
-WAIT_FOLLOW:
-    lbco    r3, c26, IEP_COUNT, 4
-    qble    MAIN, r3, IEP_ALIGN - 8         // count >= IEP_ALIGN - 8: not yet
-    qba     IEP_AT_ALIGN
+WAIT_HOST:
+    lbco    r3, c24, BISS_CMD_TRIGGER, 4
+    qbeq    MAIN, r3, 0
+    ldi     r3, 0
+    sbco    r3, c24, BISS_CMD_TRIGGER, 4
+    jmp     FRAME
 
 // ============================================================================
 // Configuration: check the host's block, derive everything the clocked code
 // needs, and report the verdict.
 APPLY_CONFIG:
-    mov     r29, r2                         // the sequence number being applied
+    mov     r18, r2                         // the sequence number being applied
     lbco    r20, c24, BISS_CFG_HALF, 12     // r20.w0 H, r20.b2 slaves, r20.b3 trigger,
                                             // r21 IEP period, r22.w0 proc limit,
                                             // r22.w2 SSI round trip
@@ -222,12 +220,12 @@ FACTOR_NEXT:
     jmp     CFG_FAIL                        // r28 is still CFGERR_HALF
 FACTOR_FOUND:
     // divisor codes (ratio = 1 + code / 2): a - 2 at bit 3, b - 2 at bit 8
+    // (r19 keeps it until the configuration is accepted: CFG_PROC)
     lsl     r7, r7, 5
-    add     r26, r6, r7
-    sub     r26, r26, 2 + (2 << 5)
-    lsl     r26, r26, 3
-    or      r26, r26, SHIFT_MODE
-    sbco    r26, c28, P_GPCFG, 4
+    add     r19, r6, r7
+    sub     r19, r19, 2 + (2 << 5)
+    lsl     r19, r19, 3
+    or      r19, r19, SHIFT_MODE
 
     // Slaves: records for the clocked code, verdict data for the checks.
     ldi     r23, 0                          // slave index
@@ -252,71 +250,60 @@ CFG_SLAVE:
 CFG_EW_OK:
     add     r24, r24, r2.b0
     add     r24, r24, r2.b1
-    // record: counts and entry by the slave's shape
-    mov     r4.b0, r2.b0                    // data bits counted by the data loop
-    ldi     r4.b1, 0
+    // record: counts and entry by the slave's shape. r6 = d, the bits of
+    // its last kind (CRC, or data without CRC) that the loop leaves out: the
+    // switch's, and for the last slave up to two more, read with the one
+    // before them from the same R31 snapshot (FINAL_CRC, FINAL_PLAIN): its
+    // chain is up to two bits shorter, and the frame ends as many periods
+    // earlier. Only bits of the switch's kind: none where the bit before the
+    // last is a data bit with CRC (w = 1) or another slave's (n = 1, w = 0).
+    mov     r4.w0, r2.w0                    // n data bits, w CRC bits
+    ldi     r6, 1                           // the switch's bit
+    add     r7, r23, 1
+    qbne    CFG_SHAPE, r7, r20.b2           // not the last slave
+    ldi     r6, 3                           // the last: up to two more
+CFG_SHAPE:
     qbeq    CFG_NOCRC, r2.b1, 0
-    ldi     r4.w2, ENTRY_CRC1
-    qbeq    CFG_REC, r2.b1, 1
-    sub     r4.b1, r2.b1, 1                 // CRC bits before the last
+    min     r6, r6, r2.b1
+    sub     r4.b1, r4.b1, r6                // CRC bits before the switch
     ldi     r4.w2, ENTRY_CRC2
+    qbne    CFG_CRC_FINAL, r4.b1, 0
+    ldi     r4.w2, ENTRY_CRC1
+CFG_CRC_FINAL:
+    qbeq    CFG_REC, r6, 1
+    ldi     r11.w0, FINAL_CRC               // one bit after the switch
+    qbeq    CFG_REC, r6, 2
+    ldi     r11.w0, FINAL_CRC2              // two
     qba     CFG_REC
 CFG_NOCRC:
-    sub     r4.b0, r2.b0, 1                 // data bits before the last
+    min     r6, r6, r2.b0
+    sub     r4.b0, r4.b0, r6                // data bits before the switch
     ldi     r4.w2, ENTRY_PLAIN
-    qbne    CFG_REC, r2.b0, 1
+    qbne    CFG_PLAIN_FINAL, r4.b0, 0
     ldi     r4.w2, ENTRY_PLAIN1
+CFG_PLAIN_FINAL:
+    qbeq    CFG_REC, r6, 1
+    ldi     r11.w0, FINAL_PLAIN             // one bit after the switch
+    qbeq    CFG_REC, r6, 2
+    ldi     r11.w0, FINAL_PLAIN2            // two
 CFG_REC:
-    // polynomial and start value left-aligned to bit 15 (the w2 halves)
+    // polynomial and start value left-aligned to bit 15 (the w2 halves);
+    // no CRC (w = 0): both shifted by 16, out of the halves, so 0
     rsb     r6, r2.b1, 16                   // 16 - w
     lsl     r5, r3.w0, r6
     lsl     r7, r3.w2, r6
     mov     r5.w2, r7.w0
-    qbne    CFG_REC_STORE, r2.b1, 0
-    ldi     r5, 0                           // no CRC: no polynomial
-CFG_REC_STORE:
-    // The last slave's last bits are read with the one before them, from
-    // the same R31 snapshot (FINAL_CRC, FINAL_PLAIN): its chain is up to
-    // two bits shorter, and the frame ends as many periods earlier. Only
-    // bits of the switch's kind: none where the bit before the last is a
-    // data bit with CRC (w = 1) or another slave's (n = 1, w = 0).
-    add     r6, r23, 1
-    qbne    CFG_LAST_DONE, r6, r20.b2       // not the last slave
-    qbeq    CFG_LAST_PLAIN, r2.b1, 0
-    qbeq    CFG_LAST_DONE, r2.b1, 1
-    ldi     r11.w0, FINAL_CRC               // w = 2: one bit after the switch
-    sub     r4.b1, r4.b1, 1
-    qbeq    CFG_LAST_CRC1, r4.b1, 0
-    ldi     r11.w0, FINAL_CRC2              // w >= 3: two
-    sub     r4.b1, r4.b1, 1                 // w - 3 CRC bits before the switch
-    qbne    CFG_LAST_DONE, r4.b1, 0
-CFG_LAST_CRC1:
-    ldi     r4.w2, ENTRY_CRC1
-    qba     CFG_LAST_DONE
-CFG_LAST_PLAIN:
-    qbeq    CFG_LAST_DONE, r2.b0, 1
-    ldi     r11.w0, FINAL_PLAIN             // n = 2: one bit after the switch
-    sub     r4.b0, r4.b0, 1
-    qbeq    CFG_LAST_PLAIN1, r4.b0, 0
-    ldi     r11.w0, FINAL_PLAIN2            // n >= 3: two
-    sub     r4.b0, r4.b0, 1                 // n - 3 data bits before the switch
-    qbne    CFG_LAST_DONE, r4.b0, 0
-CFG_LAST_PLAIN1:
-    ldi     r4.w2, ENTRY_PLAIN1
-CFG_LAST_DONE:
     sbbo    r4, r26, 0, 8
     add     r26, r26, 8
-    // data mask: n ones
+    // data mask: n ones. A shift takes its count & 31 (docs/pru-facts.md
+    // §1.3), so ~0 >> (64 - n) is the high word's mask for n > 32 and the
+    // low word's (~0 >> (32 - n)) for n <= 32 (n = 32, 64: a shift by 0).
     fill    &r6, 8
-    qbeq    CFG_MASK_DONE, r2.b0, 64
-    qblt    CFG_MASK_HI, r2.b0, 32          // 32 < n (n = 32 here: a shift by 0,
-    rsb     r8, r2.b0, 32                   // as the high word's by 32 would be by 0 too)
-    lsr     r6, r6, r8
-    ldi     r7, 0
-    qba     CFG_MASK_DONE
-CFG_MASK_HI:
     rsb     r8, r2.b0, 64
     lsr     r7, r7, r8
+    qblt    CFG_MASK_DONE, r2.b0, 32        // 32 < n: the low word all ones
+    mov     r6, r7
+    ldi     r7, 0
 CFG_MASK_DONE:
     // residue: the CRC register after w inverted CRC bits of a right frame
     // = w ones fed to a zero register (linearity)
@@ -343,8 +330,33 @@ CFG_RESIDUE_DONE:
     // after the last slave: the end of the frame
     lsl     r4, r11, 16                     // entry r11.w0 (r11.w2 = 0), counts 0
     sbbo    r4, r26, 0, 4
-    jal     r0.w0, CFG_SSI                  // r27 = P_SSI word (0: BiSS-C)
-    qbne    CFG_FAIL, r28, BISS_CFGERR_NONE
+
+    // SSI (slave 0's BISS_SF_SSI): alone and without CRC. r27 = the P_SSI
+    // word: r27.w0 the ACK position a BiSS-C slave at this line delay would
+    // show (Q' = 4 (rt + BISS_DELAY_ADJ_CYCLES) / H + BISS_DELAY_ZERO, rt the
+    // round trip in cycles: biss_shm.h), r27.w2 the MA edges after period 0
+    // (2n, times MA_MASK); r27 = 0 for BiSS-C.
+CFG_SSI:
+    ldi     r27, 0
+    lbco    r2, c24, BISS_CFG_SLAVE0, 4     // n, w, ew, flags of slave 0
+    qbbc    CFG_SSI_DONE, r2.b3, 1          // BISS_SF_SSI
+    ldi     r28, BISS_CFGERR_SSI
+    qbne    CFG_FAIL, r20.b2, 1             // one slave
+    qbne    CFG_FAIL, r2.b1, 0              // no CRC
+    mov     r5, r22.w2                      // CFG_SSI_DELAY_NS
+    ldi     r6, 5
+    ldi     r7, 0
+    jal     r0.w2, DIVIDE                   // rt = ns / 5 cycles
+    add     r5, r7, BISS_DELAY_ADJ_CYCLES
+    lsl     r5, r5, 2                       // 4 (rt + adj) ...
+    mov     r6, r20.w0
+    ldi     r7, BISS_DELAY_ZERO
+    jal     r0.w2, DIVIDE                   // ... / H + zero
+    mov     r27.w0, r7.w0
+    // n + 1 clocks: the one after the last bit makes the slave send 0 until
+    // its monoflop ends (SL high again: ready), 2n edges after period 0's
+    lsl     r27.w2, r2.b0, MA_BIT + 1
+CFG_SSI_DONE:
 
     // IEP period: at least 2H (N + 8) cycles
     qbne    CFG_IEP_OK, r20.b3, BISS_TRIG_IEP
@@ -376,15 +388,13 @@ CFG_IEP_OK:
     qbeq    CFG_DELAY_SAVE, r20.w0, 10
     ldi     r0.b2, 1
     sub     r2, r20.w0, 11                  // L >= 1
-    qblt    CFG_DELAY_LONG, r2, 7
     ldi     r3, DLY_S1 + 1                  // short: entry DLY_S1 + 1 - L
-    sub     r0.w0, r3, r2
-    qba     CFG_DELAY_SAVE
-CFG_DELAY_LONG:
-    sub     r2, r2, 2                       // L - 2 = 4 n + r, n >= 1 (L >= 8)
+    qbge    CFG_DELAY_ENTRY, r2, 7
+    sub     r2, r2, 2                       // long: L - 2 = 4 n + r, n >= 1 (L >= 8)
     lsr     r0.b3, r2, 2                    // n <= (1013 - 2) / 4 = 252
     and     r2, r2, 3
     ldi     r3, DLY_L0                      // entry DLY_L0 - r
+CFG_DELAY_ENTRY:
     sub     r0.w0, r3, r2
 CFG_DELAY_SAVE:
     sbco    r0, c28, P_DELAYS, 4
@@ -434,19 +444,17 @@ CFG_DELAY_SAVE:
 CFG_PROC:
     sbco    r27, c28, P_SSI, 4
     sbco    r2, c28, P_PROC, 4
-    lbco    r2, c28, P_GPCFG, 4
-    sbco    r2, c4, GPCFG_OWN, 4            // shift mode at 8x the new rate
+    sbco    r19, c4, GPCFG_OWN, 4           // shift mode at 8x the new rate (FACTOR_FOUND)
     ldi     r28, BISS_CFGERR_NONE
-    ldi     r2, BISS_STATE_RUNNING
+    ldi     r29, BISS_STATE_RUNNING
     qba     CFG_REPORT
 CFG_FAIL:
     ldi     r2, 0
     sbco    r2, c28, P_PROC, 4              // not running
-    ldi     r2, BISS_STATE_CFG_ERROR
+    ldi     r29, BISS_STATE_CFG_ERROR
 CFG_REPORT:
-    sbco    r2, c24, BISS_ST_STATE, 4
-    sbco    r28, c24, BISS_ST_CFG_ERROR, 4
-    sbco    r29, c24, BISS_ST_CFG_ACK, 4
+    sbco    r28, c24, BISS_ST_CFG_ERROR, 8  // r28 the error, r29 ST_STATE (the next word)
+    sbco    r18, c24, BISS_ST_CFG_ACK, 4    // then the sequence number: the verdict is out
     lbco    r13, c28, P_RECORDS, 68         // slave records into r13..r29
     jmp     MAIN
 
@@ -518,12 +526,12 @@ DLY_TURN:                                   // 4 cycles a turn
 //   r3 = 8p (ACK position base), r4.w0/w2, r5.w0 = history, r5.w2 = K,
 //   r7.w0 = ACK limit, r7.w2 = processing-time limit, r4.w2 = history sum.
 // A subroutine (returns through r12.w0; r2 it leaves alone) so that a
-// free-run frame can have it done before SL is high (FE_NEXT).
+// free-run frame can have it done before SL is high (FE_IDLE_YES).
 FRAME_REGS:
     lbco    r3, c28, P_DELAYS, 32           // r3 delays, r4 r5 history (r5.w2 = K), r6 its
                                             // sum, r7 P_BUF, r8 P_NSLAVES, r9 P_HALF, r10 P_PROC
-    ldi     r0, 0                           // XFR shift 0: slave 0's slot,
-    mov     r0.b1, r10.b3                   // and the step to the next (CFG_PROC)
+    lsl     r0, r10.b3, 8                   // XFR shift 0: slave 0's slot, the step to
+                                            // the next (CFG_PROC), no busy clocks
     ldi     r11, MA_MASK | (MA_MASK << 8)   // period 0 clocks
     mov     r11.b2, r8.b2                   // the end record (SWITCH_SHORT)
     mov     r7.w0, r9.w2                    // ACK limit
@@ -546,17 +554,16 @@ FRAME_REGS:
 .endm
 
 FRAME:
-    jal     r0.w0, SLAVE_IDLE
-    qbne    FRAME_GO, r3, 0
-    jmp     NO_SLAVE_IDLE
-FRAME_GO:
+    jal     r12.w0, SLAVE_IDLE
+    qbeq    NO_SLAVE_IDLE, r3, 0
     lbco    r2, c28, P_SSI, 2
     qbeq    FRAME_BISS, r2.w0, 0
     jmp     SSI_FRAME
 FRAME_BISS:
     jal     r12.w0, FRAME_REGS
-FRAME_STAMPED:                              // FE_NEXT comes in here
-    mov     r12, CLOCK_FOREVER
+FRAME_STAMPED:                              // the free-run path comes in here
+    fill    &r12, 4                         // r12 all ones while the start bit is
+                                            // awaited (r0.b0 = 0: no XFR shift)
 FRAME_CLOCKED:                              // TRAIN comes in here, r12 its two clocks
     FRAME_STAMP
     // fall into the first period
@@ -619,9 +626,9 @@ WA_TOP:
 .endm
 
 // From here to the start bit MA clocks on (r11 stays MA_MASK both ways): r12
-// is CLOCK_FOREVER less 2 MA_MASK for each period that counted it down, a
-// few hundred at most (the ACK limit is some 400 periods, the lag as many),
-// so its bit 30 stays set. A training frame has made its two clocks (r11 =
+// is all ones (FRAME_STAMPED) less 2 MA_MASK for each period that counted it
+// down, a few hundred at most (the ACK limit is some 400 periods, the lag as
+// many), so its bit 30 stays set. A training frame has made its two clocks (r11 =
 // 0, r12 = 0) and ends after this period.
 ACK_FOUND:                                  // t = 3
     ONES_A                                  // 3..8
@@ -748,7 +755,7 @@ ENTRY_PLAIN1:                               // w = 0, n = 1
 // Nothing below is clocked.
 
 // The last slave's last one or two bits, when its switch read the bit
-// before them (CFG_LAST_DONE). That switch's R31 snapshot (r2, shifted to
+// before them (CFG_SHAPE). That switch's R31 snapshot (r2, shifted to
 // put its sample at bit 31) holds them 8 and 16 samples newer, at bits 23
 // and 15 (indices 8 (LAG - 1) + s and 8 (LAG - 2) + s: sampled, and the
 // same samples as reads one and two periods later would take at 8 LAG + s,
@@ -812,20 +819,18 @@ FE_SLAVE:
 FE_CRC_DONE:
     qbbc    FE_EW_DONE, r10.b3, 0           // no nE/nW
     // nW (data bit ew) to r8 bit 0, nE (bit ew + 1) to bit 1
-    qble    FE_EW_HI, r10.b2, 32            // 32 <= ew
+    lsr     r8, r5, r10.b2                  // 32 <= ew: the shift uses ew & 31
+    qble    FE_EW_GOT, r10.b2, 32
     lsr     r8, r4, r10.b2
+    lsl     r9, r5, 1
     qbne    FE_EW_GOT, r10.b2, 31
-    lsl     r9, r5, 1                       // ew = 31: nE is bit 0 of the high word
-    or      r8, r8, r9
-    qba     FE_EW_GOT
-FE_EW_HI:
-    lsr     r8, r5, r10.b2                  // the shift uses ew & 31
+    or      r8, r8, r9                      // ew = 31: nE is bit 0 of the high word
 FE_EW_GOT:
-    and     r9, r8, BISS_RS_NE              // nE: bit 1 already
-    or      r7.b0, r7.b0, r9
-    and     r8, r8, 1
-    lsl     r8, r8, 2                       // nW: bit 2 (BISS_RS_NW)
-    or      r7.b0, r7.b0, r8
+    qbbc    FE_NE_DONE, r8, 1
+    set     r7, r7, 1                       // nE: BISS_RS_NE (0x02)
+FE_NE_DONE:
+    qbbc    FE_EW_DONE, r8, 0
+    set     r7, r7, 2                       // nW: BISS_RS_NW (0x04)
 FE_EW_DONE:
     sbbo    r4, r3, BISS_R_S_DATA_LO, 16    // data, CRC register, status
     add     r3, r3, BISS_R_SLAVE_SIZE
@@ -844,9 +849,8 @@ FE_NO_CRC_ERR:
     lsr     r3, r3, 2                       // Qf'
     sbbo    r1.w2, r2, BISS_R_DELAY_RAW, 2
     sbbo    r3.w0, r2, BISS_R_DELAY_AVG, 2
-    sub     r6, r3, 4
-    lsr     r6, r6, 3
-    add     r6, r6, LAG
+    add     r6, r3, 8 * LAG - 4             // m + LAG = (Qf' - 4) / 8 + LAG, as LAG1
+    lsr     r6, r6, 3                       // (Qf' >= 8: every Q' is)
     sbbo    r6.b0, r2, BISS_R_LAG_PERIODS, 1
     // History. An ACK more than half a bit from the average it was read
     // with means this frame's bits were read at the wrong place (a glitch
@@ -881,8 +885,7 @@ FE_HIST_SAVE:
 FE_NO_SMA:
     sbco    r8, c28, P_NSLAVES, 4
     jal     r0.w0, HIST_SAVE
-    jal     r0.w0, PUBLISH
-    jal     r0.w0, CD_PREPARE              // the next frame's CDM
+    jal     r0.w0, PUBLISH                 // and CD_PREPARE: the next frame's CDM
     // The next frame, when it is a free-run BiSS-C one with no training due,
     // is set up now, while the slave's timeout runs: all MAIN and FRAME look
     // at changes only with a configuration, so once SL is high only a new
@@ -894,13 +897,8 @@ FE_NO_SMA:
     lbco    r3, c28, P_SSI, 2
     qbne    FE_SLOW, r3.w0, 0
     jal     r12.w0, FRAME_REGS
-    mov     r2, IDLE_TURNS                  // as SLAVE_IDLE
-FE_IDLE_POLL:
-    and     r1.b3, r31.b0, IDLE_MASK
-    qbeq    FE_IDLE_YES, r1.b3, IDLE_MASK   // the slave's timeout has ended: SL high
-    sub     r2, r2, 1
-    qbne    FE_IDLE_POLL, r2, 0
-    qba     FE_MAIN                         // not in time: MAIN and FRAME find it so again
+    jal     r12.w0, SLAVE_IDLE              // the slave's timeout has ended: SL high,
+    qbeq    FE_MAIN, r3, 0                  // or not in time: MAIN and FRAME find it so again
 FE_IDLE_YES:
     lbco    r2, c24, BISS_CFG_SEQ, 4        // (loaded before MA may rise: no data-RAM
     lbco    r3, c24, BISS_ST_CFG_ACK, 4     // access between that edge and the frame's)
@@ -908,7 +906,7 @@ FE_IDLE_YES:
     qbne    FE_MAIN, r2, r3                 // a new configuration: MAIN applies it
     jmp     FRAME_STAMPED
 FE_SLOW:
-    jal     r0.w0, SLAVE_IDLE              // the slave's timeout ends: SL high
+    jal     r12.w0, SLAVE_IDLE              // the slave's timeout ends: SL high
 FE_MAIN:
     set     r30, r30, MA_BIT                // CDM done: MA idles high
     jmp     MAIN
@@ -929,6 +927,8 @@ HIST_SAVE:
 
 // Publish the result buffer r2 with the flags in r12: header words, then
 // the sequence number (its low bit names the buffer), then the next buffer.
+// Every publication is followed by CD_PREPARE (the next frame's CDM): it
+// goes on there, and returns through r0.w0 from it.
 PUBLISH:
     lbco    r3, c24, BISS_ST_FRAMES, 4
     add     r3, r3, 1
@@ -946,7 +946,7 @@ PUBLISH:
     sbco    r4, c28, P_BUF, 4
     ldi     r3, BISS_STATE_RUNNING
     sbco    r3, c24, BISS_ST_STATE, 4
-    jmp     r0.w0
+    jmp     CD_PREPARE                      // which returns through r0.w0
 
 // Wait for SL high: the slave's timeout has ended. High means the newest
 // 4 samples (IDLE_MASK, half an MA period) are all 1, not just the newest:
@@ -955,7 +955,9 @@ PUBLISH:
 // a period keeps the master's overhead low at 1 MHz and still outlasts a
 // glitch of two samples (25 ns at 10 MHz). At most IDLE_TURNS turns of 4
 // cycles; r3 = 0 if SL did not come high (the turns left if it did). r2
-// is scratch.
+// is scratch. Returns through r12.w0: free before a frame (FRAME_STAMPED
+// and TRAIN_GO set r12). A free-run frame waits here after FRAME_REGS
+// (FE_IDLE_YES): of what that sets up, r2, r3 and r12 are not used.
 SLAVE_IDLE:
     mov     r3, IDLE_TURNS
 SLAVE_IDLE_POLL:
@@ -964,7 +966,7 @@ SLAVE_IDLE_POLL:
     sub     r3, r3, 1
     qbne    SLAVE_IDLE_POLL, r3, 0
 SLAVE_IDLE_YES:
-    jmp     r0.w0
+    jmp     r12.w0
 
 // r2 = the result buffer being filled, with the frame's timestamp (bank
 // register 2, FRAME_STAMP) and busy clocks (r0.w2, START_WAIT) stored in it: the
@@ -980,6 +982,17 @@ BUF_STAMP:
     jmp     r3.w0
 
 // ---- frames that end early ---------------------------------------------------
+// No slave: the line delay is measured again once one answers (a slave
+// may come back on another cable, or in the middle of a frame).
+NO_SLAVE_IDLE:                              // SL low before a frame:
+    ldi     r0, 0                           // no busy clocks (BUF_STAMP)
+NO_ACK:                                     // after a rising edge: MA stays high
+    ldi     r12, BISS_RF_NO_SLAVE
+NO_SLAVE_FLAGS:                             // (SL_INIT_DONE: r12 its own flags)
+    ldi     r2, 1
+    sbco    r2.b0, c28, P_PROC + 2, 1       // training due
+    ldi     r3, BISS_ST_NO_SLAVE
+
 // r12 = flags, r3 = the counter to increment; publish, wait for the slave.
 ABORT_FRAME:
     jal     r0.w0, CD_ABORT
@@ -987,20 +1000,8 @@ ABORT_FRAME:
     add     r4, r4, 1
     sbbo    r4, r3, 0, 4
     jal     r3.w0, BUF_STAMP               // r2 = the result buffer
-    jal     r0.w0, PUBLISH
-    jal     r0.w0, CD_PREPARE
+    jal     r0.w0, PUBLISH                 // and CD_PREPARE
     jmp     FE_SLOW                         // wait for the slave, MA high, MAIN
-
-// No slave: the line delay is measured again once one answers (a slave
-// may come back on another cable, or in the middle of a frame).
-NO_SLAVE_IDLE:                              // SL low before a frame:
-    ldi     r0, 0                           // no busy clocks (BUF_STAMP)
-NO_ACK:                                     // after a rising edge: MA stays high
-    ldi     r2, 1
-    sbco    r2.b0, c28, P_PROC + 2, 1       // training due
-    ldi     r12, BISS_RF_NO_SLAVE
-    ldi     r3, BISS_ST_NO_SLAVE
-    jmp     ABORT_FRAME
 
 // The ACK came but the start bit did not: this frame's ACK position is a
 // measurement all the same, and the average starts afresh from it (an
@@ -1019,8 +1020,11 @@ PROC_ERROR:                                 // after a rising edge: MA stays hig
 // The frame's own WAIT_ACK and ACK periods make them: ACK_FOUND comes back
 // to TRAIN_DONE.
 TRAIN:
-    jal     r0.w0, SLAVE_IDLE
-    qbeq    SL_INIT, r3, 0                  // SL stuck low: INIT first
+    jal     r12.w0, SLAVE_IDLE
+    qbne    TRAIN_GO, r3, 0
+SL_INIT:                                    // SL stuck low: INIT first (see SL_INIT_DONE)
+    ldi     r2, 2                           // training due, as the INIT
+    sbco    r2.b0, c28, P_PROC + 2, 1
 TRAIN_GO:
     jal     r12.w0, FRAME_REGS
     ldi     r12, 2 * MA_MASK                // one clock after period 0's
@@ -1031,9 +1035,8 @@ TRAIN_DONE:
     jal     r0.w0, HIST_FILL                // r4.w0, r4.w2 = Q' too
     jal     r3.w0, BUF_STAMP               // r2 = the result buffer (r4 kept)
     sbbo    r4, r2, BISS_R_DELAY_RAW, 4     // and DELAY_AVG
-    ldi     r2, 0
-    sbco    r2.b0, c28, P_PROC + 2, 1       // training done
-    sbco    r2.b0, c28, P_NSLAVES + 3, 1    // the average starts at this frame
+    sbco    r0.b0, c28, P_PROC + 2, 1       // training done (r0.w0 = 0: BUF_STAMP)
+    sbco    r0.b0, c28, P_NSLAVES + 3, 1    // the average starts at this frame
     ldi     r12, BISS_RF_TRAINING
     ldi     r3, BISS_ST_TRAINING
     jmp     ABORT_FRAME
@@ -1047,17 +1050,11 @@ TRAIN_DONE:
 // frame's two clocks are that sequence; with SL low from the start its
 // ACK position means nothing, so it is published flagged (SL_INIT and
 // NO_SLAVE, counted as no slave) and training stays due: the next MAIN
-// trains at once, with SL high if the slave came back.
-SL_INIT:
-    ldi     r2, 2                           // training due, as the INIT
-    sbco    r2.b0, c28, P_PROC + 2, 1
-    qba     TRAIN_GO
-SL_INIT_DONE:
-    ldi     r2, 1                           // a training proper next
-    sbco    r2.b0, c28, P_PROC + 2, 1
+// trains at once, with SL high if the slave came back. (SL_INIT, above,
+// marks the training frame as that INIT.)
+SL_INIT_DONE:                               // a training proper next
     ldi     r12, BISS_RF_NO_SLAVE | BISS_RF_SL_INIT
-    ldi     r3, BISS_ST_NO_SLAVE
-    jmp     ABORT_FRAME
+    qba     NO_SLAVE_FLAGS
 
 // ============================================================================
 // Control communication: the CDM program (include/biss/biss_shm.h). Not
@@ -1089,6 +1086,8 @@ CRC4_FEED_END:
 
 // r7 = step r8 of the program: bits 1..0 its op, 3..2 its class;
 // CD_PAST_END past the length. (biss_shm_struct.h asserts BISS_CD_PROG.)
+CD_OP_STEP:                                 // the same for step r8 = r3.w0
+    mov     r8, r3.w0
 CD_OP:
     ldi     r7, CD_PAST_END
     qble    CD_OP_DONE, r8, r5.w2           // length <= step
@@ -1106,11 +1105,9 @@ CD_PREPARE:
     lbco    r2, c28, P_CD, 20
     ldi     r5.w0, 0                        // CDM 0 whatever the CDS
     qbne    CDP_RUN, r2, 0
-    lbco    r7, c24, BISS_CD_CMD, 4         // a new program?
-    lbco    r8, c24, BISS_ST_CD_SEQ, 4
-    qbeq    CDP_OUT, r7, r8
+    lbco    r7, c24, BISS_CD_CMD, 12        // r7 CD_CMD, r8.w0 CD_STEPS, r9 ST_CD_SEQ
+    qbeq    CDP_OUT, r7, r9                 // no new program
     qbgt    CDP_OUT, r4.w0, 14              // not before 14 frames with CDM 0
-    lbco    r8, c24, BISS_CD_STEPS, 2
     mov     r9, BISS_CD_MAX_STEPS
     qbeq    CDP_BAD, r8.w0, 0
     qblt    CDP_BAD, r8.w0, r9
@@ -1122,8 +1119,7 @@ CD_PREPARE:
     ldi     r7, BISS_CDST_BUSY
     sbco    r7, c24, BISS_ST_CD_STATUS, 4
 CDP_RUN:
-    mov     r8, r3.w0
-    jal     r10.w2, CD_OP
+    jal     r10.w2, CD_OP_STEP
     qbbs    CDP_OUT, r7, 4                  // past the end: CDM 0
     qbgt    CDP_STEP, r6.b2, CD_ERR
     qbeq    CDP_OUT, r7, BISS_CDOP_1        // an error ends the frame at the next master S
@@ -1160,10 +1156,9 @@ CDP_WAIT:
 CDP_OUT:
     sbco    r2, c28, P_CD, 20
     jmp     r0.w0
-CDP_BAD:
-    sbco    r7, c24, BISS_ST_CD_SEQ, 4      // refused
-    ldi     r7, BISS_CDST_ERR_STEPS
-    sbco    r7, c24, BISS_ST_CD_STATUS, 4
+CDP_BAD:                                    // refused: ST_CD_SEQ, then ST_CD_STATUS
+    ldi     r8, BISS_CDST_ERR_STEPS         // (the next word: one store, in that order)
+    sbco    r7, c24, BISS_ST_CD_SEQ, 8
     qba     CDP_OUT
 
 // After a frame with CDS r1.b1: returns the CDM it sent in r2.b0.
@@ -1222,8 +1217,7 @@ CDC_ERR:
 CDC_SENT_STEP:
     // the step that went out in this frame
     ldi     r3.w2, 0
-    mov     r8, r3.w0
-    jal     r10.w2, CD_OP
+    jal     r10.w2, CD_OP_STEP
     qbbs    CDC_END, r7, 4
     qbgt    CDC_NOT_END, r6.b2, CD_ERR      // an error pending: a master S sent as 0
     qbne    CDC_NOT_END, r1.b0, 0           // ended the control frame (one that went out
@@ -1241,8 +1235,7 @@ CDC_WAITED:
     ldi     r4.w2, 0
     ldi     r6.w0, 0                        // the byte's CRCs start afresh
     set     r6.b2, r6.b2, CD_F_OPEN
-    mov     r8, r3.w0
-    jal     r10.w2, CD_OP
+    jal     r10.w2, CD_OP_STEP
     qbbs    CDC_END, r7, 4
 CDC_SENT:
     clr     r6.b2, r6.b2, CD_F_CDM
@@ -1308,42 +1301,12 @@ CDA_DONE:
 // reads bit j (rise j) m + LAG periods later at the sample point the
 // configured round trip gives (P_SSI), exactly as a BiSS-C frame's bits.
 
-// Config: an SSI slave (slave 0's BISS_SF_SSI) must be alone and without
-// CRC. Returns r27.w0 = the ACK position a BiSS-C slave at this line delay
-// would show (Q' = 4 (rt + 1) / H + 20, rt in cycles), r27.w2 = MA edges
-// after period 0 (2n, times MA_MASK); r27 = 0 for BiSS-C. r28 = error.
-CFG_SSI:
-    ldi     r27, 0
-    ldi     r28, BISS_CFGERR_NONE
-    mov     r2, BISS_CFG_SLAVE0
-    lbbo    r2, r2, 0, 4                    // n, w, ew, flags of slave 0
-    qbbc    CFG_SSI_DONE, r2.b3, 1
-    ldi     r28, BISS_CFGERR_SSI
-    qbne    CFG_SSI_DONE, r20.b2, 1         // one slave
-    qbne    CFG_SSI_DONE, r2.b1, 0          // no CRC
-    ldi     r28, BISS_CFGERR_NONE
-    mov     r5, r22.w2                      // CFG_SSI_DELAY_NS
-    ldi     r6, 5
-    ldi     r7, 0
-    jal     r0.w2, DIVIDE                   // rt = ns / 5 cycles
-    add     r5, r7, 1
-    lsl     r5, r5, 2                       // 4 (rt + 1) ...
-    mov     r6, r20.w0
-    ldi     r7, 20
-    jal     r0.w2, DIVIDE                   // ... / H + 20
-    mov     r27.w0, r7.w0
-    // n + 1 clocks: the one after the last bit makes the slave send 0 until
-    // its monoflop ends (SL high again: ready), 2n edges after period 0's
-    lsl     r27.w2, r2.b0, MA_BIT + 1
-CFG_SSI_DONE:
-    jmp     r0.w0
-
+// Its configuration: CFG_SSI (APPLY_CONFIG).
 SSI_FRAME:
     jal     r12.w0, FRAME_REGS
     FRAME_STAMP
-    lbco    r1.w2, c28, P_SSI, 2            // Q' (and r1.w2 is what FRAME_END records)
-    lbco    r12, c28, P_SSI, 4
-    lsr     r12, r12, 16                    // the clocks
+    lbco    r1.w2, c28, P_SSI, 4            // Q' (and r1.w2 is what FRAME_END records),
+    mov     r12, r2.w0                      // the clocks (to r2.w0: docs/pru-facts.md §1.7)
     sub     r2, r1.w2, 4                    // sample point and lag as LAG1 derives them
     and     r10, r2, 7
     add     r10, r10, 8
