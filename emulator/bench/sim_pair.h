@@ -24,11 +24,12 @@ struct sim_pair_run {
 };
 
 /* Runs the firmware images on both, checks every frame of each against its
- * own encoder, and prints each PRU's summary (sim_report) and how far
- * apart the frame starts of the two were. Returns biss-sim's exit code:
- * 0, 1 (a message printed), 2 (frames not done in time), 3 (a PRU fault),
- * 5 (a frame check failed, or frame starts more than one PRU cycle apart;
- * for a BiSS-C and an SSI line, their offset varying by more than one). */
+ * own encoder, and prints each PRU's summary (sim_report), how far apart
+ * the frame starts of the two were and how often PRU1 stalled on PRU0's
+ * scratch-pad bank. Returns biss-sim's exit code: 0, 1 (a message
+ * printed), 2 (frames not done in time), 3 (a PRU fault), 5 (a frame check
+ * failed, frame starts more than one PRU cycle apart, for a BiSS-C and an
+ * SSI line their offset varying by more than one, or a bank collision). */
 int sim_pair(const struct sim_pair_run *r);
 
 #endif

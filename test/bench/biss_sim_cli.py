@@ -195,7 +195,8 @@ for args, words in [(["--strict=loop9"], "--strict: unknown rule 'loop9'"),
 r = run("--pru1-profile", "hengstler-ad38", "--frames", "50", "--cable-m", "20")
 check(r.returncode == 0 and r.stdout.count("0 CRC errors, 0 position mismatches") == 2
       and r.stdout.count("MA half period       10 .. 10 cycles") == 2
-      and "PRU1 - PRU0 = 0 .. 0 ps" in r.stdout and "50 pairs" in r.stdout,
+      and "PRU1 - PRU0 = 0 .. 0 ps" in r.stdout and "50 pairs" in r.stdout
+      and "PRU1 stalled 0 times on PRU0's bank" in r.stdout,
       "--pru1-profile: %d %r %r" % (r.returncode, r.stdout, r.stderr))
 r = run("--pru1-profile", "hengstler-ad38", "--iep-period-ns", "10000", "--frames", "5")
 check(r.returncode == 5, "a period too short for PRU1's chain: %d %r" % (r.returncode, r.stdout))
