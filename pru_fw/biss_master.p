@@ -60,7 +60,14 @@
 #define IEP_CMP_CFG     0x40
 #define IEP_CMP_STATUS  0x44
 #define IEP_CMP0        0x48
-#define IEP_ALIGN       96              // IEP count at which periodic frames start
+// IEP count at which periodic frames start (IEP_AT_ALIGN). From the CMP0
+// reset to the count's read: a turn of MAIN, FRAME, FRAME_REGS, some 56
+// cycles with 7 or 8 data-RAM loads. Each load stalls while the host
+// reads the data RAM (A5), by how much TI does not say, so the margin is
+// wide: measured, it fits up to a 20-cycle stall on every load (e2e fw
+// suite under --contend 1,20; the suites' harshest is 2,8, TIMING.md's
+// plausible host 40,1). Later still, the frame goes at once, unaligned.
+#define IEP_ALIGN       192
 
 // Firmware-private data RAM, reached through C28 (CTPPR0 points it at
 // BISS_PRIV, since burst offsets are 8 bits). Offsets from BISS_PRIV:
@@ -137,29 +144,38 @@ MAIN_CFG_OK:
     qbeq    TRIGGER_DONE, r2.b2, 0
     jmp     TRAIN                           // a training frame is due first
 TRIGGER_DONE:
-    lbco    r2, c28, P_NSLAVES, 4
-    qbeq    WAIT_HOST, r2.b1, BISS_TRIG_HOST
-    qbeq    WAIT_IEP, r2.b1, BISS_TRIG_IEP
-    qbne    FRAME, r2.b1, BISS_TRIG_IEP_FOLLOW  // free-run
+    lbco    r2.w2, c28, P_NSLAVES, 2        // r2.b3 = the trigger, for IEP_ALIGN_IF (SLAVE_IDLE,
+                                            // the P_SSI loads and FRAME_REGS keep it)
+    qbeq    WAIT_HOST, r2.b3, BISS_TRIG_HOST
+    qbeq    WAIT_IEP, r2.b3, BISS_TRIG_IEP
+    qbne    FRAME, r2.b3, BISS_TRIG_IEP_FOLLOW  // free-run
 // The other PRU owns the IEP and its CMP0 status: a new period is a count
-// below IEP_ALIGN (a MAIN turn is far shorter than the window, and the
-// 5 cycles to the count read in IEP_AT_ALIGN leave d >= 4). From there on
-// the same code as the owner's: both frames start on the same count.
+// below IEP_ALIGN (a MAIN turn is far shorter than IEP_ALIGN). From there
+// on the owner's path: the same loads, then IEP_AT_ALIGN, so both frames
+// start on the same count (or, both late, at once).
 WAIT_FOLLOW:
     lbco    r3, c26, IEP_COUNT, 4
-    qble    MAIN, r3, IEP_ALIGN - 8         // count >= IEP_ALIGN - 8: not yet
-    qba     IEP_AT_ALIGN
+    qble    MAIN, r3, IEP_ALIGN             // count >= IEP_ALIGN: not yet
+    ldi     r2.b3, BISS_TRIG_IEP            // aligned as the owner's (IEP_ALIGN_IF)
+    jmp     FRAME
 WAIT_IEP:
     lbco    r3, c26, IEP_CMP_STATUS, 4
     qbbc    MAIN, r3, 0
     sbco    r3, c26, IEP_CMP_STATUS, 4      // clear the CMP0 hit (write 1 to clear: any
                                             // other compare's too; none is used)
-    // The hit was seen up to one turn of MAIN late; start every frame at
-    // the same count after the period's reset instead, so periods are exact.
+    jmp     FRAME                           // which aligns before period 0 (IEP_ALIGN_IF)
+
+// The hit was seen up to one turn of MAIN late, and the loads before a
+// frame (FRAME, FRAME_REGS, SSI_FRAME) stall while the host reads the data
+// RAM (docs/silicon-assumptions.md A5). So every IEP-triggered frame starts
+// at the same count after the period's reset instead, with only this code,
+// no data-RAM access, between the count's read and period 0. Entered by
+// `jal r12.w0, IEP_AT_ALIGN` once the frame's last load is done
+// (IEP_ALIGN_IF); it writes r3 and returns through r12.w0.
 IEP_AT_ALIGN:
     lbco    r3, c26, IEP_COUNT, 4
     rsb     r3, r3, IEP_ALIGN               // d: cycles to wait; none if later
-    qbne    FRAME, r3.w2, 0                 // upper half set: late, go now
+    qbne    IEP_ALIGNED, r3.w2, 0           // upper half set: late, go now
     // 3 + d cycles for every d, from single-cycle instructions only (no
     // LOOP of one instruction, no count of 0: docs/silicon-assumptions.md)
     qbbc    IEP_EVEN, r3, 0
@@ -171,7 +187,17 @@ IEP_WAIT:
     sub     r3, r3, 1                       // 2 cycles a turn
     qbne    IEP_WAIT, r3, 0
 IEP_ALIGNED:
-    jmp     FRAME
+    jmp     r12.w0
+
+// An IEP-triggered frame (r2.b3 = BISS_TRIG_IEP: TRIGGER_DONE, WAIT_FOLLOW)
+// aligns here, right after its last load; any other goes on to `next` at
+// once (one cycle more, before the frame: not clocked).
+.macro IEP_ALIGN_IF
+.mparam next
+    qbne    next, r2.b3, BISS_TRIG_IEP
+    jal     r12.w0, IEP_AT_ALIGN
+.endm
+
 WAIT_HOST:
     lbco    r3, c24, BISS_CMD_TRIGGER, 4
     qbeq    MAIN, r3, 0
@@ -561,6 +587,7 @@ FRAME:
     jmp     SSI_FRAME
 FRAME_BISS:
     jal     r12.w0, FRAME_REGS
+    IEP_ALIGN_IF FRAME_STAMPED
 FRAME_STAMPED:                              // the free-run path comes in here
     fill    &r12, 4                         // r12 all ones while the start bit is
                                             // awaited (r0.b0 = 0: no XFR shift)
@@ -1304,9 +1331,12 @@ CDA_DONE:
 // Its configuration: CFG_SSI (APPLY_CONFIG).
 SSI_FRAME:
     jal     r12.w0, FRAME_REGS
-    FRAME_STAMP
     lbco    r1.w2, c28, P_SSI, 4            // Q' (and r1.w2 is what FRAME_END records),
-    mov     r12, r2.w0                      // the clocks (to r2.w0: docs/pru-facts.md §1.7)
+                                            // the clocks (to r2.w0: docs/pru-facts.md §1.7)
+    IEP_ALIGN_IF SSI_ALIGNED
+SSI_ALIGNED:
+    mov     r12, r2.w0
+    FRAME_STAMP
     sub     r2, r1.w2, 4                    // sample point and lag as LAG1 derives them
     and     r10, r2, 7
     add     r10, r10, 8

@@ -226,26 +226,54 @@ START_TEST(test_host_trigger) {
 }
 END_TEST
 
-START_TEST(test_iep_trigger_period) {
+/* IEP-triggered frames at half period `half`, every `period` counts: after
+ * the training and three frames, the next `n` frames start exactly one IEP
+ * period (CMP0 + 1 counts, see TIMING.md) apart, every one right. */
+static void iep_period_exact(const char *profile, unsigned half, uint32_t period, uint64_t n,
+                             const struct pru_params *p) {
     struct e2e_run r;
-    struct bench *b = e2e_bench(&r, "hengstler-ad38", 2, NULL);
+    struct bench *b = e2e_bench(&r, profile, 2, p);
     struct bench_fw_settings s = {
-        .half = 10, .trigger = BISS_TRIG_IEP, .iep_period = 10000, .proc_limit = 1000};
+        .half = half, .trigger = BISS_TRIG_IEP, .iep_period = period, .proc_limit = 1000};
+    int64_t period_ps = (int64_t)period * PRU_PS_PER_CYCLE;
     ck_assert_int_eq(bench_fw_configure(b, &s), 0);
     e2e_run_publications(&r, 3, 10 * SIM_PS_PER_MS);
     bench_reset_stats(b);
     fw_check_restart(&r.fc, UINT64_MAX);
-    e2e_run_publications(&r, 40, 10 * SIM_PS_PER_MS);
+    e2e_run_publications(&r, n, (int64_t)(n + 5) * period_ps);
     const struct bench_stats *st = bench_stats(b);
-    ck_assert_uint_ge(st->periods, 38);
-    /* every period the same, and the IEP period (CMP0 + 1 counts, see
-     * TIMING.md) to within the compare's reset tick */
-    ck_assert_int_eq(st->period_min_ps, st->period_max_ps);
-    ck_assert_int_ge(st->period_min_ps, 10000 * PRU_PS_PER_CYCLE);
-    ck_assert_int_le(st->period_min_ps, 10001 * PRU_PS_PER_CYCLE);
+    ck_assert_uint_ge(st->periods, n - 2);
+    ck_assert_msg(st->period_min_ps == st->period_max_ps,
+                  "%s H=%u: frame periods %lld..%lld ps, want all the same", profile, half,
+                  (long long)st->period_min_ps, (long long)st->period_max_ps);
+    ck_assert_int_ge(st->period_min_ps, period_ps);
+    ck_assert_int_le(st->period_min_ps, period_ps + PRU_PS_PER_CYCLE);
     ck_assert_uint_eq(r.fc.mismatches, 0);
     ck_assert_uint_eq(r.fc.crc_errors, 0);
     e2e_free(&r);
+}
+
+START_TEST(test_iep_trigger_period) {
+    iep_period_exact("hengstler-ad38", 10, 10000, 40, NULL);
+}
+END_TEST
+
+/* The same under data-RAM contention: the loads before a frame stall, but
+ * none lies between the IEP alignment and period 0, so frames still start
+ * on the same count. A BiSS-C and an SSI profile, 10 MHz and 1 MHz. */
+static const char *const iep_contend_specs[] = {"4,3", "2,8,random:7"};
+static const char *const iep_contend_profiles[] = {"hengstler-ad38", "ssi"};
+static const unsigned iep_contend_halves[] = {10, 100};
+
+START_TEST(test_iep_trigger_contended) {
+    const char *spec = iep_contend_specs[_i % 2];
+    const char *profile = iep_contend_profiles[(_i / 2) % 2];
+    unsigned half = iep_contend_halves[_i / 4];
+    struct pru_params p;
+    pru_params_default(&p);
+    char err[200];
+    ck_assert_int_eq(pru_contend_parse(spec, &p, err, sizeof err), 0);
+    iep_period_exact(profile, half, 1000 * half, 20, &p);
 }
 END_TEST
 
@@ -279,6 +307,7 @@ int main(void) {
     tcase_add_loop_test(tc, test_disconnect_and_reconnect, 0, 3);
     tcase_add_test(tc, test_host_trigger);
     tcase_add_test(tc, test_iep_trigger_period);
+    tcase_add_loop_test(tc, test_iep_trigger_contended, 0, 8);
     tcase_add_test(tc, test_rate_change);
     suite_add_tcase(s, tc);
     return check_run(s);
