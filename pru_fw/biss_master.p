@@ -61,12 +61,13 @@
 #define IEP_CMP_STATUS  0x44
 #define IEP_CMP0        0x48
 // IEP count at which periodic frames start (IEP_AT_ALIGN). From the CMP0
-// reset to the count's read: a turn of MAIN, FRAME, FRAME_REGS, some 56
-// cycles with 7 or 8 data-RAM loads. Each load stalls while the host
-// reads the data RAM (A5), by how much TI does not say, so the margin is
-// wide: measured, it fits up to a 20-cycle stall on every load (e2e fw
-// suite under --contend 1,20; the suites' harshest is 2,8, TIMING.md's
-// plausible host 40,1). Later still, the frame goes at once, unaligned.
+// reset to the count's read: at worst a turn of MAIN, then FRAME,
+// FRAME_REGS (and SSI_FRAME), 52 to 60 cycles with 7 or 8 data-RAM loads.
+// Each load stalls while the host reads the data RAM (docs/silicon-
+// assumptions.md A5), by how much TI does not say, so the margin is wide:
+// measured, the frames stay aligned up to a 22-cycle stall on every load
+// (the e2e fw suite under --contend 1,22; the suites' harshest is 2,8,
+// TIMING.md's plausible host 40,1). Later still, the frame goes at once.
 #define IEP_ALIGN       192
 
 // Firmware-private data RAM, reached through C28 (CTPPR0 points it at
