@@ -59,16 +59,25 @@ static void pair_open(struct pair *p, enum pru_soc soc, const char *profile0, co
     }
 }
 
-/* Each PRU with the image built for it, under strict mode. */
-static void pair_new(struct pair *p, enum pru_soc soc, const char *profile0, const char *profile1,
-                     unsigned longest_half) {
+/* Each PRU with the image built for it, under strict mode and the data-RAM
+ * contention `contend` (NULL: none). */
+static void pair_new_contended(struct pair *p, enum pru_soc soc, const char *profile0,
+                               const char *profile1, unsigned longest_half, const char *contend) {
     struct pru_params pp;
     strict_params(&pp, longest_half);
+    char err[200];
+    if (contend)
+        ck_assert_msg(pru_contend_parse(contend, &pp, err, sizeof err) == 0, "%s", err);
     pair_open(p, soc, profile0, profile1, (const double[2]){5, 25} /* line delays differ */, &pp);
     for (unsigned i = 0; i < 2; i++) {
         e2e_start_firmware(&p->r[i]);
         fw_check_attach(&p->r[i].fc, p->r[i].b);
     }
+}
+
+static void pair_new(struct pair *p, enum pru_soc soc, const char *profile0, const char *profile1,
+                     unsigned longest_half) {
+    pair_new_contended(p, soc, profile0, profile1, longest_half, NULL);
 }
 
 static void pair_free(struct pair *p) {
@@ -197,6 +206,20 @@ START_TEST(test_chain_and_single) {
 }
 END_TEST
 
+/* The host reading both PRUs' data RAMs: the loads before a frame stall,
+ * on each PRU differently, but both PRUs align after their last load
+ * (IEP_AT_ALIGN), so the frames still start on the same count. */
+START_TEST(test_two_encoders_contended) {
+    static const char *const specs[] = {"4,3", "2,8,random:7"};
+    struct pair p;
+    pair_new_contended(&p, PRU_SOC_AM335X, "tidep0022-test-encoder", "hengstler-ad38", 10,
+                       specs[_i]);
+    configure(&p, 10, 10);
+    check_pair(&p, 10, 10);
+    pair_free(&p);
+}
+END_TEST
+
 /* The same encoder and cable on both lines at the same rate, frames on the
  * same cycle: the two PRUs store each slave's result in the same cycle.
  * With their own banks nothing collides and both read right; PRU1's image
@@ -285,6 +308,7 @@ int main(void) {
     tcase_add_loop_test(tc, test_two_encoders_same_rate, 0, (int)(sizeof socs / sizeof socs[0]));
     tcase_add_test(tc, test_two_encoders_own_rates);
     tcase_add_test(tc, test_chain_and_single);
+    tcase_add_loop_test(tc, test_two_encoders_contended, 0, 2);
     tcase_add_test(tc, test_same_line_both);
     tcase_add_test(tc, test_pru1_alone);
     suite_add_tcase(s, tc);
