@@ -153,7 +153,8 @@ TRIGGER_DONE:
 // The other PRU owns the IEP and its CMP0 status: a new period is a count
 // below IEP_ALIGN (a MAIN turn is far shorter than IEP_ALIGN). From there
 // on the owner's path: the same loads, then IEP_AT_ALIGN, so both frames
-// start on the same count (or, both late, at once).
+// start on the same count; a frame too late for it goes at once, as the
+// owner's does.
 WAIT_FOLLOW:
     lbco    r3, c26, IEP_COUNT, 4
     qble    MAIN, r3, IEP_ALIGN             // count >= IEP_ALIGN: not yet
