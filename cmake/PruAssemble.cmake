@@ -38,8 +38,9 @@ function(pru_assemble_image)
   foreach(d IN LISTS A_DEFINES)
     list(APPEND flags "-D${d}")
   endforeach()
-  # Header files the source may include: rebuild when any of them changes.
-  file(GLOB deps "${srcdir}/*.hp" "${srcdir}/*.h" "${srcdir}/*.p")
+  # Files the source may include (the firmware's parts, pru_fw/README.md):
+  # rebuild when any of them changes, and re-glob when one is added.
+  file(GLOB deps CONFIGURE_DEPENDS "${srcdir}/*.hp" "${srcdir}/*.h" "${srcdir}/*.p")
   foreach(i IN LISTS A_INCLUDES)
     get_filename_component(i "${i}" ABSOLUTE)
     list(APPEND flags "-I${i}")

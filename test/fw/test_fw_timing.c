@@ -324,34 +324,48 @@ static char *insert_after_line(const char *text, const char *line, const char *i
     return NULL;
 }
 
-/* biss_master.p with biss_periods.hp inlined (so that a mutation of it is
+/* The text of pru_fw/<name> with every `#include "x"` of a file of pru_fw/
+ * (its parts, pru_fw/README.md) replaced by that file's text, recursively;
+ * other includes (include/biss) are left as they are. */
+static char *flattened(const char *name, unsigned depth) {
+    ck_assert_msg(depth < 8, "pru_fw/%s: includes nested too deep", name);
+    char path[1024];
+    snprintf(path, sizeof(path), "%s/pru_fw/%s", src_dir(), name);
+    char *text = read_text(path);
+    for (;;) {
+        char *inc = strstr(text, "#include \"");
+        char part[128] = "";
+        while (inc) {
+            const char *q = strchr(inc + 10, '"');
+            size_t n = q ? (size_t)(q - (inc + 10)) : 0;
+            if (q && n < sizeof(part) && !memchr(inc + 10, '/', n)) {
+                memcpy(part, inc + 10, n);
+                part[n] = '\0';
+                break;
+            }
+            inc = strstr(inc + 10, "#include \"");
+        }
+        if (!inc)
+            return text;
+        char *body = flattened(part, depth + 1);
+        const char *after = strchr(inc, '\n');
+        char *out = malloc(strlen(text) + strlen(body) + 2);
+        memcpy(out, text, (size_t)(inc - text));
+        strcpy(out + (inc - text), body);
+        strcat(out, after ? after : "");
+        free(body);
+        free(text);
+        text = out;
+    }
+}
+
+/* biss_master.p with its parts inlined (so that a mutation of any of them is
  * assembled from memory, the tree left alone) and `insert` after `line`. */
 static char *mutated_source(const char *line, const char *insert) {
-    char path[1024];
-    snprintf(path, sizeof(path), "%s/pru_fw/biss_master.p", src_dir());
-    char *master = read_text(path);
-    snprintf(path, sizeof(path), "%s/pru_fw/biss_periods.hp", src_dir());
-    char *periods = read_text(path);
-    char *with = insert_after_line(periods, line, insert);
-    if (with) {
-        free(periods);
-        periods = with;
-    }
-    const char *inc = strstr(master, "#include \"biss_periods.hp\"");
-    ck_assert_msg(inc != NULL, "biss_master.p no longer includes biss_periods.hp");
-    const char *after = strchr(inc, '\n');
-    char *out = malloc(strlen(master) + strlen(periods) + 2);
-    memcpy(out, master, (size_t)(inc - master));
-    strcpy(out + (inc - master), periods);
-    strcat(out, after ? after : "");
-    free(master);
-    free(periods);
-    if (!with) {
-        char *m = insert_after_line(out, line, insert);
-        ck_assert_msg(m != NULL, "no line `%s` in the firmware to mutate", line);
-        free(out);
-        out = m;
-    }
+    char *flat = flattened("biss_master.p", 0);
+    char *out = insert_after_line(flat, line, insert);
+    ck_assert_msg(out != NULL, "no line `%s` in the firmware to mutate", line);
+    free(flat);
     return out;
 }
 
@@ -362,7 +376,7 @@ static const struct {
 } mutations[] = {
     {"DP_TOP:", "DP_TOP", 3, 3},           /* DATA_PERIOD, biss_periods.hp */
     {"CP_TOP:", "CP_TOP", 3, 5},           /* CRC_PERIOD */
-    {"WA_TOP:", "WA_TOP", 3, 3},           /* WAIT_ACK, biss_master.p */
+    {"WA_TOP:", "WA_TOP", 3, 3},           /* WAIT_ACK, frame.p */
     {"START_FOUND:", "START_FOUND", 2, 0}, /* the start bit's period */
     {"FINAL_CRC2:", "FINAL_CRC2", 3, 4},   /* its MA edge after the last switch */
 };
