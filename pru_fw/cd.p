@@ -47,7 +47,7 @@ CD_OP_DONE:
     jmp     r10.w2
 
 CD_PREPARE:
-    lbco    r2, c28, P_CD, 20
+    lbco    r2, c28, P_CD, P_SSI - P_CD
     ldi     r5.w0, 0                        // CDM 0 whatever the CDS
     qbne    CDP_RUN, r2, 0
     lbco    r7, c24, BISS_CD_CMD, 12        // r7 CD_CMD, r8.w0 CD_STEPS, r9 ST_CD_SEQ
@@ -99,7 +99,7 @@ CDP_WAIT:
     qbeq    CDP_OUT, r7, BISS_CDOP_1        // 1 either way
     ldi     r5.b1, MA_MASK                  // 0 once CDS is 1
 CDP_OUT:
-    sbco    r2, c28, P_CD, 20
+    sbco    r2, c28, P_CD, P_SSI - P_CD
     jmp     r0.w0
 CDP_BAD:                                    // refused: ST_CD_SEQ, then ST_CD_STATUS
     ldi     r8, BISS_CDST_ERR_STEPS         // (the next word: one store, in that order)
@@ -111,7 +111,7 @@ CDP_BAD:                                    // refused: ST_CD_SEQ, then ST_CD_ST
 // clocks for BUF_STAMP, r13..r29 hold the slave records, r10.b0 is the
 // caller's.)
 CD_COMMIT:
-    lbco    r2, c28, P_CD, 20
+    lbco    r2, c28, P_CD, P_SSI - P_CD
     rsb     r7, r1.b1, 0                    // the CDM edge that went out
     and     r7, r7, r5.b1
     xor     r7, r7, r5.b0
@@ -220,18 +220,18 @@ CDC_ZEROS:
     qbeq    CDC_SAVE, r1.b0, 0
     ldi     r4.w0, 0
 CDC_SAVE:
-    sbco    r2, c28, P_CD, 20
+    sbco    r2, c28, P_CD, P_SSI - P_CD
     mov     r2.b0, r1.b0
     jmp     r0.w0
 
 // A frame failed: a running program cannot go on (the slave saw a broken
 // frame), and the zeros start again. r3 and r12 are the caller's.
 CD_ABORT:
-    lbco    r4, c28, P_CD, 20               // r4 program, r5.w0 step, r8.b3 bytes
+    lbco    r4, c28, P_CD, P_SSI - P_CD     // r4 program, r5.w0 step, r8.b3 bytes
     ldi     r9, 0
-    sbco    r9, c28, P_CD + 8, 2            // zeros in a row: none
+    sbco    r9, c28, P_CD_ZEROS, SIZE(BissPriv.cd_zeros)  // zeros in a row: none
     qbeq    CDA_DONE, r4, 0
-    sbco    r9, c28, P_CD, 4                // no program
+    sbco    r9, c28, P_CD, SIZE(BissPriv.cd_cmd)  // no program
     sbco    r4, c24, BISS_ST_CD_SEQ, 4
     mov     r9.w2, r5.w0
     ldi     r9.b0, BISS_CDST_ERR_FRAME

@@ -147,8 +147,8 @@ CFG_RESIDUE_STEP:
     mov     r0, r0
 CFG_RESIDUE_DONE:
     mov     r9, r2                          // n, w, ew shift, flags
-    sbbo    r6, r27, 0, 16                  // r6..r9
-    add     r27, r27, 16
+    sbbo    r6, r27, 0, SIZE(BissSlave)     // r6..r9
+    add     r27, r27, SIZE(BissSlave)
     add     r25, r25, BISS_CFG_SLAVE_SIZE
     add     r23, r23, 1
     qbgt    CFG_SLAVE, r23, r20.b2          // while index < slaves
@@ -222,18 +222,18 @@ CFG_IEP_OK:
 CFG_DELAY_ENTRY:
     sub     r0.w0, r3, r2
 CFG_DELAY_SAVE:
-    sbco    r0, c28, P_DELAYS, 4
+    sbco    r0, c28, P_DELAYS, SIZE(BissPriv.delays)
     // K = N + 2 - LAG: the clocks after the start bit's period are the CDS,
     // the N bits and one more, on which the slave starts its timeout (SL
     // low); LAG of them are already out when the start bit is seen.
     ldi     r3, 0                           // history empty (training fills it)
     sub     r4, r24, LAG - 2
     lsl     r4, r4, 16                      // and K
-    sbco    r3, c28, P_HIST, 8
+    sbco    r3, c28, P_HIST, P_HSUM - P_HIST
     mov     r2, r20.w2                      // slaves, trigger, -, frames in the average (0)
     lsl     r2.b2, r20.b2, 3                // the end record's register-file address
     add     r2.b2, r2.b2, REC_BASE
-    sbco    r2, c28, P_NSLAVES, 4
+    sbco    r2, c28, P_NSLAVES, P_HALF - P_NSLAVES
     // ACK limit in periods x 8: (BISS_MAX_DELAY_NS / 10 / H + 4) x 8
     mov     r5, BISS_MAX_DELAY_NS / 10
     mov     r6, r20.w0
@@ -241,7 +241,7 @@ CFG_DELAY_SAVE:
     jal     r0.w2, DIVIDE
     lsl     r7, r7, 16 + 3                  // to w2
     mov     r7.w0, r20.w0
-    sbco    r7, c28, P_HALF, 4
+    sbco    r7, c28, P_HALF, P_PROC - P_HALF
     mov     r2.w0, r22.w0                   // processing-time limit
     ldi     r2.w2, 0x0101                   // running, training due (BiSS-C)
     // The step between the slaves' result slots in this PRU's bank, for
@@ -267,20 +267,20 @@ CFG_DELAY_SAVE:
     mov     r1.w2, r27.w0                   // and the history holds it (r0, r1 are
     jal     r0.w0, HIST_FILL                // set up anew by every frame)
 CFG_PROC:
-    sbco    r27, c28, P_SSI, 4
-    sbco    r2, c28, P_PROC, 4
+    sbco    r27, c28, P_SSI, SIZE(BissPriv) - P_SSI
+    sbco    r2, c28, P_PROC, P_SPARE - P_PROC
     sbco    r19, c4, GPCFG_OWN, 4           // shift mode at 8x the new rate (FACTOR_FOUND)
     ldi     r28, BISS_CFGERR_NONE
     ldi     r29, BISS_STATE_RUNNING
     qba     CFG_REPORT
 CFG_FAIL:
     ldi     r2, 0
-    sbco    r2, c28, P_PROC, 4              // not running
+    sbco    r2, c28, P_PROC, P_SPARE - P_PROC  // not running
     ldi     r29, BISS_STATE_CFG_ERROR
 CFG_REPORT:
     sbco    r28, c24, BISS_ST_CFG_ERROR, 8  // r28 the error, r29 ST_STATE (the next word)
     sbco    r18, c24, BISS_ST_CFG_ACK, 4    // then the sequence number: the verdict is out
-    lbco    r13, c28, P_RECORDS, 68         // slave records into r13..r29
+    lbco    r13, c28, P_RECORDS, P_DELAYS - P_RECORDS  // slave records into r13..r29
     jmp     MAIN
 
 // r7 += r5 / r6, r5 = r5 mod r6: repeated subtraction (configuration only).

@@ -17,7 +17,7 @@
 // reg = the result buffer being filled (P_BUF).
 .macro RESULT_BASE
 .mparam reg
-    lbco    reg, c28, P_BUF, 4
+    lbco    reg, c28, P_BUF, SIZE(BissPriv.buf)
     RESULT_ADDR reg, reg
 .endm
 
@@ -29,8 +29,9 @@
 // A subroutine (returns through r12.w0; r2 it leaves alone) so that a
 // free-run frame can have it done before SL is high (FE_IDLE_YES).
 FRAME_REGS:
-    lbco    r3, c28, P_DELAYS, 32           // r3 delays, r4 r5 history (r5.w2 = K), r6 its
-                                            // sum, r7 P_BUF, r8 P_NSLAVES, r9 P_HALF, r10 P_PROC
+    // r3 delays, r4 r5 history (r5.w2 = K), r6 its sum, r7 P_BUF,
+    // r8 P_NSLAVES, r9 P_HALF, r10 P_PROC
+    lbco    r3, c28, P_DELAYS, P_SPARE - P_DELAYS
     lsl     r0, r10.b3, 8                   // XFR shift 0: slave 0's slot, the step to
                                             // the next (CFG_PROC), no busy clocks
     ldi     r11, MA_MASK | (MA_MASK << 8)   // period 0 clocks
@@ -39,7 +40,7 @@ FRAME_REGS:
     mov     r7.w2, r10.w0                   // processing-time limit
     mov     r9, r3                          // the tails (DELAY_A)
     mov     r4.w2, r6.w0                    // history sum (r10 is the delay's)
-    lbco    r4.w0, c28, P_CDM, 2            // the CDM edge for either CDS
+    lbco    r4.w0, c28, P_CDM, P_CD_LEN - P_CDM  // the CDM edge for either CDS
     ldi     r1.w0, REC_BASE                 // r1.b1 = 0
     ldi     r6, 0
     ldi     r8, 0
@@ -57,7 +58,7 @@ FRAME_REGS:
 FRAME:
     jal     r12.w0, SLAVE_IDLE
     qbeq    NO_SLAVE_IDLE, r3, 0
-    lbco    r2, c28, P_SSI, 2
+    lbco    r2, c28, P_SSI, SIZE(BissPriv.ssi_ack)
     qbeq    FRAME_BISS, r2.w0, 0
     jmp     SSI_FRAME
 FRAME_BISS:

@@ -50,9 +50,9 @@ FINAL_CRC_BIT:
 FRAME_END:
     jal     r0.w0, CD_COMMIT               // r1.b1 = CDS; r1.b0 = the CDM sent
     jal     r3.w0, BUF_STAMP               // r2 = the result buffer, r0.w0 = 0:
-    lbco    r0.b1, c28, P_PROC + 3, 1       // slave 0's slot, and the step to the next
+    lbco    r0.b1, c28, P_RUNNING, SIZE(BissPriv.running)  // slave 0's slot, and the step to the next
     sbbo    r1.b0, r2, BISS_R_CDM, 1
-    lbco    r1.b0, c28, P_NSLAVES, 1        // slaves to check
+    lbco    r1.b0, c28, P_NSLAVES, SIZE(BissPriv.nslaves)  // slaves to check
     rsb     r3, r10.b0, 31 - 8 * LAG        // sample point 0..7 within the bit
     sbbo    r3.b0, r2, BISS_R_SAMPLE_POINT, 1
     sbbo    r1.b1, r2, BISS_R_CDS, 1
@@ -62,7 +62,7 @@ FRAME_END:
 FE_SLAVE:
     xin     XFR_BANK, r4, 12                      // data lo, data hi, CRC register: its slot
     add     r0.b0, r0.b0, r0.b1             // the next slave's
-    lbbo    r7, r11, 0, 16                  // mask lo, mask hi, residue, [n, w, ew, flags]
+    lbbo    r7, r11, 0, SIZE(BissSlave)     // mask lo, mask hi, residue, [n, w, ew, flags]
     and     r4, r4, r7
     and     r5, r5, r8
     ldi     r7, BISS_RS_CRC_OK              // slave status (r4..r7: the slave's result)
@@ -88,7 +88,7 @@ FE_NE_DONE:
 FE_EW_DONE:
     sbbo    r4, r3, BISS_R_S_DATA_LO, 16    // data, CRC register, status
     add     r3, r3, BISS_R_SLAVE_SIZE
-    add     r11, r11, 16
+    add     r11, r11, SIZE(BissSlave)
     sub     r1.b0, r1.b0, 1
     qbne    FE_SLAVE, r1.b0, 0
     // frame counters
@@ -98,7 +98,7 @@ FE_EW_DONE:
     sbco    r3, c24, BISS_ST_CRC_ERRORS, 4
 FE_NO_CRC_ERR:
     // line delay: this frame's ACK position and the average it was read with
-    lbco    r4, c28, P_HIST, 20             // r4 r5 history, r6 its sum, r8 P_NSLAVES
+    lbco    r4, c28, P_HIST, P_HALF - P_HIST  // r4 r5 history, r6 its sum, r8 P_NSLAVES
     add     r3, r6, r1.w2
     lsr     r3, r3, 2                       // Qf'
     sbbo    r1.w2, r2, BISS_R_DELAY_RAW, 2
@@ -137,7 +137,7 @@ FE_HIST_SAVE:
     qbgt    FE_NO_SMA, r8.b3, 3
     or      r12, r12, BISS_RF_SMA
 FE_NO_SMA:
-    sbco    r8, c28, P_NSLAVES, 4
+    sbco    r8, c28, P_NSLAVES, P_HALF - P_NSLAVES
     jal     r0.w0, HIST_SAVE
     jal     r0.w0, PUBLISH                 // and CD_PREPARE: the next frame's CDM
     // The next frame, when it is a free-run BiSS-C one with no training due,
@@ -146,9 +146,9 @@ FE_NO_SMA:
     // one is checked for (MAIN applies it), and the frame starts at once.
     // (No training can be due here: only a refused configuration or a
     // missing slave asks for one, and both go through MAIN.)
-    lbco    r3, c28, P_NSLAVES, 4
+    lbco    r3, c28, P_NSLAVES, P_HALF - P_NSLAVES
     qbne    FE_SLOW, r3.b1, BISS_TRIG_FREERUN
-    lbco    r3, c28, P_SSI, 2
+    lbco    r3, c28, P_SSI, SIZE(BissPriv.ssi_ack)
     qbne    FE_SLOW, r3.w0, 0
     jal     r12.w0, FRAME_REGS
     jal     r12.w0, SLAVE_IDLE              // the slave's timeout has ended: SL high,
@@ -172,11 +172,11 @@ HIST_FILL:
     mov     r4.w2, r1.w2
     mov     r5.w0, r1.w2
 HIST_SAVE:
-    sbco    r4, c28, P_HIST, 6
+    sbco    r4, c28, P_HIST, OFFSET(BissPriv.k) - P_HIST
     add     r3, r4.w0, r4.w2
     add     r3, r3, r5.w0
     add     r3, r3, 2
-    sbco    r3, c28, P_HSUM, 4
+    sbco    r3, c28, P_HSUM, SIZE(BissPriv.hsum)
     jmp     r0.w0
 
 // Publish the result buffer r2 with the flags in r12: header words, then
@@ -189,7 +189,7 @@ PUBLISH:
     sbco    r3, c24, BISS_ST_FRAMES, 4
     sbbo    r3, r2, BISS_R_FRAME, 4
     sbbo    r12, r2, BISS_R_FLAGS, 4
-    lbco    r4, c28, P_BUF, 12              // r4 P_BUF, r5 P_NSLAVES, r6 P_HALF
+    lbco    r4, c28, P_BUF, P_PROC - P_BUF  // r4 P_BUF, r5 P_NSLAVES, r6 P_HALF
     sbbo    r5.b0, r2, BISS_R_NSLAVES, 1
     sbbo    r6.w0, r2, BISS_R_HALF, 2
     sbco    r4, c24, BISS_ST_BUF, 4
@@ -197,7 +197,7 @@ PUBLISH:
     add     r3, r3, 1                       // odd seq: buffer 1, even: buffer 0
     sbco    r3, c24, BISS_ST_SEQ, 4
     xor     r4, r4, 1
-    sbco    r4, c28, P_BUF, 4
+    sbco    r4, c28, P_BUF, SIZE(BissPriv.buf)
     ldi     r3, BISS_STATE_RUNNING
     sbco    r3, c24, BISS_ST_STATE, 4
     jmp     CD_PREPARE                      // which returns through r0.w0
@@ -244,7 +244,7 @@ NO_ACK:                                     // after a rising edge: MA stays hig
     ldi     r12, BISS_RF_NO_SLAVE
 NO_SLAVE_FLAGS:                             // (SL_INIT_DONE: r12 its own flags)
     ldi     r2, 1
-    sbco    r2.b0, c28, P_PROC + 2, 1       // training due
+    sbco    r2.b0, c28, P_TRAIN_DUE, SIZE(BissPriv.train_due)  // training due
     ldi     r3, BISS_ST_NO_SLAVE
 
 // r12 = flags, r3 = the counter to increment; publish, wait for the slave.
@@ -278,19 +278,19 @@ TRAIN:
     qbne    TRAIN_GO, r3, 0
 SL_INIT:                                    // SL stuck low: INIT first (see SL_INIT_DONE)
     ldi     r2, 2                           // training due, as the INIT
-    sbco    r2.b0, c28, P_PROC + 2, 1
+    sbco    r2.b0, c28, P_TRAIN_DUE, SIZE(BissPriv.train_due)
 TRAIN_GO:
     jal     r12.w0, FRAME_REGS
     ldi     r12, 2 * MA_MASK                // one clock after period 0's
     jmp     FRAME_CLOCKED
 TRAIN_DONE:
-    lbco    r2.b0, c28, P_PROC + 2, 1
+    lbco    r2.b0, c28, P_TRAIN_DUE, SIZE(BissPriv.train_due)
     qbne    SL_INIT_DONE, r2.b0, 1          // it was the INIT of a low SL
     jal     r0.w0, HIST_FILL                // r4.w0, r4.w2 = Q' too
     jal     r3.w0, BUF_STAMP               // r2 = the result buffer (r4 kept)
     sbbo    r4, r2, BISS_R_DELAY_RAW, 4     // and DELAY_AVG
-    sbco    r0.b0, c28, P_PROC + 2, 1       // training done (r0.w0 = 0: BUF_STAMP)
-    sbco    r0.b0, c28, P_NSLAVES + 3, 1    // the average starts at this frame
+    sbco    r0.b0, c28, P_TRAIN_DUE, SIZE(BissPriv.train_due)  // training done (r0.w0 = 0: BUF_STAMP)
+    sbco    r0.b0, c28, P_NAVG, SIZE(BissPriv.navg)  // the average starts at this frame
     ldi     r12, BISS_RF_TRAINING
     ldi     r3, BISS_ST_TRAINING
     jmp     ABORT_FRAME

@@ -9,7 +9,7 @@
 // Its configuration: CFG_SSI (APPLY_CONFIG).
 SSI_FRAME:
     jal     r12.w0, FRAME_REGS
-    lbco    r1.w2, c28, P_SSI, 4            // Q' (and r1.w2 is what FRAME_END records),
+    lbco    r1.w2, c28, P_SSI, SIZE(BissPriv) - P_SSI  // Q' (and r1.w2 is what FRAME_END records),
                                             // the clocks (to r2.w0: docs/pru-facts.md §1.7)
     IEP_ALIGN_IF SSI_ALIGNED
 SSI_ALIGNED:

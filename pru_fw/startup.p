@@ -39,13 +39,14 @@ MAIN:
     qbeq    MAIN_CFG_OK, r2, r3
     qbne    APPLY_CONFIG, r2, 0             // (0: the host has written none yet)
 MAIN_CFG_OK:
-    lbco    r2, c28, P_PROC, 4
+    lbco    r2, c28, P_PROC, P_SPARE - P_PROC
     qbeq    MAIN, r2.b3, 0                  // not running (no or a refused configuration)
     qbeq    TRIGGER_DONE, r2.b2, 0
     jmp     TRAIN                           // a training frame is due first
 TRIGGER_DONE:
-    lbco    r2.w2, c28, P_NSLAVES, 2        // r2.b3 = the trigger, for IEP_ALIGN_IF (SLAVE_IDLE,
-                                            // the P_SSI loads and FRAME_REGS keep it)
+    // r2.b3 = the trigger, for IEP_ALIGN_IF (SLAVE_IDLE, the P_SSI loads and
+    // FRAME_REGS keep it)
+    lbco    r2.w2, c28, P_NSLAVES, P_REC_END - P_NSLAVES
     qbeq    WAIT_HOST, r2.b3, BISS_TRIG_HOST
     qbeq    WAIT_IEP, r2.b3, BISS_TRIG_IEP
     qbne    FRAME, r2.b3, BISS_TRIG_IEP_FOLLOW  // free-run
