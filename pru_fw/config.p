@@ -205,7 +205,7 @@ CFG_IEP_MIN:                                // r2 = N + 8 >= 9 turns (no LOOP of
 CFG_IEP_OK:
 
     // Accepted: commit everything.
-    // The tails of the half periods (DELAY_A in biss_periods.hp): none at
+    // The tails of the half periods (DELAY in biss_periods.hp): none at
     // H = 10 (r0 = 0), else the routine's entry for L = H - 11 cycles
     // (r0.w0), r0.b2 = 1, and its 4-cycle turns (r0.b3); the frame keeps
     // this word in r9.

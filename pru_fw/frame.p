@@ -38,7 +38,7 @@ FRAME_REGS:
     mov     r11.b2, r8.b2                   // the end record (SWITCH_SHORT)
     mov     r7.w0, r9.w2                    // ACK limit
     mov     r7.w2, r10.w0                   // processing-time limit
-    mov     r9, r3                          // the tails (DELAY_A)
+    mov     r9, r3                          // the tails (DELAY)
     mov     r4.w2, r6.w0                    // history sum (r10 is the delay's)
     lbco    r4.w0, c28, P_CDM, P_CD_LEN - P_CDM  // the CDM edge for either CDS
     ldi     r1.w0, REC_BASE                 // r1.b1 = 0
@@ -82,11 +82,11 @@ FRAME_CLOCKED:                              // TRAIN comes in here, r12 its two 
     MA_FALL
     add     r3, r3, 8                       // 1
     jal     r10.w2, DLY_S6                  // 2..8
-    DELAY_A
+    DELAY
     MA_RISE
     NEXT_CLOCK                              // 1..4
     jal     r10.w2, DLY_S2                  // 5..7
-    DELAY_B
+    DELAY
     PAD
 WA_TOP:
     MA_FALL
@@ -94,12 +94,12 @@ WA_TOP:
     qbne    ACK_FOUND, r2.b0, 0xff          // 2
     add     r3, r3, 8                       // 3
     jal     r10.w2, DLY_S4                  // 4..8
-    DELAY_A
+    DELAY
     MA_RISE
     qble    NO_ACK, r3, r7.w0               // 1: limit <= 8p: give up after this rise
     NEXT_CLOCK                              // 2..5
     jal     r10.w2, DLY_S1                  // 6..7
-    DELAY_B
+    DELAY
     qba     WA_TOP
 
 // The ones before the ACK edge in r2.b0 (a constant-time count: a glitch
@@ -135,10 +135,10 @@ WA_TOP:
 // 0, r12 = 0) and ends after this period.
 ACK_FOUND:                                  // t = 3
     ONES_A                                  // 3..8
-    DELAY_A
+    DELAY
     MA_RISE
     ONES_B                                  // 1..7
-    DELAY_B
+    DELAY
     qbbc    TRAIN_DONE, r12, 30             // training: no more periods
 
 // ---- LAG: sample point and lag from the averaged ACK position ------------------
@@ -152,14 +152,14 @@ LAG1:
     lsr     r8, r2, 3                       // 6  m = (Qf' - 4) / 8
     lsr     r6, r3, 3                       // 7  p (this frame's ACK period)
     add     r3, r8, 2                       // 8
-    DELAY_A
+    DELAY
     MA_RISE
     max     r3, r3, r6                      // 1
     sub     r3, r3, r6                      // 2  idle periods before the first read
     PAD                                     // 3
     rsb     r5.w0, r10.b0, 29               // 4  R31 >> r5.w0: bit 2 the sample point
     jal     r10.w2, DLY_S2                  // 5..7
-    DELAY_B
+    DELAY
     qbeq    SW_TOP, r3, 0
 
 // r3 >= 1 idle periods. An SSI frame's come here too (SSI_FRAME) and go on
@@ -168,17 +168,17 @@ LAG1:
 LAG_TOP:
     MA_FALL
     jal     r10.w2, DLY_S7                  // 1..8
-    DELAY_A
+    DELAY
     MA_RISE
     sub     r3, r3, 1                       // 1
     NEXT_CLOCK                              // 2..5
     qbeq    LAG_LAST, r3, 0                 // 6
     PAD                                     // 7
-    DELAY_B
+    DELAY
     qba     LAG_TOP
 LAG_LAST:
     qbbc    SSI_LAG_LAST, r12, 30           // 7
-    DELAY_B
+    DELAY
     PAD
 
 // ---- START_WAIT: ACK and busy read 0, the start bit 1 ------------------------
@@ -194,28 +194,28 @@ SW_TOP:
     qbbs    START_FOUND, r3, r2             // 5  three of the five are 1
     add     r0.w2, r0.w2, 1                 // 6  busy clocks (0 from FRAME_REGS)
     jal     r10.w2, DLY_S1                  // 7..8
-    DELAY_A
+    DELAY
     MA_RISE
     qblt    PROC_ERROR, r0.w2, r7.w2        // 1: limit < busy: give up after this rise
     jal     r10.w2, DLY_S5                  // 2..7
-    DELAY_B
+    DELAY
     qba     SW_TOP
 
 SSI_LAG_LAST:                               // t = H + 8
-    DELAY_B
+    DELAY
     jmp     r7.w2
 
 START_FOUND:                                // t = 6
     max     r3, r5.w2, r8                   // 6  clocks after this period:
     sub     r3, r3, r8                      // 7  max(N + 2 - LAG - m, 0), 2 edges each
     lsl     r12, r3, MA_BIT + 1             // 8
-    DELAY_A
+    DELAY
     MA_RISE
     ldi     r8, 0                           // 1  (r8.w0 stays 0 from here on)
     NEXT_CLOCK                              // 2..5
     PAD                                     // 6
     ldi     r6, 0                           // 7  (r6.w0 stays 0 from here on)
-    DELAY_B
+    DELAY
     PAD
 
 // ---- CDS, then the slaves ----------------------------------------------------
@@ -229,13 +229,13 @@ CDS_PERIOD:
     LOAD_RECORD                             // 3..6
     rsb     r3, r1.b1, 0                    // 7  CDS ? ~0 : 0
     and     r3, r3, r4.b1                   // 8
-    DELAY_A
+    DELAY
     MA_RISE
     xor     r3, r3, r4.b0                   // 1  the CDM edge
     add     r12, r12, r3                    // 2
     NEXT_CLOCK                              // 3..6
     PAD                                     // 7
-    DELAY_B
+    DELAY
     jmp     r7.w2
 
 // A slave's bits: n data bits, then w CRC bits, the last bit switching to the
