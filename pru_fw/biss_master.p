@@ -27,7 +27,8 @@
 // described there. The code is in files by role, included below in the
 // order of the image (pru_fw/README.md has the map): startup.p, config.p,
 // frame.p, results.p, cd.p, ssi.p; the definitions in icss_regs.hp (the
-// PRU-ICSS registers) and layout.hp (the private data RAM).
+// PRU-ICSS registers), layout.hp (the private data RAM) and regs.hp
+// (the register map: what each register holds in each phase).
 
 .origin 0
 .entrypoint START
@@ -67,6 +68,7 @@
 #define IEP_ALIGN       192
 
 #include "layout.hp"
+#include "regs.hp"
 
 // (after the equates: macro bodies take equates as they are read)
 #include "biss_periods.hp"

@@ -44,7 +44,7 @@ CD_OP:
 CD_OP_LOW:
     and     r7, r7, 0x0f
 CD_OP_DONE:
-    jmp     r10.w2
+    jmp     RET_LEAF
 
 CD_PREPARE:
     lbco    r2, c28, P_CD, P_SSI - P_CD
@@ -64,7 +64,7 @@ CD_PREPARE:
     ldi     r7, BISS_CDST_BUSY
     sbco    r7, c24, BISS_ST_CD_STATUS, 4
 CDP_RUN:
-    jal     r10.w2, CD_OP_STEP
+    jal     RET_LEAF, CD_OP_STEP
     qbbs    CDP_OUT, r7, 4                  // past the end: CDM 0
     qbgt    CDP_STEP, r6.b2, CD_ERR
     qbeq    CDP_OUT, r7, BISS_CDOP_1        // an error ends the frame at the next master S
@@ -94,7 +94,7 @@ CDP_WAIT:
     // BISSC_SKIP_CTRL_SB?). CDS 1 ends the wait: send the next step now.
     ldi     r5.b0, MA_MASK
     add     r8, r3.w0, 1
-    jal     r10.w2, CD_OP
+    jal     RET_LEAF, CD_OP
     and     r7, r7, CD_PAST_END | 3
     qbeq    CDP_OUT, r7, BISS_CDOP_1        // 1 either way
     ldi     r5.b1, MA_MASK                  // 0 once CDS is 1
@@ -139,7 +139,7 @@ CDC_BIT0:
     ldi     r11, BISS_CDST_ERR_IDA << 4
     qbbs    CDC_ERR, r9, 0
 CDC_CLASS:
-    jal     r10.w2, CD_OP
+    jal     RET_LEAF, CD_OP
     lsr     r7, r7, 2
     qbeq    CDC_SENT_STEP, r7, BISS_CDCL_NONE
     qbne    CDC_FEED_S, r7, BISS_CDCL_CHECK
@@ -162,7 +162,7 @@ CDC_ERR:
 CDC_SENT_STEP:
     // the step that went out in this frame
     ldi     r3.w2, 0
-    jal     r10.w2, CD_OP_STEP
+    jal     RET_LEAF, CD_OP_STEP
     qbbs    CDC_END, r7, 4
     qbgt    CDC_NOT_END, r6.b2, CD_ERR      // an error pending: a master S sent as 0
     qbne    CDC_NOT_END, r1.b0, 0           // ended the control frame (one that went out
@@ -180,7 +180,7 @@ CDC_WAITED:
     ldi     r4.w2, 0
     ldi     r6.w0, 0                        // the byte's CRCs start afresh
     set     r6.b2, r6.b2, CD_F_OPEN
-    jal     r10.w2, CD_OP_STEP
+    jal     RET_LEAF, CD_OP_STEP
     qbbs    CDC_END, r7, 4
 CDC_SENT:
     clr     r6.b2, r6.b2, CD_F_CDM

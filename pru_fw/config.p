@@ -311,7 +311,7 @@ DLY_S3:
 DLY_S2:
     mov     r0, r0
 DLY_S1:
-    jmp     r10.w2
+    jmp     RET_LEAF
 DLY_L3:
     mov     r0, r0
 DLY_L2:
@@ -325,4 +325,4 @@ DLY_TURN:                                   // 4 cycles a turn
     mov     r0, r0
     mov     r0, r0
     qbne    DLY_TURN, r10.b1, 0
-    jmp     r10.w2
+    jmp     RET_LEAF

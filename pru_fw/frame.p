@@ -44,7 +44,7 @@ FRAME_REGS:
     ldi     r1.w0, REC_BASE                 // r1.b1 = 0
     ldi     r6, 0
     ldi     r8, 0
-    jmp     r12.w0
+    jmp     RET_SUB
 
 // The timestamp, then the first period. It waits in bank register 2 (r0.b0
 // = 0: unshifted; the slots start at 4) for FRAME_END or ABORT_FRAME: no
@@ -56,16 +56,16 @@ FRAME_REGS:
 .endm
 
 FRAME:
-    jal     r12.w0, SLAVE_IDLE
+    jal     RET_SUB, SLAVE_IDLE
     qbeq    NO_SLAVE_IDLE, r3, 0
     lbco    r2, c28, P_SSI, SIZE(BissPriv.ssi_ack)
     qbeq    FRAME_BISS, r2.w0, 0
     jmp     SSI_FRAME
 FRAME_BISS:
-    jal     r12.w0, FRAME_REGS
+    jal     RET_SUB, FRAME_REGS
     IEP_ALIGN_IF FRAME_STAMPED
 FRAME_STAMPED:                              // the free-run path comes in here
-    fill    &r12, 4                         // r12 all ones while the start bit is
+    fill    &MA_EDGES, 4                    // r12 all ones while the start bit is
                                             // awaited (r0.b0 = 0: no XFR shift)
 FRAME_CLOCKED:                              // TRAIN comes in here, r12 its two clocks
     FRAME_STAMP
@@ -81,11 +81,11 @@ FRAME_CLOCKED:                              // TRAIN comes in here, r12 its two 
     // start as soon as SL is high.
     MA_FALL
     add     r3, r3, 8                       // 1
-    jal     r10.w2, DLY_S6                  // 2..8
+    jal     RET_LEAF, DLY_S6                // 2..8
     DELAY
     MA_RISE
     NEXT_CLOCK                              // 1..4
-    jal     r10.w2, DLY_S2                  // 5..7
+    jal     RET_LEAF, DLY_S2                // 5..7
     DELAY
     PAD
 WA_TOP:
@@ -93,12 +93,12 @@ WA_TOP:
     mov     r2, r31                         // 1
     qbne    ACK_FOUND, r2.b0, 0xff          // 2
     add     r3, r3, 8                       // 3
-    jal     r10.w2, DLY_S4                  // 4..8
+    jal     RET_LEAF, DLY_S4                // 4..8
     DELAY
     MA_RISE
     qble    NO_ACK, r3, r7.w0               // 1: limit <= 8p: give up after this rise
     NEXT_CLOCK                              // 2..5
-    jal     r10.w2, DLY_S1                  // 6..7
+    jal     RET_LEAF, DLY_S1                // 6..7
     DELAY
     qba     WA_TOP
 
@@ -139,7 +139,7 @@ ACK_FOUND:                                  // t = 3
     MA_RISE
     ONES_B                                  // 1..7
     DELAY
-    qbbc    TRAIN_DONE, r12, 30             // training: no more periods
+    qbbc    TRAIN_DONE, MA_EDGES, EDGES_UNCOUNTED        // training: no more periods
 
 // ---- LAG: sample point and lag from the averaged ACK position ------------------
 LAG1:
@@ -157,8 +157,8 @@ LAG1:
     max     r3, r3, r6                      // 1
     sub     r3, r3, r6                      // 2  idle periods before the first read
     PAD                                     // 3
-    rsb     r5.w0, r10.b0, 29               // 4  R31 >> r5.w0: bit 2 the sample point
-    jal     r10.w2, DLY_S2                  // 5..7
+    rsb     r5.w0, SAMPLE_SHIFT, 29         // 4  R31 >> r5.w0: bit 2 the sample point
+    jal     RET_LEAF, DLY_S2                // 5..7
     DELAY
     qbeq    SW_TOP, r3, 0
 
@@ -167,7 +167,7 @@ LAG1:
 // frame's r12 keeps bit 30 set, see ACK_FOUND).
 LAG_TOP:
     MA_FALL
-    jal     r10.w2, DLY_S7                  // 1..8
+    jal     RET_LEAF, DLY_S7                // 1..8
     DELAY
     MA_RISE
     sub     r3, r3, 1                       // 1
@@ -177,7 +177,7 @@ LAG_TOP:
     DELAY
     qba     LAG_TOP
 LAG_LAST:
-    qbbc    SSI_LAG_LAST, r12, 30           // 7
+    qbbc    SSI_LAG_LAST, MA_EDGES, EDGES_UNCOUNTED      // 7
     DELAY
     PAD
 
@@ -192,23 +192,23 @@ SW_TOP:
     and     r2, r2, 0x1f                    // 2
     mov     r3, MAJORITY5                   // 3..4
     qbbs    START_FOUND, r3, r2             // 5  three of the five are 1
-    add     r0.w2, r0.w2, 1                 // 6  busy clocks (0 from FRAME_REGS)
-    jal     r10.w2, DLY_S1                  // 7..8
+    add     BUSY_CLOCKS, BUSY_CLOCKS, 1     // 6  busy clocks (0 from FRAME_REGS)
+    jal     RET_LEAF, DLY_S1                // 7..8
     DELAY
     MA_RISE
-    qblt    PROC_ERROR, r0.w2, r7.w2        // 1: limit < busy: give up after this rise
-    jal     r10.w2, DLY_S5                  // 2..7
+    qblt    PROC_ERROR, BUSY_CLOCKS, r7.w2  // 1: limit < busy: give up after this rise
+    jal     RET_LEAF, DLY_S5                // 2..7
     DELAY
     qba     SW_TOP
 
 SSI_LAG_LAST:                               // t = H + 8
     DELAY
-    jmp     r7.w2
+    jmp     NEXT_ENTRY
 
 START_FOUND:                                // t = 6
     max     r3, r5.w2, r8                   // 6  clocks after this period:
     sub     r3, r3, r8                      // 7  max(N + 2 - LAG - m, 0), 2 edges each
-    lsl     r12, r3, MA_BIT + 1             // 8
+    lsl     MA_EDGES, r3, MA_BIT + 1        // 8
     DELAY
     MA_RISE
     ldi     r8, 0                           // 1  (r8.w0 stays 0 from here on)
@@ -232,11 +232,11 @@ CDS_PERIOD:
     DELAY
     MA_RISE
     xor     r3, r3, r4.b0                   // 1  the CDM edge
-    add     r12, r12, r3                    // 2
+    add     MA_EDGES, MA_EDGES, r3          // 2
     NEXT_CLOCK                              // 3..6
     PAD                                     // 7
     DELAY
-    jmp     r7.w2
+    jmp     NEXT_ENTRY
 
 // A slave's bits: n data bits, then w CRC bits, the last bit switching to the
 // next slave. One entry per shape of slave.

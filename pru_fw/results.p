@@ -53,10 +53,10 @@ FRAME_END:
     lbco    r0.b1, c28, P_RUNNING, SIZE(BissPriv.running)  // slave 0's slot, and the step to the next
     sbbo    r1.b0, r2, BISS_R_CDM, 1
     lbco    r1.b0, c28, P_NSLAVES, SIZE(BissPriv.nslaves)  // slaves to check
-    rsb     r3, r10.b0, 31 - 8 * LAG        // sample point 0..7 within the bit
+    rsb     r3, SAMPLE_SHIFT, 31 - 8 * LAG  // sample point 0..7 within the bit
     sbbo    r3.b0, r2, BISS_R_SAMPLE_POINT, 1
     sbbo    r1.b1, r2, BISS_R_CDS, 1
-    ldi     r12, BISS_RF_VALID              // frame flags
+    ldi     RES_FLAGS, BISS_RF_VALID        // frame flags
     add     r3, r2, BISS_R_SLAVE0           // slave result
     mov     r11, BISS_PRIV + P_SLAVES       // slave check data
 FE_SLAVE:
@@ -69,7 +69,7 @@ FE_SLAVE:
     qbeq    FE_CRC_DONE, r10.b1, 0          // no CRC
     qbeq    FE_CRC_DONE, r6, r9
     ldi     r7, 0
-    or      r12, r12, BISS_RF_CRC_ERROR
+    or      RES_FLAGS, RES_FLAGS, BISS_RF_CRC_ERROR
 FE_CRC_DONE:
     qbbc    FE_EW_DONE, r10.b3, 0           // no nE/nW
     // nW (data bit ew) to r8 bit 0, nE (bit ew + 1) to bit 1
@@ -92,7 +92,7 @@ FE_EW_DONE:
     sub     r1.b0, r1.b0, 1
     qbne    FE_SLAVE, r1.b0, 0
     // frame counters
-    qbbc    FE_NO_CRC_ERR, r12, 1
+    qbbc    FE_NO_CRC_ERR, RES_FLAGS, 1
     lbco    r3, c24, BISS_ST_CRC_ERRORS, 4
     add     r3, r3, 1
     sbco    r3, c24, BISS_ST_CRC_ERRORS, 4
@@ -123,7 +123,7 @@ FE_NO_CRC_ERR:
     add     r8.b3, r8.b3, 1
     qba     FE_HIST_SAVE
 FE_ACK_JUMP:
-    xor     r12, r12, BISS_RF_VALID | BISS_RF_ACK_JUMP  // VALID set since FRAME_END,
+    xor     RES_FLAGS, RES_FLAGS, BISS_RF_VALID | BISS_RF_ACK_JUMP  // VALID set since FRAME_END,
                                             // ACK_JUMP not: one clear, one set
     qbbs    FE_HIST_RESET, r8, 31           // the second in a row
     set     r8, r8, 31
@@ -135,7 +135,7 @@ FE_HIST_RESET:
     ldi     r8.b3, 0
 FE_HIST_SAVE:
     qbgt    FE_NO_SMA, r8.b3, 3
-    or      r12, r12, BISS_RF_SMA
+    or      RES_FLAGS, RES_FLAGS, BISS_RF_SMA
 FE_NO_SMA:
     sbco    r8, c28, P_NSLAVES, P_HALF - P_NSLAVES
     jal     r0.w0, HIST_SAVE
@@ -150,8 +150,8 @@ FE_NO_SMA:
     qbne    FE_SLOW, r3.b1, BISS_TRIG_FREERUN
     lbco    r3, c28, P_SSI, SIZE(BissPriv.ssi_ack)
     qbne    FE_SLOW, r3.w0, 0
-    jal     r12.w0, FRAME_REGS
-    jal     r12.w0, SLAVE_IDLE              // the slave's timeout has ended: SL high,
+    jal     RET_SUB, FRAME_REGS
+    jal     RET_SUB, SLAVE_IDLE             // the slave's timeout has ended: SL high,
     qbeq    FE_MAIN, r3, 0                  // or not in time: MAIN and FRAME find it so again
 FE_IDLE_YES:
     lbco    r2, c24, BISS_CFG_SEQ, 4        // (loaded before MA may rise: no data-RAM
@@ -160,7 +160,7 @@ FE_IDLE_YES:
     qbne    FE_MAIN, r2, r3                 // a new configuration: MAIN applies it
     jmp     FRAME_STAMPED
 FE_SLOW:
-    jal     r12.w0, SLAVE_IDLE              // the slave's timeout ends: SL high
+    jal     RET_SUB, SLAVE_IDLE             // the slave's timeout ends: SL high
 FE_MAIN:
     set     r30, r30, MA_BIT                // CDM done: MA idles high
     jmp     MAIN
@@ -188,7 +188,7 @@ PUBLISH:
     add     r3, r3, 1
     sbco    r3, c24, BISS_ST_FRAMES, 4
     sbbo    r3, r2, BISS_R_FRAME, 4
-    sbbo    r12, r2, BISS_R_FLAGS, 4
+    sbbo    RES_FLAGS, r2, BISS_R_FLAGS, 4
     lbco    r4, c28, P_BUF, P_PROC - P_BUF  // r4 P_BUF, r5 P_NSLAVES, r6 P_HALF
     sbbo    r5.b0, r2, BISS_R_NSLAVES, 1
     sbbo    r6.w0, r2, BISS_R_HALF, 2
@@ -220,7 +220,7 @@ SLAVE_IDLE_POLL:
     sub     r3, r3, 1
     qbne    SLAVE_IDLE_POLL, r3, 0
 SLAVE_IDLE_YES:
-    jmp     r12.w0
+    jmp     RET_SUB
 
 // r2 = the result buffer being filled, with the frame's timestamp (bank
 // register 2, FRAME_STAMP) and busy clocks (r0.w2, START_WAIT) stored in it: the
@@ -241,7 +241,7 @@ BUF_STAMP:
 NO_SLAVE_IDLE:                              // SL low before a frame:
     ldi     r0, 0                           // no busy clocks (BUF_STAMP)
 NO_ACK:                                     // after a rising edge: MA stays high
-    ldi     r12, BISS_RF_NO_SLAVE
+    ldi     RES_FLAGS, BISS_RF_NO_SLAVE
 NO_SLAVE_FLAGS:                             // (SL_INIT_DONE: r12 its own flags)
     ldi     r2, 1
     sbco    r2.b0, c28, P_TRAIN_DUE, SIZE(BissPriv.train_due)  // training due
@@ -262,7 +262,7 @@ ABORT_FRAME:
 // average gone wrong would make every frame miss its start bit).
 PROC_ERROR:                                 // after a rising edge: MA stays high
     jal     r0.w0, HIST_FILL
-    ldi     r12, BISS_RF_PROC_ERROR
+    ldi     RES_FLAGS, BISS_RF_PROC_ERROR
     ldi     r3, BISS_ST_PROC_ERRORS
     jmp     ABORT_FRAME
 
@@ -274,14 +274,14 @@ PROC_ERROR:                                 // after a rising edge: MA stays hig
 // The frame's own WAIT_ACK and ACK periods make them: ACK_FOUND comes back
 // to TRAIN_DONE.
 TRAIN:
-    jal     r12.w0, SLAVE_IDLE
+    jal     RET_SUB, SLAVE_IDLE
     qbne    TRAIN_GO, r3, 0
 SL_INIT:                                    // SL stuck low: INIT first (see SL_INIT_DONE)
     ldi     r2, 2                           // training due, as the INIT
     sbco    r2.b0, c28, P_TRAIN_DUE, SIZE(BissPriv.train_due)
 TRAIN_GO:
-    jal     r12.w0, FRAME_REGS
-    ldi     r12, 2 * MA_MASK                // one clock after period 0's
+    jal     RET_SUB, FRAME_REGS
+    ldi     MA_EDGES, 2 * MA_MASK           // one clock after period 0's
     jmp     FRAME_CLOCKED
 TRAIN_DONE:
     lbco    r2.b0, c28, P_TRAIN_DUE, SIZE(BissPriv.train_due)
@@ -291,7 +291,7 @@ TRAIN_DONE:
     sbbo    r4, r2, BISS_R_DELAY_RAW, 4     // and DELAY_AVG
     sbco    r0.b0, c28, P_TRAIN_DUE, SIZE(BissPriv.train_due)  // training done (r0.w0 = 0: BUF_STAMP)
     sbco    r0.b0, c28, P_NAVG, SIZE(BissPriv.navg)  // the average starts at this frame
-    ldi     r12, BISS_RF_TRAINING
+    ldi     RES_FLAGS, BISS_RF_TRAINING
     ldi     r3, BISS_ST_TRAINING
     jmp     ABORT_FRAME
 
@@ -307,5 +307,5 @@ TRAIN_DONE:
 // trains at once, with SL high if the slave came back. (SL_INIT, above,
 // marks the training frame as that INIT.)
 SL_INIT_DONE:                               // a training proper next
-    ldi     r12, BISS_RF_NO_SLAVE | BISS_RF_SL_INIT
+    ldi     RES_FLAGS, BISS_RF_NO_SLAVE | BISS_RF_SL_INIT
     qba     NO_SLAVE_FLAGS

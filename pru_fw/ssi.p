@@ -8,12 +8,12 @@
 
 // Its configuration: CFG_SSI (APPLY_CONFIG).
 SSI_FRAME:
-    jal     r12.w0, FRAME_REGS
+    jal     RET_SUB, FRAME_REGS
     lbco    r1.w2, c28, P_SSI, SIZE(BissPriv) - P_SSI  // Q' (and r1.w2 is what FRAME_END records),
                                             // the clocks (to r2.w0: docs/pru-facts.md §1.7)
     IEP_ALIGN_IF SSI_ALIGNED
 SSI_ALIGNED:
-    mov     r12, r2.w0
+    mov     MA_EDGES, r2.w0
     FRAME_STAMP
     sub     r2, r1.w2, 4                    // sample point and lag as LAG1 derives them
     and     r10, r2, 7
@@ -22,4 +22,4 @@ SSI_ALIGNED:
     add     r3, r3, LAG                     // periods before bit 0 is read: m + LAG
     ldi     r8, 0
     LOAD_RECORD                             // the slave's data bits, no CRC
-    jmp     LAG_TOP                         // the idle periods, then r7.w2
+    jmp     LAG_TOP                         // the idle periods, then NEXT_ENTRY

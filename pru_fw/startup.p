@@ -89,7 +89,7 @@ IEP_WAIT:
     sub     r3, r3, 1                       // 2 cycles a turn
     qbne    IEP_WAIT, r3, 0
 IEP_ALIGNED:
-    jmp     r12.w0
+    jmp     RET_SUB
 
 // An IEP-triggered frame (r2.b3 = BISS_TRIG_IEP: TRIGGER_DONE, WAIT_FOLLOW)
 // aligns here, right after its last load; any other goes on to `next` at
@@ -97,7 +97,7 @@ IEP_ALIGNED:
 .macro IEP_ALIGN_IF
 .mparam next
     qbne    next, r2.b3, BISS_TRIG_IEP
-    jal     r12.w0, IEP_AT_ALIGN
+    jal     RET_SUB, IEP_AT_ALIGN
 .endm
 
 WAIT_HOST:
