@@ -1,5 +1,5 @@
 /* A frame-by-frame stand-in for the firmware's CDM program (biss_shm.h,
- * pru_fw/biss_master.p CD_PREPARE / CD_COMMIT), driving slave control
+ * pru_fw/cd.p CD_PREPARE / CD_COMMIT), driving slave control
  * models directly: per frame, the CDM goes to every slave; the OR of their
  * answers is the CDS of the next frame (one shared SL line). The program
  * is taken from a packed data RAM image, as the firmware reads it. */
