@@ -146,12 +146,10 @@ LAG1:
     MA_FALL
     add     r2, r1.w2, r4.w2                // 1  Q' + h0 + h1 + h2 + 2
     lsr     r2, r2, 2                       // 2  Qf': the 4-frame average
-    sub     r2, r2, 4                       // 3
-    and     r10, r2, 7                      // 4
-    add     r10, r10, 8                     // 5  r10 = 31 - (8 (m + LAG) - Qf)
+    SAMPLE_POINT r2                         // 3..5
     lsr     r8, r2, 3                       // 6  m = (Qf' - 4) / 8
     lsr     r6, r3, 3                       // 7  p (this frame's ACK period)
-    add     r3, r8, 2                       // 8
+    add     r3, r8, LAG                     // 8
     DELAY
     MA_RISE
     max     r3, r3, r6                      // 1

@@ -103,7 +103,7 @@ FE_NO_CRC_ERR:
     lsr     r3, r3, 2                       // Qf'
     sbbo    r1.w2, r2, BISS_R_DELAY_RAW, 2
     sbbo    r3.w0, r2, BISS_R_DELAY_AVG, 2
-    add     r6, r3, 8 * LAG - 4             // m + LAG = (Qf' - 4) / 8 + LAG, as LAG1
+    add     r6, r3, 8 * LAG - 4             // m + LAG = (Qf' - 4) / 8 + LAG (SAMPLE_POINT)
     lsr     r6, r6, 3                       // (Qf' >= 8: every Q' is)
     sbbo    r6.b0, r2, BISS_R_LAG_PERIODS, 1
     // History. An ACK more than half a bit from the average it was read

@@ -15,9 +15,7 @@ SSI_FRAME:
 SSI_ALIGNED:
     mov     MA_EDGES, r2.w0
     FRAME_STAMP
-    sub     r2, r1.w2, 4                    // sample point and lag as LAG1 derives them
-    and     r10, r2, 7
-    add     r10, r10, 8
+    SAMPLE_POINT r1.w2                      // sample point and lag as LAG1 derives them
     lsr     r3, r2, 3
     add     r3, r3, LAG                     // periods before bit 0 is read: m + LAG
     ldi     r8, 0
