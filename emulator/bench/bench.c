@@ -285,7 +285,7 @@ static uint32_t pins_inputs_at(void *ctx, int64_t t) {
 static int64_t pins_next_change(void *ctx, int64_t t) {
     struct bench *b = ctx;
     sim_ps recorded = waveform_next_after(&b->link.sl_master, t);
-    sim_ps pending = link_next_change(&b->link);
+    sim_ps pending = link_next_sl_change(&b->link);
     return recorded < pending ? recorded : pending;
 }
 
@@ -326,6 +326,7 @@ static struct bench *bench_on(const struct bench_config *cfg, struct pru_core *c
         return NULL;
     }
     link_set_observer(&b->link, on_pin, b);
+    link_set_sl_reach(&b->link, !cfg->no_sl_reach);
     struct pru_pins pins = {b, pins_inputs_at, pins_next_change, pins_outputs};
     pru_set_pins(b->core, &pins);
     return b;
