@@ -123,8 +123,8 @@ sim_ps link_next_sl_change(const link_model *l) {
     }
     /* pending events are a handful: a scan, not a second queue */
     sim_ps first = SIM_NEVER;
-    for (size_t i = 0; i < l->q.len; i++) {
-        const eq_event *e = &l->q.heap[i];
+    for (size_t i = l->q.head; i < l->q.len; i++) {
+        const eq_event *e = &l->q.ev[i];
         sim_ps t = e->ctx == &l->sl_line || e->t > SIM_NEVER - l->sl_reach_ps
                        ? e->t
                        : e->t + l->sl_reach_ps;
