@@ -33,6 +33,9 @@ struct bench_config {
     /* The PRU of the PRU-ICSS wired to the line: 0 (default: a core alone)
      * or 1 (PRU1 of a PRU-ICSS whose PRU0 stays idle, emulator/core/pruss.h) */
     unsigned pru_index;
+    /* the fast path "sl-reach" off: the SL input's next change is the next
+     * pending event of any kind (link_next_sl_change) */
+    int no_sl_reach;
 };
 
 /* Defaults: AM335x, MA on R30 bit 1, the "generic" profile. */

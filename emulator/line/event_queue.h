@@ -26,8 +26,8 @@ typedef struct {
 } eq_event;
 
 typedef struct {
-    eq_event *heap;
-    size_t len, cap;
+    eq_event *ev; /* ev[head .. len): pending, in order of (t, id) */
+    size_t head, len, cap;
     eq_id next_id;
     sim_ps now; /* time of the event running or last run, or of the last advance */
 } event_queue;
@@ -66,7 +66,7 @@ static inline sim_ps eq_now(const event_queue *q) {
 }
 
 static inline size_t eq_pending(const event_queue *q) {
-    return q->len;
+    return q->len - q->head;
 }
 
 #endif

@@ -26,12 +26,12 @@ double line_tau_ps(const line_params *p) {
     return t > 0.0 ? t : 0.0;
 }
 
-static sim_ps fixed_delay(const line_params *p) {
+sim_ps line_fixed_delay_ps(const line_params *p) {
     return p->driver_delay_ps + p->receiver_delay_ps + (sim_ps)llround(p->length_m * p->ps_per_m);
 }
 
 double line_nominal_delay_ps(const line_params *p) {
-    return (double)fixed_delay(p) + line_tau_ps(p) * LN2 +
+    return (double)line_fixed_delay_ps(p) + line_tau_ps(p) * LN2 +
            0.5 * (double)(p->rise_extra_ps + p->fall_extra_ps);
 }
 
@@ -109,7 +109,7 @@ void line_dir_init(line_dir *l, const line_params *p, event_queue *q, uint64_t s
     sim_rng_seed(&l->rng, seed);
     l->out = out;
     l->tau = line_tau_ps(p);
-    l->fixed = fixed_delay(p);
+    l->fixed = line_fixed_delay_ps(p);
     idle_level = idle_level ? 1 : 0;
     l->v0 = idle_level;
     l->t0 = eq_now(q);

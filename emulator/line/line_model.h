@@ -53,6 +53,10 @@ typedef struct {
 
 void line_params_default(line_params *p);
 
+/* Propagation plus transceiver delays, in ps: what every edge takes at
+ * least beyond the low-pass crossing and the driver skew. */
+sim_ps line_fixed_delay_ps(const line_params *p);
+
 /* Low-pass time constant for these parameters, in ps. */
 double line_tau_ps(const line_params *p);
 

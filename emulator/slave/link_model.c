@@ -34,6 +34,19 @@ static void at_sl_master(void *ctx, sim_ps t, int level) {
     observe(l, LINK_SL_MASTER, t, level);
 }
 
+/* The least delay from an SL line input at t to its output: the output is
+ * at cross + fixed (+ jitter), cross >= t + the smaller driver skew, never
+ * at or before t, never before the previous output (line_dir_input). With
+ * jitter any delay down to 1 ps is possible. */
+static sim_ps sl_reach(const line_params *p) {
+    if (p->jitter_rms_ps > 0.0) {
+        return 1;
+    }
+    sim_ps skew = p->rise_extra_ps < p->fall_extra_ps ? p->rise_extra_ps : p->fall_extra_ps;
+    sim_ps d = line_fixed_delay_ps(p) + (skew < 0 ? skew : 0);
+    return d > 1 ? d : 1;
+}
+
 void link_set_observer(link_model *l, link_pin_fn fn, void *ctx) {
     l->observer = fn;
     l->observer_ctx = ctx;
@@ -50,6 +63,8 @@ int link_init(link_model *l, const scenario *sc, char *err, size_t errlen) {
     waveform_init(&l->ma_slave, 1);
     waveform_init(&l->sl_slave, 1);
     waveform_init(&l->sl_master, 1);
+    l->sl_reach_ps = sl_reach(&l->sc.sl_line);
+    l->sl_reach_on = 1;
     sim_edge_sink to_slave = {at_ma_slave, l};
     sim_edge_sink from_slave = {at_sl_slave, l};
     line_dir_init(&l->ma_line, &l->sc.ma_line, &l->q, sim_rng_derive(sc->seed, 1), 1, to_slave);
@@ -96,6 +111,28 @@ int link_sl(link_model *l, sim_ps t) {
 
 sim_ps link_next_change(const link_model *l) {
     return eq_next_time(&l->q);
+}
+
+void link_set_sl_reach(link_model *l, int on) {
+    l->sl_reach_on = on;
+}
+
+sim_ps link_next_sl_change(const link_model *l) {
+    if (!l->sl_reach_on) {
+        return eq_next_time(&l->q);
+    }
+    /* pending events are a handful: a scan, not a second queue */
+    sim_ps first = SIM_NEVER;
+    for (size_t i = l->q.head; i < l->q.len; i++) {
+        const eq_event *e = &l->q.ev[i];
+        sim_ps t = e->ctx == &l->sl_line || e->t > SIM_NEVER - l->sl_reach_ps
+                       ? e->t
+                       : e->t + l->sl_reach_ps;
+        if (t < first) {
+            first = t;
+        }
+    }
+    return first;
 }
 
 uint64_t link_frames(const link_model *l) {

@@ -38,6 +38,11 @@ typedef struct {
     biss_slave biss;
     ssi_slave ssi;
     waveform ma_master, ma_slave, sl_slave, sl_master;
+    /* link_next_sl_change(): the least time from an input edge of the SL
+     * line to its output (sl_reach_ps), and whether to use it (the fast
+     * path "sl-reach"; off: every pending event counts as a change) */
+    sim_ps sl_reach_ps;
+    int sl_reach_on;
 } link_model;
 
 /* Builds the link at time 0, idle (MA and SL high). The random streams of
@@ -56,6 +61,18 @@ int link_sl(link_model *l, sim_ps t);
  * glitch) happens, or SIM_NEVER: SL at the master is constant until then
  * unless MA changes. */
 sim_ps link_next_change(const link_model *l);
+
+/* Earliest time at which SL at the master may change, or SIM_NEVER, unless
+ * MA changes first: an event of the SL line itself (an output edge, a
+ * glitch, a fault) at its time; any other event (an edge on its way to the
+ * slave, the slave's output, its timeout) only sl_reach_ps after it, since
+ * whatever it sends down the SL line comes out that much later at least.
+ * Never earlier than link_next_change(). With sl-reach off (link_set_sl_reach)
+ * it is link_next_change(). */
+sim_ps link_next_sl_change(const link_model *l);
+
+/* Switches the fast path "sl-reach" of link_next_sl_change (on by default). */
+void link_set_sl_reach(link_model *l, int on);
 
 /* Drops pin history before t (a long run keeps its memory bounded). */
 void link_forget_before(link_model *l, sim_ps t);

@@ -12,6 +12,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 from checks import check, finish  # noqa: E402
 
 SIM = sys.argv[1]
+SCEN = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scenarios")
 
 
 tmp = tempfile.mkdtemp()
@@ -42,12 +43,21 @@ cases = [
     # firmware's are not: docs/silicon-assumptions.md A2)
     ("image-1MHz", ["--image", os.path.join(os.path.dirname(__file__), "clock_frames.p"),
                     "--freq", "1000000", "--frames", "10"]),
+    # noise on the SL line (glitches; glitches and jitter on both lines):
+    # sl-reach counts the SL line's own events at their time, with jitter
+    # any other event 1 ps after its own
+    ("noise-sl", ["--scenario", os.path.join(SCEN, "noise-sl-100khz.json"), "--frames", "100"]),
+    ("noise-jitter", ["--scenario", os.path.join(SCEN, "noise-both-30khz-jitter.json"),
+                      "--frames", "100"]),
 ]
 paths = ["ff-counted", "ff-r31-bits", "ff-loop-delay", "ff-count-loop", "ff"]
 # the core's threaded execute loop (and its kinds: whole-register and
 # immediate forms, R30 writes) against the general path: it skips no
 # iterations, so only the results and the VCD are compared
 loops = ["fast-loop"]
+# the link's bound on the next SL change (link_next_sl_change): it may
+# change how far the core skips, so only the results and the VCD count
+bounds = ["sl-reach"]
 skips_less = {p: [] for p in paths}  # the cases in which the path skipped something
 for name, args in cases:
     ref, ref_vcd, ref_skip = run(name, args, [])
@@ -66,6 +76,11 @@ for name, args in cases:
         check(j == ref, "%s: other results: %s vs %s" % (what, j, ref))
         check(vcd == ref_vcd, "%s: another VCD" % what)
         check(skip == ref_skip, "%s: skipped %d, not %d" % (what, skip, ref_skip))
+    for path in bounds:
+        j, vcd, skip = run(name, args, [path])
+        what = "%s without %s" % (name, path)
+        check(j == ref, "%s: other results: %s vs %s" % (what, j, ref))
+        check(vcd == ref_vcd, "%s: another VCD" % what)
 for path, where in skips_less.items():
     check(where, "%s skipped nothing in any case" % path)
 # the default run at 10 MHz idles in a counted poll; at 1 MHz the image's

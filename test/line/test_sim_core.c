@@ -87,7 +87,7 @@ START_TEST(queue_schedule_under_an_earlier_id) {
 END_TEST
 
 START_TEST(queue_cancel_of_an_event_that_sifted_up) {
-    /* B is earlier than A, so it moves to the heap's top when scheduled:
+    /* B is earlier than A, so it is put before A when scheduled:
      * its id must still be its own. */
     event_queue q;
     log_t g = {.n = 0};
