@@ -183,7 +183,7 @@ BISS_SHM_AT(res[0], BISS_RES0);
 BISS_SHM_AT(res[1], BISS_RES0 + BISS_RES_SIZE);
 _Static_assert(sizeof(struct biss_shm_result) == BISS_RES_SIZE, "result buffer size");
 _Static_assert(BISS_RES0 == 0x100 && BISS_RES_SIZE < 0x100,
-               "biss_master.p's RESULT_ADDR adds BISS_RES0 as bit 8 to at most one BISS_RES_SIZE");
+               "pru_fw/frame.p's RESULT_ADDR adds BISS_RES0 as bit 8 to at most one BISS_RES_SIZE");
 BISS_SHM_RESULT_AT(frame, BISS_R_FRAME);
 BISS_SHM_RESULT_AT(flags, BISS_R_FLAGS);
 BISS_SHM_RESULT_AT(timestamp, BISS_R_TIMESTAMP);

@@ -216,7 +216,7 @@ struct count_end {
 };
 
 /*
- * A delay as the firmware writes it (pru_fw/biss_master.p DLY_TURN), with a
+ * A delay as the firmware writes it (pru_fw/config.p DLY_TURN), with a
  * work instruction `work` among the pads: r10 = 0x00ab00cd with `count`
  * in r10.b1, r6/r7 inputs; the turns: sub r10.b1, r10.b1, step; work; mov
  * r0, r0; qbne TURN, r10.b1, 0; then adc r8, r8, 0 shows the carry. Run
