@@ -39,6 +39,18 @@ PINS = [
      "pr1_pru0_pru_r30_1 (MA)", "out"),
     ("PocketBeagle", "PB-BISS-PRU0-00A0", "am335x", "P1_36", "mcasp0_aclkx", 0x990, 6,
      "pr1_pru0_pru_r31_0 (SL)", "in"),
+    # two encoders: PRU0's pins again, and PRU1's (SPRS717L Signal Descriptions,
+    # PRU1 table: r31_0 on ball R1 only, r30_1 on R2 only; BeagleBone Black
+    # SRM "Expansion Header P8 Pinout": R1 = P8_45 lcd_data0, R2 = P8_46
+    # lcd_data1, modes 5 and 6 as below)
+    ("BeagleBone Black", "BB-BISS-PRU01-00A0", "am335x", "P9_29", "mcasp0_fsx", 0x994, 5,
+     "pr1_pru0_pru_r30_1 (MA0)", "out"),
+    ("BeagleBone Black", "BB-BISS-PRU01-00A0", "am335x", "P9_31", "mcasp0_aclkx", 0x990, 6,
+     "pr1_pru0_pru_r31_0 (SL0)", "in"),
+    ("BeagleBone Black", "BB-BISS-PRU01-00A0", "am335x", "P8_46", "lcd_data1", 0x8A4, 5,
+     "pr1_pru1_pru_r30_1 (MA1)", "out"),
+    ("BeagleBone Black", "BB-BISS-PRU01-00A0", "am335x", "P8_45", "lcd_data0", 0x8A0, 6,
+     "pr1_pru1_pru_r31_0 (SL1)", "in"),
     ("AM437x IDK", "AM437X-IDK-BISS-00A0", "am437x", "-", "mcasp0_aclkx", 0x990, 6,
      "pr0_pru0_gpi0 (SL)", "in"),
     ("AM437x IDK", "AM437X-IDK-BISS-00A0", "am437x", "-", "mcasp0_fsx", 0x994, 5,
@@ -51,6 +63,7 @@ PINS = [
 TARGETS = {
     "BB-BISS-PRU0-00A0": {"am33xx_pinmux", "pruss_tm", "pruss", "mcasp0"},
     "PB-BISS-PRU0-00A0": {"am33xx_pinmux", "pruss_tm", "pruss"},
+    "BB-BISS-PRU01-00A0": {"am33xx_pinmux", "pruss_tm", "pruss", "mcasp0"},
     "AM437X-IDK-BISS-00A0": {"am43xx_pinmux", "pruss_tm", "pruss0", "gpio5"},
 }
 
@@ -109,11 +122,40 @@ with tempfile.TemporaryDirectory() as tmp:
             check(re.search(r"gpio-hog;\s*gpios = <0x0c 0x00>;\s*output-high;", back) is not None,
                   "%s: gpio5_12 hog" % name)
 
-    # the config-pin recipes name the same header pins and PRU modes
-    for script, pins in [("config-pin-beaglebone.sh", {"P9_29": "pruout", "P9_31": "pruin"}),
-                         ("config-pin-pocketbeagle.sh", {"P1_33": "pruout", "P1_36": "pruin"})]:
-        text = open(os.path.join(boards, script)).read()
-        got = dict(re.findall(r"^config-pin (P\d_\d+) (\w+)$", text, re.M))
-        check(got == pins, "%s: %r" % (script, got))
+    # the config-pin recipes, run with a stand-in config-pin that logs its
+    # arguments: the same header pins and PRU modes as the table, per PRU;
+    # the PocketBeagle refuses PRU1 (its R31 bit 0 is not on a header)
+    fake = os.path.join(tmp, "bin")
+    os.mkdir(fake)
+    log = os.path.join(tmp, "config-pin.log")
+    with open(os.path.join(fake, "config-pin"), "w") as f:
+        f.write('#!/bin/sh\necho "$*" >> "%s"\n' % log)
+    os.chmod(os.path.join(fake, "config-pin"), 0o755)
+    env = dict(os.environ, PATH=fake + os.pathsep + os.environ["PATH"])
+    for script, args, rc, pins in [
+            ("config-pin-beaglebone.sh", [], 0, [("P9_29", "pruout"), ("P9_31", "pruin")]),
+            ("config-pin-beaglebone.sh", ["--pru", "0"], 0,
+             [("P9_29", "pruout"), ("P9_31", "pruin")]),
+            ("config-pin-beaglebone.sh", ["--pru", "1"], 0,
+             [("P8_46", "pruout"), ("P8_45", "pruin")]),
+            ("config-pin-beaglebone.sh", ["--pru", "2"], 2, []),
+            ("config-pin-pocketbeagle.sh", [], 0, [("P1_33", "pruout"), ("P1_36", "pruin")]),
+            ("config-pin-pocketbeagle.sh", ["--pru", "1"], 1, [])]:
+        if os.path.exists(log):
+            os.remove(log)
+        r = subprocess.run(["sh", os.path.join(boards, script)] + args, env=env,
+                           capture_output=True, text=True)
+        what = "%s %s" % (script, " ".join(args))
+        check(r.returncode == rc, "%s: exit %d, want %d (%s)" % (what, r.returncode, rc,
+                                                                 r.stderr.strip()))
+        calls = open(log).read().split("\n")[:-1] if os.path.exists(log) else []
+        want = ["%s %s" % p for p in pins] + ["-q %s" % p for p, _ in pins]
+        check(calls == want, "%s: config-pin calls %r, want %r" % (what, calls, want))
+        if rc:
+            check(r.stderr != "", "%s: fails without saying why" % what)
+    # the PRU1 pins in the table are the ones the BeagleBone recipe sets
+    pru1 = {p[3]: ("pruout" if p[8] == "out" else "pruin") for p in PINS
+            if p[1] == "BB-BISS-PRU01-00A0" and "pru1" in p[7]}
+    check(pru1 == {"P8_46": "pruout", "P8_45": "pruin"}, "PRU1 table rows %r" % pru1)
 
 finish("board overlays")

@@ -67,6 +67,7 @@ def check_tree(prefix, tmp):
     for f in ["bin/" + t for t in a.tools.split()] + [
             "include/libbiss.h", "lib/firmware/biss_master.bin", "lib/firmware/biss_master.elf",
             "lib/firmware/am335x-pru0-fw", "lib/firmware/BB-BISS-PRU0-00A0.dtbo",
+            "lib/firmware/BB-BISS-PRU01-00A0.dtbo",
             "lib/firmware/biss_master_pru1.bin", "lib/firmware/biss_master_pru1.elf",
             "lib/firmware/am335x-pru1-fw", "lib/firmware/am437x-pru0_1-fw",
             "share/doc/pru_biss/README.md", "share/doc/pru_biss/host/README.md"]:
