@@ -61,8 +61,8 @@ static void pair_open(struct pair *p, enum pru_soc soc, const char *profile0, co
 
 /* Each PRU with the image built for it, under strict mode and the data-RAM
  * contention `contend` (NULL: none). */
-static void pair_new_contended(struct pair *p, enum pru_soc soc, const char *profile0,
-                               const char *profile1, unsigned longest_half, const char *contend) {
+static void pair_new(struct pair *p, enum pru_soc soc, const char *profile0, const char *profile1,
+                     unsigned longest_half, const char *contend) {
     struct pru_params pp;
     strict_params(&pp, longest_half);
     char err[200];
@@ -73,11 +73,6 @@ static void pair_new_contended(struct pair *p, enum pru_soc soc, const char *pro
         e2e_start_firmware(&p->r[i]);
         fw_check_attach(&p->r[i].fc, p->r[i].b);
     }
-}
-
-static void pair_new(struct pair *p, enum pru_soc soc, const char *profile0, const char *profile1,
-                     unsigned longest_half) {
-    pair_new_contended(p, soc, profile0, profile1, longest_half, NULL);
 }
 
 static void pair_free(struct pair *p) {
@@ -168,27 +163,30 @@ static void check_pair(struct pair *p, unsigned half0, unsigned half1) {
     }
 }
 
+/* profile0 on PRU0 at half0 and profile1 on PRU1 at half1, read together
+ * (contend: the host's data-RAM reads, or NULL) and checked. */
+static void read_pair(enum pru_soc soc, const char *profile0, const char *profile1, unsigned half0,
+                      unsigned half1, const char *contend) {
+    struct pair p;
+    pair_new(&p, soc, profile0, profile1, half0 > half1 ? half0 : half1, contend);
+    configure(&p, half0, half1);
+    check_pair(&p, half0, half1);
+    pair_free(&p);
+}
+
 /* Two different encoders (one slave of 12 bits + CRC6; a chain with a
  * CRC16 slave) at the same rate, on every PRU-ICSS: two axes per AM335x,
  * four per AM437x (each of its PRU-ICSS with its own IEP). */
 static const enum pru_soc socs[] = {PRU_SOC_AM335X, PRU_SOC_AM437X_ICSS0, PRU_SOC_AM437X_ICSS1};
 
 START_TEST(test_two_encoders_same_rate) {
-    struct pair p;
-    pair_new(&p, socs[_i], "tidep0022-test-encoder", "hengstler-ad38", 10);
-    configure(&p, 10, 10);
-    check_pair(&p, 10, 10);
-    pair_free(&p);
+    read_pair(socs[_i], "tidep0022-test-encoder", "hengstler-ad38", 10, 10, NULL);
 }
 END_TEST
 
 /* Each PRU at its own rate (its own GPCFG divider): starts still match. */
 START_TEST(test_two_encoders_own_rates) {
-    struct pair p;
-    pair_new(&p, PRU_SOC_AM335X, "posital-kit-layout-biss-c", "tidep0022-test-encoder", 20);
-    configure(&p, 20, 10);
-    check_pair(&p, 20, 10);
-    pair_free(&p);
+    read_pair(PRU_SOC_AM335X, "posital-kit-layout-biss-c", "tidep0022-test-encoder", 20, 10, NULL);
 }
 END_TEST
 
@@ -198,11 +196,7 @@ END_TEST
  * both, the other PRU would overwrite them here (a CRC error on every
  * frame of the chain), so this pair shows that each PRU keeps to its own. */
 START_TEST(test_chain_and_single) {
-    struct pair p;
-    pair_new(&p, PRU_SOC_AM335X, "hengstler-ad38", "posital-kit-layout-biss-c", 20);
-    configure(&p, 20, 20);
-    check_pair(&p, 20, 20);
-    pair_free(&p);
+    read_pair(PRU_SOC_AM335X, "hengstler-ad38", "posital-kit-layout-biss-c", 20, 20, NULL);
 }
 END_TEST
 
@@ -211,12 +205,7 @@ END_TEST
  * (IEP_AT_ALIGN), so the frames still start on the same count. */
 START_TEST(test_two_encoders_contended) {
     static const char *const specs[] = {"4,3", "2,8,random:7"};
-    struct pair p;
-    pair_new_contended(&p, PRU_SOC_AM335X, "tidep0022-test-encoder", "hengstler-ad38", 10,
-                       specs[_i]);
-    configure(&p, 10, 10);
-    check_pair(&p, 10, 10);
-    pair_free(&p);
+    read_pair(PRU_SOC_AM335X, "tidep0022-test-encoder", "hengstler-ad38", 10, 10, specs[_i]);
 }
 END_TEST
 
@@ -227,12 +216,9 @@ END_TEST
  * mode's spad rule stops PRU1 at that XOUT: the rule the tests above run
  * under does catch a shared bank. */
 START_TEST(test_same_line_both) {
-    struct pair p;
-    pair_new(&p, PRU_SOC_AM335X, "hengstler-ad38", "hengstler-ad38", 10);
-    configure(&p, 10, 10);
-    check_pair(&p, 10, 10);
-    pair_free(&p);
+    read_pair(PRU_SOC_AM335X, "hengstler-ad38", "hengstler-ad38", 10, 10, NULL);
 
+    struct pair p;
     struct pru_params pp;
     pru_params_default(&pp);
     pp.strict = PRU_STRICT_SPAD;
