@@ -269,18 +269,34 @@ START_TEST(test_attach_leaves_it_running) {
 }
 END_TEST
 
-/* --pru 1: PRU1's instance (named after its IRAM, 4a338000) and firmware
- * name, its data RAM; PRU0's instance left alone. */
-START_TEST(test_pru1_instance) {
+/* PRU1's remoteproc instance (named after its IRAM, 4a338000) with its
+ * firmware name in place, and the stand-in kernel running it: the kernel's
+ * PRU1 image says it was built for built_for (-1: PRU1). */
+static void pru1_begin(struct kernel *k, pthread_t *t, int built_for) {
     make_tree();
     snprintf(rp, sizeof rp, "%s/sys/class/remoteproc/remoteproc2", root);
     kdram = 0x2000;
+    kpru = built_for;
     char path[256];
     snprintf(path, sizeof path, "%s/am335x-pru1-fw", fwdir);
     put_file(path, "an ELF");
+    ck_assert_int_eq(pthread_create(t, NULL, kernel_thread, k), 0);
+}
+
+static void pru1_end(struct kernel *k, pthread_t t) {
+    atomic_store(&k->stop, 1);
+    pthread_join(t, NULL);
+    kdram = 0;
+    kpru = -1;
+    remove_tree();
+}
+
+/* --pru 1: PRU1's instance (named after its IRAM, 4a338000) and firmware
+ * name, its data RAM; PRU0's instance left alone. */
+START_TEST(test_pru1_instance) {
     struct kernel k = {0};
     pthread_t t;
-    ck_assert_int_eq(pthread_create(&t, NULL, kernel_thread, &k), 0);
+    pru1_begin(&k, &t, -1);
     struct biss_open_params p = params();
     p.pru = 1;
     biss_t *h;
@@ -294,30 +310,21 @@ START_TEST(test_pru1_instance) {
     ck_assert(st.firmware_running);
     biss_close(h);
     wait_state("offline\n");
+    char path[256];
     snprintf(path, sizeof path, "%s/sys/class/remoteproc/remoteproc1/firmware", root);
     get_file(path, buf, sizeof buf);
     ck_assert_str_eq(buf, "am335x-pru-fw-old\n"); /* PRU0's instance untouched */
     ck_assert_uint_eq(mem32(AM335X_BASE + CTRL0), 0x5a5a5a5a);
-    atomic_store(&k.stop, 1);
-    pthread_join(t, NULL);
-    kdram = 0;
-    remove_tree();
+    pru1_end(&k, t);
 }
 END_TEST
 
 /* PRU1 running an image built for PRU0 (the name linked to PRU0's ELF):
  * refused once its start-up says so (BISS_ST_PRU), with the image to use. */
 START_TEST(test_pru1_wrong_image) {
-    make_tree();
-    snprintf(rp, sizeof rp, "%s/sys/class/remoteproc/remoteproc2", root);
-    kdram = 0x2000;
-    kpru = 0;
-    char path[256];
-    snprintf(path, sizeof path, "%s/am335x-pru1-fw", fwdir);
-    put_file(path, "an ELF");
     struct kernel k = {0};
     pthread_t t;
-    ck_assert_int_eq(pthread_create(&t, NULL, kernel_thread, &k), 0);
+    pru1_begin(&k, &t, 0);
     struct biss_open_params p = params();
     p.pru = 1;
     biss_t *h;
@@ -325,11 +332,7 @@ START_TEST(test_pru1_wrong_image) {
     ck_assert_msg(strstr(err, "PRU1 runs an image assembled for PRU0") &&
                       strstr(err, "biss_master_pru1"),
                   "%s", err);
-    atomic_store(&k.stop, 1);
-    pthread_join(t, NULL);
-    kdram = 0;
-    kpru = -1;
-    remove_tree();
+    pru1_end(&k, t);
 }
 END_TEST
 
