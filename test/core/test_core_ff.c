@@ -156,6 +156,20 @@ START_TEST(counter_read_elsewhere_runs) {
 }
 END_TEST
 
+/* prog (n words) on c, run in pieces of `piece` cycles, never past a
+ * piece's limit, until it halts (within max_cycles). */
+static void run_to_halt(struct pru_core *c, const uint32_t *prog, unsigned n, int64_t piece,
+                        int64_t max_cycles) {
+    pru_load_image(c, prog, n * 4);
+    pru_start(c);
+    enum pru_stop st = PRU_STOP_LIMIT;
+    for (int64_t limit = piece; st == PRU_STOP_LIMIT && limit < max_cycles; limit += piece) {
+        st = pru_run_until_cycle(c, limit);
+        ck_assert_int_le(pru_cycles(c), limit);
+    }
+    ck_assert_int_eq(st, PRU_STOP_HALT);
+}
+
 /* loop END, r0; <body>; END: halt -- run in pieces of `piece` cycles. */
 static struct outcome loop_run(enum path p, uint32_t body, unsigned count, int64_t piece) {
     struct pru_core *c = ff_core(p, NULL);
@@ -166,14 +180,7 @@ static struct outcome loop_run(enum path p, uint32_t body, unsigned count, int64
     prog[n++] = body;
     prog[n++] = alui(PRU_OP_ADD, R(2), R(2), 7);
     prog[n++] = halt();
-    pru_load_image(c, prog, n * 4);
-    pru_start(c);
-    enum pru_stop st = PRU_STOP_LIMIT;
-    for (int64_t limit = piece; st == PRU_STOP_LIMIT && limit < 2000000; limit += piece) {
-        st = pru_run_until_cycle(c, limit);
-        ck_assert_int_le(pru_cycles(c), limit);
-    }
-    ck_assert_int_eq(st, PRU_STOP_HALT);
+    run_to_halt(c, prog, n, piece, 2000000);
     struct outcome o = {pru_cycles(c), pru_instructions(c), pru_ff_skipped(c), pru_reg(c, 2)};
     pru_core_free(c);
     return o;
@@ -236,14 +243,7 @@ static struct count_end count_run(enum path p, uint32_t work, unsigned count, un
     prog[n++] = qbi(PRU_OP_QBNE, -3, B1(10), 0);
     prog[n++] = alui(PRU_OP_ADC, R(8), R(8), 0);
     prog[n++] = halt();
-    pru_load_image(c, prog, n * 4);
-    pru_start(c);
-    enum pru_stop st = PRU_STOP_LIMIT;
-    for (int64_t limit = piece; st == PRU_STOP_LIMIT && limit < 10000000; limit += piece) {
-        st = pru_run_until_cycle(c, limit);
-        ck_assert_int_le(pru_cycles(c), limit);
-    }
-    ck_assert_int_eq(st, PRU_STOP_HALT);
+    run_to_halt(c, prog, n, piece, 10000000);
     struct count_end e = {pru_cycles(c), pru_instructions(c), pru_ff_skipped(c), {0}};
     for (unsigned i = 0; i < 30; i++)
         e.r[i] = pru_reg(c, i);
