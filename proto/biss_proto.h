@@ -180,6 +180,11 @@ int biss_proto_cd_answer(const struct biss_proto_io *io, biss_cd_answer *a);
  * with 1 the answer is read into *a. */
 int biss_proto_cd_ended(const struct biss_proto_io *io, uint32_t cmd, biss_cd_answer *a);
 
+/* The low `bits` bits set (all 64 for bits >= 64). */
+static inline uint64_t biss_low_mask(unsigned bits) {
+    return bits >= 64 ? ~0ull : (1ull << bits) - 1u;
+}
+
 #pragma GCC visibility pop
 
 #endif

@@ -26,10 +26,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-static uint64_t low_mask(unsigned bits) {
-    return bits >= 64 ? ~0ull : (1ull << bits) - 1u;
-}
-
 unsigned biss_safety_life_width(const struct biss_slave_config *s) {
     if (s->life_bits) {
         return s->life_bits;
@@ -110,7 +106,7 @@ static uint32_t life(const struct biss_slave_config *c, struct biss_safety_state
     if (!c->life_check || !r->crc_ok) {
         return 0; /* a word with a bad CRC tells nothing; the reference stays */
     }
-    uint64_t m = low_mask(biss_safety_life_width(c));
+    uint64_t m = biss_low_mask(biss_safety_life_width(c));
     uint32_t lc = (uint32_t)(r->data & m);
     uint32_t flags = 0;
     if (st->ref[i]) {
@@ -137,7 +133,7 @@ static int64_t pair_diff(const struct biss_config *c, const struct biss_pair_che
     unsigned wa = biss_proto_pos_bits(&c->slave[p->a]) + p->shift_a;
     unsigned wb = biss_proto_pos_bits(&c->slave[p->b]) + p->shift_b;
     unsigned w = wa > wb ? wa : wb;
-    uint64_t m = low_mask(w);
+    uint64_t m = biss_low_mask(w);
     uint64_t d =
         ((s->slave[p->a].position << p->shift_a) - (s->slave[p->b].position << p->shift_b)) & m;
     if (w < 64 && w > 0 && (d >> (w - 1))) {

@@ -22,10 +22,6 @@ void biss_delay_decode(uint16_t raw, uint16_t avg, unsigned half, struct biss_li
     delay_of(raw, half, &d->raw_bit8, &d->raw_cycles, &d->raw_ns);
 }
 
-static uint64_t low_mask(unsigned bits) {
-    return bits >= 64 ? ~0ull : (1ull << bits) - 1u;
-}
-
 /* The position is the top of the data word (biss_proto_pos_bits). */
 static uint64_t position_of(const struct biss_slave_config *c, uint64_t data) {
     unsigned low = c->has_ew ? c->ew_shift + 2 : 0;
@@ -34,14 +30,14 @@ static uint64_t position_of(const struct biss_slave_config *c, uint64_t data) {
     }
     unsigned pos = biss_proto_pos_bits(c);
     unsigned shift = c->data_bits - pos;
-    return (data >> shift) & low_mask(pos);
+    return (data >> shift) & biss_low_mask(pos);
 }
 
 static void decode_slave(const struct biss_slave_config *c, const struct biss_shm_slave_result *r,
                          struct biss_slave_result *o) {
     o->data = (uint64_t)r->data_hi << 32 | r->data_lo;
     if (c) {
-        o->data &= low_mask(c->data_bits); /* no bit the layout does not have */
+        o->data &= biss_low_mask(c->data_bits); /* no bit the layout does not have */
     }
     o->crc_reg = r->crc_reg;
     o->status = r->status;
