@@ -125,8 +125,9 @@ static void print_safety_stats(biss_t *h) {
     }
     for (unsigned i = 0; i < c.nslaves; i++) {
         if (c.slave[i].max_speed) {
-            printf("%ss%u.pos_checked=%u s%u.pos_jumped=%u", any ? " " : "safety: ", i,
-                   st.pos_checked[i], i, st.pos_jumped[i]);
+            printf("%ss%u.pos_checked=%u s%u.pos_jumped=%u s%u.pos_resync=%u",
+                   any ? " " : "safety: ", i, st.pos_checked[i], i, st.pos_jumped[i], i,
+                   st.pos_resync[i]);
             any = true;
         }
     }

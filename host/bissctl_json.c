@@ -82,9 +82,10 @@ void bissctl_json_end(biss_t *h) {
         any = false;
         for (unsigned i = 0; i < c.nslaves; i++) {
             if (c.slave[i].max_speed) {
-                printf(
-                    "%s{\"slave\": %u, \"counts_per_s\": %.17g, \"checked\": %u, \"jumped\": %u}",
-                    any ? ", " : "", i, c.slave[i].max_speed, st.pos_checked[i], st.pos_jumped[i]);
+                printf("%s{\"slave\": %u, \"counts_per_s\": %.17g, \"checked\": %u, "
+                       "\"jumped\": %u, \"resync\": %u}",
+                       any ? ", " : "", i, c.slave[i].max_speed, st.pos_checked[i],
+                       st.pos_jumped[i], st.pos_resync[i]);
                 any = true;
             }
         }

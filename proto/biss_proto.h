@@ -87,16 +87,21 @@ void biss_delay_decode(uint16_t raw, uint16_t avg, unsigned half, struct biss_li
 
 /* ---- safety checks (biss_safety.c) ---- */
 
+/* A position the speed check compares with: its frame and IEP timestamp. */
+struct biss_pos_ref {
+    bool set;
+    uint32_t frame, ts;
+    uint64_t pos;
+};
+
 /* What the checks remember between frames: per slave the last life
  * counter trusted (CRC good) and its frame number, the last position
- * accepted and its frame number; the last frame judged
+ * accepted and the last one refused since; the last frame judged
  * (read again, it keeps its verdict and is not counted twice); the counts. */
 struct biss_safety_state {
     bool ref[BISS_API_MAX_SLAVES];
     uint32_t ref_frame[BISS_API_MAX_SLAVES], ref_lc[BISS_API_MAX_SLAVES];
-    bool pos_ref[BISS_API_MAX_SLAVES];
-    uint32_t pos_frame[BISS_API_MAX_SLAVES], pos_ts[BISS_API_MAX_SLAVES];
-    uint64_t pos[BISS_API_MAX_SLAVES];
+    struct biss_pos_ref pos[BISS_API_MAX_SLAVES], refused[BISS_API_MAX_SLAVES];
     bool seen;
     uint32_t last_frame;
     uint32_t last_flags[BISS_API_MAX_SLAVES];

@@ -193,29 +193,37 @@ static bool ew_static(const struct biss_config *c, struct biss_safety_state *st,
     return misframed;
 }
 
-/* Seconds from the frame whose position slave i accepted last to frame
- * s, or -1 where they cannot be told: by the frame numbers in IEP trigger
- * (the count restarts every period), else by the IEP timestamps (5 ns
- * counts, modulo 2^32). */
-static double elapsed_s(const struct biss_config *c, const struct biss_safety_state *st, unsigned i,
+/* Seconds from the reference's frame to frame s, or -1 where they cannot
+ * be told: by the frame numbers in IEP trigger (the count restarts every
+ * period), else by the IEP timestamps (5 ns counts, modulo 2^32). */
+static double elapsed_s(const struct biss_config *c, const struct biss_pos_ref *ref,
                         const struct biss_sample *s) {
+    if (!ref->set) {
+        return -1;
+    }
     if (c->trigger == BISS_TRIGGER_IEP || c->trigger == BISS_TRIGGER_IEP_FOLLOW) {
         if (!c->iep_period_ns) {
             return -1;
         }
-        return (double)(uint32_t)(s->frame - st->pos_frame[i]) * c->iep_period_ns * 1e-9;
+        return (double)(uint32_t)(s->frame - ref->frame) * c->iep_period_ns * 1e-9;
     }
-    return (double)(uint32_t)(s->timestamp - st->pos_ts[i]) / BISS_PRU_HZ;
+    return (double)(uint32_t)(s->timestamp - ref->ts) / BISS_PRU_HZ;
 }
 
-/* A max_speed slave's position against the last one accepted: 1 beyond
- * reach (further than max_speed times the time between, plus one count for
- * the two readings' rounding; distances modulo 2^width, a wrap is no jump),
- * 0 within, -1 not judged (a reach of half the circle or more). */
-static int jumped(const struct biss_config *c, const struct biss_safety_state *st, unsigned i,
-                  double dt, uint64_t pos) {
+/* Slave i's position in frame s against a reference: 1 beyond reach
+ * (further than max_speed times the time between, plus one count for the
+ * two readings' rounding; distances modulo 2^width, a wrap is no jump), 0
+ * within, -1 not judged (no reference or time, a reach of half the circle
+ * or more). */
+static int beyond(const struct biss_config *c, unsigned i, const struct biss_pos_ref *ref,
+                  const struct biss_sample *s) {
+    double dt = elapsed_s(c, ref, s);
+    if (dt < 0) {
+        return -1;
+    }
     uint64_t m = biss_low_mask(biss_proto_pos_bits(&c->slave[i]));
-    uint64_t ahead = (pos - st->pos[i]) & m, back = (st->pos[i] - pos) & m;
+    uint64_t pos = s->slave[i].position;
+    uint64_t ahead = (pos - ref->pos) & m, back = (ref->pos - pos) & m;
     double dist = (double)(ahead < back ? ahead : back);
     double reach = c->slave[i].max_speed * dt + 1.0;
     if (reach >= (double)(m >> 1)) {
@@ -224,18 +232,35 @@ static int jumped(const struct biss_config *c, const struct biss_safety_state *s
     return dist > reach;
 }
 
+static struct biss_pos_ref pos_ref(const struct biss_sample *s, unsigned i) {
+    return (struct biss_pos_ref){
+        .set = true, .frame = s->frame, .ts = s->timestamp, .pos = s->slave[i].position};
+}
+
 /* The position of every max_speed slave against the last one accepted:
- * any beyond reach makes the frame misframed (counted per slave). */
+ * any beyond reach makes the frame misframed (counted per slave), unless
+ * it lies within reach of the position refused last, after it: two frames
+ * in a row that agree with each other and not with the reference say the
+ * reference is the wrong one (a wrong position that passed within reach,
+ * or the encoder set to a new position), and the check takes the newer
+ * one (counted as a resync). A frame misframed by its nE/nW (ew) is no
+ * such witness. */
 static bool positions(const struct biss_config *c, struct biss_safety_state *st,
-                      struct biss_sample *s) {
+                      struct biss_sample *s, bool ew) {
     bool misframed = false;
     for (unsigned i = 0; i < s->nslaves && i < BISS_API_MAX_SLAVES && i < c->nslaves; i++) {
-        const struct biss_slave_result *r = &s->slave[i];
-        double dt = st->pos_ref[i] ? elapsed_s(c, st, i, s) : -1;
-        int j =
-            c->slave[i].max_speed && r->crc_ok && dt >= 0 ? jumped(c, st, i, dt, r->position) : -1;
+        if (!c->slave[i].max_speed || !s->slave[i].crc_ok) {
+            continue;
+        }
+        int j = beyond(c, i, &st->pos[i], s);
         if (j < 0) {
             continue;
+        }
+        if (j && !ew && beyond(c, i, &st->refused[i], s) == 0) {
+            st->stats.pos_resync[i]++;
+            j = 0;
+        } else if (j && !ew) {
+            st->refused[i] = pos_ref(s, i);
         }
         s->slave[i].safety |= BISS_SAFE_POS_CHECKED | (j ? BISS_SAFE_POS_JUMP : 0);
         st->stats.pos_checked[i]++;
@@ -250,10 +275,8 @@ static void accept_positions(const struct biss_config *c, struct biss_safety_sta
                              const struct biss_sample *s) {
     for (unsigned i = 0; i < s->nslaves && i < BISS_API_MAX_SLAVES && i < c->nslaves; i++) {
         if (c->slave[i].max_speed && s->slave[i].crc_ok) {
-            st->pos_ref[i] = true;
-            st->pos_frame[i] = s->frame;
-            st->pos_ts[i] = s->timestamp;
-            st->pos[i] = s->slave[i].position;
+            st->pos[i] = pos_ref(s, i);
+            st->refused[i].set = false;
         }
     }
 }
@@ -293,7 +316,7 @@ void biss_safety_check(const struct biss_config *c, struct biss_safety_state *st
         return;
     }
     bool ew = ew_static(c, st, s);
-    bool far = positions(c, st, s);
+    bool far = positions(c, st, s, ew);
     if (ew || far) {
         /* bits read one place off: no word of it is to be trusted, nor
          * judged (the life counters and positions keep their references) */

@@ -176,6 +176,7 @@ static void add_safety(cJSON *j, const struct fw_check *fw) {
             cJSON_AddNumberToObject(s, "counts_per_s", fw->cfg.slave[i].max_speed);
             cJSON_AddNumberToObject(s, "checked", st->pos_checked[i]);
             cJSON_AddNumberToObject(s, "jumped", st->pos_jumped[i]);
+            cJSON_AddNumberToObject(s, "resync", st->pos_resync[i]);
             cJSON_AddItemToArray(step, s);
         }
     }
@@ -210,8 +211,10 @@ static void print_safety(const struct fw_check *fw) {
     }
     for (unsigned i = 0; i < fw->cfg.nslaves; i++) {
         if (fw->cfg.slave[i].max_speed) {
-            printf("speed %u              %u positions checked, %u beyond %g counts/s\n", i,
-                   st->pos_checked[i], st->pos_jumped[i], fw->cfg.slave[i].max_speed);
+            printf("speed %u              %u positions checked, %u beyond %g counts/s, %u "
+                   "resyncs\n",
+                   i, st->pos_checked[i], st->pos_jumped[i], fw->cfg.slave[i].max_speed,
+                   st->pos_resync[i]);
         }
     }
     if (fw->misframed) {

@@ -490,6 +490,9 @@ struct biss_safety_stats {
     uint32_t ew_set[BISS_API_MAX_SLAVES];       /* ... with nE or nW active: misframed */
     uint32_t pos_checked[BISS_API_MAX_SLAVES];  /* max_speed: positions compared */
     uint32_t pos_jumped[BISS_API_MAX_SLAVES];   /* ... beyond its reach: misframed */
+    uint32_t pos_resync[BISS_API_MAX_SLAVES];   /* ... beyond reach, but in reach of the
+                                                   one refused before: taken as the new
+                                                   reference, valid */
 };
 int biss_get_safety_stats(biss_t *h, struct biss_safety_stats *st);
 

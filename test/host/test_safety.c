@@ -482,6 +482,38 @@ START_TEST(test_speed_free_run) {
 }
 END_TEST
 
+START_TEST(test_speed_resync) {
+    /* two frames in a row that agree with each other, not with the
+     * reference: the second is taken (the encoder was set to a new
+     * position, or the reference was wrong); one alone is refused */
+    struct biss_config c = speed_checked();
+    struct biss_safety_state st;
+    biss_safety_init(&st);
+    bool v;
+    const uint32_t us20 = 4000;
+    at(&c, &st, 1, 0, 1000, &v);
+    ck_assert_uint_eq(at(&c, &st, 2, us20, 5000, &v), BISS_SAFE_POS_CHECKED | BISS_SAFE_POS_JUMP);
+    ck_assert(!v);
+    ck_assert_uint_eq(at(&c, &st, 3, 2 * us20, 1003, &v), BISS_SAFE_POS_CHECKED);
+    ck_assert(v); /* back in reach of 1000: 5000 was one wrong frame */
+    ck_assert_uint_eq(at(&c, &st, 4, 3 * us20, 9000, &v),
+                      BISS_SAFE_POS_CHECKED | BISS_SAFE_POS_JUMP);
+    ck_assert_uint_eq(at(&c, &st, 5, 4 * us20, 9001, &v), BISS_SAFE_POS_CHECKED);
+    ck_assert(v);
+    ck_assert_uint_eq(at(&c, &st, 6, 5 * us20, 9002, &v), BISS_SAFE_POS_CHECKED);
+    ck_assert_uint_eq(st.stats.pos_jumped[0], 2);
+    ck_assert_uint_eq(st.stats.pos_resync[0], 1);
+    ck_assert_uint_eq(st.stats.pos_checked[0], 5);
+    /* two wrong frames far from each other take nothing over */
+    at(&c, &st, 7, 6 * us20, 100, &v);
+    ck_assert(!v);
+    ck_assert_uint_eq(at(&c, &st, 8, 7 * us20, 200, &v),
+                      BISS_SAFE_POS_CHECKED | BISS_SAFE_POS_JUMP);
+    ck_assert_uint_eq(at(&c, &st, 9, 8 * us20, 9005, &v), BISS_SAFE_POS_CHECKED);
+    ck_assert(v);
+}
+END_TEST
+
 START_TEST(test_speed_iep) {
     /* IEP trigger: the count restarts each period, the frame numbers tell
      * the time (100 us a frame: reach 5 per frame, plus 1) */
@@ -518,7 +550,14 @@ START_TEST(test_speed_and_ew) {
     s.slave[0].position = 5000;
     biss_safety_check(&c, &st, &s);
     ck_assert(s.misframed && (s.slave[0].safety & BISS_SAFE_POS_JUMP));
+    /* nor is it a witness against the reference: the next frame with the
+     * same position is refused as well */
     s = published(&c, 3, 1, 1, true);
+    s.slave[0].position = 5000;
+    biss_safety_check(&c, &st, &s);
+    ck_assert(s.misframed && (s.slave[0].safety & BISS_SAFE_POS_JUMP));
+    ck_assert_uint_eq(st.stats.pos_resync[0], 0);
+    s = published(&c, 4, 1, 1, true);
     biss_safety_check(&c, &st, &s);
     ck_assert(s.valid && s.slave[0].safety == (BISS_SAFE_EW_CHECKED | BISS_SAFE_POS_CHECKED));
 }
@@ -567,6 +606,7 @@ int main(void) {
     tcase_add_test(tc, test_ew_static_and_life);
     tcase_add_test(tc, test_ew_static_config);
     tcase_add_test(tc, test_speed_free_run);
+    tcase_add_test(tc, test_speed_resync);
     tcase_add_test(tc, test_speed_iep);
     tcase_add_test(tc, test_speed_and_ew);
     tcase_add_test(tc, test_speed_config);
