@@ -90,10 +90,10 @@ END_TEST
  * Each scenario has the host's nE/nW check on (its encoder never sets
  * them: "checks": {"ew_static": [0]}), which must never refuse a good
  * frame, and its speed check (50 000 counts/s, checked at 60 000:
- * "max_speed"), which refuses a good frame only now and then (38 in 10^6
+ * "max_speed"), which refuses a good frame only now and then (4 in 10^6
  * with glitches on both lines: a position taken when an MA glitch, not the
- * master, started the slave's frame, or after a wrong position within
- * reach became the reference). */
+ * master, started the slave's frame, or the first good frame after a wrong
+ * position within reach became the reference). */
 static const struct noise_case {
     const char *file;
     double min_good;        /* share of publications valid with a good CRC */
@@ -111,7 +111,7 @@ static const struct noise_case {
     /* glitches on MA too: an extra clock makes the encoder send every later
      * bit one period early, which only the CRC6 and the host's checks see.
      * About 1 in 2500 frames is caught by each (in 10^6 frames 421 by the
-     * nE/nW check, 387 by the speed check, and 6 wrong left; 581 wrong
+     * nE/nW check, 353 by the speed check, and 6 wrong left; 581 wrong
      * without them): 30 000 frames in both builds, so that both fire */
     {SCENARIO_DIR "/noise-both-30khz-jitter.json", 0.85, 1, 30000, 1},
 };
