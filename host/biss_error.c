@@ -86,6 +86,8 @@ static const struct err_text errors[] = {
     {BISS_E_IEP_OWNED, "the other PRU's channel owns the IEP (trigger iep): use iep-follow"},
     {BISS_E_FW_PRU, "the running image was assembled for the other PRU (PRU0: biss_master, "
                     "PRU1: biss_master_pru1)"},
+    {BISS_E_SAFETY_SPEED, "speed check (max_speed): no such slave in the chain, or the speed "
+                          "is not a finite number above 0"},
 };
 
 const char *biss_strerror(int err) {

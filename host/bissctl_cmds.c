@@ -48,6 +48,15 @@ static void print_safety(const struct biss_sample *s, const struct biss_config *
                                                : "ok");
         }
     }
+    for (unsigned i = 0; i < s->nslaves && i < c->nslaves; i++) {
+        uint32_t f = s->slave[i].safety;
+        if (c->slave[i].max_speed) {
+            printf(" s%u.speed=%s", i,
+                   !(f & BISS_SAFE_POS_CHECKED) ? "-"
+                   : f & BISS_SAFE_POS_JUMP     ? "jump"
+                                                : "ok");
+        }
+    }
     for (unsigned k = 0; k < c->npairs; k++) {
         uint32_t f = s->slave[c->pair[k].a].safety & s->slave[c->pair[k].b].safety;
         printf(" pair%u=%s", k,
@@ -111,6 +120,14 @@ static void print_safety_stats(biss_t *h) {
         if (c.slave[i].ew_static) {
             printf("%ss%u.ew_checked=%u s%u.misframed=%u", any ? " " : "safety: ", i,
                    st.ew_checked[i], i, st.ew_set[i]);
+            any = true;
+        }
+    }
+    for (unsigned i = 0; i < c.nslaves; i++) {
+        if (c.slave[i].max_speed) {
+            printf("%ss%u.pos_checked=%u s%u.pos_jumped=%u s%u.pos_resync=%u",
+                   any ? " " : "safety: ", i, st.pos_checked[i], i, st.pos_jumped[i], i,
+                   st.pos_resync[i]);
             any = true;
         }
     }

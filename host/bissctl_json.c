@@ -78,6 +78,17 @@ void bissctl_json_end(biss_t *h) {
                 any = true;
             }
         }
+        printf("], \"max_speed\": [");
+        any = false;
+        for (unsigned i = 0; i < c.nslaves; i++) {
+            if (c.slave[i].max_speed) {
+                printf("%s{\"slave\": %u, \"counts_per_s\": %.17g, \"checked\": %u, "
+                       "\"jumped\": %u, \"resync\": %u}",
+                       any ? ", " : "", i, c.slave[i].max_speed, st.pos_checked[i],
+                       st.pos_jumped[i], st.pos_resync[i]);
+                any = true;
+            }
+        }
         printf("], \"pairs\": [");
         for (unsigned k = 0; k < c.npairs; k++) {
             printf(

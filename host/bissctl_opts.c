@@ -55,6 +55,9 @@ static const char common_help[] =
     "                     within TOL counts after shifting their positions left\n"
     "  --check-ew S       slave S never sets nE/nW: a frame where either reads active\n"
     "                     was read one bit off (misframed) and is not valid\n"
+    "  --check-speed S,CPS\n"
+    "                     slave S's position moves at most CPS counts a second: a\n"
+    "                     frame beyond reach of the last one accepted is misframed\n"
     "  --no-configure     leave the configuration as it is\n";
 
 static const char *command_help(const char *command) {
@@ -70,7 +73,8 @@ static const char *command_help(const char *command) {
                "  none); line delay, sample point (1/8 bit), lag (periods), the IEP\n"
                "  timestamp (counts of 5 ns) and the time it stands for.\n"
                "  In host-trigger mode each frame is triggered first. With safety checks\n"
-               "  (--check-life, --check-pair, --check-ew) each frame's verdicts and, after\n"
+               "  (--check-life, --check-pair, --check-ew, --check-speed) each frame's verdicts "
+               "and, after\n"
                "  the last, their counts. --json: one JSON object, {\"frames\": [...], \"safety\": "
                "{...}}.\n";
     }
@@ -237,6 +241,7 @@ enum {
     OPT_PROC,
     OPT_CHECK_LIFE,
     OPT_CHECK_EW,
+    OPT_CHECK_SPEED,
     OPT_CHECK_PAIR,
     OPT_NOCONF,
     OPT_MS,
@@ -270,6 +275,7 @@ static const struct option long_opts[] = {
     {"proc-limit", required_argument, NULL, OPT_PROC},
     {"check-life", required_argument, NULL, OPT_CHECK_LIFE},
     {"check-ew", required_argument, NULL, OPT_CHECK_EW},
+    {"check-speed", required_argument, NULL, OPT_CHECK_SPEED},
     {"check-pair", required_argument, NULL, OPT_CHECK_PAIR},
     {"no-configure", no_argument, NULL, OPT_NOCONF},
     {"ms", required_argument, NULL, OPT_MS},
@@ -439,6 +445,12 @@ static int take_config_opt(int c, const char *arg, struct bissctl_opts *o) {
     case OPT_CHECK_EW:
         return biss_safety_parse_ew(arg, &o->checks)
                    ? usage_error("--check-ew '%s': expected S (slave 0..7)", arg)
+                   : 0;
+    case OPT_CHECK_SPEED:
+        return biss_safety_parse_speed(arg, &o->checks)
+                   ? usage_error("--check-speed '%s': expected S,CPS (slave 0..7, counts per "
+                                 "second > 0)",
+                                 arg)
                    : 0;
     case OPT_CHECK_PAIR:
         switch (biss_safety_parse_pair(arg, &o->checks)) {

@@ -87,12 +87,21 @@ void biss_delay_decode(uint16_t raw, uint16_t avg, unsigned half, struct biss_li
 
 /* ---- safety checks (biss_safety.c) ---- */
 
+/* A position the speed check compares with: its frame and IEP timestamp. */
+struct biss_pos_ref {
+    bool set;
+    uint32_t frame, ts;
+    uint64_t pos;
+};
+
 /* What the checks remember between frames: per slave the last life
- * counter trusted (CRC good) and its frame number; the last frame judged
+ * counter trusted (CRC good) and its frame number, the last position
+ * accepted and the last one refused since; the last frame judged
  * (read again, it keeps its verdict and is not counted twice); the counts. */
 struct biss_safety_state {
     bool ref[BISS_API_MAX_SLAVES];
     uint32_t ref_frame[BISS_API_MAX_SLAVES], ref_lc[BISS_API_MAX_SLAVES];
+    struct biss_pos_ref pos[BISS_API_MAX_SLAVES], refused[BISS_API_MAX_SLAVES];
     bool seen;
     uint32_t last_frame;
     uint32_t last_flags[BISS_API_MAX_SLAVES];
@@ -102,7 +111,7 @@ struct biss_safety_state {
 
 /* The safety fields of a configuration against its layout: 0,
  * BISS_E_SAFETY_LIFE, BISS_E_SAFETY_PAIR, BISS_E_SAFETY_CRC or
- * BISS_E_SAFETY_EW. */
+ * BISS_E_SAFETY_EW or BISS_E_SAFETY_SPEED. */
 int biss_safety_config_check(const struct biss_config *c);
 /* Width of a slave's life counter: life_bits, else ew_shift (0 without nE/nW). */
 unsigned biss_safety_life_width(const struct biss_slave_config *s);
@@ -114,8 +123,10 @@ void biss_safety_restart(struct biss_safety_state *st);
  * Frames need not be consecutive (the frame numbers say how many ran); a
  * no-slave or aborted frame forgets the life counters (the slave may not
  * have counted it). An ew_static slave's CRC-good word with nE or nW
- * active makes the frame misframed: s->misframed set, s->valid cleared,
- * and no life or pair check on it. */
+ * active, or a max_speed slave's CRC-good position further from the last
+ * one accepted than it can move in the time between, makes the frame misframed:
+ * s->misframed set, s->valid cleared, and no life or pair check on it (nor
+ * does its position become the reference). */
 void biss_safety_check(const struct biss_config *c, struct biss_safety_state *st,
                        struct biss_sample *s);
 /* Command-line spellings: "S[,BITS]" (life counter of slave S, width
@@ -126,6 +137,9 @@ int biss_safety_parse_life(const char *arg, struct biss_config *c);
 int biss_safety_parse_pair(const char *arg, struct biss_config *c);
 /* "S": slave S never sets nE/nW (ew_static): 0 or BISS_E_INVAL. */
 int biss_safety_parse_ew(const char *arg, struct biss_config *c);
+/* "S,CPS": slave S's position moves at most CPS counts per second (a
+ * number above 0; max_speed): 0 or BISS_E_INVAL. */
+int biss_safety_parse_speed(const char *arg, struct biss_config *c);
 /* The checks of `checks` added to dst (a layout from elsewhere): 0 or
  * BISS_E_SAFETY_PAIR (too many pairs). */
 int biss_safety_merge(struct biss_config *dst, const struct biss_config *checks);

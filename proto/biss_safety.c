@@ -19,10 +19,19 @@
  * reads the bit after each one in its place: nW's place then holds the
  * first bit of what follows (life counter or inverted CRC), and a CRC6
  * still passes 1 in 64 such words. Reading either bit 0 shows such a frame
- * whatever its CRC says. */
+ * whatever its CRC says.
+ *
+ * The same frame of a slave that does set nE/nW, or whose shifted word
+ * still reads 1, 1 there, is caught by where its position lies: an encoder
+ * moves at most its top speed, so a position lies within max_speed times
+ * the time since the last one accepted (plus a count), while a word read
+ * one place off from bit k on differs in the bits below k (by up to
+ * 2^(width - k)). What such a check cannot see is a misframing in the
+ * lowest bits, within that reach of the truth. */
 #include "biss_proto.h"
 
 #include <errno.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -76,6 +85,10 @@ int biss_safety_config_check(const struct biss_config *c) {
         }
         if (c->slave[i].ew_static && (i >= c->nslaves || !c->slave[i].has_ew)) {
             return BISS_E_SAFETY_EW;
+        }
+        double v = c->slave[i].max_speed;
+        if (v != 0 && (i >= c->nslaves || !isfinite(v) || v < 0)) {
+            return BISS_E_SAFETY_SPEED;
         }
     }
     if (c->npairs > BISS_API_MAX_PAIRS) {
@@ -180,6 +193,94 @@ static bool ew_static(const struct biss_config *c, struct biss_safety_state *st,
     return misframed;
 }
 
+/* Seconds from the reference's frame to frame s, or -1 where they cannot
+ * be told: by the frame numbers in IEP trigger (the count restarts every
+ * period), else by the IEP timestamps (5 ns counts, modulo 2^32). */
+static double elapsed_s(const struct biss_config *c, const struct biss_pos_ref *ref,
+                        const struct biss_sample *s) {
+    if (!ref->set) {
+        return -1;
+    }
+    if (c->trigger == BISS_TRIGGER_IEP || c->trigger == BISS_TRIGGER_IEP_FOLLOW) {
+        if (!c->iep_period_ns) {
+            return -1;
+        }
+        return (double)(uint32_t)(s->frame - ref->frame) * c->iep_period_ns * 1e-9;
+    }
+    return (double)(uint32_t)(s->timestamp - ref->ts) / BISS_PRU_HZ;
+}
+
+/* Slave i's position in frame s against a reference: 1 beyond reach
+ * (further than max_speed times the time between, plus one count for the
+ * two readings' rounding; distances modulo 2^width, a wrap is no jump), 0
+ * within, -1 not judged (no reference or time, a reach of half the circle
+ * or more). */
+static int beyond(const struct biss_config *c, unsigned i, const struct biss_pos_ref *ref,
+                  const struct biss_sample *s) {
+    double dt = elapsed_s(c, ref, s);
+    if (dt < 0) {
+        return -1;
+    }
+    uint64_t m = biss_low_mask(biss_proto_pos_bits(&c->slave[i]));
+    uint64_t pos = s->slave[i].position;
+    uint64_t ahead = (pos - ref->pos) & m, back = (ref->pos - pos) & m;
+    double dist = (double)(ahead < back ? ahead : back);
+    double reach = c->slave[i].max_speed * dt + 1.0;
+    if (reach >= (double)(m >> 1)) {
+        return -1;
+    }
+    return dist > reach;
+}
+
+static struct biss_pos_ref pos_ref(const struct biss_sample *s, unsigned i) {
+    return (struct biss_pos_ref){
+        .set = true, .frame = s->frame, .ts = s->timestamp, .pos = s->slave[i].position};
+}
+
+/* The position of every max_speed slave against the last one accepted:
+ * any beyond reach makes the frame misframed (counted per slave), unless
+ * it lies within reach of the position refused last, after it: two frames
+ * in a row that agree with each other and not with the reference say the
+ * reference is the wrong one (a wrong position that passed within reach,
+ * or the encoder set to a new position), and the check takes the newer
+ * one (counted as a resync). A frame misframed by its nE/nW (ew) is no
+ * such witness. */
+static bool positions(const struct biss_config *c, struct biss_safety_state *st,
+                      struct biss_sample *s, bool ew) {
+    bool misframed = false;
+    for (unsigned i = 0; i < s->nslaves && i < BISS_API_MAX_SLAVES && i < c->nslaves; i++) {
+        if (!c->slave[i].max_speed || !s->slave[i].crc_ok) {
+            continue;
+        }
+        int j = beyond(c, i, &st->pos[i], s);
+        if (j < 0) {
+            continue;
+        }
+        if (j && !ew && beyond(c, i, &st->refused[i], s) == 0) {
+            st->stats.pos_resync[i]++;
+            j = 0;
+        } else if (j && !ew) {
+            st->refused[i] = pos_ref(s, i);
+        }
+        s->slave[i].safety |= BISS_SAFE_POS_CHECKED | (j ? BISS_SAFE_POS_JUMP : 0);
+        st->stats.pos_checked[i]++;
+        st->stats.pos_jumped[i] += (uint32_t)j;
+        misframed = misframed || j;
+    }
+    return misframed;
+}
+
+/* The positions of a frame accepted become the references. */
+static void accept_positions(const struct biss_config *c, struct biss_safety_state *st,
+                             const struct biss_sample *s) {
+    for (unsigned i = 0; i < s->nslaves && i < BISS_API_MAX_SLAVES && i < c->nslaves; i++) {
+        if (c->slave[i].max_speed && s->slave[i].crc_ok) {
+            st->pos[i] = pos_ref(s, i);
+            st->refused[i].set = false;
+        }
+    }
+}
+
 /* The verdicts of the frame judged last, and what they say about it. */
 static void remember(struct biss_safety_state *st, struct biss_sample *s) {
     st->seen = true;
@@ -214,9 +315,11 @@ void biss_safety_check(const struct biss_config *c, struct biss_safety_state *st
         }
         return;
     }
-    if (ew_static(c, st, s)) {
+    bool ew = ew_static(c, st, s);
+    bool far = positions(c, st, s, ew);
+    if (ew || far) {
         /* bits read one place off: no word of it is to be trusted, nor
-         * judged (the life counters keep their references) */
+         * judged (the life counters and positions keep their references) */
         s->misframed = true;
         s->valid = false;
         remember(st, s);
@@ -226,6 +329,7 @@ void biss_safety_check(const struct biss_config *c, struct biss_safety_state *st
         s->slave[i].safety |= life(&c->slave[i], st, i, s->frame, &s->slave[i]);
     }
     pairs(c, st, s);
+    accept_positions(c, st, s);
     remember(st, s);
 }
 
@@ -289,9 +393,32 @@ int biss_safety_parse_ew(const char *arg, struct biss_config *c) {
     return BISS_OK;
 }
 
+int biss_safety_parse_speed(const char *arg, struct biss_config *c) {
+    unsigned long long v[1];
+    const char *comma = strchr(arg, ',');
+    char slave[24];
+    if (!comma || (size_t)(comma - arg) >= sizeof slave) {
+        return BISS_E_INVAL;
+    }
+    memcpy(slave, arg, (size_t)(comma - arg));
+    slave[comma - arg] = '\0';
+    char *end;
+    errno = 0;
+    double cps = strtod(comma + 1, &end);
+    if (numbers(slave, v, 1) != 1 || v[0] >= BISS_API_MAX_SLAVES || errno || end == comma + 1 ||
+        *end || !isfinite(cps) || cps <= 0) {
+        return BISS_E_INVAL;
+    }
+    c->slave[v[0]].max_speed = cps;
+    return BISS_OK;
+}
+
 int biss_safety_merge(struct biss_config *dst, const struct biss_config *checks) {
     for (unsigned i = 0; i < BISS_API_MAX_SLAVES; i++) {
         dst->slave[i].ew_static = dst->slave[i].ew_static || checks->slave[i].ew_static;
+        if (checks->slave[i].max_speed) {
+            dst->slave[i].max_speed = checks->slave[i].max_speed;
+        }
         if (checks->slave[i].life_check) {
             dst->slave[i].life_check = true;
             dst->slave[i].life_bits = checks->slave[i].life_bits;

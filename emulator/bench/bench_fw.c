@@ -54,6 +54,7 @@ void bench_fw_layout(const struct bench *b, struct biss_config *c) {
         c->slave[i].life_check = sc->checks.life[i];
         c->slave[i].life_bits = sc->checks.life[i] ? s->lc_bits : 0;
         c->slave[i].ew_static = sc->checks.ew_static[i];
+        c->slave[i].max_speed = sc->checks.max_speed[i];
     }
     c->npairs = sc->checks.npairs;
     for (unsigned k = 0; k < sc->checks.npairs && k < BISS_API_MAX_PAIRS; k++) {

@@ -70,7 +70,8 @@ struct options {
     unsigned strict, strict_window;
     int strict_log;
     const char *contend;
-    struct biss_config checks; /* --check-life, --check-pair, --check-ew (their fields only) */
+    struct biss_config
+        checks; /* --check-life, --check-pair, --check-ew, --check-speed (their fields only) */
 };
 
 static void usage(FILE *f) {
@@ -115,6 +116,8 @@ static void usage(FILE *f) {
                "                               shifting left by SA, SB (their CRCs differ)\n"
                "  --check-ew S                 slave S never sets nE/nW: a frame where either\n"
                "                               reads active is misframed, not valid\n"
+               "  --check-speed S,CPS          slave S's position moves at most CPS counts a\n"
+               "                               second: a frame beyond reach is misframed\n"
                "  --no-fast-path P   run without the emulator's fast path P (results are the\n"
                "                     same, only slower): ff (idle loops, and with it the\n"
                "                     next four), ff-counted (polls with a time-out counter),\n"
@@ -182,11 +185,11 @@ static void list_profiles(void) {
 }
 
 /* Options that take a value. */
-static const char *const valued[] = {"--profile",    "--scenario",   "--freq",      "--cable-m",
-                                     "--frames",     "--seed",       "--image",     "--soc",
-                                     "--vcd",        "--svg",        "--svg-frame", "--max-ms",
-                                     "--firmware",   "--reg-read",   "--reg-write", "--command",
-                                     "--check-life", "--check-pair", "--check-ew"};
+static const char *const valued[] = {
+    "--profile",   "--scenario",   "--freq",       "--cable-m",  "--frames",
+    "--seed",      "--image",      "--soc",        "--vcd",      "--svg",
+    "--svg-frame", "--max-ms",     "--firmware",   "--reg-read", "--reg-write",
+    "--command",   "--check-life", "--check-pair", "--check-ew", "--check-speed"};
 /* ... and those of the waveform output and the fast paths */
 static const char *const valued_out[] = {"--vcd-timescale", "--no-fast-path",  "--strict-window",
                                          "--contend",       "--pru",           "--pru1-profile",
@@ -312,6 +315,10 @@ static int set_option(struct options *o, const char *a, const char *v) {
     } else if (!strcmp(a, "--check-ew")) {
         if (biss_safety_parse_ew(v, &o->checks)) {
             return die("--check-ew: '%s' is not S (slave 0..7)", v);
+        }
+    } else if (!strcmp(a, "--check-speed")) {
+        if (biss_safety_parse_speed(v, &o->checks)) {
+            return die("--check-speed: '%s' is not S,CPS (slave 0..7, counts per second > 0)", v);
         }
     } else if (!strcmp(a, "--check-pair")) {
         if (biss_safety_parse_pair(v, &o->checks)) {
@@ -614,6 +621,9 @@ static int safety_checks(const struct options *o, struct biss_config *c) {
     case BISS_E_SAFETY_EW:
         return die("safety checks: the nE/nW check (a slave that never sets them) names a slave "
                    "outside the chain or one that sends no nE/nW (BISS_E_SAFETY_EW)");
+    case BISS_E_SAFETY_SPEED:
+        return die("safety checks: the speed check names a slave outside the chain "
+                   "(BISS_E_SAFETY_SPEED)");
     case BISS_E_SAFETY_CRC:
         return die("safety checks: the two channels of a pair have the same CRC polynomial and "
                    "start value; BiSS Safety tells them apart by it (BISS_E_SAFETY_CRC)");

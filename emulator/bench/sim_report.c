@@ -136,7 +136,8 @@ static void add_firmware(cJSON *j, struct bench *b, const struct fw_check *fw) {
 static bool any_safety(const struct fw_check *fw) {
     bool any = fw->cfg.npairs > 0;
     for (unsigned i = 0; i < fw->cfg.nslaves; i++) {
-        any = any || fw->cfg.slave[i].life_check || fw->cfg.slave[i].ew_static;
+        any = any || fw->cfg.slave[i].life_check || fw->cfg.slave[i].ew_static ||
+              fw->cfg.slave[i].max_speed;
     }
     return any;
 }
@@ -165,6 +166,18 @@ static void add_safety(cJSON *j, const struct fw_check *fw) {
             cJSON_AddNumberToObject(s, "checked", st->ew_checked[i]);
             cJSON_AddNumberToObject(s, "misframed", st->ew_set[i]);
             cJSON_AddItemToArray(ew, s);
+        }
+    }
+    cJSON *step = cJSON_AddArrayToObject(o, "max_speed");
+    for (unsigned i = 0; i < fw->cfg.nslaves; i++) {
+        if (fw->cfg.slave[i].max_speed) {
+            cJSON *s = cJSON_CreateObject();
+            cJSON_AddNumberToObject(s, "slave", i);
+            cJSON_AddNumberToObject(s, "counts_per_s", fw->cfg.slave[i].max_speed);
+            cJSON_AddNumberToObject(s, "checked", st->pos_checked[i]);
+            cJSON_AddNumberToObject(s, "jumped", st->pos_jumped[i]);
+            cJSON_AddNumberToObject(s, "resync", st->pos_resync[i]);
+            cJSON_AddItemToArray(step, s);
         }
     }
     /* frames, not slaves: a frame with two slaves flagged counts once */
@@ -196,9 +209,17 @@ static void print_safety(const struct fw_check *fw) {
                    st->ew_checked[i], st->ew_set[i]);
         }
     }
+    for (unsigned i = 0; i < fw->cfg.nslaves; i++) {
+        if (fw->cfg.slave[i].max_speed) {
+            printf("speed %u              %u positions checked, %u beyond %g counts/s, %u "
+                   "resyncs\n",
+                   i, st->pos_checked[i], st->pos_jumped[i], fw->cfg.slave[i].max_speed,
+                   st->pos_resync[i]);
+        }
+    }
     if (fw->misframed) {
         printf("misframed            %llu frames refused (nE/nW of a slave that never sets "
-               "them), %llu of them good\n",
+               "them, or a position beyond reach), %llu of them good\n",
                (unsigned long long)fw->misframed, (unsigned long long)fw->misframed_good);
     }
     for (unsigned k = 0; k < fw->cfg.npairs; k++) {

@@ -19,8 +19,9 @@ typedef enum { SCENARIO_BISS, SCENARIO_SSI } scenario_protocol;
  * that a scenario with a fault also says what must catch it. */
 #define SCENARIO_MAX_PAIRS 4
 typedef struct {
-    bool life[BISS_MAX_SLAVES];      /* check slave i's life counter (its life_counter_bits) */
-    bool ew_static[BISS_MAX_SLAVES]; /* slave i never sets nE/nW: either active = misframed */
+    bool life[BISS_MAX_SLAVES];        /* check slave i's life counter (its life_counter_bits) */
+    bool ew_static[BISS_MAX_SLAVES];   /* slave i never sets nE/nW: either active = misframed */
+    double max_speed[BISS_MAX_SLAVES]; /* slave i moves at most this, counts/s (0: unchecked) */
     unsigned npairs;
     struct {
         unsigned a, b, shift_a, shift_b;

@@ -99,6 +99,13 @@ static int check_checks(const scenario *s, char *err, size_t errlen) {
             return -1;
         }
     }
+    for (unsigned i = 0; i < BISS_MAX_SLAVES; i++) {
+        if (c->max_speed[i] > 0 && i >= n) {
+            snprintf(err, errlen, "checks.max_speed: slave %u is not in the chain (%u slaves)", i,
+                     n);
+            return -1;
+        }
+    }
     for (unsigned k = 0; k < c->npairs; k++) {
         unsigned a = c->pair[k].a, b = c->pair[k].b;
         if (a >= n || b >= n || a == b) {

@@ -412,6 +412,39 @@ static int parse_pair(ctx *c, const cJSON *obj, scenario_checks *k, unsigned i) 
     return has_a && has_b ? 0 : fail(c, has_a ? "b" : "a", "missing (the pair's two slaves)");
 }
 
+static const sf_field sf_speed[] = {
+    {"slave", SF_UNSIGNED, 0, 0, 0, BISS_MAX_SLAVES - 1},
+    {"counts_per_s", SF_DOUBLE, 0, 1, 1e-9, 1e18},
+};
+
+/* One {"slave": S, "counts_per_s": V} of max_speed. */
+static int parse_speed(ctx *c, const cJSON *obj, scenario_checks *k) {
+    unsigned slave = 0;
+    double cps = 0;
+    void *where[] = {&slave, &cps};
+    bool has[2] = {false, false};
+    const cJSON *it;
+    cJSON_ArrayForEach(it, obj) {
+        size_t f = 0;
+        while (f < 2 && strcmp(sf_speed[f].name, it->string)) {
+            f++;
+        }
+        if (f == 2) {
+            return fail(c, it->string, "unknown field");
+        }
+        if (parse_field(c, it, &sf_speed[f], where[f])) {
+            return -1;
+        }
+        has[f] = true;
+    }
+    if (!has[0] || !has[1]) {
+        return fail(c, has[0] ? "counts_per_s" : "slave",
+                    "missing (the slave and its top speed in counts per second)");
+    }
+    k->max_speed[slave] = cps;
+    return 0;
+}
+
 /* An array of slave indices (0..7) into a per-slave set. */
 static int slave_set(ctx *c, const cJSON *it, const char *n, bool *set) {
     if (!cJSON_IsArray(it)) {
@@ -441,6 +474,19 @@ static int parse_checks(ctx *c, const cJSON *obj, scenario_checks *k) {
             r = slave_set(c, it, n, k->life);
         } else if (!strcmp(n, "ew_static")) {
             r = slave_set(c, it, n, k->ew_static);
+        } else if (!strcmp(n, "max_speed")) {
+            if (!cJSON_IsArray(it)) {
+                r = fail(c, n, "expected an array of {\"slave\", \"counts_per_s\"} objects");
+            }
+            for (int i = 0; !r && i < cJSON_GetArraySize(it); i++) {
+                const cJSON *so = cJSON_GetArrayItem(it, i);
+                push(c, "max_speed[%d]", i);
+                r = cJSON_IsObject(so) ? parse_speed(c, so, k)
+                                       : fail(c, NULL, "expected an object");
+                if (!r) {
+                    pop(c, saved);
+                }
+            }
         } else if (!strcmp(n, "pairs")) {
             int cnt = cJSON_GetArraySize(it);
             if (!cJSON_IsArray(it) || cnt > SCENARIO_MAX_PAIRS) {

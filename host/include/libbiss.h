@@ -108,8 +108,10 @@ enum biss_error {
     BISS_E_SAFETY_EW = -64,   /* nE/nW check (ew_static) on a slave outside the chain or one
                                  that sends no nE/nW */
     /* two channels on one PRU-ICSS */
-    BISS_E_IEP_OWNED = -65, /* trigger iep: the other PRU's channel owns the IEP */
-    BISS_E_FW_PRU = -66,    /* the running image was assembled for the other PRU */
+    BISS_E_IEP_OWNED = -65,    /* trigger iep: the other PRU's channel owns the IEP */
+    BISS_E_FW_PRU = -66,       /* the running image was assembled for the other PRU */
+    BISS_E_SAFETY_SPEED = -67, /* speed check (max_speed) on a slave outside the chain, or a
+                                  speed not finite and above 0 */
 };
 
 /* Static text for any return value of this library (never NULL). */
@@ -244,6 +246,18 @@ struct biss_slave_config {
      * early: the frame is not valid (BISS_SAFE_EW_SET, biss_sample
      * misframed). Needs has_ew. */
     bool ew_static;
+    /* Plausibility check (host side, every frame read): the position
+     * moves at most max_speed counts per second (the encoder's top speed),
+     * so a CRC-good position further from the last one accepted than
+     * max_speed times the time between them, plus one count, was read
+     * wrong, e.g. one place off after a clock the master never made: the
+     * frame is not valid (BISS_SAFE_POS_JUMP, biss_sample misframed).
+     * Distances are modulo 2^pos_bits (a wrap is no jump). The time comes
+     * from the frames' IEP timestamps (free-run, host trigger: frames read
+     * at most 21 s apart, the count's wrap) or from the frame numbers times
+     * iep_period_ns (IEP trigger; iep-follow with iep_period_ns set, else
+     * no check). 0 = off. */
+    double max_speed;
 };
 
 /* Safety check (host side): two slaves' positions, e.g. a BiSS Safety
@@ -332,15 +346,18 @@ struct biss_slave_result {
 
 /* Safety verdicts per slave and frame. A check that could not run (the
  * first frame read, a word with a bad CRC, an invalid frame) sets nothing. */
-#define BISS_SAFE_LC_CHECKED   0x01 /* the life counter was compared */
-#define BISS_SAFE_LC_FROZEN    0x02 /* ... and had not moved */
-#define BISS_SAFE_LC_SKIP      0x04 /* ... and had moved, but not by the frames run */
-#define BISS_SAFE_PAIR_CHECKED 0x08 /* the position was compared with its pair's */
-#define BISS_SAFE_DISAGREE     0x10 /* ... and differed by more than the tolerance */
-#define BISS_SAFE_EW_CHECKED   0x20 /* nE/nW of an ew_static slave were looked at */
-#define BISS_SAFE_EW_SET       0x40 /* ... and one read active: misframed, the frame not valid */
+#define BISS_SAFE_LC_CHECKED   0x01  /* the life counter was compared */
+#define BISS_SAFE_LC_FROZEN    0x02  /* ... and had not moved */
+#define BISS_SAFE_LC_SKIP      0x04  /* ... and had moved, but not by the frames run */
+#define BISS_SAFE_PAIR_CHECKED 0x08  /* the position was compared with its pair's */
+#define BISS_SAFE_DISAGREE     0x10  /* ... and differed by more than the tolerance */
+#define BISS_SAFE_EW_CHECKED   0x20  /* nE/nW of an ew_static slave were looked at */
+#define BISS_SAFE_EW_SET       0x40  /* ... and one read active: misframed, the frame not valid */
+#define BISS_SAFE_POS_CHECKED  0x80  /* the position was compared with the last one accepted */
+#define BISS_SAFE_POS_JUMP     0x100 /* ... and lay beyond max_speed's reach: misframed */
 #define BISS_SAFE_FAULTS                                                                           \
-    (BISS_SAFE_LC_FROZEN | BISS_SAFE_LC_SKIP | BISS_SAFE_DISAGREE | BISS_SAFE_EW_SET)
+    (BISS_SAFE_LC_FROZEN | BISS_SAFE_LC_SKIP | BISS_SAFE_DISAGREE | BISS_SAFE_EW_SET |             \
+     BISS_SAFE_POS_JUMP)
 
 struct biss_sample {
     uint32_t seq;   /* ST_SEQ as first read; the frame may be the publication in
@@ -350,8 +367,9 @@ struct biss_sample {
     bool valid, crc_error, no_slave, proc_error, training, sma;
     bool ack_jump;         /* the ACK lay over half a bit from the average: bits read at
                               the wrong place, so not valid (a glitch, or the line changed) */
-    bool misframed;        /* host check: an ew_static slave's nE or nW read active, so its
-                              bits were read one place off; valid is cleared (flags keep
+    bool misframed;        /* host check: an ew_static slave's nE or nW read active, or a
+                              max_speed slave's position jumped further than it can move,
+                              so its bits were read wrong; valid is cleared (flags keep
                               the firmware's BISS_RF_VALID) */
     uint32_t timestamp;    /* IEP count when the first MA edge was due */
     unsigned proc_clocks;  /* slave busy time, MA clocks */
@@ -470,6 +488,11 @@ struct biss_safety_stats {
     int64_t pair_last_diff[BISS_API_MAX_PAIRS]; /* shifted a - b of the last comparison */
     uint32_t ew_checked[BISS_API_MAX_SLAVES];   /* ew_static: CRC-good words looked at */
     uint32_t ew_set[BISS_API_MAX_SLAVES];       /* ... with nE or nW active: misframed */
+    uint32_t pos_checked[BISS_API_MAX_SLAVES];  /* max_speed: positions compared */
+    uint32_t pos_jumped[BISS_API_MAX_SLAVES];   /* ... beyond its reach: misframed */
+    uint32_t pos_resync[BISS_API_MAX_SLAVES];   /* ... beyond reach, but in reach of the
+                                                   one refused before: taken as the new
+                                                   reference, valid */
 };
 int biss_get_safety_stats(biss_t *h, struct biss_safety_stats *st);
 

@@ -260,7 +260,8 @@ check(r.returncode == 2 and json.loads(r.stdout)["frames"] == 0 and sf.get("misf
       == sf.get("misframed_good_lost"), "nE set, --check-ew 0: %d %r" % (r.returncode, sf))
 r = run("--scenario", scenario('{"biss": {"slaves": [{"error": true}]}}'), "--check-ew", "0", "--frames", "3",
         "--max-ms", "1")
-check("misframed            " in r.stdout and "frames refused (nE/nW of a slave that never sets them)" in r.stdout,
+check("misframed            " in r.stdout and "frames refused (nE/nW of a slave that never sets them, or a position beyond reach)"
+      in r.stdout,
       "nE set, text: %r" % r.stdout)
 NO_EW = '{"biss": {"slaves": [{"error_bit": false, "warning_bit": false}]}}'
 for args, words in [(["--scenario", scenario_as("ew1.json", NO_EW), "--check-ew", "0"], "BISS_E_SAFETY_EW"),
@@ -274,6 +275,37 @@ for args, words in [(["--scenario", scenario_as("ew1.json", NO_EW), "--check-ew"
                      "ew4.json: checks.ew_static: slave 1 is not in the chain"),
                     (["--scenario", scenario_as("ew5.json", '{"checks": {"ew_static": 0}}')],
                      "ew5.json: checks.ew_static: expected an array")]:
+    r = run("--frames", "3", *args)
+    check(r.returncode == 1 and words in r.stderr, "%s -> %r (got %d %r)" % (args, words, r.returncode, r.stderr))
+
+# the speed check: every position after the first compared and none beyond
+# reach on a healthy encoder (50 000 counts/s, checked at 60 000)
+TIDE = ["--profile", "tidep0022-test-encoder", "--freq", "10000000"]
+r = run(*TIDE, "--frames", "50", "--check-speed", "0,60000", "--json")
+sf = json.loads(r.stdout).get("safety", {}) if r.returncode == 0 else {}
+check(sf.get("max_speed") == [{"slave": 0, "counts_per_s": 60000, "checked": 49, "jumped": 0, "resync": 0}]
+      and sf.get("misframed_frames") == 0, "healthy encoder, --check-speed 0,60000: %r %r" % (sf, r.stderr))
+# checked at 1 000 counts/s, a step of 2 counts between frames is beyond
+# reach (and right: a good frame lost), and the next frame, in reach of it,
+# takes it over (a resync): each jump is one frame
+r = run(*TIDE, "--frames", "30", "--check-speed", "0,1000", "--json")
+sf = json.loads(r.stdout).get("safety", {}) if r.stdout.startswith("{") else {}
+sp = (sf.get("max_speed") or [{}])[0]
+check(r.returncode == 0 and sp.get("jumped", 0) >= 3 and sp.get("resync") == sp.get("jumped")
+      == sf.get("misframed_frames") == sf.get("misframed_good_lost"), "--check-speed 0,1000: %d %r" % (r.returncode, sf))
+for args, words in [(["--check-speed", "1,5"], "BISS_E_SAFETY_SPEED"),
+                    (["--check-speed", "0"], "--check-speed: '0' is not S,CPS"),
+                    (["--check-speed", "0,0"], "--check-speed: '0,0' is not S,CPS"),
+                    (["--scenario", scenario_as("sp1.json", '{"checks": {"max_speed": [{"slave": 1, "counts_per_s": 5}]}}')],
+                     "sp1.json: checks.max_speed: slave 1 is not in the chain"),
+                    (["--scenario", scenario_as("sp2.json", '{"checks": {"max_speed": [{"slave": 0}]}}')],
+                     "sp2.json: checks.max_speed[0].counts_per_s: missing"),
+                    (["--scenario", scenario_as("sp3.json", '{"checks": {"max_speed": [{"slave": 0, "counts_per_s": -1}]}}')],
+                     "sp3.json: checks.max_speed[0].counts_per_s: -1 out of range"),
+                    (["--scenario", scenario_as("sp4.json", '{"checks": {"max_speed": [{"slave": 0, "counts_per_s": 1, "x": 1}]}}')],
+                     "sp4.json: checks.max_speed[0].x: unknown field"),
+                    (["--scenario", scenario_as("sp5.json", '{"checks": {"max_speed": 5}}')],
+                     "sp5.json: checks.max_speed: expected an array")]:
     r = run("--frames", "3", *args)
     check(r.returncode == 1 and words in r.stderr, "%s -> %r (got %d %r)" % (args, words, r.returncode, r.stderr))
 

@@ -89,13 +89,17 @@ END_TEST
 /* ---- noise: the scenarios scripts/bench-noise runs for 10^6 frames ----
  * Each scenario has the host's nE/nW check on (its encoder never sets
  * them: "checks": {"ew_static": [0]}), which must never refuse a good
- * frame. */
+ * frame, and its speed check (50 000 counts/s, checked at 60 000:
+ * "max_speed"), which refuses a good frame only now and then (4 in 10^6
+ * with glitches on both lines: a position taken when an MA glitch, not the
+ * master, started the slave's frame, or the first good frame after a wrong
+ * position within reach became the reference). */
 static const struct noise_case {
     const char *file;
     double min_good;        /* share of publications valid with a good CRC */
     unsigned wrong_per_1e4; /* wrong positions passed as valid, at most */
     uint64_t frames;        /* 0: twice E2E_FRAMES */
-    uint64_t min_misframed; /* frames the nE/nW check refused, at least */
+    uint64_t min_misframed; /* frames the nE/nW and the speed check refused, at least each */
 } noise[] = {
     {SCENARIO_DIR "/noise-sl-10khz.json", 0.95, 0, 0, 0},
     {SCENARIO_DIR "/noise-sl-100khz.json", 0.85, 0, 0, 0},
@@ -105,11 +109,11 @@ static const struct noise_case {
      * line); now the frames go on, a few wrong ones pass the CRC6 */
     {SCENARIO_DIR "/noise-sl-700khz.json", 0.50, 2, 0, 0},
     /* glitches on MA too: an extra clock makes the encoder send every later
-     * bit one period early, which only the CRC6 and the nE/nW check see.
-     * About 1 in 3000 frames is caught by the nE/nW check (34, and 11 wrong
-     * left, in 10^5 frames; 45 wrong without it): 30 000 frames in both
-     * builds, so that it fires */
-    {SCENARIO_DIR "/noise-both-30khz-jitter.json", 0.85, 4, 30000, 1},
+     * bit one period early, which only the CRC6 and the host's checks see.
+     * About 1 in 2500 frames is caught by each (in 10^6 frames 421 by the
+     * nE/nW check, 353 by the speed check, and 6 wrong left; 581 wrong
+     * without them): 30 000 frames in both builds, so that both fire */
+    {SCENARIO_DIR "/noise-both-30khz-jitter.json", 0.85, 1, 30000, 1},
 };
 
 START_TEST(test_noise_never_valid_and_wrong) {
@@ -117,6 +121,7 @@ START_TEST(test_noise_never_valid_and_wrong) {
     struct e2e_run r;
     bench_for(&r, c->file);
     ck_assert_msg(r.fc.cfg.slave[0].ew_static, "%s: no nE/nW check", c->file);
+    ck_assert_msg(r.fc.cfg.slave[0].max_speed == 60000.0, "%s: no speed check", c->file);
     uint64_t frames = c->frames ? c->frames : 2 * e2e_frames(10000);
     uint64_t got = e2e_run_frames(&r, 10, 1000, frames);
     ck_assert_uint_eq(got, frames);
@@ -129,13 +134,17 @@ START_TEST(test_noise_never_valid_and_wrong) {
     ck_assert_msg(good >= c->min_good, "%s: %.4f of the frames good", c->file, good);
     ck_assert_uint_le(r.fc.ack_jump_good, r.fc.ack_jumps);
     ck_assert_uint_eq(r.fc.no_slave, 0);
-    /* the nE/nW check: fires where MA is disturbed, and every frame it
-     * refused had a wrong word (the refusals are wrong positions that would
-     * otherwise have passed as valid) */
-    ck_assert_msg(r.fc.misframed >= c->min_misframed, "%s: %llu misframed", c->file,
-                  (unsigned long long)r.fc.misframed);
-    ck_assert_uint_eq(r.fc.misframed_good, 0);
-    ck_assert_uint_eq(r.fc.safety.stats.ew_set[0], r.fc.misframed);
+    /* the host's checks: they fire where MA is disturbed; every frame the
+     * nE/nW check refused had a wrong word, and the speed check refused at
+     * most 1 good frame in 10^4 (rounded up) */
+    const struct biss_safety_stats *st = &r.fc.safety.stats;
+    ck_assert_msg(st->ew_set[0] >= c->min_misframed && st->pos_jumped[0] >= c->min_misframed,
+                  "%s: %u misframed by nE/nW, %u by speed", c->file, st->ew_set[0],
+                  st->pos_jumped[0]);
+    ck_assert_uint_le(r.fc.misframed, (uint64_t)st->ew_set[0] + st->pos_jumped[0]);
+    ck_assert_uint_ge(r.fc.misframed, st->ew_set[0]);
+    ck_assert_uint_le(r.fc.misframed_good, (frames + 9999) / 10000);
+    ck_assert_uint_ge(st->pos_checked[0], r.fc.frames / 2);
     e2e_free(&r);
 }
 END_TEST

@@ -303,4 +303,26 @@ check(r.returncode == 1 and "nE/nW check" in r.stderr, "no nE/nW: %r" % r.stderr
 r = run("--check-ew", "x", "read")
 check(r.returncode == 2 and "--check-ew" in r.stderr, "--check-ew x: %r" % r.stderr)
 
+# the speed check (--check-speed): quiet on the healthy encoder (50 000
+# counts/s) at 60 000; at 10 counts/s a step of 2 counts in 23 us is beyond
+# reach, and that frame is misframed
+r = run("--freq", "10000000", "--check-speed", "0,60000", "read", "-n", "5")
+check(r.returncode == 0 and r.stdout.count(" valid ") == 4 and r.stdout.count("s0.speed=ok") == 3
+      and re.search(r"^safety: s0.pos_checked=3 s0.pos_jumped=0 s0.pos_resync=0$", r.stdout, re.M),
+      "healthy encoder, --check-speed 0,60000: %r %r" % (r.stdout, r.stderr))
+r = run("--freq", "10000000", "--check-speed", "0,10", "read", "-n", "5")
+check(r.returncode == 0 and " misframed " in r.stdout
+      and re.search(r"^safety: s0.pos_checked=3 s0.pos_jumped=1 s0.pos_resync=0$", r.stdout, re.M),
+      "--check-speed 0,10: %r %r" % (r.stdout, r.stderr))
+r = run("--freq", "10000000", "--check-speed", "0,60000", "read", "-n", "3", "--json")
+try:
+    sp = (json.loads(r.stdout).get("safety") or {}).get("max_speed")
+except ValueError:
+    sp = None
+check(sp == [{"slave": 0, "counts_per_s": 60000, "checked": 1, "jumped": 0, "resync": 0}], "--check-speed --json: %r" % sp)
+r = run("--check-speed", "0,x", "read")
+check(r.returncode == 2 and "--check-speed" in r.stderr, "--check-speed 0,x: %r" % r.stderr)
+r = run("--check-speed", "1,5", "read")
+check(r.returncode == 1 and "speed check" in r.stderr, "--check-speed 1,5: %r" % r.stderr)
+
 finish("bissctl CLI")

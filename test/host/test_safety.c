@@ -10,6 +10,7 @@
 #include "check_run.h"
 
 #include <check.h>
+#include <math.h>
 #include <string.h>
 
 /* Two BiSS Safety channels at 10 MHz: slave 0 a 24-bit position, slave 1 a
@@ -414,6 +415,181 @@ START_TEST(test_ew_static_config) {
 }
 END_TEST
 
+/* ---- the position within reach of the last one accepted (max_speed) ---- */
+
+/* Two channels with only slave 0's speed check (50000 counts/s). */
+static struct biss_config speed_checked(void) {
+    struct biss_config c = two_channels();
+    c.npairs = 0;
+    c.slave[0].life_check = c.slave[1].life_check = false;
+    c.slave[0].max_speed = 50000.0;
+    return c;
+}
+
+/* Judges a frame with slave 0 at pos, IEP timestamp ts; returns slave 0's
+ * flags (the frame's validity in *valid). */
+static uint32_t at(const struct biss_config *c, struct biss_safety_state *st, uint32_t n,
+                   uint32_t ts, uint64_t pos, bool *valid) {
+    struct biss_sample s = frame(n, pos, 1000, 0, 0);
+    s.timestamp = ts;
+    biss_safety_check(c, st, &s);
+    ck_assert_uint_eq(s.slave[1].safety, 0);
+    ck_assert(s.misframed == !s.valid);
+    *valid = s.valid;
+    return s.slave[0].safety;
+}
+
+START_TEST(test_speed_free_run) {
+    struct biss_config c = speed_checked();
+    struct biss_safety_state st;
+    biss_safety_init(&st);
+    bool v;
+    const uint32_t us20 = 4000; /* 20 us in IEP counts: 1 count of motion, reach 2 */
+    ck_assert_uint_eq(at(&c, &st, 1, 0, 1000, &v), 0); /* the first: nothing to compare */
+    ck_assert(v);
+    ck_assert_uint_eq(at(&c, &st, 2, us20, 1002, &v), BISS_SAFE_POS_CHECKED);
+    ck_assert(v);
+    ck_assert_uint_eq(at(&c, &st, 3, 2 * us20, 1005, &v),
+                      BISS_SAFE_POS_CHECKED | BISS_SAFE_POS_JUMP);
+    ck_assert(!v);
+    /* the refused position is no reference: 40 us from 1002 reach 3 */
+    ck_assert_uint_eq(at(&c, &st, 4, 3 * us20, 999, &v), BISS_SAFE_POS_CHECKED);
+    ck_assert(v);
+    ck_assert_uint_eq(st.stats.pos_checked[0], 3);
+    ck_assert_uint_eq(st.stats.pos_jumped[0], 1);
+    /* a word with a bad CRC is not judged and changes nothing */
+    struct biss_sample s = frame(5, 3000, 1000, 0, 0);
+    s.timestamp = 4 * us20;
+    s.slave[0].crc_ok = false;
+    biss_safety_check(&c, &st, &s);
+    ck_assert_uint_eq(s.slave[0].safety, 0);
+    ck_assert_uint_eq(at(&c, &st, 6, 5 * us20, 997, &v), BISS_SAFE_POS_CHECKED);
+    /* the position's and the timestamp's wraps are no jumps */
+    uint64_t top = (1u << 24) - 1;
+    biss_safety_init(&st);
+    at(&c, &st, 1, 0xfffff000u, top, &v);
+    ck_assert_uint_eq(at(&c, &st, 2, 0x00000f00u, 1, &v), BISS_SAFE_POS_CHECKED);
+    ck_assert(v); /* 39.7 us: reach 2.98, moved 2 */
+    ck_assert_uint_eq(at(&c, &st, 3, 0x00000f00u + us20, top - 1, &v),
+                      BISS_SAFE_POS_CHECKED | BISS_SAFE_POS_JUMP);
+    /* a reach of half the circle or more judges nothing (8 bits: 128) */
+    c.slave[0].pos_bits = 8;
+    biss_safety_init(&st);
+    at(&c, &st, 1, 0, 10, &v);
+    ck_assert_uint_eq(at(&c, &st, 2, 500000, 130, &v), BISS_SAFE_POS_CHECKED); /* 2.5 ms */
+    ck_assert_uint_eq(at(&c, &st, 3, 500000 + 520000, 10, &v), 0);             /* 2.6 ms: 131 */
+    ck_assert(v);
+}
+END_TEST
+
+START_TEST(test_speed_resync) {
+    /* two frames in a row that agree with each other, not with the
+     * reference: the second is taken (the encoder was set to a new
+     * position, or the reference was wrong); one alone is refused */
+    struct biss_config c = speed_checked();
+    struct biss_safety_state st;
+    biss_safety_init(&st);
+    bool v;
+    const uint32_t us20 = 4000;
+    at(&c, &st, 1, 0, 1000, &v);
+    ck_assert_uint_eq(at(&c, &st, 2, us20, 5000, &v), BISS_SAFE_POS_CHECKED | BISS_SAFE_POS_JUMP);
+    ck_assert(!v);
+    ck_assert_uint_eq(at(&c, &st, 3, 2 * us20, 1003, &v), BISS_SAFE_POS_CHECKED);
+    ck_assert(v); /* back in reach of 1000: 5000 was one wrong frame */
+    ck_assert_uint_eq(at(&c, &st, 4, 3 * us20, 9000, &v),
+                      BISS_SAFE_POS_CHECKED | BISS_SAFE_POS_JUMP);
+    ck_assert_uint_eq(at(&c, &st, 5, 4 * us20, 9001, &v), BISS_SAFE_POS_CHECKED);
+    ck_assert(v);
+    ck_assert_uint_eq(at(&c, &st, 6, 5 * us20, 9002, &v), BISS_SAFE_POS_CHECKED);
+    ck_assert_uint_eq(st.stats.pos_jumped[0], 2);
+    ck_assert_uint_eq(st.stats.pos_resync[0], 1);
+    ck_assert_uint_eq(st.stats.pos_checked[0], 5);
+    /* two wrong frames far from each other take nothing over */
+    at(&c, &st, 7, 6 * us20, 100, &v);
+    ck_assert(!v);
+    ck_assert_uint_eq(at(&c, &st, 8, 7 * us20, 200, &v),
+                      BISS_SAFE_POS_CHECKED | BISS_SAFE_POS_JUMP);
+    ck_assert_uint_eq(at(&c, &st, 9, 8 * us20, 9005, &v), BISS_SAFE_POS_CHECKED);
+    ck_assert(v);
+}
+END_TEST
+
+START_TEST(test_speed_iep) {
+    /* IEP trigger: the count restarts each period, the frame numbers tell
+     * the time (100 us a frame: reach 5 per frame, plus 1) */
+    struct biss_config c = speed_checked();
+    c.trigger = BISS_TRIGGER_IEP;
+    c.iep_period_ns = 100000;
+    struct biss_safety_state st;
+    biss_safety_init(&st);
+    bool v;
+    at(&c, &st, 10, 7, 1000, &v);
+    ck_assert_uint_eq(at(&c, &st, 12, 7, 1011, &v), BISS_SAFE_POS_CHECKED);
+    ck_assert_uint_eq(at(&c, &st, 13, 7, 1018, &v), BISS_SAFE_POS_CHECKED | BISS_SAFE_POS_JUMP);
+    ck_assert(!v);
+    /* following another channel's IEP without its period: no check */
+    c.trigger = BISS_TRIGGER_IEP_FOLLOW;
+    c.iep_period_ns = 0;
+    biss_safety_init(&st);
+    at(&c, &st, 1, 7, 1000, &v);
+    ck_assert_uint_eq(at(&c, &st, 2, 7, 3000, &v), 0);
+    ck_assert(v);
+}
+END_TEST
+
+START_TEST(test_speed_and_ew) {
+    /* a frame the nE/nW check refused does not become the reference */
+    struct biss_config c = speed_checked();
+    c.slave[0].ew_static = true;
+    struct biss_safety_state st;
+    biss_safety_init(&st);
+    struct biss_sample s = published(&c, 1, 1, 1, true);
+    biss_safety_check(&c, &st, &s);
+    ck_assert(s.valid);
+    s = published(&c, 2, 1, 0, true);
+    s.slave[0].position = 5000;
+    biss_safety_check(&c, &st, &s);
+    ck_assert(s.misframed && (s.slave[0].safety & BISS_SAFE_POS_JUMP));
+    /* nor is it a witness against the reference: the next frame with the
+     * same position is refused as well */
+    s = published(&c, 3, 1, 1, true);
+    s.slave[0].position = 5000;
+    biss_safety_check(&c, &st, &s);
+    ck_assert(s.misframed && (s.slave[0].safety & BISS_SAFE_POS_JUMP));
+    ck_assert_uint_eq(st.stats.pos_resync[0], 0);
+    s = published(&c, 4, 1, 1, true);
+    biss_safety_check(&c, &st, &s);
+    ck_assert(s.valid && s.slave[0].safety == (BISS_SAFE_EW_CHECKED | BISS_SAFE_POS_CHECKED));
+}
+END_TEST
+
+START_TEST(test_speed_config) {
+    struct biss_config c = speed_checked();
+    ck_assert_int_eq(biss_config_check(&c), BISS_OK);
+    static const double bad[] = {-1.0, NAN, INFINITY};
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        c.slave[0].max_speed = bad[i];
+        ck_assert_int_eq(biss_config_check(&c), BISS_E_SAFETY_SPEED);
+    }
+    c = speed_checked();
+    c.slave[2].max_speed = 1.0; /* no slave 2 */
+    ck_assert_int_eq(biss_config_check(&c), BISS_E_SAFETY_SPEED);
+    ck_assert_str_ne(biss_strerror(BISS_E_SAFETY_SPEED), "unknown error");
+    struct biss_config k;
+    memset(&k, 0, sizeof k);
+    ck_assert_int_eq(biss_safety_parse_speed("1,6e4", &k), BISS_OK);
+    ck_assert(k.slave[1].max_speed == 60000.0 && k.slave[0].max_speed == 0);
+    static const char *const spell[] = {"",      "0",   "0,",   "0,0", "0,-5", "8,1",   "0,nan",
+                                        "0,inf", "x,1", "0,1x", ",1",  "-1,5", "0,1,2", "0,1e999"};
+    for (size_t i = 0; i < sizeof spell / sizeof spell[0]; i++) {
+        ck_assert_msg(biss_safety_parse_speed(spell[i], &k) == BISS_E_INVAL, "%s", spell[i]);
+    }
+    c = two_channels();
+    ck_assert_int_eq(biss_safety_merge(&c, &k), BISS_OK);
+    ck_assert(c.slave[1].max_speed == 60000.0 && c.slave[0].max_speed == 0);
+}
+END_TEST
+
 int main(void) {
     Suite *s = suite_create("safety");
     TCase *tc = tcase_create("checks");
@@ -429,6 +605,11 @@ int main(void) {
     tcase_add_test(tc, test_ew_static);
     tcase_add_test(tc, test_ew_static_and_life);
     tcase_add_test(tc, test_ew_static_config);
+    tcase_add_test(tc, test_speed_free_run);
+    tcase_add_test(tc, test_speed_resync);
+    tcase_add_test(tc, test_speed_iep);
+    tcase_add_test(tc, test_speed_and_ew);
+    tcase_add_test(tc, test_speed_config);
     suite_add_tcase(s, tc);
     return check_run(s);
 }
