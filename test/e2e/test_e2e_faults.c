@@ -114,6 +114,9 @@ static const struct noise_case {
      * nE/nW check, 353 by the speed check, and 6 wrong left; 581 wrong
      * without them): 30 000 frames in both builds, so that both fire */
     {SCENARIO_DIR "/noise-both-30khz-jitter.json", 0.85, 1, 30000, 1},
+    /* the same with a CRC16 (0x190D9): it sees every such frame (0 wrong in
+     * 10^6 with or without the host's checks, which never fire) */
+    {SCENARIO_DIR "/noise-both-30khz-jitter-crc16.json", 0.80, 0, 30000, 0},
 };
 
 START_TEST(test_noise_never_valid_and_wrong) {
