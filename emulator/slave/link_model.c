@@ -5,7 +5,7 @@
 /* Fan-out points: a pin is recorded, passed on, and shown to the observer. */
 
 static void observe(link_model *l, link_pin pin, sim_ps t, int level) {
-    if (l->observer) {
+    if (l->observer_pins & 1u << pin) {
         l->observer(l->observer_ctx, pin, t, level);
     }
 }
@@ -50,6 +50,11 @@ static sim_ps sl_reach(const line_params *p) {
 void link_set_observer(link_model *l, link_pin_fn fn, void *ctx) {
     l->observer = fn;
     l->observer_ctx = ctx;
+    l->observer_pins = fn ? 0xfu : 0;
+}
+
+void link_observe_pins(link_model *l, unsigned mask) {
+    l->observer_pins = l->observer ? mask & 0xfu : 0;
 }
 
 int link_init(link_model *l, const scenario *sc, char *err, size_t errlen) {

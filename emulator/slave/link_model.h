@@ -33,6 +33,7 @@ typedef struct {
     scenario sc;
     link_pin_fn observer;
     void *observer_ctx;
+    unsigned observer_pins; /* bit (1 << link_pin): the pins it is told of */
     event_queue q;
     line_dir ma_line, sl_line;
     biss_slave biss;
@@ -51,8 +52,13 @@ typedef struct {
 int link_init(link_model *l, const scenario *sc, char *err, size_t errlen);
 void link_free(link_model *l);
 
-/* Sets (or with NULL clears) the pin observer. */
+/* Sets (or with NULL clears) the pin observer, told of every pin. */
 void link_set_observer(link_model *l, link_pin_fn fn, void *ctx);
+
+/* Tells the observer only of the pins in mask (bit 1 << link_pin): an
+ * observer that has nothing to do for a pin for a while spares the call
+ * on each of its edges. */
+void link_observe_pins(link_model *l, unsigned mask);
 
 void link_ma(link_model *l, sim_ps t, int level);
 int link_sl(link_model *l, sim_ps t);
