@@ -300,6 +300,11 @@ static int64_t pins_next_change(void *ctx, int64_t t) {
     return recorded < pending ? recorded : pending;
 }
 
+static uint32_t pins_inputs_run(void *ctx, int64_t t, int64_t *next) {
+    struct bench *b = ctx;
+    return (uint32_t)link_sl_run(&b->link, t, next);
+}
+
 static void pins_outputs(void *ctx, int64_t t, uint32_t r30) {
     struct bench *b = ctx;
     int level = (int)((r30 >> b->cfg.ma_bit) & 1u);
@@ -341,6 +346,7 @@ static struct bench *bench_on(const struct bench_config *cfg, struct pru_core *c
     link_set_sl_reach(&b->link, !cfg->no_sl_reach);
     struct pru_pins pins = {b, pins_inputs_at, pins_next_change, pins_outputs};
     pru_set_pins(b->core, &pins);
+    pru_set_inputs_run(b->core, pins_inputs_run);
     return b;
 }
 

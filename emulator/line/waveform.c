@@ -87,6 +87,12 @@ sim_ps waveform_next_after(waveform *w, sim_ps t) {
     return n < w->len ? w->edges[n].t : SIM_NEVER;
 }
 
+int waveform_level_next(waveform *w, sim_ps t, sim_ps *next) {
+    size_t n = count_upto(w, t);
+    *next = n < w->len ? w->edges[n].t : SIM_NEVER;
+    return n ? w->edges[n - 1].level : w->initial;
+}
+
 void waveform_forget_before(waveform *w, sim_ps t) {
     size_t n = count_upto(w, t);
     /* Keep the transition at exactly t if there is one, so edge times stay. */

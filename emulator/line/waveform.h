@@ -37,6 +37,10 @@ int waveform_level_at(waveform *w, sim_ps t);
 /* Time of the first transition strictly after t, or SIM_NEVER. */
 sim_ps waveform_next_after(waveform *w, sim_ps t);
 
+/* Level at time t, and in *next the time of the first transition after t
+ * (SIM_NEVER if none): waveform_level_at and waveform_next_after at once. */
+int waveform_level_next(waveform *w, sim_ps t, sim_ps *next);
+
 /* Level after the last transition. */
 int waveform_last_level(const waveform *w);
 

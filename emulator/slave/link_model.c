@@ -114,6 +114,15 @@ int link_sl(link_model *l, sim_ps t) {
     return waveform_level_at(&l->sl_master, t);
 }
 
+int link_sl_run(link_model *l, sim_ps t, sim_ps *next) {
+    advance(l, t);
+    sim_ps recorded;
+    int level = waveform_level_next(&l->sl_master, t, &recorded);
+    sim_ps pending = link_next_sl_change(l);
+    *next = recorded < pending ? recorded : pending;
+    return level;
+}
+
 sim_ps link_next_change(const link_model *l) {
     return eq_next_time(&l->q);
 }

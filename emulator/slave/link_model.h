@@ -63,6 +63,11 @@ void link_observe_pins(link_model *l, unsigned mask);
 void link_ma(link_model *l, sim_ps t, int level);
 int link_sl(link_model *l, sim_ps t);
 
+/* link_sl(l, t), and in *next the earliest time after t at which SL at the
+ * master may change unless MA changes first: a change already recorded, or
+ * link_next_sl_change(l). */
+int link_sl_run(link_model *l, sim_ps t, sim_ps *next);
+
 /* Earliest time at which anything pending (an edge in flight, a timeout, a
  * glitch) happens, or SIM_NEVER: SL at the master is constant until then
  * unless MA changes. */
