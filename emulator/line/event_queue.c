@@ -72,7 +72,7 @@ eq_id eq_schedule_as(event_queue *q, sim_ps t, eq_id id, eq_fn fn, void *ctx, in
     return id;
 }
 
-eq_id eq_schedule(event_queue *q, sim_ps t, eq_fn fn, void *ctx, int64_t arg) {
+eq_id eq_schedule_any(event_queue *q, sim_ps t, eq_fn fn, void *ctx, int64_t arg) {
     return eq_schedule_as(q, t, eq_take_id(q), fn, ctx, arg);
 }
 

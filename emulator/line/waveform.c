@@ -20,7 +20,7 @@ int waveform_last_level(const waveform *w) {
     return w->len ? w->edges[w->len - 1].level : w->initial;
 }
 
-int waveform_append(waveform *w, sim_ps t, int level) {
+int waveform_append_any(waveform *w, sim_ps t, int level) {
     level = level ? 1 : 0;
     if (w->len && t < w->edges[w->len - 1].t) {
         return -1;
