@@ -40,11 +40,17 @@ eq_id eq_schedule_any(event_queue *q, sim_ps t, eq_fn fn, void *ctx, int64_t arg
 
 /* Schedules fn(ctx, t, arg). t must not be earlier than eq_now(q).
  * Returns the event's id, or 0 if memory ran out. Almost every event goes
- * after all pending ones (a new id is greater than every id taken), which
- * is done here in line. */
+ * after all pending ones but a slave's timeout or two: with room in the
+ * array that is done here in line (a new id is greater than every id
+ * taken, so only later times move). */
 static inline eq_id eq_schedule(event_queue *q, sim_ps t, eq_fn fn, void *ctx, int64_t arg) {
-    if (q->len < q->cap && t >= q->now && (q->len == q->head || q->ev[q->len - 1].t <= t)) {
-        eq_event *e = &q->ev[q->len++];
+    if (q->len < q->cap && t >= q->now) {
+        size_t i = q->len++;
+        while (i > q->head && q->ev[i - 1].t > t) {
+            q->ev[i] = q->ev[i - 1];
+            i--;
+        }
+        eq_event *e = &q->ev[i];
         e->t = t;
         e->id = q->next_id++;
         e->fn = fn;
