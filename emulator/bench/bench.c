@@ -497,14 +497,20 @@ static void bench_caught_up(struct bench *b) {
     if (b->vcd_on) {
         vcd_frame_update(b, now);
     }
-    /* pin history older than a millisecond is never looked at again; it is
-     * dropped every 16 ms: each drop moves the millisecond that is kept
-     * (at 10 MHz some 11,000 edges per pin), so dropping every millisecond
-     * cost 2 % of the run */
+    /* SL at the master older than a millisecond is never looked at again;
+     * it is dropped every 16 ms: each drop moves the millisecond that is
+     * kept, so dropping every millisecond cost 2 % of the run */
     if (now - b->forgot_at > 16 * SIM_PS_PER_MS) {
-        link_forget_before(&b->link, now - SIM_PS_PER_MS);
+        link_forget_pins_before(&b->link, 1u << LINK_SL_MASTER, now - SIM_PS_PER_MS);
         b->forgot_at = now;
     }
+    /* MA at both ends and SL at the slave are only ever asked for their
+     * level from the last step on (a capture's or the VCD's first level):
+     * their history goes at every step, so that what the models append
+     * to stays in the cache (moving what is kept costs next to nothing:
+     * the edges after now, a handful) */
+    link_forget_pins_before(&b->link,
+                            1u << LINK_MA_MASTER | 1u << LINK_MA_SLAVE | 1u << LINK_SL_SLAVE, now);
 }
 
 enum pru_stop bench_run_frames(struct bench *b, uint64_t frames, int64_t max_ps,

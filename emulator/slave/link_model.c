@@ -153,9 +153,15 @@ uint64_t link_frames(const link_model *l) {
     return l->sc.protocol == SCENARIO_SSI ? l->ssi.frames : l->biss.frames;
 }
 
+void link_forget_pins_before(link_model *l, unsigned mask, sim_ps t) {
+    waveform *w[4] = {&l->ma_master, &l->sl_master, &l->ma_slave, &l->sl_slave};
+    for (int i = 0; i < 4; i++) {
+        if (mask & 1u << i) {
+            waveform_forget_before(w[i], t);
+        }
+    }
+}
+
 void link_forget_before(link_model *l, sim_ps t) {
-    waveform_forget_before(&l->ma_master, t);
-    waveform_forget_before(&l->ma_slave, t);
-    waveform_forget_before(&l->sl_slave, t);
-    waveform_forget_before(&l->sl_master, t);
+    link_forget_pins_before(l, 0xfu, t);
 }

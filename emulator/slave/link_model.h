@@ -87,6 +87,8 @@ void link_set_sl_reach(link_model *l, int on);
 
 /* Drops pin history before t (a long run keeps its memory bounded). */
 void link_forget_before(link_model *l, sim_ps t);
+/* The same for the pins in mask (bit 1 << link_pin) only. */
+void link_forget_pins_before(link_model *l, unsigned mask, sim_ps t);
 
 /* Closed frame records of the slave model (BiSS or SSI). */
 uint64_t link_frames(const link_model *l);
