@@ -135,9 +135,11 @@ sim_ps link_next_sl_change(const link_model *l) {
     if (!l->sl_reach_on) {
         return eq_next_time(&l->q);
     }
-    /* pending events are a handful: a scan, not a second queue */
+    /* pending events are a handful: a scan, not a second queue; they are
+     * in time order, so it ends at the first one no sooner than the bound
+     * (a later one's own bound is later still) */
     sim_ps first = SIM_NEVER;
-    for (size_t i = l->q.head; i < l->q.len; i++) {
+    for (size_t i = l->q.head; i < l->q.len && l->q.ev[i].t < first; i++) {
         const eq_event *e = &l->q.ev[i];
         sim_ps t = e->ctx == &l->sl_line || e->t > SIM_NEVER - l->sl_reach_ps
                        ? e->t
