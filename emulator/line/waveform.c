@@ -88,7 +88,13 @@ sim_ps waveform_next_after(waveform *w, sim_ps t) {
 }
 
 int waveform_level_next(waveform *w, sim_ps t, sim_ps *next) {
-    size_t n = count_upto(w, t);
+    /* mostly asked again between the same two edges as last time: that
+     * answer is tested first, without count_upto()'s loop (whose varying
+     * length the host mispredicts) */
+    size_t n = w->hint;
+    if (n > w->len || (n > 0 && w->edges[n - 1].t > t) || (n < w->len && w->edges[n].t <= t)) {
+        n = count_upto(w, t);
+    }
     *next = n < w->len ? w->edges[n].t : SIM_NEVER;
     return n ? w->edges[n - 1].level : w->initial;
 }
