@@ -226,6 +226,14 @@ static waveform *pin_record(struct bench *b, int pin) {
     return w[pin];
 }
 
+/* on_pin has work for every pin while the VCD is written or a capture is
+ * armed or running, otherwise for MA at the slave only (the measurements):
+ * the link calls it for those. */
+static void observe_pins_update(struct bench *b) {
+    bool all = b->vcd_on || b->cap_state == CAP_ARMED || b->cap_state == CAP_ON;
+    link_observe_pins(&b->link, all ? 0xfu : 1u << LINK_MA_SLAVE);
+}
+
 /* Capturing runs from the close of frame k-1 until frame k is over. */
 static void capture_update(struct bench *b, sim_ps t) {
     if (b->cap_state == CAP_ARMED && slave_frames(b) == b->cap_frame) {
@@ -233,12 +241,14 @@ static void capture_update(struct bench *b, sim_ps t) {
             waveform_init(&b->cap[i], waveform_level_at(pin_record(b, i), t));
         }
         b->cap_state = CAP_ON;
+        observe_pins_update(b);
     } else if (b->cap_state == CAP_ON && slave_frames(b) > b->cap_frame) {
         sim_ps end = capture_end(b);
         if (end >= 0 && t > end) {
             capture_keep_record(b);
             b->cap_end = end;
             b->cap_state = CAP_DONE;
+            observe_pins_update(b);
         }
     }
 }
@@ -250,6 +260,7 @@ static void capture_free(struct bench *b) {
         }
     }
     b->cap_state = CAP_OFF;
+    observe_pins_update(b);
 }
 
 /* ---- pins --------------------------------------------------------------- */
@@ -289,6 +300,11 @@ static int64_t pins_next_change(void *ctx, int64_t t) {
     return recorded < pending ? recorded : pending;
 }
 
+static uint32_t pins_inputs_run(void *ctx, int64_t t, int64_t *next) {
+    struct bench *b = ctx;
+    return (uint32_t)link_sl_run(&b->link, t, next);
+}
+
 static void pins_outputs(void *ctx, int64_t t, uint32_t r30) {
     struct bench *b = ctx;
     int level = (int)((r30 >> b->cfg.ma_bit) & 1u);
@@ -326,9 +342,11 @@ static struct bench *bench_on(const struct bench_config *cfg, struct pru_core *c
         return NULL;
     }
     link_set_observer(&b->link, on_pin, b);
+    observe_pins_update(b);
     link_set_sl_reach(&b->link, !cfg->no_sl_reach);
     struct pru_pins pins = {b, pins_inputs_at, pins_next_change, pins_outputs};
     pru_set_pins(b->core, &pins);
+    pru_set_inputs_run(b->core, pins_inputs_run);
     return b;
 }
 
@@ -421,6 +439,7 @@ int bench_open_vcd(struct bench *b, const char *path, int64_t unit_ps) {
     b->vcd_ma_lag = (sim_ps)(line_nominal_delay_ps(ma) + 10 * ma->jitter_rms_ps) + SIM_PS_PER_US;
     b->vcd_frame_open = false;
     b->vcd_on = true;
+    observe_pins_update(b);
     sim_ps now = eq_now(&b->link.q);
     for (int i = 0; i < 4; i++) {
         vcd_change(&b->vcd, now, i, waveform_level_at(pin_record(b, i), now));
@@ -434,6 +453,7 @@ int bench_close_vcd(struct bench *b) {
         return 0;
     }
     b->vcd_on = false;
+    observe_pins_update(b);
     return vcd_close(&b->vcd, eq_now(&b->link.q));
 }
 
@@ -477,14 +497,20 @@ static void bench_caught_up(struct bench *b) {
     if (b->vcd_on) {
         vcd_frame_update(b, now);
     }
-    /* pin history older than a millisecond is never looked at again; it is
-     * dropped every 16 ms: each drop moves the millisecond that is kept
-     * (at 10 MHz some 11,000 edges per pin), so dropping every millisecond
-     * cost 2 % of the run */
+    /* SL at the master older than a millisecond is never looked at again;
+     * it is dropped every 16 ms: each drop moves the millisecond that is
+     * kept, so dropping every millisecond cost 2 % of the run */
     if (now - b->forgot_at > 16 * SIM_PS_PER_MS) {
-        link_forget_before(&b->link, now - SIM_PS_PER_MS);
+        link_forget_pins_before(&b->link, 1u << LINK_SL_MASTER, now - SIM_PS_PER_MS);
         b->forgot_at = now;
     }
+    /* MA at both ends and SL at the slave are only ever asked for their
+     * level from the last step on (a capture's or the VCD's first level):
+     * their history goes at every step, so that what the models append
+     * to stays in the cache (moving what is kept costs next to nothing:
+     * the edges after now, a handful) */
+    link_forget_pins_before(&b->link,
+                            1u << LINK_MA_MASTER | 1u << LINK_MA_SLAVE | 1u << LINK_SL_SLAVE, now);
 }
 
 enum pru_stop bench_run_frames(struct bench *b, uint64_t frames, int64_t max_ps,
@@ -557,6 +583,7 @@ void bench_capture_frame(struct bench *b, uint64_t k) {
     b->cap_state = CAP_ARMED;
     b->cap_frame = k;
     b->cap_t0 = -1;
+    observe_pins_update(b);
     capture_update(b, eq_now(&b->link.q));
 }
 

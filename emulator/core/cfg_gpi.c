@@ -123,12 +123,19 @@ static void shift_apply(struct pru_core *c, int64_t k_from, int64_t k_to) {
         if (s->sb && k_to - k >= 28)
             k = k_to - 27; /* older samples are shifted out; only SB/Cnt_16 remain */
         int64_t t = edge_time(c, k) - delay;
-        uint32_t v = pins_inputs_at(c, t) & 1u;
+        int64_t tq = t < 0 ? 0 : t;
+        int64_t tn = NEVER_PS;
+        uint32_t v;
+        if (c->have_pins && c->inputs_run)
+            v = c->inputs_run(c->pins.ctx, tq, &tn) & 1u;
+        else
+            v = pins_inputs_at(c, t) & 1u;
         int64_t m = 1;
         if (!c->have_pins) {
             m = k_to - k + 1;
-        } else if (c->pins.next_input_change) {
-            int64_t tn = c->pins.next_input_change(c->pins.ctx, t < 0 ? 0 : t);
+        } else if (c->inputs_run || c->pins.next_input_change) {
+            if (!c->inputs_run)
+                tn = c->pins.next_input_change(c->pins.ctx, tq);
             int64_t j = tn >= NEVER_PS ? k_to : last_edge(c, tn + delay - 1);
             if (j > k_to)
                 j = k_to;

@@ -228,6 +228,12 @@ void pru_set_pins(struct pru_core *c, const struct pru_pins *pins) {
         memset(&c->pins, 0, sizeof c->pins);
         c->have_pins = false;
     }
+    c->inputs_run = NULL;
+}
+
+void pru_set_inputs_run(struct pru_core *c,
+                        uint32_t (*run)(void *ctx, int64_t t_ps, int64_t *next)) {
+    c->inputs_run = run;
 }
 
 void pru_set_inputs(struct pru_core *c, uint32_t levels) {

@@ -287,6 +287,11 @@ void pru_stop(struct pru_core *c);
 /* Pins: without a pins object the inputs are the constant pru_set_inputs(). */
 void pru_set_pins(struct pru_core *c, const struct pru_pins *pins);
 void pru_set_inputs(struct pru_core *c, uint32_t levels);
+/* Optional, after pru_set_pins (which clears it): inputs_at(t_ps) and, in
+ * *next, next_input_change(t_ps) in one call, with the pins' ctx (the
+ * shift register asks both for every run of equal samples). */
+void pru_set_inputs_run(struct pru_core *c,
+                        uint32_t (*run)(void *ctx, int64_t t_ps, int64_t *next));
 
 /* Calls fn(ctx, addr) right after every PRU store that writes the byte at
  * local data RAM address addr (the core's own data RAM), e.g. a firmware's

@@ -30,7 +30,10 @@ eq_id eq_take_id(event_queue *q) {
 }
 
 /* Room for one more at the end: the taken slots before head are reused
- * first, the array grows only when at least half of it is pending. */
+ * first, the array grows only when at least half of it is pending. It
+ * starts at 256 (10 kB): a handful pending, so the pending ones move to the
+ * front once every 250 events or so, not every ten (the in-line
+ * eq_schedule() handles all but those). */
 static int make_room(event_queue *q) {
     if (q->len < q->cap) {
         return 0;
@@ -42,7 +45,7 @@ static int make_room(event_queue *q) {
         q->len = n;
         return 0;
     }
-    size_t cap = q->cap ? q->cap * 2 : 16;
+    size_t cap = q->cap ? q->cap * 2 : 256;
     eq_event *ev = realloc(q->ev, cap * sizeof *ev);
     if (!ev) {
         return -1;
@@ -72,7 +75,7 @@ eq_id eq_schedule_as(event_queue *q, sim_ps t, eq_id id, eq_fn fn, void *ctx, in
     return id;
 }
 
-eq_id eq_schedule(event_queue *q, sim_ps t, eq_fn fn, void *ctx, int64_t arg) {
+eq_id eq_schedule_any(event_queue *q, sim_ps t, eq_fn fn, void *ctx, int64_t arg) {
     return eq_schedule_as(q, t, eq_take_id(q), fn, ctx, arg);
 }
 

@@ -20,7 +20,7 @@ int waveform_last_level(const waveform *w) {
     return w->len ? w->edges[w->len - 1].level : w->initial;
 }
 
-int waveform_append(waveform *w, sim_ps t, int level) {
+int waveform_append_any(waveform *w, sim_ps t, int level) {
     level = level ? 1 : 0;
     if (w->len && t < w->edges[w->len - 1].t) {
         return -1;
@@ -85,6 +85,18 @@ int waveform_level_at(waveform *w, sim_ps t) {
 sim_ps waveform_next_after(waveform *w, sim_ps t) {
     size_t n = count_upto(w, t);
     return n < w->len ? w->edges[n].t : SIM_NEVER;
+}
+
+int waveform_level_next(waveform *w, sim_ps t, sim_ps *next) {
+    /* mostly asked again between the same two edges as last time: that
+     * answer is tested first, without count_upto()'s loop (whose varying
+     * length the host mispredicts) */
+    size_t n = w->hint;
+    if (n > w->len || (n > 0 && w->edges[n - 1].t > t) || (n < w->len && w->edges[n].t <= t)) {
+        n = count_upto(w, t);
+    }
+    *next = n < w->len ? w->edges[n].t : SIM_NEVER;
+    return n ? w->edges[n - 1].level : w->initial;
 }
 
 void waveform_forget_before(waveform *w, sim_ps t) {

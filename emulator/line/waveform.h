@@ -27,15 +27,34 @@ typedef struct {
 void waveform_init(waveform *w, int initial_level);
 void waveform_free(waveform *w);
 
+/* waveform_append() in full (it takes the common case in line). */
+int waveform_append_any(waveform *w, sim_ps t, int level);
+
 /* Appends a transition at t (not earlier than the last one). Returns 0, or -1
- * on out-of-order time or no memory (the record is left unchanged). */
-int waveform_append(waveform *w, sim_ps t, int level);
+ * on out-of-order time or no memory (the record is left unchanged). Every
+ * pin edge of the bench comes here, mostly with room and in order. */
+static inline int waveform_append(waveform *w, sim_ps t, int level) {
+    if (w->len && w->len < w->cap && t >= w->edges[w->len - 1].t) {
+        level = level ? 1 : 0;
+        if (level != w->edges[w->len - 1].level) {
+            w->edges[w->len].t = t;
+            w->edges[w->len].level = level;
+            w->len++;
+        }
+        return 0;
+    }
+    return waveform_append_any(w, t, level);
+}
 
 /* Level at time t; a transition at exactly t is already in effect. */
 int waveform_level_at(waveform *w, sim_ps t);
 
 /* Time of the first transition strictly after t, or SIM_NEVER. */
 sim_ps waveform_next_after(waveform *w, sim_ps t);
+
+/* Level at time t, and in *next the time of the first transition after t
+ * (SIM_NEVER if none): waveform_level_at and waveform_next_after at once. */
+int waveform_level_next(waveform *w, sim_ps t, sim_ps *next);
 
 /* Level after the last transition. */
 int waveform_last_level(const waveform *w);

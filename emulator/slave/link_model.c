@@ -5,7 +5,7 @@
 /* Fan-out points: a pin is recorded, passed on, and shown to the observer. */
 
 static void observe(link_model *l, link_pin pin, sim_ps t, int level) {
-    if (l->observer) {
+    if (l->observer_pins & 1u << pin) {
         l->observer(l->observer_ctx, pin, t, level);
     }
 }
@@ -50,6 +50,11 @@ static sim_ps sl_reach(const line_params *p) {
 void link_set_observer(link_model *l, link_pin_fn fn, void *ctx) {
     l->observer = fn;
     l->observer_ctx = ctx;
+    l->observer_pins = fn ? 0xfu : 0;
+}
+
+void link_observe_pins(link_model *l, unsigned mask) {
+    l->observer_pins = l->observer ? mask & 0xfu : 0;
 }
 
 int link_init(link_model *l, const scenario *sc, char *err, size_t errlen) {
@@ -109,6 +114,15 @@ int link_sl(link_model *l, sim_ps t) {
     return waveform_level_at(&l->sl_master, t);
 }
 
+int link_sl_run(link_model *l, sim_ps t, sim_ps *next) {
+    advance(l, t);
+    sim_ps recorded;
+    int level = waveform_level_next(&l->sl_master, t, &recorded);
+    sim_ps pending = link_next_sl_change(l);
+    *next = recorded < pending ? recorded : pending;
+    return level;
+}
+
 sim_ps link_next_change(const link_model *l) {
     return eq_next_time(&l->q);
 }
@@ -121,9 +135,11 @@ sim_ps link_next_sl_change(const link_model *l) {
     if (!l->sl_reach_on) {
         return eq_next_time(&l->q);
     }
-    /* pending events are a handful: a scan, not a second queue */
+    /* pending events are a handful: a scan, not a second queue; they are
+     * in time order, so it ends at the first one no sooner than the bound
+     * (a later one's own bound is later still) */
     sim_ps first = SIM_NEVER;
-    for (size_t i = l->q.head; i < l->q.len; i++) {
+    for (size_t i = l->q.head; i < l->q.len && l->q.ev[i].t < first; i++) {
         const eq_event *e = &l->q.ev[i];
         sim_ps t = e->ctx == &l->sl_line || e->t > SIM_NEVER - l->sl_reach_ps
                        ? e->t
@@ -139,9 +155,15 @@ uint64_t link_frames(const link_model *l) {
     return l->sc.protocol == SCENARIO_SSI ? l->ssi.frames : l->biss.frames;
 }
 
+void link_forget_pins_before(link_model *l, unsigned mask, sim_ps t) {
+    waveform *w[4] = {&l->ma_master, &l->sl_master, &l->ma_slave, &l->sl_slave};
+    for (int i = 0; i < 4; i++) {
+        if (mask & 1u << i) {
+            waveform_forget_before(w[i], t);
+        }
+    }
+}
+
 void link_forget_before(link_model *l, sim_ps t) {
-    waveform_forget_before(&l->ma_master, t);
-    waveform_forget_before(&l->ma_slave, t);
-    waveform_forget_before(&l->sl_slave, t);
-    waveform_forget_before(&l->sl_master, t);
+    link_forget_pins_before(l, 0xfu, t);
 }

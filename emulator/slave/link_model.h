@@ -33,6 +33,7 @@ typedef struct {
     scenario sc;
     link_pin_fn observer;
     void *observer_ctx;
+    unsigned observer_pins; /* bit (1 << link_pin): the pins it is told of */
     event_queue q;
     line_dir ma_line, sl_line;
     biss_slave biss;
@@ -51,11 +52,21 @@ typedef struct {
 int link_init(link_model *l, const scenario *sc, char *err, size_t errlen);
 void link_free(link_model *l);
 
-/* Sets (or with NULL clears) the pin observer. */
+/* Sets (or with NULL clears) the pin observer, told of every pin. */
 void link_set_observer(link_model *l, link_pin_fn fn, void *ctx);
+
+/* Tells the observer only of the pins in mask (bit 1 << link_pin): an
+ * observer that has nothing to do for a pin for a while spares the call
+ * on each of its edges. */
+void link_observe_pins(link_model *l, unsigned mask);
 
 void link_ma(link_model *l, sim_ps t, int level);
 int link_sl(link_model *l, sim_ps t);
+
+/* link_sl(l, t), and in *next the earliest time after t at which SL at the
+ * master may change unless MA changes first: a change already recorded, or
+ * link_next_sl_change(l). */
+int link_sl_run(link_model *l, sim_ps t, sim_ps *next);
 
 /* Earliest time at which anything pending (an edge in flight, a timeout, a
  * glitch) happens, or SIM_NEVER: SL at the master is constant until then
@@ -76,6 +87,8 @@ void link_set_sl_reach(link_model *l, int on);
 
 /* Drops pin history before t (a long run keeps its memory bounded). */
 void link_forget_before(link_model *l, sim_ps t);
+/* The same for the pins in mask (bit 1 << link_pin) only. */
+void link_forget_pins_before(link_model *l, unsigned mask, sim_ps t);
 
 /* Closed frame records of the slave model (BiSS or SSI). */
 uint64_t link_frames(const link_model *l);
