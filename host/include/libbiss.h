@@ -254,7 +254,9 @@ struct biss_slave_config {
      * frame is not valid (BISS_SAFE_POS_JUMP, biss_sample misframed).
      * Distances are modulo 2^pos_bits (a wrap is no jump). The time comes
      * from the frames' IEP timestamps (free-run, host trigger: frames read
-     * at most 21 s apart, the count's wrap) or from the frame numbers times
+     * at most 21 s apart, the count's wrap, and no other channel of the
+     * PRU-ICSS on the IEP trigger, which restarts the count) or from the
+     * frame numbers times
      * iep_period_ns (IEP trigger; iep-follow with iep_period_ns set, else
      * no check). 0 = off. */
     double max_speed;
