@@ -375,6 +375,28 @@ static inline void core_store_watch(struct pru_core *c, uint32_t addr, unsigned 
 }
 
 /*
+ * Copy a burst's n bytes (n <= 128) between the register file and data RAM
+ * (never overlapping): in 8-byte pieces, the last one overlapping the one
+ * before. GCC makes memcpy() of a variable length a `rep movs` here, whose
+ * start-up costs more than the few bytes a burst moves.
+ */
+static inline void burst_copy(uint8_t *dst, const uint8_t *src, unsigned n) {
+    if (n >= 8) {
+        for (unsigned i = 0; i + 8 < n; i += 8)
+            memcpy(dst + i, src + i, 8);
+        memcpy(dst + n - 8, src + n - 8, 8);
+    } else if (n >= 4) {
+        memcpy(dst, src, 4);
+        memcpy(dst + n - 4, src + n - 4, 4);
+    } else if (n >= 2) {
+        memcpy(dst, src, 2);
+        memcpy(dst + n - 2, src + n - 2, 2);
+    } else if (n) {
+        dst[0] = src[0];
+    }
+}
+
+/*
  * Load n bytes of the PRU data space at the instruction at pc, issued in
  * cycle `cycle`: the own data RAM in place (the common case, inline for the
  * execute loop), the rest in memmap.c, which needs c->pc and c->cycle
@@ -384,7 +406,7 @@ static inline void core_store_watch(struct pru_core *c, uint32_t addr, unsigned 
 static inline int mem_load(struct pru_core *c, uint32_t addr, uint8_t *dst, unsigned n,
                            unsigned *cycles, uint32_t pc, int64_t cycle) {
     if ((uint64_t)addr + n <= c->dram_bytes) {
-        memcpy(dst, c->dram0 + addr, n);
+        burst_copy(dst, c->dram0 + addr, n);
         *cycles = mem_local_load_cycles(c, n);
         return 0;
     }
@@ -397,7 +419,7 @@ static inline int mem_load(struct pru_core *c, uint32_t addr, uint8_t *dst, unsi
 static inline int mem_store(struct pru_core *c, uint32_t addr, const uint8_t *src, unsigned n,
                             unsigned *cycles, uint32_t pc, int64_t cycle) {
     if ((uint64_t)addr + n <= c->dram_bytes) {
-        memcpy(c->dram0 + addr, src, n);
+        burst_copy(c->dram0 + addr, src, n);
         core_store_watch(c, addr, n);
         *cycles = mem_store_cycles(c, n);
         return 0;
