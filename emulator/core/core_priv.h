@@ -43,7 +43,17 @@ enum {
     PD_SUB32I,
     PD_QBNE32I,
     PD_QBEQ32I,
-    PD_END, /* fast loop: one past the end of IRAM (leave the loop) */
+    /* more whole-register forms: rd and rs1 whole, op2 any (I: immediate) */
+    PD_ADC32,
+    PD_AND32,
+    PD_OR32,
+    PD_XOR32,
+    PD_LSL32,
+    PD_LSR32,
+    PD_LSL32I,
+    PD_LSR32I,
+    PD_LDI32, /* LDI into a whole register */
+    PD_END,   /* fast loop: one past the end of IRAM (leave the loop) */
     PD_KIND_END,
 };
 _Static_assert(PD_KIND_END <= UINT8_MAX, "struct pd keeps kinds in a uint8_t");

@@ -232,6 +232,36 @@ static inline __attribute__((always_inline)) bool exec_simple(uint32_t *restrict
         r[d->rd] = a - d->imm;
         break;
     }
+    case PD_ADC32: {
+        uint64_t sum = (uint64_t)r[d->rs1] + op2v(r, d) + (uint64_t)*carry;
+        *carry = (int)(sum >> 32);
+        r[d->rd] = (uint32_t)sum;
+        break;
+    }
+    case PD_AND32:
+        r[d->rd] = r[d->rs1] & op2v(r, d);
+        break;
+    case PD_OR32:
+        r[d->rd] = r[d->rs1] | op2v(r, d);
+        break;
+    case PD_XOR32:
+        r[d->rd] = r[d->rs1] ^ op2v(r, d);
+        break;
+    case PD_LSL32:
+        r[d->rd] = r[d->rs1] << (op2v(r, d) & 31u);
+        break;
+    case PD_LSR32:
+        r[d->rd] = r[d->rs1] >> (op2v(r, d) & 31u);
+        break;
+    case PD_LSL32I:
+        r[d->rd] = r[d->rs1] << (d->imm & 31u);
+        break;
+    case PD_LSR32I:
+        r[d->rd] = r[d->rs1] >> (d->imm & 31u);
+        break;
+    case PD_LDI32:
+        r[d->rd] = d->imm;
+        break;
     case PD_QBNE32:
         QB(op2v(r, d) != r[d->rs1]);
     case PD_QBEQ32:
@@ -442,6 +472,15 @@ static void run_fast(struct pru_core *c, int64_t limit) {
         [PD_SUB32I] = &&k_sub32i,
         [PD_QBNE32I] = &&k_qbne32i,
         [PD_QBEQ32I] = &&k_qbeq32i,
+        [PD_ADC32] = &&k_adc32,
+        [PD_AND32] = &&k_and32,
+        [PD_OR32] = &&k_or32,
+        [PD_XOR32] = &&k_xor32,
+        [PD_LSL32] = &&k_lsl32,
+        [PD_LSR32] = &&k_lsr32,
+        [PD_LSL32I] = &&k_lsl32i,
+        [PD_LSR32I] = &&k_lsr32i,
+        [PD_LDI32] = &&k_ldi32,
         [PD_END] = &&out,
     };
 #pragma GCC diagnostic pop
@@ -550,6 +589,24 @@ k_add32i:
     STRAIGHT(PD_ADD32I);
 k_sub32i:
     STRAIGHT(PD_SUB32I);
+k_adc32:
+    STRAIGHT(PD_ADC32);
+k_and32:
+    STRAIGHT(PD_AND32);
+k_or32:
+    STRAIGHT(PD_OR32);
+k_xor32:
+    STRAIGHT(PD_XOR32);
+k_lsl32:
+    STRAIGHT(PD_LSL32);
+k_lsr32:
+    STRAIGHT(PD_LSR32);
+k_lsl32i:
+    STRAIGHT(PD_LSL32I);
+k_lsr32i:
+    STRAIGHT(PD_LSR32I);
+k_ldi32:
+    STRAIGHT(PD_LDI32);
 k_qbgt:
     BRANCH(PRU_OP_QBGT);
 k_qbge:

@@ -134,6 +134,20 @@ static uint8_t whole_register_kind(const struct pd *d) {
         return rs1 ? PD_QBBS32 : d->fast;
     case PRU_OP_QBBC:
         return rs1 ? PD_QBBC32 : d->fast;
+    case PRU_OP_ADC:
+        return rs1 && rd ? PD_ADC32 : d->fast;
+    case PRU_OP_AND:
+        return rs1 && rd ? PD_AND32 : d->fast;
+    case PRU_OP_OR:
+        return rs1 && rd ? PD_OR32 : d->fast;
+    case PRU_OP_XOR:
+        return rs1 && rd ? PD_XOR32 : d->fast;
+    case PRU_OP_LSL:
+        return rs1 && rd ? (imm ? PD_LSL32I : PD_LSL32) : d->fast;
+    case PRU_OP_LSR:
+        return rs1 && rd ? (imm ? PD_LSR32I : PD_LSR32) : d->fast;
+    case PRU_OP_LDI:
+        return rd ? PD_LDI32 : d->fast;
     default:
         return d->fast;
     }
