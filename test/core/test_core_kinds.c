@@ -19,7 +19,7 @@
 #include <stdio.h>
 
 #define CARRY_REG 29u /* `add r29, r29, r29` sets the carry first */
-#define NREGS     29u /* r0..r28 random: r29 is the carry's, r30/r31 have effects */
+#define NREGS     32u /* r0..r30 random but r29 (the carry's); r31: the inputs */
 #define PROG_LEN  8u  /* carry set-up, the instruction, halts to branch to */
 
 static uint64_t rng_state;
@@ -43,16 +43,23 @@ static uint32_t rnd_value(void) {
     return v;
 }
 
-/* A register: one of the first four often, so that operands alias. */
-static unsigned rnd_reg(void) {
-    return rnd() % 2 ? rnd() % 4 : rnd() % NREGS;
+/* A register: one of the first four often, so that operands alias; now
+ * and then R30 (a destination tells the pins) or, as a source, R31 (the
+ * inputs: PD_R31_READ). */
+static unsigned rnd_reg(bool src) {
+    if (rnd() % 8 == 0)
+        return src && rnd() % 2 ? 31 : 30;
+    unsigned r = rnd() % 2 ? rnd() % 4 : rnd() % 29;
+    return r;
 }
 
 /* An operand byte (core_test_util.h): a whole register, or a random field. */
-static unsigned operand(bool whole) {
+static unsigned operand_of(bool whole, bool src) {
     unsigned sel = whole ? PRU_SEL_R : rnd() % PRU_SEL_R; /* b0..b3, w0..w2 */
-    return (sel << 5) | rnd_reg();
+    return (sel << 5) | rnd_reg(src);
 }
+#define operand(whole) operand_of((whole), true)
+#define dest(whole)    operand_of((whole), false)
 
 static uint8_t rnd_imm8(void) {
     static const uint8_t edge[] = {0, 1, 2, 7, 8, 15, 16, 31, 32, 0x7f, 0x80, 0xff};
@@ -104,9 +111,10 @@ static struct pru_core *run_case(const struct kcase *k, int fast_loop) {
     ck_assert_ptr_nonnull(c);
     ck_assert_int_eq(pru_load_image(c, w, sizeof w), 0);
     pru_start(c);
-    for (unsigned i = 0; i < NREGS; i++)
+    for (unsigned i = 0; i < 31; i++)
         pru_set_reg(c, i, k->regs[i]);
     pru_set_reg(c, CARRY_REG, k->carry ? 0x80000000u : 0);
+    pru_set_inputs(c, k->regs[31]);
     enum pru_stop s = pru_run(c, 100);
     ck_assert_msg(s == PRU_STOP_HALT || s == PRU_STOP_FAULT, "word 0x%08x: stop %d", k->word, s);
     return c;
@@ -119,7 +127,7 @@ static void check_case(const struct kcase *k) {
     struct pru_core *gen = run_case(k, 0);
     char dis[96];
     pru_disasm(k->word, 1, dis, sizeof dis);
-    for (unsigned i = 0; i < 30; i++)
+    for (unsigned i = 0; i < 31; i++)
         ck_assert_msg(pru_reg(fast, i) == pru_reg(gen, i),
                       "%s (0x%08x, carry %d): r%u fast 0x%08x, general 0x%08x", dis, k->word,
                       k->carry, i, pru_reg(fast, i), pru_reg(gen, i));
@@ -154,7 +162,7 @@ START_TEST(alu_kinds_match_general_path) {
                 enum shape op2 = (enum shape)(shape >> 2);
                 struct kcase k;
                 rnd_regs(&k);
-                unsigned d = operand(rd == WHOLE), s1 = operand(rs1 == WHOLE);
+                unsigned d = dest(rd == WHOLE), s1 = operand(rs1 == WHOLE);
                 k.word = op2 == IMM ? alui(alu_ops[o], d, s1, rnd_imm8())
                                     : alu(alu_ops[o], d, s1, operand(op2 == WHOLE));
                 check_case(&k);
@@ -168,7 +176,7 @@ START_TEST(ldi_kinds_match_general_path) {
     for (unsigned n = 0; n < 8u * REPEAT; n++) {
         struct kcase k;
         rnd_regs(&k);
-        k.word = ldi(operand(n % 2 == 0), rnd() & 0xffffu);
+        k.word = ldi(dest(n % 2 == 0), rnd() & 0xffffu);
         check_case(&k);
     }
 }
@@ -213,11 +221,11 @@ START_TEST(branch_kinds_match_general_path) {
             k.word = jmpr(t);
             break;
         case 3:
-            k.word = jali(operand(n % 2 == 0), target);
+            k.word = jali(dest(n % 2 == 0), target);
             break;
         default:
             k.word = enc((struct pru_insn){.op = PRU_OP_JAL,
-                                           .rd = (uint8_t)(rnd_reg()),
+                                           .rd = (uint8_t)(rnd_reg(false)),
                                            .rdsel = (uint8_t)(rnd() % 8),
                                            .rs2 = t & 31,
                                            .rs2sel = t >> 5});
