@@ -28,8 +28,9 @@
 enum {
     PD_BAD = PRU_OP_COUNT, /* no V3 instruction: a fault when executed */
     PD_SLOW,               /* fast loop: hand over to exec_one() */
-    PD_R31_READ,           /* fast loop: refresh R31, then run `kind` */
+    PD_R31_READ,           /* fast loop: refresh R31, then run `inner` */
     PD_R30_WRITE,          /* fast loop: run `kind` (ALU or LDI), then tell the pins */
+    PD_R30_XOR,            /* ... for XOR (the firmware's MA edges) */
     /* fast loop: the same ops when the destination and rs1 are whole
      * registers (rN, no field), without the field shifts and masks */
     PD_ADD32,
@@ -87,6 +88,7 @@ struct pd {
     uint32_t imm;
     uint32_t target; /* absolute branch/jump target, LOOP end */
     struct pru_insn in;
+    uint8_t inner; /* PD_R31_READ: the fast kind to run once R31 is read */
 };
 
 /* Lazily evaluated 28-bit GPI shift register (cfg_gpi.c). */

@@ -462,6 +462,7 @@ static void run_fast(struct pru_core *c, int64_t limit) {
         [PRU_OP_QBBC] = &&k_qbbc,
         [PD_R31_READ] = &&k_r31,
         [PD_R30_WRITE] = &&k_r30,
+        [PD_R30_XOR] = &&k_r30_xor,
         [PD_ADD32] = &&k_add32,
         [PD_SUB32] = &&k_sub32,
         [PD_QBNE32] = &&k_qbne32,
@@ -652,16 +653,16 @@ jumped: /* a register target may lie outside IRAM: exec_run() faults */
         goto out;
     }
     BRANCHED();
-k_r31: /* R31 read first; kept off the path of the others */
+k_r31: /* R31 read first; then the instruction's own handler */
     r[31] = gpi_r31(c, cyc);
-    old = pc;
-    exec_simple(r, d, d->kind, &pc, &carry);
-    if (pc != old + 1)
-        goto jumped;
-    NEXT();
+    goto *kinds[d->inner];
 
 k_r30: /* as exec_one(): the pins see the new R30 at the end of its cycle */
     exec_simple(r, d, d->kind, &pc, &carry);
+    goto r30_written;
+k_r30_xor:
+    exec_simple(r, d, PRU_OP_XOR, &pc, &carry);
+r30_written:
     if (r[30] != c->r30_pins) {
         SYNC_OUT();
         exec_r30_changed(c, cyc + 1);
