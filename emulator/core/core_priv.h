@@ -54,7 +54,13 @@ enum {
     PD_LSL32I,
     PD_LSR32I,
     PD_LDI32, /* LDI into a whole register */
-    PD_END,   /* fast loop: one past the end of IRAM (leave the loop) */
+    /* fields (any) with an immediate op2 */
+    PD_SUBI,
+    PD_MINI,
+    PD_QBEQI,
+    PD_QBNEI,
+    PD_JALI, /* JAL to an immediate target (a call) */
+    PD_END,  /* fast loop: one past the end of IRAM (leave the loop) */
     PD_KIND_END,
 };
 _Static_assert(PD_KIND_END <= UINT8_MAX, "struct pd keeps kinds in a uint8_t");

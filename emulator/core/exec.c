@@ -262,6 +262,22 @@ static inline __attribute__((always_inline)) bool exec_simple(uint32_t *restrict
     case PD_LDI32:
         r[d->rd] = d->imm;
         break;
+    case PD_SUBI:
+        wr(r, d, sub_c(carry, d, rs1v(r, d), d->imm, 0));
+        break;
+    case PD_MINI: {
+        uint32_t a = rs1v(r, d);
+        wr(r, d, a < d->imm ? a : d->imm);
+        break;
+    }
+    case PD_JALI:
+        wr(r, d, p + 1);
+        *pc = d->imm & 0xffffu;
+        return true;
+    case PD_QBEQI:
+        QB(d->imm == rs1v(r, d));
+    case PD_QBNEI:
+        QB(d->imm != rs1v(r, d));
     case PD_QBNE32:
         QB(op2v(r, d) != r[d->rs1]);
     case PD_QBEQ32:
@@ -482,6 +498,11 @@ static void run_fast(struct pru_core *c, int64_t limit) {
         [PD_LSL32I] = &&k_lsl32i,
         [PD_LSR32I] = &&k_lsr32i,
         [PD_LDI32] = &&k_ldi32,
+        [PD_SUBI] = &&k_subi,
+        [PD_MINI] = &&k_mini,
+        [PD_QBEQI] = &&k_qbeqi,
+        [PD_QBNEI] = &&k_qbnei,
+        [PD_JALI] = &&k_jali,
         [PD_END] = &&out,
     };
 #pragma GCC diagnostic pop
@@ -608,6 +629,10 @@ k_lsr32i:
     STRAIGHT(PD_LSR32I);
 k_ldi32:
     STRAIGHT(PD_LDI32);
+k_subi:
+    STRAIGHT(PD_SUBI);
+k_mini:
+    STRAIGHT(PD_MINI);
 k_qbgt:
     BRANCH(PRU_OP_QBGT);
 k_qbge:
@@ -638,6 +663,10 @@ k_qbne32i:
     BRANCH(PD_QBNE32I);
 k_qbeq32i:
     BRANCH(PD_QBEQ32I);
+k_qbeqi:
+    BRANCH(PD_QBEQI);
+k_qbnei:
+    BRANCH(PD_QBNEI);
 k_jmp:
     old = pc;
     exec_simple(r, d, PRU_OP_JMP, &pc, &carry);
@@ -645,6 +674,10 @@ k_jmp:
 k_jal:
     old = pc;
     exec_simple(r, d, PRU_OP_JAL, &pc, &carry);
+    goto jumped;
+k_jali:
+    old = pc;
+    exec_simple(r, d, PD_JALI, &pc, &carry);
 jumped: /* a register target may lie outside IRAM: exec_run() faults */
     if (pc >= n) {
         cyc++;

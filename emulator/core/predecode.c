@@ -126,11 +126,15 @@ static uint8_t fast_form(const struct pd *d, uint8_t kind) {
     case PRU_OP_ADD:
         return rs1 && rd ? (imm ? PD_ADD32I : PD_ADD32) : kind;
     case PRU_OP_SUB:
-        return rs1 && rd ? (imm ? PD_SUB32I : PD_SUB32) : kind;
+        return rs1 && rd ? (imm ? PD_SUB32I : PD_SUB32) : imm ? PD_SUBI : kind;
     case PRU_OP_QBNE:
-        return rs1 ? (imm ? PD_QBNE32I : PD_QBNE32) : kind;
+        return rs1 ? (imm ? PD_QBNE32I : PD_QBNE32) : imm ? PD_QBNEI : kind;
     case PRU_OP_QBEQ:
-        return rs1 ? (imm ? PD_QBEQ32I : PD_QBEQ32) : kind;
+        return rs1 ? (imm ? PD_QBEQ32I : PD_QBEQ32) : imm ? PD_QBEQI : kind;
+    case PRU_OP_MIN:
+        return imm ? PD_MINI : kind;
+    case PRU_OP_JAL:
+        return imm ? PD_JALI : kind;
     case PRU_OP_QBBS:
         return rs1 ? PD_QBBS32 : kind;
     case PRU_OP_QBBC:
