@@ -318,6 +318,12 @@ int64_t intc_next_change(struct pru_core *c, int64_t cycle);
 
 /* ff.c */
 void ff_backward_branch(struct pru_core *c, uint32_t pc, uint32_t top, int64_t limit);
+/* No loop armed: what a branch back further than FF_MAX_BODY leaves. */
+static inline void ff_disarm(struct pru_core *c) {
+    c->ff.top = NO_LOOP;
+    c->ff.have_snap = false;
+    c->ff.r31_mask = ~0u;
+}
 /*
  * The common case of ff_backward_branch() done in line: a branch back to
  * the top it came to last time with no probe running and none to start

@@ -685,6 +685,13 @@ jumped: /* a register target may lie outside IRAM: exec_run() faults */
             goto at_loop_end;
         goto out;
     }
+    if (pc + FF_MAX_BODY <= old) {
+        /* a call of a routine further up (the firmware's delays): no loop
+         * the fast-forward looks at, all that ff_backward_branch() does */
+        if (ff)
+            ff_disarm(c);
+        NEXT();
+    }
     BRANCHED();
 k_r31: /* R31 read first; then the instruction's own handler */
     r[31] = gpi_r31(c, cyc);
