@@ -31,6 +31,7 @@ enum {
     PD_R31_READ,           /* fast loop: refresh R31, then run `inner` */
     PD_R30_WRITE,          /* fast loop: run `kind` (ALU or LDI), then tell the pins */
     PD_R30_XOR,            /* ... for XOR (the firmware's MA edges) */
+    PD_R30_XORB,           /* ... xor r30.bN, r30.bN, rM.bK (op2 a byte) */
     /* fast loop: the same ops when the destination and rs1 are whole
      * registers (rN, no field), without the field shifts and masks */
     PD_ADD32,
@@ -60,7 +61,19 @@ enum {
     PD_QBEQI,
     PD_QBNEI,
     PD_JALI, /* JAL to an immediate target (a call) */
-    PD_END,  /* fast loop: one past the end of IRAM (leave the loop) */
+    /* byte and word fields read and written as bytes and half-words of the
+     * little-endian register file (B: byte, W: word, 32: whole register, I:
+     * immediate; destination, rs1, op2), so that a store of a field and a
+     * load of it are the same size and the host forwards the one to the
+     * other */
+    PD_MINB32I,
+    PD_SUB32B,
+    PD_SUBBBI,
+    PD_QBEQBI,
+    PD_QBNEBI,
+    PD_QBEQWI,
+    PD_QBNEWI,
+    PD_END, /* fast loop: one past the end of IRAM (leave the loop) */
     PD_KIND_END,
 };
 _Static_assert(PD_KIND_END <= UINT8_MAX, "struct pd keeps kinds in a uint8_t");

@@ -22,6 +22,26 @@ static inline void wr(uint32_t *r, const struct pd *d, uint32_t v) {
     fld_set(r, d->rd, d->rdsh, d->rdmask, v);
 }
 
+/* Byte and word fields in place: the register file is little-endian, byte
+ * 4n + k is rn.bk (the fast kinds PD_MINB32I ...). */
+static inline uint8_t *rf_byte(uint32_t *r, unsigned reg, unsigned sh) {
+    return (uint8_t *)r + 4u * reg + sh / 8u;
+}
+static inline uint32_t rs1_byte(uint32_t *r, const struct pd *d) {
+    return *rf_byte(r, d->rs1, d->rs1sh);
+}
+static inline uint32_t rs1_word(uint32_t *r, const struct pd *d) {
+    uint16_t w;
+    memcpy(&w, rf_byte(r, d->rs1, d->rs1sh), sizeof w);
+    return w;
+}
+static inline uint32_t op2_byte(uint32_t *r, const struct pd *d) {
+    return *rf_byte(r, d->rs2, d->rs2sh);
+}
+static inline void wr_byte(uint32_t *r, const struct pd *d, uint32_t v) {
+    *rf_byte(r, d->rd, d->rdsh) = (uint8_t)v;
+}
+
 /* carry = bit W of the untruncated sum (W = destination width) */
 static inline uint32_t add_c(int *carry, const struct pd *d, uint64_t a, uint64_t b, uint64_t cin) {
     uint64_t s = a + b + cin;
@@ -270,6 +290,20 @@ static inline __attribute__((always_inline)) bool exec_simple(uint32_t *restrict
         wr(r, d, a < d->imm ? a : d->imm);
         break;
     }
+    case PD_MINB32I: {
+        uint32_t a = r[d->rs1];
+        wr_byte(r, d, a < d->imm ? a : d->imm);
+        break;
+    }
+    case PD_SUB32B: {
+        uint32_t a = r[d->rs1], b = op2_byte(r, d);
+        *carry = a >= b;
+        r[d->rd] = a - b;
+        break;
+    }
+    case PD_SUBBBI:
+        wr_byte(r, d, sub_c(carry, d, rs1_byte(r, d), d->imm, 0));
+        break;
     case PD_JALI:
         wr(r, d, p + 1);
         *pc = d->imm & 0xffffu;
@@ -278,6 +312,14 @@ static inline __attribute__((always_inline)) bool exec_simple(uint32_t *restrict
         QB(d->imm == rs1v(r, d));
     case PD_QBNEI:
         QB(d->imm != rs1v(r, d));
+    case PD_QBEQBI:
+        QB(d->imm == rs1_byte(r, d));
+    case PD_QBNEBI:
+        QB(d->imm != rs1_byte(r, d));
+    case PD_QBEQWI:
+        QB(d->imm == rs1_word(r, d));
+    case PD_QBNEWI:
+        QB(d->imm != rs1_word(r, d));
     case PD_QBNE32:
         QB(op2v(r, d) != r[d->rs1]);
     case PD_QBEQ32:
@@ -503,6 +545,14 @@ static void run_fast(struct pru_core *c, int64_t limit) {
         [PD_QBEQI] = &&k_qbeqi,
         [PD_QBNEI] = &&k_qbnei,
         [PD_JALI] = &&k_jali,
+        [PD_MINB32I] = &&k_minb32i,
+        [PD_SUB32B] = &&k_sub32b,
+        [PD_SUBBBI] = &&k_subbbi,
+        [PD_QBEQBI] = &&k_qbeqbi,
+        [PD_QBNEBI] = &&k_qbnebi,
+        [PD_QBEQWI] = &&k_qbeqwi,
+        [PD_QBNEWI] = &&k_qbnewi,
+        [PD_R30_XORB] = &&k_r30_xorb,
         [PD_END] = &&out,
     };
 #pragma GCC diagnostic pop
@@ -633,6 +683,12 @@ k_subi:
     STRAIGHT(PD_SUBI);
 k_mini:
     STRAIGHT(PD_MINI);
+k_minb32i:
+    STRAIGHT(PD_MINB32I);
+k_sub32b:
+    STRAIGHT(PD_SUB32B);
+k_subbbi:
+    STRAIGHT(PD_SUBBBI);
 k_qbgt:
     BRANCH(PRU_OP_QBGT);
 k_qbge:
@@ -667,6 +723,14 @@ k_qbeqi:
     BRANCH(PD_QBEQI);
 k_qbnei:
     BRANCH(PD_QBNEI);
+k_qbeqbi:
+    BRANCH(PD_QBEQBI);
+k_qbnebi:
+    BRANCH(PD_QBNEBI);
+k_qbeqwi:
+    BRANCH(PD_QBEQWI);
+k_qbnewi:
+    BRANCH(PD_QBNEWI);
 k_jmp:
     old = pc;
     exec_simple(r, d, PRU_OP_JMP, &pc, &carry);
@@ -702,6 +766,10 @@ k_r30: /* as exec_one(): the pins see the new R30 at the end of its cycle */
     goto r30_written;
 k_r30_xor:
     exec_simple(r, d, PRU_OP_XOR, &pc, &carry);
+    goto r30_written;
+k_r30_xorb: /* a byte of R30 flipped by a byte mask (read as the byte it is) */
+    r[30] ^= op2_byte(r, d) << d->rdsh;
+    pc++;
 r30_written:
     if (r[30] != c->r30_pins) {
         SYNC_OUT();

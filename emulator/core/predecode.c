@@ -122,17 +122,25 @@ static uint8_t fast_form(const struct pd *d, uint8_t kind) {
     bool rs1 = d->rs1sh == 0 && d->rs1mask == 0xffffffffu;
     bool rd = d->rdsh == 0 && d->rdmask == 0xffffffffu;
     bool imm = d->rs2 == ZERO_REG;
+    bool rdb = d->rdmask == 0xffu, rs1b = d->rs1mask == 0xffu, rs1w = d->rs1mask == 0xffffu;
+    bool op2b = !imm && d->rs2mask == 0xffu;
     switch (kind) {
     case PRU_OP_ADD:
         return rs1 && rd ? (imm ? PD_ADD32I : PD_ADD32) : kind;
     case PRU_OP_SUB:
-        return rs1 && rd ? (imm ? PD_SUB32I : PD_SUB32) : imm ? PD_SUBI : kind;
+        if (rs1 && rd)
+            return imm ? PD_SUB32I : op2b ? PD_SUB32B : PD_SUB32;
+        return imm ? (rdb && rs1b ? PD_SUBBBI : PD_SUBI) : kind;
     case PRU_OP_QBNE:
-        return rs1 ? (imm ? PD_QBNE32I : PD_QBNE32) : imm ? PD_QBNEI : kind;
+        if (rs1)
+            return imm ? PD_QBNE32I : PD_QBNE32;
+        return imm ? (rs1b ? PD_QBNEBI : rs1w ? PD_QBNEWI : PD_QBNEI) : kind;
     case PRU_OP_QBEQ:
-        return rs1 ? (imm ? PD_QBEQ32I : PD_QBEQ32) : imm ? PD_QBEQI : kind;
+        if (rs1)
+            return imm ? PD_QBEQ32I : PD_QBEQ32;
+        return imm ? (rs1b ? PD_QBEQBI : rs1w ? PD_QBEQWI : PD_QBEQI) : kind;
     case PRU_OP_MIN:
-        return imm ? PD_MINI : kind;
+        return imm ? (rdb && rs1 ? PD_MINB32I : PD_MINI) : kind;
     case PRU_OP_JAL:
         return imm ? PD_JALI : kind;
     case PRU_OP_QBBS:
@@ -158,6 +166,15 @@ static uint8_t fast_form(const struct pd *d, uint8_t kind) {
     }
 }
 
+/* The fast loop's kind for an ALU instruction or LDI writing R30. */
+static uint8_t r30_form(const struct pd *d) {
+    if (d->kind != PRU_OP_XOR)
+        return PD_R30_WRITE;
+    bool same = d->rs1 == d->rd && d->rs1sh == d->rdsh && d->rs1mask == d->rdmask;
+    bool bytes = d->rdmask == 0xffu && d->rs2 != ZERO_REG && d->rs2mask == 0xffu;
+    return same && bytes ? PD_R30_XORB : PD_R30_XOR;
+}
+
 void predecode_word(struct pru_core *c, uint32_t pc) {
     struct pd *d = &c->pd[pc];
     c->iram_gen++; /* what ff.c decoded from IRAM may be out of date */
@@ -181,7 +198,7 @@ void predecode_word(struct pru_core *c, uint32_t pc) {
     enum pru_fmt f = d->kind == PD_BAD ? PRU_FMT_PSEUDO : (enum pru_fmt)pru_optable[d->kind].fmt;
     if (d->fast == PD_SLOW && d->flags == PD_WRITES_R30 && (f == PRU_FMT_ALU || f == PRU_FMT_LDI) &&
         pru_op_register_only(d->kind))
-        d->fast = d->kind == PRU_OP_XOR ? PD_R30_XOR : PD_R30_WRITE; /* a clocked loop's MA edges */
+        d->fast = r30_form(d); /* a clocked loop's MA edges */
     if ((f == PRU_FMT_QB || f == PRU_FMT_QBA || f == PRU_FMT_QBB) && d->target >= c->iram_words)
         d->fast = PD_SLOW;
 }

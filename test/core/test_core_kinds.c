@@ -163,6 +163,8 @@ START_TEST(alu_kinds_match_general_path) {
                 struct kcase k;
                 rnd_regs(&k);
                 unsigned d = dest(rd == WHOLE), s1 = operand(rs1 == WHOLE);
+                if (rd == rs1 && rnd() % 4 == 0)
+                    s1 = d; /* sub r7.b0, r7.b0, 1 */
                 k.word = op2 == IMM ? alui(alu_ops[o], d, s1, rnd_imm8())
                                     : alu(alu_ops[o], d, s1, operand(op2 == WHOLE));
                 check_case(&k);
@@ -236,6 +238,60 @@ START_TEST(branch_kinds_match_general_path) {
 }
 END_TEST
 
+/* A random byte field (b0..b3) of register reg. */
+static unsigned byte_of(unsigned reg) {
+    return ((rnd() % 4u) << 5) | reg;
+}
+
+/*
+ * The firmware's own field forms, which have kinds of their own that read
+ * and write bytes and half-words of the register file in place (core_priv.h
+ * PD_MINB32I ...), each on many random values: rarely drawn above.
+ */
+START_TEST(field_forms_match_general_path) {
+    rng_state = 0xB5AD4ECEDA1CE2A9ull;
+    for (unsigned n = 0; n < 64u * REPEAT; n++) {
+        struct kcase k;
+        rnd_regs(&k);
+        unsigned a = rnd_reg(true), b = rnd_reg(true);
+        unsigned fa = byte_of(a), fb = byte_of(b);
+        unsigned wa = ((4u + rnd() % 3u) << 5) | a; /* w0..w2 */
+        switch (n % 8) {
+        case 0: /* xor r30.b0, r30.b0, r11.b1: an MA edge */
+            fa = byte_of(30);
+            k.word = alu(PRU_OP_XOR, fa, fa, fb);
+            break;
+        case 1: /* min r11.b0, r12, 2 */
+            k.word = alui(PRU_OP_MIN, byte_of(rnd_reg(false)), R(a), rnd_imm8());
+            break;
+        case 2: /* sub r12, r12, r11.b0 */
+            a = rnd_reg(false);
+            k.word = alu(PRU_OP_SUB, R(a), rnd() % 2 ? R(a) : R(b), fb);
+            break;
+        case 3: /* sub r7.b0, r7.b0, 1 */
+            fa = byte_of(rnd_reg(false));
+            k.word = alui(PRU_OP_SUB, fa, rnd() % 2 ? fa : byte_of(b), rnd_imm8());
+            break;
+        case 4:
+            k.word = qbi(rnd() % 2 ? PRU_OP_QBNE : PRU_OP_QBEQ, 1 + (int)(rnd() % 6), fa,
+                         rnd() % 2 ? field_of(k.regs, fa) : rnd_imm8());
+            break;
+        case 5:
+            k.word = qbi(rnd() % 2 ? PRU_OP_QBNE : PRU_OP_QBEQ, 1 + (int)(rnd() % 6), wa,
+                         rnd() % 2 ? field_of(k.regs, wa) & 0xffu : rnd_imm8());
+            break;
+        case 6: /* a byte written over a register of any value */
+            k.word = alui(PRU_OP_MIN, fa, R(b), rnd_imm8());
+            break;
+        default: /* xor r30.b0, r30.b0, r30.b1 and other R30 XORs */
+            k.word = alu(PRU_OP_XOR, byte_of(30), byte_of(30), rnd() % 2 ? byte_of(30) : fb);
+            break;
+        }
+        check_case(&k);
+    }
+}
+END_TEST
+
 Suite *kinds_suite(void) {
     Suite *s = suite_create("core_kinds");
     TCase *t = tcase_create("fast_vs_general");
@@ -243,6 +299,7 @@ Suite *kinds_suite(void) {
     tcase_add_test(t, alu_kinds_match_general_path);
     tcase_add_test(t, ldi_kinds_match_general_path);
     tcase_add_test(t, branch_kinds_match_general_path);
+    tcase_add_test(t, field_forms_match_general_path);
     suite_add_tcase(s, t);
     return s;
 }
