@@ -45,7 +45,9 @@ enum {
     PD_SUB32I,
     PD_QBNE32I,
     PD_QBEQ32I,
-    /* more whole-register forms: rd and rs1 whole, op2 any (I: immediate) */
+    PD_QBBS32I,
+    PD_QBBC32I,
+    /* more whole-register forms: rd, rs1 and op2 whole (I: op2 immediate) */
     PD_ADC32,
     PD_AND32,
     PD_OR32,

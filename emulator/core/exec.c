@@ -18,6 +18,12 @@ static inline uint32_t op2v(const uint32_t *r, const struct pd *d) {
     return fld(r, d->rs2, d->rs2sh, d->rs2mask) | d->imm;
 }
 
+/* op2 of a kind whose op2 is a whole register or an immediate (r[32] = 0,
+ * imm 0 for a register) */
+static inline uint32_t op2w(const uint32_t *r, const struct pd *d) {
+    return r[d->rs2] | d->imm;
+}
+
 static inline void wr(uint32_t *r, const struct pd *d, uint32_t v) {
     fld_set(r, d->rd, d->rdsh, d->rdmask, v);
 }
@@ -253,25 +259,25 @@ static inline __attribute__((always_inline)) bool exec_simple(uint32_t *restrict
         break;
     }
     case PD_ADC32: {
-        uint64_t sum = (uint64_t)r[d->rs1] + op2v(r, d) + (uint64_t)*carry;
+        uint64_t sum = (uint64_t)r[d->rs1] + op2w(r, d) + (uint64_t)*carry;
         *carry = (int)(sum >> 32);
         r[d->rd] = (uint32_t)sum;
         break;
     }
     case PD_AND32:
-        r[d->rd] = r[d->rs1] & op2v(r, d);
+        r[d->rd] = r[d->rs1] & op2w(r, d);
         break;
     case PD_OR32:
-        r[d->rd] = r[d->rs1] | op2v(r, d);
+        r[d->rd] = r[d->rs1] | op2w(r, d);
         break;
     case PD_XOR32:
-        r[d->rd] = r[d->rs1] ^ op2v(r, d);
+        r[d->rd] = r[d->rs1] ^ op2w(r, d);
         break;
     case PD_LSL32:
-        r[d->rd] = r[d->rs1] << (op2v(r, d) & 31u);
+        r[d->rd] = r[d->rs1] << (op2w(r, d) & 31u);
         break;
     case PD_LSR32:
-        r[d->rd] = r[d->rs1] >> (op2v(r, d) & 31u);
+        r[d->rd] = r[d->rs1] >> (op2w(r, d) & 31u);
         break;
     case PD_LSL32I:
         r[d->rd] = r[d->rs1] << (d->imm & 31u);
@@ -332,6 +338,10 @@ static inline __attribute__((always_inline)) bool exec_simple(uint32_t *restrict
         QB((r[d->rs1] >> (op2v(r, d) & 31u)) & 1u);
     case PD_QBBC32:
         QB(!((r[d->rs1] >> (op2v(r, d) & 31u)) & 1u));
+    case PD_QBBS32I:
+        QB((r[d->rs1] >> (d->imm & 31u)) & 1u);
+    case PD_QBBC32I:
+        QB(!((r[d->rs1] >> (d->imm & 31u)) & 1u));
 #undef QB
     default:
         return false;
@@ -553,6 +563,8 @@ static void run_fast(struct pru_core *c, int64_t limit) {
         [PD_QBEQWI] = &&k_qbeqwi,
         [PD_QBNEWI] = &&k_qbnewi,
         [PD_R30_XORB] = &&k_r30_xorb,
+        [PD_QBBS32I] = &&k_qbbs32i,
+        [PD_QBBC32I] = &&k_qbbc32i,
         [PD_END] = &&out,
     };
 #pragma GCC diagnostic pop
@@ -723,6 +735,10 @@ k_qbeqi:
     BRANCH(PD_QBEQI);
 k_qbnei:
     BRANCH(PD_QBNEI);
+k_qbbs32i:
+    BRANCH(PD_QBBS32I);
+k_qbbc32i:
+    BRANCH(PD_QBBC32I);
 k_qbeqbi:
     BRANCH(PD_QBEQBI);
 k_qbnebi:

@@ -124,6 +124,7 @@ static uint8_t fast_form(const struct pd *d, uint8_t kind) {
     bool imm = d->rs2 == ZERO_REG;
     bool rdb = d->rdmask == 0xffu, rs1b = d->rs1mask == 0xffu, rs1w = d->rs1mask == 0xffffu;
     bool op2b = !imm && d->rs2mask == 0xffu;
+    bool op2w = imm || (d->rs2sh == 0 && d->rs2mask == 0xffffffffu); /* whole or immediate */
     switch (kind) {
     case PRU_OP_ADD:
         return rs1 && rd ? (imm ? PD_ADD32I : PD_ADD32) : kind;
@@ -144,21 +145,21 @@ static uint8_t fast_form(const struct pd *d, uint8_t kind) {
     case PRU_OP_JAL:
         return imm ? PD_JALI : kind;
     case PRU_OP_QBBS:
-        return rs1 ? PD_QBBS32 : kind;
+        return rs1 ? (imm ? PD_QBBS32I : PD_QBBS32) : kind;
     case PRU_OP_QBBC:
-        return rs1 ? PD_QBBC32 : kind;
+        return rs1 ? (imm ? PD_QBBC32I : PD_QBBC32) : kind;
     case PRU_OP_ADC:
-        return rs1 && rd ? PD_ADC32 : kind;
+        return rs1 && rd && op2w ? PD_ADC32 : kind;
     case PRU_OP_AND:
-        return rs1 && rd ? PD_AND32 : kind;
+        return rs1 && rd && op2w ? PD_AND32 : kind;
     case PRU_OP_OR:
-        return rs1 && rd ? PD_OR32 : kind;
+        return rs1 && rd && op2w ? PD_OR32 : kind;
     case PRU_OP_XOR:
-        return rs1 && rd ? PD_XOR32 : kind;
+        return rs1 && rd && op2w ? PD_XOR32 : kind;
     case PRU_OP_LSL:
-        return rs1 && rd ? (imm ? PD_LSL32I : PD_LSL32) : kind;
+        return rs1 && rd && op2w ? (imm ? PD_LSL32I : PD_LSL32) : kind;
     case PRU_OP_LSR:
-        return rs1 && rd ? (imm ? PD_LSR32I : PD_LSR32) : kind;
+        return rs1 && rd && op2w ? (imm ? PD_LSR32I : PD_LSR32) : kind;
     case PRU_OP_LDI:
         return rd ? PD_LDI32 : kind;
     default:
