@@ -621,6 +621,16 @@ static void run_fast(struct pru_core *c, int64_t limit) {
     old = pc;                                                                                      \
     exec_simple(r, d, kind, &pc, &carry);                                                          \
     BRANCHED()
+    /* ... for the kinds of loops longer than the fast-forward looks at */
+#define BRANCH_FAR(kind)                                                                           \
+    old = pc;                                                                                      \
+    exec_simple(r, d, kind, &pc, &carry);                                                          \
+    if (pc + FF_MAX_BODY <= old) {                                                                 \
+        if (ff)                                                                                    \
+            ff_disarm(c);                                                                          \
+        NEXT();                                                                                    \
+    }                                                                                              \
+    BRANCHED()
 
 top:
     if (pc >= n)
@@ -714,7 +724,7 @@ k_qbeq:
 k_qbne:
     BRANCH(PRU_OP_QBNE);
 k_qba:
-    BRANCH(PRU_OP_QBA);
+    BRANCH_FAR(PRU_OP_QBA);
 k_qbbs:
     BRANCH(PRU_OP_QBBS);
 k_qbbc:
@@ -732,21 +742,21 @@ k_qbne32i:
 k_qbeq32i:
     BRANCH(PD_QBEQ32I);
 k_qbeqi:
-    BRANCH(PD_QBEQI);
+    BRANCH_FAR(PD_QBEQI);
 k_qbnei:
-    BRANCH(PD_QBNEI);
+    BRANCH_FAR(PD_QBNEI);
 k_qbbs32i:
     BRANCH(PD_QBBS32I);
 k_qbbc32i:
     BRANCH(PD_QBBC32I);
 k_qbeqbi:
-    BRANCH(PD_QBEQBI);
+    BRANCH_FAR(PD_QBEQBI);
 k_qbnebi:
-    BRANCH(PD_QBNEBI);
+    BRANCH_FAR(PD_QBNEBI);
 k_qbeqwi:
-    BRANCH(PD_QBEQWI);
+    BRANCH_FAR(PD_QBEQWI);
 k_qbnewi:
-    BRANCH(PD_QBNEWI);
+    BRANCH_FAR(PD_QBNEWI);
 k_jmp:
     old = pc;
     exec_simple(r, d, PRU_OP_JMP, &pc, &carry);
@@ -854,6 +864,7 @@ out:
 #undef BRANCHED
 #undef STRAIGHT
 #undef BRANCH
+#undef BRANCH_FAR
 }
 
 enum pru_stop exec_run(struct pru_core *c, int64_t limit, bool one_step) {
