@@ -28,8 +28,10 @@
 enum {
     PD_BAD = PRU_OP_COUNT, /* no V3 instruction: a fault when executed */
     PD_SLOW,               /* fast loop: hand over to exec_one() */
-    PD_R31_READ,           /* fast loop: refresh R31, then run `kind` */
+    PD_R31_READ,           /* fast loop: refresh R31, then run `inner` */
     PD_R30_WRITE,          /* fast loop: run `kind` (ALU or LDI), then tell the pins */
+    PD_R30_XOR,            /* ... for XOR (the firmware's MA edges) */
+    PD_R30_XORB,           /* ... xor r30.bN, r30.bN, rM.bK (op2 a byte) */
     /* fast loop: the same ops when the destination and rs1 are whole
      * registers (rN, no field), without the field shifts and masks */
     PD_ADD32,
@@ -43,6 +45,36 @@ enum {
     PD_SUB32I,
     PD_QBNE32I,
     PD_QBEQ32I,
+    PD_QBBS32I,
+    PD_QBBC32I,
+    /* more whole-register forms: rd, rs1 and op2 whole (I: op2 immediate) */
+    PD_ADC32,
+    PD_AND32,
+    PD_OR32,
+    PD_XOR32,
+    PD_LSL32,
+    PD_LSR32,
+    PD_LSL32I,
+    PD_LSR32I,
+    PD_LDI32, /* LDI into a whole register */
+    /* fields (any) with an immediate op2 */
+    PD_SUBI,
+    PD_MINI,
+    PD_QBEQI,
+    PD_QBNEI,
+    PD_JALI, /* JAL to an immediate target (a call) */
+    /* byte and word fields read and written as bytes and half-words of the
+     * little-endian register file (B: byte, W: word, 32: whole register, I:
+     * immediate; destination, rs1, op2), so that a store of a field and a
+     * load of it are the same size and the host forwards the one to the
+     * other */
+    PD_MINB32I,
+    PD_SUB32B,
+    PD_SUBBBI,
+    PD_QBEQBI,
+    PD_QBNEBI,
+    PD_QBEQWI,
+    PD_QBNEWI,
     PD_END, /* fast loop: one past the end of IRAM (leave the loop) */
     PD_KIND_END,
 };
@@ -77,6 +109,7 @@ struct pd {
     uint32_t imm;
     uint32_t target; /* absolute branch/jump target, LOOP end */
     struct pru_insn in;
+    uint8_t inner; /* PD_R31_READ: the fast kind to run once R31 is read */
 };
 
 /* Lazily evaluated 28-bit GPI shift register (cfg_gpi.c). */
@@ -300,6 +333,12 @@ int64_t intc_next_change(struct pru_core *c, int64_t cycle);
 
 /* ff.c */
 void ff_backward_branch(struct pru_core *c, uint32_t pc, uint32_t top, int64_t limit);
+/* No loop armed: what a branch back further than FF_MAX_BODY leaves. */
+static inline void ff_disarm(struct pru_core *c) {
+    c->ff.top = NO_LOOP;
+    c->ff.have_snap = false;
+    c->ff.r31_mask = ~0u;
+}
 /*
  * The common case of ff_backward_branch() done in line: a branch back to
  * the top it came to last time with no probe running and none to start
@@ -375,6 +414,28 @@ static inline void core_store_watch(struct pru_core *c, uint32_t addr, unsigned 
 }
 
 /*
+ * Copy a burst's n bytes (n <= 128) between the register file and data RAM
+ * (never overlapping): in 8-byte pieces, the last one overlapping the one
+ * before. GCC makes memcpy() of a variable length a `rep movs` here, whose
+ * start-up costs more than the few bytes a burst moves.
+ */
+static inline void burst_copy(uint8_t *dst, const uint8_t *src, unsigned n) {
+    if (n >= 8) {
+        for (unsigned i = 0; i + 8 < n; i += 8)
+            memcpy(dst + i, src + i, 8);
+        memcpy(dst + n - 8, src + n - 8, 8);
+    } else if (n >= 4) {
+        memcpy(dst, src, 4);
+        memcpy(dst + n - 4, src + n - 4, 4);
+    } else if (n >= 2) {
+        memcpy(dst, src, 2);
+        memcpy(dst + n - 2, src + n - 2, 2);
+    } else if (n) {
+        dst[0] = src[0];
+    }
+}
+
+/*
  * Load n bytes of the PRU data space at the instruction at pc, issued in
  * cycle `cycle`: the own data RAM in place (the common case, inline for the
  * execute loop), the rest in memmap.c, which needs c->pc and c->cycle
@@ -384,7 +445,7 @@ static inline void core_store_watch(struct pru_core *c, uint32_t addr, unsigned 
 static inline int mem_load(struct pru_core *c, uint32_t addr, uint8_t *dst, unsigned n,
                            unsigned *cycles, uint32_t pc, int64_t cycle) {
     if ((uint64_t)addr + n <= c->dram_bytes) {
-        memcpy(dst, c->dram0 + addr, n);
+        burst_copy(dst, c->dram0 + addr, n);
         *cycles = mem_local_load_cycles(c, n);
         return 0;
     }
@@ -397,7 +458,7 @@ static inline int mem_load(struct pru_core *c, uint32_t addr, uint8_t *dst, unsi
 static inline int mem_store(struct pru_core *c, uint32_t addr, const uint8_t *src, unsigned n,
                             unsigned *cycles, uint32_t pc, int64_t cycle) {
     if ((uint64_t)addr + n <= c->dram_bytes) {
-        memcpy(c->dram0 + addr, src, n);
+        burst_copy(c->dram0 + addr, src, n);
         core_store_watch(c, addr, n);
         *cycles = mem_store_cycles(c, n);
         return 0;

@@ -18,8 +18,34 @@ static inline uint32_t op2v(const uint32_t *r, const struct pd *d) {
     return fld(r, d->rs2, d->rs2sh, d->rs2mask) | d->imm;
 }
 
+/* op2 of a kind whose op2 is a whole register or an immediate (r[32] = 0,
+ * imm 0 for a register) */
+static inline uint32_t op2w(const uint32_t *r, const struct pd *d) {
+    return r[d->rs2] | d->imm;
+}
+
 static inline void wr(uint32_t *r, const struct pd *d, uint32_t v) {
     fld_set(r, d->rd, d->rdsh, d->rdmask, v);
+}
+
+/* Byte and word fields in place: the register file is little-endian, byte
+ * 4n + k is rn.bk (the fast kinds PD_MINB32I ...). */
+static inline uint8_t *rf_byte(uint32_t *r, unsigned reg, unsigned sh) {
+    return (uint8_t *)r + 4u * reg + sh / 8u;
+}
+static inline uint32_t rs1_byte(uint32_t *r, const struct pd *d) {
+    return *rf_byte(r, d->rs1, d->rs1sh);
+}
+static inline uint32_t rs1_word(uint32_t *r, const struct pd *d) {
+    uint16_t w;
+    memcpy(&w, rf_byte(r, d->rs1, d->rs1sh), sizeof w);
+    return w;
+}
+static inline uint32_t op2_byte(uint32_t *r, const struct pd *d) {
+    return *rf_byte(r, d->rs2, d->rs2sh);
+}
+static inline void wr_byte(uint32_t *r, const struct pd *d, uint32_t v) {
+    *rf_byte(r, d->rd, d->rdsh) = (uint8_t)v;
 }
 
 /* carry = bit W of the untruncated sum (W = destination width) */
@@ -232,6 +258,74 @@ static inline __attribute__((always_inline)) bool exec_simple(uint32_t *restrict
         r[d->rd] = a - d->imm;
         break;
     }
+    case PD_ADC32: {
+        uint64_t sum = (uint64_t)r[d->rs1] + op2w(r, d) + (uint64_t)*carry;
+        *carry = (int)(sum >> 32);
+        r[d->rd] = (uint32_t)sum;
+        break;
+    }
+    case PD_AND32:
+        r[d->rd] = r[d->rs1] & op2w(r, d);
+        break;
+    case PD_OR32:
+        r[d->rd] = r[d->rs1] | op2w(r, d);
+        break;
+    case PD_XOR32:
+        r[d->rd] = r[d->rs1] ^ op2w(r, d);
+        break;
+    case PD_LSL32:
+        r[d->rd] = r[d->rs1] << (op2w(r, d) & 31u);
+        break;
+    case PD_LSR32:
+        r[d->rd] = r[d->rs1] >> (op2w(r, d) & 31u);
+        break;
+    case PD_LSL32I:
+        r[d->rd] = r[d->rs1] << (d->imm & 31u);
+        break;
+    case PD_LSR32I:
+        r[d->rd] = r[d->rs1] >> (d->imm & 31u);
+        break;
+    case PD_LDI32:
+        r[d->rd] = d->imm;
+        break;
+    case PD_SUBI:
+        wr(r, d, sub_c(carry, d, rs1v(r, d), d->imm, 0));
+        break;
+    case PD_MINI: {
+        uint32_t a = rs1v(r, d);
+        wr(r, d, a < d->imm ? a : d->imm);
+        break;
+    }
+    case PD_MINB32I: {
+        uint32_t a = r[d->rs1];
+        wr_byte(r, d, a < d->imm ? a : d->imm);
+        break;
+    }
+    case PD_SUB32B: {
+        uint32_t a = r[d->rs1], b = op2_byte(r, d);
+        *carry = a >= b;
+        r[d->rd] = a - b;
+        break;
+    }
+    case PD_SUBBBI:
+        wr_byte(r, d, sub_c(carry, d, rs1_byte(r, d), d->imm, 0));
+        break;
+    case PD_JALI:
+        wr(r, d, p + 1);
+        *pc = d->imm & 0xffffu;
+        return true;
+    case PD_QBEQI:
+        QB(d->imm == rs1v(r, d));
+    case PD_QBNEI:
+        QB(d->imm != rs1v(r, d));
+    case PD_QBEQBI:
+        QB(d->imm == rs1_byte(r, d));
+    case PD_QBNEBI:
+        QB(d->imm != rs1_byte(r, d));
+    case PD_QBEQWI:
+        QB(d->imm == rs1_word(r, d));
+    case PD_QBNEWI:
+        QB(d->imm != rs1_word(r, d));
     case PD_QBNE32:
         QB(op2v(r, d) != r[d->rs1]);
     case PD_QBEQ32:
@@ -244,6 +338,10 @@ static inline __attribute__((always_inline)) bool exec_simple(uint32_t *restrict
         QB((r[d->rs1] >> (op2v(r, d) & 31u)) & 1u);
     case PD_QBBC32:
         QB(!((r[d->rs1] >> (op2v(r, d) & 31u)) & 1u));
+    case PD_QBBS32I:
+        QB((r[d->rs1] >> (d->imm & 31u)) & 1u);
+    case PD_QBBC32I:
+        QB(!((r[d->rs1] >> (d->imm & 31u)) & 1u));
 #undef QB
     default:
         return false;
@@ -432,6 +530,7 @@ static void run_fast(struct pru_core *c, int64_t limit) {
         [PRU_OP_QBBC] = &&k_qbbc,
         [PD_R31_READ] = &&k_r31,
         [PD_R30_WRITE] = &&k_r30,
+        [PD_R30_XOR] = &&k_r30_xor,
         [PD_ADD32] = &&k_add32,
         [PD_SUB32] = &&k_sub32,
         [PD_QBNE32] = &&k_qbne32,
@@ -442,6 +541,30 @@ static void run_fast(struct pru_core *c, int64_t limit) {
         [PD_SUB32I] = &&k_sub32i,
         [PD_QBNE32I] = &&k_qbne32i,
         [PD_QBEQ32I] = &&k_qbeq32i,
+        [PD_ADC32] = &&k_adc32,
+        [PD_AND32] = &&k_and32,
+        [PD_OR32] = &&k_or32,
+        [PD_XOR32] = &&k_xor32,
+        [PD_LSL32] = &&k_lsl32,
+        [PD_LSR32] = &&k_lsr32,
+        [PD_LSL32I] = &&k_lsl32i,
+        [PD_LSR32I] = &&k_lsr32i,
+        [PD_LDI32] = &&k_ldi32,
+        [PD_SUBI] = &&k_subi,
+        [PD_MINI] = &&k_mini,
+        [PD_QBEQI] = &&k_qbeqi,
+        [PD_QBNEI] = &&k_qbnei,
+        [PD_JALI] = &&k_jali,
+        [PD_MINB32I] = &&k_minb32i,
+        [PD_SUB32B] = &&k_sub32b,
+        [PD_SUBBBI] = &&k_subbbi,
+        [PD_QBEQBI] = &&k_qbeqbi,
+        [PD_QBNEBI] = &&k_qbnebi,
+        [PD_QBEQWI] = &&k_qbeqwi,
+        [PD_QBNEWI] = &&k_qbnewi,
+        [PD_R30_XORB] = &&k_r30_xorb,
+        [PD_QBBS32I] = &&k_qbbs32i,
+        [PD_QBBC32I] = &&k_qbbc32i,
         [PD_END] = &&out,
     };
 #pragma GCC diagnostic pop
@@ -498,6 +621,16 @@ static void run_fast(struct pru_core *c, int64_t limit) {
     old = pc;                                                                                      \
     exec_simple(r, d, kind, &pc, &carry);                                                          \
     BRANCHED()
+    /* ... for the kinds of loops longer than the fast-forward looks at */
+#define BRANCH_FAR(kind)                                                                           \
+    old = pc;                                                                                      \
+    exec_simple(r, d, kind, &pc, &carry);                                                          \
+    if (pc + FF_MAX_BODY <= old) {                                                                 \
+        if (ff)                                                                                    \
+            ff_disarm(c);                                                                          \
+        NEXT();                                                                                    \
+    }                                                                                              \
+    BRANCHED()
 
 top:
     if (pc >= n)
@@ -550,6 +683,34 @@ k_add32i:
     STRAIGHT(PD_ADD32I);
 k_sub32i:
     STRAIGHT(PD_SUB32I);
+k_adc32:
+    STRAIGHT(PD_ADC32);
+k_and32:
+    STRAIGHT(PD_AND32);
+k_or32:
+    STRAIGHT(PD_OR32);
+k_xor32:
+    STRAIGHT(PD_XOR32);
+k_lsl32:
+    STRAIGHT(PD_LSL32);
+k_lsr32:
+    STRAIGHT(PD_LSR32);
+k_lsl32i:
+    STRAIGHT(PD_LSL32I);
+k_lsr32i:
+    STRAIGHT(PD_LSR32I);
+k_ldi32:
+    STRAIGHT(PD_LDI32);
+k_subi:
+    STRAIGHT(PD_SUBI);
+k_mini:
+    STRAIGHT(PD_MINI);
+k_minb32i:
+    STRAIGHT(PD_MINB32I);
+k_sub32b:
+    STRAIGHT(PD_SUB32B);
+k_subbbi:
+    STRAIGHT(PD_SUBBBI);
 k_qbgt:
     BRANCH(PRU_OP_QBGT);
 k_qbge:
@@ -563,7 +724,7 @@ k_qbeq:
 k_qbne:
     BRANCH(PRU_OP_QBNE);
 k_qba:
-    BRANCH(PRU_OP_QBA);
+    BRANCH_FAR(PRU_OP_QBA);
 k_qbbs:
     BRANCH(PRU_OP_QBBS);
 k_qbbc:
@@ -580,6 +741,22 @@ k_qbne32i:
     BRANCH(PD_QBNE32I);
 k_qbeq32i:
     BRANCH(PD_QBEQ32I);
+k_qbeqi:
+    BRANCH_FAR(PD_QBEQI);
+k_qbnei:
+    BRANCH_FAR(PD_QBNEI);
+k_qbbs32i:
+    BRANCH(PD_QBBS32I);
+k_qbbc32i:
+    BRANCH(PD_QBBC32I);
+k_qbeqbi:
+    BRANCH_FAR(PD_QBEQBI);
+k_qbnebi:
+    BRANCH_FAR(PD_QBNEBI);
+k_qbeqwi:
+    BRANCH_FAR(PD_QBEQWI);
+k_qbnewi:
+    BRANCH_FAR(PD_QBNEWI);
 k_jmp:
     old = pc;
     exec_simple(r, d, PRU_OP_JMP, &pc, &carry);
@@ -587,6 +764,10 @@ k_jmp:
 k_jal:
     old = pc;
     exec_simple(r, d, PRU_OP_JAL, &pc, &carry);
+    goto jumped;
+k_jali:
+    old = pc;
+    exec_simple(r, d, PD_JALI, &pc, &carry);
 jumped: /* a register target may lie outside IRAM: exec_run() faults */
     if (pc >= n) {
         cyc++;
@@ -594,17 +775,28 @@ jumped: /* a register target may lie outside IRAM: exec_run() faults */
             goto at_loop_end;
         goto out;
     }
+    if (pc + FF_MAX_BODY <= old) {
+        /* a call of a routine further up (the firmware's delays): no loop
+         * the fast-forward looks at, all that ff_backward_branch() does */
+        if (ff)
+            ff_disarm(c);
+        NEXT();
+    }
     BRANCHED();
-k_r31: /* R31 read first; kept off the path of the others */
+k_r31: /* R31 read first; then the instruction's own handler */
     r[31] = gpi_r31(c, cyc);
-    old = pc;
-    exec_simple(r, d, d->kind, &pc, &carry);
-    if (pc != old + 1)
-        goto jumped;
-    NEXT();
+    goto *kinds[d->inner];
 
 k_r30: /* as exec_one(): the pins see the new R30 at the end of its cycle */
     exec_simple(r, d, d->kind, &pc, &carry);
+    goto r30_written;
+k_r30_xor:
+    exec_simple(r, d, PRU_OP_XOR, &pc, &carry);
+    goto r30_written;
+k_r30_xorb: /* a byte of R30 flipped by a byte mask (read as the byte it is) */
+    r[30] ^= op2_byte(r, d) << d->rdsh;
+    pc++;
+r30_written:
     if (r[30] != c->r30_pins) {
         SYNC_OUT();
         exec_r30_changed(c, cyc + 1);
@@ -672,6 +864,7 @@ out:
 #undef BRANCHED
 #undef STRAIGHT
 #undef BRANCH
+#undef BRANCH_FAR
 }
 
 enum pru_stop exec_run(struct pru_core *c, int64_t limit, bool one_step) {

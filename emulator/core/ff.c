@@ -345,17 +345,13 @@ void ff_backward_branch(struct pru_core *c, uint32_t pc, uint32_t top, int64_t l
     uint64_t insns = c->insns + 1;
 
     if (pc - top >= FF_MAX_BODY) {
-        f->top = NO_LOOP;
-        f->have_snap = false;
-        f->r31_mask = ~0u;
+        ff_disarm(c);
         return;
     }
     if (c->p.ff_count_loop && count_loop_skip(c, pc, top, limit)) {
         /* unarmed, so that the next arrival here (the next call of the
          * delay) comes back through this function, not the in-line one */
-        f->top = NO_LOOP;
-        f->have_snap = false;
-        f->r31_mask = ~0u;
+        ff_disarm(c);
         return;
     }
     int x = -1;

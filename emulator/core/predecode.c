@@ -114,29 +114,66 @@ static void decode_into(struct pd *d, const struct pru_insn *in, uint32_t pc) {
     d->kind = PD_BAD;
 }
 
-/* The whole-register form of a fast kind (PD_ADD32 ...), or the kind; with
- * the threaded dispatch of the fast loop, an immediate op2 has forms of its
- * own too (PD_ADD32I ...). */
-static uint8_t whole_register_kind(const struct pd *d) {
+/* The fast loop's kind for register-only op `kind` with d's operands: its
+ * whole-register form (PD_ADD32 ...), or the op; with the threaded dispatch
+ * of the fast loop, an immediate op2 has forms of its own too (PD_ADD32I
+ * ...). */
+static uint8_t fast_form(const struct pd *d, uint8_t kind) {
     bool rs1 = d->rs1sh == 0 && d->rs1mask == 0xffffffffu;
     bool rd = d->rdsh == 0 && d->rdmask == 0xffffffffu;
     bool imm = d->rs2 == ZERO_REG;
-    switch (d->fast) {
+    bool rdb = d->rdmask == 0xffu, rs1b = d->rs1mask == 0xffu, rs1w = d->rs1mask == 0xffffu;
+    bool op2b = !imm && d->rs2mask == 0xffu;
+    bool op2w = imm || (d->rs2sh == 0 && d->rs2mask == 0xffffffffu); /* whole or immediate */
+    switch (kind) {
     case PRU_OP_ADD:
-        return rs1 && rd ? (imm ? PD_ADD32I : PD_ADD32) : d->fast;
+        return rs1 && rd ? (imm ? PD_ADD32I : PD_ADD32) : kind;
     case PRU_OP_SUB:
-        return rs1 && rd ? (imm ? PD_SUB32I : PD_SUB32) : d->fast;
+        if (rs1 && rd)
+            return imm ? PD_SUB32I : op2b ? PD_SUB32B : PD_SUB32;
+        return imm ? (rdb && rs1b ? PD_SUBBBI : PD_SUBI) : kind;
     case PRU_OP_QBNE:
-        return rs1 ? (imm ? PD_QBNE32I : PD_QBNE32) : d->fast;
+        if (rs1)
+            return imm ? PD_QBNE32I : PD_QBNE32;
+        return imm ? (rs1b ? PD_QBNEBI : rs1w ? PD_QBNEWI : PD_QBNEI) : kind;
     case PRU_OP_QBEQ:
-        return rs1 ? (imm ? PD_QBEQ32I : PD_QBEQ32) : d->fast;
+        if (rs1)
+            return imm ? PD_QBEQ32I : PD_QBEQ32;
+        return imm ? (rs1b ? PD_QBEQBI : rs1w ? PD_QBEQWI : PD_QBEQI) : kind;
+    case PRU_OP_MIN:
+        return imm ? (rdb && rs1 ? PD_MINB32I : PD_MINI) : kind;
+    case PRU_OP_JAL:
+        return imm ? PD_JALI : kind;
     case PRU_OP_QBBS:
-        return rs1 ? PD_QBBS32 : d->fast;
+        return rs1 ? (imm ? PD_QBBS32I : PD_QBBS32) : kind;
     case PRU_OP_QBBC:
-        return rs1 ? PD_QBBC32 : d->fast;
+        return rs1 ? (imm ? PD_QBBC32I : PD_QBBC32) : kind;
+    case PRU_OP_ADC:
+        return rs1 && rd && op2w ? PD_ADC32 : kind;
+    case PRU_OP_AND:
+        return rs1 && rd && op2w ? PD_AND32 : kind;
+    case PRU_OP_OR:
+        return rs1 && rd && op2w ? PD_OR32 : kind;
+    case PRU_OP_XOR:
+        return rs1 && rd && op2w ? PD_XOR32 : kind;
+    case PRU_OP_LSL:
+        return rs1 && rd && op2w ? (imm ? PD_LSL32I : PD_LSL32) : kind;
+    case PRU_OP_LSR:
+        return rs1 && rd && op2w ? (imm ? PD_LSR32I : PD_LSR32) : kind;
+    case PRU_OP_LDI:
+        return rd ? PD_LDI32 : kind;
     default:
-        return d->fast;
+        return kind;
     }
+}
+
+/* The fast loop's kind for an ALU instruction or LDI writing R30. */
+static uint8_t r30_form(const struct pd *d) {
+    if (d->kind != PRU_OP_XOR)
+        return PD_R30_WRITE;
+    bool same = d->rs1 == d->rd && d->rs1sh == d->rdsh && d->rs1mask == d->rdmask;
+    bool bytes = d->rdmask == 0xffu && d->rs2 != ZERO_REG && d->rs2mask == 0xffu;
+    return same && bytes ? PD_R30_XORB : PD_R30_XOR;
 }
 
 void predecode_word(struct pru_core *c, uint32_t pc) {
@@ -152,18 +189,19 @@ void predecode_word(struct pru_core *c, uint32_t pc) {
     d->in = in;
     decode_into(d, &in, pc);
     d->fast = d->kind == PD_BAD || !pru_op_register_only(d->kind) ? PD_SLOW
-              : d->flags == 0                                     ? d->kind
+              : d->flags == 0                                     ? fast_form(d, d->kind)
               : d->flags == PD_READS_R31                          ? PD_R31_READ
                                                                   : PD_SLOW;
+    if (d->fast == PD_R31_READ)
+        d->inner = fast_form(d, d->kind);
     /* a branch out of IRAM faults: exec_one() takes it, the fast loop
      * checks only the targets of JMP and JAL */
     enum pru_fmt f = d->kind == PD_BAD ? PRU_FMT_PSEUDO : (enum pru_fmt)pru_optable[d->kind].fmt;
     if (d->fast == PD_SLOW && d->flags == PD_WRITES_R30 && (f == PRU_FMT_ALU || f == PRU_FMT_LDI) &&
         pru_op_register_only(d->kind))
-        d->fast = PD_R30_WRITE; /* the MA edges of a clocked loop */
+        d->fast = r30_form(d); /* a clocked loop's MA edges */
     if ((f == PRU_FMT_QB || f == PRU_FMT_QBA || f == PRU_FMT_QBB) && d->target >= c->iram_words)
         d->fast = PD_SLOW;
-    d->fast = whole_register_kind(d);
 }
 
 void predecode_all(struct pru_core *c) {

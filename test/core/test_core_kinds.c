@@ -1,0 +1,309 @@
+/*
+ * Check suite: the fast loop's predecoded kinds against the general path.
+ *
+ * The fast loop (pru_params.fast_loop, exec.c run_fast) runs register-only
+ * instructions through kinds chosen at predecode time by operand shape:
+ * whole registers, byte and word fields, an immediate op2 (core_priv.h,
+ * PD_ADD32 ...). With fast_loop = 0 every instruction goes through the
+ * general path (exec_simple() on the instruction's own op), which reads and
+ * writes every operand through its shift and mask. Here every register-only
+ * op runs with every operand shape (destination, rs1 and op2 each a whole
+ * register or a random field, op2 also an immediate) on random register
+ * values, fields, aliasing and carry, once each way: both must leave the
+ * same registers, carry, PC, counts and fault.
+ */
+#include "check_run.h"
+#include "core_test_util.h"
+
+#include <stdbool.h>
+#include <stdio.h>
+
+#define CARRY_REG 29u /* `add r29, r29, r29` sets the carry first */
+#define NREGS     32u /* r0..r30 random but r29 (the carry's); r31: the inputs */
+#define PROG_LEN  8u  /* carry set-up, the instruction, halts to branch to */
+
+static uint64_t rng_state;
+
+static uint32_t rnd(void) {
+    /* xorshift64*: reproducible from the fixed seed */
+    rng_state ^= rng_state >> 12;
+    rng_state ^= rng_state << 25;
+    rng_state ^= rng_state >> 27;
+    return (uint32_t)((rng_state * 0x2545F4914F6CDD1Dull) >> 32);
+}
+
+/* A register value with the edge cases of bytes and words likely. */
+static uint32_t rnd_value(void) {
+    static const uint8_t edge[] = {0x00, 0xff, 0x7f, 0x80, 0x01, 0xfe};
+    if (rnd() % 2)
+        return rnd();
+    uint32_t v = 0;
+    for (unsigned b = 0; b < 4; b++)
+        v |= (uint32_t)(rnd() % 3 ? edge[rnd() % sizeof edge] : rnd() & 0xffu) << (8 * b);
+    return v;
+}
+
+/* A register: one of the first four often, so that operands alias; now
+ * and then R30 (a destination tells the pins) or, as a source, R31 (the
+ * inputs: PD_R31_READ). */
+static unsigned rnd_reg(bool src) {
+    if (rnd() % 8 == 0)
+        return src && rnd() % 2 ? 31 : 30;
+    unsigned r = rnd() % 2 ? rnd() % 4 : rnd() % 29;
+    return r;
+}
+
+/* An operand byte (core_test_util.h): a whole register, or a random field. */
+static unsigned operand_of(bool whole, bool src) {
+    unsigned sel = whole ? PRU_SEL_R : rnd() % PRU_SEL_R; /* b0..b3, w0..w2 */
+    return (sel << 5) | rnd_reg(src);
+}
+#define operand(whole) operand_of((whole), true)
+#define dest(whole)    operand_of((whole), false)
+
+static uint8_t rnd_imm8(void) {
+    static const uint8_t edge[] = {0, 1, 2, 7, 8, 15, 16, 31, 32, 0x7f, 0x80, 0xff};
+    return rnd() % 2 ? (uint8_t)rnd() : edge[rnd() % sizeof edge];
+}
+
+/* How an operand is built: whole register, field, or (op2 only) immediate. */
+enum shape { WHOLE, FIELD, IMM };
+
+static const int alu_ops[] = {PRU_OP_ADD, PRU_OP_ADC, PRU_OP_SUB, PRU_OP_SUC, PRU_OP_RSB,
+                              PRU_OP_RSC, PRU_OP_LSL, PRU_OP_LSR, PRU_OP_AND, PRU_OP_OR,
+                              PRU_OP_XOR, PRU_OP_NOT, PRU_OP_MIN, PRU_OP_MAX, PRU_OP_CLR,
+                              PRU_OP_SET, PRU_OP_LMBD};
+static const int qb_ops[] = {PRU_OP_QBGT, PRU_OP_QBGE, PRU_OP_QBLT, PRU_OP_QBLE,
+                             PRU_OP_QBEQ, PRU_OP_QBNE, PRU_OP_QBBS, PRU_OP_QBBC};
+
+/* One random case of the instruction word `w` at PC 1 (CASE_*). */
+struct kcase {
+    uint32_t word;
+    uint32_t regs[NREGS];
+    int carry;
+};
+
+/* The value of field `opnd` (an operand byte) in regs. */
+static uint32_t field_of(const uint32_t *regs, unsigned opnd) {
+    unsigned sel = opnd >> 5;
+    return (regs[opnd & 31u] >> pru_sel_shift(sel)) & pru_sel_mask(sel);
+}
+
+/* Sets field `opnd` of regs to v. */
+static void set_field(uint32_t *regs, unsigned opnd, uint32_t v) {
+    unsigned sel = opnd >> 5, sh = pru_sel_shift(sel);
+    uint32_t m = pru_sel_mask(sel);
+    regs[opnd & 31u] = (regs[opnd & 31u] & ~(m << sh)) | ((v & m) << sh);
+}
+
+/* Runs the case with the fast loop on or off; returns the core (halted
+ * or faulted). */
+static struct pru_core *run_case(const struct kcase *k, int fast_loop) {
+    struct pru_params p;
+    pru_params_default(&p);
+    p.fast_loop = fast_loop;
+    uint32_t w[PROG_LEN];
+    w[0] = alu(PRU_OP_ADD, R(CARRY_REG), R(CARRY_REG), R(CARRY_REG));
+    w[1] = k->word;
+    for (unsigned i = 2; i < PROG_LEN; i++)
+        w[i] = halt();
+    struct pru_core *c = pru_core_new(PRU_SOC_AM335X, &p);
+    ck_assert_ptr_nonnull(c);
+    ck_assert_int_eq(pru_load_image(c, w, sizeof w), 0);
+    pru_start(c);
+    for (unsigned i = 0; i < 31; i++)
+        pru_set_reg(c, i, k->regs[i]);
+    pru_set_reg(c, CARRY_REG, k->carry ? 0x80000000u : 0);
+    pru_set_inputs(c, k->regs[31]);
+    enum pru_stop s = pru_run(c, 100);
+    ck_assert_msg(s == PRU_STOP_HALT || s == PRU_STOP_FAULT, "word 0x%08x: stop %d", k->word, s);
+    return c;
+}
+
+static unsigned compared;
+
+static void check_case(const struct kcase *k) {
+    struct pru_core *fast = run_case(k, 1);
+    struct pru_core *gen = run_case(k, 0);
+    char dis[96];
+    pru_disasm(k->word, 1, dis, sizeof dis);
+    for (unsigned i = 0; i < 31; i++)
+        ck_assert_msg(pru_reg(fast, i) == pru_reg(gen, i),
+                      "%s (0x%08x, carry %d): r%u fast 0x%08x, general 0x%08x", dis, k->word,
+                      k->carry, i, pru_reg(fast, i), pru_reg(gen, i));
+    ck_assert_msg(pru_carry(fast) == pru_carry(gen), "%s: carry fast %d, general %d", dis,
+                  pru_carry(fast), pru_carry(gen));
+    ck_assert_msg(pru_pc(fast) == pru_pc(gen), "%s: pc fast %u, general %u", dis, pru_pc(fast),
+                  pru_pc(gen));
+    ck_assert_int_eq(pru_cycles(fast), pru_cycles(gen));
+    ck_assert_uint_eq(pru_instructions(fast), pru_instructions(gen));
+    ck_assert_int_eq(pru_get_fault(fast)->cause, pru_get_fault(gen)->cause);
+    pru_core_free(fast);
+    pru_core_free(gen);
+    compared++;
+}
+
+static void rnd_regs(struct kcase *k) {
+    for (unsigned i = 0; i < NREGS; i++)
+        k->regs[i] = rnd_value();
+    k->carry = (int)(rnd() & 1u);
+}
+
+#define REPEAT 24u /* random cases per op and operand shape */
+
+START_TEST(alu_kinds_match_general_path) {
+    rng_state = 0x9E3779B97F4A7C15ull;
+    compared = 0;
+    for (unsigned o = 0; o < sizeof alu_ops / sizeof alu_ops[0]; o++)
+        for (unsigned shape = 0; shape < 12; shape++)
+            for (unsigned n = 0; n < REPEAT; n++) {
+                enum shape rd = shape & 1u ? FIELD : WHOLE;
+                enum shape rs1 = shape & 2u ? FIELD : WHOLE;
+                enum shape op2 = (enum shape)(shape >> 2);
+                struct kcase k;
+                rnd_regs(&k);
+                unsigned d = dest(rd == WHOLE), s1 = operand(rs1 == WHOLE);
+                if (rd == rs1 && rnd() % 4 == 0)
+                    s1 = d; /* sub r7.b0, r7.b0, 1 */
+                k.word = op2 == IMM ? alui(alu_ops[o], d, s1, rnd_imm8())
+                                    : alu(alu_ops[o], d, s1, operand(op2 == WHOLE));
+                check_case(&k);
+            }
+    ck_assert_uint_eq(compared, sizeof alu_ops / sizeof alu_ops[0] * 12u * REPEAT);
+}
+END_TEST
+
+START_TEST(ldi_kinds_match_general_path) {
+    rng_state = 0xD1B54A32D192ED03ull;
+    for (unsigned n = 0; n < 8u * REPEAT; n++) {
+        struct kcase k;
+        rnd_regs(&k);
+        k.word = ldi(dest(n % 2 == 0), rnd() & 0xffffu);
+        check_case(&k);
+    }
+}
+END_TEST
+
+START_TEST(branch_kinds_match_general_path) {
+    rng_state = 0x2545F4914F6CDD1Dull;
+    for (unsigned o = 0; o < sizeof qb_ops / sizeof qb_ops[0]; o++)
+        for (unsigned shape = 0; shape < 6; shape++)
+            for (unsigned n = 0; n < REPEAT; n++) {
+                enum shape rs1 = shape & 1u ? FIELD : WHOLE;
+                enum shape op2 = (enum shape)(shape >> 1);
+                struct kcase k;
+                rnd_regs(&k);
+                unsigned s1 = operand(rs1 == WHOLE);
+                int off = 1 + (int)(rnd() % (PROG_LEN - 2)); /* to one of the halts */
+                if (op2 == IMM) {
+                    k.word = qbi(qb_ops[o], off, s1, rnd_imm8());
+                } else {
+                    unsigned s2 = operand(op2 == WHOLE);
+                    if (rnd() % 4 == 0) /* equal operands */
+                        set_field(k.regs, s2, field_of(k.regs, s1));
+                    k.word = qb(qb_ops[o], off, s1, s2);
+                }
+                check_case(&k);
+            }
+    /* QBA, JMP and JAL, immediate and register targets */
+    for (unsigned n = 0; n < 8u * REPEAT; n++) {
+        struct kcase k;
+        rnd_regs(&k);
+        unsigned target = 2 + rnd() % (PROG_LEN - 2);
+        unsigned t = operand(n % 3 == 0);
+        set_field(k.regs, t, target);
+        switch (n % 5) {
+        case 0:
+            k.word = qba((int)target - 1);
+            break;
+        case 1:
+            k.word = jmpi(target);
+            break;
+        case 2:
+            k.word = jmpr(t);
+            break;
+        case 3:
+            k.word = jali(dest(n % 2 == 0), target);
+            break;
+        default:
+            k.word = enc((struct pru_insn){.op = PRU_OP_JAL,
+                                           .rd = (uint8_t)(rnd_reg(false)),
+                                           .rdsel = (uint8_t)(rnd() % 8),
+                                           .rs2 = t & 31,
+                                           .rs2sel = t >> 5});
+            break;
+        }
+        check_case(&k);
+    }
+}
+END_TEST
+
+/* A random byte field (b0..b3) of register reg. */
+static unsigned byte_of(unsigned reg) {
+    return ((rnd() % 4u) << 5) | reg;
+}
+
+/*
+ * The firmware's own field forms, which have kinds of their own that read
+ * and write bytes and half-words of the register file in place (core_priv.h
+ * PD_MINB32I ...), each on many random values: rarely drawn above.
+ */
+START_TEST(field_forms_match_general_path) {
+    rng_state = 0xB5AD4ECEDA1CE2A9ull;
+    for (unsigned n = 0; n < 64u * REPEAT; n++) {
+        struct kcase k;
+        rnd_regs(&k);
+        unsigned a = rnd_reg(true), b = rnd_reg(true);
+        unsigned fa = byte_of(a), fb = byte_of(b);
+        unsigned wa = ((4u + rnd() % 3u) << 5) | a; /* w0..w2 */
+        switch (n % 8) {
+        case 0: /* xor r30.b0, r30.b0, r11.b1: an MA edge */
+            fa = byte_of(30);
+            k.word = alu(PRU_OP_XOR, fa, fa, fb);
+            break;
+        case 1: /* min r11.b0, r12, 2 */
+            k.word = alui(PRU_OP_MIN, byte_of(rnd_reg(false)), R(a), rnd_imm8());
+            break;
+        case 2: /* sub r12, r12, r11.b0 */
+            a = rnd_reg(false);
+            k.word = alu(PRU_OP_SUB, R(a), rnd() % 2 ? R(a) : R(b), fb);
+            break;
+        case 3: /* sub r7.b0, r7.b0, 1 */
+            fa = byte_of(rnd_reg(false));
+            k.word = alui(PRU_OP_SUB, fa, rnd() % 2 ? fa : byte_of(b), rnd_imm8());
+            break;
+        case 4:
+            k.word = qbi(rnd() % 2 ? PRU_OP_QBNE : PRU_OP_QBEQ, 1 + (int)(rnd() % 6), fa,
+                         rnd() % 2 ? field_of(k.regs, fa) : rnd_imm8());
+            break;
+        case 5:
+            k.word = qbi(rnd() % 2 ? PRU_OP_QBNE : PRU_OP_QBEQ, 1 + (int)(rnd() % 6), wa,
+                         rnd() % 2 ? field_of(k.regs, wa) & 0xffu : rnd_imm8());
+            break;
+        case 6: /* a byte written over a register of any value */
+            k.word = alui(PRU_OP_MIN, fa, R(b), rnd_imm8());
+            break;
+        default: /* xor r30.b0, r30.b0, r30.b1 and other R30 XORs */
+            k.word = alu(PRU_OP_XOR, byte_of(30), byte_of(30), rnd() % 2 ? byte_of(30) : fb);
+            break;
+        }
+        check_case(&k);
+    }
+}
+END_TEST
+
+Suite *kinds_suite(void) {
+    Suite *s = suite_create("core_kinds");
+    TCase *t = tcase_create("fast_vs_general");
+    tcase_set_timeout(t, 120);
+    tcase_add_test(t, alu_kinds_match_general_path);
+    tcase_add_test(t, ldi_kinds_match_general_path);
+    tcase_add_test(t, branch_kinds_match_general_path);
+    tcase_add_test(t, field_forms_match_general_path);
+    suite_add_tcase(s, t);
+    return s;
+}
+
+int main(void) {
+    return check_run(kinds_suite());
+}
