@@ -127,6 +127,11 @@ sim_ps link_next_change(const link_model *l) {
     return eq_next_time(&l->q);
 }
 
+void link_set_line_settled(link_model *l, int on) {
+    line_dir_set_settled_fast(&l->ma_line, on);
+    line_dir_set_settled_fast(&l->sl_line, on);
+}
+
 void link_set_sl_reach(link_model *l, int on) {
     l->sl_reach_on = on;
 }

@@ -52,6 +52,10 @@ typedef struct {
 int link_init(link_model *l, const scenario *sc, char *err, size_t errlen);
 void link_free(link_model *l);
 
+/* The fast path "line-settled" of both lines (line_dir_set_settled_fast),
+ * on by default. */
+void link_set_line_settled(link_model *l, int on);
+
 /* Sets (or with NULL clears) the pin observer, told of every pin. */
 void link_set_observer(link_model *l, link_pin_fn fn, void *ctx);
 
