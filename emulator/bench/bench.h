@@ -36,6 +36,9 @@ struct bench_config {
     /* the fast path "sl-reach" off: the SL input's next change is the next
      * pending event of any kind (link_next_sl_change) */
     int no_sl_reach;
+    /* the fast path "line-settled" off: every edge through the lines'
+     * low-pass arithmetic (line_dir_set_settled_fast) */
+    int no_line_settled;
 };
 
 /* Defaults: AM335x, MA on R30 bit 1, the "generic" profile. */

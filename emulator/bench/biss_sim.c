@@ -65,7 +65,7 @@ struct options {
     const char *cd_what; /* the option that asked for it */
     /* fast paths switched off (--no-fast-path) */
     int no_ff, no_ff_counted, no_ff_r31_bits, no_ff_loop_delay, no_ff_count_loop;
-    int no_fast_loop, no_sl_reach;
+    int no_fast_loop, no_sl_reach, no_line_settled;
     /* strict and contention modes (emulator/core/TIMING.md) */
     unsigned strict, strict_window;
     int strict_log;
@@ -126,7 +126,9 @@ static void usage(FILE *f) {
                "                     ff-count-loop (countdown delays run at once),\n"
                "                     fast-loop (the core's threaded execute loop: every\n"
                "                     instruction the general way), sl-reach (the SL input\n"
-               "                     stays until an event could reach the master's pin)\n"
+               "                     stays until an event could reach the master's pin),\n"
+               "                     line-settled (a cable edge after a settled level\n"
+               "                     without the low-pass arithmetic)\n"
                "  --max-ms T         stop after T ms of simulated time (default: ample)\n"
                "  --strict[=RULES]   stop with a fault report on a construct of uncertain\n"
                "                     silicon behaviour in clocked code (between two MA edges\n"
@@ -357,9 +359,11 @@ static int set_option(struct options *o, const char *a, const char *v) {
             o->no_fast_loop = 1;
         } else if (!strcmp(v, "sl-reach")) {
             o->no_sl_reach = 1;
+        } else if (!strcmp(v, "line-settled")) {
+            o->no_line_settled = 1;
         } else {
             return die("--no-fast-path: '%s' is not ff, ff-counted, ff-r31-bits, ff-loop-delay, "
-                       "ff-count-loop, fast-loop or sl-reach",
+                       "ff-count-loop, fast-loop, sl-reach or line-settled",
                        v);
         }
     } else if (!strcmp(a, "--strict-window")) {
@@ -452,6 +456,7 @@ static int build_config(const struct options *o, struct bench_config *cfg) {
     cfg->pru.ff_count_loop = !o->no_ff_count_loop;
     cfg->pru.fast_loop = !o->no_fast_loop;
     cfg->no_sl_reach = o->no_sl_reach;
+    cfg->no_line_settled = o->no_line_settled;
     cfg->pru.strict = o->strict;
     cfg->pru.strict_log = o->strict_log;
     if (o->strict_window) {

@@ -123,6 +123,8 @@ void line_dir_init(line_dir *l, const line_params *p, event_queue *q, uint64_t s
         l->memo_ratio[i] = 0.0;
         l->memo_cross[i] = 0;
     }
+    l->settled_steps = 0;
+    line_dir_set_settled_fast(l, 1);
     l->pending = 0;
     l->pending_cross = 0;
     l->pending_ev = 0;
@@ -144,6 +146,18 @@ void line_dir_init(line_dir *l, const line_params *p, event_queue *q, uint64_t s
 
 void line_dir_set_fault(line_dir *l, sim_ps t, line_fault f) {
     eq_schedule(l->q, t, on_fault, l, (int64_t)f);
+}
+
+void line_dir_set_settled_fast(line_dir *l, int on) {
+    l->settle_gap = SIM_NEVER;
+    l->settled_cross = 0;
+    /* 41 tau: gap / tau >= 40 even after the division's rounding, and
+     * exp(-40) = 4.2e-18 < 2^-54 = 5.6e-17; |v0 - target| <= 1, so the
+     * product is below half an ulp of 1 and target + it rounds to target */
+    if (on && l->tau > 0.0 && 41.0 * l->tau < 1e15) {
+        l->settle_gap = (sim_ps)ceil(41.0 * l->tau);
+        l->settled_cross = (sim_ps)llround(l->tau * log(2.0));
+    }
 }
 
 /* Filter value at time t (>= t0), taken when the input goes to `level`. */
@@ -205,15 +219,28 @@ void line_dir_input(line_dir *l, sim_ps t, int level) {
         l->pending = 0;
     }
 
-    double v = filter_value(l, te, level);
-    l->v0 = v;
-    l->t0 = te;
-    l->target = level;
-    if (level == l->filt_level) {
-        return; /* heading back to the level the receiver still shows */
+    sim_ps cross;
+    if (te - l->t0 >= l->settle_gap) {
+        /* settled at the old target (see settle_gap): the new target is the
+         * other level, so the crossing ratio is (v - target) * -+2 = 2 */
+        l->settled_steps++;
+        l->v0 = l->target;
+        l->t0 = te;
+        l->target = level;
+        if (level == l->filt_level) {
+            return;
+        }
+        cross = te + l->settled_cross;
+    } else {
+        double v = filter_value(l, te, level);
+        l->v0 = v;
+        l->t0 = te;
+        l->target = level;
+        if (level == l->filt_level) {
+            return; /* heading back to the level the receiver still shows */
+        }
+        cross = te + crossing_after(l, v, level);
     }
-
-    sim_ps cross = te + crossing_after(l, v, level);
     sim_ps out = cross + l->fixed;
     if (l->p.jitter_rms_ps > 0.0) {
         out += (sim_ps)llround(sim_rng_gauss(&l->rng) * l->p.jitter_rms_ps);

@@ -89,6 +89,16 @@ typedef struct {
     double memo_ratio[2];
     sim_ps memo_cross[2];
 
+    /* The fast path "line-settled": from settle_gap after the last input
+     * edge on, exp(-gap/tau) < 2^-54, so the filter value is its target's
+     * level to the last bit (1.0; 0.0 where the arithmetic leaves a value
+     * below 2^-54 that no later step can tell from 0: it only ever enters
+     * as v - 1 = -1) and a crossing is settled_cross, the one for ratio 2.
+     * SIM_NEVER: off (or no low-pass). settled_steps counts its uses. */
+    sim_ps settle_gap;
+    sim_ps settled_cross;
+    unsigned long settled_steps;
+
     int filt_level; /* receiver decision after the last committed crossing */
     int pending;    /* a crossing is computed but may still be cancelled */
     sim_ps pending_cross;
@@ -112,6 +122,10 @@ void line_dir_init(line_dir *l, const line_params *p, event_queue *q, uint64_t s
 /* An input edge at time t (>= the previous one, and the queue must not be
  * past t). Repeated levels are ignored. */
 void line_dir_input(line_dir *l, sim_ps t, int level);
+
+/* Switches the fast path "line-settled" on (the default) or off: the
+ * results are the same either way, only the filter arithmetic is spared. */
+void line_dir_set_settled_fast(line_dir *l, int on);
 
 /* Switches the fault state at time t (LINE_OK reconnects). */
 void line_dir_set_fault(line_dir *l, sim_ps t, line_fault f);

@@ -75,8 +75,7 @@ typedef struct {
 typedef enum { BISS_TIMEOUT_FIXED, BISS_TIMEOUT_ADAPTIVE } biss_timeout_mode;
 
 typedef struct {
-    unsigned n; /* slaves in the chain, 1..8 */
-    biss_slave_cfg s[BISS_MAX_SLAVES];
+    unsigned n;          /* slaves in the chain, 1..8 */
     sim_ps out_delay_ps; /* MA edge at the slave to SL edge, default 20 ns */
     sim_ps busy_ps;      /* processing time after the ACK edge */
     unsigned busy_clocks;
@@ -84,6 +83,9 @@ typedef struct {
     sim_ps timeout_ps;      /* fixed timeout, default 20 us */
     double adaptive_factor; /* default 1.5 */
     sim_ps adaptive_min_ps, adaptive_max_ps;
+    /* last: 5 KB each, while the models read the fields above on every
+     * MA edge (they then share a few cache lines) */
+    biss_slave_cfg s[BISS_MAX_SLAVES];
 } biss_chain_cfg;
 
 /* One slave with defaults: 12-bit position, nE nW, CRC6 0x43. */
@@ -129,12 +131,12 @@ typedef void (*biss_frame_fn)(void *ctx, const biss_frame_record *rec);
 
 typedef enum { BISS_IDLE, BISS_ACTIVE } biss_phase;
 
+/* What every MA edge touches comes first, the large arrays and the
+ * per-slave configuration last, so the edge's fields share cache lines
+ * and pages. */
 typedef struct {
-    biss_chain_cfg cfg;
     event_queue *q;
     sim_edge_sink out;
-    biss_ctrl ctrl[BISS_MAX_SLAVES];
-    uint32_t lc[BISS_MAX_SLAVES];
 
     biss_phase phase;
     int ma;
@@ -142,7 +144,6 @@ typedef struct {
     unsigned rises;
     bool started;
     unsigned bit, nbits;
-    uint8_t bits[BISS_MAX_FRAME_BITS];
     int sl_sched;            /* SL level after the last scheduled change */
     eq_id timeout_ev;        /* the pending timeout event, 0 none */
     sim_ps timeout_ev_at;    /* ... its time */
@@ -152,11 +153,16 @@ typedef struct {
     bool lost;               /* SL held low since lost_at (biss_slave_lose_sync) */
     sim_ps lost_at;
 
-    biss_frame_record cur;
-    biss_frame_record ring[BISS_RECORD_RING];
     uint64_t frames; /* closed frames */
     biss_frame_fn on_frame;
     void *on_frame_ctx;
+    biss_frame_record cur;
+    uint8_t bits[BISS_MAX_FRAME_BITS];
+
+    biss_chain_cfg cfg;
+    biss_ctrl ctrl[BISS_MAX_SLAVES];
+    uint32_t lc[BISS_MAX_SLAVES];
+    biss_frame_record ring[BISS_RECORD_RING];
 } biss_slave;
 
 /* cfg must pass biss_chain_cfg_check. The chain starts idle (SL high, MA

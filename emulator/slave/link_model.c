@@ -13,7 +13,7 @@ static void observe(link_model *l, link_pin pin, sim_ps t, int level) {
 static void at_ma_slave(void *ctx, sim_ps t, int level) {
     link_model *l = ctx;
     waveform_append(&l->ma_slave, t, level);
-    if (l->sc.protocol == SCENARIO_SSI) {
+    if (l->protocol == SCENARIO_SSI) {
         ssi_slave_ma_edge(&l->ssi, t, level);
     } else {
         biss_slave_ma_edge(&l->biss, t, level);
@@ -63,6 +63,7 @@ int link_init(link_model *l, const scenario *sc, char *err, size_t errlen) {
     }
     memset(l, 0, sizeof *l);
     l->sc = *sc;
+    l->protocol = sc->protocol;
     eq_init(&l->q);
     waveform_init(&l->ma_master, 1);
     waveform_init(&l->ma_slave, 1);
@@ -127,6 +128,11 @@ sim_ps link_next_change(const link_model *l) {
     return eq_next_time(&l->q);
 }
 
+void link_set_line_settled(link_model *l, int on) {
+    line_dir_set_settled_fast(&l->ma_line, on);
+    line_dir_set_settled_fast(&l->sl_line, on);
+}
+
 void link_set_sl_reach(link_model *l, int on) {
     l->sl_reach_on = on;
 }
@@ -152,7 +158,7 @@ sim_ps link_next_sl_change(const link_model *l) {
 }
 
 uint64_t link_frames(const link_model *l) {
-    return l->sc.protocol == SCENARIO_SSI ? l->ssi.frames : l->biss.frames;
+    return l->protocol == SCENARIO_SSI ? l->ssi.frames : l->biss.frames;
 }
 
 void link_forget_pins_before(link_model *l, unsigned mask, sim_ps t) {

@@ -29,21 +29,24 @@ typedef enum { LINK_MA_MASTER, LINK_SL_MASTER, LINK_MA_SLAVE, LINK_SL_SLAVE } li
 /* Told of every level change on a pin, after the models have taken it. */
 typedef void (*link_pin_fn)(void *ctx, link_pin pin, sim_ps t, int level);
 
+/* The models' state that every MA edge touches first, the scenario (40 KB)
+ * last, so the edge's fields share cache lines and pages. */
 typedef struct {
-    scenario sc;
     link_pin_fn observer;
     void *observer_ctx;
     unsigned observer_pins; /* bit (1 << link_pin): the pins it is told of */
     event_queue q;
-    line_dir ma_line, sl_line;
-    biss_slave biss;
-    ssi_slave ssi;
     waveform ma_master, ma_slave, sl_slave, sl_master;
     /* link_next_sl_change(): the least time from an input edge of the SL
      * line to its output (sl_reach_ps), and whether to use it (the fast
      * path "sl-reach"; off: every pending event counts as a change) */
     sim_ps sl_reach_ps;
     int sl_reach_on;
+    scenario_protocol protocol; /* sc.protocol, here with the rest */
+    line_dir ma_line, sl_line;
+    biss_slave biss; /* its per-edge state first */
+    ssi_slave ssi;
+    scenario sc;
 } link_model;
 
 /* Builds the link at time 0, idle (MA and SL high). The random streams of
@@ -51,6 +54,10 @@ typedef struct {
  * message naming the bad field. Heap-allocate: the struct is large. */
 int link_init(link_model *l, const scenario *sc, char *err, size_t errlen);
 void link_free(link_model *l);
+
+/* The fast path "line-settled" of both lines (line_dir_set_settled_fast),
+ * on by default. */
+void link_set_line_settled(link_model *l, int on);
 
 /* Sets (or with NULL clears) the pin observer, told of every pin. */
 void link_set_observer(link_model *l, link_pin_fn fn, void *ctx);

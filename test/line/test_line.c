@@ -209,6 +209,49 @@ START_TEST(jitter_never_reorders_edges) {
 }
 END_TEST
 
+/* The settled-filter step ("line-settled") gives the same output edges,
+ * to the picosecond, as the low-pass arithmetic: gaps drawn around the
+ * settling gap (41 tau) and far below it (pulses that shrink or vanish),
+ * with and without jitter. */
+START_TEST(settled_step_is_exact) {
+    for (int jitter = 0; jitter < 2; jitter++) {
+        line_params p;
+        line_params_default(&p);
+        p.length_m = 20.0; /* tau 8 ns, settled after 328 ns */
+        p.jitter_rms_ps = jitter ? 3000.0 : 0.0;
+        rig on, off;
+        rig_init(&on, &p, 7);
+        rig_init(&off, &p, 7);
+        line_dir_set_settled_fast(&off.l, 0);
+        ck_assert_int_eq(off.l.settle_gap, SIM_NEVER);
+        ck_assert_int_eq(on.l.settle_gap, 328000);
+        uint64_t x = 12345;
+        sim_ps t = 1 * US;
+        for (int i = 0; i < 20000; i++) {
+            x = x * 6364136223846793005ull + 1442695040888963407ull;
+            unsigned r = (unsigned)(x >> 33);
+            sim_ps gaps[4] = {1 + r % 10000, 300000 + r % 60000, 327990 + r % 20, 1 + r % 500000};
+            t += gaps[r >> 29 & 3];
+            drive(&on, t, !(i & 1));
+            drive(&off, t, !(i & 1));
+        }
+        eq_run_until(&on.q, t + 1 * US);
+        eq_run_until(&off.q, t + 1 * US);
+        ck_assert_uint_gt(on.l.settled_steps, 1000);
+        ck_assert_uint_eq(off.l.settled_steps, 0);
+        ck_assert_uint_gt(on.l.vanished, 0);
+        ck_assert_uint_eq(on.l.vanished, off.l.vanished);
+        ck_assert_uint_eq(on.out.len, off.out.len);
+        for (size_t i = 0; i < on.out.len; i++) {
+            ck_assert_int_eq(on.out.edges[i].t, off.out.edges[i].t);
+            ck_assert_int_eq(on.out.edges[i].level, off.out.edges[i].level);
+        }
+        rig_free(&on);
+        rig_free(&off);
+    }
+}
+END_TEST
+
 START_TEST(glitches_are_counted_and_bounded) {
     line_params p = ideal(1.0);
     p.glitch_rate_hz = 1e6;
@@ -300,6 +343,7 @@ int main(void) {
     tcase_add_test(tc, long_cable_high_rate_loses_clocks);
     tcase_add_test(tc, jitter_statistics_fixed_seed);
     tcase_add_test(tc, jitter_never_reorders_edges);
+    tcase_add_test(tc, settled_step_is_exact);
     tcase_add_test(tc, glitches_are_counted_and_bounded);
     tcase_add_test(tc, disconnect_stuck_low_then_reconnect);
     tcase_add_test(tc, open_line_reads_high);
