@@ -139,20 +139,30 @@ static uint32_t life(const struct biss_slave_config *c, struct biss_safety_state
     return flags;
 }
 
-/* (a << shift_a) - (b << shift_b) modulo 2^W as a signed number, W the
- * wider shifted position: the circular distance of the two. */
-static int64_t pair_diff(const struct biss_config *c, const struct biss_pair_check *p,
-                         const struct biss_sample *s) {
-    unsigned wa = biss_proto_pos_bits(&c->slave[p->a]) + p->shift_a;
-    unsigned wb = biss_proto_pos_bits(&c->slave[p->b]) + p->shift_b;
-    unsigned w = wa > wb ? wa : wb;
+/* a - b modulo 2^w as a signed number: the circular distance of two
+ * w-bit positions, with its direction (a wrap of one before the other is
+ * a small difference). */
+static int64_t circular_diff(uint64_t a, uint64_t b, unsigned w) {
     uint64_t m = biss_low_mask(w);
-    uint64_t d =
-        ((s->slave[p->a].position << p->shift_a) - (s->slave[p->b].position << p->shift_b)) & m;
+    uint64_t d = (a - b) & m;
     if (w < 64 && w > 0 && (d >> (w - 1))) {
         return (int64_t)(d | ~m); /* sign-extend */
     }
     return (int64_t)d;
+}
+
+static uint64_t magnitude(int64_t d) {
+    return d < 0 ? 0 - (uint64_t)d : (uint64_t)d;
+}
+
+/* (a << shift_a) - (b << shift_b) modulo 2^W, W the wider shifted
+ * position. */
+static int64_t pair_diff(const struct biss_config *c, const struct biss_pair_check *p,
+                         const struct biss_sample *s) {
+    unsigned wa = biss_proto_pos_bits(&c->slave[p->a]) + p->shift_a;
+    unsigned wb = biss_proto_pos_bits(&c->slave[p->b]) + p->shift_b;
+    return circular_diff(s->slave[p->a].position << p->shift_a,
+                         s->slave[p->b].position << p->shift_b, wa > wb ? wa : wb);
 }
 
 static void pairs(const struct biss_config *c, struct biss_safety_state *st,
@@ -164,7 +174,7 @@ static void pairs(const struct biss_config *c, struct biss_safety_state *st,
             continue;
         }
         int64_t d = pair_diff(c, p, s);
-        uint64_t mag = d < 0 ? 0 - (uint64_t)d : (uint64_t)d;
+        uint64_t mag = magnitude(d);
         uint32_t flags = BISS_SAFE_PAIR_CHECKED | (mag > p->tolerance ? BISS_SAFE_DISAGREE : 0);
         s->slave[p->a].safety |= flags;
         s->slave[p->b].safety |= flags;
@@ -221,12 +231,10 @@ static int beyond(const struct biss_config *c, unsigned i, const struct biss_pos
     if (dt < 0) {
         return -1;
     }
-    uint64_t m = biss_low_mask(biss_proto_pos_bits(&c->slave[i]));
-    uint64_t pos = s->slave[i].position;
-    uint64_t ahead = (pos - ref->pos) & m, back = (ref->pos - pos) & m;
-    double dist = (double)(ahead < back ? ahead : back);
+    unsigned w = biss_proto_pos_bits(&c->slave[i]);
+    double dist = (double)magnitude(circular_diff(s->slave[i].position, ref->pos, w));
     double reach = c->slave[i].max_speed * dt + 1.0;
-    if (reach >= (double)(m >> 1)) {
+    if (reach >= (double)(biss_low_mask(w) >> 1)) {
         return -1;
     }
     return dist > reach;
@@ -256,11 +264,13 @@ static bool positions(const struct biss_config *c, struct biss_safety_state *st,
         if (j < 0) {
             continue;
         }
-        if (j && !ew && beyond(c, i, &st->refused[i], s) == 0) {
-            st->stats.pos_resync[i]++;
-            j = 0;
-        } else if (j && !ew) {
-            st->refused[i] = pos_ref(s, i);
+        if (j && !ew) {
+            if (beyond(c, i, &st->refused[i], s) == 0) {
+                st->stats.pos_resync[i]++;
+                j = 0;
+            } else {
+                st->refused[i] = pos_ref(s, i);
+            }
         }
         s->slave[i].safety |= BISS_SAFE_POS_CHECKED | (j ? BISS_SAFE_POS_JUMP : 0);
         st->stats.pos_checked[i]++;
