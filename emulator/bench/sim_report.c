@@ -168,7 +168,7 @@ static void add_safety(cJSON *j, const struct fw_check *fw) {
             cJSON_AddItemToArray(ew, s);
         }
     }
-    cJSON *step = cJSON_AddArrayToObject(o, "max_speed");
+    cJSON *speed = cJSON_AddArrayToObject(o, "max_speed");
     for (unsigned i = 0; i < fw->cfg.nslaves; i++) {
         if (fw->cfg.slave[i].max_speed) {
             cJSON *s = cJSON_CreateObject();
@@ -177,7 +177,7 @@ static void add_safety(cJSON *j, const struct fw_check *fw) {
             cJSON_AddNumberToObject(s, "checked", st->pos_checked[i]);
             cJSON_AddNumberToObject(s, "jumped", st->pos_jumped[i]);
             cJSON_AddNumberToObject(s, "resync", st->pos_resync[i]);
-            cJSON_AddItemToArray(step, s);
+            cJSON_AddItemToArray(speed, s);
         }
     }
     /* frames, not slaves: a frame with two slaves flagged counts once */
