@@ -75,6 +75,17 @@ enum {
     PD_QBNEBI,
     PD_QBEQWI,
     PD_QBNEWI,
+    /* MVIB/W/D loading through a register pointer (IND, POSTINC, PREDEC; the
+     * pointer a field of r0..r29) into a field of r0..r29: the record
+     * loads of the firmware's slave switches. rs1 is the pointer field, rd
+     * the destination; imm the value mask of the size, rdw the size in
+     * bytes, rs2 / rs2sh what the pointer moves by before / after the
+     * read. A read that wraps past byte 127 goes the general way. */
+    PD_MVI_LD,
+    /* XIN/XOUT (SXIN/SXOUT) of a scratch-pad bank, ZERO and FILL, of a
+     * fixed length within r0..r29: imm the bytes, target the register-file
+     * start (exec_xfr_fixed(); what it cannot do goes the general way) */
+    PD_XFR_FIXED,
     PD_END, /* fast loop: one past the end of IRAM (leave the loop) */
     PD_KIND_END,
 };

@@ -565,6 +565,8 @@ static void run_fast(struct pru_core *c, int64_t limit) {
         [PD_R30_XORB] = &&k_r30_xorb,
         [PD_QBBS32I] = &&k_qbbs32i,
         [PD_QBBC32I] = &&k_qbbc32i,
+        [PD_MVI_LD] = &&k_mvi_ld,
+        [PD_XFR_FIXED] = &&k_xfr_fixed,
         [PD_END] = &&out,
     };
 #pragma GCC diagnostic pop
@@ -581,6 +583,8 @@ static void run_fast(struct pru_core *c, int64_t limit) {
     uint32_t loop_end = c->loop_end;
     const struct pd *d;
     uint32_t old;
+    uint32_t ptr, val; /* MVI */
+    int stall;         /* XFR */
 
 #define SYNC_OUT()                                                                                 \
     (c->pc = pc, c->carry = carry, c->cycle = cyc, c->insns = (uint64_t)cyc + ins_less)
@@ -813,6 +817,31 @@ r30_written:
     }
     NEXT();
 
+k_mvi_ld: /* as exec_mvi(): the pointer, R31 refreshed, the bytes, the pointer moved on */
+    ptr = ((r[d->rs1] >> d->rs1sh) - d->rs2) & d->rs1mask;
+    if (ptr > RF_BYTES - d->rdw)
+        goto k_general; /* the read wraps (or the pointer is out of the file) */
+    if (d->rs2)
+        fld_set(r, d->rs1, d->rs1sh, d->rs1mask, ptr);
+    r[31] = gpi_r31(c, cyc); /* as exec_mvi(): whatever the pointer points at */
+    memcpy(&val, (uint8_t *)r + ptr, sizeof val); /* up to byte 130: r[32] */
+    if (d->rs2sh)
+        fld_set(r, d->rs1, d->rs1sh, d->rs1mask, ptr + d->rs2sh);
+    fld_set(r, d->rd, d->rdsh, d->rdmask, val & d->imm);
+    pc++;
+    NEXT();
+k_xfr_fixed:
+    stall = exec_xfr_fixed(c, d, cyc);
+    if (stall < 0)
+        goto k_general;
+    pc++;
+    cyc += 1 + stall;
+    ins_less -= (unsigned)stall;
+    c->stall_total += stall;
+    if (pc == loop_end)
+        goto at_loop_end;
+    DISPATCH();
+
 at_loop_end:
     SYNC_OUT();
     loop_back(c);
@@ -848,6 +877,7 @@ k_slow:
             goto at_loop_end;
         goto top;
     }
+k_general:
     SYNC_OUT();
     exec_one(c, d, limit);
     SYNC_IN();

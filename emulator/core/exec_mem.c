@@ -84,16 +84,20 @@ static int xfr_spad(struct pru_core *c, unsigned op, uint8_t *bank, unsigned sta
 
 /* PRU0 issues before PRU1 within a cycle (pruss.c), so when PRU1 issues
  * an XFR in cycle t, PRU0's mark for t on that bank is there already. */
+static bool spad_collides_at(const struct pru_core *c, unsigned dev, int64_t cycle) {
+    return c->pru_idx == 1 && dev >= 10u && dev <= 12u && c->pru0->spad_cycle[dev - 10u] == cycle;
+}
+
 bool spad_collides(const struct pru_core *c, unsigned dev) {
-    return c->pru_idx == 1 && dev >= 10u && dev <= 12u &&
-           c->pru0->spad_cycle[dev - 10u] == c->cycle;
+    return spad_collides_at(c, dev, c->cycle);
 }
 
 /* The documented collision: both PRUs on one bank in one cycle, PRU0 goes
- * first and PRU1 stalls (pru_params.spad_stall_cycles). */
-static unsigned spad_arbitrate(struct pru_core *c, unsigned dev) {
-    c->spad_cycle[dev - 10u] = c->cycle;
-    if (!spad_collides(c, dev))
+ * first and PRU1 stalls (pru_params.spad_stall_cycles). The XFR issues in
+ * `cycle`. */
+static unsigned spad_arbitrate(struct pru_core *c, unsigned dev, int64_t cycle) {
+    c->spad_cycle[dev - 10u] = cycle;
+    if (!spad_collides_at(c, dev, cycle))
         return 0;
     c->spad_collisions++;
     return c->p.spad_stall_cycles;
@@ -128,13 +132,45 @@ unsigned exec_xfr(struct pru_core *c, const struct pd *d) {
             core_fault(c, PRU_FAULT_BURST, dev);
             return 0;
         }
-        stall = spad_arbitrate(c, dev);
+        stall = spad_arbitrate(c, dev, c->cycle);
     } else {
         core_fault(c, PRU_FAULT_XFR_DEVICE, dev);
         return 0;
     }
     c->pc++;
     return stall;
+}
+
+/*
+ * PD_XFR_FIXED, issued in `cycle` (c->pc and c->cycle may lag): what
+ * exec_xfr() does for a fixed length within r0..r29 (no R30/R31 effect),
+ * the bank side in one copy, which it is when the shifted bank registers
+ * are all below 30 (they then follow each other: exec_xfr() maps each byte
+ * modulo 32 registers and faults on bank registers 30 and 31). Returns the
+ * stall cycles, or -1 with nothing done for the general path (a fault, a
+ * shifted ZERO/FILL with xfr_shift_fill).
+ */
+int exec_xfr_fixed(struct pru_core *c, const struct pd *d, int64_t cycle) {
+    unsigned op = d->in.op, dev = d->in.dev;
+    unsigned n = d->imm, start = d->target;
+    int s = xfr_shift(c);
+    if (dev >= 254u) { /* ZERO / FILL (XIN only) */
+        if (c->p.xfr_shift_fill && s)
+            return -1;
+        memset(rf(c) + start, dev == 255u ? 0x00 : 0xff, n);
+        return 0;
+    }
+    unsigned first = (unsigned)((int)(start / 4u) + s) & 0x1fu;
+    if (4u * first + start % 4u + n > SPAD_BYTES)
+        return -1;
+    uint8_t *bank = c->spad[dev - 10u] + 4u * first + start % 4u;
+    if (op == PRU_OP_XIN || op == PRU_OP_SXIN) {
+        burst_copy(rf(c) + start, bank, n);
+    } else {
+        burst_copy(bank, rf(c) + start, n);
+        ff_dirty(c);
+    }
+    return (int)spad_arbitrate(c, dev, cycle);
 }
 
 /* MVIx: register-file pointers are byte fields of r1; addresses wrap at 128. */

@@ -14,6 +14,7 @@
 /* Returns the cycles PRU1 stalls for a scratch-pad collision (else 0). */
 unsigned exec_xfr(struct pru_core *c, const struct pd *d);
 void exec_mvi(struct pru_core *c, const struct pd *d);
+int exec_xfr_fixed(struct pru_core *c, const struct pd *d, int64_t cycle);
 void rf_before_read(struct pru_core *c, unsigned start, unsigned n);
 void rf_after_write(struct pru_core *c, unsigned start, unsigned n, int64_t end_cycle);
 

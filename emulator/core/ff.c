@@ -189,16 +189,12 @@ static void count_loop(struct ff_body *b, const struct pru_insn *in, uint32_t n)
     b->cl_step = s->imm;
 }
 
-/* The body [top, pc] analysed, from the cache while IRAM is unchanged;
- * NULL if it does not decode. */
-static const struct ff_body *body(struct pru_core *c, uint32_t top, uint32_t pc) {
-    struct ff_body *b = &c->ff.body[top % FF_BODIES];
+/* The body [top, pc] decoded and analysed into cache entry b; NULL if it
+ * does not decode. */
+static __attribute__((noinline)) const struct ff_body *
+body_decode(struct pru_core *c, struct ff_body *b, uint32_t top, uint32_t pc) {
     uint32_t n = pc - top + 1;
-    if (pc >= c->iram_words || n > FF_MAX_BODY)
-        return NULL;
     const uint32_t *w = &c->iram0[top];
-    if (b->top == top && b->pc == pc && b->iram_gen == c->iram_gen)
-        return b;
     struct pru_insn in[FF_MAX_BODY];
     for (uint32_t i = 0; i < n; i++) {
         if (pru_decode(w[i], &in[i]) != 0) {
@@ -216,13 +212,24 @@ static const struct ff_body *body(struct pru_core *c, uint32_t top, uint32_t pc)
     return b;
 }
 
-/* Iterations a counted poll may still skip: counter x moved by `step`
- * this iteration. The values after the next n steps must all differ from
- * the end value and not wrap, nor may this iteration's step have wrapped
- * (the carry of ADD/SUB stays what it left). -1 if the loop is no counted
- * poll with this counter and step. */
-static int64_t counted_room(struct pru_core *c, uint32_t top, uint32_t pc, int x, uint32_t step) {
-    const struct ff_body *b = body(c, top, pc);
+/* The body [top, pc] analysed, from the cache while IRAM is unchanged (in
+ * line: the decoding's stack frame costs more than the look-up); NULL if
+ * it does not decode. */
+static inline const struct ff_body *body(struct pru_core *c, uint32_t top, uint32_t pc) {
+    struct ff_body *b = &c->ff.body[top % FF_BODIES];
+    if (pc >= c->iram_words || pc - top + 1 > FF_MAX_BODY)
+        return NULL;
+    if (b->top == top && b->pc == pc && b->iram_gen == c->iram_gen)
+        return b;
+    return body_decode(c, b, top, pc);
+}
+
+/* Iterations a counted poll (body b, NULL if none) may still skip:
+ * counter x moved by `step` this iteration. The values after the next n
+ * steps must all differ from the end value and not wrap, nor may this
+ * iteration's step have wrapped (the carry of ADD/SUB stays what it left).
+ * -1 if the loop is no counted poll with this counter and step. */
+static int64_t counted_room(struct pru_core *c, const struct ff_body *b, int x, uint32_t step) {
     if (!b || b->counter != x || b->step != step)
         return -1;
     bool down = step > 0x7fffffffu;
@@ -238,22 +245,21 @@ static int64_t counted_room(struct pru_core *c, uint32_t top, uint32_t pc, int x
     return (int64_t)((hi - v) / k);
 }
 
-/* The one register (r0..r30) that differs from the snapshot, or -1. */
+/* The one register (r0..r30) that differs from the snapshot, or -1;
+ * called when at least one does: the first one found, the rest compared
+ * in one memcmp() (the counter of a poll is one of the first registers). */
 static int one_changed(const struct pru_core *c) {
-    int x = -1;
-    for (unsigned i = 0; i < 31; i++) {
-        if (c->r[i] != c->ff.regs[i]) {
-            if (x >= 0)
-                return -1;
-            x = (int)i;
-        }
-    }
-    return x;
+    unsigned x = 0;
+    while (c->r[x] == c->ff.regs[x])
+        x++;
+    size_t rest = (30u - x) * sizeof c->r[0];
+    return memcmp(&c->r[x + 1], &c->ff.regs[x + 1], rest) == 0 ? (int)x : -1;
 }
 
 /* A probe snapshot is taken only when the last iteration read an input
  * (pure countdown loops never pay for it) and no backoff is pending. */
-static void arm(struct pru_core *c, uint32_t top, uint32_t pc, int64_t now, uint64_t insns) {
+static void arm(struct pru_core *c, const struct ff_body *b, uint32_t top, int64_t now,
+                uint64_t insns) {
     struct ff_probe *f = &c->ff;
     if (f->top != top)
         f->fails = f->backoff = 0;
@@ -272,14 +278,13 @@ static void arm(struct pru_core *c, uint32_t top, uint32_t pc, int64_t now, uint
     f->horizon = CYCLE_NEVER;
     memcpy(f->regs, c->r, sizeof f->regs);
     f->carry = c->carry;
-    const struct ff_body *b = c->p.ff_r31_bits ? body(c, top, pc) : NULL;
-    f->r31_mask = b ? b->r31_mask : ~0u;
+    f->r31_mask = c->p.ff_r31_bits && b ? b->r31_mask : ~0u;
 }
 
 /* Iterations that may still be skipped when this one repeats the last,
  * or -1 if it does not: unlimited with the same registers, a counter's
  * room in a counted poll. *x is the counter (-1 none), *step its step. */
-static int64_t repeat_room(struct pru_core *c, uint32_t top, uint32_t pc, int *x, uint32_t *step) {
+static int64_t repeat_room(struct pru_core *c, const struct ff_body *b, int *x, uint32_t *step) {
     const struct ff_probe *f = &c->ff;
     *x = -1;
     if (!f->have_snap || f->dirty || f->carry != c->carry)
@@ -289,7 +294,7 @@ static int64_t repeat_room(struct pru_core *c, uint32_t top, uint32_t pc, int *x
     if (!c->p.ff_counted || (*x = one_changed(c)) < 0)
         return -1;
     *step = c->r[*x] - f->regs[*x];
-    return counted_room(c, top, pc, *x, *step);
+    return counted_room(c, b, *x, *step);
 }
 
 /* A count loop's branch from pc back to top was taken, before its cycle
@@ -301,10 +306,10 @@ static int64_t repeat_room(struct pru_core *c, uint32_t top, uint32_t pc, int *x
  * borrow: carry 1) and the core goes on after the loop (c->pc = pc + 1);
  * otherwise the last turn and its exit are left to the core. Returns false
  * if the body is no count loop. */
-static bool count_loop_skip(struct pru_core *c, uint32_t pc, uint32_t top, int64_t limit) {
+static bool count_loop_skip(struct pru_core *c, const struct ff_body *b, uint32_t pc, uint32_t top,
+                            int64_t limit) {
     if (c->loop_end >= top && c->loop_end <= pc)
         return false; /* a LOOP ends inside: its turns are not alike */
-    const struct ff_body *b = body(c, top, pc);
     if (!b || b->cl_reg < 0)
         return false;
     uint32_t mask = field_bits(b->cl_sel);
@@ -348,7 +353,9 @@ void ff_backward_branch(struct pru_core *c, uint32_t pc, uint32_t top, int64_t l
         ff_disarm(c);
         return;
     }
-    if (c->p.ff_count_loop && count_loop_skip(c, pc, top, limit)) {
+    /* the body, looked up once for the analyses below */
+    const struct ff_body *b = body(c, top, pc);
+    if (c->p.ff_count_loop && count_loop_skip(c, b, pc, top, limit)) {
         /* unarmed, so that the next arrival here (the next call of the
          * delay) comes back through this function, not the in-line one */
         ff_disarm(c);
@@ -356,7 +363,7 @@ void ff_backward_branch(struct pru_core *c, uint32_t pc, uint32_t top, int64_t l
     }
     int x = -1;
     uint32_t step = 0;
-    int64_t room = f->top == top && f->have_snap ? repeat_room(c, top, pc, &x, &step) : -2;
+    int64_t room = f->top == top && f->have_snap ? repeat_room(c, b, &x, &step) : -2;
     if (room == -1) {
         /* a busy loop, not an idle one: probe it less and less often */
         f->fails = f->fails < 10 ? f->fails + 1 : 10;
@@ -385,7 +392,7 @@ void ff_backward_branch(struct pru_core *c, uint32_t pc, uint32_t top, int64_t l
         }
         f->saw_input = true; /* the same reads: keep probing */
     }
-    arm(c, top, pc, now, insns);
+    arm(c, b, top, now, insns);
 }
 
 /* A delay: AND/OR of a whole register (not R30/R31) with itself into it. */

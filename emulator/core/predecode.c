@@ -167,6 +167,43 @@ static uint8_t fast_form(const struct pd *d, uint8_t kind) {
     }
 }
 
+/* MVI loading through a register pointer into a field, both of r0..r29
+ * (PD_MVI_LD), or PD_SLOW. Pointer and destination below r30: no pin or
+ * event effect, and no R31 value is read before its refresh. */
+static uint8_t mvi_form(struct pd *d, const struct pru_insn *in) {
+    if (in->mvi_smode == PRU_MVI_DIRECT || in->mvi_dmode != PRU_MVI_DIRECT || in->rs1 >= 30 ||
+        in->rd >= 30)
+        return PD_SLOW;
+    unsigned size = 1u << in->mvi_size;
+    d->rs1 = in->rs1;
+    d->rs1sh = (uint8_t)pru_sel_shift(in->rs1sel);
+    d->rs1mask = pru_sel_mask(in->rs1sel);
+    d->rd = in->rd;
+    d->rdsh = (uint8_t)pru_sel_shift(in->rdsel);
+    d->rdmask = pru_sel_mask(in->rdsel);
+    d->imm = size == 4 ? 0xffffffffu : (1u << (8u * size)) - 1u;
+    d->rdw = (uint8_t)size;
+    d->rs2 = (uint8_t)(in->mvi_smode == PRU_MVI_PREDEC ? size : 0);
+    d->rs2sh = (uint8_t)(in->mvi_smode == PRU_MVI_POSTINC ? size : 0);
+    return PD_MVI_LD;
+}
+
+/* XIN/XOUT of a scratch-pad bank, ZERO or FILL, of a fixed length within
+ * r0..r29 (PD_XFR_FIXED), or PD_SLOW. */
+static uint8_t xfr_form(struct pd *d, const struct pru_insn *in) {
+    unsigned op = in->op, dev = in->dev;
+    bool xin = op == PRU_OP_XIN || op == PRU_OP_SXIN,
+         xout = op == PRU_OP_XOUT || op == PRU_OP_SXOUT;
+    unsigned start = 4u * in->rx + in->rxbyte;
+    if (in->len >= 124 || start + in->len + 1u > 120u)
+        return PD_SLOW;
+    if (!((xin || xout) && dev >= 10 && dev <= 12) && !(xin && (dev == 254 || dev == 255)))
+        return PD_SLOW;
+    d->imm = in->len + 1u;
+    d->target = start;
+    return PD_XFR_FIXED;
+}
+
 /* The fast loop's kind for an ALU instruction or LDI writing R30. */
 static uint8_t r30_form(const struct pd *d) {
     if (d->kind != PRU_OP_XOR)
@@ -202,6 +239,10 @@ void predecode_word(struct pru_core *c, uint32_t pc) {
         d->fast = r30_form(d); /* a clocked loop's MA edges */
     if ((f == PRU_FMT_QB || f == PRU_FMT_QBA || f == PRU_FMT_QBB) && d->target >= c->iram_words)
         d->fast = PD_SLOW;
+    if (f == PRU_FMT_MVI)
+        d->fast = mvi_form(d, &in);
+    if (f == PRU_FMT_XFR)
+        d->fast = xfr_form(d, &in);
 }
 
 void predecode_all(struct pru_core *c) {

@@ -10,9 +10,13 @@
  * op runs with every operand shape (destination, rs1 and op2 each a whole
  * register or a random field, op2 also an immediate) on random register
  * values, fields, aliasing and carry, once each way: both must leave the
- * same registers, carry, PC, counts and fault.
+ * same registers, carry, PC, counts and fault. The same for the MVI loads
+ * and the fixed-length XIN/XOUT/ZERO/FILL the fast loop runs in kinds of
+ * their own (PD_MVI_LD, PD_XFR_FIXED), with random scratch pads and
+ * register shifts, whose banks must then agree too.
  */
 #include "check_run.h"
+#include "core_priv.h" /* the scratch-pad banks, set and compared in place */
 #include "core_test_util.h"
 
 #include <stdbool.h>
@@ -81,7 +85,14 @@ struct kcase {
     uint32_t word;
     uint32_t regs[NREGS];
     int carry;
+    /* XFR cases: CFG SPP, the shift parameters, the banks' bytes */
+    bool spad;
+    uint32_t spp;
+    int shift_sub, shift_fill;
+    uint8_t bank[3][SPAD_BYTES];
 };
+
+#define CFG_SPP_ADDR 0x4A326034u /* AM335x PRU-ICSS CFG + 0x34 */
 
 /* The value of field `opnd` (an operand byte) in regs. */
 static uint32_t field_of(const uint32_t *regs, unsigned opnd) {
@@ -102,6 +113,8 @@ static struct pru_core *run_case(const struct kcase *k, int fast_loop) {
     struct pru_params p;
     pru_params_default(&p);
     p.fast_loop = fast_loop;
+    p.xfr_shift_sub = k->shift_sub;
+    p.xfr_shift_fill = k->shift_fill;
     uint32_t w[PROG_LEN];
     w[0] = alu(PRU_OP_ADD, R(CARRY_REG), R(CARRY_REG), R(CARRY_REG));
     w[1] = k->word;
@@ -110,6 +123,10 @@ static struct pru_core *run_case(const struct kcase *k, int fast_loop) {
     struct pru_core *c = pru_core_new(PRU_SOC_AM335X, &p);
     ck_assert_ptr_nonnull(c);
     ck_assert_int_eq(pru_load_image(c, w, sizeof w), 0);
+    if (k->spad) {
+        ck_assert_int_eq(pru_host_write32(c, CFG_SPP_ADDR, k->spp), 0);
+        memcpy(c->spad, k->bank, sizeof k->bank);
+    }
     pru_start(c);
     for (unsigned i = 0; i < 31; i++)
         pru_set_reg(c, i, k->regs[i]);
@@ -138,12 +155,16 @@ static void check_case(const struct kcase *k) {
     ck_assert_int_eq(pru_cycles(fast), pru_cycles(gen));
     ck_assert_uint_eq(pru_instructions(fast), pru_instructions(gen));
     ck_assert_int_eq(pru_get_fault(fast)->cause, pru_get_fault(gen)->cause);
+    for (unsigned b = 0; b < 3; b++)
+        ck_assert_msg(memcmp(fast->spad[b], gen->spad[b], SPAD_BYTES) == 0,
+                      "%s (0x%08x): scratch-pad bank %u differs", dis, k->word, b);
     pru_core_free(fast);
     pru_core_free(gen);
     compared++;
 }
 
 static void rnd_regs(struct kcase *k) {
+    memset(k, 0, sizeof *k);
     for (unsigned i = 0; i < NREGS; i++)
         k->regs[i] = rnd_value();
     k->carry = (int)(rnd() & 1u);
@@ -292,6 +313,88 @@ START_TEST(field_forms_match_general_path) {
 }
 END_TEST
 
+/* A register-file byte address for an MVI pointer: anywhere, often at the
+ * end (R30, R31, a read that wraps past byte 127), now and then far out
+ * of the register file (a word or whole-register pointer). */
+static uint32_t rnd_rf_addr(void) {
+    switch (rnd() % 8) {
+    case 0:
+        return 116u + rnd() % 12u;
+    case 1:
+        return rnd_value();
+    case 2:
+        return 0xfffffffcu + rnd() % 4u; /* + size wraps 32 bits */
+    default:
+        return rnd() % 128u;
+    }
+}
+
+/*
+ * MVIB/W/D loads through a register pointer (the firmware's `mviw r7.w0,
+ * *r1.b0++`: PD_MVI_LD) with every pointer mode and size, the pointer and
+ * the destination random fields, aliasing each other now and then, R30 and
+ * R31 among them (the general way); and the other MVI forms, which take
+ * the general way in both runs.
+ */
+START_TEST(mvi_loads_match_general_path) {
+    rng_state = 0x6A09E667F3BCC909ull;
+    for (unsigned n = 0; n < 64u * REPEAT; n++) {
+        struct kcase k;
+        rnd_regs(&k);
+        int op = PRU_OP_MVIB + (int)(rnd() % 3u);
+        unsigned smode = 1u + rnd() % 3u; /* IND, POSTINC, PREDEC */
+        unsigned dmode = rnd() % 8u == 0 ? rnd() % 4u : PRU_MVI_DIRECT;
+        unsigned ptr = rnd() % 2 ? B0(1) : operand_of(rnd() % 3 == 0, false);
+        unsigned dst = rnd() % 4 == 0 ? ((rnd() % 8u) << 5) | (ptr & 31u) : dest(rnd() % 4 == 0);
+        set_field(k.regs, ptr, rnd_rf_addr());
+        if (dmode != PRU_MVI_DIRECT)
+            set_field(k.regs, dst, rnd_rf_addr());
+        k.word = mvi(op, dmode, dst, smode, ptr);
+        check_case(&k);
+    }
+}
+END_TEST
+
+/*
+ * XIN/XOUT/SXIN/SXOUT on the three banks and ZERO/FILL, of fixed lengths
+ * (PD_XFR_FIXED when within r0..r29), random banks, with and without the
+ * register shift (SPP XFR_SHIFT_EN, R0[4:0] small or not, up or down,
+ * ZERO/FILL moved or not): shifts past bank register 29 fault. Also XCHG,
+ * lengths read from R0 and other devices, the general way in both runs.
+ */
+START_TEST(xfr_forms_match_general_path) {
+    static const int ops[] = {PRU_OP_XIN, PRU_OP_XOUT, PRU_OP_SXIN, PRU_OP_SXOUT, PRU_OP_XCHG};
+    rng_state = 0xBB67AE8584CAA73Bull;
+    for (unsigned n = 0; n < 64u * REPEAT; n++) {
+        struct kcase k;
+        rnd_regs(&k);
+        k.spad = true;
+        k.spp = rnd() % 2 ? 2u : 0u;
+        k.shift_sub = (int)(rnd() % 2);
+        k.shift_fill = (int)(rnd() % 2);
+        for (unsigned b = 0; b < 3; b++)
+            for (unsigned i = 0; i < SPAD_BYTES; i++)
+                k.bank[b][i] = (uint8_t)rnd();
+        if (rnd() % 2)
+            k.regs[0] = (k.regs[0] & ~0x1fu) | rnd() % 4u;
+        int op = ops[rnd() % 5u];
+        unsigned dev = 10u + rnd() % 3u;
+        if (rnd() % 6 == 0) {
+            op = PRU_OP_XIN;
+            dev = rnd() % 4 == 0 ? 9u : 254u + rnd() % 2u;
+        }
+        unsigned start = rnd() % 120u;
+        unsigned len = 1u + rnd() % (rnd() % 8 == 0 ? 128u - start : 120u - start);
+        if (rnd() % 4 == 0)
+            len = 1u + rnd() % 12u;
+        k.word = xfr(op, dev, start, len);
+        if (rnd() % 16 == 0) /* the length from r0.b1 */
+            k.word = (k.word & ~(0x7fu << 7)) | (125u << 7);
+        check_case(&k);
+    }
+}
+END_TEST
+
 Suite *kinds_suite(void) {
     Suite *s = suite_create("core_kinds");
     TCase *t = tcase_create("fast_vs_general");
@@ -300,6 +403,8 @@ Suite *kinds_suite(void) {
     tcase_add_test(t, ldi_kinds_match_general_path);
     tcase_add_test(t, branch_kinds_match_general_path);
     tcase_add_test(t, field_forms_match_general_path);
+    tcase_add_test(t, mvi_loads_match_general_path);
+    tcase_add_test(t, xfr_forms_match_general_path);
     suite_add_tcase(s, t);
     return s;
 }
