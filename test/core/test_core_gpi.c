@@ -50,6 +50,14 @@ static int64_t wave_next(void *ctx, int64_t t) {
     return INT64_MAX;
 }
 
+/* Both in one call, as the bench's pins give them (struct pru_pins
+ * inputs_run). */
+static uint32_t wave_run(void *ctx, int64_t t, int64_t *next) {
+    uint32_t v = wave_in(ctx, t);
+    *next = wave_next(ctx, t);
+    return v;
+}
+
 /* Random toggles, spacing between 1 and 80 ns (so several per shift period
  * at 80 MHz and long runs at 8 MHz), starting at t_start. */
 static void wave_random(struct wave *w, unsigned seed, int64_t t_start, int n) {
@@ -99,7 +107,9 @@ static uint32_t expect_r31(const struct geom *g, const struct wave *w, int64_t c
 }
 
 /* Host sets shift mode with codes (c0, c1) at cycle `cfg_cycle`, then R31 is
- * compared at every cycle up to `cycles`. */
+ * compared at every cycle up to `cycles`. The pins give the input only
+ * (use_next 0: one run per edge), also its next change (1), or both in one
+ * call (2). */
 static void check_shift(unsigned c0, unsigned c1, int frac_cycle, int64_t phase, int use_next,
                         unsigned seed) {
     static struct wave w;
@@ -109,7 +119,10 @@ static void check_shift(unsigned c0, unsigned c1, int frac_cycle, int64_t phase,
     p.shift_frac = frac_cycle ? PRU_FRAC_CYCLE : PRU_FRAC_EXACT;
     p.shift_phase_ps = phase;
     struct pru_core *c = pru_core_new(PRU_SOC_AM335X, &p);
-    struct pru_pins pins = {&w, wave_in, use_next ? wave_next : NULL, NULL};
+    struct pru_pins pins = {.ctx = &w,
+                            .inputs_at = wave_in,
+                            .next_input_change = use_next ? wave_next : NULL,
+                            .inputs_run = use_next == 2 ? wave_run : NULL};
     pru_set_pins(c, &pins);
     int64_t cfg_cycle = 3;
     pru_run_until_cycle(c, cfg_cycle);
@@ -146,7 +159,7 @@ START_TEST(shift_all_divisor_combos) {
     static const int64_t phases[] = {0, 1250, 3700};
     for (int frac = 0; frac < 2; frac++)
         for (int ph = 0; ph < 3; ph++)
-            for (int nx = 0; nx < 2; nx++)
+            for (int nx = 0; nx < 3; nx++)
                 check_shift(c0, c1, frac, phases[ph], nx, (unsigned)(i * 7 + ph));
 }
 END_TEST
@@ -202,7 +215,7 @@ START_TEST(shift_read_by_instructions) {
     static struct wave w;
     wave_random(&w, 99, 30000, 400);
     struct pru_core *c = pru_core_new(PRU_SOC_AM335X, NULL);
-    struct pru_pins pins = {&w, wave_in, wave_next, NULL};
+    struct pru_pins pins = {.ctx = &w, .inputs_at = wave_in, .next_input_change = wave_next};
     pru_set_pins(c, &pins);
     uint32_t prog[16];
     unsigned n = 0;
@@ -232,7 +245,7 @@ START_TEST(direct_mode_delay) {
     static struct wave w;
     wave_random(&w, 5, 0, 200);
     struct pru_core *c = pru_core_new(PRU_SOC_AM335X, NULL);
-    struct pru_pins pins = {&w, wave_in, wave_next, NULL};
+    struct pru_pins pins = {.ctx = &w, .inputs_at = wave_in, .next_input_change = wave_next};
     pru_set_pins(c, &pins);
     for (int64_t cy = 0; cy < 2000; cy++) {
         pru_run_until_cycle(c, cy);
@@ -256,7 +269,7 @@ START_TEST(shift_poll_fast_forward_exact) {
         pru_params_default(&p);
         p.fast_forward = ff;
         struct pru_core *c = pru_core_new(PRU_SOC_AM335X, &p);
-        struct pru_pins pins = {&w, wave_in, wave_next, NULL};
+        struct pru_pins pins = {.ctx = &w, .inputs_at = wave_in, .next_input_change = wave_next};
         pru_set_pins(c, &pins);
         uint32_t prog[32];
         unsigned n = 0;
