@@ -350,9 +350,12 @@ static struct bench *bench_on(const struct bench_config *cfg, struct pru_core *c
     observe_pins_update(b);
     link_set_sl_reach(&b->link, !cfg->no_sl_reach);
     link_set_line_settled(&b->link, !cfg->no_line_settled);
-    struct pru_pins pins = {b, pins_inputs_at, pins_next_change, pins_outputs};
+    struct pru_pins pins = {.ctx = b,
+                            .inputs_at = pins_inputs_at,
+                            .next_input_change = pins_next_change,
+                            .outputs_changed = pins_outputs,
+                            .inputs_run = pins_inputs_run};
     pru_set_pins(b->core, &pins);
-    pru_set_inputs_run(b->core, pins_inputs_run);
     return b;
 }
 

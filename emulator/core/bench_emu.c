@@ -90,7 +90,7 @@ static void bench(const char *name, const uint32_t *w, size_t n, int64_t cycles,
         fprintf(stderr, "pru-bench-emu: setup failed\n");
         exit(1);
     }
-    struct pru_pins pins = {NULL, sq_in, sq_next, NULL};
+    struct pru_pins pins = {.inputs_at = sq_in, .next_input_change = sq_next};
     if (shift)
         pru_set_pins(c, &pins);
     pru_start(c);

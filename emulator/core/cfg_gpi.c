@@ -115,6 +115,21 @@ static bool cnt16_in(const struct gpi_shift *s, int64_t a, int64_t b) {
     return first <= b;
 }
 
+/* DATAIN at t >= 0, and in *next the earliest time after t at which it
+ * may change (NEVER_PS or later: never): the pins' inputs_run, or
+ * inputs_at and next_input_change (without the latter, any time). */
+static uint32_t datain_run(struct pru_core *c, int64_t t, int64_t *next) {
+    if (c->pins.inputs_run)
+        return c->pins.inputs_run(c->pins.ctx, t, next) & 1u;
+    if (!c->have_pins) {
+        *next = NEVER_PS;
+        return c->const_inputs & 1u;
+    }
+    uint32_t v = c->pins.inputs_at(c->pins.ctx, t) & 1u;
+    *next = c->pins.next_input_change ? c->pins.next_input_change(c->pins.ctx, t) : t + 1;
+    return v;
+}
+
 static void shift_apply(struct pru_core *c, int64_t k_from, int64_t k_to) {
     struct gpi_shift *s = &c->sh;
     int64_t delay = c->p.gpi_delay_ps;
@@ -123,24 +138,13 @@ static void shift_apply(struct pru_core *c, int64_t k_from, int64_t k_to) {
         if (s->sb && k_to - k >= 28)
             k = k_to - 27; /* older samples are shifted out; only SB/Cnt_16 remain */
         int64_t t = edge_time(c, k) - delay;
-        int64_t tq = t < 0 ? 0 : t;
-        int64_t tn = NEVER_PS;
-        uint32_t v;
-        if (c->have_pins && c->inputs_run)
-            v = c->inputs_run(c->pins.ctx, tq, &tn) & 1u;
-        else
-            v = pins_inputs_at(c, t) & 1u;
-        int64_t m = 1;
-        if (!c->have_pins) {
-            m = k_to - k + 1;
-        } else if (c->inputs_run || c->pins.next_input_change) {
-            if (!c->inputs_run)
-                tn = c->pins.next_input_change(c->pins.ctx, tq);
-            int64_t j = tn >= NEVER_PS ? k_to : last_edge(c, tn + delay - 1);
-            if (j > k_to)
-                j = k_to;
-            m = j >= k ? j - k + 1 : 1;
-        }
+        int64_t tn;
+        uint32_t v = datain_run(c, t < 0 ? 0 : t, &tn);
+        /* the samples up to the last edge before the change are v */
+        int64_t j = tn >= NEVER_PS ? k_to : last_edge(c, tn + delay - 1);
+        if (j > k_to)
+            j = k_to;
+        int64_t m = j >= k ? j - k + 1 : 1;
         shift_samples(s, v, m, k);
         k += m;
     }
@@ -206,15 +210,17 @@ static uint32_t low_bits(uint32_t mask) {
  * through the shift register: from the first edge whose sample (taken
  * gpi_delay_ps before the edge) is at or after the change. (Rounding the
  * change to a cycle first would miss an edge between the change and that
- * cycle.) */
-static int64_t shift_sees_change(struct pru_core *c, int64_t cycle) {
+ * cycle.) The change is tn if known (inputs_run gave it), else -1. */
+static int64_t shift_sees_change(struct pru_core *c, int64_t cycle, int64_t tn) {
     if (!c->have_pins)
         return CYCLE_NEVER;
-    if (!c->pins.next_input_change)
-        return cycle + 1;
     int64_t delay = c->p.gpi_delay_ps;
-    int64_t t = cycle * PRU_PS_PER_CYCLE - delay;
-    int64_t tn = c->pins.next_input_change(c->pins.ctx, t < 0 ? 0 : t);
+    if (tn < 0) {
+        if (!c->pins.next_input_change)
+            return cycle + 1;
+        int64_t t = cycle * PRU_PS_PER_CYCLE - delay;
+        tn = c->pins.next_input_change(c->pins.ctx, t < 0 ? 0 : t);
+    }
     if (tn >= NEVER_PS)
         return CYCLE_NEVER;
     return cycle_of(edge_time(c, last_edge(c, tn + delay - 1) + 1));
@@ -225,14 +231,18 @@ static int64_t shift_stable_until(struct pru_core *c, int64_t cycle, uint32_t ma
     gpi_sync(c, cycle);
     int64_t k = s->k_done;
     int64_t next_edge = cycle_of(edge_time(c, k + 1));
-    uint32_t v = pins_inputs_at(c, cycle * PRU_PS_PER_CYCLE - c->p.gpi_delay_ps) & 1u;
+    /* the input now, and with inputs_run its next change in the same call */
+    int64_t t = cycle * PRU_PS_PER_CYCLE - c->p.gpi_delay_ps;
+    int64_t tn = -1;
+    uint32_t v = c->pins.inputs_run ? c->pins.inputs_run(c->pins.ctx, t < 0 ? 0 : t, &tn) & 1u
+                                    : pins_inputs_at(c, t) & 1u;
     uint32_t low = low_bits(mask);
     bool fixed = (s->reg & low) == (v ? low : 0);
     if ((mask & 1u << 29) && !s->sb && v) /* SB is set by the next edge */
         fixed = false;
     if (!fixed)
         return next_edge;
-    int64_t in = shift_sees_change(c, cycle);
+    int64_t in = shift_sees_change(c, cycle, tn);
     if (in < next_edge)
         in = next_edge;
     if (s->sb && (mask & 1u << 28)) {

@@ -224,16 +224,12 @@ void pru_set_pins(struct pru_core *c, const struct pru_pins *pins) {
     if (pins) {
         c->pins = *pins;
         c->have_pins = pins->inputs_at != NULL;
+        if (!c->have_pins)
+            c->pins.inputs_run = NULL; /* used only with inputs_at */
     } else {
         memset(&c->pins, 0, sizeof c->pins);
         c->have_pins = false;
     }
-    c->inputs_run = NULL;
-}
-
-void pru_set_inputs_run(struct pru_core *c,
-                        uint32_t (*run)(void *ctx, int64_t t_ps, int64_t *next)) {
-    c->inputs_run = run;
 }
 
 void pru_set_inputs(struct pru_core *c, uint32_t levels) {

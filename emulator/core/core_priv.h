@@ -262,7 +262,6 @@ struct pru_core {
     unsigned n_ext;
 
     struct pru_pins pins;
-    uint32_t (*inputs_run)(void *ctx, int64_t t_ps, int64_t *next); /* pru_set_inputs_run */
     bool have_pins;
     uint32_t const_inputs;
     uint32_t r30_pins; /* last R30 value given to the pins */

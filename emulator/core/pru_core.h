@@ -180,6 +180,7 @@ void pru_params_default(struct pru_params *p);
  *   inputs_at(t)          -> link_sl(l, t) << SL_BIT (bit 0 for shift mode)
  *   next_input_change(t)  -> link_next_change(l)  (a time <= t is tolerated)
  *   outputs_changed(t, v) -> link_ma(l, t, (v >> MA_BIT) & 1) when that bit moved
+ *   inputs_run(t, &next)  -> link_sl_run(l, t, &next)
  */
 struct pru_pins {
     void *ctx;
@@ -192,6 +193,11 @@ struct pru_pins {
     /* R30 changed; the pins take the new value at t_ps. t_ps may lie up to
      * 5000 + gpo_delay_ps + gpi_delay_ps after the latest inputs_at() time. */
     void (*outputs_changed)(void *ctx, int64_t t_ps, uint32_t r30);
+    /* Optional (NULL: the shift register asks inputs_at and then
+     * next_input_change): inputs_at(t_ps), and in *next
+     * next_input_change(t_ps), in one call, as the shift register asks for
+     * every run of equal samples. Used only with inputs_at. */
+    uint32_t (*inputs_run)(void *ctx, int64_t t_ps, int64_t *next);
 };
 
 enum pru_fault_cause {
@@ -287,11 +293,6 @@ void pru_stop(struct pru_core *c);
 /* Pins: without a pins object the inputs are the constant pru_set_inputs(). */
 void pru_set_pins(struct pru_core *c, const struct pru_pins *pins);
 void pru_set_inputs(struct pru_core *c, uint32_t levels);
-/* Optional, after pru_set_pins (which clears it): inputs_at(t_ps) and, in
- * *next, next_input_change(t_ps) in one call, with the pins' ctx (the
- * shift register asks both for every run of equal samples). */
-void pru_set_inputs_run(struct pru_core *c,
-                        uint32_t (*run)(void *ctx, int64_t t_ps, int64_t *next));
 
 /* Calls fn(ctx, addr) right after every PRU store that writes the byte at
  * local data RAM address addr (the core's own data RAM), e.g. a firmware's

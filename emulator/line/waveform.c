@@ -92,8 +92,15 @@ int waveform_level_next(waveform *w, sim_ps t, sim_ps *next) {
      * answer is tested first, without count_upto()'s loop (whose varying
      * length the host mispredicts) */
     size_t n = w->hint;
-    if (n > w->len || (n > 0 && w->edges[n - 1].t > t) || (n < w->len && w->edges[n].t <= t)) {
+    if (n > w->len || (n > 0 && w->edges[n - 1].t > t)) {
         n = count_upto(w, t);
+    } else if (n < w->len && w->edges[n].t <= t) {
+        /* mostly one edge on: the run after a change */
+        if (n + 1 == w->len || w->edges[n + 1].t > t) {
+            w->hint = ++n;
+        } else {
+            n = count_upto(w, t);
+        }
     }
     *next = n < w->len ? w->edges[n].t : SIM_NEVER;
     return n ? w->edges[n - 1].level : w->initial;

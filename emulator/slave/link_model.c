@@ -115,12 +115,33 @@ int link_sl(link_model *l, sim_ps t) {
     return waveform_level_at(&l->sl_master, t);
 }
 
+/* min(bound, link_next_sl_change(l)): the scan stops at the first pending
+ * event no sooner than bound (events are in time order, and an event's
+ * own bound is no sooner than its time), so a change already recorded
+ * before the next event spares it. */
+static sim_ps sl_change_before(const link_model *l, sim_ps bound) {
+    if (!l->sl_reach_on) {
+        sim_ps t = eq_next_time(&l->q);
+        return t < bound ? t : bound;
+    }
+    sim_ps first = bound;
+    for (size_t i = l->q.head; i < l->q.len && l->q.ev[i].t < first; i++) {
+        const eq_event *e = &l->q.ev[i];
+        sim_ps t = e->ctx == &l->sl_line || e->t > SIM_NEVER - l->sl_reach_ps
+                       ? e->t
+                       : e->t + l->sl_reach_ps;
+        if (t < first) {
+            first = t;
+        }
+    }
+    return first;
+}
+
 int link_sl_run(link_model *l, sim_ps t, sim_ps *next) {
     advance(l, t);
     sim_ps recorded;
     int level = waveform_level_next(&l->sl_master, t, &recorded);
-    sim_ps pending = link_next_sl_change(l);
-    *next = recorded < pending ? recorded : pending;
+    *next = sl_change_before(l, recorded);
     return level;
 }
 
@@ -138,23 +159,8 @@ void link_set_sl_reach(link_model *l, int on) {
 }
 
 sim_ps link_next_sl_change(const link_model *l) {
-    if (!l->sl_reach_on) {
-        return eq_next_time(&l->q);
-    }
-    /* pending events are a handful: a scan, not a second queue; they are
-     * in time order, so it ends at the first one no sooner than the bound
-     * (a later one's own bound is later still) */
-    sim_ps first = SIM_NEVER;
-    for (size_t i = l->q.head; i < l->q.len && l->q.ev[i].t < first; i++) {
-        const eq_event *e = &l->q.ev[i];
-        sim_ps t = e->ctx == &l->sl_line || e->t > SIM_NEVER - l->sl_reach_ps
-                       ? e->t
-                       : e->t + l->sl_reach_ps;
-        if (t < first) {
-            first = t;
-        }
-    }
-    return first;
+    /* pending events are a handful: a scan, not a second queue */
+    return sl_change_before(l, SIM_NEVER);
 }
 
 uint64_t link_frames(const link_model *l) {

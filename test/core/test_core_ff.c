@@ -41,7 +41,7 @@ static struct pru_core *ff_core(enum path p, struct edge_in *in) {
     struct pru_core *c = pru_core_new(PRU_SOC_AM335X, &prm);
     ck_assert_ptr_nonnull(c);
     if (in) {
-        struct pru_pins pins = {in, in_at, in_next, NULL};
+        struct pru_pins pins = {.ctx = in, .inputs_at = in_at, .next_input_change = in_next};
         pru_set_pins(c, &pins);
     }
     return c;

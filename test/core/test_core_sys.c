@@ -324,7 +324,8 @@ static void rec_out(void *ctx, int64_t t, uint32_t v) {
 
 START_TEST(r30_outputs_with_time) {
     struct rec r = {.t_high = INT64_MAX};
-    struct pru_pins pins = {&r, rec_in, rec_next, rec_out};
+    struct pru_pins pins = {
+        .ctx = &r, .inputs_at = rec_in, .next_input_change = rec_next, .outputs_changed = rec_out};
     const uint32_t w[] = {ldi(R(30), 1),
                           ldi(R(30), 1),
                           burst(PRU_OP_LBCO, 4 * 29, 24, 0, 8),
@@ -353,7 +354,10 @@ END_TEST
 START_TEST(slp_wakeup_and_input_delay) {
     for (int ff = 0; ff < 2; ff++) {
         struct rec r = {.t_high = 50000};
-        struct pru_pins pins = {&r, rec_in, ff ? rec_next : NULL, rec_out};
+        struct pru_pins pins = {.ctx = &r,
+                                .inputs_at = rec_in,
+                                .next_input_change = ff ? rec_next : NULL,
+                                .outputs_changed = rec_out};
         const uint32_t w[] = {slp(1), alu(PRU_OP_OR, R(1), R(31), R(31)), halt()};
         struct pru_core *c = pru_core_new(PRU_SOC_AM335X, NULL);
         pru_load_image(c, w, sizeof w);
@@ -457,7 +461,10 @@ START_TEST(pin_poll_fast_forward) {
         pru_params_default(&p);
         p.fast_forward = ff;
         struct rec r = {.t_high = 1234567891};
-        struct pru_pins pins = {&r, rec_in, rec_next, rec_out};
+        struct pru_pins pins = {.ctx = &r,
+                                .inputs_at = rec_in,
+                                .next_input_change = rec_next,
+                                .outputs_changed = rec_out};
         const uint32_t w[] = {ldi(R(1), 0), alui(PRU_OP_ADD, R(2), R(2), 0),
                               qbi(PRU_OP_QBBC, -1, R(31), 3), alu(PRU_OP_OR, R(3), R(31), R(31)),
                               halt()};

@@ -274,6 +274,55 @@ START_TEST(waveform_many_edges_binary_search) {
 }
 END_TEST
 
+/* waveform_level_next() against a direct count, on queries that stay
+ * between the same two edges, step one edge on (its in-line case), several
+ * on, land on an edge exactly, go back, or jump far: level and next change
+ * must be the record's whatever the hint was. */
+START_TEST(waveform_level_next_agrees_with_a_count) {
+    waveform w;
+    waveform_init(&w, 1);
+    sim_ps et[200];
+    int n = 0;
+    sim_ps t = 0;
+    unsigned seed = 7;
+    for (int i = 0; i < 200; i++) {
+        seed = seed * 1103515245u + 12345u;
+        t += 1 + (seed >> 16) % 50;
+        et[n++] = t;
+        waveform_append(&w, t, !(i & 1) ? 0 : 1); /* toggles from 1 */
+    }
+    sim_ps q = -10;
+    for (int step = 0; step < 20000; step++) {
+        seed = seed * 1103515245u + 12345u;
+        unsigned r = (seed >> 16) % 100;
+        if (r < 30) {
+            q += (seed >> 8) % 3; /* within the same edges mostly */
+        } else if (r < 70) {
+            int k = 0; /* to the next edge, exactly or past it */
+            while (k < n && et[k] <= q) {
+                k++;
+            }
+            q = k < n ? et[k] + (r & 1) : q + 5;
+        } else if (r < 85) {
+            q += (seed >> 8) % 200;
+        } else if (r < 95) {
+            q -= (seed >> 8) % 200;
+        } else {
+            q = (sim_ps)((seed >> 4) % (unsigned)(t + 100)) - 20;
+        }
+        int k = 0;
+        while (k < n && et[k] <= q) {
+            k++;
+        }
+        sim_ps next;
+        int level = waveform_level_next(&w, q, &next);
+        ck_assert_int_eq(level, k == 0 ? 1 : (k - 1) & 1 ? 1 : 0);
+        ck_assert_int_eq(next, k < n ? et[k] : SIM_NEVER);
+    }
+    waveform_free(&w);
+}
+END_TEST
+
 START_TEST(rng_reproducible_and_sane) {
     sim_rng a, b;
     sim_rng_seed(&a, 42);
@@ -313,6 +362,7 @@ int main(void) {
     tcase_add_loop_test(tc, queue_agrees_with_reference_model, 0, 20);
     tcase_add_test(tc, waveform_lookups);
     tcase_add_test(tc, waveform_many_edges_binary_search);
+    tcase_add_test(tc, waveform_level_next_agrees_with_a_count);
     tcase_add_test(tc, rng_reproducible_and_sane);
     suite_add_tcase(s, tc);
     return check_run(s);
