@@ -654,6 +654,27 @@ static void run_fast(struct pru_core *c, int64_t limit) {
     }                                                                                              \
     BRANCHED()
 
+    /* after JMP or JAL from `old`, each with its own dispatch (a return's
+     * next instruction is not a call's): a register target may lie outside
+     * IRAM (exec_run() faults); a call of a routine further up (the
+     * firmware's delays) is no loop the fast-forward looks at, all that
+     * ff_backward_branch() would do is disarm */
+#define JUMPED()                                                                                   \
+    do {                                                                                           \
+        if (pc >= n) {                                                                             \
+            cyc++;                                                                                 \
+            if (pc == loop_end) /* (a LOOP may end there too) */                                   \
+                goto at_loop_end;                                                                  \
+            goto out;                                                                              \
+        }                                                                                          \
+        if (pc + FF_MAX_BODY <= old) {                                                             \
+            if (ff)                                                                                \
+                ff_disarm(c);                                                                      \
+            NEXT();                                                                                \
+        }                                                                                          \
+        BRANCHED();                                                                                \
+    } while (0)
+
 top:
     if (pc >= n)
         goto out;
@@ -782,29 +803,15 @@ k_qbnewi:
 k_jmp:
     old = pc;
     exec_simple(r, d, PRU_OP_JMP, &pc, &carry);
-    goto jumped;
+    JUMPED();
 k_jal:
     old = pc;
     exec_simple(r, d, PRU_OP_JAL, &pc, &carry);
-    goto jumped;
+    JUMPED();
 k_jali:
     old = pc;
     exec_simple(r, d, PD_JALI, &pc, &carry);
-jumped: /* a register target may lie outside IRAM: exec_run() faults */
-    if (pc >= n) {
-        cyc++;
-        if (pc == loop_end) /* (a LOOP may end there too) */
-            goto at_loop_end;
-        goto out;
-    }
-    if (pc + FF_MAX_BODY <= old) {
-        /* a call of a routine further up (the firmware's delays): no loop
-         * the fast-forward looks at, all that ff_backward_branch() does */
-        if (ff)
-            ff_disarm(c);
-        NEXT();
-    }
-    BRANCHED();
+    JUMPED();
 k_r31: /* R31 read first; then the instruction's own handler */
     r[31] = gpi_r31(c, cyc);
     goto *kinds[d->inner];
@@ -906,6 +913,7 @@ out:
 #undef STRAIGHT
 #undef BRANCH
 #undef BRANCH_FAR
+#undef JUMPED
 }
 
 enum pru_stop exec_run(struct pru_core *c, int64_t limit, bool one_step) {
