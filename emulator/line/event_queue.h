@@ -77,7 +77,9 @@ static inline eq_id eq_schedule(event_queue *q, sim_ps t, eq_fn fn, void *ctx, i
  * component that moves one deadline often (a timeout restarted by every
  * edge) keeps one event pending and, when it fires early, schedules it
  * again under the id it took when the deadline last moved. */
-eq_id eq_take_id(event_queue *q);
+static inline eq_id eq_take_id(event_queue *q) {
+    return q->next_id++;
+}
 
 /* eq_schedule() under an id from eq_take_id() (not otherwise used). */
 eq_id eq_schedule_as(event_queue *q, sim_ps t, eq_id id, eq_fn fn, void *ctx, int64_t arg);
