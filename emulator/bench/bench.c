@@ -79,13 +79,6 @@ static uint64_t slave_frames(const struct bench *b) {
     return link_frames(&b->link);
 }
 
-static bool slave_active(const struct bench *b) {
-    if (b->link.protocol == SCENARIO_SSI) {
-        return b->link.ssi.active;
-    }
-    return b->link.biss.phase == BISS_ACTIVE;
-}
-
 static void min_max(int64_t v, uint64_t n, int64_t *lo, int64_t *hi) {
     if (n == 0 || v < *lo) {
         *lo = v;
@@ -145,9 +138,18 @@ static void vcd_frame_edge(struct bench *b, uint64_t frame, sim_ps t_master);
 static inline __attribute__((always_inline)) void ma_reached_slave(struct bench *b, int level,
                                                                    bool vcd) {
     uint64_t idx = b->st.ma_edges_slave++;
-    bool timed = idx < b->st.ma_edges_master && b->st.ma_edges_master - idx <= MA_RING;
-    bool active = slave_active(b);
-    uint64_t frame = slave_frames(b); /* the open frame's number, when active */
+    /* idx < ma_edges_master && ma_edges_master - idx <= MA_RING, in one
+     * unsigned compare (idx >= ma_edges_master wraps to a large value) */
+    bool timed = b->st.ma_edges_master - idx - 1 < MA_RING;
+    bool active;
+    uint64_t frame; /* the open frame's number, when active */
+    if (b->link.protocol == SCENARIO_SSI) {
+        active = b->link.ssi.active;
+        frame = b->link.ssi.frames;
+    } else {
+        active = b->link.biss.phase == BISS_ACTIVE;
+        frame = b->link.biss.frames;
+    }
     if (active) {
         b->current_frame = frame;
     }
