@@ -422,9 +422,12 @@ bool biss_slave_ma_edge_quick(biss_slave *b, sim_ps t, int level) {
 }
 
 void biss_slave_ma_edge(biss_slave *b, sim_ps t, int level) {
-    if (biss_slave_ma_edge_quick(b, t, level)) {
-        return;
+    if (!biss_slave_ma_edge_quick(b, t, level)) {
+        biss_slave_ma_edge_general(b, t, level);
     }
+}
+
+void biss_slave_ma_edge_general(biss_slave *b, sim_ps t, int level) {
     level = level ? 1 : 0;
     if (level == b->ma) {
         return;

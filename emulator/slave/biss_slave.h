@@ -176,6 +176,8 @@ void biss_slave_ma_edge(biss_slave *b, sim_ps t, int level);
  * calls in tail position only saves no registers. Returns false, having
  * changed nothing, for any other edge. */
 bool biss_slave_ma_edge_quick(biss_slave *b, sim_ps t, int level);
+/* biss_slave_ma_edge() without trying the quick step first: any edge. */
+void biss_slave_ma_edge_general(biss_slave *b, sim_ps t, int level);
 sim_edge_sink biss_slave_sink(biss_slave *b);
 
 /* Called with each closed frame record. */

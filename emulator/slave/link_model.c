@@ -23,7 +23,7 @@ static __attribute__((noinline)) void ma_slave_general(link_model *l, sim_ps t, 
     if (l->protocol == SCENARIO_SSI) {
         ssi_slave_ma_edge(&l->ssi, t, level);
     } else {
-        biss_slave_ma_edge(&l->biss, t, level);
+        biss_slave_ma_edge_general(&l->biss, t, level);
     }
     observe(l, LINK_MA_SLAVE, t, level);
 }
