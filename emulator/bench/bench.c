@@ -79,13 +79,6 @@ static uint64_t slave_frames(const struct bench *b) {
     return link_frames(&b->link);
 }
 
-static bool slave_active(const struct bench *b) {
-    if (b->link.protocol == SCENARIO_SSI) {
-        return b->link.ssi.active;
-    }
-    return b->link.biss.phase == BISS_ACTIVE;
-}
-
 static void min_max(int64_t v, uint64_t n, int64_t *lo, int64_t *hi) {
     if (n == 0 || v < *lo) {
         *lo = v;
@@ -140,15 +133,27 @@ static void account_edge(struct bench *b, uint64_t frame, int64_t t, int level) 
 
 static void vcd_frame_edge(struct bench *b, uint64_t frame, sim_ps t_master);
 
-static void ma_reached_slave(struct bench *b, int level) {
+/* In line in both of on_pin()'s paths: the one without the VCD (vcd
+ * false) then makes no call and saves no registers. */
+static inline __attribute__((always_inline)) void ma_reached_slave(struct bench *b, int level,
+                                                                   bool vcd) {
     uint64_t idx = b->st.ma_edges_slave++;
-    bool timed = idx < b->st.ma_edges_master && b->st.ma_edges_master - idx <= MA_RING;
-    bool active = slave_active(b);
-    uint64_t frame = slave_frames(b); /* the open frame's number, when active */
+    /* idx < ma_edges_master && ma_edges_master - idx <= MA_RING, in one
+     * unsigned compare (idx >= ma_edges_master wraps to a large value) */
+    bool timed = b->st.ma_edges_master - idx - 1 < MA_RING;
+    bool active;
+    uint64_t frame; /* the open frame's number, when active */
+    if (b->link.protocol == SCENARIO_SSI) {
+        active = b->link.ssi.active;
+        frame = b->link.ssi.frames;
+    } else {
+        active = b->link.biss.phase == BISS_ACTIVE;
+        frame = b->link.biss.frames;
+    }
     if (active) {
         b->current_frame = frame;
     }
-    if (timed && active && b->vcd_on) {
+    if (vcd && timed && active) {
         vcd_frame_edge(b, frame, b->ma_times[idx % MA_RING]);
     }
     if (timed && active && frame < b->frame_limit) {
@@ -269,13 +274,14 @@ static void capture_free(struct bench *b) {
 
 /* ---- pins --------------------------------------------------------------- */
 
-static void on_pin(void *ctx, link_pin pin, sim_ps t, int level) {
-    struct bench *b = ctx;
+/* on_pin() with the VCD or a capture under way (any pin). */
+static __attribute__((noinline)) void on_pin_watched(struct bench *b, link_pin pin, sim_ps t,
+                                                     int level) {
     if (b->vcd_on) {
         vcd_change(&b->vcd, t, (int)pin, level);
     }
     if (pin == LINK_MA_SLAVE) {
-        ma_reached_slave(b, level);
+        ma_reached_slave(b, level, b->vcd_on);
     }
     if (b->vcd_on) {
         vcd_frame_update(b, t);
@@ -286,6 +292,19 @@ static void on_pin(void *ctx, link_pin pin, sim_ps t, int level) {
             waveform_append(&b->cap[pin], t, level);
         }
     }
+}
+
+/* Without the VCD and a capture the link calls this for MA at the slave
+ * only (observe_pins_update), and the measurements are all there is to
+ * do: that path is kept free of the calls the others make, so it needs no
+ * saved registers. */
+static void on_pin(void *ctx, link_pin pin, sim_ps t, int level) {
+    struct bench *b = ctx;
+    if (!b->vcd_on && b->cap_state == CAP_OFF && pin == LINK_MA_SLAVE) {
+        ma_reached_slave(b, level, false);
+        return;
+    }
+    on_pin_watched(b, pin, t, level);
 }
 
 static uint32_t pins_inputs_at(void *ctx, int64_t t) {
@@ -347,6 +366,11 @@ static struct bench *bench_on(const struct bench_config *cfg, struct pru_core *c
         return NULL;
     }
     link_set_observer(&b->link, on_pin, b);
+    /* MA at both ends and SL at the slave are only ever asked for their
+     * level at the queue's time (where a capture or the VCD starts, on_pin
+     * at an edge's time or eq_now()): their last level, so they keep no
+     * edges (link_keep_history); SL at the master is read back in time */
+    link_keep_history(&b->link, 1u << LINK_SL_MASTER);
     observe_pins_update(b);
     link_set_sl_reach(&b->link, !cfg->no_sl_reach);
     link_set_line_settled(&b->link, !cfg->no_line_settled);
@@ -513,13 +537,7 @@ static void bench_caught_up(struct bench *b) {
         link_forget_pins_before(&b->link, 1u << LINK_SL_MASTER, now - SIM_PS_PER_MS);
         b->forgot_at = now;
     }
-    /* MA at both ends and SL at the slave are only ever asked for their
-     * level from the last step on (a capture's or the VCD's first level):
-     * their history goes at every step, so that what the models append
-     * to stays in the cache (moving what is kept costs next to nothing:
-     * the edges after now, a handful) */
-    link_forget_pins_before(&b->link,
-                            1u << LINK_MA_MASTER | 1u << LINK_MA_SLAVE | 1u << LINK_SL_SLAVE, now);
+    /* MA at both ends and SL at the slave keep no history (bench_on) */
 }
 
 enum pru_stop bench_run_frames(struct bench *b, uint64_t frames, int64_t max_ps,

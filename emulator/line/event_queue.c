@@ -25,10 +25,6 @@ void eq_free(event_queue *q) {
     q->head = q->len = q->cap = 0;
 }
 
-eq_id eq_take_id(event_queue *q) {
-    return q->next_id++;
-}
-
 /* Room for one more at the end: the taken slots before head are reused
  * first, the array grows only when at least half of it is pending. It
  * starts at 256 (10 kB): a handful pending, so the pending ones move to the

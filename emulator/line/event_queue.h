@@ -38,25 +38,35 @@ void eq_free(event_queue *q);
 /* eq_schedule_as(q, t, eq_take_id(q), ...), out of line. */
 eq_id eq_schedule_any(event_queue *q, sim_ps t, eq_fn fn, void *ctx, int64_t arg);
 
+/* Whether eq_put() may schedule at t: room in the array, t not in the past. */
+static inline int eq_fits(const event_queue *q, sim_ps t) {
+    return q->len < q->cap && t >= q->now;
+}
+
+/* eq_schedule() when eq_fits(q, t): in line (a new id is greater than
+ * every id taken, so only later times move). */
+static inline eq_id eq_put(event_queue *q, sim_ps t, eq_fn fn, void *ctx, int64_t arg) {
+    size_t i = q->len++;
+    while (i > q->head && q->ev[i - 1].t > t) {
+        q->ev[i] = q->ev[i - 1];
+        i--;
+    }
+    eq_event *e = &q->ev[i];
+    e->t = t;
+    e->id = q->next_id++;
+    e->fn = fn;
+    e->ctx = ctx;
+    e->arg = arg;
+    return e->id;
+}
+
 /* Schedules fn(ctx, t, arg). t must not be earlier than eq_now(q).
  * Returns the event's id, or 0 if memory ran out. Almost every event goes
  * after all pending ones but a slave's timeout or two: with room in the
- * array that is done here in line (a new id is greater than every id
- * taken, so only later times move). */
+ * array that is done in line (eq_put). */
 static inline eq_id eq_schedule(event_queue *q, sim_ps t, eq_fn fn, void *ctx, int64_t arg) {
-    if (q->len < q->cap && t >= q->now) {
-        size_t i = q->len++;
-        while (i > q->head && q->ev[i - 1].t > t) {
-            q->ev[i] = q->ev[i - 1];
-            i--;
-        }
-        eq_event *e = &q->ev[i];
-        e->t = t;
-        e->id = q->next_id++;
-        e->fn = fn;
-        e->ctx = ctx;
-        e->arg = arg;
-        return e->id;
+    if (eq_fits(q, t)) {
+        return eq_put(q, t, fn, ctx, arg);
     }
     return eq_schedule_any(q, t, fn, ctx, arg);
 }
@@ -67,7 +77,9 @@ static inline eq_id eq_schedule(event_queue *q, sim_ps t, eq_fn fn, void *ctx, i
  * component that moves one deadline often (a timeout restarted by every
  * edge) keeps one event pending and, when it fires early, schedules it
  * again under the id it took when the deadline last moved. */
-eq_id eq_take_id(event_queue *q);
+static inline eq_id eq_take_id(event_queue *q) {
+    return q->next_id++;
+}
 
 /* eq_schedule() under an id from eq_take_id() (not otherwise used). */
 eq_id eq_schedule_as(event_queue *q, sim_ps t, eq_id id, eq_fn fn, void *ctx, int64_t arg);

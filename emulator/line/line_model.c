@@ -191,11 +191,8 @@ static sim_ps crossing_after(line_dir *l, double v, int target) {
     return l->memo_cross[target];
 }
 
-void line_dir_input(line_dir *l, sim_ps t, int level) {
-    level = level ? 1 : 0;
-    if (level == l->in_level) {
-        return;
-    }
+/* line_dir_input() in general: any edge, level already 0 or 1 and new. */
+static __attribute__((noinline)) void input_general(line_dir *l, sim_ps t, int level) {
     l->in_level = level;
     l->edges_in++;
 
@@ -255,6 +252,63 @@ void line_dir_input(line_dir *l, sim_ps t, int level) {
     l->pending_cross = cross;
     l->pending_out = out;
     l->pending_ev = eq_schedule(l->q, out, on_output_edge, l, level);
+}
+
+/* The output event of the edge just placed, when the queue has to grow
+ * or sort it in out of line. */
+static __attribute__((noinline)) void schedule_output(line_dir *l, sim_ps out, int level) {
+    l->pending_ev = eq_schedule_any(l->q, out, on_output_edge, l, level);
+}
+
+/* A clocked line's edge: the filter settled (line-settled), the last
+ * crossing passed, no jitter. That is input_general()'s arithmetic for the
+ * case, step for step, with no call but in tail position, so it saves no
+ * registers (every MA edge comes here); anything else goes there. */
+void line_dir_input(line_dir *l, sim_ps t, int level) {
+    level = level ? 1 : 0;
+    if (level == l->in_level) {
+        return;
+    }
+    sim_ps te = t + (level ? l->p.rise_extra_ps : l->p.fall_extra_ps);
+    if (te < l->last_in) {
+        te = l->last_in;
+    }
+    if (te - l->t0 < l->settle_gap || (l->pending && l->pending_cross > te) ||
+        l->p.jitter_rms_ps > 0.0) {
+        input_general(l, t, level);
+        return;
+    }
+    l->in_level = level;
+    l->edges_in++;
+    l->last_in = te;
+    if (l->pending) { /* the crossing has passed: final */
+        l->filt_level = l->target;
+        l->last_out = l->pending_out;
+        l->pending = 0;
+    }
+    l->settled_steps++;
+    l->v0 = l->target;
+    l->t0 = te;
+    l->target = level;
+    if (level == l->filt_level) {
+        return;
+    }
+    sim_ps cross = te + l->settled_cross;
+    sim_ps out = cross + l->fixed;
+    if (out <= t) {
+        out = t + 1;
+    }
+    if (out <= l->last_out) {
+        out = l->last_out + 1;
+    }
+    l->pending = 1;
+    l->pending_cross = cross;
+    l->pending_out = out;
+    if (eq_fits(l->q, out)) {
+        l->pending_ev = eq_put(l->q, out, on_output_edge, l, level);
+        return;
+    }
+    schedule_output(l, out, level);
 }
 
 static void sink_fn(void *ctx, sim_ps t, int level) {

@@ -16,10 +16,6 @@ void waveform_free(waveform *w) {
     w->len = w->cap = 0;
 }
 
-int waveform_last_level(const waveform *w) {
-    return w->len ? w->edges[w->len - 1].level : w->initial;
-}
-
 int waveform_append_any(waveform *w, sim_ps t, int level) {
     level = level ? 1 : 0;
     if (w->len && t < w->edges[w->len - 1].t) {

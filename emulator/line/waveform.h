@@ -57,7 +57,9 @@ sim_ps waveform_next_after(waveform *w, sim_ps t);
 int waveform_level_next(waveform *w, sim_ps t, sim_ps *next);
 
 /* Level after the last transition. */
-int waveform_last_level(const waveform *w);
+static inline int waveform_last_level(const waveform *w) {
+    return w->len ? w->edges[w->len - 1].level : w->initial;
+}
 
 /* Drops transitions before t, keeping the level at t as the initial level,
  * so a long run can bound its memory. */

@@ -378,7 +378,56 @@ static void on_rise(biss_slave *b, sim_ps t) {
     drive_sl(b, t, level);
 }
 
+bool biss_slave_ma_edge_quick(biss_slave *b, sim_ps t, int level) {
+    level = level ? 1 : 0;
+    if (level == b->ma || b->phase != BISS_ACTIVE || b->cfg.timeout_mode != BISS_TIMEOUT_FIXED) {
+        return false;
+    }
+    sim_ps due = t + b->cfg.timeout_ps; /* timeout_len() */
+    if (!b->timeout_ev || b->timeout_ev_at > due) {
+        return false; /* restart_timeout() would schedule */
+    }
+    int sl = 0;
+    bool drive = false;
+    if (level) {
+        if (b->rises < 2 || !b->started) {
+            return false; /* the first rise, the ACK, the busy clocks */
+        }
+        /* on_rise() after the start bit, and its drive_sl() */
+        sl = b->bit < b->nbits ? b->bits[b->bit] : 0;
+        drive = !(sl == b->sl_sched || (sl && held_low(b)));
+        if (drive && !eq_fits(b->q, t + b->cfg.out_delay_ps)) {
+            return false;
+        }
+    }
+    b->ma = level;
+    b->prev_edge = b->last_edge;
+    b->last_edge = t;
+    if (level) {
+        b->prev_rise = b->last_rise;
+        b->last_rise = t;
+        b->rises++;
+        if (b->bit < b->nbits) {
+            b->bit++;
+        }
+        if (drive) {
+            b->sl_sched = sl;
+            eq_put(b->q, t + b->cfg.out_delay_ps, emit_sl, b, sl);
+        }
+    }
+    /* restart_timeout(): the pending event stays */
+    b->timeout_due = due;
+    b->timeout_due_order = eq_take_id(b->q);
+    return true;
+}
+
 void biss_slave_ma_edge(biss_slave *b, sim_ps t, int level) {
+    if (!biss_slave_ma_edge_quick(b, t, level)) {
+        biss_slave_ma_edge_general(b, t, level);
+    }
+}
+
+void biss_slave_ma_edge_general(biss_slave *b, sim_ps t, int level) {
     level = level ? 1 : 0;
     if (level == b->ma) {
         return;

@@ -35,6 +35,7 @@ typedef struct {
     link_pin_fn observer;
     void *observer_ctx;
     unsigned observer_pins; /* bit (1 << link_pin): the pins it is told of */
+    unsigned history_pins;  /* bit (1 << link_pin): the pins whose records keep their edges */
     event_queue q;
     waveform ma_master, ma_slave, sl_slave, sl_master;
     /* link_next_sl_change(): the least time from an input edge of the SL
@@ -66,6 +67,16 @@ void link_set_observer(link_model *l, link_pin_fn fn, void *ctx);
  * observer that has nothing to do for a pin for a while spares the call
  * on each of its edges. */
 void link_observe_pins(link_model *l, unsigned mask);
+
+/* Keeps the edges of the pins in mask (bit 1 << link_pin) in their records
+ * (all four by default); the others' records hold their last level only,
+ * as their initial level with no edges. For a user that asks those records
+ * for nothing but their level at the queue's time (eq_now) or later: every
+ * pin edge is recorded at or before that time (link_ma's t is the queue's
+ * time after it has run to t, the others are recorded by the events at
+ * theirs), so that level is the last one. Each edge then costs a store
+ * instead of an append. */
+void link_keep_history(link_model *l, unsigned mask);
 
 void link_ma(link_model *l, sim_ps t, int level);
 int link_sl(link_model *l, sim_ps t);

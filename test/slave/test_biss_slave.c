@@ -474,6 +474,114 @@ START_TEST(position_wraps_and_never_overflows) {
 }
 END_TEST
 
+/* The quick step (biss_slave_ma_edge_quick) against the general path on
+ * random MA: clock runs of random period, pauses around and past the
+ * timeout, lost frames; fixed and adaptive timeouts, busy clocks, a
+ * chain. Both slaves must send the same SL edges, schedule the same
+ * events (ids) and close the same frame records. */
+static unsigned long quick_hits;
+
+static void edge_quick_or_general(void *ctx, sim_ps t, int level) {
+    if (biss_slave_ma_edge_quick(ctx, t, level)) {
+        quick_hits++;
+    } else {
+        biss_slave_ma_edge_general(ctx, t, level);
+    }
+}
+
+static void edge_general(void *ctx, sim_ps t, int level) {
+    biss_slave_ma_edge_general(ctx, t, level);
+}
+
+static uint64_t next_rand(uint64_t *s) {
+    *s ^= *s << 13;
+    *s ^= *s >> 7;
+    *s ^= *s << 17;
+    return *s;
+}
+
+START_TEST(quick_step_matches_general) {
+    biss_chain_cfg c;
+    biss_chain_cfg_default(&c);
+    c.s[0].pos0 = 0x5a5;
+    c.s[0].speed_cps = 1e6;
+    if (_i == 1) {
+        c.n = 2;
+        c.busy_clocks = 2;
+        c.busy_ps = 300 * NS;
+        c.s[1].pos_bits = 20;
+        c.s[1].lc_bits = 6;
+    } else if (_i == 2) {
+        c.timeout_mode = BISS_TIMEOUT_ADAPTIVE;
+        c.adaptive_min_ps = 2 * US;
+        c.adaptive_max_ps = 20 * US;
+    }
+    bench *x[2] = {bench_new(&c, 100 * NS), bench_new(&c, 100 * NS)};
+    x[0]->r.slave = (sim_edge_sink){edge_quick_or_general, &x[0]->b};
+    x[1]->r.slave = (sim_edge_sink){edge_general, &x[1]->b};
+    quick_hits = 0;
+    uint64_t seed = 0x9e3779b97f4a7c15u + (uint64_t)_i;
+    sim_ps t = 2 * US, h = 100 * NS;
+    int level = 1;
+    unsigned long edges = 0;
+    for (int k = 0; k < 20000; k++) {
+        uint64_t r = next_rand(&seed);
+        sim_ps gap = h;
+        switch (r % 64) {
+        case 0:
+            gap = 25 * US + (sim_ps)(r >> 8) % (20 * US); /* past the timeout */
+            h = 40 * NS + (sim_ps)(r >> 32) % (2 * US);   /* then another rate */
+            break;
+        case 1:
+            gap = 1 * US + (sim_ps)(r >> 8) % (22 * US); /* around it */
+            break;
+        case 2:
+            if ((r >> 8) % 16 == 0) {
+                biss_slave_lose_sync(&x[0]->b, t + 1);
+                biss_slave_lose_sync(&x[1]->b, t + 1);
+            }
+            break;
+        default:
+            break;
+        }
+        t += gap;
+        level = !level;
+        for (int i = 0; i < 2; i++) {
+            rig_ma(&x[i]->r, t, level);
+        }
+        edges++;
+    }
+    for (int i = 0; i < 2; i++) {
+        eq_run_until(&x[i]->r.q, t + 100 * US);
+    }
+    /* most edges take the quick step, the rest the general path; an
+     * adaptive timeout is never quick (its length needs the general path) */
+    if (c.timeout_mode == BISS_TIMEOUT_ADAPTIVE) {
+        ck_assert_uint_eq(quick_hits, 0);
+    } else {
+        ck_assert_uint_gt(quick_hits, edges / 2);
+        ck_assert_uint_lt(quick_hits, edges);
+    }
+    ck_assert_uint_eq(x[0]->r.q.next_id, x[1]->r.q.next_id);
+    ck_assert_uint_gt(x[0]->b.frames, 100);
+    ck_assert_uint_eq(x[0]->b.frames, x[1]->b.frames);
+    for (uint64_t n = x[0]->b.frames - BISS_RECORD_RING; n < x[0]->b.frames; n++) {
+        ck_assert_int_eq(memcmp(biss_slave_record(&x[0]->b, n), biss_slave_record(&x[1]->b, n),
+                                sizeof(biss_frame_record)),
+                         0);
+    }
+    waveform *a = &x[0]->r.sl, *b = &x[1]->r.sl;
+    ck_assert_uint_gt(a->len, 1000);
+    ck_assert_uint_eq(a->len, b->len);
+    for (size_t i = 0; i < a->len; i++) {
+        ck_assert_int_eq(a->edges[i].t, b->edges[i].t);
+        ck_assert_int_eq(a->edges[i].level, b->edges[i].level);
+    }
+    bench_free(x[0]);
+    bench_free(x[1]);
+}
+END_TEST
+
 int main(void) {
     Suite *s = suite_create("biss_slave");
     TCase *tc = tcase_create("frames");
@@ -497,6 +605,7 @@ int main(void) {
     tcase_add_test(tc, command_in_chain_over_frames);
     tcase_add_test(tc, config_check_messages);
     tcase_add_test(tc, position_wraps_and_never_overflows);
+    tcase_add_loop_test(tc, quick_step_matches_general, 0, 3);
     suite_add_tcase(s, tc);
     return check_run(s);
 }

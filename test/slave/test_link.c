@@ -157,6 +157,49 @@ START_TEST(same_seed_same_waveform) {
 }
 END_TEST
 
+/* A link whose MA and SL-at-the-slave records keep no edges runs the same
+ * and records SL at the master the same; the others hold their last level. */
+START_TEST(records_without_history) {
+    scenario sc;
+    char why[128];
+    profile_by_name("generic", &sc);
+    sc.ma_line.jitter_rms_ps = sc.sl_line.jitter_rms_ps = 300;
+    link_model *a = malloc(sizeof *a), *b = malloc(sizeof *b);
+    ck_assert_int_eq(link_init(a, &sc, why, sizeof why), 0);
+    ck_assert_int_eq(link_init(b, &sc, why, sizeof why), 0);
+    link_keep_history(b, 1u << LINK_SL_MASTER);
+    waveform *wa[4] = {&a->ma_master, &a->sl_master, &a->ma_slave, &a->sl_slave};
+    waveform *wb[4] = {&b->ma_master, &b->sl_master, &b->ma_slave, &b->sl_slave};
+    for (int k = 0; k < 60; k++) {
+        sim_ps t = 10 * US + k * 250 * NS;
+        link_ma(a, t, k & 1);
+        link_ma(b, t, k & 1);
+        ck_assert_int_eq(link_sl(a, t + 100 * NS), link_sl(b, t + 100 * NS));
+        for (int i = 0; i < 4; i++) {
+            ck_assert_int_eq(waveform_level_at(wb[i], eq_now(&b->q)),
+                             waveform_level_at(wa[i], eq_now(&a->q)));
+        }
+    }
+    link_sl(a, 100 * US);
+    link_sl(b, 100 * US);
+    ck_assert_uint_gt(a->ma_slave.len, 50);
+    ck_assert_uint_gt(a->sl_master.len, 4);
+    ck_assert_uint_eq(a->sl_master.len, b->sl_master.len);
+    for (size_t i = 0; i < a->sl_master.len; i++) {
+        ck_assert_int_eq(a->sl_master.edges[i].t, b->sl_master.edges[i].t);
+        ck_assert_int_eq(a->sl_master.edges[i].level, b->sl_master.edges[i].level);
+    }
+    for (int i = 0; i < 4; i++) {
+        ck_assert_uint_eq(wb[i]->len, i == LINK_SL_MASTER ? wa[i]->len : 0);
+        ck_assert_int_eq(waveform_last_level(wb[i]), waveform_last_level(wa[i]));
+    }
+    link_free(a);
+    link_free(b);
+    free(a);
+    free(b);
+}
+END_TEST
+
 START_TEST(sl_disconnect_reads_stuck) {
     scenario sc;
     char why[128];
@@ -192,6 +235,7 @@ int main(void) {
     tcase_add_test(tc, frames_decode_through_short_cable);
     tcase_add_test(tc, long_cable_at_10mhz_fails);
     tcase_add_test(tc, same_seed_same_waveform);
+    tcase_add_test(tc, records_without_history);
     tcase_add_test(tc, sl_disconnect_reads_stuck);
     tcase_add_test(tc, bad_scenario_is_refused);
     suite_add_tcase(s, tc);
