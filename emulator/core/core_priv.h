@@ -178,6 +178,35 @@ struct ff_body {
     uint32_t cl_step;  /* ... subtracted from it per turn (> 0) */
 };
 
+/*
+ * A leaf call's memo (exec.c, leaf_call()): a routine reached by a call
+ * from far below it (JAL to FF_MAX_BODY words or more back, the firmware's
+ * delay tails), made of single-cycle register-only instructions without
+ * a taken branch back, returning by a JMP through the call's link field.
+ * Its effect is a function of the register-file bytes (and carry) it reads
+ * before writing them: recorded once, replayed while those are the same.
+ */
+#define LEAF_MEMOS     16u /* by target modulo LEAF_MEMOS */
+#define LEAF_MAX_INSNS 32u /* the routine's instructions, its return included */
+#define LEAF_MAX_BYTES 16u /* bytes read first, bytes written */
+#define LEAF_RETRY     64u /* calls a refused routine lets pass before another look */
+struct leaf_memo {
+    bool valid;
+    bool ok;           /* a replayable routine; false: refused (retry counts down) */
+    uint64_t iram_gen; /* IRAM's generation when recorded */
+    uint32_t target;
+    uint8_t link_rd, link_sh; /* the call's link field (the return's JMP reads it) */
+    uint32_t link_mask;
+    uint32_t retry;
+    uint8_t n_in, n_out;
+    int8_t carry_in, carry_out; /* -1: not read (before written) / not written */
+    uint8_t in_at[LEAF_MAX_BYTES], in_val[LEAF_MAX_BYTES];
+    uint8_t out_at[LEAF_MAX_BYTES], out_val[LEAF_MAX_BYTES];
+    uint32_t cycles; /* = instructions */
+    uint32_t pc_max;
+    uint16_t pcs[LEAF_MAX_INSNS]; /* the pcs it runs, pcs[0] the target */
+};
+
 /* Fast-forward probe of an idle polling loop (ff.c). */
 struct ff_probe {
     uint32_t top; /* loop top, NO_LOOP when unarmed */
@@ -267,7 +296,9 @@ struct pru_core {
     uint32_t r30_pins; /* last R30 value given to the pins */
     FILE *trace;
     struct ff_probe ff;
-    bool checked; /* strict or contention on: every instruction through exec_checked() */
+    struct leaf_memo leaf[LEAF_MEMOS];
+    uint64_t leaf_hits; /* leaf calls replayed from a memo */
+    bool checked;       /* strict or contention on: every instruction through exec_checked() */
     struct strict_state st;
 
     /* The PRU-ICSS around the core (pruss.c): pru0 holds the blocks both
