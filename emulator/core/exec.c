@@ -733,45 +733,51 @@ static __attribute__((noinline)) void leaf_record(struct pru_core *c, struct lea
     }
 }
 
+/* A new record of the call into m, which it replaces when accepted, or
+ * when refused unless m is a memo of another routine still current (a
+ * routine refused at once costs little to look at again). True if
+ * accepted: then it applies to the registers as they are. */
+static __attribute__((noinline)) bool leaf_learn(struct pru_core *c, struct leaf_memo *m,
+                                                 const struct pd *jal, uint32_t jal_pc,
+                                                 uint32_t target, int carry) {
+    struct leaf_memo rec;
+    leaf_record(c, &rec, jal, jal_pc, target, carry);
+    if (rec.ok || !m->valid || !m->ok || m->iram_gen != c->iram_gen)
+        *m = rec;
+    return rec.ok;
+}
+
 /*
  * The call by `jal` at jal_pc of `target` (the link written, the call's
  * cycle issued at cyc not yet counted): when a memo of the routine applies
- * (recorded now if there is none), its writes and carry are made and its
- * cycles returned, the caller going on at the return (jal_pc + 1) as if the
- * routine had run; else 0 and nothing changed. It must end before `limit`
- * (the fast loop would stop inside it) and meet no LOOP end (loop_end:
- * neither at a pc it runs nor at its return).
+ * (recorded now if there is none, or none for these inputs), its writes and
+ * carry are made and its cycles returned, the caller going on at the return
+ * (jal_pc + 1) as if the routine had run; else 0 and nothing changed. It
+ * must end before `limit` (the fast loop would stop inside it) and meet no
+ * LOOP end (loop_end: neither at a pc it runs nor at its return).
  */
 static inline __attribute__((always_inline)) uint32_t
 leaf_call(struct pru_core *c, const struct pd *jal, uint32_t jal_pc, uint32_t target, int *carry,
           int64_t cyc, int64_t limit, uint32_t loop_end) {
     struct leaf_memo *m = &c->leaf[target % LEAF_MEMOS];
     const uint8_t *rf = (const uint8_t *)c->r;
-    bool fresh = false;
     if (!m->valid || m->target != target || m->iram_gen != c->iram_gen || m->link_rd != jal->rd ||
         m->link_sh != jal->rdsh || m->link_mask != jal->rdmask) {
-        leaf_record(c, m, jal, jal_pc, target, *carry);
-        fresh = true;
+        if (!leaf_learn(c, m, jal, jal_pc, target, *carry))
+            return 0;
     } else if (!m->ok) {
         if (m->retry) {
             m->retry--;
             return 0;
         }
-        leaf_record(c, m, jal, jal_pc, target, *carry);
-        fresh = true;
-    }
-    for (;;) {
-        if (!m->ok)
+        if (!leaf_learn(c, m, jal, jal_pc, target, *carry))
             return 0;
+    } else {
         bool same = m->carry_in < 0 || m->carry_in == *carry;
         for (unsigned i = 0; same && i < m->n_in; i++)
             same = rf[m->in_at[i]] == m->in_val[i];
-        if (same)
-            break;
-        if (fresh)
-            return 0;                                   /* (cannot happen: recorded from these) */
-        leaf_record(c, m, jal, jal_pc, target, *carry); /* other inputs */
-        fresh = true;
+        if (!same && !leaf_learn(c, m, jal, jal_pc, target, *carry))
+            return 0; /* other inputs */
     }
     uint32_t ret = jal_pc + 1;
     if (cyc + m->cycles >= limit || m->pc_max >= jal_pc || ret >= c->iram_words ||
