@@ -191,19 +191,23 @@ struct ff_body {
 #define LEAF_MAX_BYTES 16u /* bytes read first, bytes written */
 #define LEAF_RETRY     64u /* calls a refused routine lets pass before another look */
 struct leaf_memo {
-    bool valid;
-    bool ok;           /* a replayable routine; false: refused (retry counts down) */
-    uint64_t iram_gen; /* IRAM's generation when recorded */
-    uint32_t target;
-    uint8_t link_rd, link_sh; /* the call's link field (the return's JMP reads it) */
-    uint32_t link_mask;
-    uint32_t retry;
+    /* what a replay looks at first */
+    uint64_t key;      /* target | link rd << 16 | link shift << 24 | link mask << 32 */
+    uint64_t iram_gen; /* IRAM's generation when recorded (0: no memo) */
+    uint32_t cycles;   /* = instructions, the return included; 0: refused */
+    uint32_t pc_max;   /* the highest pc it runs */
+    /* the first two inputs and outputs (unused: byte 128, r[32]'s, always
+     * 0, with 0); more: there are others (in_at[2..], out_at[2..]) */
+    uint8_t in0_at, in0_val, in1_at, in1_val;
+    uint8_t out0_at, out0_val, out1_at, out1_val;
+    uint8_t cin_read, cin_val;     /* the carry read before written: 1 and its value */
+    uint8_t carry_keep, carry_set; /* after it: carry & keep | set */
+    bool more;
+    /* the record */
+    uint32_t retry; /* refused: calls to let pass before another look */
     uint8_t n_in, n_out;
-    int8_t carry_in, carry_out; /* -1: not read (before written) / not written */
     uint8_t in_at[LEAF_MAX_BYTES], in_val[LEAF_MAX_BYTES];
     uint8_t out_at[LEAF_MAX_BYTES], out_val[LEAF_MAX_BYTES];
-    uint32_t cycles; /* = instructions */
-    uint32_t pc_max;
     uint16_t pcs[LEAF_MAX_INSNS]; /* the pcs it runs, pcs[0] the target */
 };
 

@@ -650,14 +650,20 @@ static bool leaf_write(uint8_t *st, unsigned reg, unsigned sh, uint32_t mask) {
     return true;
 }
 
+/* A memo's key: the routine and the call's link field. */
+static inline uint64_t leaf_key(const struct pd *jal, uint32_t target) {
+    return target | (uint64_t)jal->rd << 16 | (uint64_t)jal->rdsh << 24 |
+           (uint64_t)jal->rdmask << 32;
+}
+
 /*
  * Records into m the routine at `target` called by `jal` at jal_pc (its
  * link already written): run on a copy of the registers, it is accepted
- * (m->ok) if every instruction up to a JMP through exactly the link field
- * is one of leaf_kind()'s with no flags (no R30/R31, memory, pin or event
- * effect), every branch taken goes forward, every pc lies below jal_pc,
- * and the link is neither read nor written before the JMP. The fast loop's
- * state is not touched.
+ * (m->cycles > 0) if every instruction up to a JMP through exactly the
+ * link field is one of leaf_kind()'s with no flags (no R30/R31, memory,
+ * pin or event effect), every branch taken goes forward, every pc lies
+ * below jal_pc, and the link is neither read nor written before the JMP.
+ * The fast loop's state is not touched.
  */
 static __attribute__((noinline)) void leaf_record(struct pru_core *c, struct leaf_memo *m,
                                                   const struct pd *jal, uint32_t jal_pc,
@@ -666,15 +672,14 @@ static __attribute__((noinline)) void leaf_record(struct pru_core *c, struct lea
     uint8_t st[RF_BYTES] = {0};
     const uint8_t *rf = (const uint8_t *)r;
     memcpy(r, c->r, sizeof r);
-    *m = (struct leaf_memo){.valid = true,
+    *m = (struct leaf_memo){.key = leaf_key(jal, target),
                             .iram_gen = c->iram_gen,
-                            .target = target,
-                            .link_rd = jal->rd,
-                            .link_sh = jal->rdsh,
-                            .link_mask = jal->rdmask,
                             .retry = LEAF_RETRY,
-                            .carry_in = -1,
-                            .carry_out = -1};
+                            .in0_at = RF_BYTES,
+                            .in1_at = RF_BYTES,
+                            .out0_at = RF_BYTES,
+                            .out1_at = RF_BYTES,
+                            .carry_keep = 1};
     uint32_t link = leaf_bytes(jal->rd, jal->rdsh, jal->rdmask);
     for (unsigned i = 0; i < 4; i++)
         if ((link >> i) & 1u)
@@ -699,10 +704,21 @@ static __attribute__((noinline)) void leaf_record(struct pru_core *c, struct lea
                 m->out_at[m->n_out] = (uint8_t)b;
                 m->out_val[m->n_out++] = rf[b];
             }
-            if (cst == LB_WRITTEN)
-                m->carry_out = (int8_t)carry;
+            if (cst == LB_WRITTEN) {
+                m->carry_keep = 0;
+                m->carry_set = (uint8_t)carry;
+            }
+            /* the first two of each in the replay's own fields */
+            if (m->n_in > 0)
+                m->in0_at = m->in_at[0], m->in0_val = m->in_val[0];
+            if (m->n_in > 1)
+                m->in1_at = m->in_at[1], m->in1_val = m->in_val[1];
+            if (m->n_out > 0)
+                m->out0_at = m->out_at[0], m->out0_val = m->out_val[0];
+            if (m->n_out > 1)
+                m->out1_at = m->out_at[1], m->out1_val = m->out_val[1];
+            m->more = m->n_in > 2 || m->n_out > 2;
             m->cycles = n + 1;
-            m->ok = true;
             return;
         }
         unsigned k = leaf_kind(d->fast);
@@ -718,7 +734,8 @@ static __attribute__((noinline)) void leaf_record(struct pru_core *c, struct lea
             return;
         if (k & LEAF_CIN && cst == LB_NONE) {
             cst = LB_READ;
-            m->carry_in = (int8_t)carry;
+            m->cin_read = 1;
+            m->cin_val = (uint8_t)carry;
         }
         uint32_t next = pc;
         if (!exec_simple(r, d, d->fast, &next, &carry))
@@ -742,9 +759,21 @@ static __attribute__((noinline)) bool leaf_learn(struct pru_core *c, struct leaf
                                                  uint32_t target, int carry) {
     struct leaf_memo rec;
     leaf_record(c, &rec, jal, jal_pc, target, carry);
-    if (rec.ok || !m->valid || !m->ok || m->iram_gen != c->iram_gen)
+    if (rec.cycles || !m->cycles || m->iram_gen != c->iram_gen)
         *m = rec;
-    return rec.ok;
+    return rec.cycles != 0;
+}
+
+/* The inputs and outputs past the first two (m->more). */
+static __attribute__((noinline)) bool leaf_more_same(const struct leaf_memo *m, const uint8_t *rf) {
+    for (unsigned i = 2; i < m->n_in; i++)
+        if (rf[m->in_at[i]] != m->in_val[i])
+            return false;
+    return true;
+}
+static __attribute__((noinline)) void leaf_more_apply(const struct leaf_memo *m, uint8_t *rf) {
+    for (unsigned i = 2; i < m->n_out; i++)
+        rf[m->out_at[i]] = m->out_val[i];
 }
 
 /*
@@ -760,12 +789,11 @@ static inline __attribute__((always_inline)) uint32_t
 leaf_call(struct pru_core *c, const struct pd *jal, uint32_t jal_pc, uint32_t target, int *carry,
           int64_t cyc, int64_t limit, uint32_t loop_end) {
     struct leaf_memo *m = &c->leaf[target % LEAF_MEMOS];
-    const uint8_t *rf = (const uint8_t *)c->r;
-    if (!m->valid || m->target != target || m->iram_gen != c->iram_gen || m->link_rd != jal->rd ||
-        m->link_sh != jal->rdsh || m->link_mask != jal->rdmask) {
+    uint8_t *rf = (uint8_t *)c->r; /* with r[32]: byte RF_BYTES reads 0 */
+    if (__builtin_expect(m->key != leaf_key(jal, target) || m->iram_gen != c->iram_gen, 0)) {
         if (!leaf_learn(c, m, jal, jal_pc, target, *carry))
             return 0;
-    } else if (!m->ok) {
+    } else if (__builtin_expect(!m->cycles, 0)) {
         if (m->retry) {
             m->retry--;
             return 0;
@@ -773,28 +801,29 @@ leaf_call(struct pru_core *c, const struct pd *jal, uint32_t jal_pc, uint32_t ta
         if (!leaf_learn(c, m, jal, jal_pc, target, *carry))
             return 0;
     } else {
-        bool same = m->carry_in < 0 || m->carry_in == *carry;
-        for (unsigned i = 0; same && i < m->n_in; i++)
-            same = rf[m->in_at[i]] == m->in_val[i];
-        if (!same && !leaf_learn(c, m, jal, jal_pc, target, *carry))
+        unsigned diff = (unsigned)(rf[m->in0_at] ^ m->in0_val) |
+                        (unsigned)(rf[m->in1_at] ^ m->in1_val) |
+                        ((unsigned)(*carry ^ m->cin_val) & m->cin_read);
+        bool same = diff == 0 && (!m->more || leaf_more_same(m, rf));
+        if (__builtin_expect(!same, 0) && !leaf_learn(c, m, jal, jal_pc, target, *carry))
             return 0; /* other inputs */
     }
     uint32_t ret = jal_pc + 1;
     if (cyc + m->cycles >= limit || m->pc_max >= jal_pc || ret >= c->iram_words ||
         (((ret & jal->rdmask) & 0xffffu) != ret))
         return 0;
-    if (loop_end != NO_LOOP) {
+    if (__builtin_expect(loop_end != NO_LOOP, 0)) {
         if (loop_end == ret)
             return 0;
         for (unsigned i = 0; i < m->cycles; i++)
             if (m->pcs[i] == loop_end)
                 return 0;
     }
-    uint8_t *w = (uint8_t *)c->r;
-    for (unsigned i = 0; i < m->n_out; i++)
-        w[m->out_at[i]] = m->out_val[i];
-    if (m->carry_out >= 0)
-        *carry = m->carry_out;
+    rf[m->out0_at] = m->out0_val;
+    rf[m->out1_at] = m->out1_val;
+    if (m->more)
+        leaf_more_apply(m, rf);
+    *carry = (*carry & m->carry_keep) | m->carry_set;
     c->leaf_hits++;
     return m->cycles;
 }
