@@ -759,6 +759,10 @@ static __attribute__((noinline)) bool leaf_learn(struct pru_core *c, struct leaf
                                                  uint32_t target, int carry) {
     struct leaf_memo rec;
     leaf_record(c, &rec, jal, jal_pc, target, carry);
+    bool again = m->key == rec.key && m->iram_gen == rec.iram_gen && !m->cycles;
+    if (!rec.cycles && again) /* refused again: look twice as seldom */
+        rec.retry = m->retry_next < LEAF_RETRY_MAX / 2 ? 2 * m->retry_next : LEAF_RETRY_MAX;
+    rec.retry_next = rec.retry;
     if (rec.cycles || !m->cycles || m->iram_gen != c->iram_gen)
         *m = rec;
     return rec.cycles != 0;
@@ -819,10 +823,16 @@ leaf_call(struct pru_core *c, const struct pd *jal, uint32_t jal_pc, uint32_t ta
             if (m->pcs[i] == loop_end)
                 return 0;
     }
-    rf[m->out0_at] = m->out0_val;
-    rf[m->out1_at] = m->out1_val;
-    if (m->more)
-        leaf_more_apply(m, rf);
+    /* no store to r[32] for an unused one: every immediate operand reads
+     * that word, and a byte stored into it would stall the load */
+    if (m->n_out) {
+        rf[m->out0_at] = m->out0_val;
+        if (m->n_out > 1) {
+            rf[m->out1_at] = m->out1_val;
+            if (m->more)
+                leaf_more_apply(m, rf);
+        }
+    }
     *carry = (*carry & m->carry_keep) | m->carry_set;
     c->leaf_hits++;
     return m->cycles;
