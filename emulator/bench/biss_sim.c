@@ -65,7 +65,7 @@ struct options {
     const char *cd_what; /* the option that asked for it */
     /* fast paths switched off (--no-fast-path) */
     int no_ff, no_ff_counted, no_ff_r31_bits, no_ff_loop_delay, no_ff_count_loop;
-    int no_fast_loop, no_sl_reach, no_line_settled;
+    int no_fast_loop, no_leaf_call, no_sl_reach, no_line_settled;
     /* strict and contention modes (emulator/core/TIMING.md) */
     unsigned strict, strict_window;
     int strict_log;
@@ -125,7 +125,8 @@ static void usage(FILE *f) {
                "                     ff-loop-delay (LOOP delays run at once),\n"
                "                     ff-count-loop (countdown delays run at once),\n"
                "                     fast-loop (the core's threaded execute loop: every\n"
-               "                     instruction the general way), sl-reach (the SL input\n"
+               "                     instruction the general way), leaf-call (delay\n"
+               "                     calls replayed from a memo), sl-reach (the SL input\n"
                "                     stays until an event could reach the master's pin),\n"
                "                     line-settled (a cable edge after a settled level\n"
                "                     without the low-pass arithmetic)\n"
@@ -357,13 +358,15 @@ static int set_option(struct options *o, const char *a, const char *v) {
             o->no_ff_count_loop = 1;
         } else if (!strcmp(v, "fast-loop")) {
             o->no_fast_loop = 1;
+        } else if (!strcmp(v, "leaf-call")) {
+            o->no_leaf_call = 1;
         } else if (!strcmp(v, "sl-reach")) {
             o->no_sl_reach = 1;
         } else if (!strcmp(v, "line-settled")) {
             o->no_line_settled = 1;
         } else {
             return die("--no-fast-path: '%s' is not ff, ff-counted, ff-r31-bits, ff-loop-delay, "
-                       "ff-count-loop, fast-loop, sl-reach or line-settled",
+                       "ff-count-loop, fast-loop, leaf-call, sl-reach or line-settled",
                        v);
         }
     } else if (!strcmp(a, "--strict-window")) {
@@ -455,6 +458,7 @@ static int build_config(const struct options *o, struct bench_config *cfg) {
     cfg->pru.ff_loop_delay = !o->no_ff_loop_delay;
     cfg->pru.ff_count_loop = !o->no_ff_count_loop;
     cfg->pru.fast_loop = !o->no_fast_loop;
+    cfg->pru.leaf_call = !o->no_leaf_call;
     cfg->no_sl_reach = o->no_sl_reach;
     cfg->no_line_settled = o->no_line_settled;
     cfg->pru.strict = o->strict;

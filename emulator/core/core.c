@@ -30,6 +30,7 @@ void pru_params_default(struct pru_params *p) {
     p->ff_loop_delay = 1;
     p->ff_count_loop = 1;
     p->fast_loop = 1;
+    p->leaf_call = 1;
     p->strict = 0;
     p->strict_everywhere = 0;
     p->strict_window = PRU_STRICT_DEFAULT_WINDOW;

@@ -178,6 +178,42 @@ struct ff_body {
     uint32_t cl_step;  /* ... subtracted from it per turn (> 0) */
 };
 
+/*
+ * A leaf call's memo (exec.c, leaf_call()): a routine reached by a call
+ * from far below it (JAL to FF_MAX_BODY words or more back, the firmware's
+ * delay tails), made of single-cycle register-only instructions without
+ * a taken branch back, returning by a JMP through the call's link field.
+ * Its effect is a function of the register-file bytes (and carry) it reads
+ * before writing them: recorded once, replayed while those are the same.
+ */
+#define LEAF_MEMOS     16u    /* by target modulo LEAF_MEMOS */
+#define LEAF_MAX_INSNS 32u    /* the routine's instructions, its return included */
+#define LEAF_MAX_BYTES 16u    /* bytes read first, bytes written */
+#define LEAF_RETRY     64u    /* calls a refused routine lets pass before another look, */
+#define LEAF_RETRY_MAX 65536u /* ... doubled each time it is refused again */
+struct leaf_memo {
+    /* what a replay looks at first */
+    uint64_t key;      /* target | link rd << 16 | link shift << 24 | link mask << 32 */
+    uint64_t iram_gen; /* IRAM's generation when recorded (0: no memo) */
+    uint32_t cycles;   /* = instructions, the return included; 0: refused */
+    uint32_t pc_max;   /* the highest pc it runs */
+    /* the first two inputs (unused: byte 128, r[32]'s, always 0, with 0)
+     * and outputs (n_out of them); more: there are others (in_at[2..],
+     * out_at[2..]) */
+    uint8_t in0_at, in0_val, in1_at, in1_val;
+    uint8_t out0_at, out0_val, out1_at, out1_val;
+    uint8_t cin_read, cin_val;     /* the carry read before written: 1 and its value */
+    uint8_t carry_keep, carry_set; /* after it: carry & keep | set */
+    bool more;
+    /* the record */
+    uint32_t retry;      /* refused: calls to let pass before another look */
+    uint32_t retry_next; /* ... what retry started from */
+    uint8_t n_in, n_out;
+    uint8_t in_at[LEAF_MAX_BYTES], in_val[LEAF_MAX_BYTES];
+    uint8_t out_at[LEAF_MAX_BYTES], out_val[LEAF_MAX_BYTES];
+    uint16_t pcs[LEAF_MAX_INSNS]; /* the pcs it runs, pcs[0] the target */
+};
+
 /* Fast-forward probe of an idle polling loop (ff.c). */
 struct ff_probe {
     uint32_t top; /* loop top, NO_LOOP when unarmed */
@@ -267,7 +303,9 @@ struct pru_core {
     uint32_t r30_pins; /* last R30 value given to the pins */
     FILE *trace;
     struct ff_probe ff;
-    bool checked; /* strict or contention on: every instruction through exec_checked() */
+    struct leaf_memo leaf[LEAF_MEMOS];
+    uint64_t leaf_hits; /* leaf calls replayed from a memo */
+    bool checked;       /* strict or contention on: every instruction through exec_checked() */
     struct strict_state st;
 
     /* The PRU-ICSS around the core (pruss.c): pru0 holds the blocks both

@@ -501,6 +501,344 @@ void exec_recheck(struct pru_core *c) {
 }
 
 /*
+ * Leaf calls (pru_params.leaf_call): the firmware ends its clocked half
+ * periods in a call of a shared delay routine, a few single-cycle
+ * instructions that the fast loop would run one by one. A call from far
+ * below (no loop the fast-forward looks at: JUMPED() only disarms it) of
+ * such a routine is recorded once and then replayed, when what it reads is
+ * the same, in one step (struct leaf_memo).
+ */
+
+/* What a fast kind the recording allows reads and writes (LEAF_*), 0 if
+ * it allows none of it. */
+#define LEAF_OK     0x01u
+#define LEAF_RS1    0x02u /* reads the rs1 field */
+#define LEAF_OP2    0x04u /* reads the op2 field (no bytes when immediate) */
+#define LEAF_RD     0x08u /* writes the rd field */
+#define LEAF_CIN    0x10u /* reads the carry */
+#define LEAF_COUT   0x20u /* writes the carry */
+#define LEAF_BRANCH 0x40u /* a quick branch */
+#define LEAF_ALU    (LEAF_OK | LEAF_RS1 | LEAF_OP2 | LEAF_RD)
+#define LEAF_QB     (LEAF_OK | LEAF_RS1 | LEAF_OP2 | LEAF_BRANCH)
+static unsigned leaf_kind(unsigned kind) {
+    switch (kind) {
+    case PRU_OP_ADD:
+    case PRU_OP_SUB:
+    case PRU_OP_RSB:
+    case PD_ADD32:
+    case PD_SUB32:
+    case PD_ADD32I:
+    case PD_SUB32I:
+    case PD_SUBI:
+    case PD_SUB32B:
+    case PD_SUBBBI:
+        return LEAF_ALU | LEAF_COUT;
+    case PRU_OP_ADC:
+    case PRU_OP_SUC:
+    case PRU_OP_RSC:
+    case PD_ADC32:
+        return LEAF_ALU | LEAF_CIN | LEAF_COUT;
+    case PRU_OP_LSL:
+    case PRU_OP_LSR:
+    case PRU_OP_AND:
+    case PRU_OP_OR:
+    case PRU_OP_XOR:
+    case PRU_OP_NOT:
+    case PRU_OP_MIN:
+    case PRU_OP_MAX:
+    case PRU_OP_CLR:
+    case PRU_OP_SET:
+    case PRU_OP_LMBD:
+    case PD_AND32:
+    case PD_OR32:
+    case PD_XOR32:
+    case PD_LSL32:
+    case PD_LSR32:
+    case PD_LSL32I:
+    case PD_LSR32I:
+    case PD_MINI:
+    case PD_MINB32I:
+        return LEAF_ALU;
+    case PRU_OP_LDI:
+    case PD_LDI32:
+        return LEAF_OK | LEAF_RD;
+    case PRU_OP_NOP0:
+        return LEAF_OK;
+    case PRU_OP_QBGT:
+    case PRU_OP_QBGE:
+    case PRU_OP_QBLT:
+    case PRU_OP_QBLE:
+    case PRU_OP_QBEQ:
+    case PRU_OP_QBNE:
+    case PRU_OP_QBBS:
+    case PRU_OP_QBBC:
+    case PD_QBNE32:
+    case PD_QBEQ32:
+    case PD_QBBS32:
+    case PD_QBBC32:
+    case PD_QBNE32I:
+    case PD_QBEQ32I:
+    case PD_QBBS32I:
+    case PD_QBBC32I:
+    case PD_QBEQI:
+    case PD_QBNEI:
+    case PD_QBEQBI:
+    case PD_QBNEBI:
+    case PD_QBEQWI:
+    case PD_QBNEWI:
+        return LEAF_QB;
+    case PRU_OP_QBA:
+        return LEAF_OK | LEAF_BRANCH;
+    default:
+        return 0;
+    }
+}
+
+/* AND/OR of a field with itself into it (pasm's "mov rN, rN", a pad):
+ * writes what was there, so it neither reads nor writes for the memo. */
+static bool leaf_pad(const struct pd *d) {
+    const struct pru_insn *in = &d->in;
+    return (in->op == PRU_OP_AND || in->op == PRU_OP_OR) && !in->io && in->rd == in->rs1 &&
+           in->rs1 == in->rs2 && in->rdsel == in->rs1sel && in->rs1sel == in->rs2sel;
+}
+
+/* The register-file bytes of a field (reg 32, the zero register: none). */
+static inline uint32_t leaf_bytes(unsigned reg, unsigned sh, uint32_t mask) {
+    uint32_t bits = mask << sh, bytes = 0;
+    if (reg >= 32)
+        return 0;
+    for (unsigned i = 0; i < 4; i++)
+        if ((bits >> (8u * i)) & 0xffu)
+            bytes |= 1u << i;
+    return bytes; /* bit i: byte 4 reg + i */
+}
+
+enum { LB_NONE, LB_READ, LB_WRITTEN, LB_LINK };
+
+/* Reads of field (reg, sh, mask) by the recording: the bytes not written
+ * yet are inputs (their values now); false if one is the link's. */
+static bool leaf_read(struct leaf_memo *m, uint8_t *st, const uint8_t *rf, unsigned reg,
+                      unsigned sh, uint32_t mask) {
+    uint32_t bytes = leaf_bytes(reg, sh, mask);
+    for (unsigned i = 0; i < 4; i++) {
+        if (!((bytes >> i) & 1u))
+            continue;
+        unsigned b = 4u * reg + i;
+        if (st[b] == LB_LINK)
+            return false;
+        if (st[b] != LB_NONE)
+            continue;
+        if (m->n_in == LEAF_MAX_BYTES)
+            return false;
+        st[b] = LB_READ;
+        m->in_at[m->n_in] = (uint8_t)b;
+        m->in_val[m->n_in++] = rf[b];
+    }
+    return true;
+}
+
+static bool leaf_write(uint8_t *st, unsigned reg, unsigned sh, uint32_t mask) {
+    uint32_t bytes = leaf_bytes(reg, sh, mask);
+    for (unsigned i = 0; i < 4; i++) {
+        if (!((bytes >> i) & 1u))
+            continue;
+        unsigned b = 4u * reg + i;
+        if (st[b] == LB_LINK)
+            return false;
+        st[b] = LB_WRITTEN;
+    }
+    return true;
+}
+
+/* A memo's key: the routine and the call's link field. */
+static inline uint64_t leaf_key(const struct pd *jal, uint32_t target) {
+    return target | (uint64_t)jal->rd << 16 | (uint64_t)jal->rdsh << 24 |
+           (uint64_t)jal->rdmask << 32;
+}
+
+/*
+ * Records into m the routine at `target` called by `jal` at jal_pc (its
+ * link already written): run on a copy of the registers, it is accepted
+ * (m->cycles > 0) if every instruction up to a JMP through exactly the
+ * link field is one of leaf_kind()'s with no flags (no R30/R31, memory,
+ * pin or event effect), every branch taken goes forward, every pc lies
+ * below jal_pc, and the link is neither read nor written before the JMP.
+ * The fast loop's state is not touched.
+ */
+static __attribute__((noinline)) void leaf_record(struct pru_core *c, struct leaf_memo *m,
+                                                  const struct pd *jal, uint32_t jal_pc,
+                                                  uint32_t target, int carry) {
+    uint32_t r[33];
+    uint8_t st[RF_BYTES] = {0};
+    const uint8_t *rf = (const uint8_t *)r;
+    memcpy(r, c->r, sizeof r);
+    *m = (struct leaf_memo){.key = leaf_key(jal, target),
+                            .iram_gen = c->iram_gen,
+                            .retry = LEAF_RETRY,
+                            .in0_at = RF_BYTES,
+                            .in1_at = RF_BYTES,
+                            .out0_at = RF_BYTES,
+                            .out1_at = RF_BYTES,
+                            .carry_keep = 1};
+    uint32_t link = leaf_bytes(jal->rd, jal->rdsh, jal->rdmask);
+    for (unsigned i = 0; i < 4; i++)
+        if ((link >> i) & 1u)
+            st[4u * jal->rd + i] = LB_LINK;
+    int cst = LB_NONE;
+    uint32_t pc = target;
+    for (unsigned n = 0; n < LEAF_MAX_INSNS && pc < jal_pc; n++) {
+        const struct pd *d = &c->pd[pc];
+        m->pcs[n] = (uint16_t)pc;
+        if (pc > m->pc_max)
+            m->pc_max = pc;
+        if (d->flags != 0)
+            return;
+        if (d->fast == PRU_OP_JMP) {
+            if (d->in.io || d->rs2 != jal->rd || d->rs2sh != jal->rdsh || d->rs2mask != jal->rdmask)
+                return;
+            for (unsigned b = 0; b < RF_BYTES; b++) {
+                if (st[b] != LB_WRITTEN)
+                    continue;
+                if (m->n_out == LEAF_MAX_BYTES)
+                    return;
+                m->out_at[m->n_out] = (uint8_t)b;
+                m->out_val[m->n_out++] = rf[b];
+            }
+            if (cst == LB_WRITTEN) {
+                m->carry_keep = 0;
+                m->carry_set = (uint8_t)carry;
+            }
+            /* the first two of each in the replay's own fields */
+            if (m->n_in > 0)
+                m->in0_at = m->in_at[0], m->in0_val = m->in_val[0];
+            if (m->n_in > 1)
+                m->in1_at = m->in_at[1], m->in1_val = m->in_val[1];
+            if (m->n_out > 0)
+                m->out0_at = m->out_at[0], m->out0_val = m->out_val[0];
+            if (m->n_out > 1)
+                m->out1_at = m->out_at[1], m->out1_val = m->out_val[1];
+            m->more = m->n_in > 2 || m->n_out > 2;
+            m->cycles = n + 1;
+            return;
+        }
+        unsigned k = leaf_kind(d->fast);
+        if (!k)
+            return;
+        if (leaf_pad(d)) {
+            pc++;
+            continue;
+        }
+        if (k & LEAF_RS1 && !leaf_read(m, st, rf, d->rs1, d->rs1sh, d->rs1mask))
+            return;
+        if (k & LEAF_OP2 && !leaf_read(m, st, rf, d->rs2, d->rs2sh, d->rs2mask))
+            return;
+        if (k & LEAF_CIN && cst == LB_NONE) {
+            cst = LB_READ;
+            m->cin_read = 1;
+            m->cin_val = (uint8_t)carry;
+        }
+        uint32_t next = pc;
+        if (!exec_simple(r, d, d->fast, &next, &carry))
+            return;
+        if (k & LEAF_BRANCH && next != pc + 1 && next <= pc)
+            return; /* a taken branch back: the fast-forward's business */
+        if (k & LEAF_RD && !leaf_write(st, d->rd, d->rdsh, d->rdmask))
+            return;
+        if (k & LEAF_COUT)
+            cst = LB_WRITTEN;
+        pc = next;
+    }
+}
+
+/* A new record of the call into m, which it replaces when accepted, or
+ * when refused unless m is a memo of another routine still current (a
+ * routine refused at once costs little to look at again). True if
+ * accepted: then it applies to the registers as they are. */
+static __attribute__((noinline)) bool leaf_learn(struct pru_core *c, struct leaf_memo *m,
+                                                 const struct pd *jal, uint32_t jal_pc,
+                                                 uint32_t target, int carry) {
+    struct leaf_memo rec;
+    leaf_record(c, &rec, jal, jal_pc, target, carry);
+    bool again = m->key == rec.key && m->iram_gen == rec.iram_gen && !m->cycles;
+    if (!rec.cycles && again) /* refused again: look twice as seldom */
+        rec.retry = m->retry_next < LEAF_RETRY_MAX / 2 ? 2 * m->retry_next : LEAF_RETRY_MAX;
+    rec.retry_next = rec.retry;
+    if (rec.cycles || !m->cycles || m->iram_gen != c->iram_gen)
+        *m = rec;
+    return rec.cycles != 0;
+}
+
+/* The inputs and outputs past the first two (m->more). */
+static __attribute__((noinline)) bool leaf_more_same(const struct leaf_memo *m, const uint8_t *rf) {
+    for (unsigned i = 2; i < m->n_in; i++)
+        if (rf[m->in_at[i]] != m->in_val[i])
+            return false;
+    return true;
+}
+static __attribute__((noinline)) void leaf_more_apply(const struct leaf_memo *m, uint8_t *rf) {
+    for (unsigned i = 2; i < m->n_out; i++)
+        rf[m->out_at[i]] = m->out_val[i];
+}
+
+/*
+ * The call by `jal` at jal_pc of `target` (the link written, the call's
+ * cycle issued at cyc not yet counted): when a memo of the routine applies
+ * (recorded now if there is none, or none for these inputs), its writes and
+ * carry are made and its cycles returned, the caller going on at the return
+ * (jal_pc + 1) as if the routine had run; else 0 and nothing changed. It
+ * must end before `limit` (the fast loop would stop inside it) and meet no
+ * LOOP end (loop_end: neither at a pc it runs nor at its return).
+ */
+static inline __attribute__((always_inline)) uint32_t
+leaf_call(struct pru_core *c, const struct pd *jal, uint32_t jal_pc, uint32_t target, int *carry,
+          int64_t cyc, int64_t limit, uint32_t loop_end) {
+    struct leaf_memo *m = &c->leaf[target % LEAF_MEMOS];
+    uint8_t *rf = (uint8_t *)c->r; /* with r[32]: byte RF_BYTES reads 0 */
+    if (__builtin_expect(m->key != leaf_key(jal, target) || m->iram_gen != c->iram_gen, 0)) {
+        if (!leaf_learn(c, m, jal, jal_pc, target, *carry))
+            return 0;
+    } else if (__builtin_expect(!m->cycles, 0)) {
+        if (m->retry) {
+            m->retry--;
+            return 0;
+        }
+        if (!leaf_learn(c, m, jal, jal_pc, target, *carry))
+            return 0;
+    } else {
+        unsigned diff = (unsigned)(rf[m->in0_at] ^ m->in0_val) |
+                        (unsigned)(rf[m->in1_at] ^ m->in1_val) |
+                        ((unsigned)(*carry ^ m->cin_val) & m->cin_read);
+        bool same = diff == 0 && (!m->more || leaf_more_same(m, rf));
+        if (__builtin_expect(!same, 0) && !leaf_learn(c, m, jal, jal_pc, target, *carry))
+            return 0; /* other inputs */
+    }
+    uint32_t ret = jal_pc + 1;
+    if (cyc + m->cycles >= limit || m->pc_max >= jal_pc || ret >= c->iram_words ||
+        (((ret & jal->rdmask) & 0xffffu) != ret))
+        return 0;
+    if (__builtin_expect(loop_end != NO_LOOP, 0)) {
+        if (loop_end == ret)
+            return 0;
+        for (unsigned i = 0; i < m->cycles; i++)
+            if (m->pcs[i] == loop_end)
+                return 0;
+    }
+    /* no store to r[32] for an unused one: every immediate operand reads
+     * that word, and a byte stored into it would stall the load */
+    if (m->n_out) {
+        rf[m->out0_at] = m->out0_val;
+        if (m->n_out > 1) {
+            rf[m->out1_at] = m->out1_val;
+            if (m->more)
+                leaf_more_apply(m, rf);
+        }
+    }
+    *carry = (*carry & m->carry_keep) | m->carry_set;
+    c->leaf_hits++;
+    return m->cycles;
+}
+
+/*
  * The hot path (no trace, no single step): register-only instructions run
  * here with PC, carry and counters in local variables; everything else goes
  * through exec_one(). Stops on limit, end of IRAM or anything setting stop.
@@ -593,6 +931,7 @@ static void run_fast(struct pru_core *c, int64_t limit) {
     const struct pd *pd = c->pd;
     const uint32_t n = c->iram_words;
     const bool ff = c->ff_on;
+    const bool leaf = c->p.leaf_call != 0;
     uint32_t *r = c->r;
     uint32_t pc = c->pc;
     int carry = c->carry;
@@ -673,6 +1012,23 @@ static void run_fast(struct pru_core *c, int64_t limit) {
             NEXT();                                                                                \
         }                                                                                          \
         BRANCHED();                                                                                \
+    } while (0)
+
+    /* a call from far below (what JUMPED() does only disarm for) of a
+     * routine with a memo that applies: replayed, the JAL's disarm done,
+     * on at the return with the JAL's and the routine's cycles */
+#define LEAF_CALL()                                                                                \
+    do {                                                                                           \
+        if (leaf && pc + FF_MAX_BODY <= old) {                                                     \
+            uint32_t routine = leaf_call(c, d, old, pc, &carry, cyc, limit, loop_end);             \
+            if (routine) {                                                                         \
+                if (ff)                                                                            \
+                    ff_disarm(c);                                                                  \
+                pc = old + 1;                                                                      \
+                cyc += routine;                                                                    \
+                NEXT();                                                                            \
+            }                                                                                      \
+        }                                                                                          \
     } while (0)
 
 top:
@@ -807,10 +1163,12 @@ k_jmp:
 k_jal:
     old = pc;
     exec_simple(r, d, PRU_OP_JAL, &pc, &carry);
+    LEAF_CALL();
     JUMPED();
 k_jali:
     old = pc;
     exec_simple(r, d, PD_JALI, &pc, &carry);
+    LEAF_CALL();
     JUMPED();
 k_r31: /* R31 read first; then the instruction's own handler */
     r[31] = gpi_r31(c, cyc);
@@ -914,6 +1272,7 @@ out:
 #undef BRANCH
 #undef BRANCH_FAR
 #undef JUMPED
+#undef LEAF_CALL
 }
 
 enum pru_stop exec_run(struct pru_core *c, int64_t limit, bool one_step) {

@@ -103,6 +103,11 @@ struct pru_params {
      * instruction through the general path, one at a time (results are
      * identical). */
     int fast_loop;
+    /* With fast_loop, a call from far below of a short routine of
+     * single-cycle register-only instructions (the firmware's delay tails)
+     * is replayed from a memo of what it read and wrote (exec.c
+     * leaf_call(); results are identical). */
+    int leaf_call;
 
     /* Strict mode (TIMING.md "Strict mode"): the PRU_STRICT_* rules checked,
      * 0 = off. A rule broken stops the core with PRU_FAULT_STRICT, or with

@@ -53,7 +53,8 @@ static void usage(FILE *f) {
             "  --no-fast-path P run without the fast path P (the same results, only\n"
             "                   slower): ff (all), ff-counted, ff-r31-bits, ff-loop-delay,\n"
             "                   ff-count-loop (emulator/core/TIMING.md \"Fast-forward\"),\n"
-            "                   fast-loop (the threaded loop: every instruction the general way)\n"
+            "                   fast-loop (the threaded loop: every instruction the general way),\n"
+            "                   leaf-call (delay calls replayed from a memo)\n"
             "  --help           this text\n"
             "\n"
             "exit status: 0 halted, 2 no HALT within the cycle limit, 3 fault, 1 usage\n",
@@ -96,6 +97,8 @@ static int no_fast_path(const char *name, struct pru_params *p) {
         p->ff_count_loop = 0;
     else if (strcmp(name, "fast-loop") == 0)
         p->fast_loop = 0;
+    else if (strcmp(name, "leaf-call") == 0)
+        p->leaf_call = 0;
     else
         return -1;
     return 0;
@@ -140,7 +143,7 @@ static int parse_args(int argc, char **argv, struct opts *o) {
         } else if (strcmp(a, "--no-fast-path") == 0) {
             if (no_fast_path(val, &o->params))
                 return bad("--no-fast-path must be ff, ff-counted, ff-r31-bits, ff-loop-delay, "
-                           "ff-count-loop or fast-loop",
+                           "ff-count-loop, fast-loop or leaf-call",
                            val);
             i++;
         } else if (strcmp(a, "--max-cycles") == 0) {

@@ -199,8 +199,9 @@ START_TEST(no_fast_path) {
     snprintf(ref, sizeof ref, "%s", slurp(outf));
     ck_assert_ptr_nonnull(strstr(ref, "\ncycles=150002\ninstructions=150002\n"));
     const char *names[] = {
-        "ff", "ff-counted", "ff-r31-bits", "ff-loop-delay", "ff-count-loop", "fast-loop"};
-    for (unsigned i = 0; i < 6; i++) {
+        "ff",        "ff-counted", "ff-r31-bits", "ff-loop-delay", "ff-count-loop",
+        "fast-loop", "leaf-call"};
+    for (unsigned i = 0; i < 7; i++) {
         snprintf(args, sizeof args, "--no-fast-path %s --dump-regs '%s'", names[i], img);
         ck_assert_int_eq(run(args), 0);
         ck_assert_str_eq(slurp(outf), ref);

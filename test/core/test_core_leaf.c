@@ -1,0 +1,326 @@
+/*
+ * Check suite: leaf calls (pru_params.leaf_call, exec.c leaf_call()) give
+ * exactly what running the routine does.
+ *
+ * A call from far below of a routine of single-cycle register-only
+ * instructions returning through the link field is replayed from a memo of
+ * the bytes (and carry) it read first and the bytes it wrote. Here random
+ * small routines (ALU ops on byte, word and whole fields, the link's
+ * neighbours r10.b0/b1, the carry, pads, forward branches, a countdown whose
+ * branch back is taken or not) are called again and again from random
+ * programs whose inputs change between calls, some calls inside a LOOP
+ * ending at the return; and routines that must be refused (a taken branch
+ * back, the link read or written, a store, an R30 write, an R31 read, a
+ * return through another field). Each program runs in random chunks of
+ * cycles with the leaf calls on, off, and without the fast loop: after
+ * every chunk the registers, carry, PC, cycles and instructions agree.
+ */
+#include "check_run.h"
+#include "core_priv.h" /* leaf_hits: the replays were made */
+#include "core_test_util.h"
+
+#include <stdbool.h>
+#include <stdio.h>
+
+#define LINK     W2(10) /* the firmware's RET_LEAF */
+#define ROUTINES 4u
+#define ROUT_AT  1u  /* routine i at ROUT_AT + i * ROUT_LEN */
+#define ROUT_LEN 16u /* words a routine may take */
+#define MAIN     80u /* far above the routines */
+#define WORDS    400u
+
+static uint64_t rng_state;
+
+static uint32_t rnd(void) {
+    /* xorshift64*: reproducible from the fixed seed */
+    rng_state ^= rng_state >> 12;
+    rng_state ^= rng_state << 25;
+    rng_state ^= rng_state >> 27;
+    return (uint32_t)((rng_state * 0x2545F4914F6CDD1Dull) >> 32);
+}
+
+/* A field the routines use: r1..r5 (any field), r10.b0/b1 (the link's
+ * neighbours), r6.b3 (a countdown). */
+static unsigned rnd_field(void) {
+    switch (rnd() % 8) {
+    case 0:
+        return rnd() % 2 ? B0(10) : B1(10);
+    case 1:
+        return R(1 + rnd() % 5);
+    default:
+        return ((rnd() % 7) << 5) | (1 + rnd() % 5);
+    }
+}
+
+static const int alu_ops[] = {PRU_OP_ADD, PRU_OP_ADC, PRU_OP_SUB, PRU_OP_SUC, PRU_OP_RSB,
+                              PRU_OP_RSC, PRU_OP_LSL, PRU_OP_LSR, PRU_OP_AND, PRU_OP_OR,
+                              PRU_OP_XOR, PRU_OP_NOT, PRU_OP_MIN, PRU_OP_MAX, PRU_OP_CLR,
+                              PRU_OP_SET, PRU_OP_LMBD};
+static const int qb_ops[] = {PRU_OP_QBGT, PRU_OP_QBGE, PRU_OP_QBLT, PRU_OP_QBLE,
+                             PRU_OP_QBEQ, PRU_OP_QBNE, PRU_OP_QBBS, PRU_OP_QBBC};
+
+/* What makes a routine one that must be refused (REFUSE_*), or none. */
+enum refuse {
+    REFUSE_NONE,
+    REFUSE_READS_LINK,  /* reads r10.w1 (a byte of the link) */
+    REFUSE_WRITES_LINK, /* writes r10.b2 */
+    REFUSE_STORE,       /* SBBO */
+    REFUSE_R30,         /* writes R30 */
+    REFUSE_R31,         /* reads R31 */
+    REFUSE_KINDS,
+};
+
+/* Routine i into w (its words from ROUT_AT + i * ROUT_LEN): n random
+ * instructions, perhaps a countdown at its top (taken back while r6.b3 > 1
+ * at the call), perhaps something it must be refused for, and the return. */
+static void make_routine(uint32_t *w, unsigned at, enum refuse why, bool countdown, bool branches) {
+    unsigned n = 1 + rnd() % 8, k = 0;
+    uint32_t body[ROUT_LEN];
+    if (countdown) {
+        body[k++] = alui(PRU_OP_SUB, B3(6), B3(6), 1);
+        body[k++] = alu(PRU_OP_AND, R(0), R(0), R(0)); /* a pad */
+        body[k++] = qbi(PRU_OP_QBNE, -2, B3(6), 0);
+    }
+    for (unsigned i = 0; i < n; i++) {
+        unsigned left = n - i; /* instructions after this one, the return included */
+        switch (rnd() % (branches ? 8 : 2)) {
+        case 0:
+            body[k++] = alu(PRU_OP_AND, R(0), R(0), R(0));
+            break;
+        case 1:
+            body[k++] = ldi(rnd_field(), rnd() & 0xffffu);
+            break;
+        case 2: /* a forward branch, at most onto the return */
+            body[k++] =
+                rnd() % 2
+                    ? qbi(qb_ops[rnd() % 8], 1 + (int)(rnd() % left), rnd_field(), rnd() % 3)
+                    : qb(qb_ops[rnd() % 8], 1 + (int)(rnd() % left), rnd_field(), rnd_field());
+            break;
+        default:
+            body[k++] = rnd() % 3 ? alu(alu_ops[rnd() % 17], rnd_field(), rnd_field(), rnd_field())
+                                  : alui(alu_ops[rnd() % 17], rnd_field(), rnd_field(), rnd() % 4);
+            break;
+        }
+        if (why != REFUSE_NONE && i == n / 2) {
+            /* replaces this instruction: a branch never lands past the return */
+            k--;
+            body[k++] = why == REFUSE_READS_LINK    ? alu(PRU_OP_ADD, B0(1), W1(10), B0(2))
+                        : why == REFUSE_WRITES_LINK ? alui(PRU_OP_ADD, B2(10), B2(10), 0)
+                        : why == REFUSE_STORE       ? burst(PRU_OP_SBBO, 4, 7, 0, 4)
+                        : why == REFUSE_R30         ? alu(PRU_OP_XOR, B0(30), B0(30), B0(1))
+                                                    : alu(PRU_OP_AND, B0(1), B0(31), B0(2));
+        }
+    }
+    body[k++] = jmpr(LINK);
+    ck_assert_uint_le(k, ROUT_LEN);
+    memcpy(w + at, body, k * sizeof *w);
+}
+
+/* Something that changes a routine's inputs, from few values so that they
+ * come back. */
+static void perturb(uint32_t *w, unsigned *n) {
+    switch (rnd() % 5) {
+    case 0: /* the carry: bit 31 of r8 shifted out */
+        w[(*n)++] = ldi(W2(8), rnd() % 2 ? 0x8000u : 0);
+        w[(*n)++] = alu(PRU_OP_ADD, R(8), R(8), R(8));
+        break;
+    case 1:
+        w[(*n)++] = ldi(B3(6), 1 + rnd() % 3); /* the countdown's turns */
+        break;
+    case 2:
+        w[(*n)++] = ldi(rnd_field(), rnd() % 3);
+        break;
+    case 3:
+        w[(*n)++] = alui(PRU_OP_XOR, B1(10), B1(10), 1);
+        break;
+    default:
+        break;
+    }
+}
+
+/* A call of routine at `to`: JAL with an immediate, or through r9.w0. */
+static void call(uint32_t *w, unsigned *n, unsigned to) {
+    if (rnd() % 2) {
+        w[(*n)++] = ldi(W0(9), to);
+        w[(*n)++] = enc((struct pru_insn){
+            .op = PRU_OP_JAL, .rd = 10, .rdsel = PRU_SEL_W2, .rs2 = 9, .rs2sel = PRU_SEL_W0});
+    } else {
+        w[(*n)++] = jali(LINK, to);
+    }
+}
+
+/* A random program: the routines, then calls of them with changing
+ * inputs, some of them the end of a LOOP's body. */
+static void make_program(uint32_t *w, bool refusing) {
+    for (unsigned i = 0; i < WORDS; i++)
+        w[i] = halt();
+    w[0] = jmpi(MAIN);
+    for (unsigned i = 0; i < ROUTINES; i++) {
+        enum refuse why =
+            refusing && i == 0 ? (enum refuse)(1 + rnd() % (REFUSE_KINDS - 1)) : REFUSE_NONE;
+        make_routine(w, ROUT_AT + i * ROUT_LEN, why, rnd() % 3 == 0, true);
+    }
+    unsigned n = MAIN;
+    mov32(w, &n, 7, 0x100); /* the store's address */
+    w[n++] = ldi(B3(6), 1);
+    while (n < WORDS - 12) {
+        unsigned to = ROUT_AT + (rnd() % ROUTINES) * ROUT_LEN;
+        if (rnd() % 6 == 0) { /* LOOP 3 times over a perturbation and the call */
+            unsigned top = n++;
+            perturb(w, &n);
+            call(w, &n, to);
+            w[top] = loopi(n - top, 3);
+        } else {
+            perturb(w, &n);
+            call(w, &n, to);
+        }
+    }
+}
+
+enum mode { LEAF_ON, LEAF_OFF, GENERAL, MODES };
+
+static struct pru_core *core_for(const uint32_t *w, enum mode m, uint32_t seed) {
+    struct pru_params p;
+    pru_params_default(&p);
+    p.leaf_call = m == LEAF_ON;
+    p.fast_loop = m != GENERAL;
+    struct pru_core *c = pru_core_new(PRU_SOC_AM335X, &p);
+    ck_assert_ptr_nonnull(c);
+    ck_assert_int_eq(pru_load_image(c, w, WORDS * 4), 0);
+    pru_start(c);
+    uint64_t s = rng_state;
+    rng_state = seed | 1u;
+    for (unsigned i = 0; i < 30; i++)
+        pru_set_reg(c, i, rnd() % 4 ? rnd() % 4 : rnd());
+    rng_state = s;
+    return c;
+}
+
+static void same_state(struct pru_core *const *c, unsigned prog, int64_t chunk_end) {
+    for (unsigned m = 1; m < MODES; m++) {
+        for (unsigned i = 0; i < 32; i++)
+            ck_assert_msg(pru_reg(c[0], i) == pru_reg(c[m], i),
+                          "program %u, cycle %lld: r%u 0x%08x, mode %u 0x%08x", prog,
+                          (long long)chunk_end, i, pru_reg(c[0], i), m, pru_reg(c[m], i));
+        ck_assert_msg(pru_carry(c[0]) == pru_carry(c[m]), "program %u, cycle %lld: carry %d/%d",
+                      prog, (long long)chunk_end, pru_carry(c[0]), pru_carry(c[m]));
+        ck_assert_msg(pru_pc(c[0]) == pru_pc(c[m]), "program %u, cycle %lld: pc %u/%u", prog,
+                      (long long)chunk_end, pru_pc(c[0]), pru_pc(c[m]));
+        ck_assert_int_eq(pru_cycles(c[0]), pru_cycles(c[m]));
+        ck_assert_uint_eq(pru_instructions(c[0]), pru_instructions(c[m]));
+        ck_assert_int_eq(pru_get_fault(c[0])->cause, pru_get_fault(c[m])->cause);
+    }
+}
+
+/* Runs program w each way in the same random chunks of cycles (of at most
+ * `most`); returns the leaf calls replayed. */
+static uint64_t compare_runs(const uint32_t *w, unsigned prog, unsigned most) {
+    struct pru_core *c[MODES];
+    uint32_t seed = rnd();
+    for (unsigned m = 0; m < MODES; m++)
+        c[m] = core_for(w, (enum mode)m, seed);
+    for (unsigned chunks = 0; chunks < 10000; chunks++) {
+        int64_t end = pru_cycles(c[0]) + 1 + rnd() % (rnd() % 4 ? most / 10 : most);
+        enum pru_stop s[MODES];
+        for (unsigned m = 0; m < MODES; m++)
+            s[m] = pru_run_until_cycle(c[m], end);
+        for (unsigned m = 1; m < MODES; m++)
+            ck_assert_int_eq(s[m], s[0]);
+        same_state(c, prog, end);
+        if (s[0] != PRU_STOP_LIMIT)
+            break;
+    }
+    ck_assert_msg(pru_halted(c[0]), "program %u did not halt", prog);
+    uint64_t hits = c[LEAF_ON]->leaf_hits;
+    ck_assert_uint_eq(c[LEAF_OFF]->leaf_hits, 0);
+    for (unsigned m = 0; m < MODES; m++)
+        pru_core_free(c[m]);
+    return hits;
+}
+
+#define PROGRAMS 300u
+
+START_TEST(random_leaf_routines_match) {
+    rng_state = 0x9E3779B97F4A7C15ull;
+    static uint32_t w[WORDS];
+    uint64_t hits = 0;
+    unsigned with_hits = 0;
+    for (unsigned prog = 0; prog < PROGRAMS; prog++) {
+        make_program(w, prog % 2 == 1);
+        uint64_t h = compare_runs(w, prog, 400);
+        hits += h;
+        with_hits += h > 0;
+    }
+    /* the replays were made, in most programs */
+    ck_assert_uint_gt(with_hits, PROGRAMS / 2);
+    printf("leaf: %llu replays in %u of %u programs\n", (unsigned long long)hits, with_hits,
+           PROGRAMS);
+    ck_assert_uint_gt(hits, 10u * PROGRAMS);
+}
+END_TEST
+
+/* Each kind of refusal alone: the routine is never replayed, and the
+ * results are those of running it. */
+START_TEST(refused_routines_not_replayed) {
+    rng_state = 0xD1B54A32D192ED03ull;
+    static uint32_t w[WORDS];
+    for (unsigned why = REFUSE_READS_LINK; why < REFUSE_KINDS; why++)
+        for (unsigned rep = 0; rep < 10; rep++) {
+            for (unsigned i = 0; i < WORDS; i++)
+                w[i] = halt();
+            w[0] = jmpi(MAIN);
+            make_routine(w, ROUT_AT, (enum refuse)why, false, false);
+            unsigned n = MAIN;
+            mov32(w, &n, 7, 0x100);
+            while (n < WORDS - 12) {
+                perturb(w, &n);
+                call(w, &n, ROUT_AT);
+            }
+            ck_assert_uint_eq(compare_runs(w, why * 100 + rep, 400), 0);
+        }
+}
+END_TEST
+
+/* The firmware's delay tail at 5 MHz (pru_fw/config.p DLY_L3, one turn):
+ * replayed at every call (the first records it), with the cycles it takes. */
+START_TEST(firmware_delay_replayed) {
+    static uint32_t w[WORDS];
+    for (unsigned i = 0; i < WORDS; i++)
+        w[i] = halt();
+    w[0] = jmpi(MAIN);
+    unsigned k = ROUT_AT;
+    for (unsigned i = 0; i < 3; i++)
+        w[k++] = alu(PRU_OP_AND, R(0), R(0), R(0));
+    w[k++] = alu(PRU_OP_AND, B1(10), B3(9), B3(9)); /* mov r10.b1, r9.b3 */
+    w[k++] = alui(PRU_OP_SUB, B1(10), B1(10), 1);
+    w[k++] = alu(PRU_OP_AND, R(0), R(0), R(0));
+    w[k++] = alu(PRU_OP_AND, R(0), R(0), R(0));
+    w[k++] = qbi(PRU_OP_QBNE, -3, B1(10), 0);
+    w[k++] = jmpr(LINK);
+    unsigned n = MAIN;
+    w[n++] = ldi(B3(9), 1);
+    w[n++] = ldi(W0(9), ROUT_AT);
+    for (unsigned i = 0; i < 50; i++) {
+        w[n++] = alui(PRU_OP_ADD, R(2), R(2), 1); /* changes nothing it reads */
+        w[n++] = enc((struct pru_insn){
+            .op = PRU_OP_JAL, .rd = 10, .rdsel = PRU_SEL_W2, .rs2 = 9, .rs2sel = PRU_SEL_W0});
+    }
+    rng_state = 0x5DEECE66Dull;
+    ck_assert_uint_eq(compare_runs(w, 0, 1000000), 50);
+}
+END_TEST
+
+static Suite *leaf_suite(void) {
+    Suite *s = suite_create("core_leaf");
+    TCase *t = tcase_create("leaf");
+    tcase_set_timeout(t, 120);
+    tcase_add_test(t, random_leaf_routines_match);
+    tcase_add_test(t, refused_routines_not_replayed);
+    tcase_add_test(t, firmware_delay_replayed);
+    suite_add_tcase(s, t);
+    return s;
+}
+
+int main(void) {
+    return check_run(leaf_suite());
+}
