@@ -179,7 +179,7 @@ struct ff_body {
 };
 
 /*
- * A leaf call's memo (exec.c, leaf_call()): a routine reached by a call
+ * A leaf call's memo (leaf.c, leaf.h): a routine reached by a call
  * from far below it (JAL to FF_MAX_BODY words or more back, the firmware's
  * delay tails), made of single-cycle register-only instructions without
  * a taken branch back, returning by a JMP through the call's link field.

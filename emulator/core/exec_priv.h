@@ -22,6 +22,7 @@ void rf_after_write(struct pru_core *c, unsigned start, unsigned n, int64_t end_
 void exec_r30_changed(struct pru_core *c, int64_t end_cycle);
 void exec_r31_written(struct pru_core *c, uint32_t written_mask);
 void exec_recheck(struct pru_core *c);
+bool exec_simple_step(uint32_t *r, const struct pd *d, unsigned kind, uint32_t *pc, int *carry);
 
 /*
  * LBBO/SBBO/LBCO/SBCO at pc, issued in cycle `cycle` (c->pc and c->cycle
