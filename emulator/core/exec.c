@@ -496,7 +496,8 @@ static __attribute__((noinline)) bool mvi_load(struct pru_core *c, uint32_t *r, 
 }
 
 /* exec_simple() out of line, for a leaf call's recording (leaf.c). */
-bool exec_simple_step(uint32_t *r, const struct pd *d, unsigned kind, uint32_t *pc, int *carry) {
+__attribute__((cold)) bool exec_simple_step(uint32_t *r, const struct pd *d, unsigned kind,
+                                            uint32_t *pc, int *carry) {
     return exec_simple(r, d, kind, pc, carry);
 }
 
