@@ -18,6 +18,7 @@
 #include "check_run.h"
 #include "core_priv.h" /* the scratch-pad banks, set and compared in place */
 #include "core_test_util.h"
+#include "test_rng.h"
 
 #include <stdbool.h>
 #include <stdio.h>
@@ -29,11 +30,7 @@
 static uint64_t rng_state;
 
 static uint32_t rnd(void) {
-    /* xorshift64*: reproducible from the fixed seed */
-    rng_state ^= rng_state >> 12;
-    rng_state ^= rng_state << 25;
-    rng_state ^= rng_state >> 27;
-    return (uint32_t)((rng_state * 0x2545F4914F6CDD1Dull) >> 32);
+    return test_rng_next(&rng_state);
 }
 
 /* A register value with the edge cases of bytes and words likely. */

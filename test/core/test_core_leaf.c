@@ -18,6 +18,7 @@
 #include "check_run.h"
 #include "core_priv.h" /* leaf_hits: the replays were made */
 #include "core_test_util.h"
+#include "test_rng.h"
 
 #include <stdbool.h>
 #include <stdio.h>
@@ -32,11 +33,7 @@
 static uint64_t rng_state;
 
 static uint32_t rnd(void) {
-    /* xorshift64*: reproducible from the fixed seed */
-    rng_state ^= rng_state >> 12;
-    rng_state ^= rng_state << 25;
-    rng_state ^= rng_state >> 27;
-    return (uint32_t)((rng_state * 0x2545F4914F6CDD1Dull) >> 32);
+    return test_rng_next(&rng_state);
 }
 
 /* A field the routines use: r1..r5 (any field), r10.b0/b1 (the link's

@@ -6,6 +6,7 @@
 #include "check_run.h"
 #include "probe_frames.h"
 #include "scenario.h"
+#include "test_rng.h"
 
 #include "biss_crc.h"
 
@@ -124,11 +125,8 @@ START_TEST(every_profile) {
 END_TEST
 
 static uint64_t rng = 0x5eed2026u;
-static uint32_t rnd(uint32_t n) { /* xorshift64*, 0..n-1 */
-    rng ^= rng >> 12;
-    rng ^= rng << 25;
-    rng ^= rng >> 27;
-    return (uint32_t)((rng * 0x2545F4914F6CDD1Dull) >> 32) % n;
+static uint32_t rnd(uint32_t n) { /* 0..n-1 */
+    return test_rng_next(&rng) % n;
 }
 
 /* Data 1..64 bits, CRC 3..16 bits with a random odd polynomial (the model
