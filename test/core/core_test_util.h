@@ -162,4 +162,15 @@ static inline struct pru_core *run_prog(const uint32_t *w, size_t n) {
         run_prog(prog_, sizeof prog_ / sizeof prog_[0]);                                           \
     })
 
+/* The register-only ALU ops and the quick branches, for the tests that
+ * build random instructions of them. */
+static const int alu_ops[] = {PRU_OP_ADD, PRU_OP_ADC, PRU_OP_SUB, PRU_OP_SUC, PRU_OP_RSB,
+                              PRU_OP_RSC, PRU_OP_LSL, PRU_OP_LSR, PRU_OP_AND, PRU_OP_OR,
+                              PRU_OP_XOR, PRU_OP_NOT, PRU_OP_MIN, PRU_OP_MAX, PRU_OP_CLR,
+                              PRU_OP_SET, PRU_OP_LMBD};
+static const int qb_ops[] = {PRU_OP_QBGT, PRU_OP_QBGE, PRU_OP_QBLT, PRU_OP_QBLE,
+                             PRU_OP_QBEQ, PRU_OP_QBNE, PRU_OP_QBBS, PRU_OP_QBBC};
+#define N_ALU_OPS (sizeof alu_ops / sizeof alu_ops[0])
+#define N_QB_OPS  (sizeof qb_ops / sizeof qb_ops[0])
+
 #endif

@@ -70,13 +70,6 @@ static uint8_t rnd_imm8(void) {
 /* How an operand is built: whole register, field, or (op2 only) immediate. */
 enum shape { WHOLE, FIELD, IMM };
 
-static const int alu_ops[] = {PRU_OP_ADD, PRU_OP_ADC, PRU_OP_SUB, PRU_OP_SUC, PRU_OP_RSB,
-                              PRU_OP_RSC, PRU_OP_LSL, PRU_OP_LSR, PRU_OP_AND, PRU_OP_OR,
-                              PRU_OP_XOR, PRU_OP_NOT, PRU_OP_MIN, PRU_OP_MAX, PRU_OP_CLR,
-                              PRU_OP_SET, PRU_OP_LMBD};
-static const int qb_ops[] = {PRU_OP_QBGT, PRU_OP_QBGE, PRU_OP_QBLT, PRU_OP_QBLE,
-                             PRU_OP_QBEQ, PRU_OP_QBNE, PRU_OP_QBBS, PRU_OP_QBBC};
-
 /* One random case of the instruction word `w` at PC 1 (CASE_*). */
 struct kcase {
     uint32_t word;
@@ -172,7 +165,7 @@ static void rnd_regs(struct kcase *k) {
 START_TEST(alu_kinds_match_general_path) {
     rng_state = 0x9E3779B97F4A7C15ull;
     compared = 0;
-    for (unsigned o = 0; o < sizeof alu_ops / sizeof alu_ops[0]; o++)
+    for (unsigned o = 0; o < N_ALU_OPS; o++)
         for (unsigned shape = 0; shape < 12; shape++)
             for (unsigned n = 0; n < REPEAT; n++) {
                 enum shape rd = shape & 1u ? FIELD : WHOLE;
@@ -187,7 +180,7 @@ START_TEST(alu_kinds_match_general_path) {
                                     : alu(alu_ops[o], d, s1, operand(op2 == WHOLE));
                 check_case(&k);
             }
-    ck_assert_uint_eq(compared, sizeof alu_ops / sizeof alu_ops[0] * 12u * REPEAT);
+    ck_assert_uint_eq(compared, N_ALU_OPS * 12u * REPEAT);
 }
 END_TEST
 
@@ -204,7 +197,7 @@ END_TEST
 
 START_TEST(branch_kinds_match_general_path) {
     rng_state = 0x2545F4914F6CDD1Dull;
-    for (unsigned o = 0; o < sizeof qb_ops / sizeof qb_ops[0]; o++)
+    for (unsigned o = 0; o < N_QB_OPS; o++)
         for (unsigned shape = 0; shape < 6; shape++)
             for (unsigned n = 0; n < REPEAT; n++) {
                 enum shape rs1 = shape & 1u ? FIELD : WHOLE;

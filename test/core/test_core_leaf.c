@@ -49,13 +49,6 @@ static unsigned rnd_field(void) {
     }
 }
 
-static const int alu_ops[] = {PRU_OP_ADD, PRU_OP_ADC, PRU_OP_SUB, PRU_OP_SUC, PRU_OP_RSB,
-                              PRU_OP_RSC, PRU_OP_LSL, PRU_OP_LSR, PRU_OP_AND, PRU_OP_OR,
-                              PRU_OP_XOR, PRU_OP_NOT, PRU_OP_MIN, PRU_OP_MAX, PRU_OP_CLR,
-                              PRU_OP_SET, PRU_OP_LMBD};
-static const int qb_ops[] = {PRU_OP_QBGT, PRU_OP_QBGE, PRU_OP_QBLT, PRU_OP_QBLE,
-                             PRU_OP_QBEQ, PRU_OP_QBNE, PRU_OP_QBBS, PRU_OP_QBBC};
-
 /* What makes a routine one that must be refused (REFUSE_*), or none. */
 enum refuse {
     REFUSE_NONE,
@@ -88,14 +81,15 @@ static void make_routine(uint32_t *w, unsigned at, enum refuse why, bool countdo
             body[k++] = ldi(rnd_field(), rnd() & 0xffffu);
             break;
         case 2: /* a forward branch, at most onto the return */
-            body[k++] =
-                rnd() % 2
-                    ? qbi(qb_ops[rnd() % 8], 1 + (int)(rnd() % left), rnd_field(), rnd() % 3)
-                    : qb(qb_ops[rnd() % 8], 1 + (int)(rnd() % left), rnd_field(), rnd_field());
+            body[k++] = rnd() % 2 ? qbi(qb_ops[rnd() % N_QB_OPS], 1 + (int)(rnd() % left),
+                                        rnd_field(), rnd() % 3)
+                                  : qb(qb_ops[rnd() % N_QB_OPS], 1 + (int)(rnd() % left),
+                                       rnd_field(), rnd_field());
             break;
         default:
-            body[k++] = rnd() % 3 ? alu(alu_ops[rnd() % 17], rnd_field(), rnd_field(), rnd_field())
-                                  : alui(alu_ops[rnd() % 17], rnd_field(), rnd_field(), rnd() % 4);
+            body[k++] = rnd() % 3
+                            ? alu(alu_ops[rnd() % N_ALU_OPS], rnd_field(), rnd_field(), rnd_field())
+                            : alui(alu_ops[rnd() % N_ALU_OPS], rnd_field(), rnd_field(), rnd() % 4);
             break;
         }
         if (why != REFUSE_NONE && i == n / 2) {
