@@ -58,7 +58,7 @@ paths = ["ff-counted", "ff-r31-bits", "ff-loop-delay", "ff-count-loop", "ff"]
 # same low-pass results without the arithmetic, so it skips nothing either;
 # at 1 MHz on 100 m (tau 200 ns) the lines never settle between clock edges
 # the core's leaf calls (the firmware's delay tails replayed from a memo,
-# exec.c leaf_call()): the same registers, cycles and pins, no iteration
+# leaf.h leaf_call()): the same registers, cycles and pins, no iteration
 # skipped either
 loops = ["fast-loop", "leaf-call", "line-settled"]
 # the link's bound on the next SL change (link_next_sl_change): it may

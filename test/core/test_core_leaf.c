@@ -1,5 +1,5 @@
 /*
- * Check suite: leaf calls (pru_params.leaf_call, exec.c leaf_call()) give
+ * Check suite: leaf calls (pru_params.leaf_call, leaf.h leaf_call()) give
  * exactly what running the routine does.
  *
  * A call from far below of a routine of single-cycle register-only
