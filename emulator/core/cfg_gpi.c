@@ -206,24 +206,15 @@ static uint32_t low_bits(uint32_t mask) {
     return m;
 }
 
-/* First cycle at which a read may see an input change after `cycle`
- * through the shift register: from the first edge whose sample (taken
- * gpi_delay_ps before the edge) is at or after the change. (Rounding the
- * change to a cycle first would miss an edge between the change and that
- * cycle.) The change is tn if known (inputs_run gave it), else -1. */
-static int64_t shift_sees_change(struct pru_core *c, int64_t cycle, int64_t tn) {
-    if (!c->have_pins)
-        return CYCLE_NEVER;
-    int64_t delay = c->p.gpi_delay_ps;
-    if (tn < 0) {
-        if (!c->pins.next_input_change)
-            return cycle + 1;
-        int64_t t = cycle * PRU_PS_PER_CYCLE - delay;
-        tn = c->pins.next_input_change(c->pins.ctx, t < 0 ? 0 : t);
-    }
+/* First cycle at which a read may see an input change at tn (datain_run's
+ * next) through the shift register: from the first edge whose sample
+ * (taken gpi_delay_ps before the edge) is at or after the change.
+ * (Rounding the change to a cycle first would miss an edge between the
+ * change and that cycle.) */
+static int64_t shift_sees_change(struct pru_core *c, int64_t tn) {
     if (tn >= NEVER_PS)
         return CYCLE_NEVER;
-    return cycle_of(edge_time(c, last_edge(c, tn + delay - 1) + 1));
+    return cycle_of(edge_time(c, last_edge(c, tn + c->p.gpi_delay_ps - 1) + 1));
 }
 
 static int64_t shift_stable_until(struct pru_core *c, int64_t cycle, uint32_t mask) {
@@ -231,18 +222,17 @@ static int64_t shift_stable_until(struct pru_core *c, int64_t cycle, uint32_t ma
     gpi_sync(c, cycle);
     int64_t k = s->k_done;
     int64_t next_edge = cycle_of(edge_time(c, k + 1));
-    /* the input now, and with inputs_run its next change in the same call */
+    /* the input now and its next change */
     int64_t t = cycle * PRU_PS_PER_CYCLE - c->p.gpi_delay_ps;
-    int64_t tn = -1;
-    uint32_t v = c->pins.inputs_run ? c->pins.inputs_run(c->pins.ctx, t < 0 ? 0 : t, &tn) & 1u
-                                    : pins_inputs_at(c, t) & 1u;
+    int64_t tn;
+    uint32_t v = datain_run(c, t < 0 ? 0 : t, &tn);
     uint32_t low = low_bits(mask);
     bool fixed = (s->reg & low) == (v ? low : 0);
     if ((mask & 1u << 29) && !s->sb && v) /* SB is set by the next edge */
         fixed = false;
     if (!fixed)
         return next_edge;
-    int64_t in = shift_sees_change(c, cycle, tn);
+    int64_t in = shift_sees_change(c, tn);
     if (in < next_edge)
         in = next_edge;
     if (s->sb && (mask & 1u << 28)) {
