@@ -651,22 +651,28 @@ static void run_fast(struct pru_core *c, int64_t limit) {
     old = pc;                                                                                      \
     exec_simple(r, d, kind, &pc, &carry);                                                          \
     BRANCHED()
+    /* after a branch or jump that may go further back than the loops the
+     * fast-forward looks at: there all ff_backward_branch() would do is
+     * disarm it */
+#define BRANCHED_FAR()                                                                             \
+    do {                                                                                           \
+        if (pc + FF_MAX_BODY <= old) {                                                             \
+            if (ff)                                                                                \
+                ff_disarm(c);                                                                      \
+            NEXT();                                                                                \
+        }                                                                                          \
+        BRANCHED();                                                                                \
+    } while (0)
     /* ... for the kinds of loops longer than the fast-forward looks at */
 #define BRANCH_FAR(kind)                                                                           \
     old = pc;                                                                                      \
     exec_simple(r, d, kind, &pc, &carry);                                                          \
-    if (pc + FF_MAX_BODY <= old) {                                                                 \
-        if (ff)                                                                                    \
-            ff_disarm(c);                                                                          \
-        NEXT();                                                                                    \
-    }                                                                                              \
-    BRANCHED()
+    BRANCHED_FAR()
 
     /* after JMP or JAL from `old`, each with its own dispatch (a return's
      * next instruction is not a call's): a register target may lie outside
      * IRAM (exec_run() faults); a call of a routine further up (the
-     * firmware's delays) is no loop the fast-forward looks at, all that
-     * ff_backward_branch() would do is disarm */
+     * firmware's delays) is no loop the fast-forward looks at */
 #define JUMPED()                                                                                   \
     do {                                                                                           \
         if (pc >= n) {                                                                             \
@@ -675,12 +681,7 @@ static void run_fast(struct pru_core *c, int64_t limit) {
                 goto at_loop_end;                                                                  \
             goto out;                                                                              \
         }                                                                                          \
-        if (pc + FF_MAX_BODY <= old) {                                                             \
-            if (ff)                                                                                \
-                ff_disarm(c);                                                                      \
-            NEXT();                                                                                \
-        }                                                                                          \
-        BRANCHED();                                                                                \
+        BRANCHED_FAR();                                                                            \
     } while (0)
 
     /* a call from far below (what JUMPED() does only disarm for) of a
@@ -940,6 +941,7 @@ out:
 #undef STRAIGHT
 #undef BRANCH
 #undef BRANCH_FAR
+#undef BRANCHED_FAR
 #undef JUMPED
 #undef LEAF_CALL
 }
