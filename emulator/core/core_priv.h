@@ -447,6 +447,14 @@ void strict_print_fault(const struct pru_core *c, FILE *f);
 void trace_insn(struct pru_core *c, uint32_t pc, int64_t cycle, const uint32_t *before,
                 int carry_before);
 
+/* AND/OR of a field with itself into it (pasm's `mov rN, rN`): writes what
+ * was there, so it changes nothing (ff.c's delays and count loops, a leaf
+ * call's pads). */
+static inline bool insn_is_identity(const struct pru_insn *a) {
+    return (a->op == PRU_OP_AND || a->op == PRU_OP_OR) && !a->io && a->rd == a->rs1 &&
+           a->rs1 == a->rs2 && a->rdsel == a->rs1sel && a->rs1sel == a->rs2sel;
+}
+
 /* Field helpers */
 static inline uint32_t fld(const uint32_t *r, unsigned reg, unsigned sh, uint32_t mask) {
     return (r[reg] >> sh) & mask;

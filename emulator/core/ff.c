@@ -129,12 +129,6 @@ static bool reads_carry(unsigned op) {
     return op == PRU_OP_ADC || op == PRU_OP_SUC || op == PRU_OP_RSC;
 }
 
-/* AND/OR of a field with itself into it: writes what was there. */
-static bool is_identity(const struct pru_insn *a) {
-    return (a->op == PRU_OP_AND || a->op == PRU_OP_OR) && !a->io && a->rd == a->rs1 &&
-           a->rs1 == a->rs2 && a->rdsel == a->rs1sel && a->rs1sel == a->rs2sel;
-}
-
 /* A count loop (see the top): the closing branch in[n-1] is QBNE top,
  * x.f, 0; one SUB x.f, x.f, k (k > 0) steps it; every other instruction is
  * an ALU one or LDI (one cycle, registers only: no branch, no R31 read, no
@@ -155,7 +149,7 @@ static void count_loop(struct ff_body *b, const struct pru_insn *in, uint32_t n)
         enum pru_fmt f = pru_optable[a->op].fmt;
         if ((f != PRU_FMT_ALU && f != PRU_FMT_LDI) || !pru_op_register_only(a->op))
             return;
-        if (is_identity(a))
+        if (insn_is_identity(a))
             continue;
         if (a->rd > 29)
             return;
@@ -173,7 +167,7 @@ static void count_loop(struct ff_body *b, const struct pru_insn *in, uint32_t n)
         return; /* another instruction writes part of the counter's register */
     for (uint32_t i = 0; i + 1 < n; i++) {
         const struct pru_insn *a = &in[i];
-        if ((int)i == sub || is_identity(a))
+        if ((int)i == sub || insn_is_identity(a))
             continue;
         if (writes_carry(a->op) || reads_carry(a->op))
             return;
@@ -395,13 +389,10 @@ void ff_backward_branch(struct pru_core *c, uint32_t pc, uint32_t top, int64_t l
     arm(c, b, top, now, insns);
 }
 
-/* A delay: AND/OR of a whole register (not R30/R31) with itself into it. */
+/* A delay: AND/OR of a field (not of R30/R31) with itself into it. */
 static bool is_delay(const struct pd *d) {
-    const struct pru_insn *in = &d->in; /* the word as predecoded (kept up to date with IRAM) */
-    if (d->kind == PD_BAD || (in->op != PRU_OP_AND && in->op != PRU_OP_OR) || in->io)
-        return false;
-    return in->rd == in->rs1 && in->rs1 == in->rs2 && in->rd < 30 && in->rdsel == in->rs1sel &&
-           in->rs1sel == in->rs2sel;
+    /* the word as predecoded (kept up to date with IRAM) */
+    return d->kind != PD_BAD && insn_is_identity(&d->in) && d->in.rd < 30;
 }
 
 void ff_loop_entered(struct pru_core *c, int64_t limit) {

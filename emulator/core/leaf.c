@@ -94,14 +94,6 @@ static unsigned leaf_kind(unsigned kind) {
     }
 }
 
-/* AND/OR of a field with itself into it (pasm's "mov rN, rN", a pad):
- * writes what was there, so it neither reads nor writes for the memo. */
-static bool leaf_pad(const struct pd *d) {
-    const struct pru_insn *in = &d->in;
-    return (in->op == PRU_OP_AND || in->op == PRU_OP_OR) && !in->io && in->rd == in->rs1 &&
-           in->rs1 == in->rs2 && in->rdsel == in->rs1sel && in->rs1sel == in->rs2sel;
-}
-
 /* The register-file bytes of a field (reg 32, the zero register: none). */
 static inline uint32_t leaf_bytes(unsigned reg, unsigned sh, uint32_t mask) {
     uint32_t bits = mask << sh, bytes = 0;
@@ -218,7 +210,7 @@ static __attribute__((noinline)) void leaf_record(struct pru_core *c, struct lea
         unsigned k = leaf_kind(d->fast);
         if (!k)
             return;
-        if (leaf_pad(d)) {
+        if (insn_is_identity(&d->in)) { /* a pad: neither read nor written */
             pc++;
             continue;
         }
