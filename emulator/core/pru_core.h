@@ -105,7 +105,7 @@ struct pru_params {
     int fast_loop;
     /* With fast_loop, a call from far below of a short routine of
      * single-cycle register-only instructions (the firmware's delay tails)
-     * is replayed from a memo of what it read and wrote (exec.c
+     * is replayed from a memo of what it read and wrote (leaf.h
      * leaf_call(); results are identical). */
     int leaf_call;
 
