@@ -141,15 +141,8 @@ static inline __attribute__((always_inline)) void ma_reached_slave(struct bench 
     /* idx < ma_edges_master && ma_edges_master - idx <= MA_RING, in one
      * unsigned compare (idx >= ma_edges_master wraps to a large value) */
     bool timed = b->st.ma_edges_master - idx - 1 < MA_RING;
-    bool active;
-    uint64_t frame; /* the open frame's number, when active */
-    if (b->link.protocol == SCENARIO_SSI) {
-        active = b->link.ssi.active;
-        frame = b->link.ssi.frames;
-    } else {
-        active = b->link.biss.phase == BISS_ACTIVE;
-        frame = b->link.biss.frames;
-    }
+    bool active = link_in_frame(&b->link);
+    uint64_t frame = slave_frames(b); /* the open frame's number, when active */
     if (active) {
         b->current_frame = frame;
     }
@@ -230,11 +223,6 @@ static void capture_keep_record(struct bench *b) {
     }
 }
 
-static waveform *pin_record(struct bench *b, int pin) {
-    waveform *w[4] = {&b->link.ma_master, &b->link.sl_master, &b->link.ma_slave, &b->link.sl_slave};
-    return w[pin];
-}
-
 /* on_pin has work for every pin while the VCD is written or a capture is
  * armed or running, otherwise for MA at the slave only (the measurements):
  * the link calls it for those. */
@@ -247,7 +235,7 @@ static void observe_pins_update(struct bench *b) {
 static void capture_update(struct bench *b, sim_ps t) {
     if (b->cap_state == CAP_ARMED && slave_frames(b) == b->cap_frame) {
         for (int i = 0; i < 4; i++) {
-            waveform_init(&b->cap[i], waveform_level_at(pin_record(b, i), t));
+            waveform_init(&b->cap[i], waveform_level_at(link_pin_record(&b->link, (link_pin)i), t));
         }
         b->cap_state = CAP_ON;
         observe_pins_update(b);
@@ -475,7 +463,7 @@ int bench_open_vcd(struct bench *b, const char *path, int64_t unit_ps) {
     observe_pins_update(b);
     sim_ps now = eq_now(&b->link.q);
     for (int i = 0; i < 4; i++) {
-        vcd_change(&b->vcd, now, i, waveform_level_at(pin_record(b, i), now));
+        vcd_change(&b->vcd, now, i, waveform_level_at(link_pin_record(&b->link, (link_pin)i), now));
     }
     vcd_change(&b->vcd, now, VCD_FRAME_WIRE, 0);
     return 0;

@@ -76,12 +76,17 @@ void link_observe_pins(link_model *l, unsigned mask) {
     l->observer_pins = l->observer ? mask & 0xfu : 0;
 }
 
-void link_keep_history(link_model *l, unsigned mask) {
+waveform *link_pin_record(link_model *l, link_pin pin) {
     waveform *w[4] = {&l->ma_master, &l->sl_master, &l->ma_slave, &l->sl_slave};
+    return w[pin];
+}
+
+void link_keep_history(link_model *l, unsigned mask) {
     l->history_pins = mask & 0xfu;
     for (int i = 0; i < 4; i++) {
         if (!(l->history_pins & 1u << i)) {
-            waveform_forget_before(w[i], SIM_NEVER); /* its last level, no edges */
+            /* its last level, no edges */
+            waveform_forget_before(link_pin_record(l, (link_pin)i), SIM_NEVER);
         }
     }
 }
@@ -193,15 +198,10 @@ sim_ps link_next_sl_change(const link_model *l) {
     return sl_change_before(l, SIM_NEVER);
 }
 
-uint64_t link_frames(const link_model *l) {
-    return l->protocol == SCENARIO_SSI ? l->ssi.frames : l->biss.frames;
-}
-
 void link_forget_pins_before(link_model *l, unsigned mask, sim_ps t) {
-    waveform *w[4] = {&l->ma_master, &l->sl_master, &l->ma_slave, &l->sl_slave};
     for (int i = 0; i < 4; i++) {
         if (mask & 1u << i) {
-            waveform_forget_before(w[i], t);
+            waveform_forget_before(link_pin_record(l, (link_pin)i), t);
         }
     }
 }

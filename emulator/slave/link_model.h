@@ -78,6 +78,9 @@ void link_observe_pins(link_model *l, unsigned mask);
  * instead of an append. */
 void link_keep_history(link_model *l, unsigned mask);
 
+/* The record of a pin (level changes up to the queue's time, link_keep_history). */
+waveform *link_pin_record(link_model *l, link_pin pin);
+
 void link_ma(link_model *l, sim_ps t, int level);
 int link_sl(link_model *l, sim_ps t);
 
@@ -108,7 +111,16 @@ void link_forget_before(link_model *l, sim_ps t);
 /* The same for the pins in mask (bit 1 << link_pin) only. */
 void link_forget_pins_before(link_model *l, unsigned mask, sim_ps t);
 
-/* Closed frame records of the slave model (BiSS or SSI). */
-uint64_t link_frames(const link_model *l);
+/* Closed frame records of the slave model (BiSS or SSI). In line: the
+ * bench asks on every MA edge. */
+static inline uint64_t link_frames(const link_model *l) {
+    return l->protocol == SCENARIO_SSI ? l->ssi.frames : l->biss.frames;
+}
+
+/* Whether the slave model is inside a frame (from its first MA edge to
+ * its timeout). */
+static inline bool link_in_frame(const link_model *l) {
+    return l->protocol == SCENARIO_SSI ? l->ssi.active : l->biss.phase == BISS_ACTIVE;
+}
 
 #endif
