@@ -191,6 +191,18 @@ static sim_ps crossing_after(line_dir *l, double v, int target) {
     return l->memo_cross[target];
 }
 
+/* An input edge at te after the filter settled at the old target (see
+ * settle_gap): the new target is the other level, so a crossing's ratio
+ * is (v - target) * -+2 = 2, the one of settled_cross. 0 if the
+ * receiver already shows the level (no crossing). */
+static inline int settled_step(line_dir *l, sim_ps te, int level) {
+    l->settled_steps++;
+    l->v0 = l->target;
+    l->t0 = te;
+    l->target = level;
+    return level != l->filt_level;
+}
+
 /* line_dir_input() in general: any edge, level already 0 or 1 and new. */
 static __attribute__((noinline)) void input_general(line_dir *l, sim_ps t, int level) {
     l->in_level = level;
@@ -218,13 +230,7 @@ static __attribute__((noinline)) void input_general(line_dir *l, sim_ps t, int l
 
     sim_ps cross;
     if (te - l->t0 >= l->settle_gap) {
-        /* settled at the old target (see settle_gap): the new target is the
-         * other level, so the crossing ratio is (v - target) * -+2 = 2 */
-        l->settled_steps++;
-        l->v0 = l->target;
-        l->t0 = te;
-        l->target = level;
-        if (level == l->filt_level) {
+        if (!settled_step(l, te, level)) {
             return;
         }
         cross = te + l->settled_cross;
@@ -286,11 +292,7 @@ void line_dir_input(line_dir *l, sim_ps t, int level) {
         l->last_out = l->pending_out;
         l->pending = 0;
     }
-    l->settled_steps++;
-    l->v0 = l->target;
-    l->t0 = te;
-    l->target = level;
-    if (level == l->filt_level) {
+    if (!settled_step(l, te, level)) {
         return;
     }
     sim_ps cross = te + l->settled_cross;
