@@ -171,8 +171,14 @@ static bool held_low(const biss_slave *b) {
     return b->lost && b->cur.start_ps <= b->lost_at;
 }
 
+/* Whether driving SL to level changes what is scheduled (a slave that lost
+ * sync holds SL low). */
+static inline bool sl_moves(const biss_slave *b, int level) {
+    return !(level == b->sl_sched || (level && held_low(b)));
+}
+
 static void drive_sl(biss_slave *b, sim_ps t_cause, int level) {
-    if (level == b->sl_sched || (level && held_low(b))) {
+    if (!sl_moves(b, level)) {
         return;
     }
     b->sl_sched = level;
@@ -378,6 +384,17 @@ static void on_rise(biss_slave *b, sim_ps t) {
     drive_sl(b, t, level);
 }
 
+/* MA's new level at t, and the times of the edges before it. */
+static inline void note_ma(biss_slave *b, sim_ps t, int level) {
+    b->ma = level;
+    b->prev_edge = b->last_edge;
+    b->last_edge = t;
+    if (level) {
+        b->prev_rise = b->last_rise;
+        b->last_rise = t;
+    }
+}
+
 bool biss_slave_ma_edge_quick(biss_slave *b, sim_ps t, int level) {
     level = level ? 1 : 0;
     if (level == b->ma || b->phase != BISS_ACTIVE || b->cfg.timeout_mode != BISS_TIMEOUT_FIXED) {
@@ -395,17 +412,13 @@ bool biss_slave_ma_edge_quick(biss_slave *b, sim_ps t, int level) {
         }
         /* on_rise() after the start bit, and its drive_sl() */
         sl = b->bit < b->nbits ? b->bits[b->bit] : 0;
-        drive = !(sl == b->sl_sched || (sl && held_low(b)));
+        drive = sl_moves(b, sl);
         if (drive && !eq_fits(b->q, t + b->cfg.out_delay_ps)) {
             return false;
         }
     }
-    b->ma = level;
-    b->prev_edge = b->last_edge;
-    b->last_edge = t;
+    note_ma(b, t, level);
     if (level) {
-        b->prev_rise = b->last_rise;
-        b->last_rise = t;
         b->rises++;
         if (b->bit < b->nbits) {
             b->bit++;
@@ -432,13 +445,7 @@ void biss_slave_ma_edge_general(biss_slave *b, sim_ps t, int level) {
     if (level == b->ma) {
         return;
     }
-    b->ma = level;
-    b->prev_edge = b->last_edge;
-    b->last_edge = t;
-    if (level) {
-        b->prev_rise = b->last_rise;
-        b->last_rise = t;
-    }
+    note_ma(b, t, level);
     if (b->phase == BISS_IDLE) {
         if (level) {
             return; /* MA returning high after a CDM = 1: not a frame */
