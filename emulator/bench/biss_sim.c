@@ -63,9 +63,10 @@ struct options {
     biss_cd_prog cd; /* a control frame to send, when cd_set */
     int cd_set;
     const char *cd_what; /* the option that asked for it */
-    /* fast paths switched off (--no-fast-path) */
-    int no_ff, no_ff_counted, no_ff_r31_bits, no_ff_loop_delay, no_ff_count_loop;
-    int no_fast_loop, no_leaf_call, no_sl_reach, no_line_settled;
+    /* fast paths switched off (--no-fast-path): the core's in its
+     * parameters (otherwise the defaults), the link's here */
+    struct pru_params core;
+    int no_sl_reach, no_line_settled;
     /* strict and contention modes (emulator/core/TIMING.md) */
     unsigned strict, strict_window;
     int strict_log;
@@ -346,25 +347,11 @@ static int set_option(struct options *o, const char *a, const char *v) {
             return die("--vcd-timescale: '%s' is not 1ps, 10ps, 100ps or 1ns", v);
         }
     } else if (!strcmp(a, "--no-fast-path")) {
-        if (!strcmp(v, "ff")) {
-            o->no_ff = 1;
-        } else if (!strcmp(v, "ff-counted")) {
-            o->no_ff_counted = 1;
-        } else if (!strcmp(v, "ff-r31-bits")) {
-            o->no_ff_r31_bits = 1;
-        } else if (!strcmp(v, "ff-loop-delay")) {
-            o->no_ff_loop_delay = 1;
-        } else if (!strcmp(v, "ff-count-loop")) {
-            o->no_ff_count_loop = 1;
-        } else if (!strcmp(v, "fast-loop")) {
-            o->no_fast_loop = 1;
-        } else if (!strcmp(v, "leaf-call")) {
-            o->no_leaf_call = 1;
-        } else if (!strcmp(v, "sl-reach")) {
+        if (!strcmp(v, "sl-reach")) {
             o->no_sl_reach = 1;
         } else if (!strcmp(v, "line-settled")) {
             o->no_line_settled = 1;
-        } else {
+        } else if (pru_params_fast_path_off(&o->core, v) != 0) {
             return die("--no-fast-path: '%s' is not ff, ff-counted, ff-r31-bits, ff-loop-delay, "
                        "ff-count-loop, fast-loop, leaf-call, sl-reach or line-settled",
                        v);
@@ -403,6 +390,7 @@ static int parse_args(int argc, char **argv, struct options *o) {
                           .soc = "am335x",
                           .vcd_unit_ps = 1000,
                           .svg_frame = 2};
+    pru_params_default(&o->core);
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
@@ -452,13 +440,7 @@ static int build_config(const struct options *o, struct bench_config *cfg) {
     if (o->seed_set) {
         cfg->link.seed = o->seed;
     }
-    cfg->pru.fast_forward = !o->no_ff;
-    cfg->pru.ff_counted = !o->no_ff_counted;
-    cfg->pru.ff_r31_bits = !o->no_ff_r31_bits;
-    cfg->pru.ff_loop_delay = !o->no_ff_loop_delay;
-    cfg->pru.ff_count_loop = !o->no_ff_count_loop;
-    cfg->pru.fast_loop = !o->no_fast_loop;
-    cfg->pru.leaf_call = !o->no_leaf_call;
+    cfg->pru = o->core; /* the defaults, fast paths off as asked */
     cfg->no_sl_reach = o->no_sl_reach;
     cfg->no_line_settled = o->no_line_settled;
     cfg->pru.strict = o->strict;

@@ -42,6 +42,28 @@ void pru_params_default(struct pru_params *p) {
     p->contend_seed = 0;
 }
 
+int pru_params_fast_path_off(struct pru_params *p, const char *name) {
+    if (!name)
+        return -1;
+    if (strcmp(name, "ff") == 0)
+        p->fast_forward = 0;
+    else if (strcmp(name, "ff-counted") == 0)
+        p->ff_counted = 0;
+    else if (strcmp(name, "ff-r31-bits") == 0)
+        p->ff_r31_bits = 0;
+    else if (strcmp(name, "ff-loop-delay") == 0)
+        p->ff_loop_delay = 0;
+    else if (strcmp(name, "ff-count-loop") == 0)
+        p->ff_count_loop = 0;
+    else if (strcmp(name, "fast-loop") == 0)
+        p->fast_loop = 0;
+    else if (strcmp(name, "leaf-call") == 0)
+        p->leaf_call = 0;
+    else
+        return -1;
+    return 0;
+}
+
 static const struct {
     const char *name;
     uint32_t base, iram, dram, shared;

@@ -175,6 +175,12 @@ int pru_contend_parse(const char *spec, struct pru_params *p, char *err, size_t 
 
 void pru_params_default(struct pru_params *p);
 
+/* Turns the core's fast path `name` off (--no-fast-path of pru-run and
+ * biss-sim): ff (all of the fast-forward), ff-counted, ff-r31-bits,
+ * ff-loop-delay, ff-count-loop, fast-loop, leaf-call. Returns 0, or -1 if
+ * there is none of that name. */
+int pru_params_fast_path_off(struct pru_params *p, const char *name);
+
 /*
  * Connection to the outside world (cable + encoder models).
  *

@@ -81,29 +81,6 @@ static int bad(const char *msg, const char *arg) {
     return -1;
 }
 
-/* Turns the fast path `name` off; -1 if there is none of that name. */
-static int no_fast_path(const char *name, struct pru_params *p) {
-    if (!name)
-        return -1;
-    if (strcmp(name, "ff") == 0)
-        p->fast_forward = 0;
-    else if (strcmp(name, "ff-counted") == 0)
-        p->ff_counted = 0;
-    else if (strcmp(name, "ff-r31-bits") == 0)
-        p->ff_r31_bits = 0;
-    else if (strcmp(name, "ff-loop-delay") == 0)
-        p->ff_loop_delay = 0;
-    else if (strcmp(name, "ff-count-loop") == 0)
-        p->ff_count_loop = 0;
-    else if (strcmp(name, "fast-loop") == 0)
-        p->fast_loop = 0;
-    else if (strcmp(name, "leaf-call") == 0)
-        p->leaf_call = 0;
-    else
-        return -1;
-    return 0;
-}
-
 static int parse_args(int argc, char **argv, struct opts *o) {
     *o = (struct opts){.soc = PRU_SOC_AM335X, .max_cycles = DEFAULT_MAX_CYCLES};
     pru_params_default(&o->params);
@@ -141,7 +118,7 @@ static int parse_args(int argc, char **argv, struct opts *o) {
                 return bad("--contend", err);
             i++;
         } else if (strcmp(a, "--no-fast-path") == 0) {
-            if (no_fast_path(val, &o->params))
+            if (pru_params_fast_path_off(&o->params, val))
                 return bad("--no-fast-path must be ff, ff-counted, ff-r31-bits, ff-loop-delay, "
                            "ff-count-loop, fast-loop or leaf-call",
                            val);
