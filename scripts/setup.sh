@@ -3,7 +3,7 @@
 # project. Does nothing when everything is already there.
 set -euo pipefail
 
-packages=(gcc make cmake pkg-config check libcjson-dev python3 clang-format libelf-dev binutils python3-pyelftools device-tree-compiler gcc-arm-linux-gnueabihf qemu-user)
+packages=(gcc make cmake pkg-config check libcjson-dev python3 clang-format libelf-dev binutils python3-pyelftools device-tree-compiler gcc-arm-linux-gnueabihf libc6-dev-armhf-cross qemu-user)
 packages+=(sigrok-cli gtkwave) # the VCD clients the tests open the bench's VCD with
 
 missing=()
