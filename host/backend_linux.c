@@ -257,20 +257,21 @@ static int check_powered(const struct biss_soc_icss *s, const char *sysfs, int f
     if (mode == 2 && idlest == 0) {
         return BISS_OK;
     }
+    char hint[1200];
+    biss_rproc_diagnose(sysfs, (unsigned long)s->base, hint, sizeof hint);
     return biss_err(e, BISS_E_NOT_POWERED,
                     "%s: CM_PER_PRU_ICSS_CLKCTRL (0x%lx) = 0x%08x "
-                    "(MODULEMODE %u, IDLEST %u: not enabled) and no pruss driver bound (%s): "
-                    "enable the PRU-ICSS in the device tree (boards/ overlays) and load the pruss "
-                    "driver (modprobe pruss)",
-                    path, (unsigned long)s->clkctrl, v, mode, idlest, drv);
+                    "(MODULEMODE %u, IDLEST %u: not enabled), so touching the PRU-ICSS would be a "
+                    "bus error%s",
+                    path, (unsigned long)s->clkctrl, v, mode, idlest, hint);
 }
 
 /* Remoteproc: the instance, not running someone else's firmware. */
 static int rproc_prepare(struct lnx *l, const struct biss_soc_icss *s,
                          const struct biss_open_params *p, struct biss_errbuf *e) {
     /* pru_rproc names an instance after its PRU's IRAM */
-    int rc =
-        biss_rproc_find(sysfs_root(p), s->iram_phys + ICSS_IRAM(p->pru) - ICSS_IRAM0, l->dir, e);
+    int rc = biss_rproc_find(sysfs_root(p), (unsigned long)s->base,
+                             s->iram_phys + ICSS_IRAM(p->pru) - ICSS_IRAM0, l->dir, e);
     if (rc) {
         return rc;
     }

@@ -29,7 +29,7 @@ struct bissctl_opts {
     bool attach_given;         /* --attach on the command line */
     struct biss_config checks; /* --check-life, --check-pair: only their fields, added to
                                   the layout (command line or profile) when it is known */
-    char errbuf[1024];         /* open's detail */
+    char errbuf[2048];         /* open's detail */
 };
 
 /* Exit codes */
