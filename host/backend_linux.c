@@ -51,6 +51,7 @@ struct lnx {
     bool shared;  /* the lock is shared (attached) */
     bool rproc;   /* remoteproc loader */
     bool started; /* this handle started the instance: close stops it */
+    bool keep;    /* ... unless it is to keep running (biss_leave_running) */
     char dir[PATH_MAX];
     char fw_name[256];
 };
@@ -170,9 +171,14 @@ static int rproc_enabled(void *ctx, bool *on) {
     return rc;
 }
 
+static void rproc_leave_running(void *ctx) {
+    struct lnx *l = ctx;
+    l->keep = true;
+}
+
 static void lnx_close(void *ctx) {
     struct lnx *l = ctx;
-    if (l->started) {
+    if (l->started && !l->keep) {
         biss_rproc_set(l->dir, "state", "stop", NULL);
     }
     if (l->map) {
@@ -208,6 +214,7 @@ static const struct biss_backend_ops rproc_ops = {
     .pru_halt = rproc_halt,
     .pru_start = rproc_start,
     .pru_enabled = rproc_enabled,
+    .leave_running = rproc_leave_running,
     .poll_us = 50,
     .advance_sleeps = 1,
 };

@@ -331,6 +331,37 @@ START_TEST(test_attach_leaves_it_running) {
 }
 END_TEST
 
+/* biss_leave_running: what the handle started outlives it, and a later
+ * handle attaches to it and stops it. */
+START_TEST(test_leave_running) {
+    make_tree();
+    struct kernel k = {0};
+    pthread_t t;
+    ck_assert_int_eq(pthread_create(&t, NULL, kernel_thread, &k), 0);
+    struct biss_open_params p = params();
+    biss_t *h;
+    ck_assert_int_eq(biss_open(&p, &h), BISS_OK);
+    ck_assert_int_eq(biss_leave_running(h), BISS_OK);
+    ck_assert_int_eq(biss_start(h), BISS_OK); /* a restart does not undo it */
+    wait_state("running\n");
+    biss_close(h);
+    nanosleep(&(struct timespec){.tv_nsec = 20000000}, NULL);
+    char buf[64];
+    attr("state", buf, sizeof buf);
+    ck_assert_str_eq(buf, "running\n");
+    ck_assert_int_eq(atomic_load(&k.starts), 2);
+    p.attach = true;
+    ck_assert_int_eq(biss_open(&p, &h), BISS_OK);
+    ck_assert_int_eq(biss_stop(h), BISS_OK);
+    wait_state("offline\n");
+    biss_close(h);
+    ck_assert_int_eq(biss_leave_running(NULL), BISS_E_INVAL);
+    atomic_store(&k.stop, 1);
+    pthread_join(t, NULL);
+    remove_tree();
+}
+END_TEST
+
 /* PRU1's remoteproc instance (named after its IRAM, 4a338000) with its
  * firmware name in place, and the stand-in kernel running it: the kernel's
  * PRU1 image says it was built for built_for (-1: PRU1). */
@@ -519,6 +550,7 @@ int main(void) {
     tcase_set_timeout(tc, 60);
     tcase_add_test(tc, test_start_stop_firmware_name);
     tcase_add_test(tc, test_attach_leaves_it_running);
+    tcase_add_test(tc, test_leave_running);
     tcase_add_test(tc, test_pru1_instance);
     tcase_add_test(tc, test_pru1_wrong_image);
     tcase_add_test(tc, test_refusals);
