@@ -166,9 +166,9 @@ int biss_rproc_find(const char *sysfs, unsigned long icss_base, unsigned long ir
         int err = errno;
         biss_rproc_diagnose(sysfs, icss_base, hint, sizeof hint);
         return biss_err(e, BISS_E_RPROC,
-                        "%s: %s (errno %d): no remoteproc class in this kernel%s; or use "
-                        "--loader devmem",
-                        cls, strerror(err), err, hint);
+                        "%s: %s (errno %d): no remoteproc class in this kernel, so no "
+                        "instance of %s%s; or use --loader devmem",
+                        cls, strerror(err), err, want, hint);
     }
     int rc = BISS_E_RPROC;
     for (struct dirent *de; (de = readdir(d));) {
