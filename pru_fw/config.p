@@ -9,6 +9,7 @@
 // needs, and report the verdict.
 APPLY_CONFIG:
     mov     r18, r2                         // the sequence number being applied
+.leave main_loop
     lbco    r20, c24, BISS_CFG_HALF, 12     // r20.w0 H, r20.b2 slaves, r20.b3 trigger,
                                             // r21 IEP period, r22.w0 proc limit,
                                             // r22.w2 SSI round trip
