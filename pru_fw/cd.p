@@ -7,14 +7,11 @@
 // either CDS (so nothing of variable length lies between a trigger and the
 // frame), the CDS period picks one, CD_COMMIT after the frame records and
 // checks the answers.
-// State in P_CD: r2 program run, r3.w0 step, r3.w2 answered step + 1,
-// r4.w0 zeros in a row, r4.w2 WAIT frames, r5.b0/b1 CDM edge, r5.w2 length,
-// r6.b0 CRC_M, r6.b1 CRC_S, r6.b2 flags (CD_F_*; bits 7..4 the first error,
-// BISS_CDST_*, pending until the control frame ends), r6.b3 bytes.
+// State in P_CD: CdState below.
 #define CD_PAST_END     0x10                // CD_OP past the program's length
 #define CD_F_CDM        0                   // the CDM of the step being answered
 #define CD_F_OPEN       1                   // a register byte is under way (a WAIT passed)
-#define CD_ERR          0x10                // r6.b2 at or above: an error is pending
+#define CD_ERR          0x10                // Cd.flags at or above: an error is pending
 
 // The registers of control communication: P_CD as Cd (CD_PREPARE,
 // CD_COMMIT) or Ab (CD_ABORT), and each step's scratch. RET_POST returns
@@ -77,7 +74,7 @@
 .assign Half, r9.w2, r9.w2, AbSteps         //   steps executed
 
 // crc = CRC4 (x^4 + x + 1, MSB first) of crc and bit 0 of bit. 6 cycles at
-// most; r12 is scratch.
+// most; Crc4Fb is scratch.
 .macro CRC4_FEED
 .mparam crc, bit
     lsr     Crc4Fb, crc, 3
@@ -89,9 +86,9 @@
 CRC4_FEED_END:
 .endm
 
-// r7 = step r8 of the program: bits 1..0 its op, 3..2 its class;
+// Op = step OpStep of the program: bits 1..0 its op, 3..2 its class;
 // CD_PAST_END past the length. (biss_shm_struct.h asserts BISS_CD_PROG.)
-CD_OP_STEP:                                 // the same for step r8 = r3.w0
+CD_OP_STEP:                                 // the same for step Cd.step
     mov     OpStep, Cd.step
 CD_OP:
     ldi     Op, CD_PAST_END
@@ -110,7 +107,7 @@ CD_PREPARE:
     lbco    &Cd.cmd, c28, P_CD, P_SSI - P_CD
     ldi     CdCdm, 0                        // CDM 0 whatever the CDS
     qbne    CDP_RUN, Cd.cmd, 0
-    lbco    NewCmd, c24, BISS_CD_CMD, 12    // r7 CD_CMD, r8.w0 CD_STEPS, r9 ST_CD_SEQ
+    lbco    NewCmd, c24, BISS_CD_CMD, 12    // NewCmd, NewSteps, DoneSeq
     qbeq    CDP_OUT, NewCmd, DoneSeq        // no new program
     qbgt    CDP_OUT, Cd.zeros, 14           // not before 14 frames with CDM 0
     mov     MaxSteps, BISS_CD_MAX_STEPS
@@ -166,8 +163,8 @@ CDP_BAD:                                    // refused: ST_CD_SEQ, then ST_CD_ST
     sbco    NewCmd, c24, BISS_ST_CD_SEQ, 8
     qba     CDP_OUT
 
-// After a frame with CDS r1.b1: returns the CDM it sent in r2.b0.
-// (Calls nest through r0.w0 and r10.w2 (CD_OP): r0.w2 keeps the busy
+// After a frame with CDS Cds: returns the CDM it sent in CdmSent and CdmRet.
+// (Calls nest through RET_POST and RET_LEAF (CD_OP): r0.w2 keeps the busy
 // clocks for BUF_STAMP, r13..r29 hold the slave records, r10.b0 is the
 // caller's.)
 CD_COMMIT:
@@ -190,7 +187,7 @@ CD_COMMIT:
     set     RespByte, RespByte, RespBit
 CDC_BIT0:
     sbco    RespByte, c24, RespAddr, 1
-    lbco    &IdaP, c24, BISS_CD_IDA_STEP, 4 // r9.w0 P, r9.b2 the IDA expected
+    lbco    &IdaP, c24, BISS_CD_IDA_STEP, 4 // IdaP, IdaExp
     add     IdaSlot, OpStep, 9
     sub     IdaSlot, IdaSlot, IdaP          // k = step - (P - 9): IDA slot k if k < 8
     qblt    CDC_CLASS, IdaSlot, 7
@@ -287,7 +284,7 @@ CDC_SAVE:
 // A frame failed: a running program cannot go on (the slave saw a broken
 // frame), and the zeros start again. r3 and r12 are the caller's.
 CD_ABORT:
-    lbco    &Ab.cmd, c28, P_CD, P_SSI - P_CD // r4 program, r5.w0 step, r8.b3 bytes
+    lbco    &Ab.cmd, c28, P_CD, P_SSI - P_CD
     ldi     AbWord, 0
     sbco    AbWord, c28, P_CD_ZEROS, SIZE(BissPriv.cd_zeros) // zeros in a row: none
     qbeq    CDA_DONE, Ab.cmd, 0

@@ -111,9 +111,7 @@
 APPLY_CONFIG:
     mov     NewSeq, CfgSeq                  // the sequence number being applied
 .leave main_loop
-    lbco    &CfgHalf, c24, BISS_CFG_HALF, 12 // r20.w0 H, r20.b2 slaves, r20.b3 trigger,
-                                            // r21 IEP period, r22.w0 proc limit,
-                                            // r22.w2 SSI round trip
+    lbco    &CfgHalf, c24, BISS_CFG_HALF, 12 // CfgHalf .. CfgSsiNs
     ldi     CfgErr, BISS_CFGERR_NSLAVES
     qbeq    CFG_FAIL, CfgSlaves, 0
     qblt    CFG_FAIL, CfgSlaves, BISS_MAX_SLAVES // 8 < slaves
@@ -130,7 +128,7 @@ APPLY_CONFIG:
 FACTOR_PASS:
     ldi     FactorA, 2                      // a
 FACTOR_A:
-    mov     Num, CfgHalf                    // r5 = H mod a, r7 = H / a = b
+    mov     Num, CfgHalf                    // Num = H mod a, FactorB = H / a = b
     ldi     FactorB, 0
     jal     RET_DIV, DIVIDE
     qbne    FACTOR_NEXT, Num, 0
@@ -144,10 +142,10 @@ FACTOR_NEXT:
     qbge    FACTOR_A, FactorA, 32           // a <= 32
     add     Pass, Pass, 1
     qbeq    FACTOR_PASS, Pass, 2
-    jmp     CFG_FAIL                        // r28 is still CFGERR_HALF
+    jmp     CFG_FAIL                        // CfgErr is still CFGERR_HALF
 FACTOR_FOUND:
     // divisor codes (ratio = 1 + code / 2): a - 2 at bit 3, b - 2 at bit 8
-    // (r19 keeps it until the configuration is accepted: CFG_PROC)
+    // (Gpcfg keeps it until the configuration is accepted: CFG_PROC)
     lsl     FactorB, FactorB, 5
     add     Gpcfg, FactorA, FactorB
     sub     Gpcfg, Gpcfg, 2 + (2 << 5)
@@ -164,7 +162,7 @@ FACTOR_FOUND:
     ldi     XfrZero, 0                      // R0[4:0] = 0 for FILL: whether the XFR
                                             // shift moves it is not documented
 CFG_SLAVE:
-    lbbo    &Host.n, HostAddr, 0, 8         // r2.b0 n, r2.b1 w, r2.b2 ew, r2.b3 flags, r3 poly|start
+    lbbo    &Host.n, HostAddr, 0, 8         // n, w, ew, flags, poly, start
     ldi     CfgErr, BISS_CFGERR_DATA_BITS
     qbeq    CFG_FAIL, Host.n, 0
     qblt    CFG_FAIL, Host.n, BISS_MAX_DATA_BITS
@@ -177,7 +175,7 @@ CFG_SLAVE:
 CFG_EW_OK:
     add     NBits, NBits, Host.n
     add     NBits, NBits, Host.w
-    // record: counts and entry by the slave's shape. r6 = d, the bits of
+    // record: counts and entry by the slave's shape. LastBits = d, the bits of
     // its last kind (CRC, or data without CRC) that the loop leaves out: the
     // switch's, and for the last slave up to two more, read with the one
     // before them from the same R31 snapshot (FINAL_CRC, FINAL_PLAIN): its
@@ -239,7 +237,7 @@ CFG_MASK_DONE:
     qbeq    CFG_RESIDUE_DONE, Host.w, 0
     // The count from a whole register: which bits a LOOP takes from a byte
     // field is not documented (docs/silicon-assumptions.md).
-    mov     LoopTurns, Host.w               // (r3 is free after CFG_REC)
+    mov     LoopTurns, Host.w               // (Host.poly, start are used by then)
     loop    CFG_RESIDUE_DONE, LoopTurnsLo
     lsl     Feedback, Chk.residue, 0        // keep bit 31 (feedback = bit31 ^ 1)
     lsl     Chk.residue, Chk.residue, 1
@@ -249,20 +247,20 @@ CFG_RESIDUE_STEP:
     PAD
 CFG_RESIDUE_DONE:
     mov     ChkShape, HostWord              // n, w, ew shift, flags
-    sbbo    &Chk.mask_lo, ChkAddr, 0, SIZE(BissSlave) // r6..r9
+    sbbo    &Chk.mask_lo, ChkAddr, 0, SIZE(BissSlave)
     add     ChkAddr, ChkAddr, SIZE(BissSlave)
     add     HostAddr, HostAddr, BISS_CFG_SLAVE_SIZE
     add     SlaveIdx, SlaveIdx, 1
     qbgt    CFG_SLAVE, SlaveIdx, CfgSlaves  // while index < slaves
     // after the last slave: the end of the frame
-    lsl     EndWord, EndRecord, 16          // entry r11.w0 (r11.w2 = 0), counts 0
+    lsl     EndWord, EndRecord, 16          // entry EndEntry (w2 = 0), counts 0
     sbbo    EndWord, RecAddr, 0, 4
 
-    // SSI (slave 0's BISS_SF_SSI): alone and without CRC. r27 = the P_SSI
-    // word: r27.w0 the ACK position a BiSS-C slave at this line delay would
+    // SSI (slave 0's BISS_SF_SSI): alone and without CRC. SsiWord = the P_SSI
+    // word: SsiAckNew the ACK position a BiSS-C slave at this line delay would
     // show (Q' = 4 (rt + BISS_DELAY_ADJ_CYCLES) / H + BISS_DELAY_ZERO, rt the
-    // round trip in cycles: biss_shm.h), r27.w2 the MA edges after period 0
-    // (2n, times MA_MASK); r27 = 0 for BiSS-C.
+    // round trip in cycles: biss_shm.h), SsiEdgesNew the MA edges after period 0
+    // (2n, times MA_MASK); SsiWord = 0 for BiSS-C.
 CFG_SSI:
     ldi     SsiWord, 0
     lbco    &Host.n, c24, BISS_CFG_SLAVE0, 4 // n, w, ew, flags of slave 0
@@ -290,7 +288,7 @@ CFG_SSI_DONE:
     add     IepTurns, NBits, 8
     ldi     IepMin, 0
     lsl     TwoH, CfgHalf, 1                // 2H
-CFG_IEP_MIN:                                // r2 = N + 8 >= 9 turns (no LOOP of one
+CFG_IEP_MIN:                                // IepTurns = N + 8 >= 9 (no LOOP of one
     add     IepMin, IepMin, TwoH            // instruction: docs/silicon-assumptions.md)
     sub     IepTurns, IepTurns, 1
     qbne    CFG_IEP_MIN, IepTurns, 0
@@ -308,9 +306,9 @@ CFG_IEP_OK:
 
     // Accepted: commit everything.
     // The tails of the half periods (DELAY in biss_periods.hp): none at
-    // H = 10 (r0 = 0), else the routine's entry for L = H - 11 cycles
-    // (r0.w0), r0.b2 = 1, and its 4-cycle turns (r0.b3); the frame keeps
-    // this word in r9.
+    // H = 10 (DelayWord = 0), else the routine's entry for L = H - 11 cycles
+    // (DelayEntry), DelayGate = 1, and its 4-cycle turns (DelayTurns); the
+    // frame keeps this word in Tails.
     ldi     DelayWord, 0
     qbeq    CFG_DELAY_SAVE, CfgHalf, 10
     ldi     DelayGate, 1
@@ -380,13 +378,13 @@ CFG_FAIL:
     sbco    NewProc, c28, P_PROC, P_SPARE - P_PROC // not running
     ldi     CfgState, BISS_STATE_CFG_ERROR
 CFG_REPORT:
-    sbco    CfgErr, c24, BISS_ST_CFG_ERROR, 8 // r28 the error, r29 ST_STATE (the next word)
+    sbco    CfgErr, c24, BISS_ST_CFG_ERROR, 8 // CfgErr, CfgState (ST_STATE, the next word)
     sbco    NewSeq, c24, BISS_ST_CFG_ACK, 4 // then the sequence number: the verdict is out
     lbco    &Records, c28, P_RECORDS, P_DELAYS - P_RECORDS // slave records into r13..r29
     jmp     MAIN
 
-// r7 += r5 / r6, r5 = r5 mod r6: repeated subtraction (configuration only).
-// Returns through r0.w2.
+// Quot += Num / Den, Num = Num mod Den: repeated subtraction (configuration
+// only). Returns through RET_DIV.
 DIVIDE:
     qbgt    DIVIDE_DONE, Num, Den
     sub     Num, Num, Den
@@ -396,11 +394,11 @@ DIVIDE_DONE:
     jmp     RET_DIV
 .leave config
 
-// The shared delay of the clocked periods: called by `jal r10.w2, entry`,
+// The shared delay of the clocked periods: called by `jal RET_LEAF, entry`,
 // it costs from its entry to its return included: DLY_Sk k cycles (k =
-// 1..7), DLY_Lr 2 + r + 4 r9.b3 cycles (r = 0..3, r9.b3 >= 1, so the turn
+// 1..7), DLY_Lr 2 + r + 4 DlyTurns cycles (r = 0..3, DlyTurns >= 1, so the turn
 // counter never starts at 0 nor wraps). Single-cycle instructions only
-// (docs/pru-facts.md §3): no LOOP. It writes r10.b1 and the carry.
+// (docs/pru-facts.md §3): no LOOP. It writes DlyCount and the carry.
 .using clocked
 DLY_S7:
     PAD

@@ -67,7 +67,7 @@ FRAME_REGS:
     jmp     RET_SUB
 .leave frame_regs
 
-// The timestamp, then the first period. It waits in bank register 2 (r0.b0
+// The timestamp, then the first period. It waits in bank register 2 (Slot
 // = 0: unshifted; the slots start at 4) for FRAME_END or ABORT_FRAME: no
 // data-RAM store between the IEP read and the first MA edge.
 .macro FRAME_STAMP
@@ -88,16 +88,16 @@ FRAME_BISS:
     IEP_ALIGN_IF FRAME_STAMPED
 .leave main_loop
 FRAME_STAMPED:                              // the free-run path comes in here
-    fill    &Edges, 4                       // r12 all ones while the start bit is
-                                            // awaited (r0.b0 = 0: no XFR shift)
-FRAME_CLOCKED:                              // TRAIN comes in here, r12 its two clocks
+    fill    &Edges, 4                       // all ones while the start bit is
+                                            // awaited (Slot = 0: no XFR shift)
+FRAME_CLOCKED:                              // TRAIN comes in here, Edges its two clocks
     FRAME_STAMP
     // fall into the first period
 
 // ---- WAIT_ACK ---------------------------------------------------------------
 // Clock until the newest 8 samples hold the ACK edge (a 0), then go to
-// ACK_FOUND at t = 3 with the samples in r2.b0 and 8p in r3. The only
-// pre-data period that counts MA edges down (r12): a training frame stops
+// ACK_FOUND at t = 3 with the samples in Newest8 and 8p in AckBase. The only
+// pre-data period that counts MA edges down (Edges): a training frame stops
 // after two clocks; a normal frame clocks on until its start bit is seen.
     // Period 0 looks at nothing: its samples date from before the frame
     // (the ACK cannot come before the second rising edge), so the frame may
@@ -125,8 +125,8 @@ WA_TOP:
     DELAY
     qba     WA_TOP
 
-// The ones before the ACK edge in r2.b0 (a constant-time count: a glitch
-// moves it by one, not to another bit), as Q' = 8p + ones in r1.w2.
+// The ones before the ACK edge in Newest8 (a constant-time count: a glitch
+// moves it by one, not to another bit), as Q' = 8p + ones in AckPos.
 // A one-period ACK reaches the master shortened by the line's rise/fall
 // skew, so when its edge lies just before the oldest sample the newest
 // sample already reads the start bit (0x01 would count 1, not 0). Such
@@ -151,11 +151,11 @@ WA_TOP:
     add     AckPos, AckBase, Ones           // Q'
 .endm
 
-// From here to the start bit MA clocks on (r11 stays MA_MASK both ways): r12
+// From here to the start bit MA clocks on (both masks stay MA_MASK): Edges
 // is all ones (FRAME_STAMPED) less 2 MA_MASK for each period that counted it
 // down, a few hundred at most (the ACK limit is some 400 periods, the lag as
-// many), so its bit 30 stays set. A training frame has made its two clocks (r11 =
-// 0, r12 = 0) and ends after this period.
+// many), so its bit 30 stays set. A training frame has made its two clocks (the
+// masks 0, Edges 0) and ends after this period.
 ACK_FOUND:                                  // t = 3
     ONES_A                                  // 3..8
     DELAY
@@ -178,14 +178,14 @@ LAG1:
     max     IdlePeriods, IdlePeriods, AckPeriod // 1
     sub     IdlePeriods, IdlePeriods, AckPeriod // 2  idle periods before the first read
     PAD                                     // 3
-    rsb     SwShift, Shift, 29              // 4  R31 >> r5.w0: bit 2 the sample point
+    rsb     SwShift, Shift, 29              // 4  R31 >> SwShift: bit 2 the sample point
     jal     RET_LEAF, DLY_S2                // 5..7
     DELAY
     qbeq    SW_TOP, IdlePeriods, 0
 
-// r3 >= 1 idle periods. An SSI frame's come here too (SSI_FRAME) and go on
+// IdlePeriods >= 1 idle periods. An SSI frame's come here too (SSI_FRAME) and go on
 // to its slave's entry; they count MA edges down for its sake (a BiSS-C
-// frame's r12 keeps bit 30 set, see ACK_FOUND).
+// frame's Edges keeps bit 30 set, see ACK_FOUND).
 LAG_TOP:
     MA_FALL
     jal     RET_LEAF, DLY_S7                // 1..8
@@ -240,8 +240,8 @@ START_FOUND:                                // t = 6
     PAD
 
 // ---- CDS, then the slaves ----------------------------------------------------
-// The CDM of this frame may depend on its CDS (a WAIT step): r4.b0 holds
-// the CDM edge (0 or MA_MASK) for CDS = 0, r4.b1 the change for CDS = 1.
+// The CDM of this frame may depend on its CDS (a WAIT step): CdmEdge holds
+// the CDM edge (0 or MA_MASK) for CDS = 0, CdmChange the change for CDS = 1.
 // A CDM of 1 is one more MA edge after the last clock: MA low.
 CDS_PERIOD:
     MA_FALL

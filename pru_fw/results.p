@@ -9,16 +9,16 @@
 // Nothing below is clocked.
 
 // The last slave's last one or two bits, when its switch read the bit
-// before them (CFG_SHAPE). That switch's R31 snapshot (r2, shifted to
+// before them (CFG_SHAPE). That switch's R31 snapshot (Sample, shifted to
 // put its sample at bit 31) holds them 8 and 16 samples newer, at bits 23
 // and 15 (indices 8 (LAG - 1) + s and 8 (LAG - 2) + s: sampled, and the
 // same samples as reads one and two periods later would take at 8 LAG + s,
 // 16 shift edges falling in every 2 periods). The switch has stored the
-// slave's result in its slot, moved r0.b0 to the next one and loaded the
+// slave's result in its slot, moved Slot to the next one and loaded the
 // end record. Not clocked: this
 // comes at t = 0 of the period after the switch, whose MA edge (the CDM,
 // if the line delay is under two periods: m = 1) is made here; otherwise
-// r11.b0 = 0, and SWITCH_SHORT may have cut the switch short.
+// FallMask = 0, and SWITCH_SHORT may have cut the switch short.
 .using clocked
 FINAL_PLAIN2:
     MA_FALL
@@ -100,8 +100,8 @@ FINAL_CRC_BIT:
 .assign Word, r12, r12, ResFlags            // the result's flags, BISS_RF_*
 
 FRAME_END:
-    jal     RET_POST, CD_COMMIT             // r1.b1 = CDS; r1.b0 = the CDM sent
-    jal     RET_STAMP, BUF_STAMP            // r2 = the result buffer, r0.w0 = 0:
+    jal     RET_POST, CD_COMMIT             // Cds in; CdmSent out
+    jal     RET_STAMP, BUF_STAMP            // ResBuf; XfrShift = 0:
     lbco    SlotStep, c28, P_RUNNING, SIZE(BissPriv.running) // slave 0's slot, and the step to the next
     sbbo    CdmSent, ResBuf, BISS_R_CDM, 1
     lbco    SlavesLeft, c28, P_NSLAVES, SIZE(BissPriv.nslaves) // slaves to check
@@ -117,14 +117,14 @@ FE_SLAVE:
     lbbo    &Chk.mask_lo, SlaveChk, 0, SIZE(BissSlave) // mask lo, mask hi, residue, [n, w, ew, flags]
     and     DataLo, DataLo, Chk.mask_lo
     and     DataHi, DataHi, Chk.mask_hi
-    ldi     Status, BISS_RS_CRC_OK          // slave status (r4..r7: the slave's result)
+    ldi     Status, BISS_RS_CRC_OK          // slave status (DataLo..Status: the result)
     qbeq    FE_CRC_DONE, Chk.wbits, 0       // no CRC
     qbeq    FE_CRC_DONE, Crc, Chk.residue
     ldi     Status, 0
     or      ResFlags, ResFlags, BISS_RF_CRC_ERROR
 FE_CRC_DONE:
     qbbc    FE_EW_DONE, Chk.sflags, 0       // no nE/nW
-    // nW (data bit ew) to r8 bit 0, nE (bit ew + 1) to bit 1
+    // nW (data bit ew) to EwBits bit 0, nE (bit ew + 1) to bit 1
     lsr     EwBits, DataHi, Chk.ewbits      // 32 <= ew: the shift uses ew & 31
     qble    FE_EW_GOT, Chk.ewbits, 32
     lsr     EwBits, DataLo, Chk.ewbits
@@ -150,7 +150,7 @@ FE_EW_DONE:
     sbco    CrcErrors, c24, BISS_ST_CRC_ERRORS, 4
 FE_NO_CRC_ERR:
     // line delay: this frame's ACK position and the average it was read with
-    lbco    &Priv.h0, c28, P_HIST, P_HALF - P_HIST // r4 r5 history, r6 its sum, r8 P_NSLAVES
+    lbco    &Priv.h0, c28, P_HIST, P_HALF - P_HIST // history, its sum, P_BUF, P_NSLAVES
     add     Qf, Priv.hsum, AckPos
     lsr     Qf, Qf, 2                       // Qf'
     sbbo    AckPos, ResBuf, BISS_R_DELAY_RAW, 2
@@ -163,7 +163,7 @@ FE_NO_CRC_ERR:
     // in WAIT_ACK, or an average spoilt by one) or the line changed: the
     // frame is not valid, whatever its CRC says. One such ACK is left out of
     // the average; a second in a row starts the average afresh from it.
-    // P_NSLAVES bit 31 (r8 here) remembers the first.
+    // P_NSLAVES bit 31 (PrivNs) remembers the first.
     sub     AckJump, AckPos, Qf             // Q' - Qf' + 4 in 0..8: no jump
     add     AckJump, AckJump, 4
     qblt    FE_ACK_JUMP, AckJump, 8
@@ -219,8 +219,8 @@ FE_MAIN:
     set     MA_OUT, MA_OUT, MA_BIT          // CDM done: MA idles high
     jmp     MAIN
 
-// History r4.w0, r4.w2, r5.w0 and its sum + 2 (rounding) to P_HIST/P_HSUM;
-// HIST_FILL: all three r1.w2 (a history started afresh from one position).
+// History Priv.h0, h1, h2 and its sum + 2 (rounding) to P_HIST/P_HSUM;
+// HIST_FILL: all three AckPos (a history started afresh from one position).
 HIST_FILL:
     mov     Priv.h0, AckPos
     mov     Priv.h1, AckPos
@@ -233,17 +233,17 @@ HIST_SAVE:
     sbco    Sum, c28, P_HSUM, SIZE(BissPriv.hsum)
     jmp     RET_POST
 
-// Publish the result buffer r2 with the flags in r12: header words, then
+// Publish the result buffer ResBuf with the flags in ResFlags: header words, then
 // the sequence number (its low bit names the buffer), then the next buffer.
 // Every publication is followed by CD_PREPARE (the next frame's CDM): it
-// goes on there, and returns through r0.w0 from it.
+// goes on there, and returns through RET_POST from it.
 PUBLISH:
     lbco    Frames, c24, BISS_ST_FRAMES, 4
     add     Frames, Frames, 1
     sbco    Frames, c24, BISS_ST_FRAMES, 4
     sbbo    Frames, ResBuf, BISS_R_FRAME, 4
     sbbo    ResFlags, ResBuf, BISS_R_FLAGS, 4
-    lbco    &Pub.buf, c28, P_BUF, P_PROC - P_BUF // r4 P_BUF, r5 P_NSLAVES, r6 P_HALF
+    lbco    &Pub.buf, c28, P_BUF, P_PROC - P_BUF // P_BUF, P_NSLAVES, P_HALF
     sbbo    Pub.nslaves, ResBuf, BISS_R_NSLAVES, 1
     sbbo    Pub.half, ResBuf, BISS_R_HALF, 2
     sbco    Pub.buf, c24, BISS_ST_BUF, 4
@@ -254,7 +254,7 @@ PUBLISH:
     sbco    Pub.buf, c28, P_BUF, SIZE(BissPriv.buf)
     ldi     State, BISS_STATE_RUNNING
     sbco    State, c24, BISS_ST_STATE, 4
-    jmp     CD_PREPARE                      // which returns through r0.w0
+    jmp     CD_PREPARE                      // which returns through RET_POST
 
 // Wait for SL high: the slave's timeout has ended. High means the newest
 // 4 samples (IDLE_MASK, half an MA period) are all 1, not just the newest:
@@ -262,10 +262,10 @@ PUBLISH:
 // still ignores MA (it would misframe this frame and the next two). Half
 // a period keeps the master's overhead low at 1 MHz and still outlasts a
 // glitch of two samples (25 ns at 10 MHz). At most IDLE_TURNS turns of 4
-// cycles; r3 = 0 if SL did not come high (the turns left if it did). r2
-// is scratch. Returns through r12.w0: free before a frame (FRAME_STAMPED
-// and TRAIN_GO set r12). A free-run frame waits here after FRAME_REGS
-// (FE_IDLE_YES): of what that sets up, r2, r3 and r12 are not used.
+// cycles; IDLE_LEFT = 0 if SL did not come high (the turns left if it did).
+// r2.b0 is scratch (Idle8). Returns through RET_SUB: free before a frame
+// (FRAME_STAMPED and TRAIN_GO set Edges). A free-run frame waits here after
+// FRAME_REGS (FE_IDLE_YES): of what that sets up, r2, r3 and r12 are not used.
 SLAVE_IDLE:
     mov     IDLE_LEFT, IDLE_TURNS
 SLAVE_IDLE_POLL:
@@ -276,10 +276,10 @@ SLAVE_IDLE_POLL:
 SLAVE_IDLE_YES:
     jmp     RET_SUB
 
-// r2 = the result buffer being filled, with the frame's timestamp (bank
-// register 2, FRAME_STAMP) and busy clocks (r0.w2, START_WAIT) stored in it: the
-// clocked part stores nothing. r0.w0 = 0 after (no XFR shift), r5 = r2.
-// Returns through r3.w0.
+// ResBuf = the result buffer being filled, with the frame's timestamp (bank
+// register 2, FRAME_STAMP) and busy clocks (Busy, START_WAIT) stored in it:
+// the clocked part stores nothing. XfrShift = 0 after (no XFR shift),
+// StampBuf = ResBuf. Returns through RET_STAMP.
 BUF_STAMP:
     ldi     XfrShift, 0
     xin     XFR_BANK, Stamp, 4
@@ -296,18 +296,18 @@ NO_SLAVE_IDLE:                              // SL low before a frame:
     ldi     SlotWord, 0                     // no busy clocks (BUF_STAMP)
 NO_ACK:                                     // after a rising edge: MA stays high
     ldi     ResFlags, BISS_RF_NO_SLAVE
-NO_SLAVE_FLAGS:                             // (SL_INIT_DONE: r12 its own flags)
+NO_SLAVE_FLAGS:                             // (SL_INIT_DONE: its own ResFlags)
     ldi     DueWord, 1
     sbco    Due, c28, P_TRAIN_DUE, SIZE(BissPriv.train_due) // training due
     ldi     TallyAddr, BISS_ST_NO_SLAVE
 
-// r12 = flags, r3 = the counter to increment; publish, wait for the slave.
+// ResFlags = flags, TallyAddr = the counter to increment; publish, wait for the slave.
 ABORT_FRAME:
     jal     RET_POST, CD_ABORT
     lbbo    TallyVal, TallyAddr, 0, 4
     add     TallyVal, TallyVal, 1
     sbbo    TallyVal, TallyAddr, 0, 4
-    jal     RET_STAMP, BUF_STAMP            // r2 = the result buffer
+    jal     RET_STAMP, BUF_STAMP            // ResBuf = the result buffer
     jal     RET_POST, PUBLISH               // and CD_PREPARE
     jmp     FE_SLOW                         // wait for the slave, MA high, MAIN
 
@@ -344,10 +344,10 @@ TRAIN_GO:
 TRAIN_DONE:
     lbco    Due, c28, P_TRAIN_DUE, SIZE(BissPriv.train_due)
     qbne    SL_INIT_DONE, Due, 1            // it was the INIT of a low SL
-    jal     RET_POST, HIST_FILL             // r4.w0, r4.w2 = Q' too
-    jal     RET_STAMP, BUF_STAMP            // r2 = the result buffer (r4 kept)
+    jal     RET_POST, HIST_FILL             // Priv.h0, h1 = Q' too
+    jal     RET_STAMP, BUF_STAMP            // ResBuf (Priv.h0, h1 kept)
     sbbo    &Priv.h0, ResBuf, BISS_R_DELAY_RAW, 4 // and DELAY_AVG
-    sbco    XfrShift, c28, P_TRAIN_DUE, SIZE(BissPriv.train_due) // training done (r0.w0 = 0: BUF_STAMP)
+    sbco    XfrShift, c28, P_TRAIN_DUE, SIZE(BissPriv.train_due) // training done (XfrShift = 0: BUF_STAMP)
     sbco    XfrShift, c28, P_NAVG, SIZE(BissPriv.navg) // the average starts at this frame
     ldi     ResFlags, BISS_RF_TRAINING
     ldi     TallyAddr, BISS_ST_TRAINING

@@ -67,7 +67,7 @@ MAIN_CFG_OK:
     qbeq    TRIGGER_DONE, TrainDue, 0
     jmp     TRAIN                           // a training frame is due first
 TRIGGER_DONE:
-    // r2.b3 = the trigger, for IEP_ALIGN_IF (SLAVE_IDLE, the P_SSI loads and
+    // Trigger, for IEP_ALIGN_IF (SLAVE_IDLE, the P_SSI loads and
     // FRAME_REGS keep it)
     lbco    &NSlaves, c28, P_NSLAVES, P_REC_END - P_NSLAVES
     qbeq    WAIT_HOST, Trigger, BISS_TRIG_HOST
@@ -96,7 +96,7 @@ WAIT_IEP:
 // at the same count after the period's reset instead, with only this code,
 // no data-RAM access, between the count's read and period 0. Entered by
 // `jal RET_SUB, IEP_AT_ALIGN` once the frame's last load is done
-// (IEP_ALIGN_IF); it writes r3 and returns through RET_SUB.
+// (IEP_ALIGN_IF); it writes AlignWait (r3) and returns through RET_SUB.
 .enter iep_align
 .assign Word, r3, r3, AlignWait             // cycles to wait for IEP_ALIGN, then turns of 2
 .assign Half, r3.w2, r3.w2, AlignLate       // its upper half: set when the count is past it
@@ -118,7 +118,7 @@ IEP_ALIGNED:
     jmp     RET_SUB
 .leave iep_align
 
-// An IEP-triggered frame (r2.b3 = BISS_TRIG_IEP: TRIGGER_DONE, WAIT_FOLLOW)
+// An IEP-triggered frame (Trigger = BISS_TRIG_IEP: TRIGGER_DONE, WAIT_FOLLOW)
 // aligns here, right after its last load; any other goes on to `next` at
 // once (one cycle more, before the frame: not clocked).
 .macro IEP_ALIGN_IF
