@@ -104,7 +104,7 @@ CD_OP_DONE:
     jmp     RET_LEAF
 
 CD_PREPARE:
-    lbco    &Cd.cmd, c28, P_CD, P_SSI - P_CD
+    lbco    &Cd.cmd, c28, P_CD, P_CD_END - P_CD
     ldi     CdCdm, 0                        // CDM 0 whatever the CDS
     qbne    CDP_RUN, Cd.cmd, 0
     lbco    NewCmd, c24, BISS_CD_CMD, 12    // NewCmd, NewSteps, DoneSeq
@@ -156,7 +156,7 @@ CDP_WAIT:
     qbeq    CDP_OUT, Op, BISS_CDOP_1        // 1 either way
     ldi     Cd.cdm1, MA_MASK                // 0 once CDS is 1
 CDP_OUT:
-    sbco    &Cd.cmd, c28, P_CD, P_SSI - P_CD
+    sbco    &Cd.cmd, c28, P_CD, P_CD_END - P_CD
     jmp     RET_POST
 CDP_BAD:                                    // refused: ST_CD_SEQ, then ST_CD_STATUS
     ldi     BadStatus, BISS_CDST_ERR_STEPS  // (the next word: one store, in that order)
@@ -168,7 +168,7 @@ CDP_BAD:                                    // refused: ST_CD_SEQ, then ST_CD_ST
 // clocks for BUF_STAMP, r13..r29 hold the slave records, r10.b0 is the
 // caller's.)
 CD_COMMIT:
-    lbco    &Cd.cmd, c28, P_CD, P_SSI - P_CD
+    lbco    &Cd.cmd, c28, P_CD, P_CD_END - P_CD
     rsb     EdgeOut, Cds, 0                 // the CDM edge that went out
     and     EdgeOut, EdgeOut, Cd.cdm1
     xor     EdgeOut, EdgeOut, Cd.cdm0
@@ -277,14 +277,14 @@ CDC_ZEROS:
     qbeq    CDC_SAVE, CdmSent, 0
     ldi     Cd.zeros, 0
 CDC_SAVE:
-    sbco    &Cd.cmd, c28, P_CD, P_SSI - P_CD
+    sbco    &Cd.cmd, c28, P_CD, P_CD_END - P_CD
     mov     CdmRet, CdmSent
     jmp     RET_POST
 
 // A frame failed: a running program cannot go on (the slave saw a broken
 // frame), and the zeros start again. r3 and r12 are the caller's.
 CD_ABORT:
-    lbco    &Ab.cmd, c28, P_CD, P_SSI - P_CD
+    lbco    &Ab.cmd, c28, P_CD, P_CD_END - P_CD
     ldi     AbWord, 0
     sbco    AbWord, c28, P_CD_ZEROS, SIZE(BissPriv.cd_zeros) // zeros in a row: none
     qbeq    CDA_DONE, Ab.cmd, 0

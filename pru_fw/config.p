@@ -8,7 +8,7 @@
 // Configuration: check the host's block, derive everything the clocked code
 // needs, and report the verdict.
 // The registers of the configuration. r18..r29 hold through it (the slave
-// records r13..r29 are loaded afresh at its end); r0..r11 are its scratch,
+// records r13..r29 are loaded afresh at its end); r0..r17 are its scratch,
 // named by what they hold in each step.
 .struct HostSlave                           // a slave's block of the host's configuration
     .u8     n                               // data bits
@@ -72,10 +72,11 @@
 .assign Word, r7, r7, NextIdx               // the slave's index + 1
 .assign Word, r7, r7, StartAligned          // the start value << (16 - w)
 .assign Half, r7.w0, r7.w0, StartAlignedLo
-.assign BissSlave, r6, r9, Chk              // the slave's check data (layout.hp)
+.assign BissSlave, r12, r15, Chk            // the slave's check data (layout.hp)
+.assign Half, r12.w0, r12.w0, ChkEw         //   its nE/nW pointer and shift as one
 .assign Word, r8, r8, MaskShift             // 64 - n
 .assign Word, r9, r9, Feedback              // the residue's bit 31 before its shift
-.assign Word, r9, r9, ChkShape              // Chk's [n, w, ew, flags] as one word
+.assign Word, r16, r16, Residue             // the CRC register after w ones (left-aligned)
 .assign Word, r10, r10, PolyTop             // the polynomial left-aligned to bit 31
 .assign Word, r11, r11, EndRecord           // the end record's word: its entry in w0
 .assign Half, r11.w0, r11.w0, EndEntry
@@ -230,24 +231,34 @@ CFG_REC:
     mov     Chk.mask_lo, Chk.mask_hi
     ldi     Chk.mask_hi, 0
 CFG_MASK_DONE:
+    // nE/nW: where FE_SLAVE's MVI finds nW, the data word's bit ew: the
+    // register-file byte ew / 8 bytes into DataLo, bit ew mod 8 of the word
+    // read there (nE the next bit up, in the same word: ew mod 8 + 1 <= 8).
+    // Without nE/nW: the CRC register's low half, always 0.
+    ldi     ChkEw, RF_CRC_LOW               // (shift 0)
+    qbbc    CFG_EW_INFO, Host.flags, 0
+    lsr     Chk.ewptr, Host.ew, 3
+    add     Chk.ewptr, Chk.ewptr, RF_DATA_LO
+    and     Chk.ewshift, Host.ew, 7
+CFG_EW_INFO:
     // residue: the CRC register after w inverted CRC bits of a right frame
     // = w ones fed to a zero register (linearity)
-    ldi     Chk.residue, 0
+    ldi     Residue, 0
     lsl     PolyTop, Rec.poly, 16           // polynomial, left-aligned to bit 31
     qbeq    CFG_RESIDUE_DONE, Host.w, 0
     // The count from a whole register: which bits a LOOP takes from a byte
     // field is not documented (docs/silicon-assumptions.md).
     mov     LoopTurns, Host.w               // (Host.poly, start are used by then)
     loop    CFG_RESIDUE_DONE, LoopTurnsLo
-    lsl     Feedback, Chk.residue, 0        // keep bit 31 (feedback = bit31 ^ 1)
-    lsl     Chk.residue, Chk.residue, 1
+    lsl     Feedback, Residue, 0            // keep bit 31 (feedback = bit31 ^ 1)
+    lsl     Residue, Residue, 1
     qbbs    CFG_RESIDUE_STEP, Feedback, 31
-    xor     Chk.residue, Chk.residue, PolyTop
+    xor     Residue, Residue, PolyTop
 CFG_RESIDUE_STEP:
     PAD
 CFG_RESIDUE_DONE:
-    mov     ChkShape, HostWord              // n, w, ew shift, flags
-    sbbo    &Chk.mask_lo, ChkAddr, 0, SIZE(BissSlave)
+    lsr     Chk.residue, Residue, 16        // (its low half is 0, as the CRC register's)
+    sbbo    &Chk.ewptr, ChkAddr, 0, SIZE(BissSlave)
     add     ChkAddr, ChkAddr, SIZE(BissSlave)
     add     HostAddr, HostAddr, BISS_CFG_SLAVE_SIZE
     add     SlaveIdx, SlaveIdx, 1
@@ -367,19 +378,20 @@ CFG_DELAY_SAVE:
     mov     HistPos, SsiAckNew              // and the history holds it (r0, r1 are
     jal     RET_POST, HIST_FILL             // set up anew by every frame)
 CFG_PROC:
-    sbco    SsiWord, c28, P_SSI, SIZE(BissPriv) - P_SSI
-    sbco    NewProc, c28, P_PROC, P_SPARE - P_PROC
+    sbco    SsiWord, c28, P_SSI, P_CFG_ACK - P_SSI
+    sbco    NewProc, c28, P_PROC, P_PROC_END - P_PROC
     sbco    Gpcfg, c4, GPCFG_OWN, 4         // shift mode at 8x the new rate (FACTOR_FOUND)
     ldi     CfgErr, BISS_CFGERR_NONE
     ldi     CfgState, BISS_STATE_RUNNING
     qba     CFG_REPORT
 CFG_FAIL:
     ldi     NewProc, 0
-    sbco    NewProc, c28, P_PROC, P_SPARE - P_PROC // not running
+    sbco    NewProc, c28, P_PROC, P_PROC_END - P_PROC // not running
     ldi     CfgState, BISS_STATE_CFG_ERROR
 CFG_REPORT:
     sbco    CfgErr, c24, BISS_ST_CFG_ERROR, 8 // CfgErr, CfgState (ST_STATE, the next word)
     sbco    NewSeq, c24, BISS_ST_CFG_ACK, 4 // then the sequence number: the verdict is out
+    sbco    NewSeq, c28, P_CFG_ACK, 4       // (and its copy beside the frame's set-up, FE)
     lbco    &Records, c28, P_RECORDS, P_DELAYS - P_RECORDS // slave records into r13..r29
     jmp     MAIN
 

@@ -14,19 +14,12 @@
     set     reg, reg, 8                     // + BISS_RES0 (0x100)
 .endm
 
-// reg = the result buffer being filled (P_BUF).
-.macro RESULT_BASE
-.mparam reg
-    lbco    reg, c28, P_BUF, SIZE(BissPriv.buf)
-    RESULT_ADDR reg, reg
-.endm
-
 // ============================================================================
 // Before a frame: the slave must be idle (SL high); then the registers the
 // clocked code starts from (FRAME_REGS), and the frame's timestamp.
 // A subroutine (returns through RET_SUB; r2 it leaves alone: Trigger) so
 // that a free-run frame can have it done before SL is high (FE_IDLE_YES).
-// It loads P_DELAYS .. P_PROC (BissPriv, layout.hp) into r3..r10 as Priv
+// It loads P_DELAYS .. P_PROC (BissPriv, layout.hp) into r3..r9 as Priv
 // and sets up the clocked part's and the front's registers (regs.hp) from it.
 .struct PrivRun                             // BissPriv from delays to running
     .u32    delays
@@ -35,7 +28,6 @@
     .u16    h2
     .u16    k
     .u32    hsum
-    .u32    buf
     .u8     nslaves
     .u8     trigger
     .u8     rec_end
@@ -47,11 +39,12 @@
     .u8     running
 .ends
 .enter frame_regs
-.assign PrivRun, r3, r10, Priv
+.assign PrivRun, r3, r9, Priv
 .using clocked
 .using front
 FRAME_REGS:
-    lbco    &Priv.delays, c28, P_DELAYS, P_SPARE - P_DELAYS
+    lbco    &Priv.delays, c28, P_DELAYS, P_PROC_END - P_DELAYS
+FRAME_REGS_SET:                             // (FE: Priv loaded, and the history updated)
     lsl     SlotWord, Priv.running, 8       // XFR shift 0: slave 0's slot, the step to
                                             // the next (CFG_PROC), no busy clocks
     ldi     Masks, MA_MASK | (MA_MASK << 8) // period 0 clocks
@@ -61,11 +54,45 @@ FRAME_REGS:
     mov     Tails, Priv.delays              // the tails (DELAY)
     mov     HistSum, Priv.hsum.w0           // history sum
     lbco    &CdmEdge, c28, P_CDM, P_CD_LEN - P_CDM // the CDM edge for either CDS
-    ldi     RecCds, REC_BASE                // the first record, Cds = 0
+    ldi     RecWord, REC_BASE               // the first record, Cds = 0, no FE_POLL turns
+                                            // (the timestamp: BUF_STAMP)
     ldi     Crc, 0
     ldi     Poly, 0
     jmp     RET_SUB
 .leave frame_regs
+
+// The free-run frame's start (FE, results.p): everything set up, the count
+// base of the timestamp in bank register 2 (BUF_STAMP), then the poll for SL
+// high (SLAVE_IDLE's, at most IDLE_TURNS turns of 4 cycles) whose exit is
+// period 0 itself: its MA fall comes 2 cycles after the R31 read that saw
+// the slave's timeout end. Period 0 puts the turns left in bank register 1,
+// so the timestamp is the base less 4 cycles a turn left; the base is the
+// count read here, plus the cycles from that read to the fall had the
+// first turn seen SL high (less FRAME_STAMP's 4: its read comes 4 cycles
+// before the fall), plus 4 IDLE_TURNS.
+.enter fe_start
+.assign Half, r1.w2, r1.w2, FastLeft        // FE_POLL's turns left (RecWord's upper half)
+.assign Word, r2, r2, FastBase              // the timestamp's count base
+.assign Byte, r2.b0, r2.b0, FastIdle8       // SL's newest samples
+.assign Word, r8, r8, FastAdd               // FE_BASE (in Poly: START_FOUND zeroes it)
+.leave fe_start
+#define FE_BASE         (4 * IDLE_TURNS + 5) // (7 cycles from the read to FE_POLL, less 2)
+.using fe_start
+FE_START:
+    fill    &Edges, 4                       // as FRAME_STAMPED (Slot = 0)
+    ldi     AckBase, 0
+    ldi     FastLeft, IDLE_TURNS
+    lbco    FastBase, c26, IEP_COUNT, 4
+    mov     FastAdd, FE_BASE
+    add     FastBase, FastBase, FastAdd
+    xout    XFR_BANK, FastBase, 4           // bank register 2
+FE_POLL:
+    and     FastIdle8, SL_IN.b0, IDLE_MASK
+    qbeq    FRAME_PERIOD0, FastIdle8, IDLE_MASK
+    sub     FastLeft, FastLeft, 1
+    qbne    FE_POLL, FastLeft, 0
+    jmp     MAIN                            // SL never came high: MAIN's FRAME finds it so
+.leave fe_start
 
 // The timestamp, then the first period. It waits in bank register 2 (Slot
 // = 0: unshifted; the slots start at 4) for FRAME_END or ABORT_FRAME: no
@@ -102,9 +129,11 @@ FRAME_CLOCKED:                              // TRAIN comes in here, Edges its tw
     // Period 0 looks at nothing: its samples date from before the frame
     // (the ACK cannot come before the second rising edge), so the frame may
     // start as soon as SL is high.
+FRAME_PERIOD0:
     MA_FALL
     add     AckBase, AckBase, 8             // 1
-    jal     RET_LEAF, DLY_S6                // 2..8
+    xout    XFR_BANK, RecWord, 4            // 2  FE_POLL's turns left to bank register 1
+    jal     RET_LEAF, DLY_S5                // 3..8
     DELAY
     MA_RISE
     NEXT_CLOCK                              // 1..4

@@ -12,7 +12,7 @@
 .using front
 SSI_FRAME:
     jal     RET_SUB, FRAME_REGS
-    lbco    &AckPos, c28, P_SSI, SIZE(BissPriv) - P_SSI // Q' (and AckPos is what FRAME_END
+    lbco    &AckPos, c28, P_SSI, P_CFG_ACK - P_SSI // Q' (and AckPos is what FRAME_END
                                             // records), the clocks (to r2.w0: docs/pru-facts.md §1.7)
     IEP_ALIGN_IF SSI_ALIGNED
 .leave main_loop

@@ -62,7 +62,7 @@ MAIN:
     qbeq    MAIN_CFG_OK, CfgSeq, CfgAck
     qbne    APPLY_CONFIG, CfgSeq, 0         // (0: the host has written none yet)
 MAIN_CFG_OK:
-    lbco    &PrivProc, c28, P_PROC, P_SPARE - P_PROC
+    lbco    &PrivProc, c28, P_PROC, P_PROC_END - P_PROC
     qbeq    MAIN, Running, 0                // not running (no or a refused configuration)
     qbeq    TRIGGER_DONE, TrainDue, 0
     jmp     TRAIN                           // a training frame is due first
