@@ -307,8 +307,11 @@ void pru_set_inputs(struct pru_core *c, uint32_t levels);
 
 /* Calls fn(ctx, addr) right after every PRU store that writes the byte at
  * local data RAM address addr (the core's own data RAM), e.g. a firmware's
- * publication counter. The callback may read memory (pru_host_read) but
- * must not run or stop the core. fn NULL removes the watch. */
+ * publication counter. Inside the callback pru_cycles() is the cycle the
+ * store was issued in and pru_pc() its address, exactly, on every path of
+ * the execute loop (as --trace shows the store). The callback may read
+ * memory (pru_host_read) but must not run or stop the core. fn NULL
+ * removes the watch. */
 void pru_set_store_watch(struct pru_core *c, uint32_t addr, void (*fn)(void *ctx, uint32_t addr),
                          void *ctx);
 
