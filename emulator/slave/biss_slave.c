@@ -378,8 +378,8 @@ static void on_rise(biss_slave *b, sim_ps t) {
         return;
     }
     int level = b->bit < b->nbits ? b->bits[b->bit] : 0;
-    if (b->bit < b->nbits) {
-        b->bit++;
+    if (b->bit < b->nbits && ++b->bit == b->nbits) {
+        b->cur.last_bit_ps = t;
     }
     drive_sl(b, t, level);
 }
@@ -407,10 +407,10 @@ bool biss_slave_ma_edge_quick(biss_slave *b, sim_ps t, int level) {
     int sl = 0;
     bool drive = false;
     if (level) {
-        if (b->rises < 2 || !b->started) {
-            return false; /* the first rise, the ACK, the busy clocks */
+        if (b->rises < 2 || !b->started || b->bit + 1 == b->nbits) {
+            return false; /* the first rise, the ACK, the busy clocks; the last bit */
         }
-        /* on_rise() after the start bit, and its drive_sl() */
+        /* on_rise() after the start bit, but for the last bit, and its drive_sl() */
         sl = b->bit < b->nbits ? b->bits[b->bit] : 0;
         drive = sl_moves(b, sl);
         if (drive && !eq_fits(b->q, t + b->cfg.out_delay_ps)) {
@@ -420,9 +420,7 @@ bool biss_slave_ma_edge_quick(biss_slave *b, sim_ps t, int level) {
     note_ma(b, t, level);
     if (level) {
         b->rises++;
-        if (b->bit < b->nbits) {
-            b->bit++;
-        }
+        b->bit += b->bit < b->nbits;
         if (drive) {
             b->sl_sched = sl;
             eq_put(b->q, t + b->cfg.out_delay_ps, emit_sl, b, sl);

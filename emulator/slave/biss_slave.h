@@ -117,13 +117,15 @@ typedef struct {
 typedef struct {
     uint64_t frame; /* 0, 1, ... */
     sim_ps start_ps, ack_ps, start_bit_ps, end_ps;
-    sim_ps latch_ps; /* first rising edge: the position's instant (0: none) */
-    int cds;         /* CDS sent in this frame */
-    int cdm;         /* CDM sampled at its timeout, -1 if none */
-    bool acked;      /* at least two rising edges */
-    bool started;    /* start bit sent */
-    bool complete;   /* every data bit was clocked out */
-    unsigned clocks; /* rising edges seen */
+    sim_ps latch_ps;    /* first rising edge: the position's instant (0: none) */
+    sim_ps last_bit_ps; /* the rise that put the frame's last bit on SL: the last
+                           slave's last CRC bit (0: not clocked out) */
+    int cds;            /* CDS sent in this frame */
+    int cdm;            /* CDM sampled at its timeout, -1 if none */
+    bool acked;         /* at least two rising edges */
+    bool started;       /* start bit sent */
+    bool complete;      /* every data bit was clocked out */
+    unsigned clocks;    /* rising edges seen */
     biss_slave_sent s[BISS_MAX_SLAVES];
 } biss_frame_record;
 
@@ -170,11 +172,11 @@ typedef struct {
 void biss_slave_init(biss_slave *b, const biss_chain_cfg *cfg, event_queue *q, sim_edge_sink out);
 
 void biss_slave_ma_edge(biss_slave *b, sim_ps t, int level);
-/* biss_slave_ma_edge() for an edge of a frame after its start bit (the
- * fixed timeout, its event pending no later than the new deadline, room
- * in the queue): the same steps with no call, so a caller that has its own
- * calls in tail position only saves no registers. Returns false, having
- * changed nothing, for any other edge. */
+/* biss_slave_ma_edge() for an edge of a frame after its start bit but
+ * the rise of its last bit (the fixed timeout, its event pending no later than
+ * the new deadline, room in the queue): the same steps with no call, so a
+ * caller that has its own calls in tail position only saves no registers.
+ * Returns false, having changed nothing, for any other edge. */
 bool biss_slave_ma_edge_quick(biss_slave *b, sim_ps t, int level);
 /* biss_slave_ma_edge() without trying the quick step first: any edge. */
 void biss_slave_ma_edge_general(biss_slave *b, sim_ps t, int level);
