@@ -20,6 +20,7 @@
 
 #include "biss/pruss_map.h"
 
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -346,6 +347,22 @@ const char *pru_fault_name(enum pru_fault_cause cause);
  * strict fault "fault: strict rule <rule> (<what>) at pc=0x.. cycle=N: <insn>"
  * and, in clocked scope, the R30 changes around it. */
 void pru_print_fault(const struct pru_core *c, FILE *f);
+
+/* The PRU-ICSS's IEP timer as an instruction issued in `cycle` would read
+ * it (or, if the IEP has been brought past that cycle already, as of that
+ * later cycle, in v->cycle), without moving the emulated IEP on: for
+ * instruments that watch a run and must not change it (the bench's IEP
+ * phase of each frame). Exact when nothing writes the IEP before `cycle`
+ * that has not been issued yet, as in a callback of an instruction issued
+ * in `cycle` or earlier. */
+struct pru_iep_view {
+    int64_t cycle;    /* the cycle boundary the values are for */
+    uint32_t count;   /* COUNT */
+    uint32_t inc;     /* the increment of this tick (DEFAULT_INC, or CMP_INC in compensation) */
+    uint32_t cmp0;    /* CMP0 */
+    bool cmp0_resets; /* CMP0 enabled and resetting COUNT (CMP_CFG bits 1 and 0) */
+};
+void pru_iep_view(const struct pru_core *c, int64_t cycle, struct pru_iep_view *v);
 
 /* Fast-forward statistics: iterations skipped so far. */
 uint64_t pru_ff_skipped(const struct pru_core *c);
