@@ -6,6 +6,8 @@
 #include "sim_image.h"
 #include "sim_report.h"
 
+#include "biss/biss_shm.h"
+
 #include <math.h>
 #include <stdbool.h>
 #include <stdio.h>
@@ -41,7 +43,7 @@ static enum pru_stop run(struct bench *b[2], struct fw_check fc[2], const struct
     int64_t end = pru_time_ps(bench_core(b[0])) + r->max_ps;
     int started = 0;
     while (pru_time_ps(bench_core(b[0])) < end) {
-        if (!started && fc[0].frames > 0 && fc[1].frames > 0) {
+        if (!started && fc[0].frames > r->settle && fc[1].frames > r->settle) {
             started = 1;
             for (unsigned i = 0; i < 2; i++) {
                 fw_check_restart(&fc[i], r->frames);
@@ -63,29 +65,43 @@ static enum pru_stop run(struct bench *b[2], struct fw_check fc[2], const struct
     return PRU_STOP_LIMIT;
 }
 
-/* Frame k of PRU0 and of PRU1, in order: the start differences. Lines of
- * one protocol start on the same cycle; an SSI frame's first MA edge comes
- * a fixed number of cycles after a BiSS-C frame's (its own code path), so
- * a mixed pair must keep that offset to within a cycle. */
-static int report_starts(const struct starts *s, uint32_t period, bool mixed) {
-    uint64_t n = s->n[0] < s->n[1] ? s->n[0] : s->n[1];
-    int64_t lo = INT64_MAX, hi = INT64_MIN;
-    for (uint64_t k = 0; k < n; k++) {
+/* Frame k of PRU0 and of PRU1, in order: the start differences. */
+struct apart {
+    uint64_t n;
+    int64_t lo, hi; /* PRU1 - PRU0, ps */
+};
+
+static struct apart starts_apart(const struct starts *s) {
+    struct apart a = {s->n[0] < s->n[1] ? s->n[0] : s->n[1], INT64_MAX, INT64_MIN};
+    for (uint64_t k = 0; k < a.n; k++) {
         int64_t d = s->t[1][k] - s->t[0][k];
-        lo = d < lo ? d : lo;
-        hi = d > hi ? d : hi;
+        a.lo = d < a.lo ? d : a.lo;
+        a.hi = d > a.hi ? d : a.hi;
     }
-    if (n == 0) {
-        printf("frame starts         none measured\n");
+    return a;
+}
+
+/* Lines of one protocol start on the same cycle; an SSI frame's first MA
+ * edge comes a fixed number of cycles after a BiSS-C frame's (its own code
+ * path), so a mixed pair must keep that offset to within a cycle. 0 or 5. */
+static int starts_verdict(const struct starts *s, const struct apart *a, bool mixed) {
+    if (a->n == 0) {
         return 5;
+    }
+    bool together = mixed ? a->hi - a->lo <= PRU_PS_PER_CYCLE
+                          : llabs(a->lo) <= PRU_PS_PER_CYCLE && llabs(a->hi) <= PRU_PS_PER_CYCLE;
+    return s->n[0] == s->n[1] && together ? 0 : 5;
+}
+
+static void print_starts(const struct apart *a, uint32_t period, bool mixed) {
+    if (a->n == 0) {
+        printf("frame starts         none measured\n");
+        return;
     }
     printf("frame starts         %llu pairs on an IEP period of %.3f us (PRU0 owns the IEP, PRU1 "
            "follows): PRU1 - PRU0 = %lld .. %lld ps%s\n",
-           (unsigned long long)n, period * 5e-3, (long long)lo, (long long)hi,
+           (unsigned long long)a->n, period * 5e-3, (long long)a->lo, (long long)a->hi,
            mixed ? " (BiSS-C and SSI: SSI's first edge comes later, a fixed time)" : "");
-    bool together = mixed ? hi - lo <= PRU_PS_PER_CYCLE
-                          : llabs(lo) <= PRU_PS_PER_CYCLE && llabs(hi) <= PRU_PS_PER_CYCLE;
-    return s->n[0] == s->n[1] && together ? 0 : 5;
 }
 
 int sim_pair(const struct sim_pair_run *r) {
@@ -103,7 +119,8 @@ int sim_pair(const struct sim_pair_run *r) {
     struct sim_pair_run rr = *r;
     if (rr.max_ps <= 0) { /* start-up and training take a few periods */
         rr.max_ps =
-            2 * (int64_t)period * PRU_PS_PER_CYCLE * ((int64_t)r->frames + 8) + SIM_PS_PER_MS;
+            2 * (int64_t)period * PRU_PS_PER_CYCLE * ((int64_t)(r->frames + r->settle) + 8) +
+            SIM_PS_PER_MS;
     }
     if (rr.max_ps > r->cap_ps) {
         rr.max_ps = r->cap_ps;
@@ -136,10 +153,21 @@ int sim_pair(const struct sim_pair_run *r) {
         int64_t step = (int64_t)period * PRU_PS_PER_CYCLE / 4;
         enum pru_stop why = run(b, fc, r, step, &s);
         double host = seconds() - t0;
+        cJSON *all = r->json ? cJSON_CreateObject() : NULL;
         for (unsigned i = 0; i < 2; i++) {
-            struct sim_result res = {b[i], &fc[i], why, 100e6 / r->half, host, NULL};
-            printf("PRU%u%s\n", i, i ? " (IEP follow)" : " (IEP)");
-            sim_print_text(&res);
+            struct sim_result res = {b[i],
+                                     &fc[i],
+                                     why,
+                                     100e6 / r->half,
+                                     host,
+                                     NULL,
+                                     i ? BISS_TRIG_IEP_FOLLOW : BISS_TRIG_IEP};
+            if (all) {
+                cJSON_AddItemToObject(all, i ? "pru1" : "pru0", sim_json(&res));
+            } else {
+                printf("PRU%u%s\n", i, i ? " (IEP follow)" : " (IEP)");
+                sim_print_text(&res);
+            }
             if (why == PRU_STOP_FAULT && pru_get_fault(bench_core(b[i]))->cause) {
                 pru_print_fault(bench_core(b[i]), stderr);
                 rc = 3;
@@ -154,13 +182,28 @@ int sim_pair(const struct sim_pair_run *r) {
             }
         }
         bool mixed = r->cfg[0].link.protocol != r->cfg[1].link.protocol;
-        int starts = report_starts(&s, period, mixed);
+        struct apart a = starts_apart(&s);
+        int starts = starts_verdict(&s, &a, mixed);
         rc = rc ? rc : starts;
         /* each image keeps to its own bank: PRU1 never waits for PRU0 */
         uint64_t stalls = pru_spad_collisions(bench_core(b[1]));
-        printf("scratch pad          PRU1 stalled %llu times on PRU0's bank\n",
-               (unsigned long long)stalls);
         rc = rc ? rc : stalls ? 5 : 0;
+        if (all) {
+            cJSON_AddNumberToObject(all, "iep_period_cycles", period);
+            cJSON *o = cJSON_AddObjectToObject(all, "frame_starts_pru1_minus_pru0_ps");
+            cJSON_AddNumberToObject(o, "pairs", (double)a.n);
+            cJSON_AddNumberToObject(o, "min", a.n ? (double)a.lo : 0);
+            cJSON_AddNumberToObject(o, "max", a.n ? (double)a.hi : 0);
+            cJSON_AddNumberToObject(all, "pru1_spad_stalls", (double)stalls);
+            char *text = cJSON_Print(all);
+            printf("%s\n", text);
+            free(text);
+            cJSON_Delete(all);
+        } else {
+            print_starts(&a, period, mixed);
+            printf("scratch pad          PRU1 stalled %llu times on PRU0's bank\n",
+                   (unsigned long long)stalls);
+        }
     }
     free(s.t[0]);
     free(s.t[1]);

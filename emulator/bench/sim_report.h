@@ -9,6 +9,8 @@
 #include "fw_cd.h"
 #include "fw_check.h"
 
+#include <cjson/cJSON.h>
+
 struct sim_result {
     struct bench *b;
     const struct fw_check *fw; /* NULL: the image is not the BiSS master firmware */
@@ -16,9 +18,12 @@ struct sim_result {
     double freq_hz;
     double host_seconds;
     const struct fw_cd *cd; /* a control frame that ran, or NULL */
+    unsigned trigger;       /* BISS_TRIG_*: free-run frames have a restart to measure */
 };
 
 void sim_print_json(const struct sim_result *r);
+/* The object sim_print_json prints (the caller deletes it). */
+cJSON *sim_json(const struct sim_result *r);
 void sim_print_text(const struct sim_result *r);
 
 /* The SVG of the captured frame, numbered k as biss-sim and bissctl count

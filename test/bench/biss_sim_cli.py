@@ -220,10 +220,39 @@ for args, words in [(["--pru", "2"], "--pru: '2'"),
                     (["--pru1-profile", "generic", "--pru1-firmware", "/nonexistent.bin"],
                      "cannot read image '/nonexistent.bin'"),
                     (["--pru1-profile", "nope"], "unknown profile 'nope'"),
-                    (["--pru1-profile", "generic", "--json"], "not with"),
-                    (["--pru1-profile", "generic", "--iep-period-ns", "12"], "multiple of 5 ns")]:
+                    (["--pru1-profile", "generic", "--vcd", "x.vcd"], "not with"),
+                    (["--pru1-profile", "generic", "--trigger", "host"], "not with"),
+                    (["--pru1-profile", "generic", "--iep-period-ns", "12"], "multiple of 5 ns"),
+                    (["--trigger", "sometimes"], "--trigger: 'sometimes' is not free, host or iep"),
+                    (["--iep-period-ns", "50000"], "--iep-period-ns needs --trigger iep"),
+                    (["--trigger", "iep", "--image", CLOCK_IMAGE], "--trigger needs the firmware"),
+                    (["--settle-frames", "x"], "--settle-frames: 'x' is not a count")]:
     r = run("--frames", "3", *args)
     check(r.returncode == 1 and words in r.stderr, "%s -> %r (got %d %r)" % (args, words, r.returncode, r.stderr))
+
+# both PRUs in one JSON object: each PRU's object as biss-sim --json prints
+# it, the IEP period, how far apart the frame starts were, the bank stalls
+r = run("--pru1-profile", "hengstler-ad38", "--frames", "20", "--json")
+j = json.loads(r.stdout) if r.returncode == 0 else {}
+check(r.returncode == 0 and j["pru0"]["frames"] == 20 and j["pru1"]["frames"] == 20
+      and j["pru1"]["profile"] == "hengstler-ad38" and j["pru1_spad_stalls"] == 0
+      and j["frame_starts_pru1_minus_pru0_ps"] == {"pairs": 20, "min": 0, "max": 0}
+      and j["pru0"]["frame_starts"]["iep"]["period_cycles"] == j["iep_period_cycles"],
+      "pair --json: %d %r %r" % (r.returncode, r.stdout[:300], r.stderr))
+# one PRU under each trigger: every frame right, the trigger as asked
+for trig in ["free", "host", "iep"]:
+    r = run("--trigger", trig, "--frames", "30", "--json")
+    j = json.loads(r.stdout) if r.returncode == 0 else {}
+    fs = j.get("frame_starts") or {}
+    check(r.returncode == 0 and j["frames"] == 30 and j["position_mismatches"] == 0
+          and (fs.get("iep") is not None) == (trig == "iep")
+          and (fs.get("restart_overhead_cycles") is not None) == (trig == "free"),
+          "--trigger %s: %d %r %r" % (trig, r.returncode, fs, r.stderr))
+r = run("--trigger", "iep", "--iep-period-ns", "40000", "--frames", "20", "--json")
+j = json.loads(r.stdout) if r.returncode == 0 else {}
+check(r.returncode == 0 and j["frame_period_ns"]["min"] == 40000 == j["frame_period_ns"]["max"]
+      and j["frame_starts"]["iep"]["period_cycles"] == 8000,
+      "--trigger iep --iep-period-ns 40000: %d %r" % (r.returncode, r.stderr))
 
 # safety checks: the scenario's and the command line's, in JSON and text
 SCEN = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scenarios")
