@@ -95,12 +95,7 @@ double sim_frame_minimum_ps(struct bench *b, const struct fw_check *fw) {
     /* clocks: two to the ACK, the busy ones, start, CDS, the bits, and the
      * one on which the slave starts its timeout */
     unsigned clocks = 2 + fw->proc_clocks_max + 2 + bits + 1;
-    double timeout = (double)c->timeout_ps;
-    if (c->timeout_mode == BISS_TIMEOUT_ADAPTIVE) {
-        timeout = c->adaptive_factor * period;
-        timeout = timeout < (double)c->adaptive_min_ps ? (double)c->adaptive_min_ps : timeout;
-        timeout = timeout > (double)c->adaptive_max_ps ? (double)c->adaptive_max_ps : timeout;
-    }
+    double timeout = (double)biss_chain_timeout_ps(c, (sim_ps)period);
     /* the last rising edge comes half a period before the clocks' end; the
      * slave's timeout runs from it; its end travels back over the line */
     return (clocks - 0.5) * period + timeout + bench_round_trip_ps(b);

@@ -264,18 +264,11 @@ static void start_frame(biss_slave *b, sim_ps t) {
 
 /* ---- timeout ---- */
 
-static sim_ps timeout_len(const biss_slave *b) {
-    const biss_chain_cfg *c = &b->cfg;
+sim_ps biss_chain_timeout_ps(const biss_chain_cfg *c, sim_ps period_ps) {
     if (c->timeout_mode == BISS_TIMEOUT_FIXED) {
         return c->timeout_ps;
     }
-    sim_ps period = c->adaptive_max_ps;
-    if (b->rises >= 2) {
-        period = b->last_rise - b->prev_rise;
-    } else if (b->last_edge != b->prev_edge) {
-        period = 2 * (b->last_edge - b->prev_edge);
-    }
-    sim_ps t = (sim_ps)llround(c->adaptive_factor * (double)period);
+    sim_ps t = (sim_ps)llround(c->adaptive_factor * (double)period_ps);
     if (t < c->adaptive_min_ps) {
         t = c->adaptive_min_ps;
     }
@@ -283,6 +276,17 @@ static sim_ps timeout_len(const biss_slave *b) {
         t = c->adaptive_max_ps;
     }
     return t > 0 ? t : 1;
+}
+
+static sim_ps timeout_len(const biss_slave *b) {
+    const biss_chain_cfg *c = &b->cfg;
+    sim_ps period = c->adaptive_max_ps;
+    if (b->rises >= 2) {
+        period = b->last_rise - b->prev_rise;
+    } else if (b->last_edge != b->prev_edge) {
+        period = 2 * (b->last_edge - b->prev_edge);
+    }
+    return biss_chain_timeout_ps(c, period);
 }
 
 static void close_frame(biss_slave *b, sim_ps t) {

@@ -101,6 +101,9 @@ unsigned biss_slave_cfg_data_bits(const biss_slave_cfg *s);
 /* Whether two slaves of the chain that answer control communication (not
  * no_control) share an id (then *first < *second). */
 int biss_chain_shared_id(const biss_chain_cfg *c, unsigned *first, unsigned *second);
+/* The timeout the chain's slaves apply while MA runs with period_ps: the
+ * fixed one, or the adaptive factor x the period, clamped to [min, max]. */
+sim_ps biss_chain_timeout_ps(const biss_chain_cfg *c, sim_ps period_ps);
 /* Check a configuration; return NULL or a message naming the field. */
 const char *biss_slave_cfg_check(const biss_slave_cfg *s);
 const char *biss_chain_cfg_check(const biss_chain_cfg *c);
