@@ -488,6 +488,44 @@ static int build_config(const struct options *o, struct bench_config *cfg) {
     return 0;
 }
 
+/* What the scenario's line and slaves allow the rate (proto's rules,
+ * libbiss.h "what a line allows"): its cable, the model's round trip, the
+ * slaves' timeout at this rate (an SSI encoder's monoflop). */
+static int line_verdict(const scenario *sc, unsigned half, struct biss_line_verdict *v) {
+    sim_ps period = 2 * (sim_ps)half * PRU_PS_PER_CYCLE;
+    sim_ps timeout = sc->protocol == SCENARIO_SSI ? sc->ssi.monoflop_ps
+                                                  : biss_chain_timeout_ps(&sc->biss, period);
+    sim_ps out = sc->protocol == SCENARIO_SSI ? sc->ssi.out_delay_ps : sc->biss.out_delay_ps;
+    struct biss_line_facts f = {.cable_m = sc->ma_line.length_m,
+                                .round_trip_ns =
+                                    (line_nominal_delay_ps(&sc->ma_line) + (double)out +
+                                     line_nominal_delay_ps(&sc->sl_line)) /
+                                    1000.0,
+                                .slave_timeout_ns = (uint32_t)((timeout + 999) / 1000)};
+    return biss_proto_line_check(half, &f, v);
+}
+
+/* The rate against the line, up front: a warning beyond TIDEP0022 Table
+ * 5, a refusal (1, message printed) for a timeout or a round trip no
+ * frame can work with. `who` names the line in a two-PRU run. */
+static int check_line(const scenario *sc, unsigned half, const char *who,
+                      struct biss_line_verdict *v) {
+    int rc = line_verdict(sc, half, v);
+    if (rc != BISS_OK && rc != BISS_E_LINE_TIMEOUT && rc != BISS_E_LINE_DELAY) {
+        memset(v, 0, sizeof *v); /* a rate beyond the firmware's (--image): no rule for it */
+        return 0;
+    }
+    char text[512];
+    biss_line_text(v, text, sizeof text);
+    if (rc != BISS_OK) {
+        return die("%s%s", who, text);
+    }
+    if (v->beyond_table) {
+        fprintf(stderr, "biss-sim: warning: %s%s\n", who, text);
+    }
+    return 0;
+}
+
 /* MA half period in PRU cycles for the rate: 100 MHz / f, whole. */
 static int half_period_cycles(double freq_hz, unsigned *half) {
     double h = 100e6 / freq_hz;
@@ -629,6 +667,10 @@ static int run_pair(const struct options *o, const struct bench_config *cfg, uns
     if (o->seed_set) {
         r.cfg[1].link.seed = o->seed + 1; /* a noise of its own */
     }
+    struct biss_line_verdict line;
+    if (check_line(&r.cfg[1].link, half, "PRU1's line: ", &line) != 0) {
+        return 1;
+    }
     /* one image per PRU (pru_fw/README.md) */
     struct pruasm_image img[2];
     const char *path[2] = {o->firmware ? o->firmware : BISS_SIM_FIRMWARE,
@@ -699,6 +741,11 @@ static int run(const struct options *o) {
         return die("--freq %.10g: the firmware cannot clock it: %s", o->freq_hz, why_not);
     }
     char err[512];
+    struct biss_line_verdict line;
+    if (check_line(&cfg.link, half, (o->pru1_profile || o->pru1_scenario) ? "PRU0's line: " : "",
+                   &line) != 0) {
+        return 1;
+    }
     if (o->pru1_profile || o->pru1_scenario) {
         return run_pair(o, &cfg, half);
     }
@@ -846,6 +893,11 @@ static int run(const struct options *o) {
         rc = 4;
     }
     uint64_t done = fw_mode ? fc.frames : bench_stats(b)->frames;
+    if (rc == 0 && fw_mode && fc.frames == 0 && fc.no_slave && line.beyond_table) {
+        char text[512];
+        biss_line_text(&line, text, sizeof text);
+        fprintf(stderr, "biss-sim: no slave answered: %s\n", text);
+    }
     if (rc == 0 && done < o->frames) {
         fprintf(stderr,
                 "biss-sim: only %llu of %llu frames completed in %.6g ms of simulated time "

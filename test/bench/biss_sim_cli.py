@@ -230,6 +230,44 @@ for args, words in [(["--pru", "2"], "--pru: '2'"),
     r = run("--frames", "3", *args)
     check(r.returncode == 1 and words in r.stderr, "%s -> %r (got %d %r)" % (args, words, r.returncode, r.stderr))
 
+# the rate against the scenario's line (proto/biss_line.c), up front: a
+# warning beyond TIDEP0022 Table 5 (and, when no slave answered, why), a
+# refusal for a slave timeout below 55 % of the MA period or a round trip
+# the firmware never waits out; nothing within the table
+T5_80 = ("10 MHz on 80 m of cable: TIDEP0022 Table 5 gives 10 MHz up to 10 m; rates that work: "
+         "1 MHz, 800 kHz, 781.25 kHz")
+r = run("--freq", "10000000", "--cable-m", "80", "--frames", "3", "--json")
+check(r.returncode == 2 and r.stderr.startswith("biss-sim: warning: " + T5_80 + "\n")
+      and "biss-sim: no slave answered: " + T5_80 + "\n" in r.stderr
+      and json.loads(r.stdout)["firmware"]["no_slave"] > 0,
+      "10 MHz on 80 m: %d %r" % (r.returncode, r.stderr))
+for freq, cable in [(10e6, 10), (5e6, 25), (2e6, 60), (1e6, 100), (1e6, 2)]:
+    r = run("--freq", str(int(freq)), "--cable-m", str(cable), "--frames", "3")
+    check(r.returncode == 0 and r.stderr == "", "Table 5, %g Hz on %d m: %r" % (freq, cable, r.stderr))
+r = run("--freq", "5000000", "--cable-m", "40", "--frames", "3")
+check(r.returncode == 0 and r.stderr == "biss-sim: warning: 5 MHz on 40 m of cable: TIDEP0022 Table 5 "
+      "gives 5 MHz up to 25 m; rates that work: 2 MHz, 1.5625 MHz, 1.25 MHz\n",
+      "5 MHz on 40 m (works in the model, beyond the table): %d %r" % (r.returncode, r.stderr))
+CHAIN1_650 = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scenarios",
+                          "chain1-650ns.json")
+r = run("--scenario", CHAIN1_650, "--freq", "500000", "--frames", "3")
+check(r.returncode == 1 and r.stdout == "" and r.stderr ==
+      "biss-sim: a slave timeout of 650 ns is below 55 % of the MA period at 500 kHz (1100 ns, "
+      "iC-MB4 I306): the slave may end the frame within a clock phase; rates that work: 1 MHz, "
+      "1.25 MHz, 1.5625 MHz\n", "650 ns at 500 kHz: %d %r" % (r.returncode, r.stderr))
+r = run("--scenario", CHAIN1_650, "--freq", "1000000", "--frames", "3")
+check(r.returncode == 0 and r.stderr == "", "650 ns at 1 MHz: %r" % r.stderr)
+r = run("--profile", "hengstler-ad38", "--freq", "500000", "--frames", "3")
+check(r.returncode == 0 and r.stderr == "", "the AD38's adaptive timeout at 500 kHz: %r" % r.stderr)
+r = run("--pru1-scenario", CHAIN1_650, "--freq", "500000", "--frames", "3")
+check(r.returncode == 1 and r.stderr.startswith("biss-sim: PRU1's line: a slave timeout of 650 ns"),
+      "PRU1's 650 ns at 500 kHz: %d %r" % (r.returncode, r.stderr))
+r = run("--scenario", scenario('{"line": {"ns_per_m": 25, "tau_per_m2_ps": 0}}'), "--cable-m", "1000",
+        "--freq", "1000000", "--frames", "3")
+check(r.returncode == 1 and "a round trip of 50069 ns is beyond the 40000 ns the firmware waits for "
+      "the ACK (BISS_MAX_DELAY_NS): no slave answers at any rate" in r.stderr,
+      "a 50 us round trip: %d %r" % (r.returncode, r.stderr))
+
 # both PRUs in one JSON object: each PRU's object as biss-sim --json prints
 # it, the IEP period, how far apart the frame starts were, the bank stalls
 r = run("--pru1-profile", "hengstler-ad38", "--frames", "20", "--json")
