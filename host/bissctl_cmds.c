@@ -220,8 +220,10 @@ int bissctl_read(biss_t *h, const struct bissctl_opts *o) {
         } else {
             print_sample(&s, layout ? &c : NULL);
         }
+        bissctl_line_note(&s);
         after = s.frame;
     }
+    bissctl_line_report(h, o);
     if (o->json) {
         bissctl_json_end(h);
     } else {
@@ -251,13 +253,35 @@ int bissctl_run(biss_t *h, const struct bissctl_opts *o) {
         print_delay(&d);
         printf("\n");
     }
+    /* the latest frame tells what the line measured, or that no slave answered */
+    struct biss_sample s;
+    if (rc == BISSCTL_OK && biss_read_sample(h, &s) == BISS_OK) {
+        if (biss_line_delay(h, &d) == BISS_OK) {
+            s.delay = d;
+            s.training = !s.valid;
+            s.no_slave = false;
+        }
+        bissctl_line_note(&s);
+        bissctl_line_report(h, o);
+    }
     return rc;
 }
 
+/* After a restart the firmware trains on the line first: its training
+ * frame is waited for and what it measured checked (a warning, or why no
+ * slave answered, on stderr). */
 int bissctl_start(biss_t *h, const struct bissctl_opts *o) {
-    (void)o;
     int rc = biss_start(h);
-    return rc ? bissctl_fail("start", rc) : BISSCTL_OK;
+    if (rc) {
+        return bissctl_fail("start", rc);
+    }
+    /* the restarted firmware cleared its status: its first frame is the training */
+    struct biss_sample s;
+    if (biss_wait_sample(h, 0, o->timeout_ms, &s) == BISS_OK) {
+        bissctl_line_note(&s);
+        bissctl_line_report(h, o);
+    }
+    return BISSCTL_OK;
 }
 
 int bissctl_stop(biss_t *h, const struct bissctl_opts *o) {
