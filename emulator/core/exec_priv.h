@@ -26,8 +26,7 @@ bool exec_simple_step(uint32_t *r, const struct pd *d, unsigned kind, uint32_t *
 
 /*
  * LBBO/SBBO/LBCO/SBCO at pc, issued in cycle `cycle` (c->pc and c->cycle
- * may lag: they are brought up to date before anything reads them, a
- * store watch included): the one
+ * must be pc and cycle: a store watch reads them): the one
  * implementation of loads and stores. Every target goes through
  * mem_load()/mem_store() (which also cost it); a load that faults part way
  * leaves the registers as they were; bytes into R30/R31 or out of R31 have
@@ -59,10 +58,6 @@ exec_burst(struct pru_core *c, const struct pd *d, uint32_t pc, int64_t cycle) {
     } else {
         if (!fixed)
             rf_before_read(c, start, n);
-        /* a store watch reads pru_cycles() and pru_pc(): the store's
-         * (pru_set_store_watch), whatever the caller keeps in registers */
-        c->pc = pc;
-        c->cycle = cycle;
         if (mem_store(c, addr, rf, n, &cycles, pc, cycle) != 0)
             return 1;
         ff_dirty(c);
