@@ -221,6 +221,26 @@ START_TEST(json_ranges) {
 }
 END_TEST
 
+/* Many keys: the duplicate found (and a document without one refused for
+ * its first unknown key) in n log n; a scan of every pair takes minutes
+ * over 200 000 keys, past the case's timeout. */
+START_TEST(json_many_keys) {
+    enum { N = 200000 };
+    size_t cap = (size_t)N * 16 + 64;
+    char *text = malloc(cap);
+    ck_assert_ptr_nonnull(text);
+    size_t n = (size_t)snprintf(text, cap, "{");
+    for (unsigned i = 0; i < N; i++) {
+        n += (size_t)snprintf(text + n, cap - n, "\"k%u\": 0, ", i);
+    }
+    snprintf(text + n, cap - n, "\"k%u\": 1}", N / 2);
+    expect_error(text, "k100000: given twice");
+    snprintf(text + n - 2, cap - n + 2, "}");
+    expect_error(text, "k0: unknown field");
+    free(text);
+}
+END_TEST
+
 /* 64-bit seeds and positions: exact as strings; as JSON numbers only below
  * 2^53, where a double still holds every integer. */
 START_TEST(json_exact_64_bit) {
