@@ -173,6 +173,12 @@ START_TEST(json_ranges) {
     expect_error("{\"line\": {\"ns_per_m\": 1e300}}", "line.ns_per_m: 1e+300 out of range 0..100");
     expect_error("{\"line\": {\"fault_at_ns\": -1}}",
                  "line.fault_at_ns: -1 out of range 0..1000000000000");
+    expect_error("{\"sl_line\": {\"fault\": \"open\", \"fault_at_ns\": 5000, "
+                 "\"fault_until_ns\": 4000}}",
+                 "sl_line.fault_until_ns: not after fault_at_ns (0: the fault never ends)");
+    expect_error("{\"line\": {\"fault\": \"stuck_low\", \"fault_at_ns\": 5000, "
+                 "\"fault_until_ns\": 5000}}",
+                 "ma_line.fault_until_ns: not after fault_at_ns (0: the fault never ends)");
     expect_error("{\"biss\": {\"timeout\": {\"ns\": 9e9}}}",
                  "biss.timeout.ns: 9000000000 out of range 0..1000000");
     expect_error("{\"biss\": {\"busy_ns\": 9e9}}",
@@ -291,6 +297,7 @@ int main(void) {
     tcase_add_test(tc, json_errors_name_the_field);
     tcase_add_test(tc, json_ssi_scenario);
     tcase_add_test(tc, json_ranges);
+    tcase_add_test(tc, json_many_keys);
     tcase_add_test(tc, json_exact_64_bit);
     suite_add_tcase(s, tc);
     return check_run(s);
