@@ -449,7 +449,7 @@ static int take_config_opt(int c, const char *arg, struct bissctl_opts *o) {
     case OPT_CHECK_SPEED:
         return biss_safety_parse_speed(arg, &o->checks)
                    ? usage_error("--check-speed '%s': expected S,CPS (slave 0..7, counts per "
-                                 "second > 0)",
+                                 "second 1e-9..1e18)",
                                  arg)
                    : 0;
     case OPT_CHECK_PAIR:

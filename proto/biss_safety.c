@@ -30,6 +30,8 @@
  * lowest bits, within that reach of the truth. */
 #include "biss_proto.h"
 
+#include "biss/biss_rules.h"
+
 #include <errno.h>
 #include <math.h>
 #include <stdlib.h>
@@ -87,7 +89,7 @@ int biss_safety_config_check(const struct biss_config *c) {
             return BISS_E_SAFETY_EW;
         }
         double v = c->slave[i].max_speed;
-        if (v != 0 && (i >= c->nslaves || !isfinite(v) || v < 0)) {
+        if (v != 0 && (i >= c->nslaves || !biss_max_speed_valid(v))) {
             return BISS_E_SAFETY_SPEED;
         }
     }
@@ -416,7 +418,7 @@ int biss_safety_parse_speed(const char *arg, struct biss_config *c) {
     errno = 0;
     double cps = strtod(comma + 1, &end);
     if (numbers(slave, v, 1) != 1 || v[0] >= BISS_API_MAX_SLAVES || errno || end == comma + 1 ||
-        *end || !isfinite(cps) || cps <= 0) {
+        *end || !biss_max_speed_valid(cps)) {
         return BISS_E_INVAL;
     }
     c->slave[v[0]].max_speed = cps;

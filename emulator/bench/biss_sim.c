@@ -322,7 +322,8 @@ static int set_option(struct options *o, const char *a, const char *v) {
         }
     } else if (!strcmp(a, "--check-speed")) {
         if (biss_safety_parse_speed(v, &o->checks)) {
-            return die("--check-speed: '%s' is not S,CPS (slave 0..7, counts per second > 0)", v);
+            return die(
+                "--check-speed: '%s' is not S,CPS (slave 0..7, counts per second 1e-9..1e18)", v);
         }
     } else if (!strcmp(a, "--check-pair")) {
         if (biss_safety_parse_pair(v, &o->checks)) {

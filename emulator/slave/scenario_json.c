@@ -1,5 +1,6 @@
 #include "scenario_json.h"
 
+#include "biss/biss_rules.h"
 #include "read_file.h"
 #include "scenario_fields.h"
 
@@ -414,7 +415,7 @@ static int parse_pair(ctx *c, const cJSON *obj, scenario_checks *k, unsigned i) 
 
 static const sf_field sf_speed[] = {
     {"slave", SF_UNSIGNED, 0, 0, 0, BISS_MAX_SLAVES - 1},
-    {"counts_per_s", SF_DOUBLE, 0, 1, 1e-9, 1e18},
+    {"counts_per_s", SF_DOUBLE, 0, 1, BISS_MAX_SPEED_MIN_CPS, BISS_MAX_SPEED_MAX_CPS},
 };
 
 /* One {"slave": S, "counts_per_s": V} of max_speed. */

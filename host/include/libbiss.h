@@ -49,7 +49,8 @@ enum biss_error {
     BISS_E_NSLAVES = -13,        /* slave count outside 1..8 */
     BISS_E_DATA_BITS = -14,      /* data bits outside 1..64 */
     BISS_E_CRC_BITS = -15,       /* CRC bits outside 0..16 */
-    BISS_E_CRC_POLY = -16,       /* polynomial degree is not crc_bits (or a poly without CRC) */
+    BISS_E_CRC_POLY = -16,       /* polynomial not odd, or its degree not crc_bits (or a poly
+                                    without CRC) */
     BISS_E_CRC_START = -17,      /* CRC start value wider than crc_bits */
     BISS_E_EW = -18,             /* nE/nW position outside the data word */
     BISS_E_POS_BITS = -19,       /* position bits do not fit above nE/nW */
@@ -110,8 +111,9 @@ enum biss_error {
     /* two channels on one PRU-ICSS */
     BISS_E_IEP_OWNED = -65,    /* trigger iep: the other PRU's channel owns the IEP */
     BISS_E_FW_PRU = -66,       /* the running image was assembled for the other PRU */
-    BISS_E_SAFETY_SPEED = -67, /* speed check (max_speed) on a slave outside the chain, or a
-                                  speed not finite and above 0 */
+    BISS_E_SAFETY_SPEED = -67, /* speed check (max_speed) on a slave outside the chain, a
+                                  speed outside 1e-9..1e18, or on a trigger with no time
+                                  base (iep-follow without the owner's period) */
 };
 
 /* Static text for any return value of this library (never NULL). */

@@ -132,6 +132,8 @@ for args, text in [(["--freq", "3000000", "read"], "not 100 MHz divided by a who
                    (["--freq", "100000", "read"], "no exact 8x shift clock"),
                    (["--freq", "20000000", "read"], "out of range"),
                    (["--slave", "14,6,0x03,0,0", "read"], "polynomial"),
+                   # even: refused as the scenario files refuse it (one rule)
+                   (["--slave", "14,6,0x42,0,0", "read"], "polynomial"),
                    (["--slave", "70,6,0x43,0", "read"], "data bits"),
                    (["--profile", "nope", "info"], "unknown emulator profile"),
                    (["--firmware", "/nonexistent.bin", "info"], "firmware image cannot be read"),
@@ -322,6 +324,11 @@ except ValueError:
 check(sp == [{"slave": 0, "counts_per_s": 60000, "checked": 1, "jumped": 0, "resync": 0}], "--check-speed --json: %r" % sp)
 r = run("--check-speed", "0,x", "read")
 check(r.returncode == 2 and "--check-speed" in r.stderr, "--check-speed 0,x: %r" % r.stderr)
+# the range the scenario files take, 1e-9..1e18 (one rule)
+for spd in ["0,1e308", "0,2e18", "0,1e-10"]:
+    r = run("--check-speed", spd, "read")
+    check(r.returncode == 2 and "--check-speed" in r.stderr and "1e-9..1e18" in r.stderr,
+          "--check-speed %s: %r" % (spd, r.stderr))
 r = run("--check-speed", "1,5", "read")
 check(r.returncode == 1 and "speed check" in r.stderr, "--check-speed 1,5: %r" % r.stderr)
 

@@ -566,7 +566,8 @@ END_TEST
 START_TEST(test_speed_config) {
     struct biss_config c = speed_checked();
     ck_assert_int_eq(biss_config_check(&c), BISS_OK);
-    static const double bad[] = {-1.0, NAN, INFINITY};
+    /* the range the scenario files take, 1e-9..1e18 (biss/biss_rules.h) */
+    static const double bad[] = {-1.0, NAN, INFINITY, 1e308, 1.01e18, 0.99e-9, 5e-324};
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
         c.slave[0].max_speed = bad[i];
         ck_assert_int_eq(biss_config_check(&c), BISS_E_SAFETY_SPEED);
@@ -579,8 +580,12 @@ START_TEST(test_speed_config) {
     memset(&k, 0, sizeof k);
     ck_assert_int_eq(biss_safety_parse_speed("1,6e4", &k), BISS_OK);
     ck_assert(k.slave[1].max_speed == 60000.0 && k.slave[0].max_speed == 0);
-    static const char *const spell[] = {"",      "0",   "0,",   "0,0", "0,-5", "8,1",   "0,nan",
-                                        "0,inf", "x,1", "0,1x", ",1",  "-1,5", "0,1,2", "0,1e999"};
+    ck_assert_int_eq(biss_safety_parse_speed("2,1e18", &k), BISS_OK);
+    ck_assert_int_eq(biss_safety_parse_speed("2,1e-9", &k), BISS_OK);
+    k.slave[2].max_speed = 0;
+    static const char *const spell[] = {"",      "0",       "0,",      "0,0",    "0,-5",   "8,1",
+                                        "0,nan", "0,inf",   "x,1",     "0,1x",   ",1",     "-1,5",
+                                        "0,1,2", "0,1e999", "0,1e308", "0,2e18", "0,1e-10"};
     for (size_t i = 0; i < sizeof spell / sizeof spell[0]; i++) {
         ck_assert_msg(biss_safety_parse_speed(spell[i], &k) == BISS_E_INVAL, "%s", spell[i]);
     }
