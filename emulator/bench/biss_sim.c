@@ -548,14 +548,16 @@ static void pru_num_define(unsigned pru, struct sim_defines *d) {
 
 /* A second encoder on PRU1 (sim_pair.h): the firmware on both PRUs. */
 static int run_pair(const struct options *o, const struct bench_config *cfg, unsigned half) {
-    if (o->image || o->json || o->vcd || o->svg || o->cd_set || o->pru) {
+    if (o->image || o->vcd || o->svg || o->cd_set || o->pru) {
         return die("--pru1-profile/--pru1-scenario run the firmware on both PRUs: not with "
-                   "--image, --json, --vcd, --svg, --pru or control frames");
+                   "--image, --vcd, --svg, --pru or control frames");
     }
     struct sim_pair_run r = {.cfg = {*cfg, *cfg},
                              .half = half,
                              .iep_period = (uint32_t)(o->iep_period_ns / 5),
-                             .frames = o->frames};
+                             .frames = o->frames,
+                             .checks = &o->checks,
+                             .json = o->json};
     char err[512];
     if (o->pru1_scenario) {
         if (scenario_load_file(o->pru1_scenario, &r.cfg[1].link, err, sizeof(err)) != 0) {
@@ -604,25 +606,7 @@ static int safety_checks(const struct options *o, struct biss_config *c) {
     if (!rc) {
         rc = biss_safety_config_check(c);
     }
-    switch (rc) {
-    case BISS_OK:
-        return 0;
-    case BISS_E_SAFETY_LIFE:
-        return die("safety checks: a life-counter check names a slave outside the chain or "
-                   "one without that many life-counter bits (BISS_E_SAFETY_LIFE)");
-    case BISS_E_SAFETY_EW:
-        return die("safety checks: the nE/nW check (a slave that never sets them) names a slave "
-                   "outside the chain or one that sends no nE/nW (BISS_E_SAFETY_EW)");
-    case BISS_E_SAFETY_SPEED:
-        return die("safety checks: the speed check names a slave outside the chain "
-                   "(BISS_E_SAFETY_SPEED)");
-    case BISS_E_SAFETY_CRC:
-        return die("safety checks: the two channels of a pair have the same CRC polynomial and "
-                   "start value; BiSS Safety tells them apart by it (BISS_E_SAFETY_CRC)");
-    default:
-        return die("safety checks: a pair names a slave outside the chain or a slave twice, "
-                   "more than 4 pairs, or a shifted position over 64 bits (BISS_E_SAFETY_PAIR)");
-    }
+    return rc ? die("safety checks: %s", sim_safety_problem(rc)) : 0;
 }
 
 static int run(const struct options *o) {
@@ -679,7 +663,7 @@ static int run(const struct options *o) {
         rc = safety_checks(o, &fc.cfg);
         struct bench_fw_settings s = {
             .half = half, .trigger = BISS_TRIG_FREERUN, .proc_limit = 1000};
-        bench_fw_configure(b, &s);
+        fw_check_configure(&fc, &s);
         if (o->cd_set && cfg.link.protocol == SCENARIO_SSI) {
             rc = die("%s: an SSI encoder has no control communication", o->cd_what);
         }

@@ -204,6 +204,13 @@ void fw_check_attach(struct fw_check *fc, struct bench *b) {
     pru_set_store_watch(bench_core(b), BISS_ST_SEQ, on_publish, fc);
 }
 
+int fw_check_configure(struct fw_check *fc, const struct bench_fw_settings *s) {
+    fc->cfg.trigger = (enum biss_trigger)s->trigger;
+    fc->cfg.iep_period_ns = s->iep_period * 5u; /* 5 ns IEP counts */
+    biss_safety_restart(&fc->safety);
+    return bench_fw_configure(fc->b, s);
+}
+
 void fw_check_watch(struct fw_check *fc, uint64_t k) {
     fc->watch = k;
     fc->watched.seen = 0;

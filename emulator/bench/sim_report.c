@@ -33,6 +33,26 @@ static struct biss_line_delay line_delay(unsigned raw, unsigned avg, unsigned ha
     return d;
 }
 
+const char *sim_safety_problem(int rc) {
+    switch (rc) {
+    case BISS_E_SAFETY_LIFE:
+        return "a life-counter check names a slave outside the chain or one without that many "
+               "life-counter bits (BISS_E_SAFETY_LIFE)";
+    case BISS_E_SAFETY_EW:
+        return "the nE/nW check (a slave that never sets them) names a slave outside the chain "
+               "or one that sends no nE/nW (BISS_E_SAFETY_EW)";
+    case BISS_E_SAFETY_SPEED:
+        return "the speed check names a slave outside the chain, or the trigger gives it no "
+               "time to judge by (BISS_E_SAFETY_SPEED)";
+    case BISS_E_SAFETY_CRC:
+        return "the two channels of a pair have the same CRC polynomial and start value; BiSS "
+               "Safety tells them apart by it (BISS_E_SAFETY_CRC)";
+    default:
+        return "a pair names a slave outside the chain or a slave twice, more than 4 pairs, or a "
+               "shifted position over 64 bits (BISS_E_SAFETY_PAIR)";
+    }
+}
+
 double sim_fw_line_delay_ns(const struct fw_check *fw) {
     return line_delay(fw->delay_raw, fw->delay_avg, fw->half).ns;
 }
@@ -248,7 +268,7 @@ static void add_control(cJSON *j, const struct fw_cd *cd) {
     }
 }
 
-void sim_print_json(const struct sim_result *r) {
+cJSON *sim_json(const struct sim_result *r) {
     struct bench *b = r->b;
     const struct bench_stats *st = bench_stats(b);
     const struct fw_check *fw = r->fw;
@@ -281,10 +301,18 @@ void sim_print_json(const struct sim_result *r) {
     if (r->cd) {
         add_control(j, r->cd);
     }
+    return j;
+}
+
+void sim_print_json_object(cJSON *j) {
     char *text = cJSON_Print(j);
     printf("%s\n", text);
     free(text);
     cJSON_Delete(j);
+}
+
+void sim_print_json(const struct sim_result *r) {
+    sim_print_json_object(sim_json(r));
 }
 
 /* Without the firmware: what the encoder(s) sent in the last closed frame. */

@@ -220,13 +220,29 @@ for args, words in [(["--pru", "2"], "--pru: '2'"),
                     (["--pru1-profile", "generic", "--pru1-firmware", "/nonexistent.bin"],
                      "cannot read image '/nonexistent.bin'"),
                     (["--pru1-profile", "nope"], "unknown profile 'nope'"),
-                    (["--pru1-profile", "generic", "--json"], "not with"),
+                    (["--pru1-profile", "generic", "--vcd", "x.vcd"], "not with"),
                     (["--pru1-profile", "generic", "--iep-period-ns", "12"], "multiple of 5 ns")]:
     r = run("--frames", "3", *args)
     check(r.returncode == 1 and words in r.stderr, "%s -> %r (got %d %r)" % (args, words, r.returncode, r.stderr))
 
 # safety checks: the scenario's and the command line's, in JSON and text
 SCEN = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scenarios")
+# on both PRUs each channel's checks time its frames by its own trigger
+# (PRU0 owns the IEP, PRU1 follows it: both by the IEP period): a healthy
+# encoder with the speed check, on either PRU, loses no frame to it
+NOISE = os.path.join(SCEN, "noise-sl-10khz.json")
+r = run("--scenario", NOISE, "--pru1-scenario", NOISE, "--frames", "2000", "--json",
+        "--check-speed", "0,60000")
+j = json.loads(r.stdout) if r.returncode == 0 else {}
+for k in ("pru0", "pru1"):
+    sp = (j.get(k, {}).get("safety", {}).get("max_speed") or [{}])[0]
+    check(j.get(k, {}).get("trigger") == ("iep" if k == "pru0" else "iep-follow")
+          and sp.get("checked", 0) >= 1900 and sp.get("jumped") == 0
+          and j[k]["safety"]["misframed_good_lost"] == 0,
+          "pair, speed check on %s: %d %r %r" % (k, r.returncode, j.get(k, {}).get("safety"),
+                                                 r.stderr))
+check(j.get("frame_starts", {}).get("pairs", 0) >= 2000 and j.get("spad_stalls") == 0,
+      "pair --json: %r" % {k: j.get(k) for k in ("frame_starts", "spad_stalls")})
 r = run("--scenario", os.path.join(SCEN, "safety-disagree.json"), "--frames", "400", "--json")
 j = json.loads(r.stdout) if r.returncode == 0 else {}
 sf = j.get("safety", {})
