@@ -186,7 +186,7 @@ int sim_pair(const struct sim_pair_run *r) {
         }
         bool mixed = r->cfg[0].link.protocol != r->cfg[1].link.protocol;
         int starts = report_starts(&s, period, mixed, j);
-        rc = rc ? rc : starts;
+        rc = rc || j ? rc : starts;
         /* each image keeps to its own bank: PRU1 never waits for PRU0 */
         uint64_t stalls = pru_spad_collisions(bench_core(b[1]));
         if (j) {
@@ -196,7 +196,7 @@ int sim_pair(const struct sim_pair_run *r) {
             printf("scratch pad          PRU1 stalled %llu times on PRU0's bank\n",
                    (unsigned long long)stalls);
         }
-        rc = rc ? rc : stalls ? 5 : 0;
+        rc = rc || j ? rc : stalls ? 5 : 0;
     }
     free(s.t[0]);
     free(s.t[1]);

@@ -35,7 +35,8 @@ struct sim_pair_run {
  * printed), 2 (frames not done in time), 3 (a PRU fault), 5 (a frame check
  * failed, frame starts more than one PRU cycle apart, for a BiSS-C and an
  * SSI line their offset varying by more than one, or a bank collision;
- * with json, as a single run, a frame check does not change it). */
+ * with json none of these changes it, as in a single run: the object
+ * holds them). */
 int sim_pair(const struct sim_pair_run *r);
 
 #endif
