@@ -84,7 +84,7 @@ static const struct err_text errors[] = {
     {BISS_E_SAFETY_EW, "nE/nW check (a slave that never sets them): no such slave, or the "
                        "slave sends no nE/nW"},
     {BISS_E_IEP_OWNED, "the other PRU's channel owns the IEP (trigger iep): use iep-follow"},
-    {BISS_E_FW_PRU, "the running image was assembled for the other PRU (PRU0: biss_master, "
+    {BISS_E_FW_PRU, "the image was assembled for the other PRU (PRU0: biss_master, "
                     "PRU1: biss_master_pru1)"},
     {BISS_E_SAFETY_SPEED, "speed check (max_speed): no such slave in the chain, or the speed "
                           "is not a finite number above 0"},

@@ -47,6 +47,14 @@ int biss_proto_half_check(unsigned half);
 /* The same as a sentence, NULL when the firmware takes it. */
 const char *biss_proto_half_problem(unsigned half);
 
+/* ---- the firmware image (biss_image_pru.c) ---- */
+
+/* The PRU (0 or 1) a raw IRAM image was assembled for, from its words:
+ * the PRU_NUM its start-up stores to BISS_ST_PRU, followed through the
+ * straight-line code from address 0; -1 when the words do not tell (no
+ * such store before a branch, or its value not an LDI's). */
+int biss_image_pru(const void *image, size_t bytes);
+
 /* ---- the slave's data word (biss_layout.c) ---- */
 
 /* A BiSS slave's single-cycle data, MSB first on the wire: position, fill

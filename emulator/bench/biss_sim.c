@@ -541,6 +541,19 @@ static bool is_bin(const char *path) {
     return n >= 4 && !strcmp(path + n - 4, ".bin");
 }
 
+/* An image assembled for the other PRU (its words say so) is refused
+ * before it runs: started, it would point its private area at the shared
+ * block and say nothing (pru_fw/README.md, one image per PRU). */
+static bool wrong_pru(const char *path, const struct pruasm_image *img, unsigned pru) {
+    int built = biss_image_pru(img->words, img->nwords * 4);
+    if (built < 0 || (unsigned)built == pru) {
+        return false;
+    }
+    die("%s was assembled for PRU%d, not PRU%u (one image per PRU: %s)", path, built, pru,
+        pru ? "biss_master_pru1.bin" : "biss_master.bin");
+    return true;
+}
+
 /* The firmware source is assembled for the PRU it runs on (PRU_NUM). */
 static void pru_num_define(unsigned pru, struct sim_defines *d) {
     snprintf(d->text[d->n++], sizeof d->text[0], "PRU_NUM=%u", pru);
@@ -587,6 +600,12 @@ static int run_pair(const struct options *o, const struct bench_config *cfg, uns
                 pruasm_image_free(&img[0]);
             }
             return die("%s", err);
+        }
+        if (wrong_pru(path[i], &img[i], i)) {
+            for (unsigned k = 0; k <= i; k++) {
+                pruasm_image_free(&img[k]);
+            }
+            return 1;
         }
         r.image[i] = img[i].words;
         r.bytes[i] = img[i].nwords * 4;
@@ -650,6 +669,11 @@ static int run(const struct options *o) {
     if (sim_load_image(path, &defs, &img, err, sizeof(err)) != 0) {
         bench_free(b);
         return die("%s", err);
+    }
+    if (fw_mode && wrong_pru(path, &img, o->pru)) {
+        pruasm_image_free(&img);
+        bench_free(b);
+        return 1;
     }
     if ((fw_mode ? bench_fw_start(b, img.words, img.nwords * 4)
                  : bench_start_image(b, img.words, img.nwords * 4)) != 0) {

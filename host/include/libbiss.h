@@ -110,7 +110,8 @@ enum biss_error {
                                  that sends no nE/nW */
     /* two channels on one PRU-ICSS */
     BISS_E_IEP_OWNED = -65,    /* trigger iep: the other PRU's channel owns the IEP */
-    BISS_E_FW_PRU = -66,       /* the running image was assembled for the other PRU */
+    BISS_E_FW_PRU = -66,       /* the image (its words, or the running one's BISS_ST_PRU) was
+                                  assembled for the other PRU */
     BISS_E_SAFETY_SPEED = -67, /* speed check (max_speed) on a slave outside the chain, a
                                   speed outside 1e-9..1e18, or on a trigger with no time
                                   base (iep-follow without the owner's period) */

@@ -214,8 +214,15 @@ check(r.returncode == 0 and r.stdout.count("0 CRC errors, 0 position mismatches"
 # PRU0's image on PRU1: it says so (BISS_ST_PRU), and biss-sim does too
 PRU0_IMAGE = os.path.join(os.path.dirname(SIM), "..", "..", "pru_fw", "biss_master.bin")
 r = run("--pru", "1", "--firmware", PRU0_IMAGE, "--frames", "3")
-check(r.returncode == 1 and "was assembled for PRU0, not PRU1" in r.stderr,
+check(r.returncode == 1 and "was assembled for PRU0, not PRU1" in r.stderr and r.stdout == "",
       "PRU0's image on PRU1: %d %r" % (r.returncode, r.stderr))
+# both directions, refused from the image's words before it runs
+r = run("--firmware", PRU0_IMAGE.replace(".bin", "_pru1.bin"), "--frames", "3")
+check(r.returncode == 1 and "was assembled for PRU1, not PRU0" in r.stderr and r.stdout == "",
+      "PRU1's image on PRU0: %d %r %r" % (r.returncode, r.stdout, r.stderr))
+r = run("--pru1-profile", "generic", "--pru1-firmware", PRU0_IMAGE, "--frames", "3")
+check(r.returncode == 1 and "was assembled for PRU0, not PRU1" in r.stderr and r.stdout == "",
+      "pair, PRU0's image on PRU1: %d %r %r" % (r.returncode, r.stdout, r.stderr))
 for args, words in [(["--pru", "2"], "--pru: '2'"),
                     (["--pru1-profile", "generic", "--pru1-firmware", "/nonexistent.bin"],
                      "cannot read image '/nonexistent.bin'"),

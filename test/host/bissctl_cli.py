@@ -67,8 +67,14 @@ r = run("--pru", "1", "info")
 check(r.returncode == 0 and "/pru_fw/biss_master_pru1.bin\n" in r.stdout, "--pru 1 image: %r" % r.stdout)
 pru0_image = r.stdout.split("firmware=", 1)[1].split()[0].replace("_pru1.bin", ".bin")
 r = run("--pru", "1", "--firmware", pru0_image, "--freq", "10000000", "read", "-n", "1")
-check(r.returncode != 0 and "assembled for the other PRU" in r.stderr,
+check(r.returncode == 1 and "assembled for the other PRU" in r.stderr
+      and "assembled for PRU0, not PRU1" in r.stderr,
       "PRU0's image on PRU1: %d %r" % (r.returncode, r.stderr))
+# and PRU1's on PRU0, which once ran with NO_SLAVE forever: refused from
+# its words before it runs
+r = run("--firmware", pru0_image.replace(".bin", "_pru1.bin"), "read", "-n", "5")
+check(r.returncode == 1 and "assembled for PRU1, not PRU0" in r.stderr and r.stdout == "",
+      "PRU1's image on PRU0: %d %r %r" % (r.returncode, r.stdout, r.stderr))
 
 # host trigger: one frame per trigger
 r = run("--freq", "10000000", "--trigger", "host", "trigger")

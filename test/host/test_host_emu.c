@@ -438,6 +438,19 @@ START_TEST(test_emu_open_errors) {
     p.scenario_file = NULL;
     p.firmware = "/nonexistent.bin";
     ck_assert_int_eq(biss_emu_open(&p, &h), BISS_E_FIRMWARE_IO);
+    /* the other PRU's image, from its words, either way */
+    char why_pru[200];
+    p.errbuf = why_pru;
+    p.errbuf_len = sizeof why_pru;
+    p.firmware = BISS_BUILD_FIRMWARE_PRU1;
+    ck_assert_int_eq(biss_emu_open(&p, &h), BISS_E_FW_PRU);
+    ck_assert_ptr_nonnull(strstr(why_pru, "assembled for PRU1, not PRU0"));
+    p.firmware = BISS_BUILD_FIRMWARE;
+    p.pru = 1;
+    ck_assert_int_eq(biss_emu_open(&p, &h), BISS_E_FW_PRU);
+    ck_assert_ptr_nonnull(strstr(why_pru, "assembled for PRU0, not PRU1"));
+    p.pru = 0;
+    p.errbuf = NULL;
     /* the environment names the image when the params do not */
     p.firmware = NULL;
     setenv("BISS_FIRMWARE", "/nonexistent-env.bin", 1);
