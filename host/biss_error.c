@@ -74,7 +74,8 @@ static const struct err_text errors[] = {
     {BISS_E_SHM_VERSION, "the firmware's shared-memory version differs from this library's"},
     {BISS_E_FW_IMAGE, "the running firmware image is not the expected one (CRC-32 differs)"},
     {BISS_E_SHM_CONFIG, "the configuration block read back from data RAM is invalid"},
-    {BISS_E_SHM_RESULT, "a published result contradicts the configuration (junk in data RAM)"},
+    {BISS_E_SHM_RESULT, "data RAM holds a result or status word the firmware never writes "
+                        "(junk; biss_shm_problem names it)"},
     {BISS_E_SAFETY_LIFE, "life-counter check: no such slave, or a width outside 1..32 or wider "
                          "than the bits below nE/nW and the position"},
     {BISS_E_SAFETY_PAIR, "pair check: a slave outside the chain or paired with itself, too "

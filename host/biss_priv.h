@@ -75,6 +75,9 @@ struct biss {
     uint32_t cfg_pub_seq;
     bool cfg_pub_seq_valid;
     bool attached;
+    /* what the last BISS_E_SHM_RESULT refusal found in data RAM (a static
+     * text of biss_result_check.c), or NULL */
+    const char *problem;
     /* the safety checks over the frames this handle read (biss_safety.c) */
     struct biss_safety_state safety;
 };

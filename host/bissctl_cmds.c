@@ -10,6 +10,15 @@ int bissctl_fail(const char *what, int err) {
     return BISSCTL_FAIL;
 }
 
+/* The same, naming what data RAM held when the library refused it. */
+static int fail_h(biss_t *h, const char *what, int err) {
+    if (err != BISS_E_SHM_RESULT) {
+        return bissctl_fail(what, err);
+    }
+    fprintf(stderr, "bissctl: %s: %s: %s\n", what, biss_strerror(err), biss_shm_problem(h));
+    return BISSCTL_FAIL;
+}
+
 static void print_delay(const struct biss_line_delay *d) {
     printf("delay_bit8=%.1f delay_cycles=%.1f delay_ns=%.1f", d->bit8, d->cycles, d->ns);
 }
@@ -147,7 +156,7 @@ int bissctl_stats(biss_t *h, const struct bissctl_opts *o) {
     struct biss_stats st;
     int rc = biss_get_stats(h, &st);
     if (rc) {
-        return bissctl_fail("stats", rc);
+        return fail_h(h, "stats", rc);
     }
     print_stats(&st);
     return BISSCTL_OK;
@@ -157,7 +166,7 @@ int bissctl_info(biss_t *h, const struct bissctl_opts *o) {
     struct biss_status st;
     int rc = biss_get_status(h, &st);
     if (rc) {
-        return bissctl_fail("info", rc);
+        return fail_h(h, "info", rc);
     }
     printf("target=%s firmware=%s%s\n", biss_target_name(biss_target(h)),
            *biss_firmware_path(h) ? biss_firmware_path(h) : "(not known here)",
@@ -213,7 +222,7 @@ int bissctl_read(biss_t *h, const struct bissctl_opts *o) {
             if (o->json) {
                 printf("\n  ]\n}\n"); /* what was read stays valid JSON */
             }
-            return bissctl_fail("read", rc);
+            return fail_h(h, "read", rc);
         }
         if (o->json) {
             bissctl_json_frame(&s, layout ? &c : NULL, i == 0);

@@ -94,7 +94,7 @@ static bool words_right(struct fw_check *fc, const struct biss_sample *smp) {
 static void judge_refused(struct fw_check *fc, const struct biss_shm_result *res) {
     /* a refused frame is not VALID, so decode its words as if it were */
     struct biss_shm_result as_valid = *res;
-    as_valid.flags |= BISS_RF_VALID;
+    as_valid.flags = (as_valid.flags & ~(uint32_t)BISS_RF_ACK_JUMP) | BISS_RF_VALID;
     struct biss_sample smp;
     if (biss_sample_decode(&fc->cfg, true, 0, &as_valid, &smp) == BISS_OK &&
         words_right(fc, &smp)) {
@@ -179,6 +179,10 @@ static void on_publish(void *ctx, uint32_t addr) {
     struct biss_proto_io io = bench_fw_io(fc->b);
     struct biss_shm_result res;
     struct biss_sample smp;
+    uint32_t seq;
+    if (biss_proto_pub_seq(&io, &seq) == BISS_OK && seq == 0) {
+        return; /* the start-up clearing the status words: nothing published */
+    }
     if (biss_proto_result_get(&io, BISS_MAX_SLAVES, &res) != BISS_OK ||
         biss_sample_decode(&fc->cfg, true, 0, &res, &smp) != BISS_OK) {
         /* a result no firmware with this layout publishes is wrong too */

@@ -97,7 +97,9 @@ enum biss_error {
     BISS_E_SHM_VERSION = -57, /* the firmware speaks another BISS_SHM_VERSION */
     BISS_E_FW_IMAGE = -58,    /* the running image is not the expected one (CRC-32) */
     BISS_E_SHM_CONFIG = -59,  /* the configuration block in data RAM is invalid */
-    BISS_E_SHM_RESULT = -60,  /* a published result contradicts the configuration */
+    BISS_E_SHM_RESULT = -60,  /* a published result or a status word the firmware never
+                                 writes (or not with this configuration): named by
+                                 biss_shm_problem */
     /* safety checks (biss_config: life_check, pair) */
     BISS_E_SAFETY_LIFE = -61, /* life-counter check on no slave of the chain, or its width
                                  outside 1..32 or more than the bits below nE/nW and the
@@ -386,6 +388,13 @@ struct biss_sample {
     struct biss_slave_result slave[BISS_API_MAX_SLAVES];
     uint32_t safety; /* the slaves' BISS_SAFE_* or'ed */
 };
+
+/* What the handle's last BISS_E_SHM_RESULT found in data RAM, by name
+ * ("result flags: a combination the firmware never writes", "MA half
+ * period: ...", "sample point: not 0..7", ...); "" when none. Checked:
+ * every field of a published result and the status words, against what
+ * the firmware writes (proto/biss_result_check.c). */
+const char *biss_shm_problem(biss_t *h);
 
 /* The latest published frame, consistent (ST_SEQ/ST_BUF protocol). */
 int biss_read_sample(biss_t *h, struct biss_sample *s);

@@ -220,6 +220,26 @@ with tempfile.TemporaryDirectory() as tmp:
     wr(mem, BASE + 0x10, 0x000000c8)   # 200 data bits: once a shift by 200
     r = run(*dm, "--attach", "read", env=env)
     check(r.returncode == 1 and "bad slave data bits" in r.stderr, "junk slave: %r" % r.stderr)
+    wr(mem, BASE + 0x10, 0x0100060e)   # 14 data bits, CRC6, nE/nW at 0
+    wr(mem, BASE + 0x14, 0x00000003)   # 0x43
+    wr(mem, BASE + 0x100, 5)           # a publication: frame 5 ...
+    wr(mem, BASE + 0x104, 0x41)        # ... VALID with ACK_JUMP: never written so
+    wr(mem, BASE + 0x10C, 0x01000000)  # one slave
+    wr(mem, BASE + 0x114, 0x000a0307)  # H = 10, lag 3, sample point 7
+    wr(mem, BASE + 0x88, 0)            # ST_BUF
+    wr(mem, BASE + 0x84, 1)            # ST_SEQ
+    r = run(*dm, "--attach", "read", env=env)
+    check(r.returncode == 1 and "result flags: a combination the firmware never writes" in r.stderr
+          and "pos=" not in r.stdout, "junk flags: %r %r" % (r.stdout, r.stderr))
+    wr(mem, BASE + 0x104, 0x01)        # VALID ...
+    wr(mem, BASE + 0x114, 0x000a03ff)  # ... with sample point 255
+    r = run(*dm, "--attach", "read", env=env)
+    check(r.returncode == 1 and "sample point: not 0..7" in r.stderr, "junk point: %r" % r.stderr)
+    wr(mem, BASE + 0x114, 0x000a0307)
+    wr(mem, BASE + 0x94, 7)            # ST_STATE
+    r = run(*dm, "--attach", "stats", env=env)
+    check(r.returncode == 1 and "ST_STATE" in r.stderr, "junk state: %r" % r.stderr)
+    wr(mem, BASE + 0x94, 1)
     wr(mem, BASE + 0xFE4, 99)          # another BISS_SHM_VERSION
     r = run(*dm, "--attach", "stats", env=env)
     check(r.returncode == 1 and "BISS_SHM_VERSION 99" in r.stderr, "version: %r" % r.stderr)

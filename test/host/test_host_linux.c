@@ -400,6 +400,39 @@ START_TEST(test_virtual_board) {
     uint32_t word = file32(res + (BISS_R_NSLAVES & ~3u));
     file_write32(res + (BISS_R_NSLAVES & ~3u), (word & 0x00ffffffu) | 200u << 24);
     ck_assert_int_eq(biss_read_sample(h2, &s), BISS_E_SHM_RESULT);
+    ck_assert_str_eq(biss_shm_problem(h2), "slave count: not the configuration's");
+    file_write32(res + (BISS_R_NSLAVES & ~3u), word);
+    ck_assert_int_eq(biss_read_sample(h2, &s), BISS_OK);
+    /* fields the firmware never writes so, each refused by name: VALID
+     * with ACK_JUMP, all flags, half periods 0 and 0xffff, sample point
+     * 255, lag 255 at 5 MHz (the firmware waits 204 periods at most) */
+    uint32_t sp = file32(res + BISS_R_SAMPLE_POINT); /* point, lag, half */
+    struct {
+        off_t at;
+        uint32_t val;
+        const char *field;
+    } bad[] = {
+        {res + BISS_R_FLAGS, BISS_RF_VALID | BISS_RF_ACK_JUMP, "result flags"},
+        {res + BISS_R_FLAGS, 0xffffffffu, "result flags"},
+        {res + BISS_R_SAMPLE_POINT, sp & 0x0000ffffu, "MA half period"},
+        {res + BISS_R_SAMPLE_POINT, sp | 0xffff0000u, "MA half period"},
+        {res + BISS_R_SAMPLE_POINT, (sp & ~0xffu) | 0xffu, "sample point"},
+        {res + BISS_R_SAMPLE_POINT, (sp & ~0xff00u) | 0xff00u, "lag"},
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        uint32_t keep = file32(bad[i].at);
+        file_write32(bad[i].at, bad[i].val);
+        ck_assert_int_eq(biss_read_sample(h2, &s), BISS_E_SHM_RESULT);
+        ck_assert_msg(strstr(biss_shm_problem(h2), bad[i].field), "%zu: %s", i,
+                      biss_shm_problem(h2));
+        file_write32(bad[i].at, keep);
+    }
+    ck_assert_int_eq(biss_read_sample(h2, &s), BISS_OK);
+    file_write32(AM335X_BASE + BISS_ST_STATE, 9);
+    ck_assert_int_eq(biss_get_status(h2, &status), BISS_E_SHM_RESULT);
+    ck_assert_ptr_nonnull(strstr(biss_shm_problem(h2), "ST_STATE"));
+    ck_assert_int_eq(biss_get_stats(h2, &st), BISS_E_SHM_RESULT);
+    file_write32(AM335X_BASE + BISS_ST_STATE, BISS_STATE_RUNNING);
     file_write32(AM335X_BASE + BISS_ST_BUF, 7);
     ck_assert_int_eq(biss_read_sample(h2, &s), BISS_E_SHM_RESULT);
     biss_close(h2);
