@@ -144,7 +144,10 @@ for args, text in [(["--freq", "3000000", "read"], "not 100 MHz divided by a who
                    (["--profile", "nope", "info"], "unknown emulator profile"),
                    (["--firmware", "/nonexistent.bin", "info"], "firmware image cannot be read"),
                    (["--target", "am335x", "--devmem", "/nonexistent", "--slave", "14,6,0x43,0",
-                     "info"], "/nonexistent: No such file or directory (errno 2)")]:
+                     "info"], "/nonexistent: No such file or directory (errno 2)"),
+                   # no PRU-ICSS memory there (its mapping was a bus error)
+                   (["--target", "am335x", "--loader", "devmem", "--devmem", "/dev/zero",
+                     "--slave", "14,6,0x43,0", "info"], "/dev/zero is not /dev/mem")]:
     r = run(*args)
     check(r.returncode == 1 and text in r.stderr, "%r: rc %d %r" % (args, r.returncode, r.stderr))
 

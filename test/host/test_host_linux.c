@@ -474,6 +474,38 @@ START_TEST(test_am437x_bases_and_iram_sizes) {
 }
 END_TEST
 
+/* A file standing in for /dev/mem truncated under a reader: every access
+ * an I/O error, no bus error (a mapping of the file would raise SIGBUS
+ * past its new end); and a device that is no memory (/dev/zero, whose
+ * shared mapping ends at its own length) is refused when opened. */
+START_TEST(test_memory_gone_under_a_reader) {
+    make_devmem(AM335X_BASE + WINDOW);
+    make_image(64);
+    struct biss_open_params p = params(BISS_TARGET_AM335X);
+    biss_t *h;
+    ck_assert_int_eq(biss_open(&p, &h), BISS_OK);
+    ck_assert_int_eq(truncate(devmem, AM335X_BASE), 0);
+    struct biss_sample s;
+    struct biss_status st;
+    struct biss_stats stats;
+    ck_assert_int_eq(biss_read_sample(h, &s), BISS_E_IO);
+    ck_assert_int_eq(biss_get_status(h, &st), BISS_E_IO);
+    ck_assert_int_eq(biss_get_stats(h, &stats), BISS_E_IO);
+    struct biss_config c = one_slave();
+    ck_assert_int_eq(biss_configure(h, &c), BISS_E_IO);
+    biss_close(h);
+    char err[256];
+    p.errbuf = err;
+    p.errbuf_len = sizeof err;
+    p.devmem = "/dev/zero";
+    ck_assert_int_eq(biss_open(&p, &h), BISS_E_DEVMEM);
+    ck_assert_msg(strstr(err, "/dev/zero is not /dev/mem"), "%s", err);
+    p.devmem = "/tmp"; /* a directory */
+    ck_assert_int_eq(biss_open(&p, &h), BISS_E_DEVMEM);
+    cleanup();
+}
+END_TEST
+
 START_TEST(test_open_errors) {
     make_devmem(AM335X_BASE + WINDOW);
     biss_t *h;
@@ -567,6 +599,7 @@ int main(void) {
     tcase_add_test(tc, test_virtual_board);
     tcase_add_test(tc, test_am437x_bases_and_iram_sizes);
     tcase_add_test(tc, test_open_errors);
+    tcase_add_test(tc, test_memory_gone_under_a_reader);
     suite_add_tcase(s, tc);
     return check_run(s);
 }
