@@ -2,8 +2,10 @@
  * the wire, its identification registers, and the options to read it. */
 #include "biss_probe.h"
 #include "bissctl.h"
+#include "safe_file.h"
 
 #include <errno.h>
+#include <limits.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -92,15 +94,9 @@ static void print_reg_layout(const struct biss_probe_report *r) {
 }
 
 static int write_scenario(const char *path, const char *json) {
-    FILE *f = fopen(path, "w");
-    if (!f) {
-        fprintf(stderr, "bissctl: %s: %s\n", path, strerror(errno));
-        return BISSCTL_FAIL;
-    }
-    int bad = fputs(json, f) < 0;
-    bad |= fclose(f) != 0;
-    if (bad) {
-        fprintf(stderr, "bissctl: %s: write failed\n", path);
+    char err[PATH_MAX + 128];
+    if (safe_file_write(path, json, strlen(json), err, sizeof err) != 0) {
+        fprintf(stderr, "bissctl: %s\n", err);
         return BISSCTL_FAIL;
     }
     printf("scenario written to %s (biss-sim --scenario %s)\n", path, path);

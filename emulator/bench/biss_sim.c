@@ -679,7 +679,7 @@ static int run(const struct options *o) {
                  : bench_start_image(b, img.words, img.nwords * 4)) != 0) {
         rc = die("image of %zu words does not fit the IRAM of %s", img.nwords, o->soc);
     } else if (o->vcd && bench_open_vcd(b, o->vcd, o->vcd_unit_ps) != 0) {
-        rc = die("cannot write '%s'", o->vcd);
+        rc = die("cannot write the VCD: %s", bench_vcd_error(b));
     }
     struct fw_check fc;
     if (rc == 0 && fw_mode) {
@@ -751,7 +751,7 @@ static int run(const struct options *o) {
         rc = die("%s", err);
     }
     if (bench_close_vcd(b) != 0) {
-        rc = die("error writing '%s'", o->vcd);
+        rc = die("error writing the VCD: %s", bench_vcd_error(b));
     }
     if (o->json) {
         sim_print_json(&res);

@@ -6,6 +6,7 @@
 #include "svg_scope.h"
 
 #include <cjson/cJSON.h>
+#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -571,8 +572,9 @@ int sim_write_svg(const struct sim_result *r, const char *path, uint64_t k, char
         v.notes = notes;
         v.nnotes = firmware_notes(r, notes, 1 + BISS_MAX_SLAVES);
     }
-    if (svg_scope_write(path, &v) != 0) {
-        snprintf(err, errlen, "cannot write '%s'", path);
+    char why[PATH_MAX + 128];
+    if (svg_scope_write(path, &v, why, sizeof why) != 0) {
+        snprintf(err, errlen, "cannot write the SVG: %s", why);
         return -1;
     }
     return 0;
