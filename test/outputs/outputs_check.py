@@ -118,8 +118,10 @@ with tempfile.TemporaryDirectory() as tmp:
         reader = threading.Thread(target=lambda: got.append(open(fifo, "rb").read()))
         reader.start()
         r = run(fifo)
-        if r.returncode != 0:  # the reader still waits for a writer
-            open(fifo, "wb").close()
+        try:  # a reader still waiting for a writer (the tool never opened it)
+            os.close(os.open(fifo, os.O_WRONLY | os.O_NONBLOCK))
+        except OSError:
+            pass  # ENXIO: the reader is gone, it saw the tool's end
         reader.join(timeout=60)
         check(kind(fifo)[0] == stat.S_IFIFO and (r.returncode == 0) == piped and
               (not piped or (got and len(got[0]) > 0)),
