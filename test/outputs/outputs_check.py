@@ -80,7 +80,7 @@ with tempfile.TemporaryDirectory() as tmp:
             f.write("keep\n")
         os.symlink(victim, out + ".tmp")
         r = run(out)
-        check(r.returncode == 0 and open(victim).read() == "keep\n",
+        check(r.returncode == 0 and open(victim, "rb").read() == b"keep\n",
               "%s: OUT.tmp followed: %r" % (name, r.stderr[-300:]))
         # a link to a file: the file replaced, the link kept
         real, link = os.path.join(d, "real" + ext), os.path.join(d, "link" + ext)
