@@ -115,7 +115,7 @@ with tempfile.TemporaryDirectory() as tmp:
         fifo = os.path.join(d, "fifo" + ext)
         os.mkfifo(fifo)
         got = []
-        reader = threading.Thread(target=lambda: got.append(open(fifo, "rb").read()))
+        reader = threading.Thread(target=lambda: got.append(open(fifo, "rb").read()), daemon=True)
         reader.start()
         r = run(fifo)
         try:  # a reader still waiting for a writer (the tool never opened it)
