@@ -54,10 +54,13 @@ struct lnx {
     size_t map_len;
     off_t base; /* the PRU-ICSS's address in the file */
     int fd;
-    int lock_fd;
-    bool shared;  /* the lock is shared (attached) */
-    bool rproc;   /* remoteproc loader */
-    bool started; /* this handle started the instance: close stops it */
+    off_t pru_lock; /* the PRU's lock: its data RAM's address (biss_lock.h) */
+    off_t iep_lock; /* the IEP's: its address */
+    char path[PATH_MAX];
+    char what[64]; /* "PRU0 of the PRU-ICSS at 0x4a300000" */
+    bool shared;   /* the lock is shared (attached) */
+    bool rproc;    /* remoteproc loader */
+    bool started;  /* this handle started the instance: close stops it */
     char dir[PATH_MAX];
     char fw_name[256];
 };
@@ -146,11 +149,22 @@ static int lnx_exclusive(void *ctx) {
     if (!l->shared) {
         return BISS_OK;
     }
-    int rc = biss_lock_upgrade(l->lock_fd, NULL);
+    /* in place: refused, the shared lock stays */
+    int rc = biss_lock_take(l->fd, l->pru_lock, false, l->path, l->what, NULL);
     if (!rc) {
         l->shared = false;
     }
     return rc;
+}
+
+/* The IEP's lock, for the exchange that decides who owns it (biss_priv.h). */
+static int lnx_iep_lock(void *ctx, bool take, unsigned timeout_ms) {
+    struct lnx *l = ctx;
+    if (!take) {
+        biss_lock_drop(l->fd, l->iep_lock);
+        return BISS_OK;
+    }
+    return biss_lock_wait(l->fd, l->iep_lock, l->path, "the PRU-ICSS's IEP", timeout_ms, NULL);
 }
 
 /* ---- remoteproc: the kernel loads, starts and stops ------------------- */
@@ -200,10 +214,7 @@ static void lnx_close(void *ctx) {
         munmap((void *)l->map, l->map_len);
     }
     if (l->fd >= 0) {
-        close(l->fd);
-    }
-    if (l->lock_fd >= 0) {
-        close(l->lock_fd); /* releases the flock */
+        close(l->fd); /* releases the locks */
     }
     free(l);
 }
@@ -215,6 +226,7 @@ static const struct biss_backend_ops devmem_ops = {
     .now_us = lnx_now_us,
     .close = lnx_close,
     .exclusive = lnx_exclusive,
+    .iep_lock = lnx_iep_lock,
     .poll_us = 50,
     .advance_sleeps = 1,
 };
@@ -226,6 +238,7 @@ static const struct biss_backend_ops rproc_ops = {
     .now_us = lnx_now_us,
     .close = lnx_close,
     .exclusive = lnx_exclusive,
+    .iep_lock = lnx_iep_lock,
     .pru_halt = rproc_halt,
     .pru_start = rproc_start,
     .pru_enabled = rproc_enabled,
@@ -371,13 +384,16 @@ static int open_mem(struct lnx *l, const struct biss_soc_icss *s, const struct b
                         "for it: no PRU-ICSS memory there",
                         path);
     }
-    /* one lock per PRU: the memory file and the PRU's data RAM address
-     * (for PRU0 the PRU-ICSS base) name it */
-    char key[96];
-    snprintf(key, sizeof key, "biss-%llx-%llx-%lx.lock", (unsigned long long)st.st_dev,
-             (unsigned long long)st.st_ino, (unsigned long)(s->base + ICSS_DRAM(p->pru)));
+    /* one lock per PRU, on the memory file itself at the PRU's data RAM
+     * (for PRU0 the PRU-ICSS base): every process that can reach the PRU
+     * agrees on it (biss_lock.h); and one at the IEP */
+    snprintf(l->path, sizeof l->path, "%s", path);
+    snprintf(l->what, sizeof l->what, "PRU%u of the PRU-ICSS at 0x%lx", p->pru,
+             (unsigned long)s->base);
+    l->pru_lock = (off_t)(s->base + ICSS_DRAM(p->pru));
+    l->iep_lock = (off_t)(s->base + PRUSS_OFS_IEP);
     l->shared = p->attach;
-    int rc = biss_lock_take(p->lock_dir, key, l->shared, &l->lock_fd, e);
+    int rc = biss_lock_take(l->fd, l->pru_lock, l->shared, path, l->what, e);
     if (!rc) {
         rc = check_powered(s, sysfs_root(p), l->fd, &st, path, e);
     }
@@ -426,7 +442,6 @@ int biss_linux_backend_open(const struct biss_open_params *p, struct biss_backen
         return BISS_E_NOMEM;
     }
     l->fd = -1;
-    l->lock_fd = -1;
     l->rproc = p->loader == BISS_LOADER_REMOTEPROC;
     struct biss_errbuf e = {p->errbuf, p->errbuf_len};
     rc = open_mem(l, &soc, p, &e);

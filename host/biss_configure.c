@@ -48,21 +48,22 @@ static int other_read(void *ctx, uint32_t off, void *buf, size_t n) {
     return h->be.ops->read(h->be.ctx, ICSS_DRAM(1u - h->be.pru) + off, buf, n);
 }
 
-/* Whether the other PRU's channel owns the IEP: its firmware runs with
- * the IEP trigger in force (acked and accepted), and *period_ns is its
- * period. Not when the other PRU cannot be read (not mapped) or runs
- * nothing. */
+/* Whether the other PRU's channel owns the IEP: its firmware runs (any
+ * state: without a slave it still resets the count) with the IEP trigger
+ * in its block, accepted or not yet looked at (a configuration in flight
+ * is taken as what it asks for), and *period_ns is its period. Not when
+ * the other PRU cannot be read (not mapped) or runs nothing. */
 static bool iep_owner(biss_t *h, uint32_t *period_ns) {
     struct biss_proto_io io = {.read = other_read, .ctx = h};
     struct biss_shm_status st;
     struct biss_shm_config blk;
     if (biss_proto_status_get(&io, &st) || st.magic != BISS_MAGIC ||
-        st.state != BISS_STATE_RUNNING || biss_proto_config_get(&io, &blk)) {
+        biss_proto_config_get(&io, &blk)) {
         return false;
     }
     *period_ns = blk.iep_period * 5u; /* 5 ns IEP counts */
-    return st.cfg_ack == blk.seq && st.cfg_error == BISS_CFGERR_NONE &&
-           blk.trigger == BISS_TRIGGER_IEP;
+    bool refused = st.cfg_ack == blk.seq && st.cfg_error != BISS_CFGERR_NONE;
+    return blk.seq != 0 && blk.trigger == BISS_TRIGGER_IEP && !refused;
 }
 
 static bool speed_checked(const struct biss_config *c) {
@@ -106,17 +107,39 @@ static int iep_as_needed(biss_t *h, struct biss_config *c) {
     return biss_config_check(c);
 }
 
+/* The configuration's exchange with the firmware (handle locked). */
+static int exchange(biss_t *h, struct biss_config *c);
+
+/* The IEP is one per PRU-ICSS: whether the other channel owns it is read
+ * and this channel's block written and acked under the IEP's lock, so two
+ * channels configured at once never both own it (the check apart from the
+ * write let both through). */
 static int configure_locked(biss_t *h, const struct biss_config *given) {
-    struct biss_config cfg = *given, *c = &cfg;
+    struct biss_config cfg = *given;
     int rc = biss_exclusive(h);
-    if (!rc) {
-        rc = iep_as_needed(h, c);
-    }
     if (rc) {
         return rc;
     }
+    bool locked = h->be.ops->iep_lock != NULL;
+    if (locked) {
+        rc = h->be.ops->iep_lock(h->be.ctx, true, h->timeout_ms);
+        if (rc) {
+            return rc;
+        }
+    }
+    rc = iep_as_needed(h, &cfg);
+    if (!rc) {
+        rc = exchange(h, &cfg);
+    }
+    if (locked) {
+        h->be.ops->iep_lock(h->be.ctx, false, 0);
+    }
+    return rc;
+}
+
+static int exchange(biss_t *h, struct biss_config *c) {
     uint32_t seq = next_seq(h->cfg_seq);
-    rc = write_block(h, c, seq);
+    int rc = write_block(h, c, seq);
     if (rc) {
         return rc;
     }

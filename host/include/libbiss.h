@@ -167,8 +167,9 @@ struct biss_open_params {
      * pruss driver). firmware_dir: NULL "/lib/firmware". rproc_firmware:
      * the name written to the instance's firmware file (NULL: the name the
      * kernel's device tree gives that PRU, e.g. "am335x-pru0-fw").
-     * lock_dir: where the per-PRU lock file lives (NULL: $BISS_LOCK_DIR,
-     * else /run/lock when writable, else /tmp). */
+     * lock_dir: not used (kept for compatibility): the per-PRU and IEP
+     * locks are on the memory file itself, at the PRU's data RAM and the
+     * IEP, so every process agrees on them whatever its environment. */
     const char *sysfs_root;
     const char *firmware_dir;
     const char *rproc_firmware;

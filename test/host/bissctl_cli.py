@@ -208,6 +208,13 @@ with tempfile.TemporaryDirectory() as tmp:
     r = run(*dm, "--slave", "14,6,0x43,0,0", "--freq", "10000000", "info", env=env)
     check(r.returncode == 1 and ("pid %d" % holder.pid) in r.stderr and "in use" in r.stderr,
           "second process: %r" % r.stderr)
+    # whatever its environment: one lock per PRU, on the memory file, and
+    # the holder named with its command
+    other_env = dict(os.environ, BISS_LOCK_DIR=os.path.join(tmp, "elsewhere"))
+    r = run(*dm, "--slave", "14,6,0x43,0,0", "--freq", "10000000", "info", env=other_env)
+    check(r.returncode == 1 and ("pid %d (bissctl)" % holder.pid) in r.stderr
+          and "PRU0 of the PRU-ICSS at 0x4a300000" in r.stderr,
+          "second process, another BISS_LOCK_DIR: %r" % r.stderr)
     r = run(*dm, "stats", env=env)  # another reader shares it
     check(r.returncode == 0 and "frames=1234" in r.stdout, "shared reader: %r" % r.stderr)
     holder.wait(timeout=30)
