@@ -259,12 +259,15 @@ struct biss_slave_config {
      * wrong, e.g. one place off after a clock the master never made: the
      * frame is not valid (BISS_SAFE_POS_JUMP, biss_sample misframed).
      * Distances are modulo 2^pos_bits (a wrap is no jump). The time comes
-     * from the frames' IEP timestamps (free-run, host trigger: frames read
-     * at most 21 s apart, the count's wrap, and no other channel of the
-     * PRU-ICSS on the IEP trigger, which restarts the count) or from the
-     * frame numbers times
-     * iep_period_ns (IEP trigger; iep-follow with iep_period_ns set, else
-     * no check). 0 = off. */
+     * from the frames' IEP timestamps (free-run, host trigger: a count that
+     * went backwards, frames more than 10.7 s apart or the count restarted,
+     * tells no time and the position is refused, not passed unjudged) or
+     * from the frame numbers times iep_period_ns (IEP trigger; iep-follow:
+     * the owning channel's period, which biss_configure reads from it).
+     * Configured on a trigger with no time (iep-follow with no owner and no
+     * period; host or free-run while the other channel's IEP trigger
+     * restarts the count), it is refused (BISS_E_SAFETY_SPEED). 0 = off;
+     * else 1e-9..1e18 (biss/biss_rules.h). */
     double max_speed;
 };
 
