@@ -274,7 +274,10 @@ static int rproc_prepare(struct lnx *l, const struct biss_soc_icss *s,
     if (rc) {
         return rc;
     }
-    const char *own = p->pru ? s->fw_name1 : s->fw_name;
+    /* The ELF by its own name (pru_fw/CMakeLists.txt installs it in
+     * /lib/firmware), not by the name the kernel's device tree gives the
+     * PRU (s->fw_name), which may be another firmware's. */
+    const char *own = p->pru ? "biss_master_pru1.elf" : "biss_master.elf";
     snprintf(l->fw_name, sizeof l->fw_name, "%s",
              p->rproc_firmware && *p->rproc_firmware ? p->rproc_firmware : own);
     char state[32], fw[256];
@@ -306,8 +309,8 @@ static int rproc_prepare(struct lnx *l, const struct biss_soc_icss *s,
     if (access(fwpath, R_OK) != 0) {
         int err = errno;
         return biss_err(e, BISS_E_FIRMWARE_IO,
-                        "%s: %s (errno %d): install biss_master.elf under "
-                        "that name (docs/hardware.md)",
+                        "%s: %s (errno %d): install the firmware (the "
+                        "pru-biss-firmware package, or cmake --install; docs/hardware.md)",
                         fwpath, strerror(err), err);
     }
     return BISS_OK;

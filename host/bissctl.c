@@ -138,6 +138,12 @@ int main(int argc, char **argv) {
     if (rc) {
         return rc;
     }
+    if (*biss_image_unchecked(h)) { /* the running image is whatever it is: say so */
+        fprintf(stderr,
+                "bissctl: cannot check the running image: %s; install the firmware "
+                "(docs/hardware.md) or name its image with --firmware\n",
+                biss_image_unchecked(h));
+    }
     rc = cmd->configure ? apply_config(h, &o) : BISSCTL_OK;
     if (rc == BISSCTL_OK) {
         rc = cmd->run(h, &o);
