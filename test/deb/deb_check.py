@@ -117,7 +117,7 @@ def unpacked(deb_dir):
         ctl = os.path.join(root, "usr", "bin", "bissctl")
         fw = os.path.join(root, "lib", "firmware", "biss_master.bin")
         r = run(ctl, "--target", "emu", "info")
-        check(r.returncode == 0 and "firmware=%s\n" % fw in r.stdout,
+        check(r.returncode == 0 and re.search(r"firmware=%s(\s|$)" % re.escape(fw), r.stdout),
               "bissctl finds the unpacked firmware: %r %r" % (r.stdout, r.stderr))
         r = run(ctl, "--target", "emu", "read", "-n", "5")
         frames = re.findall(r"^frame=(\d+) ", r.stdout, re.M)
