@@ -16,6 +16,7 @@ packages=(
     gcc-arm-linux-gnueabihf libc6-dev-armhf-cross # the board's ARM build (crt1.o: the latter)
     qemu-user                                     # runs the ARM build on the PC
     sigrok-cli gtkwave                            # the VCD clients the tests open the bench's VCD with
+    systemd                                       # systemd-analyze verifies the service unit (board_flow)
     help2man                                      # the manual pages
     dpkg-dev lintian                              # the Debian packages (scripts/build-debs, test/deb)
 )
