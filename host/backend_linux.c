@@ -61,6 +61,7 @@ struct lnx {
     bool shared;   /* the lock is shared (attached) */
     bool rproc;    /* remoteproc loader */
     bool started;  /* this handle started the instance: close stops it */
+    bool keep;     /* ... unless it is to keep running (biss_leave_running) */
     char dir[PATH_MAX];
     char fw_name[256];
 };
@@ -205,9 +206,14 @@ static int rproc_enabled(void *ctx, bool *on) {
     return rc;
 }
 
+static void rproc_leave_running(void *ctx) {
+    struct lnx *l = ctx;
+    l->keep = true;
+}
+
 static void lnx_close(void *ctx) {
     struct lnx *l = ctx;
-    if (l->started) {
+    if (l->started && !l->keep) {
         biss_rproc_set(l->dir, "state", "stop", NULL);
     }
     if (l->map) {
@@ -242,6 +248,7 @@ static const struct biss_backend_ops rproc_ops = {
     .pru_halt = rproc_halt,
     .pru_start = rproc_start,
     .pru_enabled = rproc_enabled,
+    .leave_running = rproc_leave_running,
     .poll_us = 50,
     .advance_sleeps = 1,
 };
@@ -257,7 +264,7 @@ static int file_covers(const struct stat *st, off_t end) {
     return !S_ISREG(st->st_mode) || st->st_size >= end;
 }
 
-static int clock_on(const struct biss_soc_icss *s, uint32_t v, const char *path, const char *drv,
+static int clock_on(const struct biss_soc_icss *s, uint32_t v, const char *path, const char *sysfs,
                     struct biss_errbuf *e);
 
 /* The pruss driver bound (it keeps the module powered), or else the PRCM
@@ -281,7 +288,7 @@ static int check_powered(const struct biss_soc_icss *s, const char *sysfs, int f
                             "and %s does not exist: cannot tell that the PRU-ICSS is powered",
                             path, (unsigned long)s->clkctrl, drv);
         }
-        return clock_on(s, v, path, drv, e);
+        return clock_on(s, v, path, sysfs, e);
     }
     void *m = mmap(NULL, (size_t)page, PROT_READ, MAP_SHARED, fd, at);
     if (m == MAP_FAILED) {
@@ -294,34 +301,38 @@ static int check_powered(const struct biss_soc_icss *s, const char *sysfs, int f
     }
     v = *(volatile uint32_t *)((volatile uint8_t *)m + (s->clkctrl - at));
     munmap(m, (size_t)page);
-    return clock_on(s, v, path, drv, e);
+    return clock_on(s, v, path, sysfs, e);
 }
 
 /* CM_PER_PRU_ICSS_CLKCTRL = v: enabled and functional, or why not. */
-static int clock_on(const struct biss_soc_icss *s, uint32_t v, const char *path, const char *drv,
+static int clock_on(const struct biss_soc_icss *s, uint32_t v, const char *path, const char *sysfs,
                     struct biss_errbuf *e) {
     unsigned mode = v & 3u, idlest = (v >> 16) & 3u;
     if (mode == 2 && idlest == 0) {
         return BISS_OK;
     }
+    char hint[1200];
+    biss_rproc_diagnose(sysfs, (unsigned long)s->base, hint, sizeof hint);
     return biss_err(e, BISS_E_NOT_POWERED,
                     "%s: CM_PER_PRU_ICSS_CLKCTRL (0x%lx) = 0x%08x "
-                    "(MODULEMODE %u, IDLEST %u: not enabled) and no pruss driver bound (%s): "
-                    "enable the PRU-ICSS in the device tree (boards/ overlays) and load the pruss "
-                    "driver (modprobe pruss)",
-                    path, (unsigned long)s->clkctrl, v, mode, idlest, drv);
+                    "(MODULEMODE %u, IDLEST %u: not enabled), so touching the PRU-ICSS would be a "
+                    "bus error%s",
+                    path, (unsigned long)s->clkctrl, v, mode, idlest, hint);
 }
 
 /* Remoteproc: the instance, not running someone else's firmware. */
 static int rproc_prepare(struct lnx *l, const struct biss_soc_icss *s,
                          const struct biss_open_params *p, struct biss_errbuf *e) {
     /* pru_rproc names an instance after its PRU's IRAM */
-    int rc =
-        biss_rproc_find(sysfs_root(p), s->iram_phys + ICSS_IRAM(p->pru) - ICSS_IRAM0, l->dir, e);
+    int rc = biss_rproc_find(sysfs_root(p), (unsigned long)s->base,
+                             s->iram_phys + ICSS_IRAM(p->pru) - ICSS_IRAM0, l->dir, e);
     if (rc) {
         return rc;
     }
-    const char *own = p->pru ? s->fw_name1 : s->fw_name;
+    /* The ELF by its own name (pru_fw/CMakeLists.txt installs it in
+     * /lib/firmware), not by the name the kernel's device tree gives the
+     * PRU (s->fw_name), which may be another firmware's. */
+    const char *own = p->pru ? "biss_master_pru1.elf" : "biss_master.elf";
     snprintf(l->fw_name, sizeof l->fw_name, "%s",
              p->rproc_firmware && *p->rproc_firmware ? p->rproc_firmware : own);
     char state[32], fw[256];
@@ -353,8 +364,8 @@ static int rproc_prepare(struct lnx *l, const struct biss_soc_icss *s,
     if (access(fwpath, R_OK) != 0) {
         int err = errno;
         return biss_err(e, BISS_E_FIRMWARE_IO,
-                        "%s: %s (errno %d): install biss_master.elf under "
-                        "that name (docs/hardware.md)",
+                        "%s: %s (errno %d): install the firmware (the "
+                        "pru-biss-firmware package, or cmake --install; docs/hardware.md)",
                         fwpath, strerror(err), err);
     }
     return BISS_OK;

@@ -43,6 +43,8 @@ struct biss_backend_ops {
     int (*pru_halt)(void *ctx);
     int (*pru_start)(void *ctx);
     int (*pru_enabled)(void *ctx, bool *on);
+    /* Optional: close leaves what this handle started running. */
+    void (*leave_running)(void *ctx);
     /* How long one advance() step of a wait is, microseconds. */
     unsigned poll_us;
     /* advance() only sleeps: the handle is unlocked around it so other
@@ -68,6 +70,8 @@ struct biss {
     struct biss_backend be;
     unsigned timeout_ms;
     char firmware[512];
+    /* why the running image was not compared with an image file, or "" */
+    char unchecked[640];
     uint8_t *image; /* kept for biss_start's restart */
     size_t image_bytes;
     bool configured;
