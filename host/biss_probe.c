@@ -284,16 +284,17 @@ int biss_probe(biss_t *h, const struct biss_probe_params *p, struct biss_probe_r
 }
 
 /* A scenario biss-sim and bissctl --scenario accept: the generic profile
- * with the slaves the wire showed (a life counter below nE/nW; the speed is
- * a choice, so that positions move). */
+ * with the slaves the wire showed, every field the analysis found (a life
+ * counter at the LSB, nE/nW above it or not; the speed is a choice, so that
+ * positions move). */
 int biss_probe_to_json(const struct biss_probe_layout *l, char *buf, size_t size) {
     size_t used = 0;
     int n = snprintf(buf, size, "{\n  \"profile\": \"generic\",\n  \"biss\": {\n    \"slaves\": [");
     for (unsigned i = 0; n >= 0 && i < l->nslaves; i++) {
         used += (size_t)n;
         const struct biss_probe_slave *s = &l->slave[i];
-        unsigned lc = s->has_ew ? s->ew_shift : 0;
-        unsigned pos = s->data_bits - (s->has_ew ? 2 + lc : 0);
+        unsigned lc = s->lc_bits;
+        unsigned pos = s->data_bits - lc - (s->has_ew ? 2 : 0);
         n = snprintf(buf + used, used < size ? size - used : 0,
                      "%s\n      { \"position_bits\": %u, \"error_bit\": %s, \"warning_bit\": %s, "
                      "\"life_counter_bits\": %u, \"crc_poly\": \"0x%X\", \"crc_start\": \"0x%X\", "

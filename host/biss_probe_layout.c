@@ -19,7 +19,7 @@
  * d in one pass. Survivors are checked on every frame (the support: frames
  * whose K is the most common one). A chain is a sequence of such slaves
  * ending where the frame ends. */
-#include "biss_probe.h"
+#include "biss_probe_priv.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -77,17 +77,8 @@ struct ctx {
     struct biss_probe_layout cur;
 };
 
-static inline int bit_at(const struct biss_probe_frames *f, unsigned i, unsigned p) {
-    return f->bits[(size_t)i * f->nbits + 1 + p] & 1;
-}
-
-static uint64_t word_at(const struct biss_probe_frames *f, unsigned i, unsigned p, unsigned n) {
-    uint64_t w = 0;
-    for (unsigned k = 0; k < n; k++) {
-        w = w << 1 | (uint64_t)bit_at(f, i, p + k);
-    }
-    return w;
-}
+#define bit_at  probe_bit
+#define word_at probe_word
 
 static inline uint32_t crc_step(uint32_t reg, uint32_t low, unsigned c, int bit) {
     uint32_t fb = ((reg >> (c - 1)) & 1u) ^ (uint32_t)bit;
@@ -525,7 +516,7 @@ static bool count_layouts(struct ctx *x, double *total) {
     return first_alone;
 }
 
-/* ---- per slave: evidence, life counter, nE/nW ---------------------------- */
+/* ---- per slave: evidence ------------------------------------------------- */
 
 /* Distinct data words and the rank (over GF(2)) of their differences. */
 static void evidence(const struct biss_probe_frames *f, unsigned o, unsigned d, unsigned *rank,
@@ -557,55 +548,6 @@ static void evidence(const struct biss_probe_frames *f, unsigned o, unsigned d, 
         *distinct += v[i] != v[i - 1];
     }
     free(v);
-}
-
-/* The widest k (< data_bits - 2) whose low k bits step by the frame-number
- * difference in (98 % of) the pairs of successive frames: a life counter. Its full
- * width shows once its top bit has moved (2^(k-1) frames). */
-static unsigned life_counter(const struct biss_probe_frames *f, const struct biss_probe_slave *s) {
-    if (f->nframes < 4 || s->data_bits < 4) {
-        return 0;
-    }
-    unsigned kmax = s->data_bits - 3 < 32 ? s->data_bits - 3 : 32;
-    for (unsigned k = kmax; k >= 1; k--) {
-        uint64_t m = (1ull << k) - 1u;
-        bool top_moves = false;
-        unsigned bad = 0;
-        for (unsigned i = 1; i < f->nframes; i++) {
-            uint64_t a = word_at(f, i - 1, s->offset, s->data_bits);
-            uint64_t b = word_at(f, i, s->offset, s->data_bits);
-            uint64_t step = f->frame_no ? (uint64_t)(f->frame_no[i] - f->frame_no[i - 1]) : 1u;
-            bad += step == 0 || ((b - a) & m) != (step & m);
-            top_moves |= ((a ^ b) >> (k - 1) & 1u) != 0;
-        }
-        /* a counter's top bit must move, or constant bits above it (nE, nW)
-         * would pass as counter bits until it wraps */
-        /* 2 % of the pairs may be hit by noise */
-        if ((uint64_t)bad * 50 <= f->nframes - 1 && top_moves) {
-            return k;
-        }
-    }
-    return 0;
-}
-
-/* nE/nW are active low: flags that are (nearly) always 1. A bit that never
- * changes is indistinguishable from an idle flag, so this is a proposal. */
-static void flags(const struct biss_probe_frames *f, struct biss_probe_slave *s) {
-    s->lc_bits = life_counter(f, s);
-    unsigned sh = s->lc_bits;
-    if (s->data_bits < sh + 3) {
-        return;
-    }
-    unsigned ones_e = 0, ones_w = 0;
-    for (unsigned i = 0; i < f->nframes; i++) {
-        uint64_t w = word_at(f, i, s->offset, s->data_bits);
-        ones_w += (unsigned)(w >> sh & 1u);
-        ones_e += (unsigned)(w >> (sh + 1) & 1u);
-    }
-    unsigned lo = ones_e < ones_w ? ones_e : ones_w;
-    s->ew_ones_pct = (unsigned)((uint64_t)lo * 100 / f->nframes);
-    s->has_ew = s->ew_ones_pct >= 90;
-    s->ew_shift = s->has_ew ? sh : 0;
 }
 
 /* ---- verdict --------------------------------------------------------------- */
@@ -694,7 +636,7 @@ static void verdict(struct ctx *x) {
     }
     if (r->nlayouts == 1) {
         r->verdict = BISS_PROBE_UNIQUE;
-        snprintf(r->reason, sizeof r->reason, "one layout fits %u of %u frames%s", a->support,
+        snprintf(r->reason, sizeof r->reason, "one layout fits %u of %u frames%s", a->good,
                  r->frames, cut);
         return;
     }
@@ -719,6 +661,28 @@ static void verdict(struct ctx *x) {
              "%u layouts fit and the frames cannot tell them apart (evidence: %u independent "
              "differences; more frames with more motion help)%s",
              r->nlayouts, rank, cut);
+}
+
+/* A split the CRCs settle with fields inside it the frames do not (a life
+ * counter that may be wider) is not unique or best. */
+static void settle_fields(struct biss_probe_result *r) {
+    if (r->verdict != BISS_PROBE_UNIQUE && r->verdict != BISS_PROBE_BEST) {
+        return;
+    }
+    const struct biss_probe_layout *a = &r->layout[0];
+    for (unsigned i = 0; i < a->nslaves; i++) {
+        const struct biss_probe_slave *s = &a->slave[i];
+        if (s->lc_open) {
+            r->verdict = BISS_PROBE_AMBIGUOUS;
+            snprintf(r->reason, sizeof r->reason,
+                     "the CRCs settle the split (%u layout%s fit), but slave %u's life counter "
+                     "may be wider than the %u bits that counted: it never wrapped and bit %u "
+                     "above it never changed (the counter's top, nE/nW or fill alike; more "
+                     "frames show more of it)",
+                     r->nlayouts, r->nlayouts == 1 ? "" : "s", i, s->lc_bits, s->lc_bits);
+            return;
+        }
+    }
 }
 
 static unsigned frame_end(const struct biss_probe_frames *f) {
@@ -758,12 +722,21 @@ static int search(const struct biss_probe_frames *f, unsigned end, unsigned ref,
         return BISS_E_NOMEM;
     }
     walk(&x, 0);
+    uint8_t *good = malloc(f->nframes);
+    if (!good) {
+        free(x.cache);
+        return BISS_E_NOMEM;
+    }
     for (unsigned i = 0; i < r->nkept; i++) {
-        for (unsigned s = 0; s < r->layout[i].nslaves; s++) {
-            flags(f, &r->layout[i].slave[s]);
+        struct biss_probe_layout *l = &r->layout[i];
+        l->good = biss_probe_good_frames(f, l, good);
+        for (unsigned s = 0; s < l->nslaves; s++) {
+            biss_probe_fields(f, good, &l->slave[s]);
         }
     }
+    free(good);
     verdict(&x);
+    settle_fields(r);
     if (x.set_aside) {
         size_t len = strlen(r->reason);
         snprintf(r->reason + len, sizeof r->reason - len,
@@ -923,6 +896,8 @@ void biss_probe_layout_config(const struct biss_probe_layout *l, struct biss_con
             .crc_start = s->crc_start,
             .has_ew = s->has_ew,
             .ew_shift = s->has_ew ? s->ew_shift : 0,
+            /* a counter without nE/nW: the position is the bits above it */
+            .pos_bits = !s->has_ew && s->lc_bits ? s->data_bits - s->lc_bits : 0,
         };
     }
 }

@@ -39,7 +39,8 @@ static const char common_help[] =
     "  --slave D,C,POLY,START[,EW[,POS]]\n"
     "                     one slave (repeat, nearest first): data bits, CRC bits,\n"
     "                     CRC polynomial with its top term (0x43), CRC start, nW bit\n"
-    "                     (if the slave has nE/nW), position bits\n"
+    "                     (if the slave has nE/nW; - if not), position bits (at the\n"
+    "                     top of the word; default all above nE/nW, or the whole word)\n"
     "  --ssi BITS[,gray]  an SSI encoder instead: its word length, Gray-coded or not\n"
     "  --ssi-delay-ns NS  SSI: the line's round trip (no ACK to measure it by)\n"
     "  --trigger MODE     host, iep, iep-follow, free (default free); iep-follow: the\n"
@@ -192,7 +193,7 @@ int bissctl_parse_byte(const char *s, unsigned max, uint8_t *v) {
     return 0;
 }
 
-/* D,C,POLY,START[,EW[,POS]] */
+/* D,C,POLY,START[,EW[,POS]]; EW "-": no nE/nW (a POS may follow) */
 static int parse_slave(const char *arg, struct biss_slave_config *s) {
     char buf[128];
     if (snprintf(buf, sizeof buf, "%s", arg) >= (int)sizeof buf) {
@@ -200,14 +201,20 @@ static int parse_slave(const char *arg, struct biss_slave_config *s) {
     }
     uint32_t f[6];
     int n = 0;
+    bool no_ew = false;
     for (char *save = NULL, *tok = strtok_r(buf, ",", &save); tok;
          tok = strtok_r(NULL, ",", &save)) {
+        if (n == 4 && strcmp(tok, "-") == 0) {
+            no_ew = true;
+            f[n++] = 0;
+            continue;
+        }
         if (n == 6 || parse_u32(tok, &f[n])) {
             return -1;
         }
         n++;
     }
-    if (n < 4) {
+    if (n < 4 || (no_ew && n == 5)) {
         return -1;
     }
     *s = (struct biss_slave_config){
@@ -215,7 +222,7 @@ static int parse_slave(const char *arg, struct biss_slave_config *s) {
         .crc_bits = f[1],
         .crc_poly = f[2],
         .crc_start = f[3],
-        .has_ew = n >= 5,
+        .has_ew = n >= 5 && !no_ew,
         .ew_shift = n >= 5 ? f[4] : 0,
         .pos_bits = n >= 6 ? f[5] : 0,
     };

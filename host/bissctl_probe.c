@@ -23,11 +23,15 @@ static void print_slave(unsigned i, const struct biss_probe_slave *s, unsigned f
         printf("; no nE/nW (the two bits were 1 in %u%% of frames)", s->ew_ones_pct);
     }
     if (s->lc_bits) {
-        printf("; %u-bit life counter", s->lc_bits);
+        printf("; %u-bit life counter%s", s->lc_bits,
+               s->lc_open ? " (or wider: it never wrapped)" : "");
     }
     printf("\n");
 }
 
+/* The layout as options: every field found. nE/nW's bit (the position is
+ * above them), or "-" and the position's width above a counter without
+ * them; a counter is checked (--check-life), which also names it. */
 static void print_slave_opts(const struct biss_probe_layout *l) {
     printf("options:");
     for (unsigned i = 0; i < l->nslaves; i++) {
@@ -35,6 +39,13 @@ static void print_slave_opts(const struct biss_probe_layout *l) {
         printf(" --slave %u,%u,0x%X,0x%X", s->data_bits, s->crc_bits, s->crc_poly, s->crc_start);
         if (s->has_ew) {
             printf(",%u", s->ew_shift);
+        } else if (s->lc_bits) {
+            printf(",-,%u", s->data_bits - s->lc_bits);
+        }
+    }
+    for (unsigned i = 0; i < l->nslaves; i++) {
+        if (l->slave[i].lc_bits) {
+            printf(" --check-life %u,%u", i, l->slave[i].lc_bits);
         }
     }
     printf("\n");

@@ -56,12 +56,17 @@ struct biss_probe_slave {
     unsigned distinct;  /* different data words among the frames */
     unsigned rank;      /* linearly independent data differences (the evidence) */
     unsigned crc_stuck; /* CRC bits that never changed */
-    /* nE/nW proposed: the two bits above a life counter of lc_bits (0: the
-     * two bits before the CRC) were 1 in ew_ones_pct % of the frames */
+    /* Judged on the good frames (every CRC of the layout fits): */
+    unsigned lc_bits; /* low bits that counted +1 per frame (0: none) */
+    /* The counter may be wider than lc_bits: it never wrapped and the bit
+     * above it never changed (its top, nE/nW or fill: the frames cannot
+     * tell). The layout is then ambiguous. */
+    bool lc_open;
+    /* nE/nW proposed: the two bits above the life counter (0: the two bits
+     * before the CRC) were 1 in ew_ones_pct % of the frames */
     bool has_ew;
     unsigned ew_shift; /* = lc_bits */
     unsigned ew_ones_pct;
-    unsigned lc_bits; /* low bits that counted +1 per frame (0: none) */
 };
 
 struct biss_probe_layout {
@@ -73,6 +78,7 @@ struct biss_probe_layout {
      * polynomial of its width fits one difference, so it proves nothing */
     bool weak;
     unsigned crc_stuck; /* its slaves' CRC bits that never changed: ranked last */
+    unsigned good;      /* frames every slave's CRC fits; the others are set aside */
 };
 
 enum biss_probe_verdict {
