@@ -19,6 +19,24 @@ static inline uint64_t probe_word(const struct biss_probe_frames *f, unsigned i,
     return w;
 }
 
+/* The limits of one analysis, over all its searches. */
+struct probe_budget {
+    uint64_t work, limit;
+    uint64_t next_look; /* work at which the clock is read next */
+    double start_s, deadline_s, next_report_s;
+    enum biss_probe_stop ran_out;
+    const struct biss_probe_limits *lim;
+    unsigned offsets_searched, end_bit; /* for the progress report */
+};
+
+/* Starts a budget at start_s (probe_now_s()) with lim's limits or the
+ * defaults (lim NULL). */
+void probe_budget_init(struct probe_budget *b, const struct biss_probe_limits *lim, double start_s);
+double probe_now_s(void);
+/* Spends w steps; true once a limit is reached (and from then on). */
+bool probe_budget_spend(struct probe_budget *b, uint64_t w);
+unsigned probe_budget_elapsed_ms(const struct probe_budget *b);
+
 /* The frames whose every slave's CRC fits layout l (good[i] = 1): the ones
  * its fields are judged on. Returns how many. */
 unsigned biss_probe_good_frames(const struct biss_probe_frames *f,

@@ -12,12 +12,14 @@
 struct bissctl_opts {
     struct biss_open_params open;
     struct biss_config cfg;
-    bool slaves_given; /* --slave: layout from the command line, not the profile */
-    bool config_given; /* any configuration option */
-    bool no_configure; /* --no-configure: use what the firmware runs */
-    bool dump;         /* reg-read --dump: a hex dump */
-    bool ida_test;     /* command --ida-test: withhold the command unless IDA = IDS */
-    bool json;         /* read --json: one JSON object */
+    bool slaves_given;      /* --slave: layout from the command line, not the profile */
+    bool config_given;      /* any configuration option */
+    bool no_configure;      /* --no-configure: use what the firmware runs */
+    bool dump;              /* reg-read --dump: a hex dump */
+    bool ida_test;          /* command --ida-test: withhold the command unless IDA = IDS */
+    bool json;              /* read --json: one JSON object */
+    bool force;             /* command --force: send a command that changes how an encoder works */
+    unsigned time_limit_ms; /* probe --time-limit (0: the library's default) */
     const char *command;
     unsigned count;      /* read -n */
     unsigned run_ms;     /* run --ms */

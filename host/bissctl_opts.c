@@ -113,13 +113,18 @@ static const char *command_help(const char *command) {
                "  the command unless they equal IDS (exit status 1, 'withheld').\n";
     }
     if (strcmp(command, "probe") == 0) {
-        return "bissctl [options] probe [-n N] [FILE.json]\n"
+        return "bissctl [options] probe [-n N] [--time-limit S] [FILE.json]\n"
                "  Finds an unknown encoder's layout: captures N raw frames (default 1024) in\n"
                "  a capture layout (8 x 64 bits, no CRC), finds where the data ends and\n"
-               "  which data + CRC split (3..16 bits, any polynomial and start) fits every\n"
-               "  frame, per slave of a chain; proposes nE/nW and life counters; reads the\n"
-               "  identification registers (0x78..0x7F, 0x41..0x47). Prints the candidates\n"
-               "  with a verdict, a --slave line and a scenario for biss-sim (into FILE).\n"
+               "  which data + CRC split (3..16 bits, any polynomial and start) fits the\n"
+               "  frames, per slave of a chain; on the frames every CRC fits (the others\n"
+               "  are set aside as noise, and counted) it finds life counters and nE/nW;\n"
+               "  reads the identification registers (0x78..0x7F, 0x41..0x47). Prints the\n"
+               "  candidates with a verdict, a --slave line and a scenario for biss-sim\n"
+               "  (into FILE). The whole probe stops after S seconds (default 60; a\n"
+               "  decimal fraction allowed), the search also after a fixed amount of work\n"
+               "  (the same on every machine); a search stopped early is reported, never\n"
+               "  unique. Progress goes to stderr about once a second on a long search.\n"
                "  Exit status 1 when it cannot decide or the result is ambiguous.\n";
     }
     if (strcmp(command, "reg-write") == 0) {
@@ -140,7 +145,7 @@ void bissctl_usage(const char *command) {
            "BiSS-C master on a PRU (emulated or real) through libbiss.\n"
            "Commands: info, read [-n N], stats, run [--ms MS], trigger, start, stop,\n"
            "          reg-read ADDR [-n N], reg-write ADDR BYTE..., command IDS CMD,\n"
-           "          probe [-n N] [FILE.json]\n"
+           "          probe [-n N] [--time-limit S] [FILE.json]\n"
            "          (also spelt reg read, reg write, cmd; bissctl COMMAND --help for each)\n\n%s",
            common_help);
 }
@@ -261,6 +266,8 @@ enum {
     OPT_FWDIR,
     OPT_RPROC_FW,
     OPT_PRU,
+    OPT_FORCE,
+    OPT_TIME_LIMIT,
 };
 
 static const struct option long_opts[] = {
@@ -295,6 +302,8 @@ static const struct option long_opts[] = {
     {"firmware-dir", required_argument, NULL, OPT_FWDIR},
     {"rproc-firmware", required_argument, NULL, OPT_RPROC_FW},
     {"pru", required_argument, NULL, OPT_PRU},
+    {"force", no_argument, NULL, OPT_FORCE},
+    {"time-limit", required_argument, NULL, OPT_TIME_LIMIT},
     {"help", no_argument, NULL, 'h'},
     {NULL, 0, NULL, 0},
 };
@@ -307,6 +316,18 @@ static int parse_cable(const char *arg, double *m) {
         return -1;
     }
     *m = v;
+    return 0;
+}
+
+/* Seconds (a decimal fraction allowed) as ms, 1 ms .. a day. */
+static int parse_seconds(const char *arg, unsigned *ms) {
+    char *end;
+    errno = 0;
+    double v = strtod(arg, &end);
+    if (errno || *end || end == arg || !(v >= 0.001 && v <= 86400)) {
+        return -1;
+    }
+    *ms = (unsigned)(v * 1000.0 + 0.5);
     return 0;
 }
 
@@ -500,6 +521,13 @@ static int take_command_opt(int c, const char *arg, struct bissctl_opts *o) {
     case OPT_JSON:
         o->json = true;
         return 0;
+    case OPT_FORCE:
+        o->force = true;
+        return 0;
+    case OPT_TIME_LIMIT:
+        return parse_seconds(arg, &o->time_limit_ms)
+                   ? usage_error("--time-limit '%s': expected seconds, 0.001..86400", arg)
+                   : 0;
     case 'h':
         o->help = true;
         return 0;

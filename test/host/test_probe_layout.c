@@ -11,6 +11,7 @@
 #include "scenario_json.h"
 
 #include "biss_crc.h"
+#include "test_rng.h"
 
 #include <check.h>
 #include <stdio.h>
@@ -21,13 +22,15 @@
 #define RANDOM_NBITS   (1 + 2 * 64) /* one slave: 80 bits at most, then zeros */
 #define NFRAMES        1024         /* the AD38's A/D word moves 1000 counts/s: it needs ~80 ms */
 #define RANDOM_LAYOUTS 240
+#define NOISY_LAYOUTS  60
 #define HALF           (50 * SIM_PS_PER_NS) /* 10 MHz */
 #define PERIOD         (80 * SIM_PS_PER_US)
 
 static bool last_lc_open; /* the last result's first layout had a counter that may be wider */
 
 static void print_result(const char *what, const struct biss_probe_result *r) {
-    printf("%s: %s (%s)", what, biss_probe_verdict_name(r->verdict), r->reason);
+    printf("%s: %s (%s) [%.3g steps, %u ms]", what, biss_probe_verdict_name(r->verdict), r->reason,
+           (double)r->work, r->elapsed_ms);
     for (unsigned k = 0; k < r->nkept && k < (r->verdict == BISS_PROBE_AMBIGUOUS ? 3u : 1u); k++) {
         const struct biss_probe_layout *l = &r->layout[k];
         printf(" #%u", k + 1);
@@ -192,6 +195,62 @@ START_TEST(long_chain) {
 }
 END_TEST
 
+/* Frames hit by noise: in `permille` of the frames, one of a glitch's
+ * marks (drawn per frame): one to three flipped bits anywhere in the frame
+ * or after it, or the frame read one bit late from a point on (a clock the
+ * slave saw and the master did not). */
+static void corrupt(uint8_t *bits, unsigned nframes, unsigned nbits, unsigned permille,
+                    uint64_t *rng, unsigned *hit) {
+    *hit = 0;
+    for (unsigned i = 0; i < nframes; i++) {
+        if (test_rng_next(rng) % 1000 >= permille) {
+            continue;
+        }
+        (*hit)++;
+        uint8_t *b = bits + (size_t)i * nbits;
+        unsigned kind = test_rng_next(rng) % 4;
+        if (kind < 3) {
+            for (unsigned k = 0; k <= kind; k++) {
+                b[1 + test_rng_next(rng) % (nbits - 1)] ^= 1;
+            }
+        } else {
+            unsigned from = 1 + test_rng_next(rng) % (nbits - 2);
+            memmove(b + from + 1, b + from, nbits - from - 1);
+        }
+    }
+}
+
+/* Layouts from the documents with 1, 3 and 5 % of their frames hit by
+ * noise: decided on the good frames, the others set aside and counted. */
+START_TEST(noisy_frames) {
+    static const unsigned rates[] = {10, 30, 50};
+    uint64_t rng = 0xbadf4a3e5u, noise = 0x6e015eu;
+    unsigned n[4] = {0};
+    for (unsigned k = 0; k < NOISY_LAYOUTS; k++) {
+        biss_chain_cfg cfg;
+        char what[200];
+        probe_gen_layout(&rng, k, &cfg, what, sizeof what);
+        static uint8_t bits[NFRAMES * RANDOM_NBITS];
+        static uint32_t fno[NFRAMES];
+        ck_assert_int_eq(
+            probe_frames_from_model(&cfg, NFRAMES, RANDOM_NBITS, HALF, PERIOD, bits, fno), 0);
+        unsigned hit, rate = rates[k % 3];
+        corrupt(bits, NFRAMES, RANDOM_NBITS, rate, &noise, &hit);
+        struct biss_probe_frames f = {NFRAMES, RANDOM_NBITS, bits, fno};
+        static struct biss_probe_result r;
+        ck_assert_int_eq(biss_probe_analyse(&f, &r), 0);
+        char w2[260];
+        snprintf(w2, sizeof w2, "%s, %u frames hit (%.0f%%)", what, hit, rate / 10.0);
+        print_result(w2, &r);
+        enum probe_outcome o = probe_gen_judge(&r, &cfg);
+        ck_assert_msg(o != PROBE_WRONG, "%s: a wrong layout named", w2);
+        n[o]++;
+    }
+    printf("noisy frames: %u recovered, %u ambiguous, %u undecided, %u wrong\n", n[PROBE_RECOVERED],
+           n[PROBE_AMBIGUOUS_OK], n[PROBE_UNDECIDED], n[PROBE_WRONG]);
+}
+END_TEST
+
 /* What the analysis refuses to guess. */
 START_TEST(cannot_decide) {
     static uint8_t bits[8 * NBITS];
@@ -225,6 +284,7 @@ int main(void) {
     tcase_set_timeout(tc, 600);
     tcase_add_test(tc, every_profile);
     tcase_add_test(tc, random_layouts);
+    tcase_add_test(tc, noisy_frames);
     tcase_add_test(tc, long_chain);
     tcase_add_test(tc, cannot_decide);
     suite_add_tcase(s, tc);
