@@ -804,7 +804,7 @@ static void ran_out(struct ctx *x) {
     const struct probe_budget *b = x->b;
     char limit[96];
     if (b->ran_out == BISS_PROBE_RAN_OUT_TIME) {
-        snprintf(limit, sizeof limit, "the time limit (%.1f s)", b->deadline_s - b->start_s);
+        snprintf(limit, sizeof limit, "the time limit");
     } else {
         snprintf(limit, sizeof limit, "the work limit (%.3g steps)", (double)b->limit);
     }

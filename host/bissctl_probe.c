@@ -143,13 +143,18 @@ static void progress(void *ctx, const struct biss_probe_progress *p) {
 }
 
 /* What the analysis cost, and what stopped it if anything did. */
-static void print_cost(const struct biss_probe_report *r) {
+static void print_cost(const struct biss_probe_report *r, unsigned limit_ms) {
     const struct biss_probe_result *w = &r->wire;
-    printf("analysis: %.2f s, %.3g steps%s%s\n", w->elapsed_ms / 1000.0, (double)w->work,
-           w->ran_out == BISS_PROBE_RAN_OUT_WORK   ? " (stopped at the work limit)"
-           : w->ran_out == BISS_PROBE_RAN_OUT_TIME ? " (stopped at the time limit)"
-                                                   : "",
-           r->capture_cut ? "; the time limit ended the capture" : "");
+    printf("analysis: %.2f s, %.3g steps", w->elapsed_ms / 1000.0, (double)w->work);
+    if (w->ran_out == BISS_PROBE_RAN_OUT_WORK) {
+        printf(" (stopped at the work limit, %.3g steps)", (double)BISS_PROBE_WORK_LIMIT);
+    } else if (w->ran_out == BISS_PROBE_RAN_OUT_TIME) {
+        printf(" (stopped at the time limit, %.3g s)", limit_ms / 1000.0);
+    }
+    if (r->capture_cut) {
+        printf("; the time limit (%.3g s) ended the capture", limit_ms / 1000.0);
+    }
+    printf("\n");
 }
 
 int bissctl_probe(biss_t *h, const struct bissctl_opts *o) {
@@ -174,7 +179,7 @@ int bissctl_probe(biss_t *h, const struct bissctl_opts *o) {
            "after the CDS\n",
            w->frames + r.no_slave + r.invalid, r.no_slave, r.invalid, w->frames, w->end_bit);
     printf("line delay %.0f ns, processing time up to %u MA clocks\n", r.delay_ns, r.busy_max);
-    print_cost(&r);
+    print_cost(&r, o->time_limit_ms ? o->time_limit_ms : BISS_PROBE_TIME_LIMIT_MS);
     printf("verdict: %s: %s\n", biss_probe_verdict_name(w->verdict), w->reason);
     if (w->verdict != BISS_PROBE_NONE && w->nkept && w->dropped) {
         printf("set aside as noise: %u of %u frames (the CRCs of candidate 1 fail them); nE/nW "

@@ -71,4 +71,18 @@ with tempfile.TemporaryDirectory() as tmp:
     with open(again) as f:
         check(json.load(f)["biss"]["slaves"][0] == s0, "round trip scenario")
 
+# the time limit: a 547-bit chain (a second or so of search) stopped at
+# 0.2 s says so and decides nothing; bad values are usage errors
+LONG = os.path.join(HERE, "scenarios", "long-chain-547.json")
+r = run(CTL, "--scenario", LONG, *FREQ, "probe", "--time-limit", "0.2")
+check(r.returncode == 1 and "stopped at the time limit" in r.stdout
+      and re.search(r"^verdict: (cannot decide|ambiguous): ", r.stdout, re.M)
+      and "options:" not in r.stdout.split("verdict:")[0],
+      "--time-limit 0.2: %d %r" % (r.returncode, r.stdout))
+for bad in ["0", "abc", "-1", "1e9"]:
+    r = run(CTL, "probe", "--time-limit", bad)
+    check(r.returncode == 2 and "--time-limit" in r.stderr, "--time-limit %s: %d %r" % (bad, r.returncode, r.stderr))
+r = run(CTL, "probe", "--help")
+check(r.returncode == 0 and "--time-limit S" in r.stdout and "default 60" in r.stdout, "probe --help: %r" % r.stdout)
+
 finish("probe_cli")

@@ -251,6 +251,110 @@ START_TEST(noisy_frames) {
 }
 END_TEST
 
+/* Garbage a line may carry, or a fuzzer: each frame `nbits` long (the
+ * CDS first). kind 0: one period-5 pattern, shifted by 3 bits a frame;
+ * 1: the low bit of a xorshift (a linear recurrence, as a CRC is); 2: a
+ * pattern whose period grows with the frame; 3: bytes of a nonlinear
+ * generator (test_rng). The last bit of each frame is 0, so the frame ends
+ * inside the capture. */
+static void garbage(uint8_t *bits, unsigned nframes, unsigned nbits, unsigned kind) {
+    uint64_t x = 12345, rng = 0x9a5b4e;
+    for (unsigned i = 0; i < nframes; i++) {
+        for (unsigned k = 0; k + 1 < nbits; k++) {
+            unsigned v;
+            if (kind == 0) {
+                v = (k * 7 + i * 3) % 5 < 2;
+            } else if (kind == 1) {
+                x ^= x << 13;
+                x ^= x >> 7;
+                x ^= x << 17;
+                v = x & 1u;
+            } else if (kind == 2) {
+                v = (k + i) % (3 + i % 4) == 0;
+            } else {
+                v = test_rng_next(&rng) & 1u;
+            }
+            bits[(size_t)i * nbits + k] = (uint8_t)v;
+        }
+        bits[(size_t)i * nbits + nbits - 1] = 0;
+    }
+}
+
+static unsigned progress_calls;
+static void count_progress(void *ctx, const struct biss_probe_progress *p) {
+    (void)ctx;
+    ck_assert_uint_le(p->work, p->work_limit);
+    ck_assert_uint_le(p->offsets_searched, p->end_bit);
+    progress_calls++;
+}
+
+/* The most one step of the search adds past a limit (a whole capture read
+ * once: 4096 frames of 641 bits). */
+#define OVERSHOOT ((uint64_t)BISS_PROBE_MAX_FRAMES * BISS_PROBE_MAX_BITS)
+
+/* Adversarial frames that ran for minutes before the search had limits
+ * (14 frames of period-5 garbage, 514 bits: over 5 minutes; 2 of them:
+ * 9.7 s): with the default limits the search stops at its work limit,
+ * reports progress on the way, and names nothing unique or best; the
+ * verdict says what stopped it. */
+START_TEST(garbage_default_limits) {
+    static uint8_t bits[14 * 514];
+    garbage(bits, 14, 514, 0);
+    struct biss_probe_frames f = {14, 514, bits, NULL};
+    struct biss_probe_limits lim = {.progress = count_progress};
+    static struct biss_probe_result r;
+    progress_calls = 0;
+    ck_assert_int_eq(biss_probe_analyse_limited(&f, &lim, &r), 0);
+    print_result("14 frames of period-5 garbage", &r);
+    ck_assert_int_eq(r.ran_out, BISS_PROBE_RAN_OUT_WORK);
+    ck_assert_uint_ge(r.work, BISS_PROBE_WORK_LIMIT);
+    ck_assert_uint_le(r.work, BISS_PROBE_WORK_LIMIT + OVERSHOOT);
+    ck_assert(r.verdict == BISS_PROBE_NONE || r.verdict == BISS_PROBE_AMBIGUOUS);
+    ck_assert_ptr_nonnull(strstr(r.reason, "stopped at the work limit"));
+    ck_assert_uint_gt(progress_calls, 0); /* 5e9 steps take seconds anywhere */
+}
+END_TEST
+
+/* Every kind of garbage, from 2 frames to the most a capture holds, under
+ * a small work limit: the limit holds on each, and a verdict of unique or
+ * best comes only from frames a layout really fits (kinds 0 and 1 are
+ * linear, as CRCs are: some fit). A 1 ms time limit stops the search by
+ * the clock. */
+START_TEST(garbage_bounded) {
+    static const unsigned counts[] = {2, 14, 200, BISS_PROBE_MAX_FRAMES};
+    static uint8_t bits[BISS_PROBE_MAX_FRAMES * BISS_PROBE_MAX_BITS];
+    static struct biss_probe_result r;
+    for (unsigned kind = 0; kind < 4; kind++) {
+        for (unsigned c = 0; c < 4; c++) {
+            unsigned nbits = c == 3 ? BISS_PROBE_MAX_BITS : 514;
+            garbage(bits, counts[c], nbits, kind);
+            struct biss_probe_frames f = {counts[c], nbits, bits, NULL};
+            struct biss_probe_limits lim = {.work_limit = 200000000};
+            ck_assert_int_eq(biss_probe_analyse_limited(&f, &lim, &r), 0);
+            char what[64];
+            snprintf(what, sizeof what, "garbage kind %u, %u frames", kind, counts[c]);
+            print_result(what, &r);
+            ck_assert_uint_le(r.work, lim.work_limit + OVERSHOOT);
+            ck_assert(r.ran_out == BISS_PROBE_RAN_OUT_NONE || r.verdict == BISS_PROBE_NONE ||
+                      r.verdict == BISS_PROBE_AMBIGUOUS);
+            if (kind >= 2) {
+                ck_assert(r.verdict == BISS_PROBE_NONE || r.verdict == BISS_PROBE_AMBIGUOUS);
+            }
+            for (unsigned k = 0; r.verdict <= BISS_PROBE_BEST && k < r.layout[0].nslaves; k++) {
+                ck_assert_uint_ge(r.layout[0].good * 1000u, r.frames * 600u);
+            }
+        }
+    }
+    garbage(bits, 14, 514, 0);
+    struct biss_probe_frames f = {14, 514, bits, NULL};
+    struct biss_probe_limits lim = {.time_limit_ms = 1};
+    ck_assert_int_eq(biss_probe_analyse_limited(&f, &lim, &r), 0);
+    print_result("1 ms", &r);
+    ck_assert_int_eq(r.ran_out, BISS_PROBE_RAN_OUT_TIME);
+    ck_assert_ptr_nonnull(strstr(r.reason, "stopped at the time limit"));
+}
+END_TEST
+
 /* What the analysis refuses to guess. */
 START_TEST(cannot_decide) {
     static uint8_t bits[8 * NBITS];
@@ -288,5 +392,10 @@ int main(void) {
     tcase_add_test(tc, long_chain);
     tcase_add_test(tc, cannot_decide);
     suite_add_tcase(s, tc);
+    TCase *lim = tcase_create("limits");
+    tcase_set_timeout(lim, 600);
+    tcase_add_test(lim, garbage_default_limits);
+    tcase_add_test(lim, garbage_bounded);
+    suite_add_tcase(s, lim);
     return check_run(s);
 }
