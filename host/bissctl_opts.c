@@ -1,6 +1,8 @@
 /* bissctl_opts.c - bissctl's command line and help texts. */
 #include "bissctl.h"
 
+#include "biss_cd.h"
+
 #include <errno.h>
 #include <getopt.h>
 #include <stdio.h>
@@ -106,11 +108,14 @@ static const char *command_help(const char *command) {
                "  register, or with --dump a hex dump (16 a line, with ASCII).\n";
     }
     if (strcmp(command, "command") == 0) {
-        return "bissctl [options] command IDS CMD [--ida-test]\n"
+        return "bissctl [options] command IDS CMD [--ida-test] [--force]\n"
                "  Sends BiSS command CMD (0..3) to the slaves in the ID mask IDS (bit i =\n"
-               "  ID i; 0 = all, a broadcast without acknowledge); prints the IDA answers.\n"
-               "  --ida-test: the firmware checks them before the stop bit and withholds\n"
-               "  the command unless they equal IDS (exit status 1, 'withheld').\n";
+               "  ID i; 0 = all, a broadcast without acknowledge); prints what it does and\n"
+               "  the IDA answers. --ida-test: the firmware checks them before the execute\n"
+               "  bit and withholds the command unless they equal IDS (exit status 1,\n"
+               "  'withheld'). A command that changes how an encoder works (switches\n"
+               "  something off, bypass, reserved, the maker's own) is refused (exit\n"
+               "  status 2) unless --force is given. What each does:\n";
     }
     if (strcmp(command, "probe") == 0) {
         return "bissctl [options] probe [-n N] [--time-limit S] [FILE.json]\n"
@@ -135,16 +140,33 @@ static const char *command_help(const char *command) {
     return NULL;
 }
 
+/* The BiSS command table (proto/biss_cd_cmd.c) with its source. */
+static void print_command_table(void) {
+    for (int broadcast = 1; broadcast >= 0; broadcast--) {
+        for (unsigned cmd = 0; cmd < 4; cmd++) {
+            const biss_cd_cmd_info *c = biss_cd_cmd_effect(broadcast ? 0 : 1, cmd);
+            printf("    %s %u (%u%u): %s%s\n",
+                   broadcast ? "broadcast (IDS 0)" : "addressed        ", cmd, cmd >> 1, cmd & 1u,
+                   c->effect, c->changes_encoder ? " [--force]" : "");
+        }
+    }
+    printf("  Source: %s.\n", biss_cd_cmd_source);
+}
+
 void bissctl_usage(const char *command) {
     const char *h = command ? command_help(command) : NULL;
     if (h) {
-        printf("%s\n%s", h, common_help);
+        printf("%s", h);
+        if (strcmp(command, "command") == 0) {
+            print_command_table();
+        }
+        printf("\n%s", common_help);
         return;
     }
     printf("usage: bissctl [options] COMMAND [command options]\n"
            "BiSS-C master on a PRU (emulated or real) through libbiss.\n"
            "Commands: info, read [-n N], stats, run [--ms MS], trigger, start, stop,\n"
-           "          reg-read ADDR [-n N], reg-write ADDR BYTE..., command IDS CMD,\n"
+           "          reg-read ADDR [-n N], reg-write ADDR BYTE..., command IDS CMD [--force],\n"
            "          probe [-n N] [--time-limit S] [FILE.json]\n"
            "          (also spelt reg read, reg write, cmd; bissctl COMMAND --help for each)\n\n%s",
            common_help);
