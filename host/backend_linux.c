@@ -51,6 +51,7 @@ struct lnx {
     bool shared;  /* the lock is shared (attached) */
     bool rproc;   /* remoteproc loader */
     bool started; /* this handle started the instance: close stops it */
+    bool keep;    /* ... unless it is to keep running (biss_leave_running) */
     char dir[PATH_MAX];
     char fw_name[256];
 };
@@ -170,9 +171,14 @@ static int rproc_enabled(void *ctx, bool *on) {
     return rc;
 }
 
+static void rproc_leave_running(void *ctx) {
+    struct lnx *l = ctx;
+    l->keep = true;
+}
+
 static void lnx_close(void *ctx) {
     struct lnx *l = ctx;
-    if (l->started) {
+    if (l->started && !l->keep) {
         biss_rproc_set(l->dir, "state", "stop", NULL);
     }
     if (l->map) {
@@ -208,6 +214,7 @@ static const struct biss_backend_ops rproc_ops = {
     .pru_halt = rproc_halt,
     .pru_start = rproc_start,
     .pru_enabled = rproc_enabled,
+    .leave_running = rproc_leave_running,
     .poll_us = 50,
     .advance_sleeps = 1,
 };
@@ -257,20 +264,21 @@ static int check_powered(const struct biss_soc_icss *s, const char *sysfs, int f
     if (mode == 2 && idlest == 0) {
         return BISS_OK;
     }
+    char hint[1200];
+    biss_rproc_diagnose(sysfs, (unsigned long)s->base, hint, sizeof hint);
     return biss_err(e, BISS_E_NOT_POWERED,
                     "%s: CM_PER_PRU_ICSS_CLKCTRL (0x%lx) = 0x%08x "
-                    "(MODULEMODE %u, IDLEST %u: not enabled) and no pruss driver bound (%s): "
-                    "enable the PRU-ICSS in the device tree (boards/ overlays) and load the pruss "
-                    "driver (modprobe pruss)",
-                    path, (unsigned long)s->clkctrl, v, mode, idlest, drv);
+                    "(MODULEMODE %u, IDLEST %u: not enabled), so touching the PRU-ICSS would be a "
+                    "bus error%s",
+                    path, (unsigned long)s->clkctrl, v, mode, idlest, hint);
 }
 
 /* Remoteproc: the instance, not running someone else's firmware. */
 static int rproc_prepare(struct lnx *l, const struct biss_soc_icss *s,
                          const struct biss_open_params *p, struct biss_errbuf *e) {
     /* pru_rproc names an instance after its PRU's IRAM */
-    int rc =
-        biss_rproc_find(sysfs_root(p), s->iram_phys + ICSS_IRAM(p->pru) - ICSS_IRAM0, l->dir, e);
+    int rc = biss_rproc_find(sysfs_root(p), (unsigned long)s->base,
+                             s->iram_phys + ICSS_IRAM(p->pru) - ICSS_IRAM0, l->dir, e);
     if (rc) {
         return rc;
     }

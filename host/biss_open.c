@@ -334,6 +334,18 @@ void biss_op_end(biss_t *h) {
     pthread_mutex_unlock(&h->op_lock);
 }
 
+int biss_leave_running(biss_t *h) {
+    if (!h) {
+        return BISS_E_INVAL;
+    }
+    pthread_mutex_lock(&h->lock);
+    if (h->be.ops->leave_running) {
+        h->be.ops->leave_running(h->be.ctx);
+    }
+    pthread_mutex_unlock(&h->lock);
+    return BISS_OK;
+}
+
 void biss_close(biss_t *h) {
     if (!h) {
         return;

@@ -39,6 +39,8 @@ struct biss_backend_ops {
     int (*pru_halt)(void *ctx);
     int (*pru_start)(void *ctx);
     int (*pru_enabled)(void *ctx, bool *on);
+    /* Optional: close leaves what this handle started running. */
+    void (*leave_running)(void *ctx);
     /* How long one advance() step of a wait is, microseconds. */
     unsigned poll_us;
     /* advance() only sleeps: the handle is unlocked around it so other

@@ -78,7 +78,8 @@ static int open_failed(struct bissctl_opts *o, int rc) {
 static int open_target(struct bissctl_opts *o, const struct command *cmd, biss_t **h) {
     bool hw = o->open.target != BISS_TARGET_EMU;
     bool layout = o->slaves_given || o->no_configure;
-    if (hw && strcmp(cmd->name, "stop") == 0) {
+    bool stop = strcmp(cmd->name, "stop") == 0;
+    if (hw && stop) {
         o->open.attach = true;
     }
     if (hw && !o->open.attach && read_only(cmd->name) && !o->config_given) {
@@ -104,7 +105,25 @@ static int open_target(struct bissctl_opts *o, const struct command *cmd, biss_t
         return BISSCTL_USAGE;
     }
     int rc = biss_emu_open(&o->open, h);
+    if (rc == BISS_E_NOT_RUNNING && hw && stop) {
+        /* stopping a stopped master: done (a unit's ExecStop, a second stop) */
+        printf("stopped: nothing was running (%s)\n", o->errbuf);
+        *h = NULL;
+        return BISSCTL_OK;
+    }
     return rc ? open_failed(o, rc) : BISSCTL_OK;
+}
+
+/* --target not given: the emulator's own options mean the emulator, else
+ * the board bissctl runs on (bissctl_target.c). */
+static void default_target(struct bissctl_opts *o) {
+    if (o->target_given) {
+        return;
+    }
+    bool emu_options = (o->open.profile && *o->open.profile) ||
+                       (o->open.scenario_file && *o->open.scenario_file) || o->open.cable_m >= 0 ||
+                       o->open.set_seed;
+    o->open.target = emu_options ? BISS_TARGET_EMU : bissctl_default_target(o->open.sysfs_root);
 }
 
 int main(int argc, char **argv) {
@@ -122,6 +141,7 @@ int main(int argc, char **argv) {
         return BISSCTL_OK;
     }
     const struct command *cmd = find(o.command);
+    default_target(&o);
     /* catch a bad command line before touching the target */
     rc = bissctl_check_args(&o);
     if (rc) {
@@ -130,13 +150,20 @@ int main(int argc, char **argv) {
     if (cmd->configure && o.slaves_given && !o.no_configure) {
         int bad = biss_config_check(&o.cfg);
         if (bad) {
-            return bissctl_fail("configuration", bad);
+            char what[1100];
+            snprintf(what, sizeof what, "configuration%s%.1000s", o.config_file ? " in " : "",
+                     o.config_file ? o.config_file : "");
+            return bissctl_fail(what, bad);
         }
     }
     biss_t *h;
     rc = open_target(&o, cmd, &h);
-    if (rc) {
+    if (rc || !h) {
         return rc;
+    }
+    if (biss_target(h) == BISS_TARGET_EMU && !o.json) {
+        /* read --json says it in the object (bissctl_json.c) */
+        printf("%s\n", bissctl_emulated_note);
     }
     rc = cmd->configure ? apply_config(h, &o) : BISSCTL_OK;
     if (rc == BISSCTL_OK) {

@@ -12,14 +12,17 @@
 struct bissctl_opts {
     struct biss_open_params open;
     struct biss_config cfg;
-    bool slaves_given;      /* --slave: layout from the command line, not the profile */
-    bool config_given;      /* any configuration option */
-    bool no_configure;      /* --no-configure: use what the firmware runs */
-    bool dump;              /* reg-read --dump: a hex dump */
-    bool ida_test;          /* command --ida-test: withhold the command unless IDA = IDS */
-    bool json;              /* read --json: one JSON object */
-    bool force;             /* command --force: send a command that changes how an encoder works */
-    unsigned time_limit_ms; /* probe --time-limit (0: the library's default) */
+    bool slaves_given;       /* --slave: layout from the command line, not the profile */
+    bool slaves_from_file;   /* ... from --config's file (the command line's replace it) */
+    bool config_given;       /* any configuration option on the command line */
+    bool target_given;       /* --target (on the command line or in the file) */
+    const char *config_file; /* --config FILE */
+    bool no_configure;       /* --no-configure: use what the firmware runs */
+    bool dump;               /* reg-read --dump: a hex dump */
+    bool ida_test;           /* command --ida-test: withhold the command unless IDA = IDS */
+    bool json;               /* read --json: one JSON object */
+    bool force;              /* command --force: send a command that changes how an encoder works */
+    unsigned time_limit_ms;  /* probe --time-limit (0: the library's default) */
     const char *command;
     unsigned count;      /* read -n */
     unsigned run_ms;     /* run --ms */
@@ -31,7 +34,7 @@ struct bissctl_opts {
     bool attach_given;         /* --attach on the command line */
     struct biss_config checks; /* --check-life, --check-pair: only their fields, added to
                                   the layout (command line or profile) when it is known */
-    char errbuf[1024];         /* open's detail */
+    char errbuf[2048];         /* open's detail */
 };
 
 /* Exit codes */
@@ -43,6 +46,16 @@ struct bissctl_opts {
  * BISSCTL_USAGE, else BISSCTL_OK. */
 int bissctl_parse(int argc, char **argv, struct bissctl_opts *o);
 void bissctl_usage(const char *command);
+/* One option of a --config file, key as the long option without the dashes;
+ * at ("FILE:LINE") prefixes an error. BISSCTL_OK or BISSCTL_USAGE (reported). */
+int bissctl_set_option(const char *key, const char *value, const char *at, struct bissctl_opts *o);
+/* --config FILE (bissctl_conf.c): its options into o. BISSCTL_OK, or
+ * BISSCTL_USAGE / BISSCTL_FAIL (reported, with FILE:LINE). */
+int bissctl_conf_read(const char *path, struct bissctl_opts *o);
+/* The target when --target is not given (bissctl_target.c): the SoC the
+ * device tree under sysfs_root (NULL: /sys) names in its root compatible;
+ * BISS_TARGET_EMU when it names none of ours or there is none. */
+enum biss_target bissctl_default_target(const char *sysfs_root);
 /* A number 0..max (decimal, 0x hex); 0 or -1. */
 int bissctl_parse_byte(const char *s, unsigned max, uint8_t *v);
 
@@ -63,6 +76,9 @@ int bissctl_probe(biss_t *h, const struct bissctl_opts *o); /* bissctl_probe.c *
  * opening, which the first prints), then the end with the safety counts. */
 void bissctl_json_frame(const struct biss_sample *s, const struct biss_config *c, bool first);
 void bissctl_json_end(biss_t *h);
+
+/* The first line of every output on the emulator target (bissctl_cmds.c). */
+extern const char bissctl_emulated_note[];
 
 /* "bissctl: <what>: <strerror>" on stderr; returns BISSCTL_FAIL. */
 int bissctl_fail(const char *what, int err);

@@ -7,6 +7,10 @@
 #include <stdio.h>
 #include <string.h>
 
+const char bissctl_emulated_note[] =
+    "emulated: target emu, no board (the PRU, the cable and the encoder are models; "
+    "--target am335x or am437x for hardware)";
+
 int bissctl_fail(const char *what, int err) {
     fprintf(stderr, "bissctl: %s: %s\n", what, biss_strerror(err));
     return BISSCTL_FAIL;
@@ -206,8 +210,10 @@ int bissctl_read(biss_t *h, const struct bissctl_opts *o) {
     if (biss_read_sample(h, &s) == BISS_OK) {
         after = s.frame;
     }
-    if (o->json) {
-        printf("{\n  \"frames\": [");
+    if (o->json) { /* on the emulator: says so here, in place of the text note */
+        enum biss_target t = biss_target(h);
+        printf("{\n  \"target\": \"%s\",\n  \"emulated\": %s,\n  \"frames\": [",
+               biss_target_name(t), t == BISS_TARGET_EMU ? "true" : "false");
     }
     for (unsigned i = 0; i < o->count; i++) {
         int rc = next_sample(h, o, after, &s);
@@ -256,16 +262,40 @@ int bissctl_run(biss_t *h, const struct bissctl_opts *o) {
     return rc;
 }
 
+/* Opening loaded and started the master and the configuration went in
+ * (only an attached handle restarts it here); it is left running for
+ * others to attach to: on hardware it outlives bissctl, the emulated one
+ * ends with it. */
 int bissctl_start(biss_t *h, const struct bissctl_opts *o) {
-    (void)o;
-    int rc = biss_start(h);
-    return rc ? bissctl_fail("start", rc) : BISSCTL_OK;
+    int rc = biss_attached(h) ? biss_start(h) : BISS_OK;
+    if (!rc) {
+        rc = biss_leave_running(h);
+    }
+    struct biss_config c;
+    if (!rc) {
+        rc = biss_get_config(h, &c);
+    }
+    if (rc) {
+        return bissctl_fail("start", rc);
+    }
+    bool emu = biss_target(h) == BISS_TARGET_EMU;
+    printf("started: target=%s pru=%u firmware=%s freq_hz=%u slaves=%u trigger=%s\n",
+           biss_target_name(biss_target(h)), o->open.pru,
+           *biss_firmware_path(h) ? biss_firmware_path(h) : "(not known here)", c.freq_hz,
+           c.nslaves, biss_trigger_name(c.trigger));
+    printf("%s\n", emu ? "the emulated master ends with this bissctl"
+                       : "it keeps running after bissctl exits: read, info and stats attach "
+                         "to it; bissctl stop stops it");
+    return BISSCTL_OK;
 }
 
 int bissctl_stop(biss_t *h, const struct bissctl_opts *o) {
-    (void)o;
     int rc = biss_stop(h);
-    return rc ? bissctl_fail("stop", rc) : BISSCTL_OK;
+    if (rc) {
+        return bissctl_fail("stop", rc);
+    }
+    printf("stopped: target=%s pru=%u\n", biss_target_name(biss_target(h)), o->open.pru);
+    return BISSCTL_OK;
 }
 
 static int parse_addr(const struct bissctl_opts *o, uint8_t *addr) {

@@ -15,14 +15,21 @@ static const char *const commands[] = {"info",      "read",    "stats", "run",
 
 static const char common_help[] =
     "Target:\n"
-    "  --target T         emu (default), am335x, am437x (= am437x-icss0), am437x-icss1\n"
+    "  --target T         emu, am335x, am437x (= am437x-icss0), am437x-icss1; default:\n"
+    "                     the board's SoC from the device tree's compatible (ti,am33xx:\n"
+    "                     am335x; ti,am4372 or ti,am43: am437x-icss0), else emu, and\n"
+    "                     then every output says \"emulated\"\n"
+    "  --config FILE      options from FILE, key = value lines named as the long\n"
+    "                     options (/etc/biss/pru0.conf; docs/hardware.md); the command\n"
+    "                     line's win. Read-only commands still attach to a running master\n"
     "  --pru N            the PRU of that PRU-ICSS: 0 (default) or 1 (its own line)\n"
     "  --devmem PATH      file mapped at the PRU-ICSS base (default /dev/mem)\n"
     "  --attach           use the firmware already running (no load, no restart);\n"
     "                     info, stats, read and stop attach by default when one runs\n"
     "  --loader L         remoteproc (default: the kernel's pru_rproc loads the ELF) or\n"
     "                     devmem (IRAM and CONTROL written through /dev/mem)\n"
-    "  --sysfs DIR        sysfs root (default /sys)\n"
+    "  --sysfs DIR        sysfs root (default /sys), also of the device tree\n"
+    "                     (DIR/firmware/devicetree/base) the default target comes from\n"
     "  --firmware-dir DIR where remoteproc finds firmware (default /lib/firmware)\n"
     "  --rproc-firmware N firmware name for remoteproc (default the PRU's, e.g.\n"
     "                     am335x-pru0-fw); the lock directory is $BISS_LOCK_DIR\n"
@@ -96,10 +103,16 @@ static const char *command_help(const char *command) {
     }
     if (strcmp(command, "start") == 0) {
         return "bissctl [options] start\n"
-               "  Restarts the firmware and applies the configuration.\n";
+               "  Loads and starts the firmware (restarting ours if it runs), applies the\n"
+               "  configuration (options or --config FILE) and leaves the master running\n"
+               "  after bissctl exits: read, info and stats then attach to it, as\n"
+               "  applications do (libbiss, attach); bissctl stop stops it. What the\n"
+               "  systemd unit biss-master@pru0 runs at boot. (The emulated master ends\n"
+               "  with bissctl.)\n";
     }
     if (strcmp(command, "stop") == 0) {
-        return "bissctl [options] stop\n  Halts the PRU.\n";
+        return "bissctl [options] stop\n"
+               "  Stops the running master (halts its PRU); nothing running is no error.\n";
     }
     if (strcmp(command, "reg-read") == 0) {
         return "bissctl [options] reg-read [--id ID] ADDR [-n N] [--dump]\n"
@@ -172,8 +185,14 @@ void bissctl_usage(const char *command) {
            common_help);
 }
 
+/* "FILE:LINE" while a --config file is read: errors name the line */
+static const char *error_at;
+
 static int usage_error(const char *fmt, const char *arg) {
     fprintf(stderr, "bissctl: ");
+    if (error_at) {
+        fprintf(stderr, "%s: ", error_at);
+    }
     fprintf(stderr, fmt, arg);
     fprintf(stderr, "\n(bissctl --help for usage)\n");
     return BISSCTL_USAGE;
@@ -288,6 +307,7 @@ enum {
     OPT_FWDIR,
     OPT_RPROC_FW,
     OPT_PRU,
+    OPT_CONFIG,
     OPT_FORCE,
     OPT_TIME_LIMIT,
 };
@@ -324,6 +344,7 @@ static const struct option long_opts[] = {
     {"firmware-dir", required_argument, NULL, OPT_FWDIR},
     {"rproc-firmware", required_argument, NULL, OPT_RPROC_FW},
     {"pru", required_argument, NULL, OPT_PRU},
+    {"config", required_argument, NULL, OPT_CONFIG},
     {"force", no_argument, NULL, OPT_FORCE},
     {"time-limit", required_argument, NULL, OPT_TIME_LIMIT},
     {"help", no_argument, NULL, 'h'},
@@ -381,6 +402,7 @@ static int take_target_opt(int c, const char *arg, struct bissctl_opts *o) {
     unsigned long long v;
     switch (c) {
     case OPT_TARGET:
+        o->target_given = true;
         return biss_target_from_name(arg, &o->open.target)
                    ? usage_error("unknown target '%s' (emu, am335x, am437x, am437x-icss0, "
                                  "am437x-icss1)",
@@ -448,14 +470,15 @@ static int take_config_opt(int c, const char *arg, struct bissctl_opts *o) {
     if (c < OPT_FREQ || c > OPT_CHECK_PAIR) {
         return 1; /* not a configuration option */
     }
-    o->config_given = true;
+    o->config_given = o->config_given || !error_at; /* the command line's, not a file's */
     switch (c) {
     case OPT_FREQ:
         return parse_u32(arg, &cfg->freq_hz) ? usage_error("--freq '%s': expected Hz", arg) : 0;
     case OPT_SLAVE:
-        if (!o->slaves_given) {
+        if (!o->slaves_given || o->slaves_from_file) { /* the command line's replace a file's */
             cfg->nslaves = 0;
             o->slaves_given = true;
+            o->slaves_from_file = false;
         }
         if (cfg->nslaves == BISS_API_MAX_SLAVES) {
             return usage_error("--slave %s: at most 8 slaves", arg);
@@ -464,6 +487,9 @@ static int take_config_opt(int c, const char *arg, struct bissctl_opts *o) {
                    ? usage_error("--slave '%s': expected D,C,POLY,START[,EW[,POS]]", arg)
                    : 0;
     case OPT_SSI:
+        if (o->slaves_from_file) {
+            o->slaves_given = o->slaves_from_file = false;
+        }
         if (o->slaves_given) {
             return usage_error("--ssi %s: an SSI encoder is alone on its line (no --slave)", arg);
         }
@@ -566,6 +592,62 @@ static int known_command(const char *s) {
     return 0;
 }
 
+static int take_opt(int c, const char *arg, struct bissctl_opts *o) {
+    int rc = take_target_opt(c, arg, o);
+    if (rc == 1) {
+        rc = take_config_opt(c, arg, o);
+    }
+    if (rc == 1) {
+        rc = take_command_opt(c, arg, o);
+    }
+    return rc;
+}
+
+/* What a configuration file may set: the target and the configuration,
+ * not a command's own options, --attach or another --config. */
+static bool file_option(int c) {
+    return (c >= OPT_TARGET && c <= OPT_CHECK_PAIR && c != OPT_ATTACH) || c == OPT_LOADER ||
+           c == OPT_SYSFS || c == OPT_FWDIR || c == OPT_RPROC_FW || c == OPT_PRU;
+}
+
+int bissctl_set_option(const char *key, const char *value, const char *at, struct bissctl_opts *o) {
+    const struct option *opt = NULL;
+    for (size_t i = 0; long_opts[i].name; i++) {
+        if (strcmp(long_opts[i].name, key) == 0) {
+            opt = &long_opts[i];
+        }
+    }
+    error_at = at;
+    int rc;
+    if (!opt) {
+        rc = usage_error("unknown key '%s' (keys are bissctl's long options, without "
+                         "the dashes)",
+                         key);
+    } else if (!file_option(opt->val)) {
+        rc = usage_error("'%s' is a command's option, not a configuration key", key);
+    } else if (!value || !*value) {
+        rc = usage_error("'%s' needs a value (key = value)", key);
+    } else {
+        rc = take_opt(opt->val, value, o);
+    }
+    error_at = NULL;
+    return rc;
+}
+
+/* The --config FILE on the command line, if any (the last one): read
+ * before the other options, which then win over it. */
+static const char *config_file(int argc, char **argv) {
+    const char *path = NULL;
+    opterr = 0;
+    optind = 0; /* glibc: a full restart of getopt */
+    for (int c; (c = getopt_long(argc, argv, ":n:h", long_opts, NULL)) != -1;) {
+        if (c == OPT_CONFIG) {
+            path = optarg;
+        }
+    }
+    return path;
+}
+
 int bissctl_parse(int argc, char **argv, struct bissctl_opts *o) {
     memset(o, 0, sizeof *o);
     biss_open_params_default(&o->open);
@@ -575,8 +657,16 @@ int bissctl_parse(int argc, char **argv, struct bissctl_opts *o) {
     o->timeout_ms = 100;
     o->open.errbuf = o->errbuf;
     o->open.errbuf_len = sizeof o->errbuf;
+    o->config_file = config_file(argc, argv);
+    if (o->config_file) {
+        int rc = bissctl_conf_read(o->config_file, o);
+        if (rc) {
+            return rc;
+        }
+        o->slaves_from_file = o->slaves_given;
+    }
     opterr = 0;
-    optind = 1;
+    optind = 0;
     int c;
     while ((c = getopt_long(argc, argv, ":n:h", long_opts, NULL)) != -1) {
         if (c == '?') {
@@ -585,13 +675,7 @@ int bissctl_parse(int argc, char **argv, struct bissctl_opts *o) {
         if (c == ':') {
             return usage_error("option '%s' needs a value", argv[optind - 1]);
         }
-        int rc = take_target_opt(c, optarg, o);
-        if (rc == 1) {
-            rc = take_config_opt(c, optarg, o);
-        }
-        if (rc == 1) {
-            rc = take_command_opt(c, optarg, o);
-        }
+        int rc = c == OPT_CONFIG ? 0 : take_opt(c, optarg, o); /* --config: read above */
         if (rc) {
             return rc;
         }

@@ -7,243 +7,343 @@
 // ============================================================================
 // Configuration: check the host's block, derive everything the clocked code
 // needs, and report the verdict.
+// The registers of the configuration. r18..r29 hold through it (the slave
+// records r13..r29 are loaded afresh at its end); r0..r11 are its scratch,
+// named by what they hold in each step.
+.struct HostSlave                           // a slave's block of the host's configuration
+    .u8     n                               // data bits
+    .u8     w                               // CRC bits
+    .u8     ew                              // nE/nW position
+    .u8     flags                           // BISS_SF_*
+    .u16    poly                            // CRC polynomial
+    .u16    start                           // CRC start value
+.ends
+.struct CfgRecord                           // a slave record as the clocked code loads it
+    .u8     data_bits                       // data bits before the switch
+    .u8     crc_bits                        // CRC bits before the switch
+    .u16    entry                           // the code that reads its bits
+    .u16    poly                            // polynomial, left-aligned to bit 15
+    .u16    start                           // CRC start value, likewise
+.ends
+.enter config
+.assign Word, r18, r18, NewSeq              // the sequence number being applied
+.assign Word, r19, r19, Gpcfg               // GPCFG: shift mode at 8x the new rate (FACTOR_FOUND)
+.assign Half, r20.w0, r20.w0, CfgHalf       // the host's block, BISS_CFG_HALF on: H,
+.assign Byte, r20.b2, r20.b2, CfgSlaves     //   slaves,
+.assign Byte, r20.b3, r20.b3, CfgTrigger    //  trigger,
+.assign Half, r20.w2, r20.w2, CfgSlavesTrig //  (both),
+.assign Word, r21, r21, CfgIep              //   IEP period,
+.assign Half, r22.w0, r22.w0, CfgProc       //   processing-time limit,
+.assign Half, r22.w2, r22.w2, CfgSsiNs      //   SSI round trip (ns)
+.assign Word, r23, r23, SlaveIdx            // the slave being checked
+.assign Word, r24, r24, NBits               // N: the bits of all slaves
+.assign Word, r25, r25, HostAddr            // its block in the host's configuration
+.assign Word, r26, r26, RecAddr             // its record in P_RECORDS
+.assign Word, r27, r27, Pass                // FACTOR: 1 whole ratios only, 2 any
+.assign Word, r27, r27, ChkAddr             // the slave's check data in P_SLAVES
+.assign Word, r27, r27, SsiWord             // P_SSI's word (0: BiSS-C):
+.assign Half, r27.w0, r27.w0, SsiAckNew     //   the ACK position an SSI line shows,
+.assign Half, r27.w2, r27.w2, SsiEdgesNew   // the MA edges after period 0
+.assign Word, r28, r28, CfgErr              // the verdict, BISS_CFGERR_*,
+.assign Word, r29, r29, CfgState            //   and ST_STATE (the next word)
+.assign Word, r13, r13, Records             // r13..r29: the slave records (P_RECORDS)
+// DIVIDE's operands
+.assign Word, r5, r5, Num                   // the dividend; the remainder after
+.assign Word, r6, r6, Den                   // the divisor
+.assign Word, r7, r7, Quot                  // the quotient is added to it
+.assign Half, r7.w0, r7.w0, QuotLo
+// FACTOR
+.assign Word, r2, r2, MaxHalf               // BISS_MAX_HALF
+.assign Word, r6, r6, FactorA               // a, the divisor
+.assign Word, r7, r7, FactorB               // b = H / a
+// CFG_SLAVE
+.assign Word, r0, r0, XfrZero               // 0: R0[4:0] = 0 for FILL
+.assign HostSlave, r2, r3, Host             // the slave's block (the first word also of slave 0
+.assign Half, r2.w0, r2.w0, HostNW          //   for CFG_SSI); n, w together;
+.assign Word, r2, r2, HostWord              //   the first word whole
+.assign Word, r3, r3, LoopTurns             // CFG_RESIDUE's turns: w
+.assign Half, r3.w0, r3.w0, LoopTurnsLo
+.assign Word, r4, r4, EwPlus1               // ew + 1
+.assign CfgRecord, r4, r5, Rec              // the slave's record, 8 bytes
+.assign Half, r4.w0, r4.w0, RecCounts       //   its counts together
+.assign Word, r5, r5, PolyAligned           // the polynomial << (16 - w)
+.assign Word, r6, r6, LastBits              // d: the bits read after the switch's (CFG_SHAPE)
+.assign Word, r6, r6, Align16               // 16 - w
+.assign Word, r7, r7, NextIdx               // the slave's index + 1
+.assign Word, r7, r7, StartAligned          // the start value << (16 - w)
+.assign Half, r7.w0, r7.w0, StartAlignedLo
+.assign BissSlave, r6, r9, Chk              // the slave's check data (layout.hp)
+.assign Word, r8, r8, MaskShift             // 64 - n
+.assign Word, r9, r9, Feedback              // the residue's bit 31 before its shift
+.assign Word, r9, r9, ChkShape              // Chk's [n, w, ew, flags] as one word
+.assign Word, r10, r10, PolyTop             // the polynomial left-aligned to bit 31
+.assign Word, r11, r11, EndRecord           // the end record's word: its entry in w0
+.assign Half, r11.w0, r11.w0, EndEntry
+.assign Word, r4, r4, EndWord               // the end record: entry in w2, counts 0
+// CFG_IEP
+.assign Word, r2, r2, IepTurns              // N + 8 turns of 2H
+.assign Word, r2, r2, IepReg                // a word for an IEP register
+.assign Word, r3, r3, IepMin                // the shortest IEP period
+.assign Word, r4, r4, TwoH                  // 2H
+// Accepted: the words for the private RAM
+.assign Word, r0, r0, DelayWord             // P_DELAYS: the tails (DELAY), as Tails:
+.assign Half, r0.w0, r0.w0, DelayEntry      //   the DLY_* entry,
+.assign Byte, r0.b2, r0.b2, DelayGate       //   1 (SwGate),
+.assign Byte, r0.b3, r0.b3, DelayTurns      //   the turns
+.assign Word, r2, r2, DelayL                // L = H - 11 cycles, then the rest r
+.assign Word, r3, r3, DelayBase             // the entry L or r counts back from
+.assign Word, r3, r3, NewHist01             // P_HIST: h0, h1 (0),
+.assign Word, r4, r4, NewHist2K             //   h2 (0), K
+.assign Word, r2, r2, NewNs                 // P_NSLAVES' word: slaves, trigger, the end record,
+.assign Byte, r2.b2, r2.b2, NewRecEnd       //   frames in the average (0)
+.assign Word, r7, r7, NewHalf               // P_HALF's word: H, the ACK limit
+.assign Half, r7.w0, r7.w0, NewHalfLo
+.assign Word, r2, r2, NewProc               // P_PROC's word: the processing-time limit,
+.assign Half, r2.w0, r2.w0, NewProcLimit
+.assign Half, r2.w2, r2.w2, NewRunDue       //   training due and running,
+.assign Byte, r2.b2, r2.b2, NewDue
+.assign Byte, r2.b3, r2.b3, NewRunning      //   running = the slot step
+.assign Word, r0, r0, XfrShiftCfg           // R0: the XFR shift while the step is probed
+.assign Word, r6, r6, Probe                 // bank register 6's word
+.assign Word, r3, r3, ProbeVal              // the word written with a shift of 29
+.assign Half, r1.w2, r1.w2, HistPos         // HIST_FILL's position (an SSI line's)
+
 APPLY_CONFIG:
-    mov     r18, r2                         // the sequence number being applied
-    lbco    r20, c24, BISS_CFG_HALF, 12     // r20.w0 H, r20.b2 slaves, r20.b3 trigger,
-                                            // r21 IEP period, r22.w0 proc limit,
-                                            // r22.w2 SSI round trip
-    ldi     r28, BISS_CFGERR_NSLAVES
-    qbeq    CFG_FAIL, r20.b2, 0
-    qblt    CFG_FAIL, r20.b2, BISS_MAX_SLAVES   // 8 < slaves
-    ldi     r28, BISS_CFGERR_TRIGGER
-    qblt    CFG_FAIL, r20.b3, BISS_TRIG_IEP_FOLLOW
-    ldi     r28, BISS_CFGERR_HALF
-    qbgt    CFG_FAIL, r20.w0, BISS_MIN_HALF     // H < 10
-    mov     r2, BISS_MAX_HALF
-    qblt    CFG_FAIL, r20.w0, r2                // H > 1024
+    mov     NewSeq, CfgSeq                  // the sequence number being applied
+.leave main_loop
+    lbco    &CfgHalf, c24, BISS_CFG_HALF, 12 // CfgHalf .. CfgSsiNs
+    ldi     CfgErr, BISS_CFGERR_NSLAVES
+    qbeq    CFG_FAIL, CfgSlaves, 0
+    qblt    CFG_FAIL, CfgSlaves, BISS_MAX_SLAVES // 8 < slaves
+    ldi     CfgErr, BISS_CFGERR_TRIGGER
+    qblt    CFG_FAIL, CfgTrigger, BISS_TRIG_IEP_FOLLOW
+    ldi     CfgErr, BISS_CFGERR_HALF
+    qbgt    CFG_FAIL, CfgHalf, BISS_MIN_HALF // H < 10
+    mov     MaxHalf, BISS_MAX_HALF
+    qblt    CFG_FAIL, CfgHalf, MaxHalf      // H > 1024
 
     // The shift clock must be exactly 8x MA: H = a * b with divide ratios
     // a/2 and b/2, 2 <= a, b <= 32. Prefer two whole ratios (even a and b).
-    ldi     r27, 1                          // pass 1: whole ratios only
+    ldi     Pass, 1                         // pass 1: whole ratios only
 FACTOR_PASS:
-    ldi     r6, 2                           // a
+    ldi     FactorA, 2                      // a
 FACTOR_A:
-    mov     r5, r20.w0                      // r5 = H mod a, r7 = H / a = b
-    ldi     r7, 0
-    jal     r0.w2, DIVIDE
-    qbne    FACTOR_NEXT, r5, 0
-    qbgt    FACTOR_NEXT, r7, 2              // b < 2
-    qblt    FACTOR_NEXT, r7, 32             // b > 32
-    qbne    FACTOR_FOUND, r27, 1
-    qbbs    FACTOR_NEXT, r6, 0
-    qbbc    FACTOR_FOUND, r7, 0
+    mov     Num, CfgHalf                    // Num = H mod a, FactorB = H / a = b
+    ldi     FactorB, 0
+    jal     RET_DIV, DIVIDE
+    qbne    FACTOR_NEXT, Num, 0
+    qbgt    FACTOR_NEXT, FactorB, 2         // b < 2
+    qblt    FACTOR_NEXT, FactorB, 32        // b > 32
+    qbne    FACTOR_FOUND, Pass, 1
+    qbbs    FACTOR_NEXT, FactorA, 0
+    qbbc    FACTOR_FOUND, FactorB, 0
 FACTOR_NEXT:
-    add     r6, r6, 1
-    qbge    FACTOR_A, r6, 32                // a <= 32
-    add     r27, r27, 1
-    qbeq    FACTOR_PASS, r27, 2
-    jmp     CFG_FAIL                        // r28 is still CFGERR_HALF
+    add     FactorA, FactorA, 1
+    qbge    FACTOR_A, FactorA, 32           // a <= 32
+    add     Pass, Pass, 1
+    qbeq    FACTOR_PASS, Pass, 2
+    jmp     CFG_FAIL                        // CfgErr is still CFGERR_HALF
 FACTOR_FOUND:
     // divisor codes (ratio = 1 + code / 2): a - 2 at bit 3, b - 2 at bit 8
-    // (r19 keeps it until the configuration is accepted: CFG_PROC)
-    lsl     r7, r7, 5
-    add     r19, r6, r7
-    sub     r19, r19, 2 + (2 << 5)
-    lsl     r19, r19, 3
-    or      r19, r19, SHIFT_MODE
+    // (Gpcfg keeps it until the configuration is accepted: CFG_PROC)
+    lsl     FactorB, FactorB, 5
+    add     Gpcfg, FactorA, FactorB
+    sub     Gpcfg, Gpcfg, 2 + (2 << 5)
+    lsl     Gpcfg, Gpcfg, 3
+    or      Gpcfg, Gpcfg, SHIFT_MODE
 
     // Slaves: records for the clocked code, verdict data for the checks.
-    ldi     r23, 0                          // slave index
-    ldi     r24, 0                          // N: bits of all slaves
-    mov     r25, BISS_CFG_SLAVE0            // host block
-    mov     r26, BISS_PRIV + P_RECORDS
-    mov     r27, BISS_PRIV + P_SLAVES
-    ldi     r11, FRAME_END                  // the end record's entry
-    ldi     r0, 0                           // R0[4:0] = 0 for FILL: whether the XFR
+    ldi     SlaveIdx, 0                     // slave index
+    ldi     NBits, 0                        // N: bits of all slaves
+    mov     HostAddr, BISS_CFG_SLAVE0       // host block
+    mov     RecAddr, BISS_PRIV + P_RECORDS
+    mov     ChkAddr, BISS_PRIV + P_SLAVES
+    ldi     EndRecord, FRAME_END            // the end record's entry
+    ldi     XfrZero, 0                      // R0[4:0] = 0 for FILL: whether the XFR
                                             // shift moves it is not documented
 CFG_SLAVE:
-    lbbo    r2, r25, 0, 8                   // r2.b0 n, r2.b1 w, r2.b2 ew, r2.b3 flags, r3 poly|start
-    ldi     r28, BISS_CFGERR_DATA_BITS
-    qbeq    CFG_FAIL, r2.b0, 0
-    qblt    CFG_FAIL, r2.b0, BISS_MAX_DATA_BITS
-    ldi     r28, BISS_CFGERR_CRC_BITS
-    qblt    CFG_FAIL, r2.b1, BISS_MAX_CRC_BITS
-    ldi     r28, BISS_CFGERR_EW
-    qbbc    CFG_EW_OK, r2.b3, 0
-    add     r4, r2.b2, 1                    // nE's bit must lie in the data word
-    qble    CFG_FAIL, r4, r2.b0             // n <= ew + 1
+    lbbo    &Host.n, HostAddr, 0, 8         // n, w, ew, flags, poly, start
+    ldi     CfgErr, BISS_CFGERR_DATA_BITS
+    qbeq    CFG_FAIL, Host.n, 0
+    qblt    CFG_FAIL, Host.n, BISS_MAX_DATA_BITS
+    ldi     CfgErr, BISS_CFGERR_CRC_BITS
+    qblt    CFG_FAIL, Host.w, BISS_MAX_CRC_BITS
+    ldi     CfgErr, BISS_CFGERR_EW
+    qbbc    CFG_EW_OK, Host.flags, 0
+    add     EwPlus1, Host.ew, 1             // nE's bit must lie in the data word
+    qble    CFG_FAIL, EwPlus1, Host.n       // n <= ew + 1
 CFG_EW_OK:
-    add     r24, r24, r2.b0
-    add     r24, r24, r2.b1
-    // record: counts and entry by the slave's shape. r6 = d, the bits of
+    add     NBits, NBits, Host.n
+    add     NBits, NBits, Host.w
+    // record: counts and entry by the slave's shape. LastBits = d, the bits of
     // its last kind (CRC, or data without CRC) that the loop leaves out: the
     // switch's, and for the last slave up to two more, read with the one
     // before them from the same R31 snapshot (FINAL_CRC, FINAL_PLAIN): its
     // chain is up to two bits shorter, and the frame ends as many periods
     // earlier. Only bits of the switch's kind: none where the bit before the
     // last is a data bit with CRC (w = 1) or another slave's (n = 1, w = 0).
-    mov     r4.w0, r2.w0                    // n data bits, w CRC bits
-    ldi     r6, 1                           // the switch's bit
-    add     r7, r23, 1
-    qbne    CFG_SHAPE, r7, r20.b2           // not the last slave
-    ldi     r6, 3                           // the last: up to two more
+    mov     RecCounts, HostNW               // n data bits, w CRC bits
+    ldi     LastBits, 1                     // the switch's bit
+    add     NextIdx, SlaveIdx, 1
+    qbne    CFG_SHAPE, NextIdx, CfgSlaves   // not the last slave
+    ldi     LastBits, 3                     // the last: up to two more
 CFG_SHAPE:
-    qbeq    CFG_NOCRC, r2.b1, 0
-    min     r6, r6, r2.b1
-    sub     r4.b1, r4.b1, r6                // CRC bits before the switch
-    ldi     r4.w2, ENTRY_CRC2
-    qbne    CFG_CRC_FINAL, r4.b1, 0
-    ldi     r4.w2, ENTRY_CRC1
+    qbeq    CFG_NOCRC, Host.w, 0
+    min     LastBits, LastBits, Host.w
+    sub     Rec.crc_bits, Rec.crc_bits, LastBits // CRC bits before the switch
+    ldi     Rec.entry, ENTRY_CRC2
+    qbne    CFG_CRC_FINAL, Rec.crc_bits, 0
+    ldi     Rec.entry, ENTRY_CRC1
 CFG_CRC_FINAL:
-    qbeq    CFG_REC, r6, 1
-    ldi     r11.w0, FINAL_CRC               // one bit after the switch
-    qbeq    CFG_REC, r6, 2
-    ldi     r11.w0, FINAL_CRC2              // two
+    qbeq    CFG_REC, LastBits, 1
+    ldi     EndEntry, FINAL_CRC             // one bit after the switch
+    qbeq    CFG_REC, LastBits, 2
+    ldi     EndEntry, FINAL_CRC2            // two
     qba     CFG_REC
 CFG_NOCRC:
-    min     r6, r6, r2.b0
-    sub     r4.b0, r4.b0, r6                // data bits before the switch
-    ldi     r4.w2, ENTRY_PLAIN
-    qbne    CFG_PLAIN_FINAL, r4.b0, 0
-    ldi     r4.w2, ENTRY_PLAIN1
+    min     LastBits, LastBits, Host.n
+    sub     Rec.data_bits, Rec.data_bits, LastBits // data bits before the switch
+    ldi     Rec.entry, ENTRY_PLAIN
+    qbne    CFG_PLAIN_FINAL, Rec.data_bits, 0
+    ldi     Rec.entry, ENTRY_PLAIN1
 CFG_PLAIN_FINAL:
-    qbeq    CFG_REC, r6, 1
-    ldi     r11.w0, FINAL_PLAIN             // one bit after the switch
-    qbeq    CFG_REC, r6, 2
-    ldi     r11.w0, FINAL_PLAIN2            // two
+    qbeq    CFG_REC, LastBits, 1
+    ldi     EndEntry, FINAL_PLAIN           // one bit after the switch
+    qbeq    CFG_REC, LastBits, 2
+    ldi     EndEntry, FINAL_PLAIN2          // two
 CFG_REC:
     // polynomial and start value left-aligned to bit 15 (the w2 halves);
     // no CRC (w = 0): both shifted by 16, out of the halves, so 0
-    rsb     r6, r2.b1, 16                   // 16 - w
-    lsl     r5, r3.w0, r6
-    lsl     r7, r3.w2, r6
-    mov     r5.w2, r7.w0
-    sbbo    r4, r26, 0, 8
-    add     r26, r26, 8
+    rsb     Align16, Host.w, 16             // 16 - w
+    lsl     PolyAligned, Host.poly, Align16
+    lsl     StartAligned, Host.start, Align16
+    mov     Rec.start, StartAlignedLo
+    sbbo    &Rec.data_bits, RecAddr, 0, 8
+    add     RecAddr, RecAddr, 8
     // data mask: n ones. A shift takes its count & 31 (docs/pru-facts.md
     // §1.3), so ~0 >> (64 - n) is the high word's mask for n > 32 and the
     // low word's (~0 >> (32 - n)) for n <= 32 (n = 32, 64: a shift by 0).
-    fill    &r6, 8
-    rsb     r8, r2.b0, 64
-    lsr     r7, r7, r8
-    qblt    CFG_MASK_DONE, r2.b0, 32        // 32 < n: the low word all ones
-    mov     r6, r7
-    ldi     r7, 0
+    fill    &Chk.mask_lo, 8
+    rsb     MaskShift, Host.n, 64
+    lsr     Chk.mask_hi, Chk.mask_hi, MaskShift
+    qblt    CFG_MASK_DONE, Host.n, 32       // 32 < n: the low word all ones
+    mov     Chk.mask_lo, Chk.mask_hi
+    ldi     Chk.mask_hi, 0
 CFG_MASK_DONE:
     // residue: the CRC register after w inverted CRC bits of a right frame
     // = w ones fed to a zero register (linearity)
-    ldi     r8, 0
-    lsl     r10, r5.w0, 16                  // polynomial, left-aligned to bit 31
-    qbeq    CFG_RESIDUE_DONE, r2.b1, 0
+    ldi     Chk.residue, 0
+    lsl     PolyTop, Rec.poly, 16           // polynomial, left-aligned to bit 31
+    qbeq    CFG_RESIDUE_DONE, Host.w, 0
     // The count from a whole register: which bits a LOOP takes from a byte
     // field is not documented (docs/silicon-assumptions.md).
-    mov     r3, r2.b1                       // (r3 is free after CFG_REC)
-    loop    CFG_RESIDUE_DONE, r3.w0
-    lsl     r9, r8, 0                       // keep bit 31 (feedback = bit31 ^ 1)
-    lsl     r8, r8, 1
-    qbbs    CFG_RESIDUE_STEP, r9, 31
-    xor     r8, r8, r10
+    mov     LoopTurns, Host.w               // (Host.poly, start are used by then)
+    loop    CFG_RESIDUE_DONE, LoopTurnsLo
+    lsl     Feedback, Chk.residue, 0        // keep bit 31 (feedback = bit31 ^ 1)
+    lsl     Chk.residue, Chk.residue, 1
+    qbbs    CFG_RESIDUE_STEP, Feedback, 31
+    xor     Chk.residue, Chk.residue, PolyTop
 CFG_RESIDUE_STEP:
-    mov     r0, r0
+    PAD
 CFG_RESIDUE_DONE:
-    mov     r9, r2                          // n, w, ew shift, flags
-    sbbo    r6, r27, 0, SIZE(BissSlave)     // r6..r9
-    add     r27, r27, SIZE(BissSlave)
-    add     r25, r25, BISS_CFG_SLAVE_SIZE
-    add     r23, r23, 1
-    qbgt    CFG_SLAVE, r23, r20.b2          // while index < slaves
+    mov     ChkShape, HostWord              // n, w, ew shift, flags
+    sbbo    &Chk.mask_lo, ChkAddr, 0, SIZE(BissSlave)
+    add     ChkAddr, ChkAddr, SIZE(BissSlave)
+    add     HostAddr, HostAddr, BISS_CFG_SLAVE_SIZE
+    add     SlaveIdx, SlaveIdx, 1
+    qbgt    CFG_SLAVE, SlaveIdx, CfgSlaves  // while index < slaves
     // after the last slave: the end of the frame
-    lsl     r4, r11, 16                     // entry r11.w0 (r11.w2 = 0), counts 0
-    sbbo    r4, r26, 0, 4
+    lsl     EndWord, EndRecord, 16          // entry EndEntry (w2 = 0), counts 0
+    sbbo    EndWord, RecAddr, 0, 4
 
-    // SSI (slave 0's BISS_SF_SSI): alone and without CRC. r27 = the P_SSI
-    // word: r27.w0 the ACK position a BiSS-C slave at this line delay would
+    // SSI (slave 0's BISS_SF_SSI): alone and without CRC. SsiWord = the P_SSI
+    // word: SsiAckNew the ACK position a BiSS-C slave at this line delay would
     // show (Q' = 4 (rt + BISS_DELAY_ADJ_CYCLES) / H + BISS_DELAY_ZERO, rt the
-    // round trip in cycles: biss_shm.h), r27.w2 the MA edges after period 0
-    // (2n, times MA_MASK); r27 = 0 for BiSS-C.
+    // round trip in cycles: biss_shm.h), SsiEdgesNew the MA edges after period 0
+    // (2n, times MA_MASK); SsiWord = 0 for BiSS-C.
 CFG_SSI:
-    ldi     r27, 0
-    lbco    r2, c24, BISS_CFG_SLAVE0, 4     // n, w, ew, flags of slave 0
-    qbbc    CFG_SSI_DONE, r2.b3, 1          // BISS_SF_SSI
-    ldi     r28, BISS_CFGERR_SSI
-    qbne    CFG_FAIL, r20.b2, 1             // one slave
-    qbne    CFG_FAIL, r2.b1, 0              // no CRC
-    mov     r5, r22.w2                      // CFG_SSI_DELAY_NS
-    ldi     r6, 5
-    ldi     r7, 0
-    jal     r0.w2, DIVIDE                   // rt = ns / 5 cycles
-    add     r5, r7, BISS_DELAY_ADJ_CYCLES
-    lsl     r5, r5, 2                       // 4 (rt + adj) ...
-    mov     r6, r20.w0
-    ldi     r7, BISS_DELAY_ZERO
-    jal     r0.w2, DIVIDE                   // ... / H + zero
-    mov     r27.w0, r7.w0
+    ldi     SsiWord, 0
+    lbco    &Host.n, c24, BISS_CFG_SLAVE0, 4 // n, w, ew, flags of slave 0
+    qbbc    CFG_SSI_DONE, Host.flags, 1     // BISS_SF_SSI
+    ldi     CfgErr, BISS_CFGERR_SSI
+    qbne    CFG_FAIL, CfgSlaves, 1          // one slave
+    qbne    CFG_FAIL, Host.w, 0             // no CRC
+    mov     Num, CfgSsiNs                   // CFG_SSI_DELAY_NS
+    ldi     Den, 5
+    ldi     Quot, 0
+    jal     RET_DIV, DIVIDE                 // rt = ns / 5 cycles
+    add     Num, Quot, BISS_DELAY_ADJ_CYCLES
+    lsl     Num, Num, 2                     // 4 (rt + adj) ...
+    mov     Den, CfgHalf
+    ldi     Quot, BISS_DELAY_ZERO
+    jal     RET_DIV, DIVIDE                 // ... / H + zero
+    mov     SsiAckNew, QuotLo
     // n + 1 clocks: the one after the last bit makes the slave send 0 until
     // its monoflop ends (SL high again: ready), 2n edges after period 0's
-    lsl     r27.w2, r2.b0, MA_BIT + 1
+    lsl     SsiEdgesNew, Host.n, MA_BIT + 1
 CFG_SSI_DONE:
 
     // IEP period: at least 2H (N + 8) cycles
-    qbne    CFG_IEP_OK, r20.b3, BISS_TRIG_IEP
-    add     r2, r24, 8
-    ldi     r3, 0
-    lsl     r4, r20.w0, 1                   // 2H
-CFG_IEP_MIN:                                // r2 = N + 8 >= 9 turns (no LOOP of one
-    add     r3, r3, r4                      // instruction: docs/silicon-assumptions.md)
-    sub     r2, r2, 1
-    qbne    CFG_IEP_MIN, r2, 0
-    ldi     r28, BISS_CFGERR_IEP_PERIOD
-    qbgt    CFG_FAIL, r21, r3               // period < minimum
-    sub     r2, r21, 1                      // CMP0 = period - 1 (the count resets after it)
-    sbco    r2, c26, IEP_CMP0, 4
-    ldi     r2, 3                           // CMP0 enabled, resets the count
-    sbco    r2, c26, IEP_CMP_CFG, 4
-    ldi     r2, 0
-    sbco    r2, c26, IEP_COUNT, 4
-    ldi     r2, 0xff
-    sbco    r2, c26, IEP_CMP_STATUS, 4
+    qbne    CFG_IEP_OK, CfgTrigger, BISS_TRIG_IEP
+    add     IepTurns, NBits, 8
+    ldi     IepMin, 0
+    lsl     TwoH, CfgHalf, 1                // 2H
+CFG_IEP_MIN:                                // IepTurns = N + 8 >= 9 (no LOOP of one
+    add     IepMin, IepMin, TwoH            // instruction: docs/silicon-assumptions.md)
+    sub     IepTurns, IepTurns, 1
+    qbne    CFG_IEP_MIN, IepTurns, 0
+    ldi     CfgErr, BISS_CFGERR_IEP_PERIOD
+    qbgt    CFG_FAIL, CfgIep, IepMin        // period < minimum
+    sub     IepReg, CfgIep, 1               // CMP0 = period - 1 (the count resets after it)
+    sbco    IepReg, c26, IEP_CMP0, 4
+    ldi     IepReg, 3                       // CMP0 enabled, resets the count
+    sbco    IepReg, c26, IEP_CMP_CFG, 4
+    ldi     IepReg, 0
+    sbco    IepReg, c26, IEP_COUNT, 4
+    ldi     IepReg, 0xff
+    sbco    IepReg, c26, IEP_CMP_STATUS, 4
 CFG_IEP_OK:
 
     // Accepted: commit everything.
     // The tails of the half periods (DELAY in biss_periods.hp): none at
-    // H = 10 (r0 = 0), else the routine's entry for L = H - 11 cycles
-    // (r0.w0), r0.b2 = 1, and its 4-cycle turns (r0.b3); the frame keeps
-    // this word in r9.
-    ldi     r0, 0
-    qbeq    CFG_DELAY_SAVE, r20.w0, 10
-    ldi     r0.b2, 1
-    sub     r2, r20.w0, 11                  // L >= 1
-    ldi     r3, DLY_S1 + 1                  // short: entry DLY_S1 + 1 - L
-    qbge    CFG_DELAY_ENTRY, r2, 7
-    sub     r2, r2, 2                       // long: L - 2 = 4 n + r, n >= 1 (L >= 8)
-    lsr     r0.b3, r2, 2                    // n <= (1013 - 2) / 4 = 252
-    and     r2, r2, 3
-    ldi     r3, DLY_L0                      // entry DLY_L0 - r
+    // H = 10 (DelayWord = 0), else the routine's entry for L = H - 11 cycles
+    // (DelayEntry), DelayGate = 1, and its 4-cycle turns (DelayTurns); the
+    // frame keeps this word in Tails.
+    ldi     DelayWord, 0
+    qbeq    CFG_DELAY_SAVE, CfgHalf, 10
+    ldi     DelayGate, 1
+    sub     DelayL, CfgHalf, 11             // L >= 1
+    ldi     DelayBase, DLY_S1 + 1           // short: entry DLY_S1 + 1 - L
+    qbge    CFG_DELAY_ENTRY, DelayL, 7
+    sub     DelayL, DelayL, 2               // long: L - 2 = 4 n + r, n >= 1 (L >= 8)
+    lsr     DelayTurns, DelayL, 2           // n <= (1013 - 2) / 4 = 252
+    and     DelayL, DelayL, 3
+    ldi     DelayBase, DLY_L0               // entry DLY_L0 - r
 CFG_DELAY_ENTRY:
-    sub     r0.w0, r3, r2
+    sub     DelayEntry, DelayBase, DelayL
 CFG_DELAY_SAVE:
-    sbco    r0, c28, P_DELAYS, SIZE(BissPriv.delays)
+    sbco    DelayWord, c28, P_DELAYS, SIZE(BissPriv.delays)
     // K = N + 2 - LAG: the clocks after the start bit's period are the CDS,
     // the N bits and one more, on which the slave starts its timeout (SL
     // low); LAG of them are already out when the start bit is seen.
-    ldi     r3, 0                           // history empty (training fills it)
-    sub     r4, r24, LAG - 2
-    lsl     r4, r4, 16                      // and K
-    sbco    r3, c28, P_HIST, P_HSUM - P_HIST
-    mov     r2, r20.w2                      // slaves, trigger, -, frames in the average (0)
-    lsl     r2.b2, r20.b2, 3                // the end record's register-file address
-    add     r2.b2, r2.b2, REC_BASE
-    sbco    r2, c28, P_NSLAVES, P_HALF - P_NSLAVES
+    ldi     NewHist01, 0                    // history empty (training fills it)
+    sub     NewHist2K, NBits, LAG - 2
+    lsl     NewHist2K, NewHist2K, 16        // and K
+    sbco    &NewHist01, c28, P_HIST, P_HSUM - P_HIST
+    mov     NewNs, CfgSlavesTrig            // slaves, trigger, -, frames in the average (0)
+    lsl     NewRecEnd, CfgSlaves, 3         // the end record's register-file address
+    add     NewRecEnd, NewRecEnd, REC_BASE
+    sbco    NewNs, c28, P_NSLAVES, P_HALF - P_NSLAVES
     // ACK limit in periods x 8: (BISS_MAX_DELAY_NS / 10 / H + 4) x 8
-    mov     r5, BISS_MAX_DELAY_NS / 10
-    mov     r6, r20.w0
-    ldi     r7, 4
-    jal     r0.w2, DIVIDE
-    lsl     r7, r7, 16 + 3                  // to w2
-    mov     r7.w0, r20.w0
-    sbco    r7, c28, P_HALF, P_PROC - P_HALF
-    mov     r2.w0, r22.w0                   // processing-time limit
-    ldi     r2.w2, 0x0101                   // running, training due (BiSS-C)
+    mov     Num, BISS_MAX_DELAY_NS / 10
+    mov     Den, CfgHalf
+    ldi     Quot, 4
+    jal     RET_DIV, DIVIDE
+    lsl     NewHalf, Quot, 16 + 3           // to w2
+    mov     NewHalfLo, CfgHalf
+    sbco    NewHalf, c28, P_HALF, P_PROC - P_HALF
+    mov     NewProcLimit, CfgProc           // processing-time limit
+    ldi     NewRunDue, 0x0101               // running, training due (BiSS-C)
     // The step between the slaves' result slots in this PRU's bank, for
     // the XFR shift (R0[4:0]). TI calls R0[4:0] "the number of 32-bit
     // offset" for XIN and XOUT but gives no direction. Up, slot k sits at
@@ -253,76 +353,79 @@ CFG_DELAY_SAVE:
     // lands in bank register 6 only if the shift goes down and wraps as a
     // 5-bit offset (up, it is bank register 0). Found: step 29; else 3
     // (docs/silicon-assumptions.md A6).
-    ldi     r0, 0
-    ldi     r6, 0
-    xout    XFR_BANK, r6, 4                       // bank register 6 cleared
-    ldi     r0, 32 - XFR_SLOT
-    ldi     r3, 32 - 2 * XFR_SLOT
-    xout    XFR_BANK, r3, 4                       // 26 to bank register 6 (down) or 0 (up)
-    ldi     r0, 0
-    xin     XFR_BANK, r6, 4
-    add     r2.b3, r6, XFR_SLOT             // running = the step: 3 up, 29 down
-    qbeq    CFG_PROC, r27.w0, 0
-    ldi     r2.b2, 0                        // SSI: the delay is given, nothing to train
-    mov     r1.w2, r27.w0                   // and the history holds it (r0, r1 are
-    jal     r0.w0, HIST_FILL                // set up anew by every frame)
+    ldi     XfrShiftCfg, 0
+    ldi     Probe, 0
+    xout    XFR_BANK, Probe, 4              // bank register 6 cleared
+    ldi     XfrShiftCfg, 32 - XFR_SLOT
+    ldi     ProbeVal, 32 - 2 * XFR_SLOT
+    xout    XFR_BANK, ProbeVal, 4           // 26 to bank register 6 (down) or 0 (up)
+    ldi     XfrShiftCfg, 0
+    xin     XFR_BANK, Probe, 4
+    add     NewRunning, Probe, XFR_SLOT     // running = the step: 3 up, 29 down
+    qbeq    CFG_PROC, SsiAckNew, 0
+    ldi     NewDue, 0                       // SSI: the delay is given, nothing to train
+    mov     HistPos, SsiAckNew              // and the history holds it (r0, r1 are
+    jal     RET_POST, HIST_FILL             // set up anew by every frame)
 CFG_PROC:
-    sbco    r27, c28, P_SSI, SIZE(BissPriv) - P_SSI
-    sbco    r2, c28, P_PROC, P_SPARE - P_PROC
-    sbco    r19, c4, GPCFG_OWN, 4           // shift mode at 8x the new rate (FACTOR_FOUND)
-    ldi     r28, BISS_CFGERR_NONE
-    ldi     r29, BISS_STATE_RUNNING
+    sbco    SsiWord, c28, P_SSI, SIZE(BissPriv) - P_SSI
+    sbco    NewProc, c28, P_PROC, P_SPARE - P_PROC
+    sbco    Gpcfg, c4, GPCFG_OWN, 4         // shift mode at 8x the new rate (FACTOR_FOUND)
+    ldi     CfgErr, BISS_CFGERR_NONE
+    ldi     CfgState, BISS_STATE_RUNNING
     qba     CFG_REPORT
 CFG_FAIL:
-    ldi     r2, 0
-    sbco    r2, c28, P_PROC, P_SPARE - P_PROC  // not running
-    ldi     r29, BISS_STATE_CFG_ERROR
+    ldi     NewProc, 0
+    sbco    NewProc, c28, P_PROC, P_SPARE - P_PROC // not running
+    ldi     CfgState, BISS_STATE_CFG_ERROR
 CFG_REPORT:
-    sbco    r28, c24, BISS_ST_CFG_ERROR, 8  // r28 the error, r29 ST_STATE (the next word)
-    sbco    r18, c24, BISS_ST_CFG_ACK, 4    // then the sequence number: the verdict is out
-    lbco    r13, c28, P_RECORDS, P_DELAYS - P_RECORDS  // slave records into r13..r29
+    sbco    CfgErr, c24, BISS_ST_CFG_ERROR, 8 // CfgErr, CfgState (ST_STATE, the next word)
+    sbco    NewSeq, c24, BISS_ST_CFG_ACK, 4 // then the sequence number: the verdict is out
+    lbco    &Records, c28, P_RECORDS, P_DELAYS - P_RECORDS // slave records into r13..r29
     jmp     MAIN
 
-// r7 += r5 / r6, r5 = r5 mod r6: repeated subtraction (configuration only).
-// Returns through r0.w2.
+// Quot += Num / Den, Num = Num mod Den: repeated subtraction (configuration
+// only). Returns through RET_DIV.
 DIVIDE:
-    qbgt    DIVIDE_DONE, r5, r6
-    sub     r5, r5, r6
-    add     r7, r7, 1
+    qbgt    DIVIDE_DONE, Num, Den
+    sub     Num, Num, Den
+    add     Quot, Quot, 1
     qba     DIVIDE
 DIVIDE_DONE:
-    jmp     r0.w2
+    jmp     RET_DIV
+.leave config
 
-// The shared delay of the clocked periods: called by `jal r10.w2, entry`,
+// The shared delay of the clocked periods: called by `jal RET_LEAF, entry`,
 // it costs from its entry to its return included: DLY_Sk k cycles (k =
-// 1..7), DLY_Lr 2 + r + 4 r9.b3 cycles (r = 0..3, r9.b3 >= 1, so the turn
+// 1..7), DLY_Lr 2 + r + 4 DlyTurns cycles (r = 0..3, DlyTurns >= 1, so the turn
 // counter never starts at 0 nor wraps). Single-cycle instructions only
-// (docs/pru-facts.md §3): no LOOP. It writes r10.b1 and the carry.
+// (docs/pru-facts.md §3): no LOOP. It writes DlyCount and the carry.
+.using clocked
 DLY_S7:
-    mov     r0, r0
+    PAD
 DLY_S6:
-    mov     r0, r0
+    PAD
 DLY_S5:
-    mov     r0, r0
+    PAD
 DLY_S4:
-    mov     r0, r0
+    PAD
 DLY_S3:
-    mov     r0, r0
+    PAD
 DLY_S2:
-    mov     r0, r0
+    PAD
 DLY_S1:
     jmp     RET_LEAF
 DLY_L3:
-    mov     r0, r0
+    PAD
 DLY_L2:
-    mov     r0, r0
+    PAD
 DLY_L1:
-    mov     r0, r0
+    PAD
 DLY_L0:
-    mov     r10.b1, r9.b3
+    mov     DlyCount, DlyTurns
 DLY_TURN:                                   // 4 cycles a turn
-    sub     r10.b1, r10.b1, 1
-    mov     r0, r0
-    mov     r0, r0
-    qbne    DLY_TURN, r10.b1, 0
+    sub     DlyCount, DlyCount, 1
+    PAD
+    PAD
+    qbne    DLY_TURN, DlyCount, 0
     jmp     RET_LEAF
+.leave clocked

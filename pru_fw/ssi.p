@@ -7,17 +7,23 @@
 // configured round trip gives (P_SSI), exactly as a BiSS-C frame's bits.
 
 // Its configuration: CFG_SSI (APPLY_CONFIG).
+.using main_loop
+.using clocked
+.using front
 SSI_FRAME:
     jal     RET_SUB, FRAME_REGS
-    lbco    r1.w2, c28, P_SSI, SIZE(BissPriv) - P_SSI  // Q' (and r1.w2 is what FRAME_END records),
-                                            // the clocks (to r2.w0: docs/pru-facts.md §1.7)
+    lbco    &AckPos, c28, P_SSI, SIZE(BissPriv) - P_SSI // Q' (and AckPos is what FRAME_END
+                                            // records), the clocks (to r2.w0: docs/pru-facts.md §1.7)
     IEP_ALIGN_IF SSI_ALIGNED
+.leave main_loop
 SSI_ALIGNED:
-    mov     MA_EDGES, r2.w0
+    mov     Edges, SsiEdges
     FRAME_STAMP
-    SAMPLE_POINT r1.w2                      // sample point and lag as LAG1 derives them
-    lsr     r3, r2, 3
-    add     r3, r3, LAG                     // periods before bit 0 is read: m + LAG
-    ldi     r8, 0
+    SAMPLE_POINT AckPos                     // sample point and lag as LAG1 derives them
+    lsr     IdlePeriods, Qf, 3
+    add     IdlePeriods, IdlePeriods, LAG   // periods before bit 0 is read: m + LAG
+    ldi     Poly, 0
     LOAD_RECORD                             // the slave's data bits, no CRC
-    jmp     LAG_TOP                         // the idle periods, then NEXT_ENTRY
+    jmp     LAG_TOP                         // the idle periods, then Entry
+.leave front
+.leave clocked

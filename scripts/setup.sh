@@ -5,6 +5,7 @@ set -euo pipefail
 
 packages=(gcc make cmake pkg-config check libcjson-dev python3 clang-format libelf-dev binutils python3-pyelftools device-tree-compiler gcc-arm-linux-gnueabihf libc6-dev-armhf-cross qemu-user)
 packages+=(sigrok-cli gtkwave) # the VCD clients the tests open the bench's VCD with
+packages+=(systemd) # systemd-analyze verifies the service unit (test board_flow)
 
 missing=()
 for p in "${packages[@]}"; do

@@ -190,7 +190,15 @@ typedef struct biss biss_t;
  * and configuration are checked and adopted. On error *out is NULL (and
  * params errbuf, if given, holds the detail). */
 int biss_open(const struct biss_open_params *p, biss_t **out);
+/* Releases the handle. A firmware this handle started through remoteproc
+ * is stopped with it, unless biss_leave_running was called. */
 void biss_close(biss_t *h);
+/* The master this handle started keeps running after biss_close (and after
+ * the process ends), for other handles and processes to attach to: what
+ * `bissctl start` and the systemd unit do. The devmem loader never stops
+ * the PRU on close; the emulated master lives in the handle and ends with
+ * it whatever this says. 0, or BISS_E_INVAL for NULL. */
+int biss_leave_running(biss_t *h);
 
 enum biss_target biss_target(const biss_t *h);
 /* The firmware image path this handle loaded or compared the running

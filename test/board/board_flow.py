@@ -9,9 +9,29 @@ magic; it acknowledges configurations; on "stop" the instance goes
 offline. Run with the PC's bissctl and, when given, the ARM build under
 qemu-arm (scripts/cross-bissctl.sh, installed in <build>/arm-prefix).
 
-usage: board_flow.py BISSCTL BISS_MASTER_ELF BISS_MASTER_BIN [ARM_BISSCTL]
+The sysfs tree has what a board's has: the instance under its PRU's
+platform device with a "device" link to it, /sys/class/remoteproc/remoteprocN
+linking there, its "name" attribute on 5.10 and newer only (Linux 5.4's
+sysfs-class-remoteproc ABI), the pruss driver's link to the bound PRU-ICSS,
+and the device tree's root compatible and chosen/overlays entry under
+firmware/devicetree/base. While configured, the stand-in firmware publishes
+a frame a millisecond the way biss_shm.h's protocol has it (fill the buffer
+not named by ST_BUF, name it, bump ST_SEQ), so "bissctl read" has frames.
+
+Then the master that keeps running: "bissctl start" leaves it running after
+it exits, "read" and "info" attach to it without restarting or
+reconfiguring it, "stop" stops it (and a second stop is no error); the same
+through the systemd unit's ExecStart and ExecStop lines as parsed from the
+configured unit file (the installed paths replaced by the build's bissctl
+and the test's configuration directory), with the default configuration
+file, on a 4.19-like tree whose instance has no name. systemd-analyze
+verifies the unit. And the default target: a TI compatible picks the
+hardware (AM335x; AM437x: ICSS0), none says "emulated".
+
+usage: board_flow.py BISSCTL BISS_MASTER_ELF BISS_MASTER_BIN UNIT CONFIG [ARM_BISSCTL]
 """
 import os
+import shlex
 import shutil
 import struct
 import subprocess
@@ -28,10 +48,30 @@ from elftools.elf.elffile import ELFFile  # noqa: E402
 
 
 
-ctl, elf_path, bin_path = sys.argv[1:4]
-arm = sys.argv[4] if len(sys.argv) > 4 else None
+ctl, elf_path, bin_path, unit_path, conf_path = sys.argv[1:6]
+arm = sys.argv[6] if len(sys.argv) > 6 else None
 BASE = 0x4A300000
 MAGIC, CFG_SEQ, ST_CFG_ACK, ST_CFG_ERROR, ST_STATE = 0x80, 0x00, 0x8C, 0x90, 0x94
+# include/biss/biss_shm.h: configuration, status and result offsets
+CFG_HALF, CFG_NSLAVES = 0x04, 0x06
+ST_SEQ, ST_BUF, ST_FRAMES = 0x84, 0x88, 0x98
+RES0, RES_SIZE = 0x100, 0xA0
+R_FRAME, R_FLAGS, R_TIMESTAMP, R_NSLAVES = 0x00, 0x04, 0x08, 0x0F
+R_DELAY_RAW, R_DELAY_AVG, R_SAMPLE_POINT, R_HALF, R_SLAVE0 = 0x10, 0x12, 0x14, 0x16, 0x20
+RF_VALID, RF_SMA = 0x01, 0x20
+RS_CRC_OK, RS_NE, RS_NW = 0x01, 0x02, 0x04
+# the device tree's root compatible of a BeagleBone Black (BeagleBoard-
+# DeviceTrees v5.10.x-ti src/arm/am335x-boneblack.dts) and of the AM437x IDK
+# (mainline arch/arm/boot/dts/ti/omap/am437x-idk-evm.dts)
+BBB_COMPATIBLE = b"ti,am335x-bone-black\0ti,am335x-bone\0ti,am33xx\0"
+IDK_COMPATIBLE = b"ti,am437x-idk-evm\0ti,am4372\0ti,am43\0"
+# where the PRU-ICSS's devices are (platform device names from
+# of_device_make_bus_id: "<address>.<node name>"): 5.10-ti's
+# target-module@300000 / pruss@0 / pru@34000, 4.19-ti's
+# pruss-soc-bus@4a326004 / pruss@4a300000 / pru@4a334000
+PRUSS_510 = ("platform/ocp/4a000000.interconnect/4a000000.interconnect:segment@0/"
+             "4a326000.target-module/4a300000.pruss")
+PRUSS_419 = "platform/ocp/4a326004.pruss-soc-bus/4a300000.pruss"
 
 with open(elf_path, "rb") as f:
     e = ELFFile(f)
@@ -40,12 +80,29 @@ with open(elf_path, "rb") as f:
 
 
 class Board:
-    def __init__(self, root):
+    def __init__(self, root, named=True):
+        """named: the instance has a "name" attribute (5.10 and newer),
+        else not (4.19)."""
         self.root = root
-        self.rp = os.path.join(root, "sys/class/remoteproc/remoteproc1")
+        sys_dir = os.path.join(root, "sys")
+        pruss = os.path.join(sys_dir, "devices", PRUSS_510 if named else PRUSS_419)
+        self.rp = os.path.join(pruss, "4a334000.pru/remoteproc/remoteproc1")
         os.makedirs(self.rp)
-        os.makedirs(os.path.join(root, "sys/bus/platform/drivers/pruss/4a300000.pruss"))
-        self.put("name", "4a334000.pru\n")
+        os.symlink("../../../4a334000.pru", os.path.join(self.rp, "device"))
+        os.makedirs(os.path.join(sys_dir, "class/remoteproc"))
+        os.symlink(os.path.relpath(self.rp, os.path.join(sys_dir, "class/remoteproc")),
+                   os.path.join(sys_dir, "class/remoteproc/remoteproc1"))
+        drv = os.path.join(sys_dir, "bus/platform/drivers/pruss")
+        os.makedirs(drv)
+        os.symlink(os.path.relpath(pruss, drv), os.path.join(drv, "4a300000.pruss"))
+        dt = os.path.join(sys_dir, "firmware/devicetree/base")
+        os.makedirs(os.path.join(dt, "chosen/overlays"))
+        with open(os.path.join(dt, "compatible"), "wb") as f:
+            f.write(BBB_COMPATIBLE)
+        with open(os.path.join(dt, "chosen/overlays/BB-BISS-PRU0-00A0"), "w") as f:
+            f.write("BiSS-C master, PRU0: MA P9_29, SL P9_31\0")
+        if named:
+            self.put("name", "4a334000.pru\n")
         self.put("state", "offline\n")
         self.put("firmware", "am335x-pru0-fw\n")
         fw = os.path.join(root, "lib/firmware")
@@ -56,6 +113,7 @@ class Board:
         with open(self.mem, "wb") as m:
             m.truncate(BASE + 0x80000)
         self.states = []
+        self.frames = 0
         self.stop_flag = False
         self.thread = threading.Thread(target=self.kernel)
         self.thread.start()
@@ -80,8 +138,30 @@ class Board:
             f.seek(BASE + off)
             return struct.unpack("<I", f.read(4))[0]
 
+    def publish(self):
+        """One frame of TIDEP0022's test encoder (14 data bits: a 12-bit
+        position counting up, nE and nW high, CRC good) into the buffer the
+        host is not reading, then ST_BUF, then ST_SEQ (biss_shm.h)."""
+        self.frames += 1
+        buf = 1 - self.r32(ST_BUF) if self.r32(ST_SEQ) else 0
+        at = RES0 + buf * RES_SIZE
+        half = self.r32(CFG_HALF) & 0xFFFF
+        data = ((self.frames & 0xFFF) << 2) | 0x3
+        rec = bytearray(RES_SIZE)
+        struct.pack_into("<III", rec, R_FRAME, self.frames, RF_VALID | RF_SMA, self.frames * 200000)
+        rec[R_NSLAVES] = self.r32(CFG_NSLAVES) & 0xFF
+        struct.pack_into("<HHBxH", rec, R_DELAY_RAW, 30, 30, 4, half)
+        struct.pack_into("<IIII", rec, R_SLAVE0, data, 0, 0, RS_CRC_OK | RS_NE | RS_NW)
+        with open(self.mem, "r+b") as f:
+            f.seek(BASE + at)
+            f.write(rec)
+        self.w32(ST_FRAMES, self.frames)
+        self.w32(ST_BUF, buf)
+        self.w32(ST_SEQ, self.r32(ST_SEQ) + 1)
+
     def kernel(self):
         running = False
+        last = 0.0
         while not self.stop_flag:
             state = self.get("state").strip()
             if state == "start":
@@ -105,6 +185,9 @@ class Board:
                     self.w32(ST_CFG_ERROR, 0)
                     self.w32(ST_STATE, 1)
                     self.w32(ST_CFG_ACK, seq)
+                if seq and seq == self.r32(ST_CFG_ACK) and time.monotonic() - last > 0.001:
+                    self.publish()
+                    last = time.monotonic()
             time.sleep(0.0005)
 
     def close(self):
@@ -165,10 +248,200 @@ def flow(cmd, label):
             b.close()
 
 
-flow([ctl], "pc")
+def bissctl(cmd, args, env):
+    return subprocess.run([*cmd, *args], capture_output=True, text=True, timeout=120, env=env)
+
+
+def attached_reads(b, cmd, label, where, env):
+    """read and info with no --target (the stand-in's TI compatible picks
+    the AM335x) and no configuration: they attach to the running master,
+    neither restarting nor reconfiguring it."""
+    states, cfg_seq = list(b.states), b.r32(CFG_SEQ)
+    r = bissctl(cmd, [*where, "read", "-n", "3"], env)
+    lines = r.stdout.splitlines()
+    check(r.returncode == 0 and len(lines) == 3 and all(" valid s0.pos=" in l for l in lines),
+          "%s attached read: %r %r" % (label, r.stdout, r.stderr))
+    check("emulated" not in r.stdout, "%s: the hardware read says emulated" % label)
+    r = bissctl(cmd, [*where, "info"], env)
+    check(r.returncode == 0 and r.stdout.startswith("target=am335x ") and "(attached)" in r.stdout
+          and "freq_hz=1000000 slaves=1" in r.stdout,
+          "%s attached info: %r %r" % (label, r.stdout, r.stderr))
+    check(b.states == states and b.r32(CFG_SEQ) == cfg_seq and b.get("state") == "running\n",
+          "%s: the readers restarted or reconfigured it: %r CFG_SEQ %d" % (
+              label, b.states, b.r32(CFG_SEQ)))
+
+
+def keep_running_flow(cmd, label):
+    """bissctl start leaves the master running after it exits; read attaches;
+    stop stops it; a second stop is no error."""
+    with tempfile.TemporaryDirectory() as root:
+        b = Board(root)
+        env = dict(os.environ, BISS_LOCK_DIR=root)
+        where = ["--sysfs", os.path.join(root, "sys"), "--devmem", b.mem,
+                 "--firmware-dir", os.path.join(root, "lib/firmware"), "--firmware", bin_path,
+                 "--timeout-ms", "2000"]
+        try:
+            r = bissctl(cmd, [*where, "--slave", "14,6,0x43,0,0", "--freq", "1000000", "start"],
+                        env)
+            check(r.returncode == 0 and r.stdout.startswith("started: target=am335x pru=0 ")
+                  and "keeps running" in r.stdout,
+                  "%s start: %d %r %r" % (label, r.returncode, r.stdout, r.stderr))
+            time.sleep(0.05)  # long enough for a stop the exit might have sent
+            check(b.states == ["start:am335x-pru0-fw"] and b.get("state") == "running\n",
+                  "%s: running after start exited: %r %r" % (label, b.states, b.get("state")))
+            check(b.r32(CFG_HALF) & 0xFFFF == 100, "%s: CFG_HALF %d" % (label, b.r32(CFG_HALF)))
+            attached_reads(b, cmd, label, where, env)
+            r = bissctl(cmd, [*where, "stop"], env)
+            settle(b, "offline\n")
+            check(r.returncode == 0 and r.stdout == "stopped: target=am335x pru=0\n"
+                  and b.states == ["start:am335x-pru0-fw", "stop"],
+                  "%s stop: %r %r %r" % (label, r.stdout, r.stderr, b.states))
+            r = bissctl(cmd, [*where, "stop"], env)
+            check(r.returncode == 0 and r.stdout.startswith("stopped: nothing was running")
+                  and b.states == ["start:am335x-pru0-fw", "stop"],
+                  "%s second stop: %d %r %r" % (label, r.returncode, r.stdout, r.stderr))
+        finally:
+            b.close()
+
+
+def unit_lines(path):
+    """ExecStart and ExecStop of the unit file, as word lists (systemd's
+    quoting is the shell's for these lines), for instance pru0."""
+    lines = {}
+    with open(path) as f:
+        for line in f:
+            key, _, value = line.strip().partition("=")
+            if key in ("ExecStart", "ExecStop", "Type", "RemainAfterExit"):
+                lines[key] = value.replace("%i", "pru0")
+    return lines
+
+
+def service_flow(cmd, label):
+    """The unit's ExecStart and ExecStop, with the default configuration,
+    on a 4.19-like tree (no "name" attribute): started at "boot", readable,
+    stopped by systemctl stop."""
+    unit = unit_lines(unit_path)
+    check(unit.get("Type") == "oneshot" and unit.get("RemainAfterExit") == "yes",
+          "unit: Type=oneshot, RemainAfterExit=yes: %r" % unit)
+    start, stop = shlex.split(unit["ExecStart"]), shlex.split(unit["ExecStop"])
+    conf_at = start.index("--config") + 1
+    installed_dir = os.path.dirname(start[conf_at])
+    with tempfile.TemporaryDirectory() as root:
+        b = Board(root, named=False)
+        env = dict(os.environ, BISS_LOCK_DIR=root)
+        etc = os.path.join(root, "etc/biss")
+        os.makedirs(etc)
+        # the default configuration as installed, and where the stand-in
+        # board is (a real board needs none of these lines)
+        with open(conf_path) as f:
+            conf = f.read()
+        with open(os.path.join(etc, "pru0.conf"), "w") as f:
+            f.write(conf + "\n# the stand-in board\nsysfs = %s\ndevmem = %s\n"
+                    "firmware-dir = %s\nfirmware = %s\ntimeout-ms = 2000\n" % (
+                        os.path.join(root, "sys"), b.mem, os.path.join(root, "lib/firmware"),
+                        bin_path))
+
+        def run_unit(words):
+            # the unit's own words: its bissctl is the build's, its
+            # configuration directory the test's
+            args = [w.replace(installed_dir, etc) for w in words[1:]]
+            check(os.path.basename(words[0]) == "bissctl", "%s: unit runs %s" % (label, words[0]))
+            return bissctl(cmd, args, env)
+
+        where = ["--sysfs", os.path.join(root, "sys"), "--devmem", b.mem,
+                 "--firmware", bin_path]
+        try:
+            r = run_unit(start)
+            check(r.returncode == 0 and r.stdout.startswith("started: target=am335x pru=0 ")
+                  and "freq_hz=1000000 slaves=1 trigger=free" in r.stdout,
+                  "%s ExecStart: %d %r %r" % (label, r.returncode, r.stdout, r.stderr))
+            time.sleep(0.05)
+            check(b.states == ["start:am335x-pru0-fw"] and b.get("state") == "running\n",
+                  "%s: running after ExecStart: %r" % (label, b.states))
+            attached_reads(b, cmd, label + " (unit)", where, env)
+            r = run_unit(stop)
+            settle(b, "offline\n")
+            check(r.returncode == 0 and b.states == ["start:am335x-pru0-fw", "stop"],
+                  "%s ExecStop: %r %r %r" % (label, r.stdout, r.stderr, b.states))
+            r = run_unit(stop)
+            check(r.returncode == 0, "%s ExecStop again: %r" % (label, r.stderr))
+            # a bad line in the configuration: ExecStart fails naming it
+            with open(os.path.join(etc, "pru0.conf"), "a") as f:
+                f.write("freq = fast\n")
+            with open(os.path.join(etc, "pru0.conf")) as f:
+                n = len(f.read().splitlines())  # the bad line is the last
+            r = run_unit(start)
+            check(r.returncode == 2 and ("pru0.conf:%d: --freq 'fast'" % n) in r.stderr
+                  and b.states == ["start:am335x-pru0-fw", "stop"],
+                  "%s bad configuration: %d %r" % (label, r.returncode, r.stderr))
+        finally:
+            b.close()
+
+
+def default_target(cmd, label):
+    """No --target: a TI compatible picks the hardware, none the emulator
+    (and then it says "emulated")."""
+    with tempfile.TemporaryDirectory() as root:
+        dt = os.path.join(root, "sys/firmware/devicetree/base")
+        os.makedirs(dt)
+        with open(os.path.join(dt, "compatible"), "wb") as f:
+            f.write(IDK_COMPATIBLE)
+        drv = os.path.join(root, "sys/bus/platform/drivers/pruss/54440000.pruss")
+        os.makedirs(drv)
+        os.makedirs(os.path.join(root, "sys/class/remoteproc"))
+        mem = os.path.join(root, "mem")
+        with open(mem, "wb") as f:
+            f.truncate(0x54440000 + 0x40000)
+        env = dict(os.environ, BISS_LOCK_DIR=root)
+        r = bissctl(cmd, ["--sysfs", os.path.join(root, "sys"), "--devmem", mem, "stats"], env)
+        # AM437x: ICSS0's PRU0 (IRAM 0x54474000) looked for, on the hardware
+        check(r.returncode == 1 and "no remoteproc instance of 54474000.pru" in r.stderr
+              and "emulated" not in r.stdout,
+              "%s AM437x default: %d %r %r" % (label, r.returncode, r.stdout, r.stderr))
+        os.remove(os.path.join(dt, "compatible"))
+        r = bissctl(cmd, ["--sysfs", os.path.join(root, "sys"), "--freq", "10000000", "read"],
+                    env)
+        check(r.returncode == 0 and r.stdout.startswith("emulated: target emu, no board"),
+              "%s no compatible: %r %r" % (label, r.stdout, r.stderr))
+        with open(os.path.join(dt, "compatible"), "wb") as f:
+            f.write(b"raspberrypi,4-model-b\0brcm,bcm2711\0")
+        r = bissctl(cmd, ["--sysfs", os.path.join(root, "sys"), "--freq", "10000000", "read",
+                          "--json"], env)
+        check(r.returncode == 0 and r.stdout.startswith(
+            '{\n  "target": "emu",\n  "emulated": true,'),
+            "%s another SoC: %r %r" % (label, r.stdout[:80], r.stderr))
+
+
+def verify_unit():
+    """systemd-analyze verify (Debian: systemd): the configured unit with
+    the build's bissctl in place of the installed one (verify checks that
+    the command exists)."""
+    tool = shutil.which("systemd-analyze")
+    if not check(tool is not None, "systemd-analyze on PATH (Debian: systemd)"):
+        return
+    with tempfile.TemporaryDirectory() as d:
+        unit = unit_lines(unit_path)
+        installed = shlex.split(unit["ExecStart"])[0]
+        with open(unit_path) as f:
+            text = f.read().replace(installed, os.path.abspath(ctl))
+        with open(os.path.join(d, "biss-master@.service"), "w") as f:
+            f.write(text)
+        r = subprocess.run([tool, "verify", "--man=no", os.path.join(d, "biss-master@pru0.service")],
+                           capture_output=True, text=True, timeout=120)
+        check(r.returncode == 0 and r.stdout == "" and r.stderr == "",
+              "systemd-analyze verify: %d %r %r" % (r.returncode, r.stdout, r.stderr))
+
+
+verify_unit()
+runners = [([ctl], "pc")]
 if arm:
     qemu = shutil.which("qemu-arm")
     check(qemu is not None, "qemu-arm on PATH (Debian: qemu-user)")
     if qemu:
-        flow([qemu, arm], "arm")
+        runners.append(([qemu, arm], "arm"))
+for runner, label in runners:
+    flow(runner, label)
+    keep_running_flow(runner, label)
+    service_flow(runner, label)
+    default_target(runner, label)
 finish("board flow")

@@ -7,6 +7,16 @@ them, the BeagleBone Black / PocketBeagle header tables, and TIDEP0022's
 Table 9 for the AM437x IDK. Also the nodes they enable and the labels they
 need from the base device tree.
 
+Then each overlay applied with fdtoverlay to stand-ins of the base trees
+BeagleBoard's images boot (standins.py: 4.19-ti, 5.10-ti, 6.1-ti; the
+BeagleBone Black with the universal cape on and off, the PocketBeagle; the
+AM437x IDK's mainline and TI 4.19 trees), followed by the overlays U-Boot
+applies after it (its HDMI overlay, 4.19's PRU remoteproc overlay): no pad
+may be claimed by two enabled nodes (fdt.py walks every enabled node's
+pinctrl-N groups), and the PRU-ICSS must be enabled with exactly the
+overlay's pads. The two cases the guide warns about (HDMI audio or video
+left on) must show exactly the pads they take.
+
 usage: overlays_check.py BOARDS_DIR
 """
 import os
@@ -17,6 +27,9 @@ import sys
 import tempfile
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
 from checks import check, finish  # noqa: E402
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import fdt  # noqa: E402
+import standins  # noqa: E402
 
 
 
@@ -59,13 +72,24 @@ PINS = [
      "gpio5_12 (receiver enable)", "out"),
 ]
 
-# what each overlay must switch on (label -> property it sets) and no more
+# the labels each overlay needs from the base tree, and no more: none that
+# one of the kernels lacks (pruss_tm is 5.10-ti and newer only)
 TARGETS = {
-    "BB-BISS-PRU0-00A0": {"am33xx_pinmux", "pruss_tm", "pruss", "mcasp0"},
-    "PB-BISS-PRU0-00A0": {"am33xx_pinmux", "pruss_tm", "pruss"},
-    "BB-BISS-PRU01-00A0": {"am33xx_pinmux", "pruss_tm", "pruss", "mcasp0"},
-    "AM437X-IDK-BISS-00A0": {"am43xx_pinmux", "pruss_tm", "pruss0", "gpio5"},
+    "BB-BISS-PRU0-00A0": {"am33xx_pinmux", "pruss", "mcasp0", "ocp"},
+    "PB-BISS-PRU0-00A0": {"am33xx_pinmux", "pruss", "ocp"},
+    "BB-BISS-PRU01-00A0": {"am33xx_pinmux", "pruss", "mcasp0", "ocp"},
+    "AM437X-IDK-BISS-00A0": {"am43xx_pinmux", "pruss0", "gpio5"},
 }
+# the pin helpers each overlay must disable (the helpers of its pads)
+HELPERS_OFF = {
+    "BB-BISS-PRU0-00A0": {"P9_29_pinmux", "P9_31_pinmux"},
+    "PB-BISS-PRU0-00A0": {"P1_33_pinmux", "P1_36_pinmux"},
+    "BB-BISS-PRU01-00A0": {"P9_29_pinmux", "P9_31_pinmux", "P8_45_pinmux", "P8_46_pinmux"},
+    "AM437X-IDK-BISS-00A0": set(),
+}
+# the PRU-ICSS node the pins hang on
+PRUSS = {"BB-BISS-PRU0-00A0": "pruss", "PB-BISS-PRU0-00A0": "pruss",
+         "BB-BISS-PRU01-00A0": "pruss", "AM437X-IDK-BISS-00A0": "pruss0"}
 
 boards = sys.argv[1]
 dtc = shutil.which("dtc")
@@ -114,13 +138,69 @@ with tempfile.TemporaryDirectory() as tmp:
         got = set(re.findall(r"(\w+) = ", fix.group(1))) if fix else set()
         check(got == labels, "%s: labels %s, want %s" % (name, sorted(got), sorted(labels)))
         check("__symbols__" in back, "%s: compiled with symbols (-@)" % name)
-        # the PRU-ICSS switched on; on the Black, McASP0 (HDMI audio) off
-        check(len(re.findall(r'status = "okay"', back)) == 2, "%s: two nodes enabled" % name)
-        if "mcasp0" in labels:
-            check('status = "disabled"' in back, "%s: McASP0 disabled" % name)
+        # the PRU-ICSS switched on and nothing else; on the Black, McASP0
+        # (HDMI audio) off; the helpers of its pads off
+        check(len(re.findall(r'status = "okay"', back)) == 1, "%s: one node enabled" % name)
+        ov = fdt.read(dtbo)
+        target = {}  # label -> the fragment's __overlay__ node
+        for label, refs in ov.child("__fixups__").props.items():
+            for ref in refs.rstrip(b"\0").decode().split("\0"):
+                target[label] = fdt.find(ov, ref.split(":")[0] + "/__overlay__")
+        if "ocp" in target:
+            helpers_off = {c.name for c in target["ocp"].children
+                           if c.props.get("status") == b"disabled\0"}
+            check(helpers_off == HELPERS_OFF[name] and len(target["ocp"].children) ==
+                  len(helpers_off), "%s: helpers disabled %s, want %s"
+                  % (name, sorted(helpers_off), sorted(HELPERS_OFF[name])))
+        else:
+            check(not HELPERS_OFF[name], "%s: no &ocp fragment" % name)
+        if "mcasp0" in target:
+            check(target["mcasp0"].props.get("status") == b"disabled\0",
+                  "%s: McASP0 disabled" % name)
         if "gpio5" in labels:
             check(re.search(r"gpio-hog;\s*gpios = <0x0c 0x00>;\s*output-high;", back) is not None,
                   "%s: gpio5_12 hog" % name)
+
+    # applied to the stand-in base trees, followed by what U-Boot applies
+    # after uboot_overlay_addr4
+    fdtoverlay = shutil.which("fdtoverlay")
+    check(fdtoverlay is not None, "fdtoverlay on PATH (Debian: device-tree-compiler)")
+
+    def compile_tree(tree, name):
+        """A stand-in tree (standins.Tree) compiled with dtc -@: its path."""
+        out = os.path.join(tmp, name + (".dtbo" if tree.plugin else ".dtb"))
+        r = subprocess.run([dtc, "-@", "-q", "-I", "dts", "-O", "dtb", "-o", out, "-"],
+                           input=tree.dts(), capture_output=True, text=True)
+        check(r.returncode == 0, "%s: dtc: %s" % (name, r.stderr))
+        return out
+
+    for i, (case, base, overlay, after, want) in enumerate(standins.cases()):
+        if fdtoverlay is None:
+            break
+        base_dtb = compile_tree(base, "base%d" % i)
+        extra = [compile_tree(t, "after%d_%d" % (i, k)) for k, t in enumerate(after)]
+        applied = os.path.join(tmp, "applied%d.dtb" % i)
+        r = subprocess.run([fdtoverlay, "-i", base_dtb, "-o", applied,
+                            os.path.join(tmp, overlay + ".dtbo")] + extra,
+                           capture_output=True, text=True)
+        if not check(r.returncode == 0, "%s: fdtoverlay: %s" % (case, r.stderr.strip())):
+            continue
+        tree = fdt.read(applied)
+        doubles = fdt.double_claims(tree)
+        got = {pad for (_ctl, pad) in doubles}
+        check(got == want, "%s: pads claimed twice %s, want %s: %s" % (
+            case, sorted(hex(p) for p in got), sorted(hex(p) for p in want),
+            "; ".join("0x%03x by %s" % (pad, ", ".join(sorted(who)))
+                      for (_ctl, pad), who in sorted(doubles.items()))))
+        # the PRU-ICSS probes (it and its parents enabled) with the
+        # overlay's pads and only those
+        pruss = fdt.find(tree, standins.pruss_path(base, PRUSS[overlay]))
+        check(pruss is not None and fdt.enabled(pruss), "%s: PRU-ICSS not enabled" % case)
+        mine = {pad for (_ctl, pad), who in fdt.pad_claims(tree).items()
+                if pruss is not None and pruss.path() in who}
+        table = {p[5] - 0x800 for p in PINS if p[1] == overlay}
+        check(mine == table, "%s: PRU-ICSS claims %s, want %s" % (
+            case, sorted(hex(p) for p in mine), sorted(hex(p) for p in table)))
 
     # the config-pin recipes, run with a stand-in config-pin that logs its
     # arguments: the same header pins and PRU modes as the table, per PRU;

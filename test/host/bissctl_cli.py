@@ -13,10 +13,23 @@ from checks import check, finish  # noqa: E402
 from memfile import rd, wr  # noqa: E402
 
 CTL = sys.argv[1]
+# the first line of every output on the emulator (this machine has no TI
+# device tree, so the emulator is also the default target)
+EMULATED = "emulated: target emu, no board "
 
 
 def run(*args, env=None):
-    return subprocess.run([CTL, *args], capture_output=True, text=True, timeout=120, env=env)
+    """bissctl with args; on the emulator, the "emulated" line checked and
+    taken off stdout (read --json says it in its object)."""
+    r = subprocess.run([CTL, *args], capture_output=True, text=True, timeout=120, env=env)
+    target = args[args.index("--target") + 1] if "--target" in args else "emu"
+    if target == "emu" and r.stdout and "--help" not in args and "--json" not in args:
+        first, _, rest = r.stdout.partition("\n")
+        if check(first.startswith(EMULATED), "%r: no emulated line: %r" % (args, r.stdout[:120])):
+            r.stdout = rest
+    elif target != "emu":
+        check("emulated" not in r.stdout, "%r: emulated on hardware: %r" % (args, r.stdout))
+    return r
 
 
 # help: the overview and each command's own, exit 0
@@ -156,7 +169,8 @@ with tempfile.TemporaryDirectory() as tmp:
     # not powered: refused before the PRU-ICSS is touched, with the reason
     r = run(*dm, "--slave", "14,6,0x43,0,0", "info", env=env)
     check(r.returncode == 1 and "not powered" in r.stderr and "0x44e000e8" in r.stderr
-          and "modprobe pruss" in r.stderr and rd(mem, BASE + CTRL0) == 0,
+          and "no pruss driver bound to 4a300000.pruss" in r.stderr
+          and "already requested" in r.stderr and rd(mem, BASE + CTRL0) == 0,
           "unpowered: %r" % r.stderr)
     wr(mem, CLKCTRL, 2)
     # usage errors come before anything is opened or loaded
@@ -325,5 +339,59 @@ r = run("--check-speed", "0,x", "read")
 check(r.returncode == 2 and "--check-speed" in r.stderr, "--check-speed 0,x: %r" % r.stderr)
 r = run("--check-speed", "1,5", "read")
 check(r.returncode == 1 and "speed check" in r.stderr, "--check-speed 1,5: %r" % r.stderr)
+
+# the emulator says so in JSON too; start on the emulator says the master
+# ends with bissctl
+r = run("--freq", "10000000", "read", "-n", "1", "--json")
+try:
+    j = json.loads(r.stdout)
+except ValueError:
+    j = {}
+check(j.get("target") == "emu" and j.get("emulated") is True and len(j.get("frames", [])) == 1,
+      "read --json on the emulator: %r" % r.stdout[:200])
+r = run("--freq", "10000000", "start")
+check(r.returncode == 0 and r.stdout.startswith("started: target=emu pru=0 ")
+      and "ends with this bissctl" in r.stdout, "emulated start: %r %r" % (r.stdout, r.stderr))
+
+# --config FILE: key = value lines as the long options; the command line
+# wins; each error names FILE:LINE
+with tempfile.TemporaryDirectory() as d:
+    conf = os.path.join(d, "pru0.conf")
+
+    def conf_with(text):
+        with open(conf, "w") as f:
+            f.write(text)
+
+    conf_with("# a comment\n\n  freq = 10000000   # 10 MHz\nslave = 14,6,0x43,0,0\n"
+              "slave=14,6,0x43,0,0\ntrigger = host\n")
+    r = run("--config", conf, "info")
+    check(r.returncode == 0 and "freq_hz=10000000 slaves=2 trigger=host" in r.stdout,
+          "--config: %r %r" % (r.stdout, r.stderr))
+    # the command line's options win, its --slave lines replace the file's
+    r = run("--config", conf, "--freq", "5000000", "--slave", "14,6,0x43,0,0", "info")
+    check(r.returncode == 0 and "freq_hz=5000000 slaves=1 trigger=host" in r.stdout,
+          "--config overridden: %r %r" % (r.stdout, r.stderr))
+    r = run("--freq", "5000000", "--config", conf, "info")  # wherever --config stands
+    check(r.returncode == 0 and "freq_hz=5000000 slaves=2" in r.stdout,
+          "--config after: %r %r" % (r.stdout, r.stderr))
+    for text, line, words in [("freq = 10000000\nfreq = fast\n", 2, "--freq 'fast'"),
+                              ("\n\n\nms = 5\n", 4, "'ms' is a command's option"),
+                              ("slave\n", 1, "'slave' needs a value"),
+                              ("slave =\n", 1, "'slave' needs a value"),
+                              ("speed = 3\n", 1, "unknown key 'speed'"),
+                              ("config = x\n", 1, "'config' is a command's option"),
+                              ("attach = 1\n", 1, "'attach' is a command's option"),
+                              ("slave = 14,6\n", 1, "--slave '14,6'")]:
+        conf_with(text)
+        r = run("--config", conf, "info")
+        check(r.returncode == 2 and ("%s:%d: " % (conf, line)) in r.stderr and words in r.stderr,
+              "--config %r: %d %r" % (text, r.returncode, r.stderr))
+    conf_with("slave = 14,6,0x03,0,0\n")  # a configuration the library refuses
+    r = run("--config", conf, "info")
+    check(r.returncode == 1 and ("configuration in %s: " % conf) in r.stderr
+          and "polynomial" in r.stderr, "--config refused: %r" % r.stderr)
+    r = run("--config", os.path.join(d, "none.conf"), "info")
+    check(r.returncode == 1 and "none.conf: No such file or directory (errno 2)" in r.stderr,
+          "--config missing: %r" % r.stderr)
 
 finish("bissctl CLI")

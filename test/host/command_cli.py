@@ -14,7 +14,10 @@ FREQ = ["--freq", "10000000"]
 
 
 def run(*args):
-    return subprocess.run([CTL, *args], capture_output=True, text=True, timeout=120)
+    """bissctl's result, its stdout without the note on the emulator's first line."""
+    r = subprocess.run([CTL, *args], capture_output=True, text=True, timeout=120)
+    r.stdout = "".join(l for l in r.stdout.splitlines(True) if not l.startswith("emulated: "))
+    return r
 
 
 # the help: all eight (broadcast and addressed, 00..11), which need --force, the source

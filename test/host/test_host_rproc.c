@@ -31,7 +31,7 @@ static const uint8_t image_bytes[16] = {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 1
 
 /* Whole at once (a rename), as sysfs attributes read: never half written. */
 static void put_file(const char *path, const char *text) {
-    char tmp[300];
+    char tmp[600];
     snprintf(tmp, sizeof tmp, "%s.%lx", path, (unsigned long)pthread_self());
     FILE *f = fopen(tmp, "w");
     ck_assert_ptr_nonnull(f);
@@ -74,7 +74,7 @@ static void wait_state(const char *want) {
 }
 
 static void mkdirs(const char *base, const char *rel) {
-    char path[256];
+    char path[512];
     snprintf(path, sizeof path, "%s/%s", base, rel);
     for (char *s = path + strlen(base) + 1; (s = strchr(s, '/')); s++) {
         *s = '\0';
@@ -100,30 +100,92 @@ static uint32_t mem32(off_t at) {
     return v;
 }
 
-/* the tree: remoteproc0 another processor, remoteproc1 PRU0 (offline,
- * firmware named something else), remoteproc2 PRU1 */
+/* Where the kernel puts the PRU-ICSS's devices, and which attributes an
+ * instance has, per kernel. The device directories follow the driver
+ * core: a class device lives under its parent (.../4a334000.pru/remoteproc/
+ * remoteprocN), /sys/class/remoteproc/remoteprocN is a symlink to it, and
+ * it has a "device" link to its parent (drivers/base/core.c,
+ * device_add_class_symlinks); platform devices are named
+ * "<translated address>.<node name>" (drivers/of/platform.c,
+ * of_device_make_bus_id), from BeagleBoard's trees: v5.10.x-ti/v6.1.x-ti
+ * am33xx-l4.dtsi (pruss@0 and pru@34000 under target-module@300000, rev
+ * register 0x4a326000) and v4.19.x-ti am33xx.dtsi (pruss-soc-bus@4a326004,
+ * pruss@4a300000, pru@4a334000). The "name" attribute exists since Linux
+ * 5.4 (Documentation/ABI/testing/sysfs-class-remoteproc): 4.19 has only
+ * firmware and state. The pruss driver's directory holds a link per bound
+ * device. */
+struct layout {
+    const char *label;
+    const char *pruss; /* the PRU-ICSS's device directory under sys/devices */
+    bool has_name;     /* the instance's "name" attribute */
+};
+static const struct layout linux_510 = {
+    "5.10",
+    "platform/ocp/4a000000.interconnect/4a000000.interconnect:segment@0/"
+    "4a326000.target-module/4a300000.pruss",
+    true};
+static const struct layout linux_419 = {
+    "4.19", "platform/ocp/4a326004.pruss-soc-bus/4a300000.pruss", false};
+static const struct layout *layout = &linux_510;
+
+static void symlink_to(const char *target, const char *at) {
+    ck_assert_msg(symlink(target, at) == 0, "symlink %s -> %s", at, target);
+}
+
+/* the tree: remoteproc0 another processor (the wakeup M3, under its own
+ * parent), remoteproc1 PRU0 (offline, firmware named something else),
+ * remoteproc2 PRU1; the chosen/overlays entry of a BiSS overlay */
 static void make_tree(void) {
     snprintf(root, sizeof root, "/tmp/biss_rproc_XXXXXX");
     ck_assert_ptr_nonnull(mkdtemp(root));
-    const char *procs[][2] = {{"remoteproc0", "44d00000.m3\n"},
-                              {"remoteproc1", "4a334000.pru\n"},
-                              {"remoteproc2", "4a338000.pru\n"}};
+    const char *procs[][3] = {
+        {"remoteproc0", "platform/ocp/44d00000.wkup_m3", "44d00000.m3\n"},
+        {"remoteproc1", NULL, "4a334000.pru\n"},
+        {"remoteproc2", NULL, "4a338000.pru\n"},
+    };
+    mkdirs(root, "sys/class/remoteproc");
     for (int i = 0; i < 3; i++) {
-        char rel[128], path[256];
-        snprintf(rel, sizeof rel, "sys/class/remoteproc/%s", procs[i][0]);
+        char parent[256], rel[320], path[400];
+        if (procs[i][1]) {
+            snprintf(parent, sizeof parent, "%s", procs[i][1]);
+        } else {
+            /* "4a334000.pru" from the name, without the newline */
+            snprintf(parent, sizeof parent, "%s/%.*s", layout->pruss,
+                     (int)strcspn(procs[i][2], "\n"), procs[i][2]);
+        }
+        snprintf(rel, sizeof rel, "sys/devices/%s/remoteproc/%s", parent, procs[i][0]);
         mkdirs(root, rel);
-        snprintf(path, sizeof path, "%s/%s/name", root, rel);
-        put_file(path, procs[i][1]);
+        if (layout->has_name) {
+            snprintf(path, sizeof path, "%s/%s/name", root, rel);
+            put_file(path, procs[i][2]);
+        }
         snprintf(path, sizeof path, "%s/%s/state", root, rel);
         put_file(path, "offline\n");
         snprintf(path, sizeof path, "%s/%s/firmware", root, rel);
         put_file(path, "am335x-pru-fw-old\n");
+        /* device -> ../../../4a334000.pru; the class entry -> the instance */
+        const char *leaf = strrchr(parent, '/');
+        char target[400], cls[400];
+        snprintf(target, sizeof target, "../../../%s", leaf ? leaf + 1 : parent);
+        snprintf(path, sizeof path, "%s/%s/device", root, rel);
+        symlink_to(target, path);
+        snprintf(target, sizeof target, "../../devices/%s/remoteproc/%s", parent, procs[i][0]);
+        snprintf(cls, sizeof cls, "%s/sys/class/remoteproc/%s", root, procs[i][0]);
+        symlink_to(target, cls);
     }
-    mkdirs(root, "sys/bus/platform/drivers/pruss/4a300000.pruss");
+    /* the pruss driver bound to the PRU-ICSS */
+    mkdirs(root, "sys/bus/platform/drivers/pruss");
+    char path[400], target[320];
+    snprintf(path, sizeof path, "%s/sys/bus/platform/drivers/pruss/4a300000.pruss", root);
+    snprintf(target, sizeof target, "../../../../devices/%s", layout->pruss);
+    symlink_to(target, path);
+    mkdirs(root, "sys/firmware/devicetree/base/chosen/overlays");
+    snprintf(path, sizeof path, "%s/sys/firmware/devicetree/base/chosen/overlays/BB-BISS-PRU0-00A0",
+             root);
+    put_file(path, "BiSS-C master");
     snprintf(rp, sizeof rp, "%s/sys/class/remoteproc/remoteproc1", root);
     snprintf(fwdir, sizeof fwdir, "%s/lib/firmware", root);
     mkdirs(root, "lib/firmware");
-    char path[256];
     snprintf(path, sizeof path, "%s/am335x-pru0-fw", fwdir);
     put_file(path, "an ELF");
     snprintf(devmem, sizeof devmem, "%s/mem", root);
@@ -179,7 +241,7 @@ static void *kernel_thread(void *arg) {
     return NULL;
 }
 
-static char err[512];
+static char err[2048];
 
 static struct biss_open_params params(void) {
     struct biss_open_params p;
@@ -263,6 +325,37 @@ START_TEST(test_attach_leaves_it_running) {
     char buf[64];
     attr("state", buf, sizeof buf);
     ck_assert_str_eq(buf, "running\n");
+    atomic_store(&k.stop, 1);
+    pthread_join(t, NULL);
+    remove_tree();
+}
+END_TEST
+
+/* biss_leave_running: what the handle started outlives it, and a later
+ * handle attaches to it and stops it. */
+START_TEST(test_leave_running) {
+    make_tree();
+    struct kernel k = {0};
+    pthread_t t;
+    ck_assert_int_eq(pthread_create(&t, NULL, kernel_thread, &k), 0);
+    struct biss_open_params p = params();
+    biss_t *h;
+    ck_assert_int_eq(biss_open(&p, &h), BISS_OK);
+    ck_assert_int_eq(biss_leave_running(h), BISS_OK);
+    ck_assert_int_eq(biss_start(h), BISS_OK); /* a restart does not undo it */
+    wait_state("running\n");
+    biss_close(h);
+    nanosleep(&(struct timespec){.tv_nsec = 20000000}, NULL);
+    char buf[64];
+    attr("state", buf, sizeof buf);
+    ck_assert_str_eq(buf, "running\n");
+    ck_assert_int_eq(atomic_load(&k.starts), 2);
+    p.attach = true;
+    ck_assert_int_eq(biss_open(&p, &h), BISS_OK);
+    ck_assert_int_eq(biss_stop(h), BISS_OK);
+    wait_state("offline\n");
+    biss_close(h);
+    ck_assert_int_eq(biss_leave_running(NULL), BISS_E_INVAL);
     atomic_store(&k.stop, 1);
     pthread_join(t, NULL);
     remove_tree();
@@ -358,21 +451,96 @@ START_TEST(test_refusals) {
     ck_assert_int_eq(biss_open(&p, &h), BISS_E_FIRMWARE_IO);
     ck_assert_msg(strstr(err, "lib/firmware/biss-not-installed.elf: No such file"), "%s", err);
     p.rproc_firmware = NULL;
-    /* the instance missing: PRU1's IRAM address is not PRU0's */
+    /* the instance missing (PRU1's IRAM address is not PRU0's): what to
+     * check, from what sysfs shows: pruss bound, so pru_rproc */
     set_attr("name", "4a338000.pru\n");
     ck_assert_int_eq(biss_open(&p, &h), BISS_E_RPROC);
-    ck_assert_msg(strstr(err, "no instance named 4a334000.pru*") && strstr(err, "modprobe"), "%s",
-                  err);
-    /* no remoteproc at all */
+    ck_assert_msg(strstr(err, "no remoteproc instance of 4a334000.pru") &&
+                      strstr(err, "4a300000.pruss) but has no PRU instance") &&
+                      strstr(err, "modprobe pru_rproc") && !strstr(err, "overlay"),
+                  "%s", err);
+    /* ... and the overlay not listed */
+    char cmd[300];
+    snprintf(cmd, sizeof cmd, "rm %s/sys/firmware/devicetree/base/chosen/overlays/*", root);
+    ck_assert_int_eq(system(cmd), 0);
+    ck_assert_int_eq(biss_open(&p, &h), BISS_E_RPROC);
+    ck_assert_msg(strstr(err, "no *-BISS-* overlay under") && strstr(err, "uboot_overlay_addr4"),
+                  "%s", err);
+    snprintf(cmd, sizeof cmd, "rm -r %s/sys/firmware/devicetree/base/chosen/overlays", root);
+    ck_assert_int_eq(system(cmd), 0);
+    ck_assert_int_eq(biss_open(&p, &h), BISS_E_RPROC);
+    ck_assert_msg(strstr(err, "U-Boot applied no overlay"), "%s", err);
+    /* the PRU-ICSS did not probe (a pin conflict) and its clock is off:
+     * not touched, and the message says where to look */
     p.sysfs_root = "/nonexistent";
     ck_assert_int_eq(biss_open(&p, &h), BISS_E_NOT_POWERED); /* checked first */
+    ck_assert_msg(strstr(err, "no pruss driver bound to 4a300000.pruss") &&
+                      strstr(err, "already requested") && strstr(err, "bus error"),
+                  "%s", err);
+    /* no remoteproc at all */
     p = params();
-    char cmd[160];
     snprintf(cmd, sizeof cmd, "rm -rf %s/sys/class", root);
     ck_assert_int_eq(system(cmd), 0);
     ck_assert_int_eq(biss_open(&p, &h), BISS_E_RPROC);
     ck_assert_msg(strstr(err, "class/remoteproc: No such file or directory (errno 2)"), "%s", err);
     remove_tree();
+}
+END_TEST
+
+/* 4.19-ti: no "name" attribute; each instance found through its device
+ * link, PRU0's and PRU1's, and started with its own firmware name. */
+START_TEST(test_419_without_name) {
+    layout = &linux_419;
+    make_tree();
+    char path[300];
+    snprintf(path, sizeof path, "%s/name", rp);
+    ck_assert_int_ne(access(path, F_OK), 0); /* as on 4.19 */
+    struct kernel k = {0};
+    pthread_t t;
+    ck_assert_int_eq(pthread_create(&t, NULL, kernel_thread, &k), 0);
+    struct biss_open_params p = params();
+    biss_t *h;
+    ck_assert_msg(biss_open(&p, &h) == BISS_OK, "%s", err);
+    char buf[64];
+    attr("firmware", buf, sizeof buf);
+    ck_assert_str_eq(buf, "am335x-pru0-fw");
+    ck_assert_int_eq(atomic_load(&k.starts), 1);
+    biss_close(h);
+    wait_state("offline\n");
+    atomic_store(&k.stop, 1);
+    pthread_join(t, NULL);
+    remove_tree();
+    /* PRU1, the same way */
+    struct kernel k1 = {0};
+    pru1_begin(&k1, &t, -1);
+    p = params();
+    p.pru = 1;
+    ck_assert_msg(biss_open(&p, &h) == BISS_OK, "%s", err);
+    attr("firmware", buf, sizeof buf);
+    ck_assert_str_eq(buf, "am335x-pru1-fw");
+    biss_close(h);
+    wait_state("offline\n");
+    pru1_end(&k1, t);
+    layout = &linux_510;
+}
+END_TEST
+
+/* 4.19-ti without PRU0's instance: the others' device links (the wakeup
+ * M3, PRU1) are not taken for it. */
+START_TEST(test_419_missing) {
+    layout = &linux_419;
+    make_tree();
+    char cmd[300];
+    snprintf(cmd, sizeof cmd, "rm %s/sys/class/remoteproc/remoteproc1", root);
+    ck_assert_int_eq(system(cmd), 0);
+    struct biss_open_params p = params();
+    biss_t *h;
+    ck_assert_int_eq(biss_open(&p, &h), BISS_E_RPROC);
+    ck_assert_msg(strstr(err, "no remoteproc instance of 4a334000.pru") &&
+                      strstr(err, "modprobe pru_rproc"),
+                  "%s", err);
+    remove_tree();
+    layout = &linux_510;
 }
 END_TEST
 
@@ -382,9 +550,12 @@ int main(void) {
     tcase_set_timeout(tc, 60);
     tcase_add_test(tc, test_start_stop_firmware_name);
     tcase_add_test(tc, test_attach_leaves_it_running);
+    tcase_add_test(tc, test_leave_running);
     tcase_add_test(tc, test_pru1_instance);
     tcase_add_test(tc, test_pru1_wrong_image);
     tcase_add_test(tc, test_refusals);
+    tcase_add_test(tc, test_419_without_name);
+    tcase_add_test(tc, test_419_missing);
     suite_add_tcase(s, tc);
     return check_run(s);
 }

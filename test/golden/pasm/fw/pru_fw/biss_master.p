@@ -1,0 +1,82 @@
+// biss_master.p - BiSS-C interface master for either PRU of an AM335x/AM437x
+// PRU-ICSS (pasm dialect).
+//
+// MA is R30 bit MA_BIT (default 1), SL is R31 bit 0 in 28-bit shift mode,
+// sampled at 8x the MA rate. The host configures and reads results through
+// the PRU's own data RAM, laid out in include/biss/biss_shm.h. Assembled
+// once per PRU (-DPRU_NUM=0, the default, or -DPRU_NUM=1): the PRU's CONTROL
+// block, GPCFG and scratch-pad bank are in the instruction words, so each
+// image runs only on the PRU it was built for (it says which in BISS_ST_PRU).
+//
+// A frame (MA period p = 0, 1, ...; each period exactly 2H PRU cycles):
+//   WAIT_ACK    clock until the newest 8 samples show SL low (the ACK edge);
+//               the position of that edge (ones before it) gives this
+//               frame's line delay in bit/8, averaged with the last 3 frames
+//   LAG         clock while the sample point and lag are derived from it
+//   START_WAIT  clock while the slave is busy; count it, abort over the limit
+//   CDS         read the CDS bit, load the first slave's record
+//   slaves      data bits and CRC bits of each slave, CRC computed per bit;
+//               clocking stops by itself after the clock that follows the
+//               last bit (on it the slave starts its timeout, SL low), and
+//               the remaining bits are read from the samples: no extra
+//               clocks for the line delay
+// Then, outside the clocked part: CDM on MA, CRC verdicts, publication,
+// and the wait for the slave's timeout to end (SL high).
+//
+// The clocked periods are in biss_periods.hp; their timing rules are
+// described there. The code is in files by role, included below in the
+// order of the image (pru_fw/README.md has the map): startup.p, config.p,
+// frame.p, results.p, cd.p, ssi.p; the definitions in icss_regs.hp (the
+// PRU-ICSS registers), layout.hp (the private data RAM) and regs.hp
+// (the register map: what each register holds in each phase).
+
+.origin 0
+.entrypoint START
+
+#include "../include/biss/biss_shm.h"
+
+#ifndef MA_BIT
+#define MA_BIT          1               // R30 bit driving MA: 0..7
+#endif
+#ifndef PRU_NUM
+#define PRU_NUM         0               // the PRU of its PRU-ICSS this image is for: 0 or 1
+#endif
+// This PRU's scratch-pad bank: PRU0 bank 0 (XFR device 10), PRU1 bank 1 (11).
+// Both PRUs on one bank in one cycle stall PRU1 (docs/pru-facts.md §3), and
+// the bank is part of the XIN/XOUT word: one bank each, never the other's.
+// (-DXFR_BANK=n only for test_e2e_twopru's image that breaks this rule.)
+#ifndef XFR_BANK
+#define XFR_BANK        (10 + PRU_NUM)
+#endif
+#define MA_MASK         (1 << MA_BIT)
+#define LAG             2               // extra whole periods between a bit and its read
+#define MAJORITY5       0xfee8e880      // bit k set: three or more of k's five bits are 1
+#define IDLE_MASK       0x0f            // R31 samples that must all be high for SL idle: half
+                                        // a period, longer than any glitch of under 3 samples
+#define IDLE_TURNS      25000           // SL idle polls (4 cycles): 500 us, then no slave
+
+#include "icss_regs.hp"
+
+// IEP count at which periodic frames start (IEP_AT_ALIGN). From the CMP0
+// reset to the count's read: at worst a turn of MAIN, then FRAME,
+// FRAME_REGS (and SSI_FRAME), 52 to 60 cycles with 7 or 8 data-RAM loads.
+// Each load stalls while the host reads the data RAM (docs/silicon-
+// assumptions.md A5), by how much TI does not say, so the margin is wide:
+// measured, the frames stay aligned up to a 22-cycle stall on every load
+// (the e2e fw suite under --contend 1,22; the suites' harshest is 2,8,
+// TIMING.md's plausible host 40,1). Later still, the frame goes at once.
+#define IEP_ALIGN       192
+
+#include "layout.hp"
+#include "regs.hp"
+
+// (after the equates: macro bodies take equates as they are read)
+#include "biss_periods.hp"
+#define REC_BASE        52                  // register-file byte address of r13
+
+#include "startup.p"
+#include "config.p"
+#include "frame.p"
+#include "results.p"
+#include "cd.p"
+#include "ssi.p"
