@@ -12,13 +12,14 @@
  * The search per slave offset: every width c = 3..16 and every polynomial
  * of that degree (top term set) with an x^0 term: one without it is x
  * times another, its last CRC bit constant; no CRC uses one, and it would
- * fit any constant bits after a slave. A polynomial is first tried on the XOR of
- * a reference frame with a few others ("probes"), where the start value
- * and the inversion cancel: the CRC register run over the difference must
- * equal the difference of the received CRCs, tested for all data lengths
- * d in one pass. Survivors are checked on every frame (the support: frames
- * whose K is the most common one). A chain is a sequence of such slaves
- * ending where the frame ends. */
+ * fit any constant bits after a slave. The polynomials come from the XOR
+ * of a reference frame with a few others ("probes"), where the start value
+ * and the inversion cancel: one fits a probe with d data bits when it
+ * divides the probe's first d + c bits read as a polynomial, so they are
+ * the divisors of the probes' gcd (search_probes). Candidates are checked
+ * on every frame (the support: frames whose K is the most common one). A
+ * chain is a sequence of such slaves ending where the frame ends. The whole
+ * of it runs within a budget of work and time (biss_probe_budget.c). */
 #include "biss_probe_gf2.h"
 #include "biss_probe_priv.h"
 

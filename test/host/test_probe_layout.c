@@ -244,10 +244,17 @@ START_TEST(noisy_frames) {
         print_result(w2, &r);
         enum probe_outcome o = probe_gen_judge(&r, &cfg);
         ck_assert_msg(o != PROBE_WRONG, "%s: a wrong layout named", w2);
+        if (o == PROBE_RECOVERED) { /* the frames hit were set aside and counted */
+            ck_assert_uint_eq(r.dropped, r.frames - r.layout[0].good);
+            ck_assert_uint_le(r.dropped, hit);
+        }
         n[o]++;
     }
     printf("noisy frames: %u recovered, %u ambiguous, %u undecided, %u wrong\n", n[PROBE_RECOVERED],
            n[PROBE_AMBIGUOUS_OK], n[PROBE_UNDECIDED], n[PROBE_WRONG]);
+    /* usable: decided on the good frames (the ambiguous ones: counters
+     * that never wrapped, as without noise) */
+    ck_assert_uint_ge(n[PROBE_RECOVERED], NOISY_LAYOUTS * 8 / 10);
 }
 END_TEST
 
