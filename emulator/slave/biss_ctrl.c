@@ -81,9 +81,12 @@ static int idl_bit(const biss_ctrl *c, int header_bit) {
     if (!c->idl_at_cts) {
         return header_bit + 1 < 8 && header_bit + 1 == c->id;
     }
+    if (header_bit < 0 || header_bit >= 8) {
+        return 0;
+    }
     unsigned k = (unsigned)header_bit;
-    bool cts = (c->shift >> k) & 1u;
-    return header_bit >= 0 && cts && k < 8 && k == c->id;
+    bool cts = (c->shift >> k) & 1u; /* CTS, k bits back */
+    return cts && k == c->id;
 }
 
 static int on_header_done(biss_ctrl *c) {
