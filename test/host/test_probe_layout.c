@@ -336,7 +336,7 @@ START_TEST(garbage_bounded) {
             unsigned nbits = c == 3 ? BISS_PROBE_MAX_BITS : 514;
             garbage(bits, counts[c], nbits, kind);
             struct biss_probe_frames f = {counts[c], nbits, bits, NULL};
-            struct biss_probe_limits lim = {.work_limit = 200000000};
+            struct biss_probe_limits lim = {.work_limit = 50000000};
             ck_assert_int_eq(biss_probe_analyse_limited(&f, &lim, &r), 0);
             char what[64];
             snprintf(what, sizeof what, "garbage kind %u, %u frames", kind, counts[c]);
