@@ -138,12 +138,34 @@ static int rproc_state(struct lnx *l, char *state, size_t n) {
     return biss_rproc_get(l->dir, "state", state, n, NULL);
 }
 
+/* Writing "stop" returns once the kernel has stopped the core (state reads
+ * "offline" at once on silicon), but the instance is polled until it says
+ * so: a "firmware" or "start" written before would be refused or lost
+ * (the kernel answers EBUSY while running). At most RPROC_STOP_MS. */
+#define RPROC_STOP_MS 2000
+static int rproc_await_offline(struct lnx *l) {
+    char state[32];
+    for (int ms = 0;; ms++) {
+        int rc = rproc_state(l, state, sizeof state);
+        if (rc || strcmp(state, "offline") == 0) {
+            return rc;
+        }
+        if (ms == RPROC_STOP_MS) {
+            return BISS_E_TIMEOUT;
+        }
+        nanosleep(&(struct timespec){.tv_nsec = 1000000}, NULL);
+    }
+}
+
 static int rproc_halt(void *ctx) {
     struct lnx *l = ctx;
     char state[32];
     int rc = rproc_state(l, state, sizeof state);
     if (!rc && strcmp(state, "offline") != 0) {
         rc = biss_rproc_set(l->dir, "state", "stop", NULL);
+        if (!rc) {
+            rc = rproc_await_offline(l);
+        }
     }
     if (!rc) {
         l->started = false;
@@ -282,7 +304,10 @@ static int rproc_prepare(struct lnx *l, const struct biss_soc_icss *s,
     if (rc) {
         return rc;
     }
-    const char *own = p->pru ? s->fw_name1 : s->fw_name;
+    /* The ELF by its own name (pru_fw/CMakeLists.txt installs it in
+     * /lib/firmware), not by the name the kernel's device tree gives the
+     * PRU (s->fw_name), which may be another firmware's. */
+    const char *own = p->pru ? "biss_master_pru1.elf" : "biss_master.elf";
     snprintf(l->fw_name, sizeof l->fw_name, "%s",
              p->rproc_firmware && *p->rproc_firmware ? p->rproc_firmware : own);
     char state[32], fw[256];
@@ -314,8 +339,8 @@ static int rproc_prepare(struct lnx *l, const struct biss_soc_icss *s,
     if (access(fwpath, R_OK) != 0) {
         int err = errno;
         return biss_err(e, BISS_E_FIRMWARE_IO,
-                        "%s: %s (errno %d): install biss_master.elf under "
-                        "that name (docs/hardware.md)",
+                        "%s: %s (errno %d): install the firmware (the "
+                        "pru-biss-firmware package, or cmake --install; docs/hardware.md)",
                         fwpath, strerror(err), err);
     }
     return BISS_OK;

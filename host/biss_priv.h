@@ -66,6 +66,8 @@ struct biss {
     struct biss_backend be;
     unsigned timeout_ms;
     char firmware[512];
+    /* why the running image was not compared with an image file, or "" */
+    char unchecked[640];
     uint8_t *image; /* kept for biss_start's restart */
     size_t image_bytes;
     bool configured;

@@ -9,6 +9,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+#ifndef BISS_FIRMWARE_DIR_TEXT /* host/CMakeLists.txt: the configured BISS_FIRMWARE_DIR */
+#define BISS_FIRMWARE_DIR_TEXT "/lib/firmware"
+#endif
+
 static const char *const commands[] = {"info",      "read",    "stats", "run",
                                        "trigger",   "start",   "stop",  "reg-read",
                                        "reg-write", "command", "probe"};
@@ -31,12 +35,12 @@ static const char common_help[] =
     "  --sysfs DIR        sysfs root (default /sys), also of the device tree\n"
     "                     (DIR/firmware/devicetree/base) the default target comes from\n"
     "  --firmware-dir DIR where remoteproc finds firmware (default /lib/firmware)\n"
-    "  --rproc-firmware N firmware name for remoteproc (default the PRU's, e.g.\n"
-    "                     am335x-pru0-fw); the lock directory is $BISS_LOCK_DIR\n"
+    "  --rproc-firmware N firmware name for remoteproc (default biss_master.elf, PRU1\n"
+    "                     biss_master_pru1.elf); the lock directory is $BISS_LOCK_DIR\n"
     "                     (default /run/lock, else /tmp)\n"
     "  --firmware FILE    IRAM image (default: $BISS_FIRMWARE, else the build's or the\n"
-    "                     installed one for the PRU: biss_master.bin for PRU0,\n"
-    "                     biss_master_pru1.bin for PRU1)\n"
+    "                     installed one for the PRU, in " BISS_FIRMWARE_DIR_TEXT ":\n"
+    "                     biss_master.bin for PRU0, biss_master_pru1.bin for PRU1)\n"
     "  --timeout-ms MS    firmware answers and each sample (default 100; emu: simulated)\n"
     "Emulator:\n"
     "  --profile NAME     encoder profile (default tidep0022-test-encoder)\n"

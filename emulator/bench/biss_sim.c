@@ -15,12 +15,14 @@
 #include "fw_check.h"
 #include "pru_isa.h"
 #include "bench_fw.h"
+#include "default_image.h"
 #include "scenario_json.h"
 #include "sim_image.h"
 #include "sim_pair.h"
 #include "sim_report.h"
 
 #include <errno.h>
+#include <limits.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -33,10 +35,27 @@
  * (PRU_MAX_CYCLE), so run limits in ps never overflow. */
 #define MAX_SIM_MS 1e9
 
-#ifndef BISS_SIM_FIRMWARE
-#define BISS_SIM_FIRMWARE      "biss_master.bin"
-#define BISS_SIM_FIRMWARE_PRU1 "biss_master_pru1.bin"
+#ifndef BISS_SIM_FIRMWARE /* emulator/bench/CMakeLists.txt sets them all */
+#define BISS_BUILD_DIR           "/nonexistent"
+#define BISS_SIM_FIRMWARE        "biss_master.bin"
+#define BISS_SIM_FIRMWARE_PRU1   "biss_master_pru1.bin"
+#define BISS_BIN_TO_FIRMWARE_DIR "../../lib/firmware"
+#define BISS_FIRMWARE_DIR        "/lib/firmware"
 #endif
+
+/* The firmware image of PRU pru when none is named: the build's for the
+ * build's biss-sim, else the installed one (default_image.h). */
+static const char *own_image(unsigned pru) {
+    static char buf[2][PATH_MAX + 64];
+    const struct default_image d[2] = {
+        {BISS_BUILD_DIR, BISS_SIM_FIRMWARE, BISS_BIN_TO_FIRMWARE_DIR "/biss_master.bin",
+         BISS_FIRMWARE_DIR "/biss_master.bin"},
+        {BISS_BUILD_DIR, BISS_SIM_FIRMWARE_PRU1, BISS_BIN_TO_FIRMWARE_DIR "/biss_master_pru1.bin",
+         BISS_FIRMWARE_DIR "/biss_master_pru1.bin"},
+    };
+    pru = pru ? 1 : 0;
+    return default_image(&d[pru], buf[pru], sizeof buf[pru]);
+}
 
 struct options {
     const char *profile;
@@ -86,8 +105,9 @@ static void usage(FILE *f) {
                "  --cable-m M        cable length in metres, both directions (default: profile's)\n"
                "  --frames N         frames to run (default 100)\n"
                "  --seed S           random seed for noise and jitter (default: scenario's)\n"
-               "  --firmware FILE    BiSS master firmware, .bin or .p (default: this build's\n"
-               "                     image for the PRU); configured for the profile and\n"
+               "  --firmware FILE    BiSS master firmware, .bin or .p (default: the PRU's\n"
+               "                     image of this build, or the one installed in\n"
+               "                     " BISS_FIRMWARE_DIR "); configured for the profile and\n"
                "                     checked frame by frame; a .p is assembled for the PRU\n"
                "                     (-D PRU_NUM)\n"
                "  --image FILE       any PRU image (.bin, or .p assembled with -D HALF, CLOCKS,\n"
@@ -103,7 +123,8 @@ static void usage(FILE *f) {
                "                     the longer frame)\n"
                "  --pru1-firmware FILE\n"
                "                     with a second encoder: PRU1's image (default: this\n"
-               "                     build's PRU1 image, or --firmware's .p for PRU1)\n"
+               "                     build's or the installed PRU1 image, or --firmware's\n"
+               "                     .p for PRU1)\n"
                "  --vcd FILE         write MA/SL at master and slave and a frame wire (high\n"
                "                     while a frame is clocked) as VCD (scope bench)\n"
                "  --vcd-timescale U  1ps, 10ps, 100ps or 1ns (default); edges keep their order\n"
@@ -571,8 +592,8 @@ static int run_pair(const struct options *o, const struct bench_config *cfg, uns
     }
     /* one image per PRU (pru_fw/README.md) */
     struct pruasm_image img[2];
-    const char *path[2] = {o->firmware ? o->firmware : BISS_SIM_FIRMWARE,
-                           o->pru1_firmware ? o->pru1_firmware : BISS_SIM_FIRMWARE_PRU1};
+    const char *path[2] = {o->firmware ? o->firmware : own_image(0),
+                           o->pru1_firmware ? o->pru1_firmware : own_image(1)};
     if (!o->pru1_firmware && o->firmware && !is_bin(o->firmware)) {
         path[1] = o->firmware; /* the source, assembled for PRU1 */
     }
@@ -657,7 +678,7 @@ static int run(const struct options *o) {
     }
     struct pruasm_image img;
     int rc = 0;
-    const char *own = o->pru ? BISS_SIM_FIRMWARE_PRU1 : BISS_SIM_FIRMWARE; /* one per PRU */
+    const char *own = own_image(o->pru); /* one per PRU */
     const char *path = fw_mode ? (o->firmware ? o->firmware : own) : o->image;
     if (fw_mode) {
         pru_num_define(o->pru, &defs);

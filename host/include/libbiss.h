@@ -204,6 +204,11 @@ enum biss_target biss_target(const biss_t *h);
 /* The firmware image path this handle loaded or compared the running
  * image with ("" when none). */
 const char *biss_firmware_path(const biss_t *h);
+/* Linux targets: why the running image could not be compared with an image
+ * file (the default one, BISS_FIRMWARE_DIR's biss_master.bin, absent or
+ * unreadable: its path and the error), or "" when it was compared or
+ * loaded. The handle works either way; the check is then the caller's. */
+const char *biss_image_unchecked(const biss_t *h);
 /* The handle attached to a running firmware (no load, no restart). */
 bool biss_attached(const biss_t *h);
 
