@@ -173,12 +173,34 @@ static int rproc_state(struct lnx *l, char *state, size_t n) {
     return biss_rproc_get(l->dir, "state", state, n, NULL);
 }
 
+/* Writing "stop" returns once the kernel has stopped the core (state reads
+ * "offline" at once on silicon), but the instance is polled until it says
+ * so: a "firmware" or "start" written before would be refused or lost
+ * (the kernel answers EBUSY while running). At most RPROC_STOP_MS. */
+#define RPROC_STOP_MS 2000
+static int rproc_await_offline(struct lnx *l) {
+    char state[32];
+    for (int ms = 0;; ms++) {
+        int rc = rproc_state(l, state, sizeof state);
+        if (rc || strcmp(state, "offline") == 0) {
+            return rc;
+        }
+        if (ms == RPROC_STOP_MS) {
+            return BISS_E_TIMEOUT;
+        }
+        nanosleep(&(struct timespec){.tv_nsec = 1000000}, NULL);
+    }
+}
+
 static int rproc_halt(void *ctx) {
     struct lnx *l = ctx;
     char state[32];
     int rc = rproc_state(l, state, sizeof state);
     if (!rc && strcmp(state, "offline") != 0) {
         rc = biss_rproc_set(l->dir, "state", "stop", NULL);
+        if (!rc) {
+            rc = rproc_await_offline(l);
+        }
     }
     if (!rc) {
         l->started = false;

@@ -1,6 +1,8 @@
 /* bissctl_cmds.c - bissctl's subcommands on an open, configured handle. */
 #include "bissctl.h"
 
+#include "biss_cd.h"
+
 #include <stdbool.h>
 #include <stdio.h>
 #include <string.h>
@@ -376,6 +378,35 @@ int bissctl_reg_write(biss_t *h, const struct bissctl_opts *o) {
     return rc ? bissctl_fail("reg-write", rc) : BISSCTL_OK;
 }
 
+/* The slaves a command goes to, in words. */
+static void print_targets(uint8_t ids, FILE *f) {
+    if (!ids) {
+        fprintf(f, "every slave (broadcast)");
+        return;
+    }
+    fprintf(f, "ID%s", (ids & (ids - 1)) ? "s" : "");
+    for (unsigned i = 0, n = 0; i < 8; i++) {
+        if (ids >> i & 1u) {
+            fprintf(f, "%s %u", n++ ? "," : "", i);
+        }
+    }
+}
+
+/* A command that changes how an encoder works goes out with --force only. */
+static int check_command(const struct bissctl_opts *o, uint8_t ids, uint8_t cmd) {
+    const biss_cd_cmd_info *c = biss_cd_cmd_effect(ids, cmd);
+    if (c->changes_encoder && !o->force) {
+        fprintf(stderr, "bissctl: command 0x%02x %u to ", ids, cmd);
+        print_targets(ids, stderr);
+        fprintf(stderr,
+                " %s: that changes how an encoder works; --force sends it (bissctl command "
+                "--help lists what each command does)\n",
+                c->effect);
+        return BISSCTL_USAGE;
+    }
+    return BISSCTL_OK;
+}
+
 int bissctl_command(biss_t *h, const struct bissctl_opts *o) {
     uint8_t ids, cmd, ida = 0;
     if (o->nargs != 2 || bissctl_parse_byte(o->args[0], 0xff, &ids) ||
@@ -383,7 +414,14 @@ int bissctl_command(biss_t *h, const struct bissctl_opts *o) {
         fprintf(stderr, "bissctl: command needs an ID mask 0..0xff and a command 0..3\n");
         return BISSCTL_USAGE;
     }
-    int rc = biss_command(h, ids, cmd, o->ida_test, &ida);
+    int rc = check_command(o, ids, cmd);
+    if (rc) {
+        return rc;
+    }
+    printf("command %u to ", cmd);
+    print_targets(ids, stdout);
+    printf(": %s\n", biss_cd_cmd_effect(ids, cmd)->effect);
+    rc = biss_command(h, ids, cmd, o->ida_test, &ida);
     if (!rc || rc == BISS_E_CD_IDA || rc == BISS_E_CD_WITHHELD) {
         printf("ids=0x%02x cmd=%u ida=0x%02x\n", ids, cmd, ida); /* which IDs answered */
     }
@@ -422,11 +460,13 @@ int bissctl_check_args(const struct bissctl_opts *o) {
         return BISSCTL_OK;
     }
     if (strcmp(o->command, "command") == 0) {
+        uint8_t cmd;
         if (o->nargs != 2 || bissctl_parse_byte(o->args[0], 0xff, &b) ||
-            bissctl_parse_byte(o->args[1], 3, &b)) {
+            bissctl_parse_byte(o->args[1], 3, &cmd)) {
             fprintf(stderr, "bissctl: command needs an ID mask 0..0xff and a command 0..3\n");
             return BISSCTL_USAGE;
         }
+        return check_command(o, b, cmd);
     }
     return BISSCTL_OK;
 }

@@ -69,6 +69,14 @@ static void compare(struct fw_check *fc, const struct biss_sample *smp) {
         if (!fc->first_mismatch_frame) {
             fc->first_mismatch_frame = fc->publications;
         }
+        struct wrong_frame w;
+        wrong_frame_classify(&l->sc.biss, r, fc->data, smp->frame, &l->sl_master,
+                             pru_time_ps(bench_core(fc->b)),
+                             2 * (int64_t)smp->delay.half * PRU_PS_PER_CYCLE, &w);
+        fc->wrong_by_class[w.cls]++;
+        if (fc->nwrong < FW_CHECK_WRONG_KEPT) {
+            fc->wrong[fc->nwrong++] = w;
+        }
     }
 }
 

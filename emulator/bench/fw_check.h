@@ -16,6 +16,7 @@
 
 #include "bench.h"
 #include "bench_fw.h"
+#include "wrong_frame.h"
 
 #include <stdint.h>
 
@@ -62,7 +63,13 @@ struct fw_check {
     uint32_t safety_first_fault; /* the firmware's number of the first, 0 none */
     uint64_t misframed;          /* valid publications the nE/nW check (ew_static) refused */
     uint64_t misframed_good;     /* of those, frames whose every word was right: good lost */
+    /* the mismatches (wrong but valid), each classified (wrong_frame.h):
+     * counts per class, and the first FW_CHECK_WRONG_KEPT in full */
+    uint64_t wrong_by_class[WRONG_CLASSES];
+    unsigned nwrong;
+    struct wrong_frame wrong[16];
 };
+#define FW_CHECK_WRONG_KEPT 16
 
 /* Starts checking the bench's publications from now on (no limit). */
 void fw_check_attach(struct fw_check *fc, struct bench *b);

@@ -127,6 +127,36 @@ double sim_frame_minimum_ps(struct bench *b, const struct fw_check *fw) {
     return (clocks - 0.5) * period + timeout + bench_round_trip_ps(b);
 }
 
+/* The wrong frames published as valid, by class (wrong_frame.h), and the
+ * first few described. */
+static void add_wrong(cJSON *j, const struct fw_check *fw) {
+    cJSON *o = cJSON_AddObjectToObject(j, "wrong_frames");
+    cJSON_AddNumberToObject(o, "valid_on_the_wire", (double)fw->wrong_by_class[WRONG_ON_WIRE]);
+    cJSON_AddNumberToObject(o, "off_grid", (double)fw->wrong_by_class[WRONG_OFF_GRID]);
+    cJSON_AddNumberToObject(o, "other", (double)fw->wrong_by_class[WRONG_OTHER]);
+    cJSON *a = cJSON_AddArrayToObject(o, "first");
+    for (unsigned k = 0; k < fw->nwrong; k++) {
+        char line[512];
+        wrong_frame_describe(&fw->wrong[k], line, sizeof line);
+        cJSON_AddItemToArray(a, cJSON_CreateString(line));
+    }
+}
+
+static void print_wrong(const struct fw_check *fw) {
+    if (!fw->mismatches) {
+        return;
+    }
+    printf("wrong but valid      %llu valid on the wire, %llu off-grid, %llu other\n",
+           (unsigned long long)fw->wrong_by_class[WRONG_ON_WIRE],
+           (unsigned long long)fw->wrong_by_class[WRONG_OFF_GRID],
+           (unsigned long long)fw->wrong_by_class[WRONG_OTHER]);
+    for (unsigned k = 0; k < fw->nwrong; k++) {
+        char line[512];
+        wrong_frame_describe(&fw->wrong[k], line, sizeof line);
+        printf("  %s\n", line);
+    }
+}
+
 static void add_firmware(cJSON *j, struct bench *b, const struct fw_check *fw) {
     cJSON *f = cJSON_AddObjectToObject(j, "firmware");
     cJSON_AddNumberToObject(f, "publications", (double)fw->publications);
@@ -281,6 +311,9 @@ cJSON *sim_json(const struct sim_result *r) {
     cJSON_AddNumberToObject(j, "frames", (double)(fw ? fw->frames : st->frames));
     add_counter(j, "crc_errors", fw, fw ? fw->crc_errors : 0);
     add_counter(j, "position_mismatches", fw, fw ? fw->mismatches : 0);
+    if (fw) {
+        add_wrong(j, fw);
+    }
     cJSON_AddNumberToObject(j, "line_delay_ns", bench_round_trip_ps(b) / 1000.0);
     double mean = st->periods ? st->period_sum_ps / (double)st->periods : 0;
     add_min_mean_max(j, "frame_period_ns", (double)st->period_min_ps / 1000.0, mean / 1000.0,
@@ -403,6 +436,7 @@ void sim_print_text(const struct sim_result *r) {
                (unsigned long long)fw->crc_errors, (unsigned long long)fw->mismatches,
                (unsigned long long)fw->no_slave, (unsigned long long)fw->proc_errors,
                (unsigned long long)fw->ack_jumps);
+        print_wrong(fw);
         if (fw->delay_frames) {
             printf("line delay           %.1f ns measured by the firmware (%.1f ns in the model), "
                    "sample point %u/8, lag %u periods\n",

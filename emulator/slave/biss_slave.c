@@ -124,6 +124,7 @@ void biss_slave_init(biss_slave *b, const biss_chain_cfg *cfg, event_queue *q, s
     for (unsigned i = 0; i < cfg->n; i++) {
         biss_ctrl_init(&b->ctrl[i], b->cfg.s[i].id, &b->cfg.s[i].regs, b->cfg.s[i].reg_proc_frames);
         b->ctrl[i].cmd_stop = b->cfg.s[i].cmd_exec;
+        b->ctrl[i].idl_at_cts = b->cfg.s[i].idl_at_cts;
     }
     b->phase = BISS_IDLE;
     b->ma = 1;

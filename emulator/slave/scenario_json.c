@@ -242,6 +242,15 @@ static int parse_lc_fault(ctx *c, const cJSON *item, biss_lc_fault *f) {
     return fail(c, "life_counter_fault", "expected \"none\", \"frozen\" or \"skip\"");
 }
 
+/* Which CDS slots carry the ID lock IDL0..7 (host/CD.md, "IDL"). */
+static int parse_idl_slot(ctx *c, const cJSON *it, bool *at_cts) {
+    if (cJSON_IsString(it) && (!strcmp(it->valuestring, "s") || !strcmp(it->valuestring, "cts"))) {
+        *at_cts = !strcmp(it->valuestring, "cts");
+        return 0;
+    }
+    return fail(c, "id_lock_slot", "expected \"s\" (IDL0 answers S) or \"cts\" (it answers CTS)");
+}
+
 static int parse_slave(ctx *c, const cJSON *obj, biss_slave_cfg *s) {
     /* the bank count first, so "registers" may fill any bank whatever the
      * order of the fields */
@@ -282,6 +291,8 @@ static int parse_slave(ctx *c, const cJSON *obj, biss_slave_cfg *s) {
             r = get_bool(c, it, k, &s->regs.protect);
         } else if (!strcmp(k, "life_counter_fault")) {
             r = parse_lc_fault(c, it, &s->lc_fault);
+        } else if (!strcmp(k, "id_lock_slot")) {
+            r = parse_idl_slot(c, it, &s->idl_at_cts);
         } else {
             r = fail(c, k, "unknown field");
         }

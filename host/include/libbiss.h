@@ -478,6 +478,19 @@ int biss_cd_poll(biss_t *h, biss_cd_job *job);
 /* After a successful poll: the n bytes a register read got, the IDA answers. */
 int biss_cd_job_bytes(const biss_cd_job *job, uint8_t *buf);
 int biss_cd_job_ida(const biss_cd_job *job, uint8_t *ida);
+/* After a poll that finished (any verdict): the ID fields a control frame
+ * answered, as read and as they came (host/CD.md, "IDL" and "IDA": the
+ * sources disagree on the slots). idl: a register access's ID lock IDL0..7
+ * (bit i = ID i); header_cds: its answers to S and the 8 steps after it
+ * that were 1 (bit 0 = S; IDL0 is read at S, the other reading has it at
+ * CTS, bit 1). ida: a command's IDA answers (bit i = ID i); ida_cds: its
+ * answers to the last header CRC step and the 8 IDA steps that were 1
+ * (bit 0 = the CRC step, where IDA0 is read). */
+struct biss_cd_slots {
+    uint8_t idl, ida;
+    uint16_t header_cds, ida_cds;
+};
+int biss_cd_job_slots(const biss_cd_job *job, struct biss_cd_slots *out);
 void biss_cd_job_free(biss_cd_job *job);
 
 /* ---- status and statistics --------------------------------------------- */

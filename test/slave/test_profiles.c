@@ -222,6 +222,18 @@ START_TEST(json_ranges) {
     sc.biss.busy_ps = 9000 * SIM_PS_PER_MS;
     ck_assert_int_eq(scenario_check(&sc, err, sizeof err), -1);
     ck_assert_str_eq(err, "biss.busy_ns: 9000000000 out of range 0..1000000");
+    /* where a slave answers its ID lock (host/CD.md, "IDL slots") */
+    expect_error("{\"biss\": {\"slaves\": [{\"id_lock_slot\": \"adr\"}]}}",
+                 "biss.slaves[0].id_lock_slot: expected \"s\" (IDL0 answers S) or \"cts\" (it "
+                 "answers CTS)");
+    ck_assert_int_eq(scenario_from_json("{\"biss\": {\"slaves\": [{\"id_lock_slot\": \"cts\"}]}}",
+                                        &sc, err, sizeof err),
+                     0);
+    ck_assert(sc.biss.s[0].idl_at_cts);
+    ck_assert_int_eq(scenario_from_json("{\"biss\": {\"slaves\": [{\"id_lock_slot\": \"s\"}]}}",
+                                        &sc, err, sizeof err),
+                     0);
+    ck_assert(!sc.biss.s[0].idl_at_cts);
     /* trailing white space is fine */
     ck_assert_int_eq(scenario_from_json("{\"seed\": 2}\n\t \n", &sc, err, sizeof err), 0);
 }
