@@ -176,6 +176,12 @@ int main(int argc, char **argv) {
     if (rc || !h) {
         return rc;
     }
+    if (*biss_image_unchecked(h)) { /* the running image is whatever it is: say so */
+        fprintf(stderr,
+                "bissctl: cannot check the running image: %s; install the firmware "
+                "(docs/hardware.md) or name its image with --firmware\n",
+                biss_image_unchecked(h));
+    }
     if (biss_target(h) == BISS_TARGET_EMU && !o.json) {
         /* read --json says it in the object (bissctl_json.c) */
         printf("%s\n", bissctl_emulated_note);

@@ -15,12 +15,14 @@
 #include "fw_check.h"
 #include "pru_isa.h"
 #include "bench_fw.h"
+#include "default_image.h"
 #include "scenario_json.h"
 #include "sim_image.h"
 #include "sim_pair.h"
 #include "sim_report.h"
 
 #include <errno.h>
+#include <limits.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -33,10 +35,27 @@
  * (PRU_MAX_CYCLE), so run limits in ps never overflow. */
 #define MAX_SIM_MS 1e9
 
-#ifndef BISS_SIM_FIRMWARE
-#define BISS_SIM_FIRMWARE      "biss_master.bin"
-#define BISS_SIM_FIRMWARE_PRU1 "biss_master_pru1.bin"
+#ifndef BISS_SIM_FIRMWARE /* emulator/bench/CMakeLists.txt sets them all */
+#define BISS_BUILD_DIR           "/nonexistent"
+#define BISS_SIM_FIRMWARE        "biss_master.bin"
+#define BISS_SIM_FIRMWARE_PRU1   "biss_master_pru1.bin"
+#define BISS_BIN_TO_FIRMWARE_DIR "../../lib/firmware"
+#define BISS_FIRMWARE_DIR        "/lib/firmware"
 #endif
+
+/* The firmware image of PRU pru when none is named: the build's for the
+ * build's biss-sim, else the installed one (default_image.h). */
+static const char *own_image(unsigned pru) {
+    static char buf[2][PATH_MAX + 64];
+    const struct default_image d[2] = {
+        {BISS_BUILD_DIR, BISS_SIM_FIRMWARE, BISS_BIN_TO_FIRMWARE_DIR "/biss_master.bin",
+         BISS_FIRMWARE_DIR "/biss_master.bin"},
+        {BISS_BUILD_DIR, BISS_SIM_FIRMWARE_PRU1, BISS_BIN_TO_FIRMWARE_DIR "/biss_master_pru1.bin",
+         BISS_FIRMWARE_DIR "/biss_master_pru1.bin"},
+    };
+    pru = pru ? 1 : 0;
+    return default_image(&d[pru], buf[pru], sizeof buf[pru]);
+}
 
 struct options {
     const char *profile;
@@ -92,8 +111,9 @@ static void usage(FILE *f) {
                "                     (default 0: from the first valid frame on; e.g. for IEP\n"
                "                     frames to reach their period after the start)\n"
                "  --seed S           random seed for noise and jitter (default: scenario's)\n"
-               "  --firmware FILE    BiSS master firmware, .bin or .p (default: this build's\n"
-               "                     image for the PRU); configured for the profile and\n"
+               "  --firmware FILE    BiSS master firmware, .bin or .p (default: the PRU's\n"
+               "                     image of this build, or the one installed in\n"
+               "                     " BISS_FIRMWARE_DIR "); configured for the profile and\n"
                "                     checked frame by frame; a .p is assembled for the PRU\n"
                "                     (-D PRU_NUM)\n"
                "  --image FILE       any PRU image (.bin, or .p assembled with -D HALF, CLOCKS,\n"
@@ -113,7 +133,8 @@ static void usage(FILE *f) {
                "                     (default: twice the longer frame, in whole us)\n"
                "  --pru1-firmware FILE\n"
                "                     with a second encoder: PRU1's image (default: this\n"
-               "                     build's PRU1 image, or --firmware's .p for PRU1)\n"
+               "                     build's or the installed PRU1 image, or --firmware's\n"
+               "                     .p for PRU1)\n"
                "  --vcd FILE         write MA/SL at master and slave and a frame wire (high\n"
                "                     while a frame is clocked) as VCD (scope bench)\n"
                "  --vcd-timescale U  1ps, 10ps, 100ps or 1ns (default); edges keep their order\n"
@@ -352,7 +373,8 @@ static int set_option(struct options *o, const char *a, const char *v) {
         }
     } else if (!strcmp(a, "--check-speed")) {
         if (biss_safety_parse_speed(v, &o->checks)) {
-            return die("--check-speed: '%s' is not S,CPS (slave 0..7, counts per second > 0)", v);
+            return die(
+                "--check-speed: '%s' is not S,CPS (slave 0..7, counts per second 1e-9..1e18)", v);
         }
     } else if (!strcmp(a, "--check-pair")) {
         if (biss_safety_parse_pair(v, &o->checks)) {
@@ -635,6 +657,19 @@ static bool is_bin(const char *path) {
     return n >= 4 && !strcmp(path + n - 4, ".bin");
 }
 
+/* An image assembled for the other PRU (its words say so) is refused
+ * before it runs: started, it would point its private area at the shared
+ * block and say nothing (pru_fw/README.md, one image per PRU). */
+static bool wrong_pru(const char *path, const struct pruasm_image *img, unsigned pru) {
+    int built = biss_image_pru(img->words, img->nwords * 4);
+    if (built < 0 || (unsigned)built == pru) {
+        return false;
+    }
+    die("%s was assembled for PRU%d, not PRU%u (one image per PRU: %s)", path, built, pru,
+        pru ? "biss_master_pru1.bin" : "biss_master.bin");
+    return true;
+}
+
 /* The firmware source is assembled for the PRU it runs on (PRU_NUM). */
 static void pru_num_define(unsigned pru, struct sim_defines *d) {
     snprintf(d->text[d->n++], sizeof d->text[0], "PRU_NUM=%u", pru);
@@ -652,6 +687,7 @@ static int run_pair(const struct options *o, const struct bench_config *cfg, uns
                              .iep_period = (uint32_t)(o->iep_period_ns / 5),
                              .frames = o->frames,
                              .settle = o->settle,
+                             .checks = &o->checks,
                              .json = o->json};
     char err[512];
     if (o->pru1_scenario) {
@@ -673,8 +709,8 @@ static int run_pair(const struct options *o, const struct bench_config *cfg, uns
     }
     /* one image per PRU (pru_fw/README.md) */
     struct pruasm_image img[2];
-    const char *path[2] = {o->firmware ? o->firmware : BISS_SIM_FIRMWARE,
-                           o->pru1_firmware ? o->pru1_firmware : BISS_SIM_FIRMWARE_PRU1};
+    const char *path[2] = {o->firmware ? o->firmware : own_image(0),
+                           o->pru1_firmware ? o->pru1_firmware : own_image(1)};
     if (!o->pru1_firmware && o->firmware && !is_bin(o->firmware)) {
         path[1] = o->firmware; /* the source, assembled for PRU1 */
     }
@@ -686,6 +722,12 @@ static int run_pair(const struct options *o, const struct bench_config *cfg, uns
                 pruasm_image_free(&img[0]);
             }
             return die("%s", err);
+        }
+        if (wrong_pru(path[i], &img[i], i)) {
+            for (unsigned k = 0; k <= i; k++) {
+                pruasm_image_free(&img[k]);
+            }
+            return 1;
         }
         r.image[i] = img[i].words;
         r.bytes[i] = img[i].nwords * 4;
@@ -705,25 +747,7 @@ static int safety_checks(const struct options *o, struct biss_config *c) {
     if (!rc) {
         rc = biss_safety_config_check(c);
     }
-    switch (rc) {
-    case BISS_OK:
-        return 0;
-    case BISS_E_SAFETY_LIFE:
-        return die("safety checks: a life-counter check names a slave outside the chain or "
-                   "one without that many life-counter bits (BISS_E_SAFETY_LIFE)");
-    case BISS_E_SAFETY_EW:
-        return die("safety checks: the nE/nW check (a slave that never sets them) names a slave "
-                   "outside the chain or one that sends no nE/nW (BISS_E_SAFETY_EW)");
-    case BISS_E_SAFETY_SPEED:
-        return die("safety checks: the speed check names a slave outside the chain "
-                   "(BISS_E_SAFETY_SPEED)");
-    case BISS_E_SAFETY_CRC:
-        return die("safety checks: the two channels of a pair have the same CRC polynomial and "
-                   "start value; BiSS Safety tells them apart by it (BISS_E_SAFETY_CRC)");
-    default:
-        return die("safety checks: a pair names a slave outside the chain or a slave twice, "
-                   "more than 4 pairs, or a shifted position over 64 bits (BISS_E_SAFETY_PAIR)");
-    }
+    return rc ? die("safety checks: %s", sim_safety_problem(rc)) : 0;
 }
 
 static int run(const struct options *o) {
@@ -776,7 +800,7 @@ static int run(const struct options *o) {
     int64_t host_step = (int64_t)fmax(2 * frame_ps, 10 * SIM_PS_PER_US);
     struct pruasm_image img;
     int rc = 0;
-    const char *own = o->pru ? BISS_SIM_FIRMWARE_PRU1 : BISS_SIM_FIRMWARE; /* one per PRU */
+    const char *own = own_image(o->pru); /* one per PRU */
     const char *path = fw_mode ? (o->firmware ? o->firmware : own) : o->image;
     if (fw_mode) {
         pru_num_define(o->pru, &defs);
@@ -785,11 +809,16 @@ static int run(const struct options *o) {
         bench_free(b);
         return die("%s", err);
     }
+    if (fw_mode && wrong_pru(path, &img, o->pru)) {
+        pruasm_image_free(&img);
+        bench_free(b);
+        return 1;
+    }
     if ((fw_mode ? bench_fw_start(b, img.words, img.nwords * 4)
                  : bench_start_image(b, img.words, img.nwords * 4)) != 0) {
         rc = die("image of %zu words does not fit the IRAM of %s", img.nwords, o->soc);
     } else if (o->vcd && bench_open_vcd(b, o->vcd, o->vcd_unit_ps) != 0) {
-        rc = die("cannot write '%s'", o->vcd);
+        rc = die("cannot write the VCD: %s", bench_vcd_error(b));
     }
     struct fw_check fc;
     if (rc == 0 && fw_mode) {
@@ -799,7 +828,7 @@ static int run(const struct options *o) {
                                       .trigger = o->trigger,
                                       .iep_period = o->trigger == BISS_TRIG_IEP ? iep_period : 0,
                                       .proc_limit = 1000};
-        bench_fw_configure(b, &s);
+        fw_check_configure(&fc, &s);
         if (o->cd_set && cfg.link.protocol == SCENARIO_SSI) {
             rc = die("%s: an SSI encoder has no control communication", o->cd_what);
         }
@@ -873,7 +902,7 @@ static int run(const struct options *o) {
         rc = die("%s", err);
     }
     if (bench_close_vcd(b) != 0) {
-        rc = die("error writing '%s'", o->vcd);
+        rc = die("error writing the VCD: %s", bench_vcd_error(b));
     }
     if (o->json) {
         sim_print_json(&res);

@@ -65,43 +65,40 @@ static enum pru_stop run(struct bench *b[2], struct fw_check fc[2], const struct
     return PRU_STOP_LIMIT;
 }
 
-/* Frame k of PRU0 and of PRU1, in order: the start differences. */
-struct apart {
-    uint64_t n;
-    int64_t lo, hi; /* PRU1 - PRU0, ps */
-};
-
-static struct apart starts_apart(const struct starts *s) {
-    struct apart a = {s->n[0] < s->n[1] ? s->n[0] : s->n[1], INT64_MAX, INT64_MIN};
-    for (uint64_t k = 0; k < a.n; k++) {
+/* Frame k of PRU0 and of PRU1, in order: the start differences. Lines of
+ * one protocol start on the same cycle; an SSI frame's first MA edge comes
+ * a fixed number of cycles after a BiSS-C frame's (its own code path), so
+ * a mixed pair must keep that offset to within a cycle. */
+static int report_starts(const struct starts *s, uint32_t period, bool mixed, cJSON *j) {
+    uint64_t n = s->n[0] < s->n[1] ? s->n[0] : s->n[1];
+    int64_t lo = INT64_MAX, hi = INT64_MIN;
+    for (uint64_t k = 0; k < n; k++) {
         int64_t d = s->t[1][k] - s->t[0][k];
-        a.lo = d < a.lo ? d : a.lo;
-        a.hi = d > a.hi ? d : a.hi;
+        lo = d < lo ? d : lo;
+        hi = d > hi ? d : hi;
     }
-    return a;
-}
-
-/* Lines of one protocol start on the same cycle; an SSI frame's first MA
- * edge comes a fixed number of cycles after a BiSS-C frame's (its own code
- * path), so a mixed pair must keep that offset to within a cycle. 0 or 5. */
-static int starts_verdict(const struct starts *s, const struct apart *a, bool mixed) {
-    if (a->n == 0) {
+    if (j) {
+        cJSON *o = cJSON_AddObjectToObject(j, "frame_starts");
+        cJSON_AddNumberToObject(o, "pairs", (double)n);
+        cJSON_AddNumberToObject(o, "iep_period_ns", period * 5.0);
+        cJSON_AddNumberToObject(o, "pru1_minus_pru0_min_ps", n ? (double)lo : 0);
+        cJSON_AddNumberToObject(o, "pru1_minus_pru0_max_ps", n ? (double)hi : 0);
+    }
+    if (n == 0) {
+        if (!j) {
+            printf("frame starts         none measured\n");
+        }
         return 5;
     }
-    bool together = mixed ? a->hi - a->lo <= PRU_PS_PER_CYCLE
-                          : llabs(a->lo) <= PRU_PS_PER_CYCLE && llabs(a->hi) <= PRU_PS_PER_CYCLE;
-    return s->n[0] == s->n[1] && together ? 0 : 5;
-}
-
-static void print_starts(const struct apart *a, uint32_t period, bool mixed) {
-    if (a->n == 0) {
-        printf("frame starts         none measured\n");
-        return;
+    if (!j) {
+        printf("frame starts         %llu pairs on an IEP period of %.3f us (PRU0 owns the IEP, "
+               "PRU1 follows): PRU1 - PRU0 = %lld .. %lld ps%s\n",
+               (unsigned long long)n, period * 5e-3, (long long)lo, (long long)hi,
+               mixed ? " (BiSS-C and SSI: SSI's first edge comes later, a fixed time)" : "");
     }
-    printf("frame starts         %llu pairs on an IEP period of %.3f us (PRU0 owns the IEP, PRU1 "
-           "follows): PRU1 - PRU0 = %lld .. %lld ps%s\n",
-           (unsigned long long)a->n, period * 5e-3, (long long)a->lo, (long long)a->hi,
-           mixed ? " (BiSS-C and SSI: SSI's first edge comes later, a fixed time)" : "");
+    bool together = mixed ? hi - lo <= PRU_PS_PER_CYCLE
+                          : llabs(lo) <= PRU_PS_PER_CYCLE && llabs(hi) <= PRU_PS_PER_CYCLE;
+    return s->n[0] == s->n[1] && together ? 0 : 5;
 }
 
 int sim_pair(const struct sim_pair_run *r) {
@@ -127,18 +124,31 @@ int sim_pair(const struct sim_pair_run *r) {
     }
     r = &rr;
     struct fw_check fc[2];
+    /* the follower's checks count its frames in the owner's periods */
     struct bench_fw_settings set[2] = {
         {.half = r->half, .trigger = BISS_TRIG_IEP, .iep_period = period, .proc_limit = 1000},
-        {.half = r->half, .trigger = BISS_TRIG_IEP_FOLLOW, .proc_limit = 1000},
+        {.half = r->half,
+         .trigger = BISS_TRIG_IEP_FOLLOW,
+         .iep_period = period,
+         .proc_limit = 1000},
     };
     int rc = 0;
     for (unsigned i = 0; i < 2 && rc == 0; i++) {
         if (bench_fw_start(b[i], r->image[i], r->bytes[i]) != 0) {
             fprintf(stderr, "biss-sim: the image does not fit PRU%u's IRAM\n", i);
             rc = 1;
-        } else {
-            fw_check_attach(&fc[i], b[i]);
-            bench_fw_configure(b[i], &set[i]);
+            continue;
+        }
+        fw_check_attach(&fc[i], b[i]);
+        if (i == 0 && r->checks && biss_safety_merge(&fc[0].cfg, r->checks)) {
+            fprintf(stderr, "biss-sim: PRU0: more than 4 pairs checked\n");
+            rc = 1;
+        }
+        fw_check_configure(&fc[i], &set[i]);
+        int bad = rc ? BISS_OK : biss_safety_config_check(&fc[i].cfg);
+        if (bad) {
+            fprintf(stderr, "biss-sim: PRU%u: safety checks: %s\n", i, sim_safety_problem(bad));
+            rc = 1;
         }
     }
     struct starts s = {.cap = r->frames + 8};
@@ -153,7 +163,7 @@ int sim_pair(const struct sim_pair_run *r) {
         int64_t step = (int64_t)period * PRU_PS_PER_CYCLE / 4;
         enum pru_stop why = run(b, fc, r, step, &s);
         double host = seconds() - t0;
-        cJSON *all = r->json ? cJSON_CreateObject() : NULL;
+        cJSON *j = r->json ? cJSON_CreateObject() : NULL;
         for (unsigned i = 0; i < 2; i++) {
             struct sim_result res = {b[i],
                                      &fc[i],
@@ -162,8 +172,10 @@ int sim_pair(const struct sim_pair_run *r) {
                                      host,
                                      NULL,
                                      i ? BISS_TRIG_IEP_FOLLOW : BISS_TRIG_IEP};
-            if (all) {
-                cJSON_AddItemToObject(all, i ? "pru1" : "pru0", sim_json(&res));
+            if (j) {
+                cJSON *one = sim_json(&res);
+                cJSON_AddStringToObject(one, "trigger", i ? "iep-follow" : "iep");
+                cJSON_AddItemToObject(j, i ? "pru1" : "pru0", one);
             } else {
                 printf("PRU%u%s\n", i, i ? " (IEP follow)" : " (IEP)");
                 sim_print_text(&res);
@@ -177,33 +189,23 @@ int sim_pair(const struct sim_pair_run *r) {
                         (unsigned long long)fc[i].frames, (unsigned long long)r->frames);
                 rc = 2;
             }
-            if (rc == 0 && (fc[i].mismatches || fc[i].crc_errors || fc[i].bad_results)) {
+            if (rc == 0 && !j && (fc[i].mismatches || fc[i].crc_errors || fc[i].bad_results)) {
                 rc = 5;
             }
         }
         bool mixed = r->cfg[0].link.protocol != r->cfg[1].link.protocol;
-        struct apart a = starts_apart(&s);
-        int starts = starts_verdict(&s, &a, mixed);
-        rc = rc ? rc : starts;
+        int starts = report_starts(&s, period, mixed, j);
+        rc = rc || j ? rc : starts;
         /* each image keeps to its own bank: PRU1 never waits for PRU0 */
         uint64_t stalls = pru_spad_collisions(bench_core(b[1]));
-        rc = rc ? rc : stalls ? 5 : 0;
-        if (all) {
-            cJSON_AddNumberToObject(all, "iep_period_cycles", period);
-            cJSON *o = cJSON_AddObjectToObject(all, "frame_starts_pru1_minus_pru0_ps");
-            cJSON_AddNumberToObject(o, "pairs", (double)a.n);
-            cJSON_AddNumberToObject(o, "min", a.n ? (double)a.lo : 0);
-            cJSON_AddNumberToObject(o, "max", a.n ? (double)a.hi : 0);
-            cJSON_AddNumberToObject(all, "pru1_spad_stalls", (double)stalls);
-            char *text = cJSON_Print(all);
-            printf("%s\n", text);
-            free(text);
-            cJSON_Delete(all);
+        if (j) {
+            cJSON_AddNumberToObject(j, "spad_stalls", (double)stalls);
+            sim_print_json_object(j);
         } else {
-            print_starts(&a, period, mixed);
             printf("scratch pad          PRU1 stalled %llu times on PRU0's bank\n",
                    (unsigned long long)stalls);
         }
+        rc = rc || j ? rc : stalls ? 5 : 0;
     }
     free(s.t[0]);
     free(s.t[1]);
