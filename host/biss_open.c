@@ -5,6 +5,7 @@
 #include "biss/biss_shm_struct.h"
 #include "biss_image_id.h"
 #include "biss_oserr.h"
+#include "default_image.h"
 #include "read_file.h"
 
 #include <errno.h>
@@ -16,20 +17,21 @@
 
 /* Where the image is when nothing names it (host/CMakeLists.txt sets all
  * of them): the build tree's, the installed one relative to an installed
- * program's bin directory, and the one under the configured prefix; each
- * for PRU0 and for PRU1 (one image per PRU: pru_fw/README.md). */
+ * program's bin directory, and the one in the configured firmware
+ * directory; each for PRU0 and for PRU1 (one image per PRU:
+ * pru_fw/README.md). */
 #ifndef BISS_BUILD_DIR
 #define BISS_BUILD_DIR           "/nonexistent"
 #define BISS_BUILD_FIRMWARE      "biss_master.bin"
 #define BISS_BUILD_FIRMWARE_PRU1 "biss_master_pru1.bin"
 #endif
 #ifndef BISS_BIN_TO_FIRMWARE
-#define BISS_BIN_TO_FIRMWARE      "../lib/firmware/biss_master.bin"
-#define BISS_BIN_TO_FIRMWARE_PRU1 "../lib/firmware/biss_master_pru1.bin"
+#define BISS_BIN_TO_FIRMWARE      "../../lib/firmware/biss_master.bin"
+#define BISS_BIN_TO_FIRMWARE_PRU1 "../../lib/firmware/biss_master_pru1.bin"
 #endif
 #ifndef BISS_INSTALLED_FIRMWARE
-#define BISS_INSTALLED_FIRMWARE      "/usr/local/lib/firmware/biss_master.bin"
-#define BISS_INSTALLED_FIRMWARE_PRU1 "/usr/local/lib/firmware/biss_master_pru1.bin"
+#define BISS_INSTALLED_FIRMWARE      "/lib/firmware/biss_master.bin"
+#define BISS_INSTALLED_FIRMWARE_PRU1 "/lib/firmware/biss_master_pru1.bin"
 #endif
 #define DEFAULT_TIMEOUT_MS 100
 
@@ -43,39 +45,14 @@ void biss_open_params_default(struct biss_open_params *p) {
     };
 }
 
-/* With no image named: a program of the build tree takes the build's
- * image of the PRU; any other takes the one installed beside it (<its
- * bin>/../lib/firmware, so a moved prefix still works) when there is one,
- * else the configured prefix's. buf holds the candidate beside the program. */
+/* With no image named: default_image.h's choice for the PRU. */
 static const char *default_firmware(unsigned pru, char *buf, size_t len) {
-    const char *installed = pru ? BISS_INSTALLED_FIRMWARE_PRU1 : BISS_INSTALLED_FIRMWARE;
-    char exe[PATH_MAX];
-    ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
-    if (n <= 0) {
-        return installed;
-    }
-    exe[n] = '\0';
-    size_t b = strlen(BISS_BUILD_DIR);
-    if (strncmp(exe, BISS_BUILD_DIR, b) == 0 && exe[b] == '/') {
-        return pru ? BISS_BUILD_FIRMWARE_PRU1 : BISS_BUILD_FIRMWARE;
-    }
-    /* <prefix>/lib/..., not <prefix>/bin/../lib/...: each leading "../"
-     * of the relative path takes one directory off the program's */
-    const char *rel = pru ? BISS_BIN_TO_FIRMWARE_PRU1 : BISS_BIN_TO_FIRMWARE;
-    char *slash = strrchr(exe, '/');
-    while (slash && strncmp(rel, "../", 3) == 0) {
-        *slash = '\0';
-        slash = strrchr(exe, '/');
-        rel += 3;
-    }
-    if (slash) {
-        *slash = '\0';
-        snprintf(buf, len, "%s/%s", exe, rel);
-        if (access(buf, R_OK) == 0) {
-            return buf;
-        }
-    }
-    return installed;
+    const struct default_image d[2] = {
+        {BISS_BUILD_DIR, BISS_BUILD_FIRMWARE, BISS_BIN_TO_FIRMWARE, BISS_INSTALLED_FIRMWARE},
+        {BISS_BUILD_DIR, BISS_BUILD_FIRMWARE_PRU1, BISS_BIN_TO_FIRMWARE_PRU1,
+         BISS_INSTALLED_FIRMWARE_PRU1},
+    };
+    return default_image(&d[pru ? 1 : 0], buf, len);
 }
 
 /* The params win, then $BISS_FIRMWARE, then default_firmware(). */
@@ -109,6 +86,14 @@ static int read_image(biss_t *h, const char *path, struct biss_errbuf *e) {
     if (n == 0 || n % 4 != 0) {
         free(buf);
         return biss_err(e, BISS_E_FIRMWARE_SIZE, "%s: %zu bytes, not whole 32-bit words", path, n);
+    }
+    /* one image per PRU (pru_fw/README.md): the other PRU's, started,
+     * points its private area at the shared block and says nothing */
+    int built = biss_image_pru(buf, n);
+    if (built >= 0 && (unsigned)built != h->be.pru) {
+        free(buf);
+        return biss_err(e, BISS_E_FW_PRU, "%s was assembled for PRU%d, not PRU%u: load %s", path,
+                        built, h->be.pru, h->be.pru ? "biss_master_pru1.bin" : "biss_master.bin");
     }
     h->image = (uint8_t *)buf;
     h->image_bytes = n;
@@ -233,14 +218,16 @@ static int magic_seen(biss_t *h, void *arg) {
 
 /* The image the host expects: loaded by the devmem loader; for the
  * others (attach, remoteproc, which loads its ELF itself) only compared,
- * and the default image may be absent on a board. */
+ * and the default image may be absent on a board: then the handle says
+ * why it could not compare (biss_image_unchecked). */
 static int expected_image(biss_t *h, const struct biss_open_params *p, bool loads,
                           struct biss_errbuf *e) {
     char buf[PATH_MAX + 64];
     const char *path = firmware_path(p, buf, sizeof buf);
     const char *env = getenv("BISS_FIRMWARE");
     bool given = (p->firmware && *p->firmware) || (env && *env);
-    int rc = read_image(h, path, (loads || given) ? e : NULL);
+    struct biss_errbuf why = {h->unchecked, sizeof h->unchecked};
+    int rc = read_image(h, path, (loads || given) ? e : &why);
     return rc && !loads && !given ? BISS_OK : rc;
 }
 
@@ -367,4 +354,8 @@ bool biss_attached(const biss_t *h) {
 
 const char *biss_firmware_path(const biss_t *h) {
     return h ? h->firmware : "";
+}
+
+const char *biss_image_unchecked(const biss_t *h) {
+    return h ? h->unchecked : "";
 }

@@ -15,7 +15,8 @@
 struct bench_fw_settings {
     unsigned half;       /* MA half period in PRU cycles (f = 100 MHz / half) */
     unsigned trigger;    /* BISS_TRIG_* */
-    uint32_t iep_period; /* IEP counts, for BISS_TRIG_IEP */
+    uint32_t iep_period; /* IEP counts, for BISS_TRIG_IEP (fw_check_configure: the owner's
+                            for BISS_TRIG_IEP_FOLLOW) */
     unsigned proc_limit; /* longest processing time accepted, MA clocks */
 };
 
@@ -44,7 +45,8 @@ void bench_fw_block(const struct bench *b, const struct bench_fw_settings *s,
 /* Writes a block and increments CFG_SEQ. Returns 0 or a negative code. */
 int bench_fw_put_block(struct bench *b, const struct biss_shm_config *blk);
 
-/* bench_fw_block, then bench_fw_put_block. */
+/* bench_fw_block, then bench_fw_put_block; tells the bench H for its
+ * frame marks (bench_set_ma_half). */
 int bench_fw_configure(struct bench *b, const struct bench_fw_settings *s);
 
 /* The firmware's status words (zeroed if unreadable). */

@@ -49,7 +49,8 @@ enum biss_error {
     BISS_E_NSLAVES = -13,        /* slave count outside 1..8 */
     BISS_E_DATA_BITS = -14,      /* data bits outside 1..64 */
     BISS_E_CRC_BITS = -15,       /* CRC bits outside 0..16 */
-    BISS_E_CRC_POLY = -16,       /* polynomial degree is not crc_bits (or a poly without CRC) */
+    BISS_E_CRC_POLY = -16,       /* polynomial not odd, or its degree not crc_bits (or a poly
+                                    without CRC) */
     BISS_E_CRC_START = -17,      /* CRC start value wider than crc_bits */
     BISS_E_EW = -18,             /* nE/nW position outside the data word */
     BISS_E_POS_BITS = -19,       /* position bits do not fit above nE/nW */
@@ -96,7 +97,9 @@ enum biss_error {
     BISS_E_SHM_VERSION = -57, /* the firmware speaks another BISS_SHM_VERSION */
     BISS_E_FW_IMAGE = -58,    /* the running image is not the expected one (CRC-32) */
     BISS_E_SHM_CONFIG = -59,  /* the configuration block in data RAM is invalid */
-    BISS_E_SHM_RESULT = -60,  /* a published result contradicts the configuration */
+    BISS_E_SHM_RESULT = -60,  /* a published result or a status word the firmware never
+                                 writes (or not with this configuration): named by
+                                 biss_shm_problem */
     /* safety checks (biss_config: life_check, pair) */
     BISS_E_SAFETY_LIFE = -61, /* life-counter check on no slave of the chain, or its width
                                  outside 1..32 or more than the bits below nE/nW and the
@@ -109,9 +112,14 @@ enum biss_error {
                                  that sends no nE/nW */
     /* two channels on one PRU-ICSS */
     BISS_E_IEP_OWNED = -65,    /* trigger iep: the other PRU's channel owns the IEP */
-    BISS_E_FW_PRU = -66,       /* the running image was assembled for the other PRU */
-    BISS_E_SAFETY_SPEED = -67, /* speed check (max_speed) on a slave outside the chain, or a
-                                  speed not finite and above 0 */
+    BISS_E_FW_PRU = -66,       /* the image (its words, or the running one's BISS_ST_PRU) was
+                                  assembled for the other PRU */
+    BISS_E_SAFETY_SPEED = -67, /* speed check (max_speed) on a slave outside the chain, a
+                                  speed outside 1e-9..1e18, or on a trigger with no time
+                                  base (iep-follow without the owner's period) */
+    /* what the line allows (biss_line_check) */
+    BISS_E_LINE_TIMEOUT = -68, /* the slave's timeout is below 55 % of the MA period */
+    BISS_E_LINE_DELAY = -69,   /* the line's round trip is beyond what the firmware waits for */
 };
 
 /* Static text for any return value of this library (never NULL). */
@@ -162,8 +170,9 @@ struct biss_open_params {
      * pruss driver). firmware_dir: NULL "/lib/firmware". rproc_firmware:
      * the name written to the instance's firmware file (NULL: the name the
      * kernel's device tree gives that PRU, e.g. "am335x-pru0-fw").
-     * lock_dir: where the per-PRU lock file lives (NULL: $BISS_LOCK_DIR,
-     * else /run/lock when writable, else /tmp). */
+     * lock_dir: not used (kept for compatibility): the per-PRU and IEP
+     * locks are on the memory file itself, at the PRU's data RAM and the
+     * IEP, so every process agrees on them whatever its environment. */
     const char *sysfs_root;
     const char *firmware_dir;
     const char *rproc_firmware;
@@ -204,6 +213,11 @@ enum biss_target biss_target(const biss_t *h);
 /* The firmware image path this handle loaded or compared the running
  * image with ("" when none). */
 const char *biss_firmware_path(const biss_t *h);
+/* Linux targets: why the running image could not be compared with an image
+ * file (the default one, BISS_FIRMWARE_DIR's biss_master.bin, absent or
+ * unreadable: its path and the error), or "" when it was compared or
+ * loaded. The handle works either way; the check is then the caller's. */
+const char *biss_image_unchecked(const biss_t *h);
 /* The handle attached to a running firmware (no load, no restart). */
 bool biss_attached(const biss_t *h);
 
@@ -261,12 +275,15 @@ struct biss_slave_config {
      * wrong, e.g. one place off after a clock the master never made: the
      * frame is not valid (BISS_SAFE_POS_JUMP, biss_sample misframed).
      * Distances are modulo 2^pos_bits (a wrap is no jump). The time comes
-     * from the frames' IEP timestamps (free-run, host trigger: frames read
-     * at most 21 s apart, the count's wrap, and no other channel of the
-     * PRU-ICSS on the IEP trigger, which restarts the count) or from the
-     * frame numbers times
-     * iep_period_ns (IEP trigger; iep-follow with iep_period_ns set, else
-     * no check). 0 = off. */
+     * from the frames' IEP timestamps (free-run, host trigger: a count that
+     * went backwards, frames more than 10.7 s apart or the count restarted,
+     * tells no time and the position is refused, not passed unjudged) or
+     * from the frame numbers times iep_period_ns (IEP trigger; iep-follow:
+     * the owning channel's period, which biss_configure reads from it).
+     * Configured on a trigger with no time (iep-follow with no owner and no
+     * period; host or free-run while the other channel's IEP trigger
+     * restarts the count), it is refused (BISS_E_SAFETY_SPEED). 0 = off;
+     * else 1e-9..1e18 (biss/biss_rules.h). */
     double max_speed;
 };
 
@@ -304,6 +321,86 @@ void biss_config_default(struct biss_config *c);
 
 /* The MA half period H in PRU cycles for freq_hz, or a BISS_E_RATE_* error. */
 int biss_rate_half(uint32_t freq_hz, unsigned *half);
+
+/* ---- what a line allows (proto/biss_line.c) ----------------------------
+ *
+ * The firmware reads any line delay up to BISS_MAX_DELAY_NS (40 us) of
+ * round trip at any rate: whole MA periods of delay cost it no clock, and
+ * it waits that long for the ACK before it reports NO_SLAVE. What limits a
+ * rate on a long cable is the cable: its losses round off and delay the
+ * edges until an MA half period no longer gets through (the bench's line
+ * model: a low-pass whose time constant grows with the square of the
+ * length, emulator/slave/MODELS.md; 10 MHz fails there from about 60 m,
+ * every MA pulse swallowed, the slave never answering). The rule is
+ * TIDEP0022's (TI's BiSS-C master on the PRU, design guide, Table 5
+ * "Supported Frequencies"): 10 MHz up to 10 m of cable, 5 MHz up to 25 m,
+ * 2 MHz up to 60 m, 1 MHz up to 100 m. Beyond it a rate may still work on
+ * a good cable: a warning, not a refusal. Two hard limits: a round trip of
+ * BISS_MAX_DELAY_NS or more is never found (every frame NO_SLAVE), and a
+ * slave's timeout must last at least 55 % of the MA period (iC-MB4
+ * datasheet, BiSS B/C frame, item I306 "Ttos Permissible Timeout (Slave)",
+ * min. 55 % TMAS), or the slave may end the frame within a clock phase.
+ *
+ * A measured round trip stands for a cable of about (round trip -
+ * BISS_LINE_FIXED_NS) / BISS_LINE_NS_PER_M metres: 5 ns/m each way
+ * (twisted pair at about 2/3 c; TIDEP0022 §2.1.1: "With a cable length up
+ * to 100 meters, a cable delay of 1 us ... is possible"), after the
+ * transceivers and the encoder's output (EST: 2 x (9 + 15) ns for an RS-485
+ * driver and receiver each way, the SN65HVD78 class TIDEP0022 §2.3 uses,
+ * plus 20 ns; the bench's line model takes the same figures). A lossy
+ * cable's slow edges add to the round trip, so the estimate errs long. */
+#define BISS_LINE_FIXED_NS 68.0
+#define BISS_LINE_NS_PER_M 10.0
+
+/* The longest cable in metres TIDEP0022 Table 5 gives for MA rate freq_hz:
+ * a rate between two rows takes the faster row's length; 1 MHz and below
+ * 100 m (the design's longest). 0 for a rate above 10 MHz. */
+double biss_rate_cable_max_m(double freq_hz);
+/* The cable a measured round trip (ns) stands for, in metres (>= 0). */
+double biss_round_trip_cable_m(double round_trip_ns);
+/* The shortest slave timeout (ns) iC-MB4's I306 permits at freq_hz: 55 %
+ * of the MA period, rounded up. */
+uint32_t biss_rate_timeout_min_ns(double freq_hz);
+
+/* What is known about a line: negative or 0 fields are unknown. */
+struct biss_line_facts {
+    double cable_m;            /* its length, < 0 unknown */
+    double round_trip_ns;      /* a measured round trip (biss_line_delay), < 0 unknown */
+    double round_trip_res_ns;  /* ... and its resolution (one bit / 8), 0 exact */
+    uint32_t slave_timeout_ns; /* the slaves' shortest timeout, 0 unknown */
+};
+
+#define BISS_LINE_MAX_RATES 3
+/* biss_line_check's findings for a rate. */
+struct biss_line_verdict {
+    double freq_hz;          /* 100 MHz / H */
+    bool beyond_table;       /* the cable is longer than Table 5 gives the rate (a warning) */
+    bool timeout_short;      /* the timeout is below 55 % of the MA period (an error) */
+    bool delay_unreadable;   /* the round trip is BISS_MAX_DELAY_NS or more (an error) */
+    double cable_m;          /* the length, known or estimated (< 0: neither) */
+    bool estimated;          /* cable_m comes from the round trip */
+    double round_trip_ns;    /* as given (< 0: none) */
+    double cable_max_m;      /* Table 5's length for the rate */
+    uint32_t timeout_min_ns; /* 55 % of the MA period */
+    uint32_t slave_timeout_ns;
+    /* the rates (exact, biss_rate_half) nearest freq_hz that none of the
+     * findings above rules out, nearest first; none if no rate would do */
+    uint32_t rates[BISS_LINE_MAX_RATES];
+    unsigned nrates;
+};
+
+/* Checks MA rate freq_hz against what is known of the line. Returns
+ * BISS_OK (v->beyond_table may still warn), BISS_E_LINE_TIMEOUT or
+ * BISS_E_LINE_DELAY (the first of them that applies; v has all), or a
+ * BISS_E_RATE_* / BISS_E_INVAL for a rate or pointer no check can take. */
+int biss_line_check(uint32_t freq_hz, const struct biss_line_facts *f, struct biss_line_verdict *v);
+/* The verdict in words, one line without a newline, e.g. "10 MHz on 80 m
+ * of cable: TIDEP0022 Table 5 gives 10 MHz up to 10 m; rates that work:
+ * 1 MHz, 800 kHz, 781.25 kHz". Empty when there is nothing to say.
+ * Returns what snprintf returns. */
+int biss_line_text(const struct biss_line_verdict *v, char *buf, size_t len);
+/* A rate as people write it: "10 MHz", "781.25 kHz", "97.65625 kHz". */
+int biss_rate_text(double freq_hz, char *buf, size_t len);
 
 /* Checks every field as the firmware would, and more (polynomial degree,
  * start value, position bits, the safety checks). 0 or the first specific
@@ -392,6 +489,13 @@ struct biss_sample {
     uint32_t safety; /* the slaves' BISS_SAFE_* or'ed */
 };
 
+/* What the handle's last BISS_E_SHM_RESULT found in data RAM, by name
+ * ("result flags: a combination the firmware never writes", "MA half
+ * period: ...", "sample point: not 0..7", ...); "" when none. Checked:
+ * every field of a published result and the status words, against what
+ * the firmware writes (proto/biss_result_check.c). */
+const char *biss_shm_problem(biss_t *h);
+
 /* The latest published frame, consistent (ST_SEQ/ST_BUF protocol). */
 int biss_read_sample(biss_t *h, struct biss_sample *s);
 /* Blocks until a frame numbered after after_frame is published (at most
@@ -457,6 +561,19 @@ int biss_cd_poll(biss_t *h, biss_cd_job *job);
 /* After a successful poll: the n bytes a register read got, the IDA answers. */
 int biss_cd_job_bytes(const biss_cd_job *job, uint8_t *buf);
 int biss_cd_job_ida(const biss_cd_job *job, uint8_t *ida);
+/* After a poll that finished (any verdict): the ID fields a control frame
+ * answered, as read and as they came (host/CD.md, "IDL" and "IDA": the
+ * sources disagree on the slots). idl: a register access's ID lock IDL0..7
+ * (bit i = ID i); header_cds: its answers to S and the 8 steps after it
+ * that were 1 (bit 0 = S; IDL0 is read at S, the other reading has it at
+ * CTS, bit 1). ida: a command's IDA answers (bit i = ID i); ida_cds: its
+ * answers to the last header CRC step and the 8 IDA steps that were 1
+ * (bit 0 = the CRC step, where IDA0 is read). */
+struct biss_cd_slots {
+    uint8_t idl, ida;
+    uint16_t header_cds, ida_cds;
+};
+int biss_cd_job_slots(const biss_cd_job *job, struct biss_cd_slots *out);
 void biss_cd_job_free(biss_cd_job *job);
 
 /* ---- status and statistics --------------------------------------------- */

@@ -23,7 +23,9 @@ def run(*args, env=None):
     taken off stdout (read --json says it in its object)."""
     r = subprocess.run([CTL, *args], capture_output=True, text=True, timeout=120, env=env)
     target = args[args.index("--target") + 1] if "--target" in args else "emu"
-    if target == "emu" and r.stdout and "--help" not in args and "--json" not in args:
+    # (rates needs no target: it opens none)
+    if (target == "emu" and r.stdout and "--help" not in args and "--json" not in args
+            and "rates" not in args):
         first, _, rest = r.stdout.partition("\n")
         if check(first.startswith(EMULATED), "%r: no emulated line: %r" % (args, r.stdout[:120])):
             r.stdout = rest
@@ -36,7 +38,7 @@ def run(*args, env=None):
 r = run("--help")
 check(r.returncode == 0 and "info" in r.stdout and "--target" in r.stdout, "--help: %r" % r.stdout)
 for cmd in ["info", "read", "stats", "run", "trigger", "start", "stop", "reg-read",
-            "reg-write", "command"]:
+            "reg-write", "command", "rates"]:
     r = run(cmd, "--help")
     check(r.returncode == 0 and r.stdout.startswith("bissctl [options] " + cmd),
           "%s --help: %r" % (cmd, r.stdout[:80]))
@@ -80,8 +82,14 @@ r = run("--pru", "1", "info")
 check(r.returncode == 0 and "/pru_fw/biss_master_pru1.bin\n" in r.stdout, "--pru 1 image: %r" % r.stdout)
 pru0_image = r.stdout.split("firmware=", 1)[1].split()[0].replace("_pru1.bin", ".bin")
 r = run("--pru", "1", "--firmware", pru0_image, "--freq", "10000000", "read", "-n", "1")
-check(r.returncode != 0 and "assembled for the other PRU" in r.stderr,
+check(r.returncode == 1 and "assembled for the other PRU" in r.stderr
+      and "assembled for PRU0, not PRU1" in r.stderr,
       "PRU0's image on PRU1: %d %r" % (r.returncode, r.stderr))
+# and PRU1's on PRU0, which once ran with NO_SLAVE forever: refused from
+# its words before it runs
+r = run("--firmware", pru0_image.replace(".bin", "_pru1.bin"), "read", "-n", "5")
+check(r.returncode == 1 and "assembled for PRU1, not PRU0" in r.stderr and r.stdout == "",
+      "PRU1's image on PRU0: %d %r %r" % (r.returncode, r.stdout, r.stderr))
 
 # host trigger: one frame per trigger
 r = run("--freq", "10000000", "--trigger", "host", "trigger")
@@ -108,8 +116,9 @@ r = run("--freq", "10000000", "reg-write", "0x60", "0x12", "0x34")
 check(r.returncode == 0 and r.stdout == "", "reg-write: %r %r" % (r.stdout, r.stderr))
 r = run("--freq", "10000000", "--id", "3", "reg-read", "0x78")
 check(r.returncode == 1 and "no slave took" in r.stderr, "reg-read wrong id: %r" % r.stderr)
+CMD0_ID0 = "command 0 to ID 0: switches the data channel of each addressed slave on\n"
 r = run("--freq", "10000000", "command", "1", "0")
-check(r.returncode == 0 and r.stdout == "ids=0x01 cmd=0 ida=0x01\n", "command: %r %r" % (r.stdout, r.stderr))
+check(r.returncode == 0 and r.stdout == CMD0_ID0 + "ids=0x01 cmd=0 ida=0x01\n", "command: %r %r" % (r.stdout, r.stderr))
 # the other spellings: "reg read", "reg write", "cmd"
 r = run("--freq", "10000000", "reg", "read", "0x78", "-n", "2")
 check(r.returncode == 0 and r.stdout.split("\n")[:2] ==
@@ -117,10 +126,10 @@ check(r.returncode == 0 and r.stdout.split("\n")[:2] ==
 r = run("--freq", "10000000", "reg", "write", "0x60", "0x12")
 check(r.returncode == 0 and r.stdout == "", "reg write: %r %r" % (r.stdout, r.stderr))
 r = run("--freq", "10000000", "cmd", "1", "0")
-check(r.returncode == 0 and r.stdout == "ids=0x01 cmd=0 ida=0x01\n", "cmd: %r %r" % (r.stdout, r.stderr))
+check(r.returncode == 0 and r.stdout == CMD0_ID0 + "ids=0x01 cmd=0 ida=0x01\n", "cmd: %r %r" % (r.stdout, r.stderr))
 # ID 1 is not there: with the IDA test the firmware withholds the command
-r = run("--freq", "10000000", "command", "3", "1", "--ida-test")
-check(r.returncode == 1 and r.stdout == "ids=0x03 cmd=1 ida=0x01\n" and "withheld" in r.stderr,
+r = run("--freq", "10000000", "command", "3", "0", "--ida-test")
+check(r.returncode == 1 and r.stdout.endswith("ids=0x03 cmd=0 ida=0x01\n") and "withheld" in r.stderr,
       "command --ida-test: %r %r" % (r.stdout, r.stderr))
 for args in [["command", "1", "4"], ["command", "1"], ["reg-read"], ["reg-read", "0x80"], ["reg-write", "0x60"], ["reg-write", "0x60", "0x100"],
              ["--id", "8", "reg-read", "0"], ["info", "0x33"]]:
@@ -145,11 +154,16 @@ for args, text in [(["--freq", "3000000", "read"], "not 100 MHz divided by a who
                    (["--freq", "100000", "read"], "no exact 8x shift clock"),
                    (["--freq", "20000000", "read"], "out of range"),
                    (["--slave", "14,6,0x03,0,0", "read"], "polynomial"),
+                   # even: refused as the scenario files refuse it (one rule)
+                   (["--slave", "14,6,0x42,0,0", "read"], "polynomial"),
                    (["--slave", "70,6,0x43,0", "read"], "data bits"),
                    (["--profile", "nope", "info"], "unknown emulator profile"),
                    (["--firmware", "/nonexistent.bin", "info"], "firmware image cannot be read"),
                    (["--target", "am335x", "--devmem", "/nonexistent", "--slave", "14,6,0x43,0",
-                     "info"], "/nonexistent: No such file or directory (errno 2)")]:
+                     "info"], "/nonexistent: No such file or directory (errno 2)"),
+                   # no PRU-ICSS memory there (its mapping was a bus error)
+                   (["--target", "am335x", "--loader", "devmem", "--devmem", "/dev/zero",
+                     "--slave", "14,6,0x43,0", "info"], "/dev/zero is not /dev/mem")]:
     r = run(*args)
     check(r.returncode == 1 and text in r.stderr, "%r: rc %d %r" % (args, r.returncode, r.stderr))
 
@@ -211,6 +225,13 @@ with tempfile.TemporaryDirectory() as tmp:
     r = run(*dm, "--slave", "14,6,0x43,0,0", "--freq", "10000000", "info", env=env)
     check(r.returncode == 1 and ("pid %d" % holder.pid) in r.stderr and "in use" in r.stderr,
           "second process: %r" % r.stderr)
+    # whatever its environment: one lock per PRU, on the memory file, and
+    # the holder named with its command
+    other_env = dict(os.environ, BISS_LOCK_DIR=os.path.join(tmp, "elsewhere"))
+    r = run(*dm, "--slave", "14,6,0x43,0,0", "--freq", "10000000", "info", env=other_env)
+    check(r.returncode == 1 and ("pid %d (bissctl)" % holder.pid) in r.stderr
+          and "PRU0 of the PRU-ICSS at 0x4a300000" in r.stderr,
+          "second process, another BISS_LOCK_DIR: %r" % r.stderr)
     r = run(*dm, "stats", env=env)  # another reader shares it
     check(r.returncode == 0 and "frames=1234" in r.stdout, "shared reader: %r" % r.stderr)
     holder.wait(timeout=30)
@@ -226,6 +247,26 @@ with tempfile.TemporaryDirectory() as tmp:
     wr(mem, BASE + 0x10, 0x000000c8)   # 200 data bits: once a shift by 200
     r = run(*dm, "--attach", "read", env=env)
     check(r.returncode == 1 and "bad slave data bits" in r.stderr, "junk slave: %r" % r.stderr)
+    wr(mem, BASE + 0x10, 0x0100060e)   # 14 data bits, CRC6, nE/nW at 0
+    wr(mem, BASE + 0x14, 0x00000003)   # 0x43
+    wr(mem, BASE + 0x100, 5)           # a publication: frame 5 ...
+    wr(mem, BASE + 0x104, 0x41)        # ... VALID with ACK_JUMP: never written so
+    wr(mem, BASE + 0x10C, 0x01000000)  # one slave
+    wr(mem, BASE + 0x114, 0x000a0307)  # H = 10, lag 3, sample point 7
+    wr(mem, BASE + 0x88, 0)            # ST_BUF
+    wr(mem, BASE + 0x84, 1)            # ST_SEQ
+    r = run(*dm, "--attach", "read", env=env)
+    check(r.returncode == 1 and "result flags: a combination the firmware never writes" in r.stderr
+          and "pos=" not in r.stdout, "junk flags: %r %r" % (r.stdout, r.stderr))
+    wr(mem, BASE + 0x104, 0x01)        # VALID ...
+    wr(mem, BASE + 0x114, 0x000a03ff)  # ... with sample point 255
+    r = run(*dm, "--attach", "read", env=env)
+    check(r.returncode == 1 and "sample point: not 0..7" in r.stderr, "junk point: %r" % r.stderr)
+    wr(mem, BASE + 0x114, 0x000a0307)
+    wr(mem, BASE + 0x94, 7)            # ST_STATE
+    r = run(*dm, "--attach", "stats", env=env)
+    check(r.returncode == 1 and "ST_STATE" in r.stderr, "junk state: %r" % r.stderr)
+    wr(mem, BASE + 0x94, 1)
     wr(mem, BASE + 0xFE4, 99)          # another BISS_SHM_VERSION
     r = run(*dm, "--attach", "stats", env=env)
     check(r.returncode == 1 and "BISS_SHM_VERSION 99" in r.stderr, "version: %r" % r.stderr)
@@ -336,8 +377,80 @@ except ValueError:
 check(sp == [{"slave": 0, "counts_per_s": 60000, "checked": 1, "jumped": 0, "resync": 0}], "--check-speed --json: %r" % sp)
 r = run("--check-speed", "0,x", "read")
 check(r.returncode == 2 and "--check-speed" in r.stderr, "--check-speed 0,x: %r" % r.stderr)
+# the range the scenario files take, 1e-9..1e18 (one rule)
+for spd in ["0,1e308", "0,2e18", "0,1e-10"]:
+    r = run("--check-speed", spd, "read")
+    check(r.returncode == 2 and "--check-speed" in r.stderr and "1e-9..1e18" in r.stderr,
+          "--check-speed %s: %r" % (spd, r.stderr))
 r = run("--check-speed", "1,5", "read")
 check(r.returncode == 1 and "speed check" in r.stderr, "--check-speed 1,5: %r" % r.stderr)
+
+# the rate against the line (proto/biss_line.c): TIDEP0022 Table 5 by the
+# cable the user names (a warning; why no slave answered once the frames
+# show it), a slave timeout below 55 % of the MA period (refused before
+# anything runs), and without a length the round trip the training frame
+# measured, or measured at 1 MHz when nothing answered
+T5_80 = ("10 MHz on 80 m of cable: TIDEP0022 Table 5 gives 10 MHz up to 10 m; rates that work: "
+         "1 MHz, 800 kHz, 781.25 kHz")
+r = run("--freq", "10000000", "--cable-m", "80", "read", "-n", "2")
+check(r.returncode == 0 and r.stdout.count("no-slave") == 2
+      and "bissctl: warning: " + T5_80 + "\n" in r.stderr
+      and "bissctl: no slave answered: " + T5_80 + "\n" in r.stderr,
+      "10 MHz, 80 m: %r %r" % (r.stdout, r.stderr))
+r = run("--freq", "10000000", "--cable-m", "80", "start")
+check(r.returncode == 0 and "bissctl: no slave answered: " + T5_80 in r.stderr,
+      "start at 10 MHz, 80 m: %d %r" % (r.returncode, r.stderr))
+r = run("--freq", "5000000", "--cable-m", "25", "read", "-n", "3")
+check(r.returncode == 0 and r.stderr == "" and r.stdout.count(" valid ") == 2,
+      "5 MHz, 25 m (Table 5): %r %r" % (r.stdout, r.stderr))
+tmp = tempfile.mkdtemp()
+far = os.path.join(tmp, "80m.json")
+with open(far, "w") as f:
+    f.write('{"profile": "tidep0022-test-encoder", "line": {"length_m": 80}}')
+r = run("--freq", "10000000", "--scenario", far, "read", "-n", "2")
+m = re.search(r"no slave answered at 10 MHz; at 1 MHz the line's round trip is (\d+) ns\n"
+              r"bissctl: no slave answered: 10 MHz on a line with a round trip of (\d+) ns "
+              r"\(about (\d+) m of cable: 5 ns/m each way after 68 ns of transceivers\): "
+              r"TIDEP0022 Table 5 gives 10 MHz up to 10 m \(a round trip up to about 168 ns\); "
+              r"rates that work: 1 MHz, 800 kHz, 781.25 kHz", r.stderr)
+check(r.returncode == 0 and m and m.group(1) == m.group(2) and 80 <= int(m.group(3)) <= 110,
+      "80 m not named, measured at 1 MHz: %r" % r.stderr)
+r = run("--scenario", far, "--freq", "1000000", "read", "-n", "3")
+check(r.returncode == 0 and r.stdout.count(" valid ") == 2 and r.stderr == "",
+      "80 m at 1 MHz: no word: %r %r" % (r.stdout, r.stderr))
+r = run("--freq", "5000000", "--scenario", far, "read", "-n", "3")
+m = re.search(r"^bissctl: warning: 5 MHz on a line with a round trip of \d+ ns \(about \d+ m of "
+              r"cable.*TIDEP0022 Table 5 gives 5 MHz up to 25 m.*rates that work: 1 MHz, 800 kHz, "
+              r"781.25 kHz$", r.stderr, re.M)
+check(r.returncode == 0 and m, "5 MHz on 80 m, measured: %r %r" % (r.stdout, r.stderr))
+r = run("--freq", "500000", "--slave-timeout-ns", "650", "read")
+check(r.returncode == 1 and r.stdout == "" and r.stderr ==
+      "bissctl: configuration: a slave timeout of 650 ns is below 55 % of the MA period at 500 kHz "
+      "(1100 ns, iC-MB4 I306): the slave may end the frame within a clock phase; rates that work: "
+      "1 MHz, 1.25 MHz, 1.5625 MHz\n", "timeout 650 ns at 500 kHz: %d %r" % (r.returncode, r.stderr))
+r = run("--freq", "1000000", "--slave-timeout-ns", "550", "read")
+check(r.returncode == 0 and r.stderr == "", "timeout 550 ns at 1 MHz: %r" % r.stderr)
+r = run("--slave-timeout-ns", "0", "read")
+check(r.returncode == 2 and "--slave-timeout-ns" in r.stderr, "timeout 0: %r" % r.stderr)
+# rates: no target, what the line allows, fastest first
+r = run("--cable-m", "30", "rates")
+check(r.returncode == 0 and re.search(r"^rates_hz=2000000,1562500,1250000,1000000,", r.stdout, re.M),
+      "rates for 30 m: %r %r" % (r.stdout, r.stderr))
+r = run("--cable-m", "30", "--slave-timeout-ns", "300", "rates")
+check(r.returncode == 0 and re.search(r"^rates_hz=2000000$", r.stdout, re.M),
+      "rates for 30 m and a 300 ns timeout: %r" % r.stdout)
+r = run("--round-trip-ns", "1046", "--freq", "10000000", "rates")
+check(r.returncode == 0 and "round trip 1046 ns: about 98 m of cable" in r.stdout
+      and "10 MHz: 10 MHz on a line with a round trip of 1046 ns" in r.stdout,
+      "rates --round-trip-ns 1046 --freq 10 MHz: %r" % r.stdout)
+r = run("--cable-m", "10", "--freq", "10000000", "rates")
+check(r.returncode == 0 and "10 MHz: within TIDEP0022 Table 5 for this line" in r.stdout,
+      "10 MHz on 10 m: %r" % r.stdout)
+r = run("--slave-timeout-ns", "650", "--freq", "500000", "rates")
+check(r.returncode == 1 and "rates that work: 1 MHz, 1.25 MHz, 1.5625 MHz" in r.stdout,
+      "rates, short timeout: %d %r" % (r.returncode, r.stdout))
+r = run("rates")
+check(r.returncode == 2 and "rates needs --cable-m" in r.stderr, "rates alone: %r" % r.stderr)
 
 # the emulator says so in JSON too; start on the emulator says the master
 # ends with bissctl

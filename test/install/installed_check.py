@@ -1,17 +1,24 @@
 #!/usr/bin/env python3
-"""An installed tree as its users meet it: the files in their places, every
-tool's --version, libbiss.so's soname and exports (no emulator symbols, no
-libcjson), bissctl finding the firmware installed beside it (emulator
-target) and loading it through a file standing in for /dev/mem, and
+"""An installed tree as its users meet it: the files in their places (the
+programs under the prefix, the firmware and overlays in the firmware
+directory, /lib/firmware whatever the prefix), every tool's --version,
+libbiss.so's soname and exports (no emulator symbols, no libcjson),
+bissctl finding the firmware installed for it (emulator target) and
+loading it through a file standing in for /dev/mem, attaching to it and
+saying so when the installed image it would compare with is absent,
 examples/read_positions.c built with `pkg-config --cflags --libs libbiss`
-reading a position the test publishes in the stand-in's data RAM.
+reading a position the test publishes in the stand-in's data RAM, and the
+kernel-fw-names component linking the kernel's names without replacing
+another firmware.
 
 usage: installed_check.py --version V --source DIR --cc CC [--nm NM]
-         (--install-from BUILD_DIR | --prefix PREFIX)
+         --prefix PREFIX --firmware-dir DIR (--install-from BUILD_DIR | --root ROOT)
          [--run "qemu-arm -L /usr/arm-linux-gnueabihf"] [--tools "bissctl pruasm ..."]
          [--same-firmware BUILD_DIR]
---install-from installs BUILD_DIR into a temporary prefix first (removed
-after); --prefix checks a tree already installed (the cross build's).
+PREFIX and DIR are the tree's configured (absolute) prefix and firmware
+directory; the files lie under ROOT (a DESTDIR). --install-from installs
+BUILD_DIR with DESTDIR set to a temporary directory first (removed after);
+--root checks a tree already installed (the cross build's).
 --same-firmware: the installed images must be byte-identical to BUILD_DIR's.
 """
 import argparse
@@ -34,7 +41,9 @@ ap.add_argument("--source", required=True)
 ap.add_argument("--cc", required=True)
 ap.add_argument("--nm", default="nm")
 ap.add_argument("--install-from")
-ap.add_argument("--prefix")
+ap.add_argument("--root")
+ap.add_argument("--prefix", required=True)
+ap.add_argument("--firmware-dir", required=True)
 ap.add_argument("--run", default="")
 ap.add_argument("--tools", default="bissctl biss-sim pruasm pru-run pru-elf")
 ap.add_argument("--same-firmware")
@@ -51,7 +60,13 @@ def run(*args, **kw):
     return subprocess.run([*runner, *args], capture_output=True, text=True, timeout=120, **kw)
 
 
-def check_tree(prefix, tmp):
+def under(root, path):
+    return os.path.join(root, path.lstrip("/"))
+
+
+def check_tree(root, tmp):
+    prefix = under(root, a.prefix)
+    fw = under(root, a.firmware_dir)
     pc = os.path.join(prefix, "lib", "pkgconfig", "libbiss.pc")
     if not os.path.exists(pc):  # a multiarch libdir (prefix /usr on Debian)
         found = [d for d, _, f in os.walk(prefix) if "libbiss.pc" in f]
@@ -63,15 +78,16 @@ def check_tree(prefix, tmp):
                             capture_output=True, text=True).stdout.strip()
     check(os.path.realpath(libdir) == os.path.realpath(os.path.dirname(os.path.dirname(pc))),
           "libdir %r beside the .pc" % libdir)
-    fw = os.path.join(prefix, "lib", "firmware")
     for f in ["bin/" + t for t in a.tools.split()] + [
-            "include/libbiss.h", "lib/firmware/biss_master.bin", "lib/firmware/biss_master.elf",
-            "lib/firmware/am335x-pru0-fw", "lib/firmware/BB-BISS-PRU0-00A0.dtbo",
-            "lib/firmware/BB-BISS-PRU01-00A0.dtbo",
-            "lib/firmware/biss_master_pru1.bin", "lib/firmware/biss_master_pru1.elf",
-            "lib/firmware/am335x-pru1-fw", "lib/firmware/am437x-pru0_1-fw",
-            "share/doc/pru_biss/README.md", "share/doc/pru_biss/host/README.md"]:
+            "include/libbiss.h", "share/doc/pru_biss/README.md",
+            "share/doc/pru_biss/host/README.md"]:
         check(os.path.exists(os.path.join(prefix, f)), "installed: " + f)
+    for f in ["biss_master.bin", "biss_master.elf", "biss_master_pru1.bin",
+              "biss_master_pru1.elf", "BB-BISS-PRU0-00A0.dtbo", "BB-BISS-PRU01-00A0.dtbo"]:
+        check(os.path.exists(os.path.join(fw, f)), "installed: %s/%s" % (a.firmware_dir, f))
+    # the kernel's names are another firmware's unless asked for (kernel-fw-names)
+    for f in ["am335x-pru0-fw", "am335x-pru1-fw", "am437x-pru0_0-fw", "am437x-pru0_1-fw"]:
+        check(not os.path.lexists(os.path.join(fw, f)), "not installed by default: " + f)
     for f in ["libbiss.a", "libbiss.so"]:
         check(os.path.exists(os.path.join(libdir, f)), "installed: %s/%s" % (libdir, f))
     check(not os.path.exists(os.path.join(prefix, "include", "libbiss-emu.h")),
@@ -167,19 +183,72 @@ def check_tree(prefix, tmp):
         check(r.returncode == 0 and r.stdout == "slave 0: position %d\n" % pos,
               "example: %d %r %r" % (r.returncode, r.stdout, r.stderr))
 
+    # attaching, bissctl compares the running image (its identification
+    # block, which the devmem load above wrote) with the installed one, and
+    # says so when that is absent rather than skip the check in silence
+    attach = [*dm, "--attach", "stats"]
+    r = run(ctl, *attach, env=env)
+    check(r.returncode == 0 and r.stdout.startswith("frames=") and "cannot check" not in r.stderr,
+          "attached, image compared: %d %r %r" % (r.returncode, r.stdout, r.stderr))
+    # absent beside the program, it is looked for in the configured firmware
+    # directory itself (which a DESTDIR tree's program cannot know to be
+    # outside its tree): absent there too on a machine without the package
+    os.rename(want, want + ".away")
+    r = run(ctl, *attach, env=env)
+    os.rename(want + ".away", want)
+    last = os.path.join(a.firmware_dir, "biss_master.bin")
+    if os.path.exists(last):
+        check(r.returncode == 0 and "cannot check" not in r.stderr or
+              r.returncode == 1 and "CRC-32" in r.stderr and last in r.stderr,
+              "attached, compared with %s: %d %r" % (last, r.returncode, r.stderr))
+    else:
+        check(r.returncode == 0 and "bissctl: cannot check the running image: %s: No such file "
+              "or directory" % last in r.stderr,
+              "attached, installed image absent: %d %r" % (r.returncode, r.stderr))
+
+
+def kernel_names(build, tmp):
+    """The kernel-fw-names component: the links, again (nothing changes),
+    and never over another firmware's file."""
+    root = os.path.join(tmp, "names")
+    fw = under(root, a.firmware_dir)
+    env = dict(os.environ, DESTDIR=root)
+    cmd = ["cmake", "--install", build, "--component", "kernel-fw-names"]
+    links = {"am335x-pru0-fw": "biss_master.elf", "am437x-pru0_0-fw": "biss_master.elf",
+             "am335x-pru1-fw": "biss_master_pru1.elf", "am437x-pru0_1-fw": "biss_master_pru1.elf"}
+    for attempt in ("first", "again"):
+        os.makedirs(fw, exist_ok=True)
+        r = subprocess.run(cmd, env=env, capture_output=True, text=True)
+        check(r.returncode == 0, "kernel-fw-names %s: %r" % (attempt, r.stderr))
+        for name, target in links.items():
+            p = os.path.join(fw, name)
+            check(os.path.islink(p) and os.readlink(p) == target,
+                  "%s: %s -> %s" % (attempt, name, target))
+    other = os.path.join(fw, "am335x-pru1-fw")
+    os.remove(other)
+    with open(other, "w") as f:
+        f.write("another firmware\n")
+    r = subprocess.run(cmd, env=env, capture_output=True, text=True)
+    check(r.returncode != 0 and "another firmware has that name" in " ".join(r.stderr.split()),
+          "kernel-fw-names over another firmware fails: %d %r" % (r.returncode, r.stderr))
+    with open(other) as f:
+        check(f.read() == "another firmware\n", "the other firmware is left as it was")
+
 
 with tempfile.TemporaryDirectory() as tmp:
-    prefix = a.prefix and os.path.abspath(a.prefix)
+    root = a.root and os.path.abspath(a.root)
     if a.install_from:
-        prefix = os.path.join(tmp, "prefix")
-        r = subprocess.run(["cmake", "--install", a.install_from, "--prefix", prefix],
-                           capture_output=True, text=True)
+        root = os.path.join(tmp, "root")
+        r = subprocess.run(["cmake", "--install", a.install_from], capture_output=True, text=True,
+                           env=dict(os.environ, DESTDIR=root))
         check(r.returncode == 0, "cmake --install: %r" % r.stderr)
-    check_tree(prefix, tmp)
+    check_tree(root, tmp)
+    if a.install_from:
+        kernel_names(a.install_from, tmp)
     if a.same_firmware:
         for f in ["biss_master.bin", "biss_master.elf", "biss_master_pru1.bin",
                   "biss_master_pru1.elf"]:
-            with open(os.path.join(prefix, "lib", "firmware", f), "rb") as x, \
+            with open(os.path.join(under(root, a.firmware_dir), f), "rb") as x, \
                  open(os.path.join(a.same_firmware, "pru_fw", f), "rb") as y:
                 check(x.read() == y.read(), "%s byte-identical to %s's" % (f, a.same_firmware))
-finish("installed tree %s" % (a.prefix or "(temporary)"))
+finish("installed tree %s" % (a.root or "(temporary)"))
