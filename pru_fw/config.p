@@ -81,11 +81,13 @@
 .assign Word, r11, r11, EndRecord           // the end record's word: its entry in w0
 .assign Half, r11.w0, r11.w0, EndEntry
 .assign Word, r4, r4, EndWord               // the end record: entry in w2, counts 0
-// CFG_IEP
-.assign Word, r2, r2, IepTurns              // N + 8 turns of 2H
-.assign Word, r2, r2, IepReg                // a word for an IEP register
-.assign Word, r3, r3, IepMin                // the shortest IEP period
-.assign Word, r4, r4, TwoH                  // 2H
+.assign Word, r17, r17, CfgLast             // LastBits of the last slave (L, for P_IEP_FIX)
+.assign Word, r3, r3, IepFix                // N + 5 - L (P_IEP_FIX)
+.assign Half, r3.w0, r3.w0, IepFixLo        //   as IEP_PERIOD loads it
+// CFG_IEP, and IEP_PERIOD (which the IEP frames call, r0..r12 only)
+.assign Word, r2, r2, IepReg                // a word for an IEP register: CMP0 (P - 1)
+.assign Half, r4.w0, r4.w0, IepHalf         // IEP_PERIOD: H
+.assign Word, r8, r8, IepCap                // 65536 x 2H
 // Accepted: the words for the private RAM
 .assign Word, r0, r0, DelayWord             // P_DELAYS: the tails (DELAY), as Tails:
 .assign Half, r0.w0, r0.w0, DelayEntry      //   the DLY_* entry,
@@ -213,6 +215,7 @@ CFG_PLAIN_FINAL:
     qbeq    CFG_REC, LastBits, 2
     ldi     EndEntry, FINAL_PLAIN2          // two
 CFG_REC:
+    mov     CfgLast, LastBits               // (the last slave's is kept: P_IEP_FIX)
     // polynomial and start value left-aligned to bit 15 (the w2 halves);
     // no CRC (w = 0): both shifted by 16, out of the halves, so 0
     rsb     Align16, Host.w, 16             // 16 - w
@@ -266,6 +269,15 @@ CFG_RESIDUE_DONE:
     // after the last slave: the end of the frame
     lsl     EndWord, EndRecord, 16          // entry EndEntry (w2 = 0), counts 0
     sbbo    EndWord, RecAddr, 0, 4
+    // the MA periods of a BiSS-C frame from period 0 to the one FRAME_END
+    // starts in, beside max(m + LAG, p) and the busy clocks: period 0 and
+    // the ACK's (p + 1 in all with the idle ones up to m + LAG), LAG1, the
+    // start bit's, the CDS, and the N - (L - 1) periods of the slaves' bits
+    // (the last slave's last L - 1 bits are read after them, FINAL_*): N + 5
+    // - L (an SSI frame has fewer; IEP_PERIOD)
+    add     IepFix, NBits, 5
+    sub     IepFix, IepFix, CfgLast
+    sbco    IepFix, c28, P_IEP_FIX, 2
 
     // SSI (slave 0's BISS_SF_SSI): alone and without CRC. SsiWord = the P_SSI
     // word: SsiAckNew the ACK position a BiSS-C slave at this line delay would
@@ -294,25 +306,20 @@ CFG_SSI:
     lsl     SsiEdgesNew, Host.n, MA_BIT + 1
 CFG_SSI_DONE:
 
-    // IEP period: at least 2H (N + 8) cycles
+    // IEP (owner and follower): the thresholds for the period are worked
+    // out by the first IEP frame (P_IEP_KEY no CMP0: IEP_PERIOD). The owner
+    // sets the period up (CMP0 = P - 1 resets the count after it); a
+    // follower takes the owner's, whenever it is set up.
+    qbbc    CFG_IEP_OK, CfgTrigger, 0       // BISS_TRIG_IEP (1) and IEP_FOLLOW (3)
+    fill    &IepReg, 4
+    sbco    IepReg, c28, P_IEP_KEY, 4       // none yet
     qbne    CFG_IEP_OK, CfgTrigger, BISS_TRIG_IEP
-    add     IepTurns, NBits, 8
-    ldi     IepMin, 0
-    lsl     TwoH, CfgHalf, 1                // 2H
-CFG_IEP_MIN:                                // IepTurns = N + 8 >= 9 (no LOOP of one
-    add     IepMin, IepMin, TwoH            // instruction: docs/silicon-assumptions.md)
-    sub     IepTurns, IepTurns, 1
-    qbne    CFG_IEP_MIN, IepTurns, 0
-    ldi     CfgErr, BISS_CFGERR_IEP_PERIOD
-    qbgt    CFG_FAIL, CfgIep, IepMin        // period < minimum
-    sub     IepReg, CfgIep, 1               // CMP0 = period - 1 (the count resets after it)
+    sub     IepReg, CfgIep, 1
     sbco    IepReg, c26, IEP_CMP0, 4
     ldi     IepReg, 3                       // CMP0 enabled, resets the count
     sbco    IepReg, c26, IEP_CMP_CFG, 4
     ldi     IepReg, 0
     sbco    IepReg, c26, IEP_COUNT, 4
-    ldi     IepReg, 0xff
-    sbco    IepReg, c26, IEP_CMP_STATUS, 4
 CFG_IEP_OK:
 
     // Accepted: commit everything.
@@ -404,6 +411,29 @@ DIVIDE:
     qba     DIVIDE
 DIVIDE_DONE:
     jmp     RET_DIV
+
+// An IEP frame's thresholds for the period CMP0 + 1 = P (IEP_START, when
+// P_IEP_KEY is not CMP0: after a configuration, or the owner's new period):
+// P_IEP_SLACK, the fewest max(m + LAG, p) + busy MA periods that may take a
+// frame's end count (FRAME_END's read, at most IEP_C0 into the MA period
+// after its last) a period or more past its start: Q - (N + 5 - L) for Q =
+// ceil((P - IEP_C0) / 2H), 0 if that is negative (no frame fits: every one
+// is flagged), Q at most 65536 (DIVIDE's turns). Then MAIN sets the frame
+// up again. In: IepReg = CMP0 (IEP_START's IepP).
+IEP_PERIOD:
+    lbco    IepFixLo, c28, P_IEP_FIX, 2
+    lbco    IepHalf, c28, P_HALF, 2
+    lsl     Den, IepHalf, 1                 // 2H
+    sub     Num, IepReg, IEP_C0             // Q = (P - 1 - IEP_C0) / 2H + 1
+    lsl     IepCap, Den, 16
+    min     Num, Num, IepCap
+    ldi     Quot, 1
+    jal     RET_DIV, DIVIDE
+    max     Quot, Quot, IepFixLo
+    sub     Quot, Quot, IepFixLo
+    sbco    QuotLo, c28, P_IEP_SLACK, SIZE(BissPriv.iep_slack)
+    sbco    IepReg, c28, P_IEP_KEY, 4
+    jmp     MAIN
 .leave config
 
 // The shared delay of the clocked periods: called by `jal RET_LEAF, entry`,

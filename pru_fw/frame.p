@@ -27,7 +27,8 @@
     .u16    h1
     .u16    h2
     .u16    k
-    .u32    hsum
+    .u16    hsum
+    .u16    iep_slack
     .u8     nslaves
     .u8     trigger
     .u8     rec_end
@@ -38,6 +39,28 @@
     .u8     train_due
     .u8     running
 .ends
+// The names of the next frame's start (results.p: FE_START, IEP_START; the
+// frame set up by FRAME_REGS, Edges all ones): the registers it leaves free.
+.enter fe_start
+.assign Half, r1.w2, r1.w2, FastLeft        // FE_POLL's turns left (RecWord's upper half)
+.assign Word, r2, r2, FastBase              // the timestamp's count base
+.assign Byte, r2.b0, r2.b0, FastIdle8       // SL's newest samples
+.assign Half, r2.w2, r2.w2, FastBaseHi      //   its upper half
+.leave fe_start
+.enter iep_start
+.assign Word, r3, r3, IepEnd                // bank register 3: the count at the last frame's
+                                            // end (FRAME_END; 0 after an overrun or an abort)
+.assign Word, r8, r8, IepKey                // P_IEP_KEY: the CMP0 of P_IEP_SLACK
+.assign Word, r10, r10, IepCnt              // the count
+.assign Word, r2, r2, IepP                  // CMP0: the period less 1 (IEP_PERIOD's IepReg)
+.assign Word, r8, r8, IepD                  // the cycles left to wait, plus the poll's budget
+.assign Half, r8.w2, r8.w2, IepDHi          //   (IEP_BUDGET) until the poll ends (over IepKey)
+.assign Half, r8.w0, r8.w0, IepLate         // IEP_LATE: its entry (LAG1, LOAD_RECORD write r8)
+.assign Word, r2, r2, IepStamp              // bank register 2's word (BUF_STAMP)
+.assign Byte, r2.b0, r2.b0, IepIdle8        // SL's newest samples
+.assign Half, r6.w2, r6.w2, IepTarget       // period 0 (Crc: START_FOUND, LOAD_RECORD write it)
+.leave iep_start
+
 .enter frame_regs
 .assign PrivRun, r3, r9, Priv
 .using clocked
@@ -52,56 +75,26 @@ FRAME_REGS_SET:                             // (FE: Priv loaded, and the history
     mov     AckLimit, Priv.ack_limit        // ACK limit
     mov     ProcLimit, Priv.proc_limit      // processing-time limit
     mov     Tails, Priv.delays              // the tails (DELAY)
+    ldi     AckBase, 0                      // (over Priv.delays): WAIT_ACK's 8p
     mov     HistSum, Priv.hsum.w0           // history sum
     lbco    &CdmEdge, c28, P_CDM, P_CD_LEN - P_CDM // the CDM edge for either CDS
     ldi     RecWord, REC_BASE               // the first record, Cds = 0, no FE_POLL turns
                                             // (the timestamp: BUF_STAMP)
-    ldi     Crc, 0
-    ldi     Poly, 0
-    jmp     RET_SUB
+.using iep_start
+    ldi     IepTarget, FRAME_PERIOD0        // an IEP frame's period 0 (SSI_FRAME: its own)
+.leave iep_start
+    jmp     RET_SUB                         // (Crc, Poly: START_FOUND zeroes them)
 .leave frame_regs
-
-// The free-run frame's start (FE, results.p): everything set up, the count
-// base of the timestamp in bank register 2 (BUF_STAMP), then the poll for SL
-// high (SLAVE_IDLE's, at most IDLE_TURNS turns of 4 cycles) whose exit is
-// period 0 itself: its MA fall comes 2 cycles after the R31 read that saw
-// the slave's timeout end. Period 0 puts the turns left in bank register 1,
-// so the timestamp is the base less 4 cycles a turn left; the base is the
-// count read here, plus the cycles from that read to the fall had the
-// first turn seen SL high (less FRAME_STAMP's 4: its read comes 4 cycles
-// before the fall), plus 4 IDLE_TURNS.
-.enter fe_start
-.assign Half, r1.w2, r1.w2, FastLeft        // FE_POLL's turns left (RecWord's upper half)
-.assign Word, r2, r2, FastBase              // the timestamp's count base
-.assign Byte, r2.b0, r2.b0, FastIdle8       // SL's newest samples
-.assign Word, r8, r8, FastAdd               // FE_BASE (in Poly: START_FOUND zeroes it)
-.leave fe_start
-#define FE_BASE         (4 * IDLE_TURNS + 5) // (7 cycles from the read to FE_POLL, less 2)
-.using fe_start
-FE_START:
-    fill    &Edges, 4                       // as FRAME_STAMPED (Slot = 0)
-    ldi     AckBase, 0
-    ldi     FastLeft, IDLE_TURNS
-    lbco    FastBase, c26, IEP_COUNT, 4
-    mov     FastAdd, FE_BASE
-    add     FastBase, FastBase, FastAdd
-    xout    XFR_BANK, FastBase, 4           // bank register 2
-FE_POLL:
-    and     FastIdle8, SL_IN.b0, IDLE_MASK
-    qbeq    FRAME_PERIOD0, FastIdle8, IDLE_MASK
-    sub     FastLeft, FastLeft, 1
-    qbne    FE_POLL, FastLeft, 0
-    jmp     MAIN                            // SL never came high: MAIN's FRAME finds it so
-.leave fe_start
 
 // The timestamp, then the first period. It waits in bank register 2 (Slot
 // = 0: unshifted; the slots start at 4) for FRAME_END or ABORT_FRAME: no
-// data-RAM store between the IEP read and the first MA edge.
+// data-RAM store between the IEP read and the first MA edge. Two
+// instructions (IEP_LATE enters STAMP_WORDS before the period 0 it is for).
 .macro FRAME_STAMP
-    ldi     AckBase, 0
     lbco    Stamp, c26, IEP_COUNT, 4
     xout    XFR_BANK, Stamp, 4
 .endm
+#define STAMP_WORDS     2
 
 .using main_loop
 FRAME:
@@ -112,11 +105,10 @@ FRAME:
     jmp     SSI_FRAME
 FRAME_BISS:
     jal     RET_SUB, FRAME_REGS
-    IEP_ALIGN_IF FRAME_STAMPED
+FRAME_SET:                                  // (test_fw_timing's frames return here)
+    fill    &Edges, 4                       // all ones while the start bit is awaited
+    qbbs    IEP_START, Trigger, 0           // BISS_TRIG_IEP (1), IEP_FOLLOW (3): its count
 .leave main_loop
-FRAME_STAMPED:                              // the free-run path comes in here
-    fill    &Edges, 4                       // all ones while the start bit is
-                                            // awaited (Slot = 0: no XFR shift)
 FRAME_CLOCKED:                              // TRAIN comes in here, Edges its two clocks
     FRAME_STAMP
     // fall into the first period
@@ -181,7 +173,7 @@ WA_TOP:
 .endm
 
 // From here to the start bit MA clocks on (both masks stay MA_MASK): Edges
-// is all ones (FRAME_STAMPED) less 2 MA_MASK for each period that counted it
+// is all ones (FRAME_BISS, FE) less 2 MA_MASK for each period that counted it
 // down, a few hundred at most (the ACK limit is some 400 periods, the lag as
 // many), so its bit 30 stays set. A training frame has made its two clocks (the
 // masks 0, Edges 0) and ends after this period.
