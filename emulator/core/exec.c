@@ -897,11 +897,7 @@ at_loop_end:
 k_slow:
     if (d->burst_bytes && (d->flags & PD_EFFECTS) == 0) {
         /* a fixed-length burst without R31 or pin effects: what
-         * exec_one() does, without its checks, for speed; the core's pc
-         * and cycle made the burst's first, for a store watch to read
-         * (pru_set_store_watch: exact on every path) */
-        c->pc = pc;
-        c->cycle = cyc;
+         * exec_one() does, without its checks, for speed */
         unsigned cost = exec_burst(c, d, pc, cyc);
         if (c->stop) {
             /* a fault, or a store to a control register (which may have
