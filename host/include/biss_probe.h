@@ -8,7 +8,7 @@
  * capture layout (biss_probe below): 8 slaves x (64 data + 16 CRC bits),
  * no nE/nW, so the firmware clocks 640 bits after the CDS and publishes
  * the data words and, per slave, its CRC register, from which the 16 bits
- * after each word follow (host/biss_probe.c). After the last slave's CRC
+ * after each word follow (host/probe/biss_probe.c). After the last slave's CRC
  * the wire reads 0: the last
  * slave's SLI input is tied low and every slave passes it on ([MB4],
  * "BiSS C Frame"; the model, emulator/slave/biss_slave.h, sends 0 on every
@@ -217,7 +217,7 @@ const char *biss_probe_reg_verdict_name(enum biss_probe_reg_verdict v);
  * An encoder no BiSS layout fits and whose registers do not answer may be
  * an SSI one (its word can pass for an ACK and start bit): its words
  * (64 bits captured, MSB first, from the first rising edge) are looked at
- * for their length, a CRC and the code (host/biss_probe_ssi.c). */
+ * for their length, a CRC and the code (host/probe/biss_probe_ssi.c). */
 struct biss_probe_ssi {
     bool tried;         /* an SSI capture was made */
     bool decided;       /* bits and code named (no CRC fits) */

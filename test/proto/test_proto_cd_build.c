@@ -263,7 +263,7 @@ START_TEST(parse_by_hand) {
 END_TEST
 
 int main(void) {
-    Suite *s = suite_create("host_cd_build");
+    Suite *s = suite_create("proto_cd_build");
     TCase *tc = tcase_create("build");
     tcase_add_test(tc, crc4_worked_examples);
     tcase_add_test(tc, headers);

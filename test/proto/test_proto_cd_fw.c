@@ -219,7 +219,7 @@ START_TEST(fw_back_to_back) {
 END_TEST
 
 int main(void) {
-    Suite *s = suite_create("host_cd_fw");
+    Suite *s = suite_create("proto_cd_fw");
     TCase *tc = tcase_create("fw");
     tcase_add_test(tc, fw_reads_table11);
     tcase_add_test(tc, fw_write_read_back);

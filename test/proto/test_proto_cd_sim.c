@@ -468,7 +468,7 @@ START_TEST(chain_register_access) {
 END_TEST
 
 int main(void) {
-    Suite *s = suite_create("host_cd_sim");
+    Suite *s = suite_create("proto_cd_sim");
     TCase *tc = tcase_create("sim");
     tcase_add_checked_fixture(tc, setup, NULL);
     tcase_add_test(tc, single_read_temperature);

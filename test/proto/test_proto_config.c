@@ -1,6 +1,6 @@
 /* libbiss configuration checks: every error code of biss_config_check and
  * biss_rate_half, found on the field that causes it. */
-#include "libbiss.h"
+#include "biss_proto.h"
 
 #include "check_run.h"
 
@@ -269,7 +269,7 @@ START_TEST(test_names_and_texts) {
 END_TEST
 
 int main(void) {
-    Suite *s = suite_create("host_config");
+    Suite *s = suite_create("proto_config");
     TCase *tc = tcase_create("check");
     tcase_add_test(tc, test_good_config_passes);
     tcase_add_test(tc, test_rates);

@@ -1,7 +1,7 @@
 /* libbiss shm encoding: the configuration block as bytes at the offsets of
  * biss_shm.h, and result buffers (built as bytes the same way) decoded into
  * samples. */
-#include "biss_priv.h"
+#include "biss_proto.h"
 
 #include "biss/biss_shm.h"
 #include "biss/biss_shm_struct.h"
@@ -412,7 +412,7 @@ START_TEST(test_ack_jump_frame_is_not_valid) {
 END_TEST
 
 int main(void) {
-    Suite *s = suite_create("host_encode");
+    Suite *s = suite_create("proto_encode");
     TCase *tc = tcase_create("encode");
     tcase_add_test(tc, test_config_bytes);
     tcase_add_test(tc, test_junk_status_refused);

@@ -5,7 +5,7 @@
  * (BISS_MAX_DELAY_NS), the rates that would work, and the words.
  */
 #include "check_run.h"
-#include "libbiss.h"
+#include "biss_proto.h"
 
 #include <stdio.h>
 #include <string.h>
