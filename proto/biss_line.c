@@ -1,6 +1,6 @@
 /* biss_line.c - what a line allows: TIDEP0022 Table 5 (rate against cable
  * length), the firmware's longest round trip, iC-MB4's shortest slave
- * timeout, and the rates that would work (libbiss.h, "what a line
+ * timeout, and the rates that would work (biss/biss_rules.h, "what a line
  * allows"). The one copy of these rules: bissctl and biss-sim name them
  * in these words. */
 #include "biss_proto.h"

@@ -9,14 +9,17 @@
  *
  * libbiss drives the firmware through it on silicon and in the emulator;
  * the bench and the end-to-end tests drive it through it on the emulated
- * PRU. Nothing here does I/O of its own or knows the emulator.
+ * PRU. Nothing here does I/O of its own or knows the emulator, and nothing
+ * here knows the host: its values are the contract's (include/biss/
+ * biss_types.h, the public rules on them biss_rules.h), as is everything
+ * it includes.
  */
 #ifndef BISS_PROTO_H
 #define BISS_PROTO_H
 
-#include "libbiss.h"
-
+#include "biss/biss_rules.h"
 #include "biss/biss_shm_struct.h"
+#include "biss/biss_types.h"
 #include "biss_cd.h"
 
 #include <stdbool.h>

@@ -6,6 +6,7 @@
  */
 #include "check_run.h"
 #include "biss_proto.h"
+#include "libbiss.h" /* biss_strerror: each code has its text */
 
 #include <stdio.h>
 #include <string.h>

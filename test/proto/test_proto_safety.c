@@ -6,6 +6,7 @@
  * published result), the configuration errors and the command-line
  * spellings. */
 #include "biss_proto.h"
+#include "libbiss.h" /* biss_strerror: each code has its text */
 
 #include "check_run.h"
 
