@@ -11,7 +11,7 @@
  * picks the format; for any other the bytes stay a name. The notes name the
  * registers without printing values; read as bit counts (the only reading
  * their names allow), the notes' SCD tables give 16, 5, 12, 24, 6, 6. */
-#include "biss_probe.h"
+#include "biss_probe_priv.h"
 
 #include <stdio.h>
 #include <string.h>

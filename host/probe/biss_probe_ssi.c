@@ -10,7 +10,7 @@
  * binary: a shaft turning at a steady speed steps the position by about
  * the same amount per frame; read in the wrong code the steps jump
  * (Gray 0 1 3 2 read as binary steps +1 +2 -1). */
-#include "biss_probe.h"
+#include "biss_probe_priv.h"
 
 #include <stdio.h>
 #include <stdlib.h>
