@@ -4,6 +4,8 @@
 #include "biss_priv.h"
 #include "libbiss-emu.h"
 
+#include "backends.h"
+
 #include "bench.h"
 #include "bench_fw.h"
 #include "scenario_json.h"
@@ -172,7 +174,9 @@ static int emu_backend_open(const struct biss_open_params *p, struct biss_backen
 }
 
 int biss_emu_open(const struct biss_open_params *p, biss_t **out) {
-    return biss_open_with(p, emu_backend_open, out);
+    static const struct biss_backends both = {.linux_open = biss_linux_backend_open,
+                                              .emu = emu_backend_open};
+    return biss_open_with(p, &both, out);
 }
 
 /* The params biss_open_with hands to the backend, with the pair and the
@@ -231,11 +235,12 @@ int biss_emu_open_pair(const struct biss_open_params p[2], biss_t *h[2]) {
     pthread_mutex_init(&pr->lock, NULL);
     pthread_mutex_init(&pr->iep, NULL);
     pr->refs = 1; /* this call's, until both handles hold theirs */
+    static const struct biss_backends pair = {.emu = pair_backend_open}; /* both "emu" */
     int rc = BISS_OK;
     for (unsigned i = 0; i < 2 && !rc; i++) {
         struct pair_open po = {.p = p[i], .pair = pr};
         po.p.pru = i;
-        rc = biss_open_with(&po.p, pair_backend_open, &h[i]);
+        rc = biss_open_with(&po.p, &pair, &h[i]);
     }
     if (rc) {
         biss_close(h[0]); /* a failed open closed its own backend already */

@@ -12,6 +12,7 @@
  * devices (/dev/zero, ...) are no memory of a PRU-ICSS and are refused. */
 #include "biss_priv.h"
 
+#include "backends.h"
 #include "biss_lock.h"
 #include "biss_oserr.h"
 #include "biss_rproc.h"
@@ -487,4 +488,10 @@ int biss_linux_backend_open(const struct biss_open_params *p, struct biss_backen
                                 .iram_bytes = soc.iram_bytes,
                                 .pru = p->pru};
     return BISS_OK;
+}
+
+/* libbiss alone: the Linux targets (the emulator's is libbiss-emu's). */
+int biss_open(const struct biss_open_params *p, biss_t **out) {
+    static const struct biss_backends linux_only = {.linux_open = biss_linux_backend_open};
+    return biss_open_with(p, &linux_only, out);
 }

@@ -126,20 +126,20 @@ int biss_handle_new(enum biss_target t, const struct biss_backend *be, unsigned 
     return BISS_OK;
 }
 
-static int open_backend(const struct biss_open_params *p, biss_backend_open_fn emu,
+static int open_backend(const struct biss_open_params *p, const struct biss_backends *b,
                         struct biss_backend *be, struct biss_errbuf *e) {
     switch (p->target) {
     case BISS_TARGET_EMU:
-        if (!emu) {
+        if (!b->emu) {
             return biss_err(e, BISS_E_TARGET,
                             "the emulator target is in libbiss-emu (biss_emu_open), "
                             "not in libbiss");
         }
-        return emu(p, be);
+        return b->emu(p, be);
     case BISS_TARGET_AM335X:
     case BISS_TARGET_AM437X_ICSS0:
     case BISS_TARGET_AM437X_ICSS1:
-        return biss_linux_backend_open(p, be);
+        return b->linux_open ? b->linux_open(p, be) : BISS_E_TARGET;
     }
     return BISS_E_TARGET;
 }
@@ -265,16 +265,12 @@ static int open_linux(biss_t *h, const struct biss_open_params *p, struct biss_e
     return rc ? rc : biss_pru_image_check(h, e);
 }
 
-int biss_open(const struct biss_open_params *p, biss_t **out) {
-    return biss_open_with(p, NULL, out);
-}
-
-int biss_open_with(const struct biss_open_params *p, biss_backend_open_fn emu, biss_t **out) {
+int biss_open_with(const struct biss_open_params *p, const struct biss_backends *b, biss_t **out) {
     if (!out) {
         return BISS_E_INVAL;
     }
     *out = NULL;
-    if (!p) {
+    if (!p || !b) {
         return BISS_E_INVAL;
     }
     if (p->errbuf && p->errbuf_len) {
@@ -285,7 +281,7 @@ int biss_open_with(const struct biss_open_params *p, biss_backend_open_fn emu, b
         return biss_err(&e, BISS_E_INVAL, "pru %u: a PRU-ICSS has PRU 0 and PRU 1", p->pru);
     }
     struct biss_backend be;
-    int rc = open_backend(p, emu, &be, &e);
+    int rc = open_backend(p, b, &be, &e);
     if (rc) {
         return rc;
     }

@@ -98,12 +98,18 @@ int biss_exclusive(biss_t *h);
 int biss_handle_new(enum biss_target t, const struct biss_backend *be, unsigned timeout_ms,
                     biss_t **out);
 
-/* Backends: fill be, or return BISS_E_*. The emulator's is in libbiss-emu
- * (backend_emu.c), which hands it to biss_open_with; libbiss alone has none. */
+/* A backend's opener: fills be, or returns BISS_E_*. The backends live
+ * above this library's core (host/backend/): the Linux one in libbiss
+ * (backend_linux.c, which also gives biss_open), the emulator's in
+ * libbiss-emu (backend_emu.c). Each hands its openers to biss_open_with. */
 typedef int (*biss_backend_open_fn)(const struct biss_open_params *p, struct biss_backend *be);
-int biss_linux_backend_open(const struct biss_open_params *p, struct biss_backend *be);
-/* biss_open with an emulator backend (NULL: target "emu" refused). */
-int biss_open_with(const struct biss_open_params *p, biss_backend_open_fn emu, biss_t **out);
+struct biss_backends {
+    biss_backend_open_fn linux_open; /* the am335x and am437x targets */
+    biss_backend_open_fn emu;        /* target "emu" */
+};
+/* biss_open on the backends b offers (a NULL opener: its targets refused,
+ * with a message that says where they are). */
+int biss_open_with(const struct biss_open_params *p, const struct biss_backends *b, biss_t **out);
 
 /* Register helpers over the backend (data RAM offsets are BISS_* values). */
 int biss_dram_read(biss_t *h, uint32_t off, void *buf, size_t n);
