@@ -5,7 +5,7 @@
 
 #include "libbiss.h"
 
-#include "biss_proto.h" /* the safety checks' command-line spellings */
+#include "biss_proto.h" /* the safety checks' command-line spellings, the rate rule */
 
 #include <stdbool.h>
 

@@ -145,11 +145,10 @@ int bissctl_rates(const struct bissctl_opts *o) {
     unsigned n = 0;
     printf("rates_hz=");
     for (unsigned h = BISS_MIN_HALF; h <= BISS_MAX_HALF; h++) {
-        uint32_t hz = BISS_HALF_CLOCK_HZ / h;
-        unsigned half;
+        uint32_t hz;
         struct biss_line_verdict v;
-        if (BISS_HALF_CLOCK_HZ % h || biss_rate_half(hz, &half) != BISS_OK ||
-            biss_line_check(hz, &f, &v) != BISS_OK || v.beyond_table) {
+        if (biss_proto_half_rate(h, &hz) != BISS_OK || biss_line_check(hz, &f, &v) != BISS_OK ||
+            v.beyond_table) {
             continue;
         }
         printf("%s%u", n++ ? "," : "", hz);

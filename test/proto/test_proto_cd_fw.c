@@ -30,8 +30,12 @@ static void rig_start(fw_rig *r, unsigned reg_proc_frames) {
     bench_config_default(&cfg);
     cfg.pru.fast_forward = 1;
     e2e_bench_scenario(&r->run, &sc, &cfg.pru);
-    struct bench_fw_settings set = {.half = 10, .trigger = BISS_TRIG_FREERUN, .proc_limit = 200};
-    bench_fw_configure(r->run.b, &set);
+    struct biss_config c;
+    bench_fw_config(r->run.b, &c);
+    c.freq_hz = 10000000;
+    c.trigger = BISS_TRIGGER_FREERUN;
+    c.proc_limit = 200;
+    bench_fw_configure(r->run.b, &c, 0);
     bench_run_until(r->run.b, pru_time_ps(bench_core(r->run.b)) + 200 * SIM_PS_PER_US);
 }
 

@@ -259,6 +259,13 @@ static void spoil_ssi_chain(struct biss_shm_config *b) {
 static void spoil_shift_clock(struct biss_shm_config *b) {
     b->half = 1000; /* 100 kHz: 1000 = 8 * 125 has no exact 8x shift clock */
 }
+static void spoil_inexact(struct biss_shm_config *b) {
+    b->half = 12; /* 8.33 MHz: the firmware clocks it, no biss_config names it */
+}
+static void spoil_iep_period(struct biss_shm_config *b) {
+    b->trigger = BISS_TRIG_IEP;
+    b->iep_period = 1; /* 5 ns: shorter than any frame */
+}
 
 /* A block read back from data RAM is untrusted: each junk field is refused
  * by name before it can become a shift count or a loop bound (a half
@@ -283,7 +290,9 @@ START_TEST(test_junk_config_block_refused) {
         {"slave nE/nW position", spoil_ew},
         {"slave CRC polynomial or start value", spoil_poly},
         {"slave SSI flag", spoil_ssi_chain},
-        {"configuration (fails the library's checks)", spoil_shift_clock},
+        {"MA half period", spoil_shift_clock}, /* the firmware's rule: refused */
+        {"MA half period", spoil_inexact},
+        {"configuration (fails the library's checks)", spoil_iep_period},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         struct biss_shm_config b = good;
