@@ -41,7 +41,7 @@ LAYERS = [
     ("emulator parts and firmware",
      ["emulator/line/", "emulator/asm/", "emulator/core/", "pru_fw/", "pru_slave/"]),
     ("slave models", ["emulator/slave/"]),
-    ("bench", ["emulator/bench/", "emulator/CMakeLists.txt"]),
+    ("bench", ["emulator/bench/", "emulator/speed/", "emulator/CMakeLists.txt"]),
     ("libbiss core", ["host/lib/", "host/include/libbiss.h"]),
     ("backends", ["host/backend/", "host/include/libbiss-emu.h"]),
     ("discovery", ["host/probe/", "host/include/biss_probe.h"]),
