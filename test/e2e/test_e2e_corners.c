@@ -30,21 +30,22 @@ static const struct {
 #define N_CORNERS (sizeof corners / sizeof corners[0])
 
 static const struct {
-    unsigned mode;
+    enum biss_trigger mode;
     const char *name;
-} triggers[] = {{BISS_TRIG_FREERUN, "free"}, {BISS_TRIG_HOST, "host"}, {BISS_TRIG_IEP, "iep"}};
+} triggers[] = {
+    {BISS_TRIGGER_FREERUN, "free"}, {BISS_TRIGGER_HOST, "host"}, {BISS_TRIGGER_IEP, "iep"}};
 #define N_TRIGGERS (sizeof triggers / sizeof triggers[0])
 
 struct corner_run {
     struct e2e_run r;
-    unsigned trigger;
+    enum biss_trigger trigger;
     char name[64];
 };
 
 /* Time passes in steps of 20 us; a host asks for the next frame whenever
  * the firmware has taken the last request. */
 static void step(struct corner_run *c) {
-    if (c->trigger == BISS_TRIG_HOST) {
+    if (c->trigger == BISS_TRIGGER_HOST) {
         struct biss_proto_io io = bench_fw_io(c->r.b);
         uint32_t pending = 1;
         if (biss_proto_trigger_get(&io, &pending) == 0 && !pending) {
@@ -108,11 +109,10 @@ static void corner_start(struct corner_run *c, unsigned i) {
     /* IEP: a period well above the frame (28 clocks, the 20 us timeout,
      * the line), in whole microseconds */
     uint32_t period = (uint32_t)((56u * half + 4000u + 2000u) * 2u / 200u + 1u) * 200u;
-    struct bench_fw_settings s = {.half = half,
-                                  .trigger = c->trigger,
-                                  .iep_period = c->trigger == BISS_TRIG_IEP ? period : 0,
-                                  .proc_limit = 1000};
-    e2e_configure(&c->r, &s);
+    c->r.fc.cfg.trigger = c->trigger;
+    c->r.fc.cfg.iep_period_ns = c->trigger == BISS_TRIGGER_IEP ? period * 5u : 0; /* 5 ns counts */
+    c->r.fc.cfg.proc_limit = 1000;
+    e2e_configure(&c->r, half);
     int64_t end = pru_time_ps(bench_core(c->r.b)) + 20 * SIM_PS_PER_MS;
     while (c->r.fc.frames == 0 && pru_time_ps(bench_core(c->r.b)) < end) {
         step(c);
