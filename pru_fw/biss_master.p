@@ -66,7 +66,7 @@
 // IEP count at which every IEP-triggered frame's period 0 falls (IEP_START):
 // the period starts when the count is reset to 0, so this is the trigger to
 // the first MA fall (an SSI frame's comes 12 cycles later: SSI_STAMPED to
-// LAG_TOP). IEP_D0 is IEP_START's: from the count's read to the fall, 18
+// LAG_TOP). IEP_D0 is IEP_START's: from the count's read to the fall, 12
 // cycles and the wait, on the path to the next period's count (the path to
 // this period's is one shorter, and CMP0 is P - 1). IEP_C0 is FRAME_END's:
 // its count read comes at most IEP_C0 cycles after the start of the MA
@@ -75,7 +75,7 @@
 // whole one where SWITCH_SHORT cut its tails; 6 more for FRAME_END's
 // branches before it).
 #define IEP_ALIGN       36
-#define IEP_D0          (IEP_ALIGN - 18)
+#define IEP_D0          (IEP_ALIGN - 12)
 #define IEP_C0          76
 
 #include "layout.hp"

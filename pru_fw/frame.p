@@ -75,7 +75,6 @@ FRAME_REGS_SET:                             // (FE: Priv loaded, and the history
     mov     AckLimit, Priv.ack_limit        // ACK limit
     mov     ProcLimit, Priv.proc_limit      // processing-time limit
     mov     Tails, Priv.delays              // the tails (DELAY)
-    ldi     AckBase, 0                      // (over Priv.delays): WAIT_ACK's 8p
     mov     HistSum, Priv.hsum.w0           // history sum
     lbco    &CdmEdge, c28, P_CDM, P_CD_LEN - P_CDM // the CDM edge for either CDS
     ldi     RecWord, REC_BASE               // the first record, Cds = 0, no FE_POLL turns
@@ -107,7 +106,7 @@ FRAME_BISS:
     jal     RET_SUB, FRAME_REGS
 FRAME_SET:                                  // (test_fw_timing's frames return here)
     fill    &Edges, 4                       // all ones while the start bit is awaited
-    qbbs    IEP_START, Trigger, 0           // BISS_TRIG_IEP (1), IEP_FOLLOW (3): its count
+    qbbs    IEP_START_SLOW, Trigger, 0      // BISS_TRIG_IEP (1), IEP_FOLLOW (3): its count
 .leave main_loop
 FRAME_CLOCKED:                              // TRAIN comes in here, Edges its two clocks
     FRAME_STAMP
@@ -123,7 +122,7 @@ FRAME_CLOCKED:                              // TRAIN comes in here, Edges its tw
     // start as soon as SL is high.
 FRAME_PERIOD0:
     MA_FALL
-    add     AckBase, AckBase, 8             // 1
+    ldi     AckBase, 8                      // 1  WAIT_ACK's 8p from here (whatever r3 held)
     xout    XFR_BANK, RecWord, 4            // 2  FE_POLL's turns left to bank register 1
     jal     RET_LEAF, DLY_S5                // 3..8
     DELAY

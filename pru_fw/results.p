@@ -169,6 +169,10 @@ FE_FLAGS:
     qbbc    FE_IEP_DONE, PfTrigger, 0       // BISS_TRIG_IEP (1), IEP_FOLLOW (3)
     qbeq    FE_IEP_ON_TIME, BufStamp, IEP_ALIGN - 4
     or      ResFlags, ResFlags, BISS_RF_IEP_LATE
+    mov     FeTmp, ResBuf                   // bank register 2 back to the timestamp of a
+    ldi     Stamp, IEP_ALIGN - 4            // frame on its count (FRAME_STAMP wrote this
+    xout    XFR_BANK, Stamp, 4              // one's; BUF_STAMP has read it): IEP_START
+    mov     ResBuf, FeTmp                   // from FE takes it as it is
 FE_IEP_ON_TIME:
     lsr     FeTmp, KeptAck, 3               // p
     max     FeTmp, FeTmp, LagPer
@@ -292,7 +296,7 @@ FE_POLL:
 // count is read once, here; then SL is polled (SLAVE_IDLE's test: register
 // instructions only, 4 cycles a turn, each taking 4 off the wait), so when
 // SL is high the count is known to the cycle and the rest is an exact wait
-// (4 + d cycles from IEP_HIGH's test to period 0, for d). The period is the one after the last frame's end:
+// (2 + d cycles from IEP_HIGH's test to period 0, for d). The period is the one after the last frame's end:
 // its count then (IepEnd, bank register 3: FRAME_END) above the count now
 // means a period began since, and the frame is due at this period's
 // IEP_ALIGN; otherwise at the next period's (IepEnd = 0, after an overrun
@@ -303,43 +307,47 @@ FE_POLL:
 // Edges; SSI_FRAME's loads), IepTarget its period 0 (FRAME_PERIOD0, or
 // SSI_STAMPED: after FRAME_STAMP). P_IEP_KEY not CMP0: the owner's period
 // is new, and IEP_PERIOD works out its thresholds first (then MAIN).
-#define IEP_BUDGET      3                   // the poll's budget past the wait: 3 x 0x10000
-                                            // cycles, 983 us: more than SLAVE_IDLE's, so a
-                                            // frame the slow path (FE_SLOW) made late by
-                                            // up to that still comes through IEP_LATE
+#define IEP_BUDGET      3                   // the late poll's budget past the wait: about
+                                            // 3 x 0x10000 cycles, 983 us: more than
+                                            // SLAVE_IDLE's, so a frame the slow path
+                                            // (FE_SLOW) made late by up to that still
+                                            // comes through IEP_LATE
 .using iep_start
-IEP_START:
+IEP_START_SLOW:                             // MAIN's frames (FRAME_SET, SSI_FRAME):
+    ldi     IepStamp, IEP_ALIGN - 4         // bank register 2: the timestamp of a frame on
+    xout    XFR_BANK, IepStamp, 4           // its count (FRAME_STAMP's read comes 4 before)
+IEP_START:                                  // FE: bank register 2 holds it still (an IEP
+                                            // frame on its count leaves it, FE_IEP puts it
+                                            // back after any other)
     xin     XFR_BANK, IepEnd, 4             // bank register 3 (Slot = 0: FRAME_REGS_SET)
     lbco    IepKey, c28, P_IEP_KEY, 4
     lbco    IepP, c26, IEP_CMP0, 4          // P - 1
     lbco    IepCnt, c26, IEP_COUNT, 4       // (the last read: from here the cycles count)
     qbne    IEP_PERIOD, IepP, IepKey        // a new period: its thresholds first
     rsb     IepD, IepCnt, IEP_D0            // to this period's IEP_ALIGN, had SL been
-    add     IepDHi, IepDHi, IEP_BUDGET      // high at the read; and the budget
-    qbgt    IEP_IDLE, IepCnt, IepEnd        // a period began since the last frame's end
-    add     IepD, IepD, IepP                // else the next period's (P: IEP_D0 has the 1)
-IEP_IDLE:
-.using front
-    ldi     AckBase, 0                      // (IepEnd's register: FRAME_REGS_SET's 0)
-.leave front
-    ldi     IepStamp, IEP_ALIGN - 4         // bank register 2: the timestamp of a frame on
-    xout    XFR_BANK, IepStamp, 4           // its count (FRAME_STAMP's read comes 4 before)
-IEP_POLL:                                   // SLAVE_IDLE's test, 4 cycles a turn
-    and     IepIdle8, SL_IN.b0, IDLE_MASK
+    qbgt    IEP_POLL, IepCnt, IepEnd        // high at the read, if a period began since the
+    add     IepD, IepD, IepP                // last frame's end; else the next period's (P:
+                                            // IEP_D0 has the 1)
+IEP_POLL:                                   // SLAVE_IDLE's test, 4 cycles a turn, to the
+    and     IepIdle8, SL_IN.b0, IDLE_MASK   // count: d = IepD when SL is high
     qbeq    IEP_HIGH, IepIdle8, IDLE_MASK
     sub     IepD, IepD, 4
     qbbc    IEP_POLL, IepD, 31
+    ldi     IepDHi, IEP_BUDGET - 1          // past the count: late, if SL comes high within
+IEP_LATE_POLL:                              // the budget (IepD is -1..-4: its upper half
+    and     IepIdle8, SL_IN.b0, IDLE_MASK   // all ones)
+    qbeq    IEP_LATE, IepIdle8, IDLE_MASK
+    sub     IepD, IepD, 4
+    qbbc    IEP_LATE_POLL, IepD, 31
     jmp     MAIN                            // SL never came high: MAIN's FRAME finds it so
 IEP_HIGH:
-    sub     IepDHi, IepDHi, IEP_BUDGET      // d: the cycles left to wait
-    qbbs    IEP_LATE, IepD, 31              // past it
-    qbbc    IEP_EVEN, IepD, 0               // 4 + d cycles for every d, from single-cycle
-    PAD                                     // instructions only (no LOOP of one instruction,
+    qbbs    IEP_LATE, IepD, 31              // past the count at the read
+    qbbc    IEP_EVEN, IepD, 0               // 2 + d cycles for every d, from single-cycle
+    sub     IepD, IepD, 1                   // instructions only (no LOOP of one instruction,
 IEP_EVEN:                                   // no count of 0: docs/silicon-assumptions.md)
-    lsr     IepD, IepD, 1
     qbeq    IEP_AT, IepD, 0
 IEP_TURN:
-    sub     IepD, IepD, 1                   // 2 cycles a turn
+    sub     IepD, IepD, 2                   // 2 cycles a turn
     qbne    IEP_TURN, IepD, 0
 IEP_AT:
     jmp     IepTarget

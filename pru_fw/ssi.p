@@ -20,7 +20,7 @@ SSI_FRAME:
 .leave main_loop
 .using iep_start
     ldi     IepTarget, SSI_STAMPED          // (Crc's upper half: LOAD_RECORD writes it)
-    jmp     IEP_START
+    jmp     IEP_START_SLOW
 .leave iep_start
 SSI_ALIGNED:
     FRAME_STAMP
