@@ -407,7 +407,7 @@ static unsigned iep_flagged(const char *profile, unsigned half, uint32_t period)
 }
 
 /* AD38 (its 650 ns timeout ends before the firmware is done: the shortest
- * period the firmware keeps is 2870 counts at 10 MHz, some 3200 when the
+ * period the firmware keeps is 2863 counts at 10 MHz, some 3200 when the
  * host's reads stall the loads between frames, E2E_CONTEND 4,3) and the
  * TIDEP0022 encoder (its timeout is the longer: 4548). */
 START_TEST(test_iep_overrun_flagged) {
