@@ -296,8 +296,8 @@ FE_POLL:
 // count is read once, here; then SL is polled (SLAVE_IDLE's test: register
 // instructions only, 4 cycles a turn, each taking 4 off the wait), so when
 // SL is high the count is known to the cycle and the rest is an exact wait
-// (2 + d cycles from IEP_HIGH's test to period 0, for d). The period is the one after the last frame's end:
-// its count then (IepEnd, bank register 3: FRAME_END) above the count now
+// (2 + d cycles from IEP_HIGH's test to period 0, for d). The period is the
+// one after the last frame's end: its count then (IepEnd, bank register 3: FRAME_END) above the count now
 // means a period began since, and the frame is due at this period's
 // IEP_ALIGN; otherwise at the next period's (IepEnd = 0, after an overrun
 // or an aborted frame: the next period's). The frame waits in the period
