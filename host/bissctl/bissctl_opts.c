@@ -695,16 +695,24 @@ int bissctl_set_option(const char *key, const char *value, const char *at, struc
 }
 
 /* The --config FILE on the command line, if any (the last one): read
- * before the other options, which then win over it. */
+ * before the other options, which then win over it. It looks at a copy of
+ * argv: getopt_long permutes what it scans, and "info --freq" (a value
+ * missing) would come back as "--freq info". */
 static const char *config_file(int argc, char **argv) {
     const char *path = NULL;
+    char **copy = malloc(((size_t)argc + 1) * sizeof *copy);
+    if (!copy) {
+        return NULL;
+    }
+    memcpy(copy, argv, ((size_t)argc + 1) * sizeof *copy);
     opterr = 0;
     optind = 0; /* glibc: a full restart of getopt */
-    for (int c; (c = getopt_long(argc, argv, ":n:h", long_opts, NULL)) != -1;) {
+    for (int c; (c = getopt_long(argc, copy, ":n:h", long_opts, NULL)) != -1;) {
         if (c == OPT_CONFIG) {
             path = optarg;
         }
     }
+    free(copy);
     return path;
 }
 
