@@ -78,7 +78,11 @@ static const char common_help[] =
     "  --check-speed S,CPS\n"
     "                     slave S's position moves at most CPS counts a second: a\n"
     "                     frame beyond reach of the last one accepted is misframed\n"
-    "  --no-configure     leave the configuration as it is\n";
+    "  --no-configure     leave the configuration as it is\n"
+    "\n"
+    "exit status: 0 done, 1 an error (the library's or the target's; a probe that\n"
+    "cannot decide, a command withheld, a rate refused), 2 bad usage (also a\n"
+    "command that needs --force)\n";
 
 static const char *command_help(const char *command) {
     if (strcmp(command, "info") == 0) {
