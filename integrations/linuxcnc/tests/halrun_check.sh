@@ -8,27 +8,28 @@
 # (scale 4096 counts a turn); then the fault: valid false, faults counted;
 # then the component unloads and halrun ends cleanly.
 #
-# usage: halrun_check.sh HALRUN HAL_BISS.SO SOURCE_DIR
+# usage: halrun_check.sh HALRUN HAL_BISS.SO REDIRECT.SO SOURCE_DIR
 #
-# halrun loads modules from LinuxCNC's module folder only, so the check
-# runs in a private mount namespace (unshare -m) where that folder is a
-# scratch copy of links: the installed modules and this build's hal_biss.
-# rtapi_app refuses to run as root without a user to fall back to
-# (RTAPI_UID): nobody's.
+# halrun loads modules from LinuxCNC's module folder only: the check
+# preloads rtlib_redirect.so (REDIRECT) into it, which opens this build's
+# hal_biss.so for that name. rtapi_app is set-user-ID root, so the preload
+# holds only when the check runs as root; rtapi_app then refuses to run as
+# root without a user to fall back to (RTAPI_UID): nobody's.
 set -eu
 halrun=$1
-so=$2
-src=$3
+so=$(readlink -f "$2")
+redirect=$(readlink -f "$3")
+src=$4
+if [ "$(id -u)" -ne 0 ]; then
+    echo "FAIL: run as root (rtapi_app is set-user-ID root: a preload holds for root only)," \
+         "or install $so into LinuxCNC's module folder and load it from there" >&2
+    exit 1
+fi
 bindir=$(dirname "$so")
 firmware=$bindir/../../pru_fw/biss_master.bin
-modules=$(dirname "$(readlink -f "$(command -v rtapi_app)")")/../lib/linuxcnc/modules
-modules=$(readlink -f "$modules")
 dir=$(mktemp -d)
 chmod 755 "$dir"
 trap 'rm -rf "$dir"' EXIT
-mkdir "$dir/orig" "$dir/lib"
-for f in "$modules"/*; do ln -s "$dir/orig/$(basename "$f")" "$dir/lib/"; done
-ln -s "$(readlink -f "$so")" "$dir/lib/hal_biss.so"
 
 cat >"$dir/check.sh" <<'CHECK'
 #!/bin/sh
@@ -78,10 +79,10 @@ HAL
 
 mkdir "$dir/run" && chmod 1777 "$dir/run" # rtapi_app makes its socket there as RTAPI_UID
 export RTAPI_FIFO_PATH="$dir/run/fifo"
-[ "$(id -u)" -ne 0 ] || export RTAPI_UID=65534
+export RTAPI_UID=65534 BISS_HAL_MODULE="$so" LD_PRELOAD="$redirect"
 rc=0
-unshare -m sh -c "mount --bind '$modules' '$dir/orig' && mount --bind '$dir/lib' '$modules' &&
-                  '$halrun' -f '$dir/test.hal'" >"$dir/log" 2>&1 || rc=$?
+"$halrun" -f "$dir/test.hal" >"$dir/log" 2>&1 || rc=$?
+unset LD_PRELOAD
 cat "$dir/log"
 "$halrun" -U >/dev/null 2>&1 || true
 cat "$dir/result" 2>/dev/null || { echo "FAIL: no result (halrun exit $rc)"; exit 1; }
