@@ -232,6 +232,7 @@ static void add_firmware(cJSON *j, struct bench *b, const struct fw_check *fw) {
     cJSON_AddNumberToObject(f, "delay_bit8_avg", fw->delay_avg);
     cJSON_AddNumberToObject(f, "sample_point", fw->sample_point);
     cJSON_AddNumberToObject(f, "lag_periods", fw->lag);
+    cJSON_AddNumberToObject(f, "delay_frame", fw->delay_frame); /* the frame of those four */
     cJSON_AddNumberToObject(f, "processing_clocks_max", fw->proc_clocks_max);
     cJSON_AddNumberToObject(f, "last_flags", fw->last_flags);
     const struct bench_stats *st = bench_stats(b);
@@ -554,10 +555,14 @@ void sim_print_text(const struct sim_result *r) {
                (unsigned long long)fw->ack_jumps);
         print_wrong(fw);
         if (fw->delay_frames) {
-            printf("line delay           %.1f ns measured by the firmware (%.1f ns in the model), "
-                   "sample point %u/8, lag %u periods\n",
-                   sim_fw_line_delay_ns(fw), bench_round_trip_ps(b) / 1000.0, fw->sample_point,
-                   fw->lag);
+            /* one frame's figures, the last one's: the firmware measures to 1/8 bit and
+             * averages 4 frames, so a run's first frames may differ from its last by a step */
+            printf("line delay           %.1f ns measured by the firmware in frame %u, the last "
+                   "(%.1f ns in the model), sample point %u/8, lag %u periods\n"
+                   "                     (lag: a bit is read that many MA periods after the "
+                   "clock that made it, at the sample point; pru_fw/README.md)\n",
+                   sim_fw_line_delay_ns(fw), fw->delay_frame, bench_round_trip_ps(b) / 1000.0,
+                   fw->sample_point, fw->lag);
         } else {
             printf("line delay           not measured: the firmware published no frame with an "
                    "ACK (%.1f ns in the model)\n",
