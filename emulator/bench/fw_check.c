@@ -217,6 +217,7 @@ static void on_publish(void *ctx, uint32_t addr) {
         fc->mismatches += fc->frames < fc->limit;
         return;
     }
+    bench_iep_published(fc->b, bench_current_frame(fc->b), res.flags);
     if (watched) {
         keep(&fc->watched, &smp);
     }

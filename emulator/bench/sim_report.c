@@ -178,6 +178,11 @@ static void add_frame_marks(cJSON *j, const struct bench_stats *st, unsigned hal
     cJSON_AddNumberToObject(i, "periods", (double)st->iep_periods);
     cJSON_AddNumberToObject(i, "skipped_periods", (double)st->iep_skipped);
     cJSON_AddNumberToObject(i, "crowded_periods", (double)st->iep_crowded);
+    const struct iep_track *k = &st->iep_track;
+    cJSON_AddNumberToObject(i, "judged_frames", (double)k->judged);
+    cJSON_AddNumberToObject(i, "late_flagged", (double)k->late);
+    cJSON_AddNumberToObject(i, "unflagged_off_count", (double)k->unflagged_off);
+    cJSON_AddNumberToObject(i, "unflagged_skipped_periods", (double)k->unflagged_skips);
 }
 
 /* The wrong frames published as valid, by class (wrong_frame.h), and the
@@ -432,6 +437,11 @@ static void print_frame_marks(const struct bench_stats *st, unsigned half, unsig
         printf("; %llu frames in %llu periods, %llu without a frame, %llu with two or more\n",
                (unsigned long long)st->iep_phase.n, (unsigned long long)st->iep_periods,
                (unsigned long long)st->iep_skipped, (unsigned long long)st->iep_crowded);
+        const struct iep_track *k = &st->iep_track;
+        printf("IEP flags            %llu frames judged: %llu flagged late, %llu unflagged off "
+               "their time, %llu periods skipped next to no flag\n",
+               (unsigned long long)k->judged, (unsigned long long)k->late,
+               (unsigned long long)k->unflagged_off, (unsigned long long)k->unflagged_skips);
     }
 }
 

@@ -90,6 +90,9 @@ static void print_sample(const struct biss_sample *s, const struct biss_config *
            : s->ack_jump   ? "ack-jump"
            : s->misframed  ? "misframed"
                            : "invalid");
+    if (s->flags & BISS_RF_IEP_LATE) { /* off its IEP period's count (BISS_RF_IEP_LATE) */
+        printf(" iep-late");
+    }
     if (s->valid) {
         for (unsigned i = 0; i < s->nslaves; i++) {
             print_slave(i, &s->slave[i], c && i < c->nslaves ? &c->slave[i] : NULL);
