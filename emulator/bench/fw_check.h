@@ -98,8 +98,8 @@ void fw_check_watch(struct fw_check *fc, uint64_t k);
  * watched frame stays). */
 void fw_check_restart(struct fw_check *fc, uint64_t limit);
 
-/* The data word slave s sent in the frame record `sent`, as on the wire
+/* The data word slave i (its word w) sent in frame f, as on the wire
  * before the CRC (proto's layout rule). */
-uint64_t fw_check_sent_word(const biss_slave_cfg *s, const biss_slave_sent *sent);
+uint64_t fw_check_sent_word(const slave_word *w, const slave_frame *f, unsigned i);
 
 #endif
