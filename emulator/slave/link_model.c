@@ -101,7 +101,8 @@ int link_init(link_model *l, const scenario *sc, char *err, size_t errlen) {
         return -1;
     }
     memset(l, 0, sizeof *l);
-    l->slave = calloc(1, sc->model->state_size);
+    l->slave =
+        sc->model->state_size <= sizeof l->own ? &l->own.status : calloc(1, sc->model->state_size);
     if (!l->slave) {
         snprintf(err, errlen, "out of memory");
         return -1;
@@ -127,7 +128,9 @@ int link_init(link_model *l, const scenario *sc, char *err, size_t errlen) {
 }
 
 void link_free(link_model *l) {
-    free(l->slave);
+    if (l->slave != &l->own.status) {
+        free(l->slave);
+    }
     l->slave = NULL;
     waveform_free(&l->ma_master);
     waveform_free(&l->ma_slave);
@@ -220,13 +223,8 @@ void link_forget_before(link_model *l, sim_ps t) {
 }
 
 sim_ps link_frame_end(const link_model *l, uint64_t n) {
-    slave_frame f;
     const void *r = n < link_frames(l) ? link_record(l, n) : NULL;
-    if (!r) {
-        return -1;
-    }
-    l->model->frame(link_model_cfg(l), r, &f);
-    return f.end_ps;
+    return r ? l->model->end(r) : -1;
 }
 
 biss_slave *link_biss(link_model *l) {
