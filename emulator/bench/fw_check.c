@@ -5,24 +5,22 @@
 
 #include <string.h>
 
-uint64_t fw_check_sent_word(const slave_word *w, const slave_frame *f, unsigned i) {
-    struct biss_proto_word pw = bench_fw_slave_word(w);
-    return biss_proto_word_compose(&pw, f->word[i].code, f->word[i].nE > 0, f->word[i].nW > 0,
-                                   f->word[i].lc);
-}
-
 /* The record of the frame just published: closed, or still in its
- * timeout; its words and what each slave sent, in every model's terms. */
-static const void *frame_record(struct fw_check *fc, slave_frame *f, slave_word *w,
-                                unsigned *nwords) {
+ * timeout; what each slave sent, in every model's terms. */
+static const void *frame_record(struct fw_check *fc, slave_frame *f) {
     link_model *l = bench_link(fc->b);
     uint64_t n = bench_current_frame(fc->b);
     const void *r = n == UINT64_MAX ? NULL : link_record(l, n);
     if (r) {
         l->model->frame(link_model_cfg(l), r, f);
-        *nwords = l->model->words(link_model_cfg(l), w);
     }
     return r;
+}
+
+/* The data word slave i sent in frame f (its word fc->words[i]). */
+static uint64_t sent_word(const struct fw_check *fc, const slave_frame *f, unsigned i) {
+    return biss_proto_word_compose(&fc->layout[i], f->word[i].code, f->word[i].nE > 0,
+                                   f->word[i].nW > 0, f->word[i].lc);
 }
 
 /* A valid frame's publication (now: the watch sees the store's own cycle)
@@ -44,9 +42,9 @@ static void time_publication(struct fw_check *fc, sim_ps latch, sim_ps last, sim
 static void compare(struct fw_check *fc, const struct biss_sample *smp) {
     link_model *l = bench_link(fc->b);
     slave_frame f;
-    slave_word w[SLAVE_MAX_WORDS];
-    unsigned n = 0;
-    const void *r = frame_record(fc, &f, w, &n);
+    const slave_word *w = fc->words;
+    unsigned n = fc->nwords;
+    const void *r = frame_record(fc, &f);
     if (!r) {
         fc->unmatched++;
         return;
@@ -57,7 +55,7 @@ static void compare(struct fw_check *fc, const struct biss_sample *smp) {
         fc->status[i] = smp->slave[i].status;
         fc->sent[i] = f.word[i].position;
         bool crc_failed = w[i].crc_poly && !(fc->status[i] & BISS_RS_CRC_OK);
-        same = same && (fc->data[i] == fw_check_sent_word(&w[i], &f, i) || crc_failed);
+        same = same && (fc->data[i] == sent_word(fc, &f, i) || crc_failed);
     }
     time_publication(fc, f.latch_ps, f.last_bit_ps, l->model->out_delay(link_model_cfg(l)));
     if (!same) {
@@ -83,13 +81,11 @@ static void compare(struct fw_check *fc, const struct biss_sample *smp) {
  * sent): a frame refused all the same is a good frame lost. */
 static bool words_right(struct fw_check *fc, const struct biss_sample *smp) {
     slave_frame f;
-    slave_word w[SLAVE_MAX_WORDS];
-    unsigned n = 0;
-    if (!frame_record(fc, &f, w, &n)) {
+    if (!frame_record(fc, &f)) {
         return false;
     }
-    for (unsigned i = 0; i < n && i < BISS_MAX_SLAVES; i++) {
-        if (smp->slave[i].data != fw_check_sent_word(&w[i], &f, i) || !smp->slave[i].crc_ok) {
+    for (unsigned i = 0; i < fc->nwords && i < BISS_MAX_SLAVES; i++) {
+        if (smp->slave[i].data != sent_word(fc, &f, i) || !smp->slave[i].crc_ok) {
             return false;
         }
     }
@@ -205,6 +201,15 @@ static void on_publish(void *ctx, uint32_t addr) {
     }
 }
 
+/* Each slave's word, as the configuration (fixed for the run) gives it. */
+static void words_of(struct fw_check *fc) {
+    link_model *l = bench_link(fc->b);
+    fc->nwords = l->model->words(link_model_cfg(l), fc->words);
+    for (unsigned i = 0; i < fc->nwords && i < SLAVE_MAX_WORDS; i++) {
+        fc->layout[i] = bench_fw_slave_word(&fc->words[i]);
+    }
+}
+
 void fw_check_attach(struct fw_check *fc, struct bench *b) {
     memset(fc, 0, sizeof(*fc));
     fc->b = b;
@@ -212,6 +217,7 @@ void fw_check_attach(struct fw_check *fc, struct bench *b) {
     fc->limit = UINT64_MAX;
     fc->watch = UINT64_MAX;
     fc->sl_delay_ps = (sim_ps)(line_nominal_delay_ps(&bench_link(b)->sc.sl_line) + 0.5);
+    words_of(fc);
     pru_set_store_watch(bench_core(b), BISS_ST_SEQ, on_publish, fc);
 }
 
@@ -238,4 +244,5 @@ void fw_check_restart(struct fw_check *fc, uint64_t limit) {
     fc->limit = limit;
     fc->watch = watch;
     fc->watched = watched;
+    words_of(fc);
 }

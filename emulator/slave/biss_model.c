@@ -172,6 +172,10 @@ static const void *record(const void *m, uint64_t n) {
     return n == b->st.frames ? &b->cur : (const void *)biss_slave_record(b, n);
 }
 
+static sim_ps end(const void *rec) {
+    return ((const biss_frame_record *)rec)->end_ps;
+}
+
 static void frame(const void *cfg, const void *rec, slave_frame *f) {
     const biss_chain_cfg *c = cfg;
     const biss_frame_record *r = rec;
@@ -314,6 +318,7 @@ const slave_model slave_model_biss = {
     .record_size = sizeof(biss_frame_record),
     .record = record,
     .frame = frame,
+    .end = end,
     .out_delay = out_delay,
     .timeout = timeout,
     .clocks = clocks,

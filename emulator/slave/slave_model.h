@@ -97,6 +97,9 @@ typedef struct slave_model {
     /* A record in every model's terms: f's words past nwords are left as
      * they were. */
     void (*frame)(const void *cfg, const void *rec, slave_frame *f);
+    /* A record's end (frame's end_ps) alone: the bench asks for it on
+     * every frame's first MA fall, where frame() would cost a frame. */
+    sim_ps (*end)(const void *rec);
 
     /* ---- what a master needs to know of a configuration ---- */
     sim_ps (*out_delay)(const void *cfg); /* MA edge at the slave to SL edge */

@@ -57,6 +57,10 @@ static const void *record(const void *m, uint64_t n) {
 }
 
 /* The position is latched at the first fall, which starts the word. */
+static sim_ps end(const void *rec) {
+    return ((const ssi_frame_record *)rec)->end_ps;
+}
+
 static void frame(const void *cfg, const void *rec, slave_frame *f) {
     (void)cfg;
     const ssi_frame_record *r = rec;
@@ -125,6 +129,7 @@ const slave_model slave_model_ssi = {
     .record_size = sizeof(ssi_frame_record),
     .record = record,
     .frame = frame,
+    .end = end,
     .out_delay = out_delay,
     .timeout = monoflop,
     .clocks = clocks,

@@ -146,6 +146,10 @@ static const void *record(const void *m, uint64_t n) {
 }
 
 /* The word it sent; misreport: one bit off, which the bench must catch. */
+static sim_ps end(const void *rec) {
+    return ((const toy_record *)rec)->end_ps;
+}
+
 static void frame(const void *cfg, const void *rec, slave_frame *f) {
     const toy_cfg *c = cfg;
     const toy_record *r = rec;
@@ -210,6 +214,7 @@ const slave_model toy_model = {
     .record_size = sizeof(toy_record),
     .record = record,
     .frame = frame,
+    .end = end,
     .out_delay = out_delay,
     .timeout = timeout,
     .clocks = clocks,
