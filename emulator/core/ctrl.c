@@ -230,7 +230,10 @@ const struct icss_block icss_ctrl0 = {
     .next_change = ctrl0_next_change,
 };
 
-/* (its reads give the fast-forward no horizon, as they never did) */
+/* Its reads give the fast-forward no horizon: a core alone has plain
+ * storage here, which only the host writes; in a PRU-ICSS the two cores
+ * run in turns of a cycle (pruss.c), so no skip passes PRU1's changes
+ * (test_core_pruss, poll_other_pru_ff). */
 const struct icss_block icss_ctrl1 = {
     .name = "CTRL1",
     .base = 0x24000u,
