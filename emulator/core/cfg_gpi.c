@@ -334,7 +334,7 @@ static int64_t cfg_next_change(struct pru_core *c, int64_t cycle, uint32_t ofs) 
 
 const struct icss_block icss_cfg = {
     .name = "CFG",
-    .base = 0x26000u,
+    .base = PRUSS_OFS_CFG,
     .size = CFG_BYTES,
     .load_cycles = offsetof(struct pru_params, load_cfg_cycles),
     .reset = cfg_reset,

@@ -221,7 +221,7 @@ static void ctrl1_write(struct pru_core *c, uint32_t ofs, uint32_t v, uint32_t b
 
 const struct icss_block icss_ctrl0 = {
     .name = "CTRL0",
-    .base = 0x22000u,
+    .base = PRUSS_OFS_CTRL0,
     .size = CTRL_BYTES,
     .load_cycles = offsetof(struct pru_params, load_ctrl_cycles),
     .reset = ctrl_reset, /* each core's own CONTROL */
@@ -236,7 +236,7 @@ const struct icss_block icss_ctrl0 = {
  * (test_core_pruss, poll_other_pru_ff). */
 const struct icss_block icss_ctrl1 = {
     .name = "CTRL1",
-    .base = 0x24000u,
+    .base = PRUSS_OFS_CTRL1,
     .size = CTRL_BYTES,
     .load_cycles = offsetof(struct pru_params, load_ctrl_cycles),
     .read = ctrl1_read,

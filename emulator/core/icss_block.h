@@ -28,7 +28,9 @@ struct pru_core;
 
 struct icss_block {
     const char *name;
-    uint32_t base, size; /* in the PRU-local data space */
+    /* in the PRU-local data space, at the offsets the host sees them at
+     * from the PRU-ICSS's base (pruss/pruss_map.h; docs/pru-facts.md §5.1) */
+    uint32_t base, size;
     /* The first beat of a load from it: the pru_params field at this
      * offset (an unsigned: load_intc_cycles, ...); each further 32-bit
      * beat one cycle more. */

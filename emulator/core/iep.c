@@ -243,7 +243,7 @@ static int64_t next_cmp(struct pru_core *c, int64_t cycle) {
 
 const struct icss_block icss_iep = {
     .name = "IEP",
-    .base = 0x2E000u,
+    .base = PRUSS_OFS_IEP,
     .size = IEP_BYTES,
     .load_cycles = offsetof(struct pru_params, load_iep_cycles),
     .reset = iep_reset,

@@ -180,7 +180,7 @@ static int64_t next_change(struct pru_core *c, int64_t cycle, uint32_t ofs) {
 
 const struct icss_block icss_intc = {
     .name = "INTC",
-    .base = 0x20000u,
+    .base = PRUSS_OFS_INTC,
     .size = INTC_BYTES,
     .load_cycles = offsetof(struct pru_params, load_intc_cycles),
     .reset = intc_reset,
