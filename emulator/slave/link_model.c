@@ -1,7 +1,5 @@
 #include "link_model.h"
 
-#include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
 
 /* Fan-out points: a pin is recorded, passed on, and shown to the observer. */
@@ -101,12 +99,7 @@ int link_init(link_model *l, const scenario *sc, char *err, size_t errlen) {
         return -1;
     }
     memset(l, 0, sizeof *l);
-    l->slave =
-        sc->model->state_size <= sizeof l->own ? &l->own.status : calloc(1, sc->model->state_size);
-    if (!l->slave) {
-        snprintf(err, errlen, "out of memory");
-        return -1;
-    }
+    l->slave = &l->own.status; /* zeroed with the rest */
     l->sc = *sc;
     l->model = sc->model;
     l->biss_quick = sc->model == &slave_model_biss;
@@ -128,9 +121,6 @@ int link_init(link_model *l, const scenario *sc, char *err, size_t errlen) {
 }
 
 void link_free(link_model *l) {
-    if (l->slave != &l->own.status) {
-        free(l->slave);
-    }
     l->slave = NULL;
     waveform_free(&l->ma_master);
     waveform_free(&l->ma_slave);

@@ -45,19 +45,14 @@ typedef struct {
     sim_ps sl_reach_ps;
     int sl_reach_on;
     const slave_model *model; /* sc.model, here with the rest */
-    slave_status *slave;      /* the model's state (its first member): own, or the heap's */
+    slave_status *slave;      /* the model's state (its first member): &own.status */
     /* the BiSS-C chain's clock edges take its quick step, called directly
      * (link_model.c at_ma_slave): the model the table names is this */
     bool biss_quick;
     line_dir ma_line, sl_line;
-    /* the state of the table's models in place, beside the lines, as the
-     * edges use them together (a model registered with a larger state has
-     * it on the heap) */
-    union {
-        slave_status status;
-        biss_slave biss;
-        ssi_slave ssi;
-    } own;
+    /* the model's state in place, beside the lines, as the edges use them
+     * together (every model's fits: slave_model_register) */
+    slave_state_room own;
     scenario sc;
 } link_model;
 

@@ -21,11 +21,20 @@
 #include "scenario_fields.h"
 #include "sim_time.h"
 #include "slave_status.h"
+#include "ssi_slave.h"
 #include "waveform.h"
 
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
+
+/* The room the link keeps for a model's state (state_size at most its
+ * size): the table's models' states, in place. */
+typedef union {
+    slave_status status;
+    biss_slave biss;
+    ssi_slave ssi;
+} slave_state_room;
 
 /* Words (slaves) a frame of any model carries at most. */
 #define SLAVE_MAX_WORDS BISS_MAX_SLAVES
@@ -84,7 +93,7 @@ typedef struct slave_model {
     const biss_chain_cfg *(*chain)(const void *cfg);
 
     /* ---- the model at work ---- */
-    size_t state_size; /* its state, starting with a slave_status */
+    size_t state_size; /* its state, starting with a slave_status (slave_state_room at most) */
     /* cfg has passed the model's checks; the model starts idle (SL high,
      * MA assumed high) at eq_now(q) and sends its SL edges to out. */
     void (*init)(void *m, const void *cfg, event_queue *q, sim_edge_sink out);
@@ -136,8 +145,9 @@ const slave_model *slave_model_at(size_t i);
 const slave_model *slave_model_find(const char *name);
 /* Adds a model outside the table (a test's), whose configuration lives in
  * the scenario's ext (cfg_offset offsetof(scenario, ext), cfg_size at most
- * SCENARIO_EXT_BYTES). Returns 0, or -1 (table full, name taken, or its
- * configuration does not fit). */
+ * SCENARIO_EXT_BYTES) and whose state fits the link's room for it
+ * (slave_state_room). Returns 0, or -1 (table full, name taken, or its
+ * configuration or state does not fit). */
 int slave_model_register(const slave_model *m);
 
 #endif

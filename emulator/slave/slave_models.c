@@ -35,7 +35,8 @@ const slave_model *slave_model_find(const char *name) {
 
 int slave_model_register(const slave_model *m) {
     if (nextras == MAX_EXTRAS || slave_model_find(m->name) ||
-        m->cfg_offset != offsetof(scenario, ext) || m->cfg_size > SCENARIO_EXT_BYTES) {
+        m->cfg_offset != offsetof(scenario, ext) || m->cfg_size > SCENARIO_EXT_BYTES ||
+        m->state_size > sizeof(slave_state_room)) {
         return -1;
     }
     extras[nextras++] = m;

@@ -117,6 +117,15 @@ START_TEST(toy_configuration_checked) {
     scenario_of("{\"protocol\": \"toy\"}", &sc);
     ck_assert_ptr_null(scenario_chain(&sc));
     ck_assert_int_eq(slave_model_register(&toy_model), -1); /* the name is taken */
+    /* a model whose state or configuration does not fit the link's room */
+    slave_model big = toy_model;
+    big.name = "toy-big";
+    big.state_size = sizeof(slave_state_room) + 1;
+    ck_assert_int_eq(slave_model_register(&big), -1);
+    big.state_size = toy_model.state_size;
+    big.cfg_size = SCENARIO_EXT_BYTES + 1;
+    ck_assert_int_eq(slave_model_register(&big), -1);
+    ck_assert_ptr_null(slave_model_find("toy-big"));
 }
 END_TEST
 
