@@ -95,8 +95,8 @@
 .assign Byte, r0.b3, r0.b3, DelayTurns      //   the turns
 .assign Word, r2, r2, DelayL                // L = H - 11 cycles, then the rest r
 .assign Word, r3, r3, DelayBase             // the entry L or r counts back from
-.assign Word, r3, r3, NewHist01             // P_HIST: h0, h1 (0),
-.assign Word, r4, r4, NewHist2K             //   h2 (0), K
+.assign Word, r1, r1, NewHist01             // P_HIST: h0, h1 (0),
+.assign Word, r2, r2, NewHist2K             //   h2 (0), K (stored with DelayWord: r0..r2)
 // P_NSLAVES .. P_SSI, one store (CFG_PROC) from r24..r27 (NBits, HostAddr,
 // RecAddr are done with by then; SsiWord is r27)
 .assign Word, r24, r24, NewNs               // P_NSLAVES' word: slaves, trigger, the end record,
@@ -341,15 +341,14 @@ CFG_IEP_OK:
     ldi     DelayBase, DLY_L0               // entry DLY_L0 - r
 CFG_DELAY_ENTRY:
     sub     DelayEntry, DelayBase, DelayL
-CFG_DELAY_SAVE:
-    sbco    DelayWord, c28, P_DELAYS, SIZE(BissPriv.delays)
+CFG_DELAY_SAVE:                             // (stored with the history: P_DELAYS..P_HSUM)
     // K = N + 2 - LAG: the clocks after the start bit's period are the CDS,
     // the N bits and one more, on which the slave starts its timeout (SL
     // low); LAG of them are already out when the start bit is seen.
     ldi     NewHist01, 0                    // history empty (training fills it)
     sub     NewHist2K, NBits, LAG - 2
     lsl     NewHist2K, NewHist2K, 16        // and K
-    sbco    &NewHist01, c28, P_HIST, P_HSUM - P_HIST
+    sbco    &DelayWord, c28, P_DELAYS, P_HSUM - P_DELAYS // DelayWord, NewHist01, NewHist2K
     mov     NewNs, CfgSlavesTrig            // slaves, trigger, -, frames in the average (0)
     lsl     NewRecEnd, CfgSlaves, 3         // the end record's register-file address
     add     NewRecEnd, NewRecEnd, REC_BASE
