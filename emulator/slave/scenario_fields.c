@@ -30,6 +30,8 @@
 #define U64_MAX_D 18446744073709551615.0
 /* Frame numbers as biss-sim counts them (1 = the first), in an unsigned. */
 #define MAX_FRAME_NO 4294967295.0
+/* Counts a frame: every whole number a JSON number holds exactly. */
+#define MAX_STEP 9007199254740991.0
 
 const sf_field sf_line[] = {
     L("length_m", SF_DOUBLE, length_m, 1, 0, 1000),
@@ -72,6 +74,7 @@ const sf_field sf_slave[] = {
     S("crc_start", SF_U32, crc_start, 0, 0, 0xffff),
     S("position", SF_U64, pos0, 0, 0, U64_MAX_D),
     S("speed_cps", SF_DOUBLE, speed_cps, 1, -MAX_SPEED, MAX_SPEED),
+    S("counts_per_frame", SF_I64, counts_per_frame, 0, -MAX_STEP, MAX_STEP),
     S("register_processing_frames", SF_UNSIGNED, reg_proc_frames, 0, 0, 1000),
     S("command_execute_bit", SF_U8, cmd_exec, 0, 0, 1),
     S("life_counter_fault_frame", SF_UNSIGNED, lc_fault_frame, 0, 1, MAX_FRAME_NO),
@@ -159,6 +162,9 @@ void sf_store(const sf_field *f, void *obj, double v, uint64_t u) {
     case SF_U64:
         *(uint64_t *)p = u;
         break;
+    case SF_I64:
+        *(int64_t *)p = (int64_t)v;
+        break;
     }
 }
 
@@ -176,6 +182,8 @@ static double load(const sf_field *f, const void *obj) {
         return *(const uint8_t *)p;
     case SF_U32:
         return *(const uint32_t *)p;
+    case SF_I64:
+        return (double)*(const int64_t *)p;
     case SF_U64:
         break;
     }

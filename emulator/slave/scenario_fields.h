@@ -20,6 +20,7 @@ typedef enum {
     SF_U8,       /* uint8_t, whole */
     SF_U32,      /* uint32_t, whole */
     SF_U64,      /* uint64_t, whole, any value (0 .. 2^64 - 1) */
+    SF_I64,      /* int64_t, whole */
 } sf_kind;
 
 typedef struct {
