@@ -149,16 +149,17 @@ PREWORK:
     lbbo    PwStart, PwAddr, OFFSET(SlvPriv.tmo_end) - OFFSET(SlvPriv.work_pad), 4
     lbbo    PwRest, PwAddr, OFFSET(SlvPriv.spare) - OFFSET(SlvPriv.work_pad), 4
     mov     Tmo, PwRest                     // FullTmo, the reload
-    lsr     TmoLeft, PwRest, 16             // the turns left, less the work's (+ 2)
-    lbbo    PwRest, CTRL_BASE, CTRL_CYCLE, 4
+    lsr     TmoLeft, PwRest, 16             // the turns left, less the work's (+ 2),
+    lbbo    PwRest, CTRL_BASE, CTRL_CYCLE, 4    // at least one
     sub     PwRest, PwRest, PwStart
     lsr     PwRest, PwRest, 2
     add     PwRest, PwRest, 2
+    qble    PREWORK_NONE, PwRest, TmoLeft   // left <= the work's
     sub     TmoLeft, TmoLeft, PwRest
-    qbbc    PREWORK_LEFT, TmoLeft, 15       // (turns below 32768: not wrapped)
+    qba     PREWORK_LEFT
+PREWORK_NONE:
     ldi     TmoLeft, 1
 PREWORK_LEFT:
-    max     TmoLeft, TmoLeft, 1
     qbeq    TAIL_BUILT_HIGH, END_KIND, END_CDM0
     jmp     TAIL_BUILT_LOW
 .leave frame

@@ -293,7 +293,8 @@ CFG_STATUS:
     ldi     Addr, BISS_SLV_ST_CFG_ERROR
     ldi     WordOut, BISS_SLV_CFGERR_NONE
     sbbo    WordOut, Addr, 0, 4
-    ldi     Bits, 0                         // (between.p's Advance: no step first)
+    ldi     Bits, 0                         // (between.p's Advance: no step first,
+    ldi     Idx, 1                          //   RecAhead: FRAME_REC is for frame 1)
     jal     RET_SUB, BUILD
     ldi     Addr, BISS_SLV_ST_CFG_ACK
     sbbo    NewSeq, Addr, 0, 4

@@ -32,8 +32,11 @@
 FRAME_START:
     WAIT_RISE R1_ROSE, TMO_NOLATCH
 
-// 1st rise: the data are latched. CYCLE now, for the MA period.
+// 1st rise: the data are latched; nothing goes out (SL written as it is,
+// so that CYCLE is read as many cycles after the edge as at the ACK). CYCLE
+// now, for the MA period.
 R1_ROSE:
+    mov     SL_OUT, SL_OUT
     lbbo    LatchCyc, CTRL_BASE, CTRL_CYCLE, 4
     mov     TmoLeft, Tmo
     WAIT_FALL_RISE R2_ROSE, TMO_LATCHED, TMO_LATCHED
