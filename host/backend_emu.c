@@ -20,6 +20,7 @@ struct emu_pair {
     struct bench *bench[2];
     unsigned refs;
     pthread_mutex_t lock; /* the two handles' locks do not order their runs */
+    pthread_mutex_t iep;  /* the PRU-ICSS's IEP (biss_backend_ops.iep_lock) */
 };
 
 struct emu {
@@ -90,11 +91,25 @@ static void emu_close(void *ctx) {
         if (last) {
             bench_free(pr->bench[1]); /* PRU0's bench owns the PRU-ICSS */
             bench_free(pr->bench[0]);
+            pthread_mutex_destroy(&pr->iep);
             pthread_mutex_destroy(&pr->lock);
             free(pr);
         }
     }
     free(e);
+}
+
+/* The pair's IEP: the two handles' configurations decide who owns it one
+ * at a time (a handle of its own has no other channel). */
+static int emu_iep_lock(void *ctx, bool take, unsigned timeout_ms) {
+    struct emu *e = ctx;
+    (void)timeout_ms; /* held for one configuration, which ends */
+    if (e->pair && take) {
+        pthread_mutex_lock(&e->pair->iep);
+    } else if (e->pair) {
+        pthread_mutex_unlock(&e->pair->iep);
+    }
+    return BISS_OK;
 }
 
 static const struct biss_backend_ops emu_ops = {
@@ -103,6 +118,7 @@ static const struct biss_backend_ops emu_ops = {
     .advance = emu_advance,
     .now_us = emu_now_us,
     .close = emu_close,
+    .iep_lock = emu_iep_lock,
     .poll_us = 1, /* a 10 MHz frame is ~20 us: publications are seen within 1 us */
     .advance_sleeps = 0,
 };
@@ -213,6 +229,7 @@ int biss_emu_open_pair(const struct biss_open_params p[2], biss_t *h[2]) {
         return BISS_E_EMU;
     }
     pthread_mutex_init(&pr->lock, NULL);
+    pthread_mutex_init(&pr->iep, NULL);
     pr->refs = 1; /* this call's, until both handles hold theirs */
     int rc = BISS_OK;
     for (unsigned i = 0; i < 2 && !rc; i++) {
@@ -230,6 +247,7 @@ int biss_emu_open_pair(const struct biss_open_params p[2], biss_t *h[2]) {
     if (last) {
         bench_free(pr->bench[1]);
         bench_free(pr->bench[0]);
+        pthread_mutex_destroy(&pr->iep);
         pthread_mutex_destroy(&pr->lock);
         free(pr);
     }

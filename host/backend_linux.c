@@ -4,7 +4,12 @@
  * CONTROL itself) and remoteproc (the kernel's pru_rproc loads and starts
  * the ELF through sysfs; only PRU0's data RAM is mapped). Both check that
  * the PRU-ICSS is powered before touching it (an access to an unclocked
- * module is a bus error, not an error code) and take the per-PRU lock. */
+ * module is a bus error, not an error code) and take the per-PRU lock.
+ * The memory is /dev/mem itself (mapped: it cannot shrink) or a regular
+ * file standing in for it, which is read and written with pread/pwrite: a
+ * mapping of it would be a bus error (SIGBUS) wherever another process
+ * truncated it, and an error code is what a reader must get. Other
+ * devices (/dev/zero, ...) are no memory of a PRU-ICSS and are refused. */
 #include "biss_priv.h"
 
 #include "biss_lock.h"
@@ -19,6 +24,7 @@
 #include <string.h>
 #include <sys/mman.h>
 #include <sys/stat.h>
+#include <sys/sysmacros.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -44,14 +50,18 @@ static int soc_of(enum biss_target t, struct biss_soc_icss *s) {
 }
 
 struct lnx {
-    volatile uint8_t *map;
+    volatile uint8_t *map; /* /dev/mem mapped; NULL for a file (pread/pwrite) */
     size_t map_len;
+    off_t base; /* the PRU-ICSS's address in the file */
     int fd;
-    int lock_fd;
-    bool shared;  /* the lock is shared (attached) */
-    bool rproc;   /* remoteproc loader */
-    bool started; /* this handle started the instance: close stops it */
-    bool keep;    /* ... unless it is to keep running (biss_leave_running) */
+    off_t pru_lock; /* the PRU's lock: its data RAM's address (biss_lock.h) */
+    off_t iep_lock; /* the IEP's: its address */
+    char path[PATH_MAX];
+    char what[64]; /* "PRU0 of the PRU-ICSS at 0x4a300000" */
+    bool shared;   /* the lock is shared (attached) */
+    bool rproc;    /* remoteproc loader */
+    bool started;  /* this handle started the instance: close stops it */
+    bool keep;     /* ... unless it is to keep running (biss_leave_running) */
     char dir[PATH_MAX];
     char fw_name[256];
 };
@@ -67,10 +77,21 @@ static int aligned(uint32_t off, size_t n) {
 /* Peripheral memory: 32-bit accesses for whole words (what the PRU RAMs
  * and registers expect), bytes otherwise; volatile so none is merged,
  * split or dropped. */
+/* A file standing in for /dev/mem: all of it, or an I/O error (a file
+ * truncated under us reads short). */
+static int file_io(struct lnx *l, uint32_t off, void *buf, size_t n, bool write) {
+    off_t at = l->base + (off_t)off;
+    ssize_t done = write ? pwrite(l->fd, buf, n, at) : pread(l->fd, buf, n, at);
+    return done == (ssize_t)n ? BISS_OK : BISS_E_IO;
+}
+
 static int lnx_read(void *ctx, uint32_t off, void *buf, size_t n) {
     struct lnx *l = ctx;
     if (!in_window(l, off, n)) {
         return BISS_E_IO;
+    }
+    if (!l->map) {
+        return file_io(l, off, buf, n, false);
     }
     if (aligned(off, n)) {
         const volatile uint32_t *src = (const volatile uint32_t *)(l->map + off);
@@ -91,6 +112,9 @@ static int lnx_write(void *ctx, uint32_t off, const void *buf, size_t n) {
     struct lnx *l = ctx;
     if (!in_window(l, off, n)) {
         return BISS_E_IO;
+    }
+    if (!l->map) {
+        return file_io(l, off, (void *)buf, n, true);
     }
     if (aligned(off, n)) {
         volatile uint32_t *dst = (volatile uint32_t *)(l->map + off);
@@ -126,11 +150,22 @@ static int lnx_exclusive(void *ctx) {
     if (!l->shared) {
         return BISS_OK;
     }
-    int rc = biss_lock_upgrade(l->lock_fd, NULL);
+    /* in place: refused, the shared lock stays */
+    int rc = biss_lock_take(l->fd, l->pru_lock, false, l->path, l->what, NULL);
     if (!rc) {
         l->shared = false;
     }
     return rc;
+}
+
+/* The IEP's lock, for the exchange that decides who owns it (biss_priv.h). */
+static int lnx_iep_lock(void *ctx, bool take, unsigned timeout_ms) {
+    struct lnx *l = ctx;
+    if (!take) {
+        biss_lock_drop(l->fd, l->iep_lock);
+        return BISS_OK;
+    }
+    return biss_lock_wait(l->fd, l->iep_lock, l->path, "the PRU-ICSS's IEP", timeout_ms, NULL);
 }
 
 /* ---- remoteproc: the kernel loads, starts and stops ------------------- */
@@ -207,10 +242,7 @@ static void lnx_close(void *ctx) {
         munmap((void *)l->map, l->map_len);
     }
     if (l->fd >= 0) {
-        close(l->fd);
-    }
-    if (l->lock_fd >= 0) {
-        close(l->lock_fd); /* releases the flock */
+        close(l->fd); /* releases the locks */
     }
     free(l);
 }
@@ -222,6 +254,7 @@ static const struct biss_backend_ops devmem_ops = {
     .now_us = lnx_now_us,
     .close = lnx_close,
     .exclusive = lnx_exclusive,
+    .iep_lock = lnx_iep_lock,
     .poll_us = 50,
     .advance_sleeps = 1,
 };
@@ -233,6 +266,7 @@ static const struct biss_backend_ops rproc_ops = {
     .now_us = lnx_now_us,
     .close = lnx_close,
     .exclusive = lnx_exclusive,
+    .iep_lock = lnx_iep_lock,
     .pru_halt = rproc_halt,
     .pru_start = rproc_start,
     .pru_enabled = rproc_enabled,
@@ -252,6 +286,9 @@ static int file_covers(const struct stat *st, off_t end) {
     return !S_ISREG(st->st_mode) || st->st_size >= end;
 }
 
+static int clock_on(const struct biss_soc_icss *s, uint32_t v, const char *path, const char *sysfs,
+                    struct biss_errbuf *e);
+
 /* The pruss driver bound (it keeps the module powered), or else the PRCM
  * clock control says the module is enabled and functional (MODULEMODE = 2,
  * IDLEST = 0; AM335x TRM 8.1.12.1, CM_PER_PRU_ICSS_CLKCTRL). */
@@ -265,11 +302,15 @@ static int check_powered(const struct biss_soc_icss *s, const char *sysfs, int f
     }
     long page = sysconf(_SC_PAGESIZE);
     off_t at = s->clkctrl & ~(off_t)(page - 1);
-    if (!file_covers(st, at + page)) {
-        return biss_err(e, BISS_E_NOT_POWERED,
-                        "%s ends before CM_PER_PRU_ICSS_CLKCTRL (0x%lx) "
-                        "and %s does not exist: cannot tell that the PRU-ICSS is powered",
-                        path, (unsigned long)s->clkctrl, drv);
+    uint32_t v;
+    if (S_ISREG(st->st_mode)) {
+        if (pread(fd, &v, 4, (off_t)s->clkctrl) != 4) {
+            return biss_err(e, BISS_E_NOT_POWERED,
+                            "%s ends before CM_PER_PRU_ICSS_CLKCTRL (0x%lx) "
+                            "and %s does not exist: cannot tell that the PRU-ICSS is powered",
+                            path, (unsigned long)s->clkctrl, drv);
+        }
+        return clock_on(s, v, path, sysfs, e);
     }
     void *m = mmap(NULL, (size_t)page, PROT_READ, MAP_SHARED, fd, at);
     if (m == MAP_FAILED) {
@@ -280,8 +321,14 @@ static int check_powered(const struct biss_soc_icss *s, const char *sysfs, int f
                         path, (unsigned long)s->clkctrl, strerror(err), err, biss_devmem_hint(err),
                         drv);
     }
-    uint32_t v = *(volatile uint32_t *)((volatile uint8_t *)m + (s->clkctrl - at));
+    v = *(volatile uint32_t *)((volatile uint8_t *)m + (s->clkctrl - at));
     munmap(m, (size_t)page);
+    return clock_on(s, v, path, sysfs, e);
+}
+
+/* CM_PER_PRU_ICSS_CLKCTRL = v: enabled and functional, or why not. */
+static int clock_on(const struct biss_soc_icss *s, uint32_t v, const char *path, const char *sysfs,
+                    struct biss_errbuf *e) {
     unsigned mode = v & 3u, idlest = (v >> 16) & 3u;
     if (mode == 2 && idlest == 0) {
         return BISS_OK;
@@ -361,13 +408,25 @@ static int open_mem(struct lnx *l, const struct biss_soc_icss *s, const struct b
         int err = errno;
         return biss_err(e, BISS_E_DEVMEM, "%s: %s (errno %d)", path, strerror(err), err);
     }
-    /* one lock per PRU: the memory file and the PRU's data RAM address
-     * (for PRU0 the PRU-ICSS base) name it */
-    char key[96];
-    snprintf(key, sizeof key, "biss-%llx-%llx-%lx.lock", (unsigned long long)st.st_dev,
-             (unsigned long long)st.st_ino, (unsigned long)(s->base + ICSS_DRAM(p->pru)));
+    /* /dev/mem is character device 1:1 (Linux's devices.txt); a regular
+     * file may stand in for it */
+    bool mem = S_ISCHR(st.st_mode) && major(st.st_rdev) == 1 && minor(st.st_rdev) == 1;
+    if (!mem && !S_ISREG(st.st_mode)) {
+        return biss_err(e, BISS_E_DEVMEM,
+                        "%s is not /dev/mem (character device 1:1) nor a regular file standing in "
+                        "for it: no PRU-ICSS memory there",
+                        path);
+    }
+    /* one lock per PRU, on the memory file itself at the PRU's data RAM
+     * (for PRU0 the PRU-ICSS base): every process that can reach the PRU
+     * agrees on it (biss_lock.h); and one at the IEP */
+    snprintf(l->path, sizeof l->path, "%s", path);
+    snprintf(l->what, sizeof l->what, "PRU%u of the PRU-ICSS at 0x%lx", p->pru,
+             (unsigned long)s->base);
+    l->pru_lock = (off_t)(s->base + ICSS_DRAM(p->pru));
+    l->iep_lock = (off_t)(s->base + PRUSS_OFS_IEP);
     l->shared = p->attach;
-    int rc = biss_lock_take(p->lock_dir, key, l->shared, &l->lock_fd, e);
+    int rc = biss_lock_take(l->fd, l->pru_lock, l->shared, path, l->what, e);
     if (!rc) {
         rc = check_powered(s, sysfs_root(p), l->fd, &st, path, e);
     }
@@ -386,6 +445,10 @@ static int open_mem(struct lnx *l, const struct biss_soc_icss *s, const struct b
                         "0x%lx..0x%lx",
                         path, (long long)st.st_size, (unsigned long)s->base,
                         (unsigned long)(s->base + (off_t)l->map_len));
+    }
+    l->base = (off_t)s->base;
+    if (!mem) {
+        return BISS_OK; /* pread/pwrite */
     }
     void *m = mmap(NULL, l->map_len, PROT_READ | PROT_WRITE, MAP_SHARED, l->fd, s->base);
     if (m == MAP_FAILED) {
@@ -412,7 +475,6 @@ int biss_linux_backend_open(const struct biss_open_params *p, struct biss_backen
         return BISS_E_NOMEM;
     }
     l->fd = -1;
-    l->lock_fd = -1;
     l->rproc = p->loader == BISS_LOADER_REMOTEPROC;
     struct biss_errbuf e = {p->errbuf, p->errbuf_len};
     rc = open_mem(l, &soc, p, &e);

@@ -48,31 +48,98 @@ static int other_read(void *ctx, uint32_t off, void *buf, size_t n) {
     return h->be.ops->read(h->be.ctx, ICSS_DRAM(1u - h->be.pru) + off, buf, n);
 }
 
-/* One channel of a PRU-ICSS owns the IEP: BISS_TRIGGER_IEP is refused while
- * the other PRU's firmware runs with it in force. The other PRU leaves the
- * IEP free when it cannot be read (not mapped) or runs nothing. */
-static int iep_free(biss_t *h) {
+/* Whether the other PRU's channel owns the IEP: its firmware runs (any
+ * state: without a slave it still resets the count) with the IEP trigger
+ * in its block, accepted or not yet looked at (a configuration in flight
+ * is taken as what it asks for), and *period_ns is its period. Not when
+ * the other PRU cannot be read (not mapped) or runs nothing. */
+static bool iep_owner(biss_t *h, uint32_t *period_ns) {
     struct biss_proto_io io = {.read = other_read, .ctx = h};
     struct biss_shm_status st;
     struct biss_shm_config blk;
     if (biss_proto_status_get(&io, &st) || st.magic != BISS_MAGIC ||
-        st.state != BISS_STATE_RUNNING || biss_proto_config_get(&io, &blk)) {
-        return BISS_OK;
+        biss_proto_config_get(&io, &blk)) {
+        return false;
     }
-    bool owns = st.cfg_ack == blk.seq && blk.trigger == BISS_TRIGGER_IEP;
-    return owns ? BISS_E_IEP_OWNED : BISS_OK;
+    *period_ns = blk.iep_period * 5u; /* 5 ns IEP counts */
+    bool refused = st.cfg_ack == blk.seq && st.cfg_error != BISS_CFGERR_NONE;
+    return blk.seq != 0 && blk.trigger == BISS_TRIGGER_IEP && !refused;
 }
 
-static int configure_locked(biss_t *h, const struct biss_config *c) {
-    int rc = biss_exclusive(h);
-    if (!rc && c->trigger == BISS_TRIGGER_IEP) {
-        rc = iep_free(h);
+static bool speed_checked(const struct biss_config *c) {
+    for (unsigned i = 0; i < BISS_API_MAX_SLAVES; i++) {
+        if (c->slave[i].max_speed != 0) {
+            return true;
+        }
     }
+    return false;
+}
+
+/* The IEP as c needs it, into *c: the IEP trigger is refused while the
+ * other PRU's channel owns the IEP; following, c takes that channel's
+ * period (the speed check counts frames in it; a period given must be
+ * that one); the speed check on the timestamps (host trigger, free-run)
+ * needs a count that no IEP trigger restarts every period. Then c passes
+ * the library's checks (a speed check following no owner and given no
+ * period has no time to judge by: BISS_E_SAFETY_SPEED). */
+static int iep_as_needed(biss_t *h, struct biss_config *c) {
+    uint32_t period = 0;
+    bool owned = iep_owner(h, &period);
+    switch (c->trigger) {
+    case BISS_TRIGGER_IEP:
+        if (owned) {
+            return BISS_E_IEP_OWNED;
+        }
+        break;
+    case BISS_TRIGGER_IEP_FOLLOW:
+        if (owned && c->iep_period_ns && c->iep_period_ns != period) {
+            return BISS_E_IEP_PERIOD;
+        }
+        if (owned) {
+            c->iep_period_ns = period;
+        }
+        break;
+    default:
+        if (owned && speed_checked(c)) {
+            return BISS_E_SAFETY_SPEED;
+        }
+    }
+    return biss_config_check(c);
+}
+
+/* The configuration's exchange with the firmware (handle locked). */
+static int exchange(biss_t *h, struct biss_config *c);
+
+/* The IEP is one per PRU-ICSS: whether the other channel owns it is read
+ * and this channel's block written and acked under the IEP's lock, so two
+ * channels configured at once never both own it (the check apart from the
+ * write let both through). */
+static int configure_locked(biss_t *h, const struct biss_config *given) {
+    struct biss_config cfg = *given;
+    int rc = biss_exclusive(h);
     if (rc) {
         return rc;
     }
+    bool locked = h->be.ops->iep_lock != NULL;
+    if (locked) {
+        rc = h->be.ops->iep_lock(h->be.ctx, true, h->timeout_ms);
+        if (rc) {
+            return rc;
+        }
+    }
+    rc = iep_as_needed(h, &cfg);
+    if (!rc) {
+        rc = exchange(h, &cfg);
+    }
+    if (locked) {
+        h->be.ops->iep_lock(h->be.ctx, false, 0);
+    }
+    return rc;
+}
+
+static int exchange(biss_t *h, struct biss_config *c) {
     uint32_t seq = next_seq(h->cfg_seq);
-    rc = write_block(h, c, seq);
+    int rc = write_block(h, c, seq);
     if (rc) {
         return rc;
     }
@@ -108,7 +175,15 @@ int biss_configure(biss_t *h, const struct biss_config *c) {
     if (!h || !c) {
         return BISS_E_INVAL;
     }
-    int rc = biss_config_check(c);
+    /* following another channel's IEP, the period is that channel's
+     * (configure_locked): the speed check's need of it is judged there */
+    struct biss_config first = *c;
+    if (first.trigger == BISS_TRIGGER_IEP_FOLLOW && !first.iep_period_ns) {
+        for (unsigned i = 0; i < BISS_API_MAX_SLAVES; i++) {
+            first.slave[i].max_speed = 0;
+        }
+    }
+    int rc = biss_config_check(&first);
     if (rc) {
         return rc;
     }

@@ -74,7 +74,8 @@ static const struct err_text errors[] = {
     {BISS_E_SHM_VERSION, "the firmware's shared-memory version differs from this library's"},
     {BISS_E_FW_IMAGE, "the running firmware image is not the expected one (CRC-32 differs)"},
     {BISS_E_SHM_CONFIG, "the configuration block read back from data RAM is invalid"},
-    {BISS_E_SHM_RESULT, "a published result contradicts the configuration (junk in data RAM)"},
+    {BISS_E_SHM_RESULT, "data RAM holds a result or status word the firmware never writes "
+                        "(junk; biss_shm_problem names it)"},
     {BISS_E_SAFETY_LIFE, "life-counter check: no such slave, or a width outside 1..32 or wider "
                          "than the bits below nE/nW and the position"},
     {BISS_E_SAFETY_PAIR, "pair check: a slave outside the chain or paired with itself, too "
@@ -84,7 +85,7 @@ static const struct err_text errors[] = {
     {BISS_E_SAFETY_EW, "nE/nW check (a slave that never sets them): no such slave, or the "
                        "slave sends no nE/nW"},
     {BISS_E_IEP_OWNED, "the other PRU's channel owns the IEP (trigger iep): use iep-follow"},
-    {BISS_E_FW_PRU, "the running image was assembled for the other PRU (PRU0: biss_master, "
+    {BISS_E_FW_PRU, "the image was assembled for the other PRU (PRU0: biss_master, "
                     "PRU1: biss_master_pru1)"},
     {BISS_E_SAFETY_SPEED, "speed check (max_speed): no such slave in the chain, or the speed "
                           "is not a finite number above 0"},

@@ -87,6 +87,14 @@ static int read_image(biss_t *h, const char *path, struct biss_errbuf *e) {
         free(buf);
         return biss_err(e, BISS_E_FIRMWARE_SIZE, "%s: %zu bytes, not whole 32-bit words", path, n);
     }
+    /* one image per PRU (pru_fw/README.md): the other PRU's, started,
+     * points its private area at the shared block and says nothing */
+    int built = biss_image_pru(buf, n);
+    if (built >= 0 && (unsigned)built != h->be.pru) {
+        free(buf);
+        return biss_err(e, BISS_E_FW_PRU, "%s was assembled for PRU%d, not PRU%u: load %s", path,
+                        built, h->be.pru, h->be.pru ? "biss_master_pru1.bin" : "biss_master.bin");
+    }
     h->image = (uint8_t *)buf;
     h->image_bytes = n;
     snprintf(h->firmware, sizeof h->firmware, "%s", path);

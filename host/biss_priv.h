@@ -36,6 +36,10 @@ struct biss_backend_ops {
      * starts it, and says whether it runs; NULL: the CONTROL register and
      * IRAM through read/write. */
     int (*exclusive)(void *ctx);
+    /* Optional. The PRU-ICSS's one IEP: taken (waiting up to timeout_ms;
+     * 0 or BISS_E_BUSY) around the exchange that decides which channel owns
+     * it, so that two channels never both do; released with take false. */
+    int (*iep_lock)(void *ctx, bool take, unsigned timeout_ms);
     int (*pru_halt)(void *ctx);
     int (*pru_start)(void *ctx);
     int (*pru_enabled)(void *ctx, bool *on);
@@ -79,6 +83,9 @@ struct biss {
     uint32_t cfg_pub_seq;
     bool cfg_pub_seq_valid;
     bool attached;
+    /* what the last BISS_E_SHM_RESULT refusal found in data RAM (a static
+     * text of biss_result_check.c), or NULL */
+    const char *problem;
     /* the safety checks over the frames this handle read (biss_safety.c) */
     struct biss_safety_state safety;
 };

@@ -17,7 +17,7 @@
  * and passed on, [MB4] "BiSS C Frame"; emulator/slave/biss_slave.h does the
  * same), and the slaves' own timeout only starts once MA stops, so
  * clocking on past the frame is harmless. */
-#include "biss_probe.h"
+#include "biss_probe_priv.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -96,8 +96,8 @@ static void sample_bits(const uint16_t *inv, const struct biss_sample *s, uint8_
     }
 }
 
-static int capture(biss_t *h, const uint16_t *inv, unsigned n, uint8_t *bits, uint32_t *fno,
-                   struct biss_probe_report *out, unsigned *got) {
+static int capture(biss_t *h, const uint16_t *inv, unsigned n, double deadline_s, uint8_t *bits,
+                   uint32_t *fno, struct biss_probe_report *out, unsigned *got) {
     struct biss_sample s;
     uint32_t after = biss_read_sample(h, &s) == BISS_OK ? s.frame : 0;
     unsigned tries = 0;
@@ -105,6 +105,10 @@ static int capture(biss_t *h, const uint16_t *inv, unsigned n, uint8_t *bits, ui
     while (*got < n) {
         if (++tries > 2 * n + 16) {
             break; /* too few valid frames: analyse what came */
+        }
+        if (probe_now_s() >= deadline_s) {
+            out->capture_cut = true;
+            break; /* the time limit: analyse what came */
         }
         int rc = biss_wait_sample(h, after, SAMPLE_TIMEOUT, &s);
         if (rc) {
@@ -243,6 +247,11 @@ int biss_probe(biss_t *h, const struct biss_probe_params *p, struct biss_probe_r
         return BISS_E_INVAL;
     }
     memset(out, 0, sizeof *out);
+    /* the time limit holds from here: the analysis gets what the capture left */
+    double start = probe_now_s();
+    unsigned limit_ms =
+        p->limits.time_limit_ms ? p->limits.time_limit_ms : BISS_PROBE_TIME_LIMIT_MS;
+    double deadline = start + limit_ms / 1000.0;
     struct biss_config c;
     capture_config(p->freq_hz, &c);
     int rc = biss_configure(h, &c);
@@ -254,17 +263,21 @@ int biss_probe(biss_t *h, const struct biss_probe_params *p, struct biss_probe_r
     uint32_t *fno = calloc(n, sizeof *fno);
     uint16_t *inv = crc_inverse();
     unsigned got = 0;
-    rc = bits && fno && inv ? capture(h, inv, n, bits, fno, out, &got) : BISS_E_NOMEM;
+    rc = bits && fno && inv ? capture(h, inv, n, deadline, bits, fno, out, &got) : BISS_E_NOMEM;
     free(inv);
     if (rc == BISS_OK && got == 0) {
         out->wire.verdict = BISS_PROBE_NONE;
         snprintf(out->wire.reason, sizeof out->wire.reason,
-                 "no valid frame in %u tries (%u without ACK: no BiSS slave answered; an SSI "
+                 "no valid frame in %u tries%s (%u without ACK: no BiSS slave answered; an SSI "
                  "encoder sends none)",
-                 2 * n + 16, out->no_slave);
+                 out->capture_cut ? out->no_slave + out->invalid : 2 * n + 16,
+                 out->capture_cut ? " before the time limit" : "", out->no_slave);
     } else if (rc == BISS_OK) {
         struct biss_probe_frames f = {got, BISS_PROBE_MAX_BITS, bits, fno};
-        rc = biss_probe_analyse(&f, &out->wire);
+        struct biss_probe_limits lim = p->limits;
+        double left_ms = (deadline - probe_now_s()) * 1000.0;
+        lim.time_limit_ms = left_ms >= 1.0 ? (unsigned)left_ms : 1u;
+        rc = biss_probe_analyse_limited(&f, &lim, &out->wire);
     }
     free(bits);
     free(fno);
@@ -284,16 +297,17 @@ int biss_probe(biss_t *h, const struct biss_probe_params *p, struct biss_probe_r
 }
 
 /* A scenario biss-sim and bissctl --scenario accept: the generic profile
- * with the slaves the wire showed (a life counter below nE/nW; the speed is
- * a choice, so that positions move). */
+ * with the slaves the wire showed, every field the analysis found (a life
+ * counter at the LSB, nE/nW above it or not; the speed is a choice, so that
+ * positions move). */
 int biss_probe_to_json(const struct biss_probe_layout *l, char *buf, size_t size) {
     size_t used = 0;
     int n = snprintf(buf, size, "{\n  \"profile\": \"generic\",\n  \"biss\": {\n    \"slaves\": [");
     for (unsigned i = 0; n >= 0 && i < l->nslaves; i++) {
         used += (size_t)n;
         const struct biss_probe_slave *s = &l->slave[i];
-        unsigned lc = s->has_ew ? s->ew_shift : 0;
-        unsigned pos = s->data_bits - (s->has_ew ? 2 + lc : 0);
+        unsigned lc = s->lc_bits;
+        unsigned pos = s->data_bits - lc - (s->has_ew ? 2 : 0);
         n = snprintf(buf + used, used < size ? size - used : 0,
                      "%s\n      { \"position_bits\": %u, \"error_bit\": %s, \"warning_bit\": %s, "
                      "\"life_counter_bits\": %u, \"crc_poly\": \"0x%X\", \"crc_start\": \"0x%X\", "

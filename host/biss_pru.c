@@ -81,6 +81,10 @@ int biss_pru_image_check(biss_t *h, struct biss_errbuf *e) {
     if (rc || st.magic != BISS_MAGIC || pru == h->be.pru) {
         return rc;
     }
+    if (pru > 1) {
+        h->problem = biss_status_problem(&st, pru);
+        return biss_err(e, BISS_E_SHM_RESULT, "data RAM: %s (0x%08x)", h->problem, pru);
+    }
     return biss_err(e, BISS_E_FW_PRU,
                     "PRU%u runs an image assembled for PRU%u (BISS_ST_PRU): load "
                     "%s on PRU%u",

@@ -195,6 +195,22 @@ int biss_cd_job_ida(const biss_cd_job *j, uint8_t *ida) {
     return j->rc;
 }
 
+int biss_cd_job_slots(const biss_cd_job *j, struct biss_cd_slots *out) {
+    if (!j || !out) {
+        return BISS_E_INVAL;
+    }
+    if (!j->done) {
+        return BISS_E_CD_BUSY;
+    }
+    *out = (struct biss_cd_slots){
+        .idl = j->result.idl,
+        .ida = j->result.ida,
+        .header_cds = j->result.header_cds,
+        .ida_cds = j->result.ida_cds,
+    };
+    return BISS_OK;
+}
+
 void biss_cd_job_free(biss_cd_job *j) {
     free(j);
 }

@@ -91,12 +91,29 @@ int biss_run_ms(biss_t *h, unsigned ms) {
     return rc == BISS_E_TIMEOUT ? BISS_OK : rc;
 }
 
+/* The status words, refused (named in h->problem) where a running
+ * firmware never writes them. Handle locked. */
+static int status_words(biss_t *h, struct biss_shm_status *s) {
+    struct biss_proto_io io = biss_io(h);
+    uint32_t pru = 0;
+    int rc = biss_proto_status_get(&io, s);
+    if (!rc) {
+        rc = biss_proto_fw_pru_get(&io, &pru);
+    }
+    const char *why = rc ? NULL : biss_status_problem(s, pru);
+    if (why) {
+        h->problem = why;
+        return BISS_E_SHM_RESULT;
+    }
+    return rc;
+}
+
 static int status_locked(biss_t *h, struct biss_status *st) {
     struct biss_proto_io io = biss_io(h);
     struct biss_shm_status s;
     struct biss_shm_config blk;
     struct biss_shm_id id;
-    int rc = biss_proto_status_get(&io, &s);
+    int rc = status_words(h, &s);
     if (!rc) {
         rc = biss_pru_enabled(h, &st->pru_enabled);
     }
@@ -136,8 +153,7 @@ int biss_get_stats(biss_t *h, struct biss_stats *st) {
     }
     struct biss_shm_status s;
     pthread_mutex_lock(&h->lock);
-    struct biss_proto_io io = biss_io(h);
-    int rc = biss_proto_status_get(&io, &s);
+    int rc = status_words(h, &s);
     pthread_mutex_unlock(&h->lock);
     if (rc) {
         return rc;

@@ -51,6 +51,11 @@ static int read_sample_locked(biss_t *h, struct biss_sample *s) {
     if (!rc && h->configured && h->cfg_pub_seq_valid && (int32_t)(seq - h->cfg_pub_seq) <= 0) {
         return BISS_E_NO_SAMPLE; /* published under the previous configuration */
     }
+    const char *why = rc ? NULL : biss_result_problem(&h->cfg, h->configured, &r);
+    if (why) {
+        h->problem = why; /* the firmware never writes it: junk, named */
+        return BISS_E_SHM_RESULT;
+    }
     if (!rc) {
         rc = biss_sample_decode(&h->cfg, h->configured, seq, &r, s);
     }
@@ -128,6 +133,16 @@ int biss_line_delay(biss_t *h, struct biss_line_delay *d) {
     }
     *d = s.delay;
     return BISS_OK;
+}
+
+const char *biss_shm_problem(biss_t *h) {
+    if (!h) {
+        return "";
+    }
+    pthread_mutex_lock(&h->lock);
+    const char *why = h->problem ? h->problem : "";
+    pthread_mutex_unlock(&h->lock);
+    return why;
 }
 
 int biss_get_safety_stats(biss_t *h, struct biss_safety_stats *st) {

@@ -21,6 +21,8 @@ struct bissctl_opts {
     bool dump;               /* reg-read --dump: a hex dump */
     bool ida_test;           /* command --ida-test: withhold the command unless IDA = IDS */
     bool json;               /* read --json: one JSON object */
+    bool force;              /* command --force: send a command that changes how an encoder works */
+    unsigned time_limit_ms;  /* probe --time-limit (0: the library's default) */
     const char *command;
     unsigned count;      /* read -n */
     unsigned run_ms;     /* run --ms */

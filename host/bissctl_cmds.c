@@ -1,6 +1,8 @@
 /* bissctl_cmds.c - bissctl's subcommands on an open, configured handle. */
 #include "bissctl.h"
 
+#include "biss_cd.h"
+
 #include <stdbool.h>
 #include <stdio.h>
 #include <string.h>
@@ -11,6 +13,15 @@ const char bissctl_emulated_note[] =
 
 int bissctl_fail(const char *what, int err) {
     fprintf(stderr, "bissctl: %s: %s\n", what, biss_strerror(err));
+    return BISSCTL_FAIL;
+}
+
+/* The same, naming what data RAM held when the library refused it. */
+static int fail_h(biss_t *h, const char *what, int err) {
+    if (err != BISS_E_SHM_RESULT) {
+        return bissctl_fail(what, err);
+    }
+    fprintf(stderr, "bissctl: %s: %s: %s\n", what, biss_strerror(err), biss_shm_problem(h));
     return BISSCTL_FAIL;
 }
 
@@ -151,7 +162,7 @@ int bissctl_stats(biss_t *h, const struct bissctl_opts *o) {
     struct biss_stats st;
     int rc = biss_get_stats(h, &st);
     if (rc) {
-        return bissctl_fail("stats", rc);
+        return fail_h(h, "stats", rc);
     }
     print_stats(&st);
     return BISSCTL_OK;
@@ -161,7 +172,7 @@ int bissctl_info(biss_t *h, const struct bissctl_opts *o) {
     struct biss_status st;
     int rc = biss_get_status(h, &st);
     if (rc) {
-        return bissctl_fail("info", rc);
+        return fail_h(h, "info", rc);
     }
     printf("target=%s firmware=%s%s\n", biss_target_name(biss_target(h)),
            *biss_firmware_path(h) ? biss_firmware_path(h) : "(not known here)",
@@ -219,7 +230,7 @@ int bissctl_read(biss_t *h, const struct bissctl_opts *o) {
             if (o->json) {
                 printf("\n  ]\n}\n"); /* what was read stays valid JSON */
             }
-            return bissctl_fail("read", rc);
+            return fail_h(h, "read", rc);
         }
         if (o->json) {
             bissctl_json_frame(&s, layout ? &c : NULL, i == 0);
@@ -367,6 +378,35 @@ int bissctl_reg_write(biss_t *h, const struct bissctl_opts *o) {
     return rc ? bissctl_fail("reg-write", rc) : BISSCTL_OK;
 }
 
+/* The slaves a command goes to, in words. */
+static void print_targets(uint8_t ids, FILE *f) {
+    if (!ids) {
+        fprintf(f, "every slave (broadcast)");
+        return;
+    }
+    fprintf(f, "ID%s", (ids & (ids - 1)) ? "s" : "");
+    for (unsigned i = 0, n = 0; i < 8; i++) {
+        if (ids >> i & 1u) {
+            fprintf(f, "%s %u", n++ ? "," : "", i);
+        }
+    }
+}
+
+/* A command that changes how an encoder works goes out with --force only. */
+static int check_command(const struct bissctl_opts *o, uint8_t ids, uint8_t cmd) {
+    const biss_cd_cmd_info *c = biss_cd_cmd_effect(ids, cmd);
+    if (c->changes_encoder && !o->force) {
+        fprintf(stderr, "bissctl: command 0x%02x %u to ", ids, cmd);
+        print_targets(ids, stderr);
+        fprintf(stderr,
+                " %s: that changes how an encoder works; --force sends it (bissctl command "
+                "--help lists what each command does)\n",
+                c->effect);
+        return BISSCTL_USAGE;
+    }
+    return BISSCTL_OK;
+}
+
 int bissctl_command(biss_t *h, const struct bissctl_opts *o) {
     uint8_t ids, cmd, ida = 0;
     if (o->nargs != 2 || bissctl_parse_byte(o->args[0], 0xff, &ids) ||
@@ -374,7 +414,14 @@ int bissctl_command(biss_t *h, const struct bissctl_opts *o) {
         fprintf(stderr, "bissctl: command needs an ID mask 0..0xff and a command 0..3\n");
         return BISSCTL_USAGE;
     }
-    int rc = biss_command(h, ids, cmd, o->ida_test, &ida);
+    int rc = check_command(o, ids, cmd);
+    if (rc) {
+        return rc;
+    }
+    printf("command %u to ", cmd);
+    print_targets(ids, stdout);
+    printf(": %s\n", biss_cd_cmd_effect(ids, cmd)->effect);
+    rc = biss_command(h, ids, cmd, o->ida_test, &ida);
     if (!rc || rc == BISS_E_CD_IDA || rc == BISS_E_CD_WITHHELD) {
         printf("ids=0x%02x cmd=%u ida=0x%02x\n", ids, cmd, ida); /* which IDs answered */
     }
@@ -413,11 +460,13 @@ int bissctl_check_args(const struct bissctl_opts *o) {
         return BISSCTL_OK;
     }
     if (strcmp(o->command, "command") == 0) {
+        uint8_t cmd;
         if (o->nargs != 2 || bissctl_parse_byte(o->args[0], 0xff, &b) ||
-            bissctl_parse_byte(o->args[1], 3, &b)) {
+            bissctl_parse_byte(o->args[1], 3, &cmd)) {
             fprintf(stderr, "bissctl: command needs an ID mask 0..0xff and a command 0..3\n");
             return BISSCTL_USAGE;
         }
+        return check_command(o, b, cmd);
     }
     return BISSCTL_OK;
 }

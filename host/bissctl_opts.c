@@ -1,6 +1,8 @@
 /* bissctl_opts.c - bissctl's command line and help texts. */
 #include "bissctl.h"
 
+#include "biss_cd.h"
+
 #include <errno.h>
 #include <getopt.h>
 #include <stdio.h>
@@ -34,8 +36,8 @@ static const char common_help[] =
     "                     (DIR/firmware/devicetree/base) the default target comes from\n"
     "  --firmware-dir DIR where remoteproc finds firmware (default /lib/firmware)\n"
     "  --rproc-firmware N firmware name for remoteproc (default biss_master.elf, PRU1\n"
-    "                     biss_master_pru1.elf); the lock directory is $BISS_LOCK_DIR\n"
-    "                     (default /run/lock, else /tmp)\n"
+    "                     biss_master_pru1.elf); a PRU in use by another process is\n"
+    "                     refused, naming it (the lock is on the memory file)\n"
     "  --firmware FILE    IRAM image (default: $BISS_FIRMWARE, else the build's or the\n"
     "                     installed one for the PRU, in " BISS_FIRMWARE_DIR_TEXT ":\n"
     "                     biss_master.bin for PRU0, biss_master_pru1.bin for PRU1)\n"
@@ -50,7 +52,8 @@ static const char common_help[] =
     "  --slave D,C,POLY,START[,EW[,POS]]\n"
     "                     one slave (repeat, nearest first): data bits, CRC bits,\n"
     "                     CRC polynomial with its top term (0x43), CRC start, nW bit\n"
-    "                     (if the slave has nE/nW), position bits\n"
+    "                     (if the slave has nE/nW; - if not), position bits (at the\n"
+    "                     top of the word; default all above nE/nW, or the whole word)\n"
     "  --ssi BITS[,gray]  an SSI encoder instead: its word length, Gray-coded or not\n"
     "  --ssi-delay-ns NS  SSI: the line's round trip (no ACK to measure it by)\n"
     "  --trigger MODE     host, iep, iep-follow, free (default free); iep-follow: the\n"
@@ -122,20 +125,28 @@ static const char *command_help(const char *command) {
                "  register, or with --dump a hex dump (16 a line, with ASCII).\n";
     }
     if (strcmp(command, "command") == 0) {
-        return "bissctl [options] command IDS CMD [--ida-test]\n"
+        return "bissctl [options] command IDS CMD [--ida-test] [--force]\n"
                "  Sends BiSS command CMD (0..3) to the slaves in the ID mask IDS (bit i =\n"
-               "  ID i; 0 = all, a broadcast without acknowledge); prints the IDA answers.\n"
-               "  --ida-test: the firmware checks them before the stop bit and withholds\n"
-               "  the command unless they equal IDS (exit status 1, 'withheld').\n";
+               "  ID i; 0 = all, a broadcast without acknowledge); prints what it does and\n"
+               "  the IDA answers. --ida-test: the firmware checks them before the execute\n"
+               "  bit and withholds the command unless they equal IDS (exit status 1,\n"
+               "  'withheld'). A command that changes how an encoder works (switches\n"
+               "  something off, bypass, reserved, the maker's own) is refused (exit\n"
+               "  status 2) unless --force is given. What each does:\n";
     }
     if (strcmp(command, "probe") == 0) {
-        return "bissctl [options] probe [-n N] [FILE.json]\n"
+        return "bissctl [options] probe [-n N] [--time-limit S] [FILE.json]\n"
                "  Finds an unknown encoder's layout: captures N raw frames (default 1024) in\n"
                "  a capture layout (8 x 64 bits, no CRC), finds where the data ends and\n"
-               "  which data + CRC split (3..16 bits, any polynomial and start) fits every\n"
-               "  frame, per slave of a chain; proposes nE/nW and life counters; reads the\n"
-               "  identification registers (0x78..0x7F, 0x41..0x47). Prints the candidates\n"
-               "  with a verdict, a --slave line and a scenario for biss-sim (into FILE).\n"
+               "  which data + CRC split (3..16 bits, any polynomial and start) fits the\n"
+               "  frames, per slave of a chain; on the frames every CRC fits (the others\n"
+               "  are set aside as noise, and counted) it finds life counters and nE/nW;\n"
+               "  reads the identification registers (0x78..0x7F, 0x41..0x47). Prints the\n"
+               "  candidates with a verdict, a --slave line and a scenario for biss-sim\n"
+               "  (into FILE). The whole probe stops after S seconds (default 60; a\n"
+               "  decimal fraction allowed), the search also after a fixed amount of work\n"
+               "  (the same on every machine); a search stopped early is reported, never\n"
+               "  unique. Progress goes to stderr about once a second on a long search.\n"
                "  Exit status 1 when it cannot decide or the result is ambiguous.\n";
     }
     if (strcmp(command, "reg-write") == 0) {
@@ -146,17 +157,34 @@ static const char *command_help(const char *command) {
     return NULL;
 }
 
+/* The BiSS command table (proto/biss_cd_cmd.c) with its source. */
+static void print_command_table(void) {
+    for (int broadcast = 1; broadcast >= 0; broadcast--) {
+        for (unsigned cmd = 0; cmd < 4; cmd++) {
+            const biss_cd_cmd_info *c = biss_cd_cmd_effect(broadcast ? 0 : 1, cmd);
+            printf("    %s %u (%u%u): %s%s\n",
+                   broadcast ? "broadcast (IDS 0)" : "addressed        ", cmd, cmd >> 1, cmd & 1u,
+                   c->effect, c->changes_encoder ? " [--force]" : "");
+        }
+    }
+    printf("  Source: %s.\n", biss_cd_cmd_source);
+}
+
 void bissctl_usage(const char *command) {
     const char *h = command ? command_help(command) : NULL;
     if (h) {
-        printf("%s\n%s", h, common_help);
+        printf("%s", h);
+        if (strcmp(command, "command") == 0) {
+            print_command_table();
+        }
+        printf("\n%s", common_help);
         return;
     }
     printf("usage: bissctl [options] COMMAND [command options]\n"
            "BiSS-C master on a PRU (emulated or real) through libbiss.\n"
            "Commands: info, read [-n N], stats, run [--ms MS], trigger, start, stop,\n"
-           "          reg-read ADDR [-n N], reg-write ADDR BYTE..., command IDS CMD,\n"
-           "          probe [-n N] [FILE.json]\n"
+           "          reg-read ADDR [-n N], reg-write ADDR BYTE..., command IDS CMD [--force],\n"
+           "          probe [-n N] [--time-limit S] [FILE.json]\n"
            "          (also spelt reg read, reg write, cmd; bissctl COMMAND --help for each)\n\n%s",
            common_help);
 }
@@ -215,7 +243,7 @@ int bissctl_parse_byte(const char *s, unsigned max, uint8_t *v) {
     return 0;
 }
 
-/* D,C,POLY,START[,EW[,POS]] */
+/* D,C,POLY,START[,EW[,POS]]; EW "-": no nE/nW (a POS may follow) */
 static int parse_slave(const char *arg, struct biss_slave_config *s) {
     char buf[128];
     if (snprintf(buf, sizeof buf, "%s", arg) >= (int)sizeof buf) {
@@ -223,14 +251,20 @@ static int parse_slave(const char *arg, struct biss_slave_config *s) {
     }
     uint32_t f[6];
     int n = 0;
+    bool no_ew = false;
     for (char *save = NULL, *tok = strtok_r(buf, ",", &save); tok;
          tok = strtok_r(NULL, ",", &save)) {
+        if (n == 4 && strcmp(tok, "-") == 0) {
+            no_ew = true;
+            f[n++] = 0;
+            continue;
+        }
         if (n == 6 || parse_u32(tok, &f[n])) {
             return -1;
         }
         n++;
     }
-    if (n < 4) {
+    if (n < 4 || (no_ew && n == 5)) {
         return -1;
     }
     *s = (struct biss_slave_config){
@@ -238,7 +272,7 @@ static int parse_slave(const char *arg, struct biss_slave_config *s) {
         .crc_bits = f[1],
         .crc_poly = f[2],
         .crc_start = f[3],
-        .has_ew = n >= 5,
+        .has_ew = n >= 5 && !no_ew,
         .ew_shift = n >= 5 ? f[4] : 0,
         .pos_bits = n >= 6 ? f[5] : 0,
     };
@@ -278,6 +312,8 @@ enum {
     OPT_RPROC_FW,
     OPT_PRU,
     OPT_CONFIG,
+    OPT_FORCE,
+    OPT_TIME_LIMIT,
 };
 
 static const struct option long_opts[] = {
@@ -313,6 +349,8 @@ static const struct option long_opts[] = {
     {"rproc-firmware", required_argument, NULL, OPT_RPROC_FW},
     {"pru", required_argument, NULL, OPT_PRU},
     {"config", required_argument, NULL, OPT_CONFIG},
+    {"force", no_argument, NULL, OPT_FORCE},
+    {"time-limit", required_argument, NULL, OPT_TIME_LIMIT},
     {"help", no_argument, NULL, 'h'},
     {NULL, 0, NULL, 0},
 };
@@ -325,6 +363,18 @@ static int parse_cable(const char *arg, double *m) {
         return -1;
     }
     *m = v;
+    return 0;
+}
+
+/* Seconds (a decimal fraction allowed) as ms, 1 ms .. a day. */
+static int parse_seconds(const char *arg, unsigned *ms) {
+    char *end;
+    errno = 0;
+    double v = strtod(arg, &end);
+    if (errno || *end || end == arg || !(v >= 0.001 && v <= 86400)) {
+        return -1;
+    }
+    *ms = (unsigned)(v * 1000.0 + 0.5);
     return 0;
 }
 
@@ -479,7 +529,7 @@ static int take_config_opt(int c, const char *arg, struct bissctl_opts *o) {
     case OPT_CHECK_SPEED:
         return biss_safety_parse_speed(arg, &o->checks)
                    ? usage_error("--check-speed '%s': expected S,CPS (slave 0..7, counts per "
-                                 "second > 0)",
+                                 "second 1e-9..1e18)",
                                  arg)
                    : 0;
     case OPT_CHECK_PAIR:
@@ -523,6 +573,13 @@ static int take_command_opt(int c, const char *arg, struct bissctl_opts *o) {
     case OPT_JSON:
         o->json = true;
         return 0;
+    case OPT_FORCE:
+        o->force = true;
+        return 0;
+    case OPT_TIME_LIMIT:
+        return parse_seconds(arg, &o->time_limit_ms)
+                   ? usage_error("--time-limit '%s': expected seconds, 0.001..86400", arg)
+                   : 0;
     case 'h':
         o->help = true;
         return 0;

@@ -2,8 +2,10 @@
  * the wire, its identification registers, and the options to read it. */
 #include "biss_probe.h"
 #include "bissctl.h"
+#include "safe_file.h"
 
 #include <errno.h>
+#include <limits.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -23,11 +25,15 @@ static void print_slave(unsigned i, const struct biss_probe_slave *s, unsigned f
         printf("; no nE/nW (the two bits were 1 in %u%% of frames)", s->ew_ones_pct);
     }
     if (s->lc_bits) {
-        printf("; %u-bit life counter", s->lc_bits);
+        printf("; %u-bit life counter%s", s->lc_bits,
+               s->lc_open ? " (or wider: it never wrapped)" : "");
     }
     printf("\n");
 }
 
+/* The layout as options: every field found. nE/nW's bit (the position is
+ * above them), or "-" and the position's width above a counter without
+ * them; a counter is checked (--check-life), which also names it. */
 static void print_slave_opts(const struct biss_probe_layout *l) {
     printf("options:");
     for (unsigned i = 0; i < l->nslaves; i++) {
@@ -35,6 +41,13 @@ static void print_slave_opts(const struct biss_probe_layout *l) {
         printf(" --slave %u,%u,0x%X,0x%X", s->data_bits, s->crc_bits, s->crc_poly, s->crc_start);
         if (s->has_ew) {
             printf(",%u", s->ew_shift);
+        } else if (s->lc_bits) {
+            printf(",-,%u", s->data_bits - s->lc_bits);
+        }
+    }
+    for (unsigned i = 0; i < l->nslaves; i++) {
+        if (l->slave[i].lc_bits) {
+            printf(" --check-life %u,%u", i, l->slave[i].lc_bits);
         }
     }
     printf("\n");
@@ -92,15 +105,9 @@ static void print_reg_layout(const struct biss_probe_report *r) {
 }
 
 static int write_scenario(const char *path, const char *json) {
-    FILE *f = fopen(path, "w");
-    if (!f) {
-        fprintf(stderr, "bissctl: %s: %s\n", path, strerror(errno));
-        return BISSCTL_FAIL;
-    }
-    int bad = fputs(json, f) < 0;
-    bad |= fclose(f) != 0;
-    if (bad) {
-        fprintf(stderr, "bissctl: %s: write failed\n", path);
+    char err[PATH_MAX + 128];
+    if (safe_file_write(path, json, strlen(json), err, sizeof err) != 0) {
+        fprintf(stderr, "bissctl: %s\n", err);
         return BISSCTL_FAIL;
     }
     printf("scenario written to %s (biss-sim --scenario %s)\n", path, path);
@@ -121,6 +128,31 @@ static int print_ssi(const struct bissctl_opts *o, const struct biss_probe_ssi *
     return BISSCTL_OK;
 }
 
+/* A long search's progress, on stderr (stdout stays the result). */
+static void progress(void *ctx, const struct biss_probe_progress *p) {
+    (void)ctx;
+    fprintf(stderr,
+            "bissctl: probe: searching, %u of %u bit offsets tried, %.0f%% of the work limit, "
+            "%.0f of %.0f s\n",
+            p->offsets_searched, p->end_bit, 100.0 * (double)p->work / (double)p->work_limit,
+            p->elapsed_ms / 1000.0, p->time_limit_ms / 1000.0);
+}
+
+/* What the analysis cost, and what stopped it if anything did. */
+static void print_cost(const struct biss_probe_report *r, unsigned limit_ms) {
+    const struct biss_probe_result *w = &r->wire;
+    printf("analysis: %.2f s, %.3g steps", w->elapsed_ms / 1000.0, (double)w->work);
+    if (w->ran_out == BISS_PROBE_RAN_OUT_WORK) {
+        printf(" (stopped at the work limit, %.3g steps)", (double)BISS_PROBE_WORK_LIMIT);
+    } else if (w->ran_out == BISS_PROBE_RAN_OUT_TIME) {
+        printf(" (stopped at the time limit, %.3g s)", limit_ms / 1000.0);
+    }
+    if (r->capture_cut) {
+        printf("; the time limit (%.3g s) ended the capture", limit_ms / 1000.0);
+    }
+    printf("\n");
+}
+
 int bissctl_probe(biss_t *h, const struct bissctl_opts *o) {
     if (o->nargs > 1) {
         fprintf(stderr, "bissctl: probe takes one FILE.json, not '%s'\n", o->args[1]);
@@ -131,6 +163,7 @@ int bissctl_probe(biss_t *h, const struct bissctl_opts *o) {
         .frames = o->count > 1 ? o->count : DEFAULT_FRAMES,
         .read_regs = true,
         .ssi_delay_ns = o->cfg.ssi_delay_ns,
+        .limits = {.time_limit_ms = o->time_limit_ms, .progress = progress},
     };
     static struct biss_probe_report r;
     int rc = biss_probe(h, &p, &r);
@@ -140,9 +173,15 @@ int bissctl_probe(biss_t *h, const struct bissctl_opts *o) {
     const struct biss_probe_result *w = &r.wire;
     printf("captured %u frames (%u without ACK, %u invalid), analysed %u; frame length %u bits "
            "after the CDS\n",
-           w->frames + w->dropped, r.no_slave, r.invalid, w->frames, w->end_bit);
+           w->frames + r.no_slave + r.invalid, r.no_slave, r.invalid, w->frames, w->end_bit);
     printf("line delay %.0f ns, processing time up to %u MA clocks\n", r.delay_ns, r.busy_max);
+    print_cost(&r, o->time_limit_ms ? o->time_limit_ms : BISS_PROBE_TIME_LIMIT_MS);
     printf("verdict: %s: %s\n", biss_probe_verdict_name(w->verdict), w->reason);
+    if (w->verdict != BISS_PROBE_NONE && w->nkept && w->dropped) {
+        printf("set aside as noise: %u of %u frames (the CRCs of candidate 1 fail them); nE/nW "
+               "and life counters judged on the other %u\n",
+               w->dropped, w->frames, w->frames - w->dropped);
+    }
     /* the best, or with an ambiguous verdict the first three */
     unsigned show = w->verdict == BISS_PROBE_AMBIGUOUS ? 3u : 1u;
     show = show < w->nkept ? show : w->nkept;

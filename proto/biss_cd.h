@@ -14,14 +14,16 @@
  *
  * Frames as built here (CDM = master bit per frame, MSB first everywhere;
  * classes in brackets, CRC = the firmware's CRC4 bits):
- *   register access  S=1, CTS=1 ID(3) ADR(7) [DATA] (the answers to CTS and
- *                    the 7 bits after it: ID lock IDL0..7), CRC, R W [ECHO], then
+ *   register access  S=1, CTS=1 ID(3) ADR(7) [DATA] (the answers to S and the
+ *                    7 bits after it: ID lock IDL0..7; host/CD.md, "IDL"),
+ *                    CRC, R W [ECHO], then
  *                    per byte: S=1, WAIT (CDM 1 while the slave's S is
  *                    late), D(8), CRC4(4), P=0 (read: D 0s
  *                    [DATA], CRC 0s [CHECK]; write: D [ECHO], CRC [ECHO]);
  *                    finally S=0
  *   BiSS command     S=1, CTS=0 IDS(8, first = ID 0) CMD(2) [DATA], CRC,
- *                    8 IDA slots (CDM 0), then the bit that executes it:
+ *                    8 IDA slots (CDM 0; IDA0 answers the last CRC bit,
+ *                    host/CD.md, "IDA"), then the bit that executes it:
  *                    EX = 1 by default (iC-MB4 rev B2, Table 31: "EX bit
  *                    after IDA"), or P = 0 (biss_cd_build_command_ex);
  *                    with the IDA test it goes out inverted if the IDA
@@ -84,9 +86,9 @@ typedef struct {
     uint8_t wdata[BISS_CD_MAX_BYTES]; /* write: the bytes sent */
     uint8_t ids, cmd;                 /* command: ids bit i = slave ID i */
     uint16_t rw;                      /* register access: R step (W is rw + 1) */
-    uint16_t idl;                     /* register access: step answered by IDL slot 0 (CTS) */
+    uint16_t idl; /* register access: step whose answer is IDL0 (S, or CTS: biss_cd_set_idl) */
     biss_cd_byte_steps byte[BISS_CD_MAX_BYTES];
-    uint16_t ida;  /* command: step whose answer is IDA slot 0 (slot i: ida + i) */
+    uint16_t ida;  /* command: step whose answer is IDA slot 0 (slot i: ida + i; biss_cd_set_ida) */
     bool ida_test; /* command: the firmware withholds P unless the IDA answers are ids */
     uint16_t end;  /* the step ending the control frame: last S = 0, or a command's P */
 } biss_cd_prog;
@@ -127,6 +129,13 @@ typedef struct {
     bool idl_answered;    /* all 8 IDL answers were recorded */
     uint8_t ida;          /* command: IDA slot answers, bit i = ID i */
     uint8_t ida_expected; /* command: the addressed IDs (0 for a broadcast) */
+    /* The slots that answered 1 around those fields, whichever reading of
+     * them is right (host/CD.md): a register access's answers to S and
+     * the 8 steps after it (bit k: step k, S = 0), a command's to its last
+     * header CRC step and the 8 IDA steps (bit 0: the CRC step); 0 for
+     * slots not recorded. */
+    uint16_t header_cds;
+    uint16_t ida_cds;
 } biss_cd_result;
 
 /* ---- CRC and header bits (biss_cd_crc.c) ---- */
@@ -162,11 +171,42 @@ biss_cd_err biss_cd_build_command(biss_cd_prog *p, uint8_t ids, unsigned cmd, bo
 /* As biss_cd_build_command, with the execute bit ex (0 or 1) the slaves want. */
 biss_cd_err biss_cd_build_command_ex(biss_cd_prog *p, uint8_t ids, unsigned cmd, bool ida_test,
                                      unsigned ex);
+/* Where the ID-lock answers sit (host/CD.md, "IDL"): IDL0 the answer to
+ * the frame's S (the default: the only source that places it, an encoder
+ * maker's open master) or to CTS (one slot later). BISS_CD_E_ARG unless p
+ * is a register access. */
+typedef enum { BISS_CD_IDL_AT_S, BISS_CD_IDL_AT_CTS } biss_cd_idl_at;
+#define BISS_CD_IDL_DEFAULT BISS_CD_IDL_AT_S
+biss_cd_err biss_cd_set_idl(biss_cd_prog *p, biss_cd_idl_at at);
+/* Where a command's IDA slots sit (host/CD.md, "IDA"): IDA0 the answer to
+ * the last header CRC bit (the default; the firmware's IDA test reads
+ * these) or to the first IDA step (one slot later: reported only, so not
+ * with ida_test). BISS_CD_E_ARG unless p is a command that allows it. */
+typedef enum { BISS_CD_IDA_AT_CRC, BISS_CD_IDA_AT_SLOT } biss_cd_ida_at;
+#define BISS_CD_IDA_DEFAULT BISS_CD_IDA_AT_CRC
+biss_cd_err biss_cd_set_ida(biss_cd_prog *p, biss_cd_ida_at at);
 /* frames (1..BISS_CD_MAX_STEPS) of CDM 0: lets a slave left inside a
  * frame (after BISS_CD_E_NO_START or BISS_CD_E_FRAME) finish it and re-arm. */
 biss_cd_err biss_cd_build_idle(biss_cd_prog *p, unsigned frames);
 /* Any program: n (1..BISS_CD_MAX_STEPS) BISS_CD_STEP values. */
 biss_cd_err biss_cd_build_raw(biss_cd_prog *p, const uint8_t *ops, unsigned n);
+
+/* ---- what a BiSS command does (biss_cd_cmd.c; host/CD.md, "Commands") ----
+ * The BiSS C command table, as Microchip's dsPIC33A BiSS documentation
+ * reproduces it (the reference documents give the codes but not their
+ * effects: iC-MB4 Table 33 "CMD(1:0) ... BiSS Command 00 .. 11", "some ...
+ * are predefined in the BiSS C Protocol Description, others can be used for
+ * device specific functionality of the slave"). */
+typedef struct {
+    const char *effect; /* what the addressed slaves (or all, broadcast) do */
+    /* It changes how an encoder works (switches something off, bypass,
+     * reserved or the slave maker's own): bissctl sends it with --force only. */
+    bool changes_encoder;
+} biss_cd_cmd_info;
+/* The effect of cmd (0..3) sent to ids (0: broadcast); NULL for cmd > 3. */
+const biss_cd_cmd_info *biss_cd_cmd_effect(uint8_t ids, unsigned cmd);
+/* Where the table comes from, for help texts. */
+extern const char biss_cd_cmd_source[];
 
 /* ---- answers (biss_cd_parse.c) ---- */
 

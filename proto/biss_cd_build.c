@@ -91,7 +91,7 @@ static biss_cd_err build_register(biss_cd_prog *p, bool write, unsigned id, unsi
     p->id = (uint8_t)id;
     p->addr = (uint8_t)addr;
     p->count = (uint8_t)count;
-    p->idl = (uint16_t)(p->len + 1u); /* CTS, after S */
+    p->idl = (uint16_t)(p->len + (BISS_CD_IDL_DEFAULT == BISS_CD_IDL_AT_CTS));
     put_header(p, biss_cd_reg_header(p->id, p->addr));
     p->rw = p->len;
     put_bits(p, write ? 1u : 2u, 2, BISS_CDCL_ECHO); /* R W, echoed by the slave */
@@ -130,13 +130,33 @@ biss_cd_err biss_cd_build_command_ex(biss_cd_prog *p, uint8_t ids, unsigned cmd,
     p->ids = ids;
     p->cmd = (uint8_t)cmd;
     put_header(p, biss_cd_cmd_header(ids, p->cmd));
-    /* IDA slot 0 is the CDS right after the last CRC bit */
-    p->ida = (uint16_t)(p->len - 1);
+    /* IDA slot 0 is the CDS right after the last CRC bit (the default) */
+    p->ida = (uint16_t)(p->len - (BISS_CD_IDA_DEFAULT == BISS_CD_IDA_AT_CRC));
     put_bits(p, 0, 8, BISS_CDCL_NONE); /* the IDA slots */
     p->end = p->len;
     p->ida_test = ida_test;
     put(p, ex ? BISS_CDOP_1 : BISS_CDOP_0); /* the slaves execute the command on it */
     put_tail(p);
+    return BISS_CD_OK;
+}
+
+/* The frame's S is step 0 of a register access; the header's last CRC
+ * step is 15 of a command. */
+biss_cd_err biss_cd_set_idl(biss_cd_prog *p, biss_cd_idl_at at) {
+    if ((p->kind != BISS_CD_READ && p->kind != BISS_CD_WRITE) ||
+        (at != BISS_CD_IDL_AT_S && at != BISS_CD_IDL_AT_CTS)) {
+        return BISS_CD_E_ARG;
+    }
+    p->idl = at == BISS_CD_IDL_AT_CTS;
+    return BISS_CD_OK;
+}
+
+biss_cd_err biss_cd_set_ida(biss_cd_prog *p, biss_cd_ida_at at) {
+    if (p->kind != BISS_CD_COMMAND || (at != BISS_CD_IDA_AT_CRC && at != BISS_CD_IDA_AT_SLOT) ||
+        (p->ida_test && at != BISS_CD_IDA_DEFAULT)) {
+        return BISS_CD_E_ARG;
+    }
+    p->ida = (uint16_t)(15u + (at == BISS_CD_IDA_AT_SLOT));
     return BISS_CD_OK;
 }
 

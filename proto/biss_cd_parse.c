@@ -127,6 +127,16 @@ static bool frame_ended(const biss_cd_prog *p, const biss_cd_answer *a, unsigned
     return a->status != BISS_CDST_ERR_FRAME || limit > p->end;
 }
 
+/* Answers to steps from .. from + n - 1 that were recorded, bit k = step
+ * from + k. */
+static uint16_t recorded(const biss_cd_answer *a, unsigned from, unsigned n, unsigned limit) {
+    uint16_t m = 0;
+    for (unsigned k = 0; k < n && from + k < limit; k++) {
+        m |= (uint16_t)(biss_cd_answer_bit(a, from + k) << k);
+    }
+    return m;
+}
+
 static void parse_register(const biss_cd_prog *p, const biss_cd_answer *a, biss_cd_result *r) {
     unsigned limit = answered_limit(p, a);
     r->nbytes = p->count;
@@ -136,6 +146,7 @@ static void parse_register(const biss_cd_prog *p, const biss_cd_answer *a, biss_
     for (unsigned i = 0; r->idl_answered && i < 8; i++) {
         r->idl |= (uint8_t)(biss_cd_answer_bit(a, p->idl + i) << i);
     }
+    r->header_cds = recorded(a, 0, 9, limit);
     r->rw_echo_ok = rw_echoed(p, a, limit);
     if (!r->rw_echo_ok) {
         r->err = p->rw + 2u > limit ? BISS_CD_E_FRAME : BISS_CD_E_NO_ECHO;
@@ -157,6 +168,7 @@ static void parse_register(const biss_cd_prog *p, const biss_cd_answer *a, biss_
 }
 
 static void parse_command(const biss_cd_prog *p, const biss_cd_answer *a, biss_cd_result *r) {
+    r->ida_cds = recorded(a, 15, 9, answered_limit(p, a));
     if (p->ida + 8u > answered_limit(p, a)) {
         r->err = BISS_CD_E_FRAME;
         return;

@@ -2,6 +2,8 @@
  * sees it: every field, each with its own error code. */
 #include "biss_proto.h"
 
+#include "biss/biss_rules.h"
+
 void biss_config_default(struct biss_config *c) {
     if (!c) {
         return;
@@ -34,7 +36,7 @@ static int check_crc(const struct biss_slave_config *s) {
                : s->crc_poly != 0                    ? BISS_E_CRC_POLY
                                                      : BISS_E_CRC_START;
     }
-    if (poly_degree(s->crc_poly) != (int)s->crc_bits) {
+    if (!biss_crc_poly_valid(s->crc_poly) || poly_degree(s->crc_poly) != (int)s->crc_bits) {
         return BISS_E_CRC_POLY;
     }
     if (s->crc_start >> s->crc_bits) {

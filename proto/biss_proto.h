@@ -48,6 +48,14 @@ int biss_proto_half_check(unsigned half);
 /* The same as a sentence, NULL when the firmware takes it. */
 const char *biss_proto_half_problem(unsigned half);
 
+/* ---- the firmware image (biss_image_pru.c) ---- */
+
+/* The PRU (0 or 1) a raw IRAM image was assembled for, from its words:
+ * the PRU_NUM its start-up stores to BISS_ST_PRU, followed through the
+ * straight-line code from address 0; -1 when the words do not tell (no
+ * such store before a branch, or its value not an LDI's). */
+int biss_image_pru(const void *image, size_t bytes);
+
 /* ---- the slave's data word (biss_layout.c) ---- */
 
 /* A BiSS slave's single-cycle data, MSB first on the wire: position, fill
@@ -77,11 +85,26 @@ uint64_t biss_proto_from_gray(uint64_t g);
 /* Degree of a CRC polynomial written with its top term (0x43 -> 6), 0 for 0. */
 unsigned biss_proto_crc_bits(uint32_t poly);
 
+/* ---- what the firmware can write (biss_result_check.c) ---- */
+
+/* A published result the firmware cannot have written, named (NULL: it
+ * can have): flags, half period, slave count, line delay, sample point,
+ * lag, CDS/CDM, processing time, each slave's status and data (the
+ * configuration's layout when configured). */
+const char *biss_result_problem(const struct biss_config *c, bool configured,
+                                const struct biss_shm_result *r);
+/* Whether result flags are a frame's that ran to its end (VALID or
+ * ACK_JUMP, with CRC_ERROR, SMA). */
+bool biss_result_ran_to_end(uint32_t flags);
+/* Status words a running firmware (magic) cannot have written, named, or
+ * NULL; st_pru is BISS_ST_PRU. */
+const char *biss_status_problem(const struct biss_shm_status *st, uint32_t st_pru);
+
 /* ---- samples and line delay (biss_sample_decode.c) ---- */
 
 /* 0, or BISS_E_SHM_RESULT for a result no firmware with this
- * configuration publishes (slave count). configured false: no layout,
- * the whole words and no nE/nW claims. */
+ * configuration publishes (biss_result_problem). configured false: no
+ * layout, the whole words and no nE/nW claims. */
 int biss_sample_decode(const struct biss_config *c, bool configured, uint32_t seq,
                        const struct biss_shm_result *r, struct biss_sample *s);
 void biss_delay_decode(uint16_t raw, uint16_t avg, unsigned half, struct biss_line_delay *d);

@@ -27,8 +27,22 @@
  * the time since the last one accepted (plus a count), while a word read
  * one place off from bit k on differs in the bits below k (by up to
  * 2^(width - k)). What such a check cannot see is a misframing in the
- * lowest bits, within that reach of the truth. */
+ * lowest bits, within that reach of the truth.
+ *
+ * The time between two frames comes from what the firmware publishes with
+ * each: in IEP trigger, and following another channel's IEP, the frame
+ * numbers times the period (the count restarts every period); free-running
+ * and with the host's trigger the IEP timestamps, the time from the frame
+ * start that latched one position to the one that latched the other. A
+ * glitch on MA that starts a slave frame the master never made lengthens
+ * that time (the master waits for the slave to be ready), and the reach
+ * with it, but the encoder moves while the master waits: bounding the
+ * reach by the frames that ran instead would refuse positions the encoder
+ * does reach (README, "Noise and faults"). A count that went backwards
+ * tells no time at all: the position is refused, not passed unjudged. */
 #include "biss_proto.h"
+
+#include "biss/biss_rules.h"
 
 #include <errno.h>
 #include <math.h>
@@ -77,6 +91,14 @@ static int check_pair(const struct biss_config *c, const struct biss_pair_check 
     return BISS_OK;
 }
 
+/* IEP-triggered frames are timed by the period alone (the count restarts
+ * every period): a speed check there needs it, following another
+ * channel's IEP too (that channel's period). */
+static bool timed(const struct biss_config *c) {
+    bool iep = c->trigger == BISS_TRIGGER_IEP || c->trigger == BISS_TRIGGER_IEP_FOLLOW;
+    return !iep || c->iep_period_ns > 0;
+}
+
 int biss_safety_config_check(const struct biss_config *c) {
     for (unsigned i = 0; i < BISS_API_MAX_SLAVES; i++) {
         int rc = check_life(c, i);
@@ -87,7 +109,7 @@ int biss_safety_config_check(const struct biss_config *c) {
             return BISS_E_SAFETY_EW;
         }
         double v = c->slave[i].max_speed;
-        if (v != 0 && (i >= c->nslaves || !isfinite(v) || v < 0)) {
+        if (v != 0 && (i >= c->nslaves || !biss_max_speed_valid(v) || !timed(c))) {
             return BISS_E_SAFETY_SPEED;
         }
     }
@@ -203,33 +225,33 @@ static bool ew_static(const struct biss_config *c, struct biss_safety_state *st,
     return misframed;
 }
 
-/* Seconds from the reference's frame to frame s, or -1 where they cannot
- * be told: by the frame numbers in IEP trigger (the count restarts every
- * period), else by the IEP timestamps (5 ns counts, modulo 2^32). */
+/* Seconds from the reference's frame to frame s (the module comment),
+ * or -1 where no time can be told: the IEP count went backwards (another
+ * channel's IEP trigger restarts it every period, or the frames lie more
+ * than 10.7 s apart). */
 static double elapsed_s(const struct biss_config *c, const struct biss_pos_ref *ref,
                         const struct biss_sample *s) {
-    if (!ref->set) {
-        return -1;
-    }
     if (c->trigger == BISS_TRIGGER_IEP || c->trigger == BISS_TRIGGER_IEP_FOLLOW) {
-        if (!c->iep_period_ns) {
-            return -1;
-        }
+        /* iep_period_ns > 0: biss_safety_config_check */
         return (double)(uint32_t)(s->frame - ref->frame) * c->iep_period_ns * 1e-9;
     }
-    return (double)(uint32_t)(s->timestamp - ref->ts) / BISS_PRU_HZ;
+    int32_t counts = (int32_t)(s->timestamp - ref->ts);
+    return counts > 0 ? (double)counts / BISS_PRU_HZ : -1;
 }
 
 /* Slave i's position in frame s against a reference: 1 beyond reach
  * (further than max_speed times the time between, plus one count for the
- * two readings' rounding; distances modulo 2^width, a wrap is no jump), 0
- * within, -1 not judged (no reference or time, a reach of half the circle
- * or more). */
+ * two readings' rounding; distances modulo 2^width, a wrap is no jump; or
+ * no time to tell it by), 0 within, -1 not judged (no reference, a reach
+ * of half the circle or more). */
 static int beyond(const struct biss_config *c, unsigned i, const struct biss_pos_ref *ref,
                   const struct biss_sample *s) {
+    if (!ref->set) {
+        return -1;
+    }
     double dt = elapsed_s(c, ref, s);
     if (dt < 0) {
-        return -1;
+        return 1;
     }
     unsigned w = biss_proto_pos_bits(&c->slave[i]);
     double dist = (double)magnitude(circular_diff(s->slave[i].position, ref->pos, w));
@@ -416,7 +438,7 @@ int biss_safety_parse_speed(const char *arg, struct biss_config *c) {
     errno = 0;
     double cps = strtod(comma + 1, &end);
     if (numbers(slave, v, 1) != 1 || v[0] >= BISS_API_MAX_SLAVES || errno || end == comma + 1 ||
-        *end || !isfinite(cps) || cps <= 0) {
+        *end || !biss_max_speed_valid(cps)) {
         return BISS_E_INVAL;
     }
     c->slave[v[0]].max_speed = cps;

@@ -73,9 +73,9 @@ int biss_sample_decode(const struct biss_config *c, bool configured, uint32_t se
     s->sample_point = r->sample_point;
     s->lag_periods = r->lag_periods;
     biss_delay_decode(r->delay_raw, r->delay_avg, r->half, &s->delay);
-    /* data RAM is untrusted: a slave count the configuration does not
-     * have (or past the limit) is junk, not data */
-    if (r->nslaves > BISS_MAX_SLAVES || (configured && s->valid && r->nslaves != c->nslaves)) {
+    /* data RAM is untrusted: what the firmware never writes is junk, not
+     * data */
+    if (biss_result_problem(c, configured, r)) {
         return BISS_E_SHM_RESULT;
     }
     s->nslaves = r->nslaves;

@@ -5,6 +5,7 @@
  * them succeeded, so a failed run never leaves a partial file behind.
  */
 #include "pruasm.h"
+#include "safe_file.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -244,12 +245,13 @@ static void print_message(void *ctx, enum pruasm_level level, const char *file, 
         fprintf(fp, "%s%s\n\n", tag[level], text);
 }
 
-/* Output files staged under temporary names. */
+/* Output files staged (safe_file.h: a temporary file beside each, put in
+ * place only when all were written; never over what is not a regular
+ * file). */
 struct staged {
-    char tmp[MAX_OUTPUTS][300];
+    struct safe_file f[MAX_OUTPUTS];
     char final[MAX_OUTPUTS][300];
     int n;
-    mode_t umask; /* the process's, for the outputs' modes */
 };
 
 static int stage(struct staged *s, const char *base, const char *suffix, const void *data,
@@ -257,36 +259,22 @@ static int stage(struct staged *s, const char *base, const char *suffix, const v
     if (!data)
         return -1;
     int i = s->n;
+    char err[PATH_MAX + 128];
     snprintf(s->final[i], sizeof s->final[i], "%s%s", base, suffix);
-    snprintf(s->tmp[i], sizeof s->tmp[i], "%s%s.XXXXXX", base, suffix);
-    int fd = mkstemp(s->tmp[i]);
-    if (fd < 0) {
-        fprintf(stderr, "Error: Unable to open output file: %s\n\n", s->final[i]);
+    if (safe_file_open(&s->f[i], s->final[i], err, sizeof err) != 0) {
+        fprintf(stderr, "Error: Unable to open output file: %s (%s)\n\n", s->final[i], err);
         return -1;
     }
     s->n++;
-    /* mkstemp creates 0600; the outputs get what fopen would give them */
-    if (fchmod(fd, 0666 & ~s->umask) != 0) {
-        fprintf(stderr, "Error: Unable to open output file: %s\n\n", s->final[i]);
-        close(fd);
-        return -1;
-    }
-    FILE *fp = fdopen(fd, "wb");
-    if (!fp) {
-        close(fd);
-        return -1;
-    }
-    int ok = fwrite(data, 1, len, fp) == len;
-    ok &= fclose(fp) == 0;
-    if (!ok)
+    if (fwrite(data, 1, len, s->f[i].f) != len || fflush(s->f[i].f) != 0) {
         fprintf(stderr, "Error: File write error: %s\n\n", s->final[i]);
-    return ok ? 0 : -1;
+        return -1;
+    }
+    return 0;
 }
 
 static int write_outputs(const struct cli *o, const char *base, const struct pruasm_image *img) {
     struct staged s = {0};
-    s.umask = umask(0); /* read it: umask has no getter */
-    umask(s.umask);
     int rc = 0;
     size_t len = 0;
     char *text;
@@ -322,17 +310,16 @@ static int write_outputs(const struct cli *o, const char *base, const struct pru
     }
     if (!rc && (o->outputs & OUT_LST))
         rc = stage(&s, base, ".lst", img->listing, strlen(img->listing));
+    /* all written: each put in place; a failed run leaves the old ones */
     for (int i = 0; i < s.n; i++) {
-        if (!rc && rename(s.tmp[i], s.final[i])) {
-            fprintf(stderr, "Error: Unable to open output file: %s\n\n", s.final[i]);
+        char err[PATH_MAX + 128];
+        if (rc) {
+            safe_file_abort(&s.f[i]);
+        } else if (safe_file_close(&s.f[i], err, sizeof err) != 0) {
+            fprintf(stderr, "Error: File write error: %s (%s)\n\n", s.final[i], err);
             rc = -1;
         }
-        if (rc)
-            unlink(s.tmp[i]);
     }
-    if (rc) /* do not leave some outputs of a failed run behind either */
-        for (int i = 0; i < s.n; i++)
-            unlink(s.final[i]);
     return rc;
 }
 

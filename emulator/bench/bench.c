@@ -446,6 +446,8 @@ void bench_free(struct bench *b) {
 int bench_open_vcd(struct bench *b, const char *path, int64_t unit_ps) {
     bench_close_vcd(b);
     if (!vcd_unit_valid(unit_ps)) {
+        snprintf(b->vcd.err, sizeof b->vcd.err, "%s: timescale %lld ps: not 1, 10, 100 or 1000",
+                 path, (long long)unit_ps);
         errno = EINVAL;
         return -1;
     }
@@ -467,6 +469,10 @@ int bench_open_vcd(struct bench *b, const char *path, int64_t unit_ps) {
     }
     vcd_change(&b->vcd, now, VCD_FRAME_WIRE, 0);
     return 0;
+}
+
+const char *bench_vcd_error(const struct bench *b) {
+    return vcd_error(&b->vcd);
 }
 
 int bench_close_vcd(struct bench *b) {

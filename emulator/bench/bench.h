@@ -81,6 +81,8 @@ int bench_new_pair(const struct bench_config cfg[2], struct bench *b[2], char *e
 int bench_open_vcd(struct bench *b, const char *path, int64_t unit_ps);
 /* Flushes and closes the VCD, if one is open. Returns 0 or -1. */
 int bench_close_vcd(struct bench *b);
+/* Why the VCD could not be opened or written: its path and the reason. */
+const char *bench_vcd_error(const struct bench *b);
 
 /* The core, for loading images, host access to its memories and running. */
 struct pru_core *bench_core(struct bench *b);

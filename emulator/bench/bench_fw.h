@@ -15,7 +15,8 @@
 struct bench_fw_settings {
     unsigned half;       /* MA half period in PRU cycles (f = 100 MHz / half) */
     unsigned trigger;    /* BISS_TRIG_* */
-    uint32_t iep_period; /* IEP counts, for BISS_TRIG_IEP */
+    uint32_t iep_period; /* IEP counts, for BISS_TRIG_IEP (fw_check_configure: the owner's
+                            for BISS_TRIG_IEP_FOLLOW) */
     unsigned proc_limit; /* longest processing time accepted, MA clocks */
 };
 

@@ -343,7 +343,8 @@ static int set_option(struct options *o, const char *a, const char *v) {
         }
     } else if (!strcmp(a, "--check-speed")) {
         if (biss_safety_parse_speed(v, &o->checks)) {
-            return die("--check-speed: '%s' is not S,CPS (slave 0..7, counts per second > 0)", v);
+            return die(
+                "--check-speed: '%s' is not S,CPS (slave 0..7, counts per second 1e-9..1e18)", v);
         }
     } else if (!strcmp(a, "--check-pair")) {
         if (biss_safety_parse_pair(v, &o->checks)) {
@@ -561,6 +562,19 @@ static bool is_bin(const char *path) {
     return n >= 4 && !strcmp(path + n - 4, ".bin");
 }
 
+/* An image assembled for the other PRU (its words say so) is refused
+ * before it runs: started, it would point its private area at the shared
+ * block and say nothing (pru_fw/README.md, one image per PRU). */
+static bool wrong_pru(const char *path, const struct pruasm_image *img, unsigned pru) {
+    int built = biss_image_pru(img->words, img->nwords * 4);
+    if (built < 0 || (unsigned)built == pru) {
+        return false;
+    }
+    die("%s was assembled for PRU%d, not PRU%u (one image per PRU: %s)", path, built, pru,
+        pru ? "biss_master_pru1.bin" : "biss_master.bin");
+    return true;
+}
+
 /* The firmware source is assembled for the PRU it runs on (PRU_NUM). */
 static void pru_num_define(unsigned pru, struct sim_defines *d) {
     snprintf(d->text[d->n++], sizeof d->text[0], "PRU_NUM=%u", pru);
@@ -568,14 +582,16 @@ static void pru_num_define(unsigned pru, struct sim_defines *d) {
 
 /* A second encoder on PRU1 (sim_pair.h): the firmware on both PRUs. */
 static int run_pair(const struct options *o, const struct bench_config *cfg, unsigned half) {
-    if (o->image || o->json || o->vcd || o->svg || o->cd_set || o->pru) {
+    if (o->image || o->vcd || o->svg || o->cd_set || o->pru) {
         return die("--pru1-profile/--pru1-scenario run the firmware on both PRUs: not with "
-                   "--image, --json, --vcd, --svg, --pru or control frames");
+                   "--image, --vcd, --svg, --pru or control frames");
     }
     struct sim_pair_run r = {.cfg = {*cfg, *cfg},
                              .half = half,
                              .iep_period = (uint32_t)(o->iep_period_ns / 5),
-                             .frames = o->frames};
+                             .frames = o->frames,
+                             .checks = &o->checks,
+                             .json = o->json};
     char err[512];
     if (o->pru1_scenario) {
         if (scenario_load_file(o->pru1_scenario, &r.cfg[1].link, err, sizeof(err)) != 0) {
@@ -606,6 +622,12 @@ static int run_pair(const struct options *o, const struct bench_config *cfg, uns
             }
             return die("%s", err);
         }
+        if (wrong_pru(path[i], &img[i], i)) {
+            for (unsigned k = 0; k <= i; k++) {
+                pruasm_image_free(&img[k]);
+            }
+            return 1;
+        }
         r.image[i] = img[i].words;
         r.bytes[i] = img[i].nwords * 4;
     }
@@ -624,25 +646,7 @@ static int safety_checks(const struct options *o, struct biss_config *c) {
     if (!rc) {
         rc = biss_safety_config_check(c);
     }
-    switch (rc) {
-    case BISS_OK:
-        return 0;
-    case BISS_E_SAFETY_LIFE:
-        return die("safety checks: a life-counter check names a slave outside the chain or "
-                   "one without that many life-counter bits (BISS_E_SAFETY_LIFE)");
-    case BISS_E_SAFETY_EW:
-        return die("safety checks: the nE/nW check (a slave that never sets them) names a slave "
-                   "outside the chain or one that sends no nE/nW (BISS_E_SAFETY_EW)");
-    case BISS_E_SAFETY_SPEED:
-        return die("safety checks: the speed check names a slave outside the chain "
-                   "(BISS_E_SAFETY_SPEED)");
-    case BISS_E_SAFETY_CRC:
-        return die("safety checks: the two channels of a pair have the same CRC polynomial and "
-                   "start value; BiSS Safety tells them apart by it (BISS_E_SAFETY_CRC)");
-    default:
-        return die("safety checks: a pair names a slave outside the chain or a slave twice, "
-                   "more than 4 pairs, or a shifted position over 64 bits (BISS_E_SAFETY_PAIR)");
-    }
+    return rc ? die("safety checks: %s", sim_safety_problem(rc)) : 0;
 }
 
 static int run(const struct options *o) {
@@ -687,11 +691,16 @@ static int run(const struct options *o) {
         bench_free(b);
         return die("%s", err);
     }
+    if (fw_mode && wrong_pru(path, &img, o->pru)) {
+        pruasm_image_free(&img);
+        bench_free(b);
+        return 1;
+    }
     if ((fw_mode ? bench_fw_start(b, img.words, img.nwords * 4)
                  : bench_start_image(b, img.words, img.nwords * 4)) != 0) {
         rc = die("image of %zu words does not fit the IRAM of %s", img.nwords, o->soc);
     } else if (o->vcd && bench_open_vcd(b, o->vcd, o->vcd_unit_ps) != 0) {
-        rc = die("cannot write '%s'", o->vcd);
+        rc = die("cannot write the VCD: %s", bench_vcd_error(b));
     }
     struct fw_check fc;
     if (rc == 0 && fw_mode) {
@@ -699,7 +708,7 @@ static int run(const struct options *o) {
         rc = safety_checks(o, &fc.cfg);
         struct bench_fw_settings s = {
             .half = half, .trigger = BISS_TRIG_FREERUN, .proc_limit = 1000};
-        bench_fw_configure(b, &s);
+        fw_check_configure(&fc, &s);
         if (o->cd_set && cfg.link.protocol == SCENARIO_SSI) {
             rc = die("%s: an SSI encoder has no control communication", o->cd_what);
         }
@@ -763,7 +772,7 @@ static int run(const struct options *o) {
         rc = die("%s", err);
     }
     if (bench_close_vcd(b) != 0) {
-        rc = die("error writing '%s'", o->vcd);
+        rc = die("error writing the VCD: %s", bench_vcd_error(b));
     }
     if (o->json) {
         sim_print_json(&res);

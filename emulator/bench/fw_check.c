@@ -69,6 +69,14 @@ static void compare(struct fw_check *fc, const struct biss_sample *smp) {
         if (!fc->first_mismatch_frame) {
             fc->first_mismatch_frame = fc->publications;
         }
+        struct wrong_frame w;
+        wrong_frame_classify(&l->sc.biss, r, fc->data, smp->frame, &l->sl_master,
+                             pru_time_ps(bench_core(fc->b)),
+                             2 * (int64_t)smp->delay.half * PRU_PS_PER_CYCLE, &w);
+        fc->wrong_by_class[w.cls]++;
+        if (fc->nwrong < FW_CHECK_WRONG_KEPT) {
+            fc->wrong[fc->nwrong++] = w;
+        }
     }
 }
 
@@ -94,7 +102,7 @@ static bool words_right(struct fw_check *fc, const struct biss_sample *smp) {
 static void judge_refused(struct fw_check *fc, const struct biss_shm_result *res) {
     /* a refused frame is not VALID, so decode its words as if it were */
     struct biss_shm_result as_valid = *res;
-    as_valid.flags |= BISS_RF_VALID;
+    as_valid.flags = (as_valid.flags & ~(uint32_t)BISS_RF_ACK_JUMP) | BISS_RF_VALID;
     struct biss_sample smp;
     if (biss_sample_decode(&fc->cfg, true, 0, &as_valid, &smp) == BISS_OK &&
         words_right(fc, &smp)) {
@@ -179,6 +187,10 @@ static void on_publish(void *ctx, uint32_t addr) {
     struct biss_proto_io io = bench_fw_io(fc->b);
     struct biss_shm_result res;
     struct biss_sample smp;
+    uint32_t seq;
+    if (biss_proto_pub_seq(&io, &seq) == BISS_OK && seq == 0) {
+        return; /* the start-up clearing the status words: nothing published */
+    }
     if (biss_proto_result_get(&io, BISS_MAX_SLAVES, &res) != BISS_OK ||
         biss_sample_decode(&fc->cfg, true, 0, &res, &smp) != BISS_OK) {
         /* a result no firmware with this layout publishes is wrong too */
@@ -202,6 +214,13 @@ void fw_check_attach(struct fw_check *fc, struct bench *b) {
     fc->limit = UINT64_MAX;
     fc->watch = UINT64_MAX;
     pru_set_store_watch(bench_core(b), BISS_ST_SEQ, on_publish, fc);
+}
+
+int fw_check_configure(struct fw_check *fc, const struct bench_fw_settings *s) {
+    fc->cfg.trigger = (enum biss_trigger)s->trigger;
+    fc->cfg.iep_period_ns = s->iep_period * 5u; /* 5 ns IEP counts */
+    biss_safety_restart(&fc->safety);
+    return bench_fw_configure(fc->b, s);
 }
 
 void fw_check_watch(struct fw_check *fc, uint64_t k) {

@@ -16,6 +16,7 @@
 
 #include "bench.h"
 #include "bench_fw.h"
+#include "wrong_frame.h"
 
 #include <stdint.h>
 
@@ -62,10 +63,24 @@ struct fw_check {
     uint32_t safety_first_fault; /* the firmware's number of the first, 0 none */
     uint64_t misframed;          /* valid publications the nE/nW check (ew_static) refused */
     uint64_t misframed_good;     /* of those, frames whose every word was right: good lost */
+    /* the mismatches (wrong but valid), each classified (wrong_frame.h):
+     * counts per class, and the first FW_CHECK_WRONG_KEPT in full */
+    uint64_t wrong_by_class[WRONG_CLASSES];
+    unsigned nwrong;
+    struct wrong_frame wrong[16];
 };
+#define FW_CHECK_WRONG_KEPT 16
 
 /* Starts checking the bench's publications from now on (no limit). */
 void fw_check_attach(struct fw_check *fc, struct bench *b);
+
+/* Configures the firmware (bench_fw_configure: 0 or a negative code) and
+ * times the host's checks as its trigger does: by the frame numbers times
+ * the IEP period for BISS_TRIG_IEP and BISS_TRIG_IEP_FOLLOW (for which
+ * s->iep_period is the owning channel's period: the firmware takes none),
+ * else by the timestamps. The checks start afresh, as libbiss's do after a
+ * configuration. */
+int fw_check_configure(struct fw_check *fc, const struct bench_fw_settings *s);
 
 /* Keeps the publication of the frame the slave numbers k (from 0) in
  * fc->watched, whatever the limit. */

@@ -67,7 +67,7 @@ static enum pru_stop run(struct bench *b[2], struct fw_check fc[2], const struct
  * one protocol start on the same cycle; an SSI frame's first MA edge comes
  * a fixed number of cycles after a BiSS-C frame's (its own code path), so
  * a mixed pair must keep that offset to within a cycle. */
-static int report_starts(const struct starts *s, uint32_t period, bool mixed) {
+static int report_starts(const struct starts *s, uint32_t period, bool mixed, cJSON *j) {
     uint64_t n = s->n[0] < s->n[1] ? s->n[0] : s->n[1];
     int64_t lo = INT64_MAX, hi = INT64_MIN;
     for (uint64_t k = 0; k < n; k++) {
@@ -75,14 +75,25 @@ static int report_starts(const struct starts *s, uint32_t period, bool mixed) {
         lo = d < lo ? d : lo;
         hi = d > hi ? d : hi;
     }
+    if (j) {
+        cJSON *o = cJSON_AddObjectToObject(j, "frame_starts");
+        cJSON_AddNumberToObject(o, "pairs", (double)n);
+        cJSON_AddNumberToObject(o, "iep_period_ns", period * 5.0);
+        cJSON_AddNumberToObject(o, "pru1_minus_pru0_min_ps", n ? (double)lo : 0);
+        cJSON_AddNumberToObject(o, "pru1_minus_pru0_max_ps", n ? (double)hi : 0);
+    }
     if (n == 0) {
-        printf("frame starts         none measured\n");
+        if (!j) {
+            printf("frame starts         none measured\n");
+        }
         return 5;
     }
-    printf("frame starts         %llu pairs on an IEP period of %.3f us (PRU0 owns the IEP, PRU1 "
-           "follows): PRU1 - PRU0 = %lld .. %lld ps%s\n",
-           (unsigned long long)n, period * 5e-3, (long long)lo, (long long)hi,
-           mixed ? " (BiSS-C and SSI: SSI's first edge comes later, a fixed time)" : "");
+    if (!j) {
+        printf("frame starts         %llu pairs on an IEP period of %.3f us (PRU0 owns the IEP, "
+               "PRU1 follows): PRU1 - PRU0 = %lld .. %lld ps%s\n",
+               (unsigned long long)n, period * 5e-3, (long long)lo, (long long)hi,
+               mixed ? " (BiSS-C and SSI: SSI's first edge comes later, a fixed time)" : "");
+    }
     bool together = mixed ? hi - lo <= PRU_PS_PER_CYCLE
                           : llabs(lo) <= PRU_PS_PER_CYCLE && llabs(hi) <= PRU_PS_PER_CYCLE;
     return s->n[0] == s->n[1] && together ? 0 : 5;
@@ -110,18 +121,31 @@ int sim_pair(const struct sim_pair_run *r) {
     }
     r = &rr;
     struct fw_check fc[2];
+    /* the follower's checks count its frames in the owner's periods */
     struct bench_fw_settings set[2] = {
         {.half = r->half, .trigger = BISS_TRIG_IEP, .iep_period = period, .proc_limit = 1000},
-        {.half = r->half, .trigger = BISS_TRIG_IEP_FOLLOW, .proc_limit = 1000},
+        {.half = r->half,
+         .trigger = BISS_TRIG_IEP_FOLLOW,
+         .iep_period = period,
+         .proc_limit = 1000},
     };
     int rc = 0;
     for (unsigned i = 0; i < 2 && rc == 0; i++) {
         if (bench_fw_start(b[i], r->image[i], r->bytes[i]) != 0) {
             fprintf(stderr, "biss-sim: the image does not fit PRU%u's IRAM\n", i);
             rc = 1;
-        } else {
-            fw_check_attach(&fc[i], b[i]);
-            bench_fw_configure(b[i], &set[i]);
+            continue;
+        }
+        fw_check_attach(&fc[i], b[i]);
+        if (i == 0 && r->checks && biss_safety_merge(&fc[0].cfg, r->checks)) {
+            fprintf(stderr, "biss-sim: PRU0: more than 4 pairs checked\n");
+            rc = 1;
+        }
+        fw_check_configure(&fc[i], &set[i]);
+        int bad = rc ? BISS_OK : biss_safety_config_check(&fc[i].cfg);
+        if (bad) {
+            fprintf(stderr, "biss-sim: PRU%u: safety checks: %s\n", i, sim_safety_problem(bad));
+            rc = 1;
         }
     }
     struct starts s = {.cap = r->frames + 8};
@@ -136,10 +160,17 @@ int sim_pair(const struct sim_pair_run *r) {
         int64_t step = (int64_t)period * PRU_PS_PER_CYCLE / 4;
         enum pru_stop why = run(b, fc, r, step, &s);
         double host = seconds() - t0;
+        cJSON *j = r->json ? cJSON_CreateObject() : NULL;
         for (unsigned i = 0; i < 2; i++) {
             struct sim_result res = {b[i], &fc[i], why, 100e6 / r->half, host, NULL};
-            printf("PRU%u%s\n", i, i ? " (IEP follow)" : " (IEP)");
-            sim_print_text(&res);
+            if (j) {
+                cJSON *one = sim_json(&res);
+                cJSON_AddStringToObject(one, "trigger", i ? "iep-follow" : "iep");
+                cJSON_AddItemToObject(j, i ? "pru1" : "pru0", one);
+            } else {
+                printf("PRU%u%s\n", i, i ? " (IEP follow)" : " (IEP)");
+                sim_print_text(&res);
+            }
             if (why == PRU_STOP_FAULT && pru_get_fault(bench_core(b[i]))->cause) {
                 pru_print_fault(bench_core(b[i]), stderr);
                 rc = 3;
@@ -149,18 +180,23 @@ int sim_pair(const struct sim_pair_run *r) {
                         (unsigned long long)fc[i].frames, (unsigned long long)r->frames);
                 rc = 2;
             }
-            if (rc == 0 && (fc[i].mismatches || fc[i].crc_errors || fc[i].bad_results)) {
+            if (rc == 0 && !j && (fc[i].mismatches || fc[i].crc_errors || fc[i].bad_results)) {
                 rc = 5;
             }
         }
         bool mixed = r->cfg[0].link.protocol != r->cfg[1].link.protocol;
-        int starts = report_starts(&s, period, mixed);
-        rc = rc ? rc : starts;
+        int starts = report_starts(&s, period, mixed, j);
+        rc = rc || j ? rc : starts;
         /* each image keeps to its own bank: PRU1 never waits for PRU0 */
         uint64_t stalls = pru_spad_collisions(bench_core(b[1]));
-        printf("scratch pad          PRU1 stalled %llu times on PRU0's bank\n",
-               (unsigned long long)stalls);
-        rc = rc ? rc : stalls ? 5 : 0;
+        if (j) {
+            cJSON_AddNumberToObject(j, "spad_stalls", (double)stalls);
+            sim_print_json_object(j);
+        } else {
+            printf("scratch pad          PRU1 stalled %llu times on PRU0's bank\n",
+                   (unsigned long long)stalls);
+        }
+        rc = rc || j ? rc : stalls ? 5 : 0;
     }
     free(s.t[0]);
     free(s.t[1]);

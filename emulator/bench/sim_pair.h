@@ -2,12 +2,15 @@
  * sim_pair.h - biss-sim with a second encoder: the firmware on both PRUs of
  * one PRU-ICSS (bench_new_pair), each with its own line and encoder(s);
  * PRU0's channel owns the IEP (BISS_TRIG_IEP), PRU1's follows it
- * (BISS_TRIG_IEP_FOLLOW), so the frames of both start together.
+ * (BISS_TRIG_IEP_FOLLOW), so the frames of both start together. The host's
+ * safety checks of each channel (its scenario's, and for PRU0 the command
+ * line's) time its frames as its trigger does: both by the IEP period.
  */
 #ifndef SIM_PAIR_H
 #define SIM_PAIR_H
 
 #include "bench.h"
+#include "biss_proto.h"
 
 #include <stddef.h>
 #include <stdint.h>
@@ -21,6 +24,8 @@ struct sim_pair_run {
     int64_t cap_ps;             /* ... but never more than this */
     const void *image[2];       /* the firmware image of PRU0 and of PRU1 */
     size_t bytes[2];
+    const struct biss_config *checks; /* the command line's safety checks, for PRU0; or NULL */
+    bool json;                        /* one JSON object ({"pru0", "pru1", ...}) for the text */
 };
 
 /* Runs the firmware images on both, checks every frame of each against its
@@ -29,7 +34,9 @@ struct sim_pair_run {
  * scratch-pad bank. Returns biss-sim's exit code: 0, 1 (a message
  * printed), 2 (frames not done in time), 3 (a PRU fault), 5 (a frame check
  * failed, frame starts more than one PRU cycle apart, for a BiSS-C and an
- * SSI line their offset varying by more than one, or a bank collision). */
+ * SSI line their offset varying by more than one, or a bank collision;
+ * with json none of these changes it, as in a single run: the object
+ * holds them). */
 int sim_pair(const struct sim_pair_run *r);
 
 #endif

@@ -6,6 +6,7 @@
 #include "svg_scope.h"
 
 #include <cjson/cJSON.h>
+#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -31,6 +32,26 @@ static struct biss_line_delay line_delay(unsigned raw, unsigned avg, unsigned ha
     struct biss_line_delay d;
     biss_delay_decode((uint16_t)raw, (uint16_t)avg, half, &d);
     return d;
+}
+
+const char *sim_safety_problem(int rc) {
+    switch (rc) {
+    case BISS_E_SAFETY_LIFE:
+        return "a life-counter check names a slave outside the chain or one without that many "
+               "life-counter bits (BISS_E_SAFETY_LIFE)";
+    case BISS_E_SAFETY_EW:
+        return "the nE/nW check (a slave that never sets them) names a slave outside the chain "
+               "or one that sends no nE/nW (BISS_E_SAFETY_EW)";
+    case BISS_E_SAFETY_SPEED:
+        return "the speed check names a slave outside the chain, or the trigger gives it no "
+               "time to judge by (BISS_E_SAFETY_SPEED)";
+    case BISS_E_SAFETY_CRC:
+        return "the two channels of a pair have the same CRC polynomial and start value; BiSS "
+               "Safety tells them apart by it (BISS_E_SAFETY_CRC)";
+    default:
+        return "a pair names a slave outside the chain or a slave twice, more than 4 pairs, or a "
+               "shifted position over 64 bits (BISS_E_SAFETY_PAIR)";
+    }
 }
 
 double sim_fw_line_delay_ns(const struct fw_check *fw) {
@@ -104,6 +125,36 @@ double sim_frame_minimum_ps(struct bench *b, const struct fw_check *fw) {
     /* the last rising edge comes half a period before the clocks' end; the
      * slave's timeout runs from it; its end travels back over the line */
     return (clocks - 0.5) * period + timeout + bench_round_trip_ps(b);
+}
+
+/* The wrong frames published as valid, by class (wrong_frame.h), and the
+ * first few described. */
+static void add_wrong(cJSON *j, const struct fw_check *fw) {
+    cJSON *o = cJSON_AddObjectToObject(j, "wrong_frames");
+    cJSON_AddNumberToObject(o, "valid_on_the_wire", (double)fw->wrong_by_class[WRONG_ON_WIRE]);
+    cJSON_AddNumberToObject(o, "off_grid", (double)fw->wrong_by_class[WRONG_OFF_GRID]);
+    cJSON_AddNumberToObject(o, "other", (double)fw->wrong_by_class[WRONG_OTHER]);
+    cJSON *a = cJSON_AddArrayToObject(o, "first");
+    for (unsigned k = 0; k < fw->nwrong; k++) {
+        char line[512];
+        wrong_frame_describe(&fw->wrong[k], line, sizeof line);
+        cJSON_AddItemToArray(a, cJSON_CreateString(line));
+    }
+}
+
+static void print_wrong(const struct fw_check *fw) {
+    if (!fw->mismatches) {
+        return;
+    }
+    printf("wrong but valid      %llu valid on the wire, %llu off-grid, %llu other\n",
+           (unsigned long long)fw->wrong_by_class[WRONG_ON_WIRE],
+           (unsigned long long)fw->wrong_by_class[WRONG_OFF_GRID],
+           (unsigned long long)fw->wrong_by_class[WRONG_OTHER]);
+    for (unsigned k = 0; k < fw->nwrong; k++) {
+        char line[512];
+        wrong_frame_describe(&fw->wrong[k], line, sizeof line);
+        printf("  %s\n", line);
+    }
 }
 
 static void add_firmware(cJSON *j, struct bench *b, const struct fw_check *fw) {
@@ -248,7 +299,7 @@ static void add_control(cJSON *j, const struct fw_cd *cd) {
     }
 }
 
-void sim_print_json(const struct sim_result *r) {
+cJSON *sim_json(const struct sim_result *r) {
     struct bench *b = r->b;
     const struct bench_stats *st = bench_stats(b);
     const struct fw_check *fw = r->fw;
@@ -260,6 +311,9 @@ void sim_print_json(const struct sim_result *r) {
     cJSON_AddNumberToObject(j, "frames", (double)(fw ? fw->frames : st->frames));
     add_counter(j, "crc_errors", fw, fw ? fw->crc_errors : 0);
     add_counter(j, "position_mismatches", fw, fw ? fw->mismatches : 0);
+    if (fw) {
+        add_wrong(j, fw);
+    }
     cJSON_AddNumberToObject(j, "line_delay_ns", bench_round_trip_ps(b) / 1000.0);
     double mean = st->periods ? st->period_sum_ps / (double)st->periods : 0;
     add_min_mean_max(j, "frame_period_ns", (double)st->period_min_ps / 1000.0, mean / 1000.0,
@@ -281,10 +335,18 @@ void sim_print_json(const struct sim_result *r) {
     if (r->cd) {
         add_control(j, r->cd);
     }
+    return j;
+}
+
+void sim_print_json_object(cJSON *j) {
     char *text = cJSON_Print(j);
     printf("%s\n", text);
     free(text);
     cJSON_Delete(j);
+}
+
+void sim_print_json(const struct sim_result *r) {
+    sim_print_json_object(sim_json(r));
 }
 
 /* Without the firmware: what the encoder(s) sent in the last closed frame. */
@@ -374,6 +436,7 @@ void sim_print_text(const struct sim_result *r) {
                (unsigned long long)fw->crc_errors, (unsigned long long)fw->mismatches,
                (unsigned long long)fw->no_slave, (unsigned long long)fw->proc_errors,
                (unsigned long long)fw->ack_jumps);
+        print_wrong(fw);
         if (fw->delay_frames) {
             printf("line delay           %.1f ns measured by the firmware (%.1f ns in the model), "
                    "sample point %u/8, lag %u periods\n",
@@ -543,8 +606,9 @@ int sim_write_svg(const struct sim_result *r, const char *path, uint64_t k, char
         v.notes = notes;
         v.nnotes = firmware_notes(r, notes, 1 + BISS_MAX_SLAVES);
     }
-    if (svg_scope_write(path, &v) != 0) {
-        snprintf(err, errlen, "cannot write '%s'", path);
+    char why[PATH_MAX + 128];
+    if (svg_scope_write(path, &v, why, sizeof why) != 0) {
+        snprintf(err, errlen, "cannot write the SVG: %s", why);
         return -1;
     }
     return 0;

@@ -9,6 +9,8 @@
 #include "fw_cd.h"
 #include "fw_check.h"
 
+#include <cjson/cJSON.h>
+
 struct sim_result {
     struct bench *b;
     const struct fw_check *fw; /* NULL: the image is not the BiSS master firmware */
@@ -19,6 +21,10 @@ struct sim_result {
 };
 
 void sim_print_json(const struct sim_result *r);
+/* The object sim_print_json prints (the caller owns it), and printing one
+ * (which frees it). */
+cJSON *sim_json(const struct sim_result *r);
+void sim_print_json_object(cJSON *j);
 void sim_print_text(const struct sim_result *r);
 
 /* The SVG of the captured frame, numbered k as biss-sim and bissctl count
@@ -28,6 +34,9 @@ void sim_print_text(const struct sim_result *r);
  * read. Returns 0 or -1 (message in err). */
 int sim_write_svg(const struct sim_result *r, const char *path, uint64_t k, char *err,
                   size_t errlen);
+
+/* What a refusal of biss_safety_config_check means (rc nonzero). */
+const char *sim_safety_problem(int rc);
 
 /* The firmware's line delay in ns from its averaged ACK position
  * (proto's biss_delay_decode of the published DELAY_AVG). */

@@ -1,6 +1,8 @@
 /* svg_scope.c - SVG square-wave plot of waveforms (see svg_scope.h). */
 #include "svg_scope.h"
 
+#include "safe_file.h"
+
 #include <stdio.h>
 
 #define LEFT  110.0  /* room for trace names */
@@ -108,14 +110,16 @@ static void draw_notes(FILE *f, const struct svg_view *v, double y) {
     }
 }
 
-int svg_scope_write(const char *path, const struct svg_view *v) {
+int svg_scope_write(const char *path, const struct svg_view *v, char *err, size_t errlen) {
     if (v->t1 <= v->t0) {
+        snprintf(err, errlen, "%s: no time to draw", path);
         return -1;
     }
-    FILE *f = fopen(path, "w");
-    if (!f) {
+    struct safe_file out;
+    if (safe_file_open(&out, path, err, errlen) != 0) {
         return -1;
     }
+    FILE *f = out.f;
     double axis = TOP + ROW * (double)v->ntraces;
     double notes_y = axis + 44;
     double height = notes_y + NOTE * (double)(v->nnotes + (v->mark_legend ? 1 : 0)) + 10;
@@ -142,7 +146,5 @@ int svg_scope_write(const char *path, const struct svg_view *v) {
     }
     draw_notes(f, v, notes_y);
     fprintf(f, "</svg>\n");
-    int bad = ferror(f);
-    bad |= fclose(f) != 0;
-    return bad ? -1 : 0;
+    return safe_file_close(&out, err, errlen);
 }

@@ -46,8 +46,9 @@ struct svg_view {
     sim_ps t0, t1; /* the window */
 };
 
-/* Writes the picture. Returns 0, or -1 if the file cannot be written or
- * the window is empty. */
-int svg_scope_write(const char *path, const struct svg_view *v);
+/* Writes the picture (whole or not at all: safe_file.h). Returns 0, or -1
+ * if the file cannot be written or the window is empty (the path and the
+ * reason in err). */
+int svg_scope_write(const char *path, const struct svg_view *v, char *err, size_t errlen);
 
 #endif

@@ -4,6 +4,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+const char *vcd_error(const struct vcd_writer *w) {
+    return w->err;
+}
+
 int vcd_unit_valid(int64_t unit_ps) {
     return unit_ps == 1 || unit_ps == 10 || unit_ps == 100 || unit_ps == 1000;
 }
@@ -11,10 +15,10 @@ int vcd_unit_valid(int64_t unit_ps) {
 int vcd_open(struct vcd_writer *w, const char *path, int64_t unit_ps) {
     memset(w, 0, sizeof(*w));
     w->unit_ps = vcd_unit_valid(unit_ps) ? unit_ps : 1;
-    w->f = fopen(path, "w");
-    if (!w->f) {
+    if (safe_file_open(&w->out, path, w->err, sizeof w->err) != 0) {
         return -1;
     }
+    w->f = w->out.f;
     memset(w->level, -1, sizeof(w->level));
     return 0;
 }
@@ -149,8 +153,7 @@ int vcd_close(struct vcd_writer *w, int64_t end_ps) {
      * (sigrok's) sees the last edge as an edge. */
     int64_t s = stamp_of(w, end_ps);
     fprintf(w->f, "#%lld\n", (long long)(s > w->last_stamp ? s : w->last_stamp + 1));
-    int bad = ferror(w->f);
-    bad |= fclose(w->f) != 0;
+    int bad = safe_file_close(&w->out, w->err, sizeof w->err) != 0;
     w->f = NULL;
     free(w->q);
     w->q = NULL;

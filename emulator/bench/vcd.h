@@ -17,6 +17,8 @@
 #ifndef BENCH_VCD_H
 #define BENCH_VCD_H
 
+#include "safe_file.h"
+
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -30,7 +32,9 @@ struct vcd_pending {
 };
 
 struct vcd_writer {
-    FILE *f;
+    FILE *f;                  /* out.f while open */
+    struct safe_file out;     /* written whole, or not at all (safe_file.h) */
+    char err[PATH_MAX + 128]; /* why the file could not be written */
     int nwires;
     int started;
     int64_t unit_ps;    /* the timescale */
@@ -64,5 +68,8 @@ void vcd_flush_before(struct vcd_writer *w, int64_t t_ps);
 /* Writes what is queued, a final time stamp, and closes. Returns 0, or -1
  * on an I/O error. */
 int vcd_close(struct vcd_writer *w, int64_t end_ps);
+
+/* Why the last vcd_open or vcd_close failed (the path and the reason). */
+const char *vcd_error(const struct vcd_writer *w);
 
 #endif

@@ -9,6 +9,7 @@
 
 #include <ctype.h>
 #include <errno.h>
+#include <getopt.h>
 #include <inttypes.h>
 #include <stdlib.h>
 #include <stdio.h>
@@ -81,75 +82,133 @@ static int bad(const char *msg, const char *arg) {
     return -1;
 }
 
+enum {
+    OPT_DUMP_REGS = 256,
+    OPT_TRACE,
+    OPT_STRICT,
+    OPT_STRICT_SCOPE,
+    OPT_STRICT_WINDOW,
+    OPT_STRICT_LOG,
+    OPT_CONTEND,
+    OPT_NO_FAST_PATH,
+    OPT_MAX_CYCLES,
+    OPT_SOC,
+    OPT_DATA,
+    OPT_INPUTS,
+};
+
+static const struct option long_opts[] = {
+    {"help", no_argument, NULL, 'h'},
+    {"dump-regs", no_argument, NULL, OPT_DUMP_REGS},
+    {"trace", no_argument, NULL, OPT_TRACE},
+    {"strict", optional_argument, NULL, OPT_STRICT},
+    {"strict-scope", required_argument, NULL, OPT_STRICT_SCOPE},
+    {"strict-window", required_argument, NULL, OPT_STRICT_WINDOW},
+    {"strict-log", no_argument, NULL, OPT_STRICT_LOG},
+    {"contend", required_argument, NULL, OPT_CONTEND},
+    {"no-fast-path", required_argument, NULL, OPT_NO_FAST_PATH},
+    {"max-cycles", required_argument, NULL, OPT_MAX_CYCLES},
+    {"soc", required_argument, NULL, OPT_SOC},
+    {"data", required_argument, NULL, OPT_DATA},
+    {"inputs", required_argument, NULL, OPT_INPUTS},
+    {NULL, 0, NULL, 0},
+};
+
+/* One option and its value (getopt_long's); 0 or -1 (message printed). */
+static int take_opt(int c, const char *val, struct opts *o) {
+    uint64_t u;
+    switch (c) {
+    case 'h':
+        usage(stdout);
+        exit(0);
+    case OPT_DUMP_REGS:
+        o->dump_regs = 1;
+        return 0;
+    case OPT_TRACE:
+        o->trace = 1;
+        return 0;
+    case OPT_STRICT: {
+        const char *bad_rule;
+        if (pru_strict_parse(val, &o->params.strict, &bad_rule))
+            return bad("--strict: rules are loop1, loop0, loopfield, mvi, dram, spad; unknown",
+                       bad_rule);
+        return 0;
+    }
+    case OPT_STRICT_SCOPE:
+        if (strcmp(val, "clocked") && strcmp(val, "all"))
+            return bad("--strict-scope must be clocked or all", val);
+        o->params.strict_everywhere = strcmp(val, "all") == 0;
+        return 0;
+    case OPT_STRICT_WINDOW:
+        if (parse_u64(val, &u) || u == 0 || u > 0xffffffu)
+            return bad("--strict-window needs a number of cycles from 1 to 16777215", val);
+        o->params.strict_window = (unsigned)u;
+        return 0;
+    case OPT_STRICT_LOG:
+        o->params.strict_log = 1;
+        return 0;
+    case OPT_CONTEND: {
+        char err[200];
+        if (pru_contend_parse(val, &o->params, err, sizeof err))
+            return bad("--contend", err);
+        return 0;
+    }
+    case OPT_NO_FAST_PATH:
+        if (pru_params_fast_path_off(&o->params, val))
+            return bad("--no-fast-path must be ff, ff-counted, ff-r31-bits, ff-loop-delay, "
+                       "ff-count-loop, fast-loop or leaf-call",
+                       val);
+        return 0;
+    case OPT_MAX_CYCLES:
+        if (parse_u64(val, &u) || u == 0)
+            return bad("--max-cycles needs a whole number of cycles from 1 to 2^64-1", val);
+        /* the core caps a limit at PRU_MAX_CYCLE (about 52 days) anyway */
+        o->max_cycles = u > (uint64_t)INT64_MAX ? INT64_MAX : (int64_t)u;
+        return 0;
+    case OPT_SOC:
+        if (pru_soc_from_name(val, &o->soc))
+            return bad("--soc must be am335x, am437x-icss0 or am437x-icss1", val);
+        return 0;
+    case OPT_DATA:
+        o->data = val;
+        return 0;
+    case OPT_INPUTS:
+        if (parse_u64(val, &u) || u > 0x3fffffffu)
+            return bad("--inputs needs a value 0..0x3fffffff", val);
+        o->inputs = (uint32_t)u;
+        return 0;
+    }
+    return -1;
+}
+
+/* getopt_long's options (--opt VALUE, --opt=VALUE, unambiguous
+ * abbreviations); every usage error names the option it is about. */
 static int parse_args(int argc, char **argv, struct opts *o) {
     *o = (struct opts){.soc = PRU_SOC_AM335X, .max_cycles = DEFAULT_MAX_CYCLES};
     pru_params_default(&o->params);
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        const char *val = i + 1 < argc ? argv[i + 1] : NULL;
-        uint64_t u;
-        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
-            usage(stdout);
-            exit(0);
-        } else if (strcmp(a, "--dump-regs") == 0) {
-            o->dump_regs = 1;
-        } else if (strcmp(a, "--trace") == 0) {
-            o->trace = 1;
-        } else if (strcmp(a, "--strict") == 0 || strncmp(a, "--strict=", 9) == 0) {
-            const char *bad_rule;
-            if (pru_strict_parse(a[8] ? a + 9 : NULL, &o->params.strict, &bad_rule))
-                return bad("--strict: rules are loop1, loop0, loopfield, mvi, dram, spad; unknown",
-                           bad_rule);
-        } else if (strcmp(a, "--strict-scope") == 0) {
-            if (!val || (strcmp(val, "clocked") && strcmp(val, "all")))
-                return bad("--strict-scope must be clocked or all", val);
-            o->params.strict_everywhere = strcmp(val, "all") == 0;
-            i++;
-        } else if (strcmp(a, "--strict-window") == 0) {
-            if (parse_u64(val, &u) || u == 0 || u > 0xffffffu)
-                return bad("--strict-window needs a number of cycles from 1 to 16777215", val);
-            o->params.strict_window = (unsigned)u;
-            i++;
-        } else if (strcmp(a, "--strict-log") == 0) {
-            o->params.strict_log = 1;
-        } else if (strcmp(a, "--contend") == 0) {
-            char err[200];
-            if (pru_contend_parse(val, &o->params, err, sizeof err))
-                return bad("--contend", err);
-            i++;
-        } else if (strcmp(a, "--no-fast-path") == 0) {
-            if (pru_params_fast_path_off(&o->params, val))
-                return bad("--no-fast-path must be ff, ff-counted, ff-r31-bits, ff-loop-delay, "
-                           "ff-count-loop, fast-loop or leaf-call",
-                           val);
-            i++;
-        } else if (strcmp(a, "--max-cycles") == 0) {
-            if (parse_u64(val, &u) || u == 0)
-                return bad("--max-cycles needs a whole number of cycles from 1 to 2^64-1", val);
-            /* the core caps a limit at PRU_MAX_CYCLE (about 52 days) anyway */
-            o->max_cycles = u > (uint64_t)INT64_MAX ? INT64_MAX : (int64_t)u;
-            i++;
-        } else if (strcmp(a, "--soc") == 0) {
-            if (!val || pru_soc_from_name(val, &o->soc))
-                return bad("--soc must be am335x, am437x-icss0 or am437x-icss1", val);
-            i++;
-        } else if (strcmp(a, "--data") == 0) {
-            if (!val)
-                return bad("--data needs a file", NULL);
-            o->data = val;
-            i++;
-        } else if (strcmp(a, "--inputs") == 0) {
-            if (parse_u64(val, &u) || u > 0x3fffffffu)
-                return bad("--inputs needs a value 0..0x3fffffff", val);
-            o->inputs = (uint32_t)u;
-            i++;
-        } else if (a[0] == '-' && a[1]) {
-            return bad("unknown option", a);
-        } else if (o->image) {
-            return bad("more than one image given", a);
-        } else {
-            o->image = a;
+    opterr = 0;
+    optind = 1;
+    int c;
+    while ((c = getopt_long(argc, argv, ":h", long_opts, NULL)) != -1) {
+        const char *opt = argv[optind - 1];
+        if (c == '?') {
+            return bad(optopt >= OPT_DUMP_REGS ? "option takes no value"
+                       : optopt                ? "unknown option"
+                                               : "unknown option (or an ambiguous abbreviation)",
+                       opt);
         }
+        if (c == ':') {
+            char msg[96];
+            snprintf(msg, sizeof msg, "option '%.60s' needs a value", opt);
+            return bad(msg, NULL);
+        }
+        if (take_opt(c, optarg, o))
+            return -1;
+    }
+    for (int i = optind; i < argc; i++) {
+        if (o->image)
+            return bad("more than one image given", argv[i]);
+        o->image = argv[i];
     }
     if (!o->image)
         return bad("no image file given", NULL);
@@ -160,23 +219,20 @@ static int parse_args(int argc, char **argv, struct opts *o) {
 
 /* Read a whole input file (image or data, shorter than 32 MB); returns 0 or
  * -1 (message printed). */
-static int read_input(const char *path, uint8_t **buf, size_t *len) {
+static int read_input(const char *opt, const char *path, uint8_t **buf, size_t *len) {
     char *b;
     read_file_err e = read_file(path, 32u << 20, &b, len);
-    if (e == READ_FILE_OPEN) {
-        fprintf(stderr, "pru-run: cannot open %s: %s\n", path, strerror(errno));
-        return -1;
-    }
-    if (e == READ_FILE_TOO_BIG) {
-        fprintf(stderr, "pru-run: cannot read %s: larger than 32 MB\n", path);
-        return -1;
-    }
-    if (e == READ_FILE_NOMEM) {
-        fprintf(stderr, "pru-run: cannot read %s: out of memory\n", path);
+    const char *why = e == READ_FILE_TOO_BIG ? "larger than 32 MB"
+                      : e == READ_FILE_NOMEM ? "out of memory"
+                                             : strerror(errno);
+    if (e && opt) {
+        fprintf(stderr, "pru-run: %s %s: cannot %s: %s\n", opt, path,
+                e == READ_FILE_OPEN ? "open" : "read", why);
         return -1;
     }
     if (e) {
-        fprintf(stderr, "pru-run: cannot read %s: %s\n", path, strerror(errno));
+        fprintf(stderr, "pru-run: cannot %s %s: %s\n", e == READ_FILE_OPEN ? "open" : "read", path,
+                why);
         return -1;
     }
     *buf = (uint8_t *)b;
@@ -186,7 +242,7 @@ static int read_input(const char *path, uint8_t **buf, size_t *len) {
 static int load(struct pru_core *c, const struct opts *o) {
     uint8_t *buf;
     size_t len;
-    if (read_input(o->image, &buf, &len))
+    if (read_input(NULL, o->image, &buf, &len))
         return -1;
     int rc = 0;
     if (len == 0) {
@@ -203,12 +259,12 @@ static int load(struct pru_core *c, const struct opts *o) {
     free(buf);
     if (rc || !o->data)
         return rc;
-    if (read_input(o->data, &buf, &len))
+    if (read_input("--data", o->data, &buf, &len))
         return -1;
     if (len > pru_dram_bytes(c) ||
         pru_host_write(c, pru_soc_base(o->soc) + PRU_OFS_DRAM0, buf, len) != 0) {
-        fprintf(stderr, "pru-run: %s: %zu bytes do not fit the %u-byte data RAM\n", o->data, len,
-                pru_dram_bytes(c));
+        fprintf(stderr, "pru-run: --data %s: %zu bytes do not fit the %u-byte data RAM\n", o->data,
+                len, pru_dram_bytes(c));
         rc = -1;
     }
     free(buf);

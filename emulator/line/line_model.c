@@ -90,8 +90,14 @@ static void schedule_next_glitch(line_dir *l, sim_ps from) {
         return;
     }
     double mean_ps = (double)SIM_PS_PER_S / l->p.glitch_rate_hz;
-    sim_ps gap = (sim_ps)llround(sim_rng_exponential(&l->rng, mean_ps));
-    eq_schedule(l->q, from + (gap > 0 ? gap : 1), on_glitch_start, l, 0);
+    double gap = sim_rng_exponential(&l->rng, mean_ps);
+    /* a rate so low (a denormal: the mean overflows) that the next glitch
+     * lies beyond any time a run reaches: none; llround would overflow */
+    if (!(gap < (double)(SIM_NEVER - from))) {
+        return;
+    }
+    sim_ps g = (sim_ps)llround(gap);
+    eq_schedule(l->q, from + (g > 0 ? g : 1), on_glitch_start, l, 0);
 }
 
 static void on_fault(void *ctx, sim_ps t, int64_t f) {

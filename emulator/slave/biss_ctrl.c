@@ -66,18 +66,27 @@ static int ida_bit(const biss_ctrl *c, unsigned slot) {
     return c->addressed && !c->broadcast && slot == c->id;
 }
 
-/* ID lock: in a register access (CTS = 1) every slave answers the CTS and
- * the 7 header bits after it with IDL0..7, 1 in the slot of its own ID
- * ([AD38] control-frame drawings: CDS "IDL0..7" during the header, before
- * R W S; [POS] §3.1.2: "ID Lock bits (IDL) are sent back to communicate
- * which slaves are occupied"; [TI] §2.1.3: IDs are carried out by setting
- * the IDL bits for the first eight IDs). Which 8 of the 15 header answers
- * carry them the drawings leave to the OCR: EST, the first 8, slot k
- * answering header bit k (k = 0: CTS). */
-static int idl_bit(const biss_ctrl *c) {
-    unsigned k = c->count - 1;
-    bool cts = (c->shift >> k) & 1u;
-    return cts && k < 8 && k == c->id;
+/* ID lock: every slave answers eight CDMs of the header with IDL0..7, 1
+ * in the slot of its own ID ([AD38] control-frame drawings: CDS "IDL0..7"
+ * during the header, before R W S; [POS] §3.1.2: "ID Lock bits (IDL) are
+ * sent back to communicate which slaves are occupied"; [TI] §2.1.3: IDs are
+ * carried out by setting the IDL bits for the first eight IDs). Which
+ * eight (host/CD.md, "IDL"): by default the answers to S and the 7 header
+ * bits after it, as an encoder maker's open master reads them (IDL0 in the
+ * CDS answering S); the first is sent before CTS has come, so a slave
+ * answers them in every control frame. idl_at_cts: the answers to CTS and
+ * the 7 bits after it, in a register access (CTS = 1) only. header_bit is
+ * the header bit just received (0: CTS), -1 for S itself. */
+static int idl_bit(const biss_ctrl *c, int header_bit) {
+    if (!c->idl_at_cts) {
+        return header_bit + 1 < 8 && header_bit + 1 == c->id;
+    }
+    if (header_bit < 0 || header_bit >= 8) {
+        return 0;
+    }
+    unsigned k = (unsigned)header_bit;
+    bool cts = (c->shift >> k) & 1u; /* CTS, k bits back */
+    return cts && k == c->id;
 }
 
 static int on_header_done(biss_ctrl *c) {
@@ -171,6 +180,7 @@ int biss_ctrl_cdm(biss_ctrl *c, int cdm) {
         if (cdm && c->armed) {
             c->armed = false;
             go(c, CTRL_HEADER);
+            cds = idl_bit(c, -1);
         } else if (c->zeros >= ARM_ZEROS) {
             c->armed = true;
         }
@@ -184,7 +194,7 @@ int biss_ctrl_cdm(biss_ctrl *c, int cdm) {
         if (++c->count == 15) {
             cds = on_header_done(c);
         } else {
-            cds = idl_bit(c);
+            cds = idl_bit(c, (int)c->count - 1);
         }
         break;
     case CTRL_RWS:

@@ -7,9 +7,10 @@
  *   idle        >= 14 consecutive CDM = 0 arm the slave
  *   S           CDM = 1 while armed starts a control frame
  *   header      CTS, then 10 bits, then CRC4 (poly 0x13, start 0, sent
- *               inverted) over CTS and the 10 bits; in a register access
- *               CDS after CTS and the next 7 bits: IDL0..7, 1 in the slot
- *               of the slave's own ID (ID lock; slot placement EST)
+ *               inverted) over CTS and the 10 bits; CDS after S and the
+ *               next 7 bits: IDL0..7, 1 in the slot of the slave's own ID
+ *               (ID lock; or, idl_at_cts, after CTS and the next 7 bits of
+ *               a register access; host/CD.md, "IDL")
  *                 CTS = 1 register access: ID(3) ADR(7)
  *                 CTS = 0 BiSS command:    IDS(8, first bit = ID 0) CMD(2)
  *               bad CRC -> error counter +1, frame ignored; other ID ->
@@ -75,6 +76,7 @@ typedef struct {
     uint8_t id;               /* 0..7 */
     unsigned reg_proc_frames; /* late S: frames of register processing */
     uint8_t cmd_stop;         /* the bit after IDA that executes a command (default 1) */
+    bool idl_at_cts;          /* IDL0 answers CTS, not S (host/CD.md, "IDL") */
     regfile *regs;
 
     biss_ctrl_state state;

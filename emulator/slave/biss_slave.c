@@ -1,5 +1,6 @@
 #include "biss_slave.h"
 
+#include "biss/biss_rules.h"
 #include "biss_crc.h"
 #include "slave_motion.h"
 
@@ -74,8 +75,7 @@ const char *biss_slave_cfg_check(const biss_slave_cfg *s) {
         return "position_bits: with fill_bits, nE, nW and life_counter_bits more than 64 data "
                "bits before the CRC";
     }
-    if (s->crc_poly != 0 &&
-        (biss_crc_width(s->crc_poly) < 1 || s->crc_poly > 0x1ffffu || !(s->crc_poly & 1u))) {
+    if (s->crc_poly != 0 && !biss_crc_poly_valid(s->crc_poly)) {
         return "crc_poly: must be an odd polynomial of degree 1..16 (with its top term)";
     }
     if (s->crc_poly != 0 && (s->crc_start >> biss_crc_width(s->crc_poly)) != 0) {
@@ -124,6 +124,7 @@ void biss_slave_init(biss_slave *b, const biss_chain_cfg *cfg, event_queue *q, s
     for (unsigned i = 0; i < cfg->n; i++) {
         biss_ctrl_init(&b->ctrl[i], b->cfg.s[i].id, &b->cfg.s[i].regs, b->cfg.s[i].reg_proc_frames);
         b->ctrl[i].cmd_stop = b->cfg.s[i].cmd_exec;
+        b->ctrl[i].idl_at_cts = b->cfg.s[i].idl_at_cts;
     }
     b->phase = BISS_IDLE;
     b->ma = 1;

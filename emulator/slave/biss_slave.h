@@ -64,6 +64,7 @@ typedef struct {
     bool error, warning;      /* drive nE / nW low (active) */
     unsigned reg_proc_frames; /* late S in register access */
     uint8_t cmd_exec;         /* the bit after IDA that executes a command (biss_ctrl cmd_stop) */
+    bool idl_at_cts;          /* ID lock IDL0 answers CTS, not S (biss_ctrl idl_at_cts) */
     bool no_control;          /* a data channel only: its device's control
                                  communication is another chain slave's
                                  (same ID); it never answers a CDM */

@@ -11,6 +11,10 @@ static const char *check_line(const line_params *p) {
     if (p->driver_delay_ps + p->receiver_delay_ps + p->length_m * p->ps_per_m <= 0.0) {
         return "total delay must be > 0 (every effect follows its cause)";
     }
+    /* 0 is "for good"; an end at or before the start would read as that */
+    if (p->fault_until_ps != 0 && p->fault_until_ps <= p->fault_at_ps) {
+        return "fault_until_ns: not after fault_at_ns (0: the fault never ends)";
+    }
     return NULL;
 }
 

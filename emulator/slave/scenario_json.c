@@ -1,5 +1,6 @@
 #include "scenario_json.h"
 
+#include "biss/biss_rules.h"
 #include "read_file.h"
 #include "scenario_fields.h"
 
@@ -241,6 +242,15 @@ static int parse_lc_fault(ctx *c, const cJSON *item, biss_lc_fault *f) {
     return fail(c, "life_counter_fault", "expected \"none\", \"frozen\" or \"skip\"");
 }
 
+/* Which CDS slots carry the ID lock IDL0..7 (host/CD.md, "IDL"). */
+static int parse_idl_slot(ctx *c, const cJSON *it, bool *at_cts) {
+    if (cJSON_IsString(it) && (!strcmp(it->valuestring, "s") || !strcmp(it->valuestring, "cts"))) {
+        *at_cts = !strcmp(it->valuestring, "cts");
+        return 0;
+    }
+    return fail(c, "id_lock_slot", "expected \"s\" (IDL0 answers S) or \"cts\" (it answers CTS)");
+}
+
 static int parse_slave(ctx *c, const cJSON *obj, biss_slave_cfg *s) {
     /* the bank count first, so "registers" may fill any bank whatever the
      * order of the fields */
@@ -281,6 +291,8 @@ static int parse_slave(ctx *c, const cJSON *obj, biss_slave_cfg *s) {
             r = get_bool(c, it, k, &s->regs.protect);
         } else if (!strcmp(k, "life_counter_fault")) {
             r = parse_lc_fault(c, it, &s->lc_fault);
+        } else if (!strcmp(k, "id_lock_slot")) {
+            r = parse_idl_slot(c, it, &s->idl_at_cts);
         } else {
             r = fail(c, k, "unknown field");
         }
@@ -414,7 +426,7 @@ static int parse_pair(ctx *c, const cJSON *obj, scenario_checks *k, unsigned i) 
 
 static const sf_field sf_speed[] = {
     {"slave", SF_UNSIGNED, 0, 0, 0, BISS_MAX_SLAVES - 1},
-    {"counts_per_s", SF_DOUBLE, 0, 1, 1e-9, 1e18},
+    {"counts_per_s", SF_DOUBLE, 0, 1, BISS_MAX_SPEED_MIN_CPS, BISS_MAX_SPEED_MAX_CPS},
 };
 
 /* One {"slave": S, "counts_per_s": V} of max_speed. */
@@ -579,23 +591,68 @@ static int parse_top(ctx *c, const cJSON *root, scenario *s) {
     return 0;
 }
 
-/* A key given twice in one object would let the last one win unseen:
- * finds the first such key anywhere in the document. */
+/* A key given twice in one object would let the last one win unseen. */
+struct key_at {
+    const char *name;
+    size_t at; /* its place among the object's members */
+};
+
+static int by_name_then_place(const void *a, const void *b) {
+    const struct key_at *x = a, *y = b;
+    int d = strcmp(x->name, y->name);
+    return d ? d : (x->at > y->at) - (x->at < y->at);
+}
+
+/* The place of the first member whose key an earlier member has, SIZE_MAX
+ * none, or -1 out of memory: sorted, so n log n (a scan of every pair
+ * took 24 s over 60 000 keys). */
+static int first_repeat(const cJSON *obj, size_t *first) {
+    size_t n = 0;
+    const cJSON *it;
+    cJSON_ArrayForEach(it, obj) {
+        n++;
+    }
+    *first = SIZE_MAX;
+    if (n < 2) {
+        return 0;
+    }
+    struct key_at *k = malloc(n * sizeof *k);
+    if (!k) {
+        return -1;
+    }
+    size_t i = 0;
+    cJSON_ArrayForEach(it, obj) {
+        k[i] = (struct key_at){it->string, i};
+        i++;
+    }
+    qsort(k, n, sizeof *k, by_name_then_place);
+    for (i = 1; i < n; i++) {
+        if (!strcmp(k[i - 1].name, k[i].name) && k[i].at < *first) {
+            *first = k[i].at;
+        }
+    }
+    free(k);
+    return 0;
+}
+
+/* Finds the first such key anywhere in the document, in document order. */
 static int duplicate_key(ctx *c, const cJSON *item) {
     size_t saved = strlen(c->path);
+    size_t repeat = SIZE_MAX;
+    if (cJSON_IsObject(item) && first_repeat(item, &repeat)) {
+        return fail(c, NULL, "out of memory");
+    }
     const cJSON *it;
-    int i = 0;
+    size_t i = 0;
     cJSON_ArrayForEach(it, item) {
         if (cJSON_IsObject(item)) {
-            for (const cJSON *o = item->child; o != it; o = o->next) {
-                if (!strcmp(o->string, it->string)) {
-                    return fail(c, it->string, "given twice");
-                }
+            if (i == repeat) {
+                return fail(c, it->string, "given twice");
             }
             push(c, "%s", it->string);
         } else {
             size_t n = strlen(c->path);
-            snprintf(c->path + n, sizeof c->path - n, "[%d]", i);
+            snprintf(c->path + n, sizeof c->path - n, "[%zu]", i);
         }
         i++;
         if (duplicate_key(c, it)) {

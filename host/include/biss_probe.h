@@ -56,12 +56,17 @@ struct biss_probe_slave {
     unsigned distinct;  /* different data words among the frames */
     unsigned rank;      /* linearly independent data differences (the evidence) */
     unsigned crc_stuck; /* CRC bits that never changed */
-    /* nE/nW proposed: the two bits above a life counter of lc_bits (0: the
-     * two bits before the CRC) were 1 in ew_ones_pct % of the frames */
+    /* Judged on the good frames (every CRC of the layout fits): */
+    unsigned lc_bits; /* low bits that counted +1 per frame (0: none) */
+    /* The counter may be wider than lc_bits: it never wrapped and the bit
+     * above it never changed (its top, nE/nW or fill: the frames cannot
+     * tell). The layout is then ambiguous. */
+    bool lc_open;
+    /* nE/nW proposed: the two bits above the life counter (0: the two bits
+     * before the CRC) were 1 in ew_ones_pct % of the frames */
     bool has_ew;
     unsigned ew_shift; /* = lc_bits */
     unsigned ew_ones_pct;
-    unsigned lc_bits; /* low bits that counted +1 per frame (0: none) */
 };
 
 struct biss_probe_layout {
@@ -73,6 +78,7 @@ struct biss_probe_layout {
      * polynomial of its width fits one difference, so it proves nothing */
     bool weak;
     unsigned crc_stuck; /* its slaves' CRC bits that never changed: ranked last */
+    unsigned good;      /* frames every slave's CRC fits; the others are set aside */
 };
 
 enum biss_probe_verdict {
@@ -82,21 +88,64 @@ enum biss_probe_verdict {
     BISS_PROBE_NONE,      /* cannot decide: no layout fits, or the frames say too little */
 };
 
-struct biss_probe_result {
-    enum biss_probe_verdict verdict;
-    char reason[320];  /* why, in words */
-    unsigned frames;   /* frames analysed */
-    unsigned end_bit;  /* frame length: bits after the CDS up to the last ever 1 */
-    unsigned dropped;  /* frames left out as noise (1s after end_bit; see reason) */
-    unsigned nlayouts; /* layouts that fit (may exceed the ones kept) */
-    unsigned nkept;    /* layout[0 .. nkept-1], best first */
-    struct biss_probe_layout layout[BISS_PROBE_MAX_LAYOUTS];
+/* Why an analysis stopped before it had tried every split. */
+enum biss_probe_stop {
+    BISS_PROBE_RAN_OUT_NONE, /* it did not: every split was tried */
+    BISS_PROBE_RAN_OUT_WORK, /* the work limit (steps of the search) */
+    BISS_PROBE_RAN_OUT_TIME, /* the time limit (wall clock) */
 };
 
-/* Analyses the frames; 0, or BISS_E_INVAL for bad arguments (no frames,
- * nbits outside 2..BISS_PROBE_MAX_BITS). "Cannot decide" is a verdict, not
- * an error. */
+struct biss_probe_result {
+    enum biss_probe_verdict verdict;
+    char reason[320];   /* why, in words */
+    unsigned frames;    /* frames analysed */
+    unsigned end_bit;   /* frame length: bits after the CDS up to the last ever 1 */
+    unsigned dropped;   /* frames set aside as noise: the first layout's CRCs fail them */
+    unsigned after_end; /* frames with 1s after end_bit (noise there): analysed, never probes */
+    unsigned nlayouts;  /* layouts that fit (may exceed the ones kept) */
+    unsigned nkept;     /* layout[0 .. nkept-1], best first */
+    struct biss_probe_layout layout[BISS_PROBE_MAX_LAYOUTS];
+    /* The cost: steps of the search (CRC register steps, frame bits read,
+     * layouts walked: a measure of work that is the same on every machine),
+     * the wall-clock time, and whether a limit stopped it (then the verdict
+     * is ambiguous at best, and the reason says so). */
+    uint64_t work;
+    unsigned elapsed_ms;
+    enum biss_probe_stop ran_out;
+};
+
+/* ---- limits ----------------------------------------------------------------
+ * An analysis is bounded on any input: by work (deterministic: the same
+ * frames stop at the same place everywhere) and by a deadline (the wall
+ * clock, for a slow machine). Real encoders take far less than the default
+ * work limit: the longest chain the capture holds (547 bits, 8 slaves with
+ * CRC-16s) about 1/10 of it; 14 frames of garbage would otherwise search
+ * for minutes. A long run reports its progress. */
+#define BISS_PROBE_WORK_LIMIT    5000000000ull /* steps: 5 to 15 s on an x86-64 PC */
+#define BISS_PROBE_TIME_LIMIT_MS 60000u
+
+struct biss_probe_progress {
+    uint64_t work, work_limit;
+    unsigned elapsed_ms, time_limit_ms;
+    unsigned offsets_searched; /* bit offsets a slave may start at, searched so far */
+    unsigned end_bit;          /* ... of this many (the frame's length) */
+};
+
+struct biss_probe_limits {
+    uint64_t work_limit;    /* 0: BISS_PROBE_WORK_LIMIT */
+    unsigned time_limit_ms; /* 0: BISS_PROBE_TIME_LIMIT_MS */
+    /* Called about once a second of a long run (NULL: never). */
+    void (*progress)(void *ctx, const struct biss_probe_progress *p);
+    void *ctx;
+};
+
+/* Analyses the frames within the default limits; 0, or BISS_E_INVAL for
+ * bad arguments (no frames, nbits outside 2..BISS_PROBE_MAX_BITS). "Cannot
+ * decide" is a verdict, not an error. */
 int biss_probe_analyse(const struct biss_probe_frames *f, struct biss_probe_result *r);
+/* The same within the limits lim (NULL: the defaults). */
+int biss_probe_analyse_limited(const struct biss_probe_frames *f,
+                               const struct biss_probe_limits *lim, struct biss_probe_result *r);
 const char *biss_probe_verdict_name(enum biss_probe_verdict v);
 /* A layout as a libbiss configuration (slaves only; the rest of c as is). */
 void biss_probe_layout_config(const struct biss_probe_layout *l, struct biss_config *c);
@@ -196,11 +245,16 @@ struct biss_probe_params {
     unsigned reg_ids;      /* control-frame IDs 0..reg_ids-1 (0: one per slave found, else 1) */
     bool no_ssi;           /* no SSI capture when no layout fits and no register answers */
     uint32_t ssi_delay_ns; /* SSI capture: the round trip (0: BISS_PROBE_SSI_DELAY_NS) */
+    /* The analysis's limits; the time limit holds from the capture's start
+     * to the analysis's end (a capture it ends is analysed as far as it
+     * came, capture_cut). */
+    struct biss_probe_limits limits;
 };
 
 struct biss_probe_report {
     struct biss_probe_result wire;
     unsigned no_slave, invalid; /* captured frames without an ACK, or not valid */
+    bool capture_cut;           /* the time limit ended the capture early */
     unsigned busy_max;          /* longest processing time seen (MA clocks after the ACK) */
     double delay_ns;            /* line delay of the last frame captured (filtered) */
     unsigned nregs;

@@ -49,7 +49,8 @@ enum biss_error {
     BISS_E_NSLAVES = -13,        /* slave count outside 1..8 */
     BISS_E_DATA_BITS = -14,      /* data bits outside 1..64 */
     BISS_E_CRC_BITS = -15,       /* CRC bits outside 0..16 */
-    BISS_E_CRC_POLY = -16,       /* polynomial degree is not crc_bits (or a poly without CRC) */
+    BISS_E_CRC_POLY = -16,       /* polynomial not odd, or its degree not crc_bits (or a poly
+                                    without CRC) */
     BISS_E_CRC_START = -17,      /* CRC start value wider than crc_bits */
     BISS_E_EW = -18,             /* nE/nW position outside the data word */
     BISS_E_POS_BITS = -19,       /* position bits do not fit above nE/nW */
@@ -96,7 +97,9 @@ enum biss_error {
     BISS_E_SHM_VERSION = -57, /* the firmware speaks another BISS_SHM_VERSION */
     BISS_E_FW_IMAGE = -58,    /* the running image is not the expected one (CRC-32) */
     BISS_E_SHM_CONFIG = -59,  /* the configuration block in data RAM is invalid */
-    BISS_E_SHM_RESULT = -60,  /* a published result contradicts the configuration */
+    BISS_E_SHM_RESULT = -60,  /* a published result or a status word the firmware never
+                                 writes (or not with this configuration): named by
+                                 biss_shm_problem */
     /* safety checks (biss_config: life_check, pair) */
     BISS_E_SAFETY_LIFE = -61, /* life-counter check on no slave of the chain, or its width
                                  outside 1..32 or more than the bits below nE/nW and the
@@ -109,9 +112,11 @@ enum biss_error {
                                  that sends no nE/nW */
     /* two channels on one PRU-ICSS */
     BISS_E_IEP_OWNED = -65,    /* trigger iep: the other PRU's channel owns the IEP */
-    BISS_E_FW_PRU = -66,       /* the running image was assembled for the other PRU */
-    BISS_E_SAFETY_SPEED = -67, /* speed check (max_speed) on a slave outside the chain, or a
-                                  speed not finite and above 0 */
+    BISS_E_FW_PRU = -66,       /* the image (its words, or the running one's BISS_ST_PRU) was
+                                  assembled for the other PRU */
+    BISS_E_SAFETY_SPEED = -67, /* speed check (max_speed) on a slave outside the chain, a
+                                  speed outside 1e-9..1e18, or on a trigger with no time
+                                  base (iep-follow without the owner's period) */
     /* the encoder firmware (struct biss_encoder_config) */
     BISS_E_ENC_LC_BITS = -70,  /* a life counter over 32 bits */
     BISS_E_ENC_ID = -71,       /* an ID over 7, or two answering slaves with one ID */
@@ -173,8 +178,9 @@ struct biss_open_params {
      * pruss driver). firmware_dir: NULL "/lib/firmware". rproc_firmware:
      * the name written to the instance's firmware file (NULL: the name the
      * kernel's device tree gives that PRU, e.g. "am335x-pru0-fw").
-     * lock_dir: where the per-PRU lock file lives (NULL: $BISS_LOCK_DIR,
-     * else /run/lock when writable, else /tmp). */
+     * lock_dir: not used (kept for compatibility): the per-PRU and IEP
+     * locks are on the memory file itself, at the PRU's data RAM and the
+     * IEP, so every process agrees on them whatever its environment. */
     const char *sysfs_root;
     const char *firmware_dir;
     const char *rproc_firmware;
@@ -277,12 +283,15 @@ struct biss_slave_config {
      * wrong, e.g. one place off after a clock the master never made: the
      * frame is not valid (BISS_SAFE_POS_JUMP, biss_sample misframed).
      * Distances are modulo 2^pos_bits (a wrap is no jump). The time comes
-     * from the frames' IEP timestamps (free-run, host trigger: frames read
-     * at most 21 s apart, the count's wrap, and no other channel of the
-     * PRU-ICSS on the IEP trigger, which restarts the count) or from the
-     * frame numbers times
-     * iep_period_ns (IEP trigger; iep-follow with iep_period_ns set, else
-     * no check). 0 = off. */
+     * from the frames' IEP timestamps (free-run, host trigger: a count that
+     * went backwards, frames more than 10.7 s apart or the count restarted,
+     * tells no time and the position is refused, not passed unjudged) or
+     * from the frame numbers times iep_period_ns (IEP trigger; iep-follow:
+     * the owning channel's period, which biss_configure reads from it).
+     * Configured on a trigger with no time (iep-follow with no owner and no
+     * period; host or free-run while the other channel's IEP trigger
+     * restarts the count), it is refused (BISS_E_SAFETY_SPEED). 0 = off;
+     * else 1e-9..1e18 (biss/biss_rules.h). */
     double max_speed;
 };
 
@@ -478,6 +487,13 @@ struct biss_sample {
     uint32_t safety; /* the slaves' BISS_SAFE_* or'ed */
 };
 
+/* What the handle's last BISS_E_SHM_RESULT found in data RAM, by name
+ * ("result flags: a combination the firmware never writes", "MA half
+ * period: ...", "sample point: not 0..7", ...); "" when none. Checked:
+ * every field of a published result and the status words, against what
+ * the firmware writes (proto/biss_result_check.c). */
+const char *biss_shm_problem(biss_t *h);
+
 /* The latest published frame, consistent (ST_SEQ/ST_BUF protocol). */
 int biss_read_sample(biss_t *h, struct biss_sample *s);
 /* Blocks until a frame numbered after after_frame is published (at most
@@ -543,6 +559,19 @@ int biss_cd_poll(biss_t *h, biss_cd_job *job);
 /* After a successful poll: the n bytes a register read got, the IDA answers. */
 int biss_cd_job_bytes(const biss_cd_job *job, uint8_t *buf);
 int biss_cd_job_ida(const biss_cd_job *job, uint8_t *ida);
+/* After a poll that finished (any verdict): the ID fields a control frame
+ * answered, as read and as they came (host/CD.md, "IDL" and "IDA": the
+ * sources disagree on the slots). idl: a register access's ID lock IDL0..7
+ * (bit i = ID i); header_cds: its answers to S and the 8 steps after it
+ * that were 1 (bit 0 = S; IDL0 is read at S, the other reading has it at
+ * CTS, bit 1). ida: a command's IDA answers (bit i = ID i); ida_cds: its
+ * answers to the last header CRC step and the 8 IDA steps that were 1
+ * (bit 0 = the CRC step, where IDA0 is read). */
+struct biss_cd_slots {
+    uint8_t idl, ida;
+    uint16_t header_cds, ida_cds;
+};
+int biss_cd_job_slots(const biss_cd_job *job, struct biss_cd_slots *out);
 void biss_cd_job_free(biss_cd_job *job);
 
 /* ---- status and statistics --------------------------------------------- */

@@ -13,11 +13,13 @@
  * whatever assembler made the image (pruasm, or TI's pasm with
  * -DBISS_FW_ASSEMBLER=pasm) and keeps libelf out of the assembler. */
 #include "biss_image_id.h"
+#include "safe_file.h"
 
 #include <errno.h>
 #include <fcntl.h>
 #include <gelf.h>
 #include <libelf.h>
+#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -163,17 +165,16 @@ int main(int argc, char **argv) {
         free(image);
         return elf_fail(out);
     }
-    char tmp[4096];
-    if (snprintf(tmp, sizeof tmp, "%s.tmp", out) >= (int)sizeof tmp) {
+    /* written whole or not at all, never over what is not a regular file
+     * (safe_file.h) */
+    struct safe_file f;
+    char err[PATH_MAX + 128];
+    if (safe_file_open(&f, out, err, sizeof err) != 0) {
         free(image);
-        return fail(out, "path too long");
+        fprintf(stderr, "pru-elf: %s\n", err);
+        return 1;
     }
-    int fd = open(tmp, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
-    if (fd < 0) {
-        free(image);
-        return fail(tmp, strerror(errno));
-    }
-    Elf *e = elf_begin(fd, ELF_C_WRITE, NULL);
+    Elf *e = elf_begin(fileno(f.f), ELF_C_WRITE, NULL);
     int rc = e ? build(e, image, n, data) : -1;
     if (rc) {
         fail(out, elf_errmsg(-1));
@@ -181,15 +182,13 @@ int main(int argc, char **argv) {
     if (e) {
         elf_end(e);
     }
-    if (close(fd) != 0 && !rc) {
-        rc = fail(tmp, strerror(errno));
-    }
     free(image);
-    if (!rc && rename(tmp, out) != 0) {
-        rc = fail(out, strerror(errno));
-    }
     if (rc) {
-        unlink(tmp);
+        safe_file_abort(&f);
+        return 1;
+    }
+    if (safe_file_close(&f, err, sizeof err) != 0) {
+        fprintf(stderr, "pru-elf: %s\n", err);
         return 1;
     }
     return 0;

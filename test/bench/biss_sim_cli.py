@@ -214,19 +214,42 @@ check(r.returncode == 0 and r.stdout.count("0 CRC errors, 0 position mismatches"
 # PRU0's image on PRU1: it says so (BISS_ST_PRU), and biss-sim does too
 PRU0_IMAGE = os.path.join(os.path.dirname(SIM), "..", "..", "pru_fw", "biss_master.bin")
 r = run("--pru", "1", "--firmware", PRU0_IMAGE, "--frames", "3")
-check(r.returncode == 1 and "was assembled for PRU0, not PRU1" in r.stderr,
+check(r.returncode == 1 and "was assembled for PRU0, not PRU1" in r.stderr and r.stdout == "",
       "PRU0's image on PRU1: %d %r" % (r.returncode, r.stderr))
+# both directions, refused from the image's words before it runs
+r = run("--firmware", PRU0_IMAGE.replace(".bin", "_pru1.bin"), "--frames", "3")
+check(r.returncode == 1 and "was assembled for PRU1, not PRU0" in r.stderr and r.stdout == "",
+      "PRU1's image on PRU0: %d %r %r" % (r.returncode, r.stdout, r.stderr))
+r = run("--pru1-profile", "generic", "--pru1-firmware", PRU0_IMAGE, "--frames", "3")
+check(r.returncode == 1 and "was assembled for PRU0, not PRU1" in r.stderr and r.stdout == "",
+      "pair, PRU0's image on PRU1: %d %r %r" % (r.returncode, r.stdout, r.stderr))
 for args, words in [(["--pru", "2"], "--pru: '2'"),
                     (["--pru1-profile", "generic", "--pru1-firmware", "/nonexistent.bin"],
                      "cannot read image '/nonexistent.bin'"),
                     (["--pru1-profile", "nope"], "unknown profile 'nope'"),
-                    (["--pru1-profile", "generic", "--json"], "not with"),
+                    (["--pru1-profile", "generic", "--vcd", "x.vcd"], "not with"),
                     (["--pru1-profile", "generic", "--iep-period-ns", "12"], "multiple of 5 ns")]:
     r = run("--frames", "3", *args)
     check(r.returncode == 1 and words in r.stderr, "%s -> %r (got %d %r)" % (args, words, r.returncode, r.stderr))
 
 # safety checks: the scenario's and the command line's, in JSON and text
 SCEN = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scenarios")
+# on both PRUs each channel's checks time its frames by its own trigger
+# (PRU0 owns the IEP, PRU1 follows it: both by the IEP period): a healthy
+# encoder with the speed check, on either PRU, loses no frame to it
+NOISE = os.path.join(SCEN, "noise-sl-10khz.json")
+r = run("--scenario", NOISE, "--pru1-scenario", NOISE, "--frames", "2000", "--json",
+        "--check-speed", "0,60000")
+j = json.loads(r.stdout) if r.returncode == 0 else {}
+for k in ("pru0", "pru1"):
+    sp = (j.get(k, {}).get("safety", {}).get("max_speed") or [{}])[0]
+    check(j.get(k, {}).get("trigger") == ("iep" if k == "pru0" else "iep-follow")
+          and sp.get("checked", 0) >= 1900 and sp.get("jumped") == 0
+          and j[k]["safety"]["misframed_good_lost"] == 0,
+          "pair, speed check on %s: %d %r %r" % (k, r.returncode, j.get(k, {}).get("safety"),
+                                                 r.stderr))
+check(j.get("frame_starts", {}).get("pairs", 0) >= 2000 and j.get("spad_stalls") == 0,
+      "pair --json: %r" % {k: j.get(k) for k in ("frame_starts", "spad_stalls")})
 r = run("--scenario", os.path.join(SCEN, "safety-disagree.json"), "--frames", "400", "--json")
 j = json.loads(r.stdout) if r.returncode == 0 else {}
 sf = j.get("safety", {})

@@ -184,6 +184,21 @@ START_TEST(usage_errors) {
     char args[700];
     snprintf(args, sizeof args, "'%s'", write_file("odd.bin", odd, 3));
     ck_assert_int_ne(run(args), 0);
+    /* every usage error names its option: a value missing, one given to
+     * an option that takes none, a --data file that cannot be read */
+    ck_assert_int_eq(run("x.bin --max-cycles"), 1);
+    ck_assert_ptr_nonnull(strstr(slurp(errf), "option '--max-cycles' needs a value"));
+    ck_assert_int_eq(run("--dump-regs=1 x.bin"), 1);
+    ck_assert_ptr_nonnull(strstr(slurp(errf), "option takes no value: --dump-regs=1"));
+    const uint32_t w[] = {halt()};
+    const char *img = write_file("h.bin", w, sizeof w);
+    snprintf(args, sizeof args, "--data /nonexistent/d.bin '%s'", img);
+    ck_assert_int_eq(run(args), 1);
+    ck_assert_ptr_nonnull(strstr(slurp(errf), "--data /nonexistent/d.bin: cannot open"));
+    /* --option=value as getopt_long takes it, and abbreviations */
+    snprintf(args, sizeof args, "--max-cycles=1 --dump '%s'", img);
+    ck_assert_int_eq(run(args), 0);
+    ck_assert_ptr_nonnull(strstr(slurp(outf), "\ncycles=1\n"));
 }
 END_TEST
 

@@ -100,10 +100,12 @@ static void pair_run(struct pair *p, uint64_t n, int64_t step_ps, int64_t max_ps
 static void configure(struct pair *p, unsigned half0, unsigned half1) {
     struct bench_fw_settings s0 = {
         .half = half0, .trigger = BISS_TRIG_IEP, .iep_period = PERIOD, .proc_limit = 1000};
-    struct bench_fw_settings s1 = {
-        .half = half1, .trigger = BISS_TRIG_IEP_FOLLOW, .proc_limit = 1000};
-    ck_assert_int_eq(bench_fw_configure(p->r[0].b, &s0), 0);
-    ck_assert_int_eq(bench_fw_configure(p->r[1].b, &s1), 0);
+    struct bench_fw_settings s1 = {.half = half1,
+                                   .trigger = BISS_TRIG_IEP_FOLLOW,
+                                   .iep_period = PERIOD, /* the owner's: the checks time by it */
+                                   .proc_limit = 1000};
+    ck_assert_int_eq(fw_check_configure(&p->r[0].fc, &s0), 0);
+    ck_assert_int_eq(fw_check_configure(&p->r[1].fc, &s1), 0);
     /* training frames, the IEP set up, the first periods */
     pair_run(p, 3, 5 * SIM_PS_PER_US, 10 * SIM_PS_PER_MS, NULL, NULL);
     for (unsigned i = 0; i < 2; i++) {

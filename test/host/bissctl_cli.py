@@ -80,8 +80,14 @@ r = run("--pru", "1", "info")
 check(r.returncode == 0 and "/pru_fw/biss_master_pru1.bin\n" in r.stdout, "--pru 1 image: %r" % r.stdout)
 pru0_image = r.stdout.split("firmware=", 1)[1].split()[0].replace("_pru1.bin", ".bin")
 r = run("--pru", "1", "--firmware", pru0_image, "--freq", "10000000", "read", "-n", "1")
-check(r.returncode != 0 and "assembled for the other PRU" in r.stderr,
+check(r.returncode == 1 and "assembled for the other PRU" in r.stderr
+      and "assembled for PRU0, not PRU1" in r.stderr,
       "PRU0's image on PRU1: %d %r" % (r.returncode, r.stderr))
+# and PRU1's on PRU0, which once ran with NO_SLAVE forever: refused from
+# its words before it runs
+r = run("--firmware", pru0_image.replace(".bin", "_pru1.bin"), "read", "-n", "5")
+check(r.returncode == 1 and "assembled for PRU1, not PRU0" in r.stderr and r.stdout == "",
+      "PRU1's image on PRU0: %d %r %r" % (r.returncode, r.stdout, r.stderr))
 
 # host trigger: one frame per trigger
 r = run("--freq", "10000000", "--trigger", "host", "trigger")
@@ -108,8 +114,9 @@ r = run("--freq", "10000000", "reg-write", "0x60", "0x12", "0x34")
 check(r.returncode == 0 and r.stdout == "", "reg-write: %r %r" % (r.stdout, r.stderr))
 r = run("--freq", "10000000", "--id", "3", "reg-read", "0x78")
 check(r.returncode == 1 and "no slave took" in r.stderr, "reg-read wrong id: %r" % r.stderr)
+CMD0_ID0 = "command 0 to ID 0: switches the data channel of each addressed slave on\n"
 r = run("--freq", "10000000", "command", "1", "0")
-check(r.returncode == 0 and r.stdout == "ids=0x01 cmd=0 ida=0x01\n", "command: %r %r" % (r.stdout, r.stderr))
+check(r.returncode == 0 and r.stdout == CMD0_ID0 + "ids=0x01 cmd=0 ida=0x01\n", "command: %r %r" % (r.stdout, r.stderr))
 # the other spellings: "reg read", "reg write", "cmd"
 r = run("--freq", "10000000", "reg", "read", "0x78", "-n", "2")
 check(r.returncode == 0 and r.stdout.split("\n")[:2] ==
@@ -117,10 +124,10 @@ check(r.returncode == 0 and r.stdout.split("\n")[:2] ==
 r = run("--freq", "10000000", "reg", "write", "0x60", "0x12")
 check(r.returncode == 0 and r.stdout == "", "reg write: %r %r" % (r.stdout, r.stderr))
 r = run("--freq", "10000000", "cmd", "1", "0")
-check(r.returncode == 0 and r.stdout == "ids=0x01 cmd=0 ida=0x01\n", "cmd: %r %r" % (r.stdout, r.stderr))
+check(r.returncode == 0 and r.stdout == CMD0_ID0 + "ids=0x01 cmd=0 ida=0x01\n", "cmd: %r %r" % (r.stdout, r.stderr))
 # ID 1 is not there: with the IDA test the firmware withholds the command
-r = run("--freq", "10000000", "command", "3", "1", "--ida-test")
-check(r.returncode == 1 and r.stdout == "ids=0x03 cmd=1 ida=0x01\n" and "withheld" in r.stderr,
+r = run("--freq", "10000000", "command", "3", "0", "--ida-test")
+check(r.returncode == 1 and r.stdout.endswith("ids=0x03 cmd=0 ida=0x01\n") and "withheld" in r.stderr,
       "command --ida-test: %r %r" % (r.stdout, r.stderr))
 for args in [["command", "1", "4"], ["command", "1"], ["reg-read"], ["reg-read", "0x80"], ["reg-write", "0x60"], ["reg-write", "0x60", "0x100"],
              ["--id", "8", "reg-read", "0"], ["info", "0x33"]]:
@@ -145,11 +152,16 @@ for args, text in [(["--freq", "3000000", "read"], "not 100 MHz divided by a who
                    (["--freq", "100000", "read"], "no exact 8x shift clock"),
                    (["--freq", "20000000", "read"], "out of range"),
                    (["--slave", "14,6,0x03,0,0", "read"], "polynomial"),
+                   # even: refused as the scenario files refuse it (one rule)
+                   (["--slave", "14,6,0x42,0,0", "read"], "polynomial"),
                    (["--slave", "70,6,0x43,0", "read"], "data bits"),
                    (["--profile", "nope", "info"], "unknown emulator profile"),
                    (["--firmware", "/nonexistent.bin", "info"], "firmware image cannot be read"),
                    (["--target", "am335x", "--devmem", "/nonexistent", "--slave", "14,6,0x43,0",
-                     "info"], "/nonexistent: No such file or directory (errno 2)")]:
+                     "info"], "/nonexistent: No such file or directory (errno 2)"),
+                   # no PRU-ICSS memory there (its mapping was a bus error)
+                   (["--target", "am335x", "--loader", "devmem", "--devmem", "/dev/zero",
+                     "--slave", "14,6,0x43,0", "info"], "/dev/zero is not /dev/mem")]:
     r = run(*args)
     check(r.returncode == 1 and text in r.stderr, "%r: rc %d %r" % (args, r.returncode, r.stderr))
 
@@ -211,6 +223,13 @@ with tempfile.TemporaryDirectory() as tmp:
     r = run(*dm, "--slave", "14,6,0x43,0,0", "--freq", "10000000", "info", env=env)
     check(r.returncode == 1 and ("pid %d" % holder.pid) in r.stderr and "in use" in r.stderr,
           "second process: %r" % r.stderr)
+    # whatever its environment: one lock per PRU, on the memory file, and
+    # the holder named with its command
+    other_env = dict(os.environ, BISS_LOCK_DIR=os.path.join(tmp, "elsewhere"))
+    r = run(*dm, "--slave", "14,6,0x43,0,0", "--freq", "10000000", "info", env=other_env)
+    check(r.returncode == 1 and ("pid %d (bissctl)" % holder.pid) in r.stderr
+          and "PRU0 of the PRU-ICSS at 0x4a300000" in r.stderr,
+          "second process, another BISS_LOCK_DIR: %r" % r.stderr)
     r = run(*dm, "stats", env=env)  # another reader shares it
     check(r.returncode == 0 and "frames=1234" in r.stdout, "shared reader: %r" % r.stderr)
     holder.wait(timeout=30)
@@ -226,6 +245,26 @@ with tempfile.TemporaryDirectory() as tmp:
     wr(mem, BASE + 0x10, 0x000000c8)   # 200 data bits: once a shift by 200
     r = run(*dm, "--attach", "read", env=env)
     check(r.returncode == 1 and "bad slave data bits" in r.stderr, "junk slave: %r" % r.stderr)
+    wr(mem, BASE + 0x10, 0x0100060e)   # 14 data bits, CRC6, nE/nW at 0
+    wr(mem, BASE + 0x14, 0x00000003)   # 0x43
+    wr(mem, BASE + 0x100, 5)           # a publication: frame 5 ...
+    wr(mem, BASE + 0x104, 0x41)        # ... VALID with ACK_JUMP: never written so
+    wr(mem, BASE + 0x10C, 0x01000000)  # one slave
+    wr(mem, BASE + 0x114, 0x000a0307)  # H = 10, lag 3, sample point 7
+    wr(mem, BASE + 0x88, 0)            # ST_BUF
+    wr(mem, BASE + 0x84, 1)            # ST_SEQ
+    r = run(*dm, "--attach", "read", env=env)
+    check(r.returncode == 1 and "result flags: a combination the firmware never writes" in r.stderr
+          and "pos=" not in r.stdout, "junk flags: %r %r" % (r.stdout, r.stderr))
+    wr(mem, BASE + 0x104, 0x01)        # VALID ...
+    wr(mem, BASE + 0x114, 0x000a03ff)  # ... with sample point 255
+    r = run(*dm, "--attach", "read", env=env)
+    check(r.returncode == 1 and "sample point: not 0..7" in r.stderr, "junk point: %r" % r.stderr)
+    wr(mem, BASE + 0x114, 0x000a0307)
+    wr(mem, BASE + 0x94, 7)            # ST_STATE
+    r = run(*dm, "--attach", "stats", env=env)
+    check(r.returncode == 1 and "ST_STATE" in r.stderr, "junk state: %r" % r.stderr)
+    wr(mem, BASE + 0x94, 1)
     wr(mem, BASE + 0xFE4, 99)          # another BISS_SHM_VERSION
     r = run(*dm, "--attach", "stats", env=env)
     check(r.returncode == 1 and "BISS_SHM_VERSION 99" in r.stderr, "version: %r" % r.stderr)
@@ -336,6 +375,11 @@ except ValueError:
 check(sp == [{"slave": 0, "counts_per_s": 60000, "checked": 1, "jumped": 0, "resync": 0}], "--check-speed --json: %r" % sp)
 r = run("--check-speed", "0,x", "read")
 check(r.returncode == 2 and "--check-speed" in r.stderr, "--check-speed 0,x: %r" % r.stderr)
+# the range the scenario files take, 1e-9..1e18 (one rule)
+for spd in ["0,1e308", "0,2e18", "0,1e-10"]:
+    r = run("--check-speed", spd, "read")
+    check(r.returncode == 2 and "--check-speed" in r.stderr and "1e-9..1e18" in r.stderr,
+          "--check-speed %s: %r" % (spd, r.stderr))
 r = run("--check-speed", "1,5", "read")
 check(r.returncode == 1 and "speed check" in r.stderr, "--check-speed 1,5: %r" % r.stderr)
 

@@ -17,14 +17,25 @@ void fake_set_dram32(struct fake *f, uint32_t off, uint32_t v) {
     memcpy(f->mem + ICSS_DRAM0 + off, &v, 4);
 }
 
-/* Every word names its frame, except the flags and the slave count, so a
- * torn read shows as words of two frames. */
+/* Every word names its frame as far as the firmware's values allow (the
+ * flags, slave count and half period are fixed; a line delay, sample
+ * point, lag, CDM and status take some of its bits), so a torn read shows
+ * as words of two frames; and every word is one the firmware can write. */
 uint32_t fake_result_word(uint32_t k, unsigned i) {
-    if (i == BISS_R_FLAGS / 4) {
+    switch (i * 4) {
+    case BISS_R_FLAGS:
         return BISS_RF_VALID;
-    }
-    if (i == BISS_R_PROC_CLOCKS / 4) {
+    case BISS_R_PROC_CLOCKS:
         return (uint32_t)BISS_MAX_SLAVES << 24 | (k & 0xffffu);
+    case BISS_R_DELAY_RAW:
+        return (8u + (k >> 12) % 4096u) << 16 | (8u + k % 4096u);
+    case BISS_R_SAMPLE_POINT:
+        return 10u << 16 | (k >> 3 & 0xffu) << 8 | (k & 7u); /* H = 10, lag, point */
+    case BISS_R_CDM:
+        return k & 1u;
+    }
+    if (i * 4 >= BISS_R_SLAVE0 && (i * 4 - BISS_R_SLAVE0) % BISS_R_SLAVE_SIZE == BISS_R_S_STATUS) {
+        return k & (BISS_RS_CRC_OK | BISS_RS_NE | BISS_RS_NW);
     }
     return k;
 }

@@ -246,6 +246,11 @@ START_TEST(test_emu_nonblocking) {
     for (unsigned i = 0; i < 8; i++) {
         ck_assert_uint_eq(b[i], regfile_read(slave_regs(h), 0x78 + i));
     }
+    /* the ID lock of the one slave (ID 0): IDL0, in the answer to S */
+    struct biss_cd_slots sl;
+    ck_assert_int_eq(biss_cd_job_slots(j, &sl), BISS_OK);
+    ck_assert_uint_eq(sl.idl, 0x01);
+    ck_assert_uint_eq(sl.header_cds, 0x001);
     ck_assert_int_eq(biss_cd_poll(h, j), BISS_OK); /* the verdict stays */
     biss_cd_job_free(j);
 
@@ -266,6 +271,11 @@ START_TEST(test_emu_nonblocking) {
     ck_assert_int_eq(rc, BISS_OK);
     ck_assert_int_eq(biss_cd_job_ida(j, &ida), BISS_OK);
     ck_assert_uint_eq(ida, 0x01);
+    /* IDA0 in the answer to the last header CRC step; the ID lock came in
+     * the first header slot, as in every control frame */
+    ck_assert_int_eq(biss_cd_job_slots(j, &sl), BISS_OK);
+    ck_assert_uint_eq(sl.ida, 0x01);
+    ck_assert_uint_eq(sl.ida_cds, 0x001);
     biss_cd_job_free(j);
 
     /* an error comes back from poll as the blocking call returns it */
@@ -276,6 +286,7 @@ START_TEST(test_emu_nonblocking) {
     ck_assert_int_eq(rc, BISS_E_CD_NO_ECHO);
     ck_assert_int_eq(biss_cd_job_bytes(j, b), BISS_E_CD_NO_ECHO);
     biss_cd_job_free(j);
+    ck_assert_int_eq(biss_cd_job_slots(NULL, &sl), BISS_E_INVAL);
     ck_assert_int_eq(biss_reg_read_start(h, 8, 0x78, 1, &j), BISS_E_INVAL);
     ck_assert_int_eq(biss_reg_read_start(h, 0, 0x78, 0, &j), BISS_E_INVAL);
     biss_close(h);

@@ -150,6 +150,15 @@ START_TEST(test_crc) {
     ck_assert_int_eq(biss_config_check(&c), BISS_E_CRC_POLY);
     c.slave[0].crc_poly = 0x143;
     ck_assert_int_eq(biss_config_check(&c), BISS_E_CRC_POLY);
+    /* even (no x^0 term): refused, as the scenario files refuse it
+     * (biss/biss_rules.h, one rule) */
+    c.slave[0].crc_poly = 0x42;
+    ck_assert_int_eq(biss_config_check(&c), BISS_E_CRC_POLY);
+    c.slave[0].crc_bits = 1;
+    c.slave[0].crc_poly = 0x2;
+    ck_assert_int_eq(biss_config_check(&c), BISS_E_CRC_POLY);
+    c.slave[0].crc_poly = 0x3;
+    ck_assert_int_eq(biss_config_check(&c), BISS_OK);
     /* no CRC: no polynomial, no start value */
     c.slave[0].crc_bits = 0;
     c.slave[0].crc_poly = 0x43;

@@ -9,6 +9,7 @@
 
 #include <check.h>
 #include <math.h>
+#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
@@ -287,6 +288,56 @@ START_TEST(test_two_prus_one_iep) {
 }
 END_TEST
 
+/* Both channels of a pair asking for the IEP at once, from two threads,
+ * round after round: one owns it, the other is refused (the check and the
+ * write decided under the IEP's lock; apart, both got through). */
+struct iep_claim {
+    biss_t *h;
+    int rc;
+};
+
+static void *claim_iep(void *arg) {
+    struct iep_claim *k = arg;
+    struct biss_config c;
+    biss_config_default(&c);
+    c.freq_hz = 10000000;
+    c.trigger = BISS_TRIGGER_IEP;
+    c.iep_period_ns = 50000;
+    ck_assert_int_eq(biss_config_from_emu(k->h, &c), BISS_OK);
+    k->rc = biss_configure(k->h, &c);
+    return NULL;
+}
+
+START_TEST(test_iep_owned_once) {
+    struct biss_open_params p[2];
+    for (unsigned i = 0; i < 2; i++) {
+        biss_open_params_default(&p[i]);
+        p[i].target = BISS_TARGET_EMU;
+    }
+    biss_t *h[2];
+    ck_assert_int_eq(biss_emu_open_pair(p, h), BISS_OK);
+    for (int round = 0; round < 40; round++) {
+        for (unsigned i = 0; i < 2; i++) {
+            configure(h[i], 10000000, BISS_TRIGGER_FREERUN, 0); /* the IEP let go */
+        }
+        struct iep_claim k[2] = {{.h = h[0]}, {.h = h[1]}};
+        pthread_t t[2];
+        for (unsigned i = 0; i < 2; i++) {
+            ck_assert_int_eq(pthread_create(&t[i], NULL, claim_iep, &k[i]), 0);
+        }
+        for (unsigned i = 0; i < 2; i++) {
+            pthread_join(t[i], NULL);
+        }
+        ck_assert_msg((k[0].rc == BISS_OK && k[1].rc == BISS_E_IEP_OWNED) ||
+                          (k[1].rc == BISS_OK && k[0].rc == BISS_E_IEP_OWNED),
+                      "round %d: PRU0 %s, PRU1 %s", round, biss_strerror(k[0].rc),
+                      biss_strerror(k[1].rc));
+    }
+    biss_close(h[0]);
+    biss_close(h[1]);
+}
+END_TEST
+
 START_TEST(test_stop_start) {
     biss_t *h = open_emu(2.0);
     configure(h, 10000000, BISS_TRIGGER_FREERUN, 0);
@@ -438,6 +489,19 @@ START_TEST(test_emu_open_errors) {
     p.scenario_file = NULL;
     p.firmware = "/nonexistent.bin";
     ck_assert_int_eq(biss_emu_open(&p, &h), BISS_E_FIRMWARE_IO);
+    /* the other PRU's image, from its words, either way */
+    char why_pru[200];
+    p.errbuf = why_pru;
+    p.errbuf_len = sizeof why_pru;
+    p.firmware = BISS_BUILD_FIRMWARE_PRU1;
+    ck_assert_int_eq(biss_emu_open(&p, &h), BISS_E_FW_PRU);
+    ck_assert_ptr_nonnull(strstr(why_pru, "assembled for PRU1, not PRU0"));
+    p.firmware = BISS_BUILD_FIRMWARE;
+    p.pru = 1;
+    ck_assert_int_eq(biss_emu_open(&p, &h), BISS_E_FW_PRU);
+    ck_assert_ptr_nonnull(strstr(why_pru, "assembled for PRU0, not PRU1"));
+    p.pru = 0;
+    p.errbuf = NULL;
     /* the environment names the image when the params do not */
     p.firmware = NULL;
     setenv("BISS_FIRMWARE", "/nonexistent-env.bin", 1);
@@ -479,6 +543,7 @@ int main(int argc, char **argv) {
     tcase_add_test(tc, test_stop_start);
     tcase_add_test(tc, test_emu_open_errors);
     tcase_add_test(tc, test_two_prus_one_iep);
+    tcase_add_test(tc, test_iep_owned_once);
     tcase_add_test(tc, test_reconfigure_other_layout);
     tcase_add_test(tc, test_ssi_binary);
     tcase_add_test(tc, test_ssi_gray);

@@ -139,7 +139,7 @@ static void result_bytes(uint8_t *b) {
     put32(b, s0 + BISS_R_S_DATA_LO, 0xabc << 6 | 0 << 5 | 1 << 4 | 0x5);
     put32(b, s0 + BISS_R_S_CRC_REG, 0x08000000);
     put32(b, s0 + BISS_R_S_STATUS, BISS_RS_CRC_OK | BISS_RS_NW);
-    /* slave 1: 40 bits, no nE/nW, CRC wrong */
+    /* slave 1: 40 bits, no nE/nW, CRC6 wrong */
     put32(b, s1 + BISS_R_S_DATA_LO, 0x89abcdef);
     put32(b, s1 + BISS_R_S_DATA_HI, 0x12);
     put32(b, s1 + BISS_R_S_STATUS, 0);
@@ -152,7 +152,7 @@ static struct biss_config two_slaves(void) {
     c.nslaves = 2;
     c.slave[0] = (struct biss_slave_config){
         .data_bits = 18, .crc_bits = 6, .crc_poly = 0x43, .has_ew = true, .ew_shift = 4};
-    c.slave[1] = (struct biss_slave_config){.data_bits = 40, .crc_bits = 0};
+    c.slave[1] = (struct biss_slave_config){.data_bits = 40, .crc_bits = 6, .crc_poly = 0x43};
     return c;
 }
 
@@ -304,30 +304,108 @@ START_TEST(test_junk_config_block_refused) {
 }
 END_TEST
 
-/* A result with another slave count than the configuration, or past the
- * limit, is junk; data bits beyond the layout's word are masked. */
+/* A result the firmware cannot have written is junk, refused by name
+ * (biss_result_problem): a slave count not the configuration's or past the
+ * limit, flags it never combines, a half period it never runs, a sample
+ * point, lag or line delay out of range, status bits or data bits it never
+ * sets, a CRC verdict the flags contradict. */
+static void expect_junk(struct biss_shm_result r, bool configured, const char *field) {
+    struct biss_config c = two_slaves();
+    struct biss_sample s;
+    ck_assert_int_eq(biss_sample_decode(&c, configured, 1, &r, &s), BISS_E_SHM_RESULT);
+    const char *why = biss_result_problem(&c, configured, &r);
+    ck_assert_msg(why && strstr(why, field), "%s: got %s", field, why ? why : "(none)");
+}
+
 START_TEST(test_junk_result_refused) {
     uint8_t b[BISS_RES_SIZE];
     result_bytes(b);
-    struct biss_shm_result r;
-    memcpy(&r, b, sizeof r);
+    struct biss_shm_result good, r;
+    memcpy(&good, b, sizeof good);
     struct biss_config c = two_slaves();
     struct biss_sample s;
-    r.nslaves = 200;
-    ck_assert_int_eq(biss_sample_decode(&c, true, 1, &r, &s), BISS_E_SHM_RESULT);
-    ck_assert_int_eq(biss_sample_decode(&c, false, 1, &r, &s), BISS_E_SHM_RESULT);
-    r.nslaves = 3;
-    ck_assert_int_eq(biss_sample_decode(&c, true, 1, &r, &s), BISS_E_SHM_RESULT);
-    r.nslaves = 2;
-    r.slave[0].data_hi = 0xffffffffu; /* junk above slave 0's 18 bits */
+    ck_assert_ptr_null(biss_result_problem(&c, true, &good));
+    r = good, r.nslaves = 200;
+    expect_junk(r, true, "slave count");
+    expect_junk(r, false, "slave count");
+    r = good, r.nslaves = 3;
+    expect_junk(r, true, "slave count");
+    r = good, r.nslaves = 0;
+    expect_junk(r, false, "slave count");
+    /* flags: VALID with ACK_JUMP, all ones, SMA on a refused frame, two
+     * early ends at once, a flag the contract does not have */
+    static const uint32_t flags[] = {
+        BISS_RF_VALID | BISS_RF_ACK_JUMP, 0xffffffffu,       0,
+        BISS_RF_ACK_JUMP | BISS_RF_SMA,   BISS_RF_CRC_ERROR, BISS_RF_NO_SLAVE | BISS_RF_TRAINING,
+        BISS_RF_VALID | BISS_RF_TRAINING, BISS_RF_SL_INIT,   BISS_RF_VALID | 0x80,
+        BISS_RF_PROC_ERROR | BISS_RF_SMA};
+    for (size_t i = 0; i < sizeof flags / sizeof flags[0]; i++) {
+        r = good, r.flags = flags[i];
+        expect_junk(r, true, "result flags");
+    }
+    /* half periods the firmware refuses to run */
+    static const uint16_t halves[] = {0, 9, 11, 1025, 0xffff};
+    for (size_t i = 0; i < sizeof halves / sizeof halves[0]; i++) {
+        r = good, r.half = halves[i];
+        expect_junk(r, false, "MA half period");
+    }
+    r = good, r.sample_point = 8;
+    expect_junk(r, true, "sample point");
+    r = good, r.sample_point = 255;
+    expect_junk(r, false, "sample point");
+    /* at 1 MHz the firmware waits 44 periods for the ACK at most: lag 255
+     * and a delay of 0xffff eighths cannot be */
+    r = good, r.half = 100, r.lag_periods = 255;
+    expect_junk(r, false, "lag");
+    r = good, r.half = 100, r.lag_periods = 47; /* 44 periods to the ACK, LAG 2 */
+    ck_assert_ptr_null(biss_result_problem(&c, true, &r));
+    r.lag_periods = 60;
+    expect_junk(r, true, "lag");
+    r = good, r.delay_avg = 0xffff;
+    expect_junk(r, false, "line delay");
+    r = good, r.cds = 2;
+    expect_junk(r, false, "CDS");
+    r = good, r.proc_clocks = 1001; /* over the configuration's limit */
+    expect_junk(r, true, "processing time");
+    ck_assert_ptr_null(biss_result_problem(&c, false, &r));
+    /* slaves: status bits, nE/nW of a slave that has none, a CRC error the
+     * flags lack, CRC_ERROR no slave has, data above the data bits */
+    r = good, r.slave[0].status |= 0x100;
+    expect_junk(r, false, "slave status");
+    r = good, r.slave[1].status |= BISS_RS_NE;
+    expect_junk(r, true, "slave status");
+    r = good, r.flags = BISS_RF_VALID;
+    expect_junk(r, true, "slave status");
+    r = good, r.slave[1].status = BISS_RS_CRC_OK;
+    expect_junk(r, true, "result flags");
+    r = good, r.slave[0].data_hi = 0xffffffffu; /* above slave 0's 18 bits */
+    expect_junk(r, true, "slave data");
+    /* a frame that ended early keeps older words in its buffer: only its
+     * header is judged */
+    r = good, r.flags = BISS_RF_NO_SLAVE, r.sample_point = 200, r.slave[0].status = 0xff;
     ck_assert_int_eq(biss_sample_decode(&c, true, 1, &r, &s), BISS_OK);
-    ck_assert_uint_eq(s.slave[0].data, (0xabcull << 6 | 1 << 4 | 0x5));
+}
+END_TEST
+
+/* Status words a running firmware never writes, named. */
+START_TEST(test_junk_status_refused) {
+    struct biss_shm_status st = {.magic = BISS_MAGIC, .state = BISS_STATE_RUNNING};
+    ck_assert_ptr_null(biss_status_problem(&st, 1));
+    ck_assert_ptr_nonnull(strstr(biss_status_problem(&st, 2), "ST_PRU"));
+    st.state = 4;
+    ck_assert_ptr_nonnull(strstr(biss_status_problem(&st, 0), "ST_STATE"));
+    st.state = 0, st.buf = 2;
+    ck_assert_ptr_nonnull(strstr(biss_status_problem(&st, 0), "ST_BUF"));
+    st.buf = 1, st.cfg_error = 9;
+    ck_assert_ptr_nonnull(strstr(biss_status_problem(&st, 0), "ST_CFG_ERROR"));
+    st.magic = 0; /* not running: nothing judged */
+    ck_assert_ptr_null(biss_status_problem(&st, 7));
 }
 END_TEST
 
 START_TEST(test_ack_jump_frame_is_not_valid) {
     struct biss_sample s;
-    decode_with_flags(BISS_RF_ACK_JUMP, &s);
+    decode_with_flags(BISS_RF_ACK_JUMP | BISS_RF_CRC_ERROR, &s);
     ck_assert(!s.valid && s.ack_jump && !s.no_slave);
     ck_assert_uint_eq(s.slave[0].data, 0); /* words read at the wrong place: none */
 }
@@ -337,6 +415,7 @@ int main(void) {
     Suite *s = suite_create("host_encode");
     TCase *tc = tcase_create("encode");
     tcase_add_test(tc, test_config_bytes);
+    tcase_add_test(tc, test_junk_status_refused);
     tcase_add_test(tc, test_free_run_writes_no_iep_period);
     tcase_add_test(tc, test_firmware_errors_map);
     tcase_add_test(tc, test_result_decode);

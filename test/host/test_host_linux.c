@@ -3,6 +3,7 @@
  * CONTROL is written, the configuration bytes are where biss_shm.h says;
  * with a "virtual firmware" thread on the same file the whole protocol
  * runs as on a board. */
+#define _GNU_SOURCE /* F_OFD_SETLK */
 #include "libbiss-emu.h"
 
 #include "biss/biss_shm.h"
@@ -18,8 +19,10 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <signal.h>
 #include <sys/mman.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -215,6 +218,8 @@ END_TEST
 /* ---- a virtual firmware on the same file ------------------------------- */
 struct vfw {
     volatile uint32_t *dram;
+    unsigned pru;          /* the PRU it says it runs on (ST_PRU) */
+    unsigned ack_delay_us; /* how long it takes to apply a configuration */
     atomic_int stop;
     atomic_int publish; /* frames still to publish */
 };
@@ -223,11 +228,13 @@ static void *virtual_firmware(void *arg) {
     struct vfw *v = arg;
     volatile uint32_t *d = v->dram;
     d[BISS_ST_CFG_ACK / 4] = 0xffffffffu;
+    d[BISS_ST_PRU / 4] = v->pru;
     d[BISS_ST_MAGIC / 4] = BISS_MAGIC;
     uint32_t seq = 0;
     while (!atomic_load(&v->stop)) {
         uint32_t cfg = d[BISS_CFG_SEQ / 4];
         if (cfg != 0 && cfg != d[BISS_ST_CFG_ACK / 4]) {
+            nanosleep(&(struct timespec){.tv_nsec = 1000L * v->ack_delay_us}, NULL);
             d[BISS_ST_CFG_ERROR / 4] = BISS_CFGERR_NONE;
             d[BISS_ST_STATE / 4] = BISS_STATE_RUNNING;
             d[BISS_ST_CFG_ACK / 4] = cfg;
@@ -334,9 +341,17 @@ START_TEST(test_virtual_board) {
     ck_assert_int_eq(biss_open(&pa, &h2), BISS_E_BUSY);
     char pid[32];
     snprintf(pid, sizeof pid, "pid %ld", (long)getpid());
-    ck_assert_msg(strstr(err, pid) && strstr(err, "/tmp/biss-"), "%s", err);
+    ck_assert_msg(strstr(err, pid) && strstr(err, "(test_host_linux)") && strstr(err, devmem) &&
+                      strstr(err, "PRU0 of the PRU-ICSS at 0x4a300000"),
+                  "%s", err);
     struct biss_open_params pl = params(BISS_TARGET_AM335X);
     ck_assert_int_eq(biss_open(&pl, &h2), BISS_E_BUSY);
+    /* whatever lock directory another process was given (it names none:
+     * the lock is on the memory file) */
+    pl.lock_dir = "/nonexistent-other-lock-dir";
+    setenv("BISS_LOCK_DIR", "/nonexistent-env-lock-dir", 1);
+    ck_assert_int_eq(biss_open(&pl, &h2), BISS_E_BUSY);
+    unsetenv("BISS_LOCK_DIR");
     biss_close(h); /* the devmem loader leaves the PRU running */
 
     /* attach: no reload, the running configuration, the image checked */
@@ -400,6 +415,39 @@ START_TEST(test_virtual_board) {
     uint32_t word = file32(res + (BISS_R_NSLAVES & ~3u));
     file_write32(res + (BISS_R_NSLAVES & ~3u), (word & 0x00ffffffu) | 200u << 24);
     ck_assert_int_eq(biss_read_sample(h2, &s), BISS_E_SHM_RESULT);
+    ck_assert_str_eq(biss_shm_problem(h2), "slave count: not the configuration's");
+    file_write32(res + (BISS_R_NSLAVES & ~3u), word);
+    ck_assert_int_eq(biss_read_sample(h2, &s), BISS_OK);
+    /* fields the firmware never writes so, each refused by name: VALID
+     * with ACK_JUMP, all flags, half periods 0 and 0xffff, sample point
+     * 255, lag 255 at 5 MHz (the firmware waits 204 periods at most) */
+    uint32_t sp = file32(res + BISS_R_SAMPLE_POINT); /* point, lag, half */
+    struct {
+        off_t at;
+        uint32_t val;
+        const char *field;
+    } bad[] = {
+        {res + BISS_R_FLAGS, BISS_RF_VALID | BISS_RF_ACK_JUMP, "result flags"},
+        {res + BISS_R_FLAGS, 0xffffffffu, "result flags"},
+        {res + BISS_R_SAMPLE_POINT, sp & 0x0000ffffu, "MA half period"},
+        {res + BISS_R_SAMPLE_POINT, sp | 0xffff0000u, "MA half period"},
+        {res + BISS_R_SAMPLE_POINT, (sp & ~0xffu) | 0xffu, "sample point"},
+        {res + BISS_R_SAMPLE_POINT, (sp & ~0xff00u) | 0xff00u, "lag"},
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        uint32_t keep = file32(bad[i].at);
+        file_write32(bad[i].at, bad[i].val);
+        ck_assert_int_eq(biss_read_sample(h2, &s), BISS_E_SHM_RESULT);
+        ck_assert_msg(strstr(biss_shm_problem(h2), bad[i].field), "%zu: %s", i,
+                      biss_shm_problem(h2));
+        file_write32(bad[i].at, keep);
+    }
+    ck_assert_int_eq(biss_read_sample(h2, &s), BISS_OK);
+    file_write32(AM335X_BASE + BISS_ST_STATE, 9);
+    ck_assert_int_eq(biss_get_status(h2, &status), BISS_E_SHM_RESULT);
+    ck_assert_ptr_nonnull(strstr(biss_shm_problem(h2), "ST_STATE"));
+    ck_assert_int_eq(biss_get_stats(h2, &st), BISS_E_SHM_RESULT);
+    file_write32(AM335X_BASE + BISS_ST_STATE, BISS_STATE_RUNNING);
     file_write32(AM335X_BASE + BISS_ST_BUF, 7);
     ck_assert_int_eq(biss_read_sample(h2, &s), BISS_E_SHM_RESULT);
     biss_close(h2);
@@ -437,6 +485,155 @@ START_TEST(test_am437x_bases_and_iram_sizes) {
     make_image(8 * 1024 + 4);
     p = params(BISS_TARGET_AM335X);
     ck_assert_int_eq(biss_open(&p, &h), BISS_E_FIRMWARE_SIZE);
+    cleanup();
+}
+END_TEST
+
+/* Two channels of one PRU-ICSS asking for the IEP at the same time, each
+ * from its own thread, with a virtual firmware on each PRU that takes a
+ * while to apply a configuration (as a board's does between frames): in
+ * every round one owns the IEP and the other is refused. With the owner
+ * read apart from the write, both got through. */
+struct claimer {
+    biss_t *h;
+    atomic_int *start;
+    int rc;
+};
+
+static void *claim_iep(void *arg) {
+    struct claimer *k = arg;
+    struct biss_config c = one_slave();
+    c.trigger = BISS_TRIGGER_IEP;
+    c.iep_period_ns = 100000;
+    while (!atomic_load(k->start)) {
+    }
+    k->rc = biss_configure(k->h, &c);
+    return NULL;
+}
+
+START_TEST(test_iep_owned_once) {
+    make_devmem(AM335X_BASE + WINDOW);
+    make_image(64);
+    biss_t *h[2];
+    for (unsigned i = 0; i < 2; i++) {
+        struct biss_open_params p = params(BISS_TARGET_AM335X);
+        p.pru = i;
+        p.timeout_ms = 2000;
+        ck_assert_int_eq(biss_open(&p, &h[i]), BISS_OK);
+    }
+    int fd = open(devmem, O_RDWR);
+    ck_assert_int_ge(fd, 0);
+    uint8_t *m = mmap(NULL, WINDOW, PROT_READ | PROT_WRITE, MAP_SHARED, fd, AM335X_BASE);
+    ck_assert_ptr_ne(m, MAP_FAILED);
+    /* a configuration applied at the next frame boundary, 300 us on */
+    struct vfw v[2] = {{.dram = (volatile uint32_t *)m, .ack_delay_us = 300},
+                       {.dram = (volatile uint32_t *)(m + 0x2000), .pru = 1, .ack_delay_us = 300}};
+    pthread_t t[2];
+    for (unsigned i = 0; i < 2; i++) {
+        ck_assert_int_eq(pthread_create(&t[i], NULL, virtual_firmware, &v[i]), 0);
+    }
+    for (int round = 0; round < 20; round++) {
+        struct biss_config free_run = one_slave();
+        for (unsigned i = 0; i < 2; i++) {
+            ck_assert_int_eq(biss_configure(h[i], &free_run), BISS_OK); /* the IEP let go */
+        }
+        atomic_int start = 0;
+        struct claimer k[2] = {{.h = h[0], .start = &start}, {.h = h[1], .start = &start}};
+        pthread_t c[2];
+        for (unsigned i = 0; i < 2; i++) {
+            ck_assert_int_eq(pthread_create(&c[i], NULL, claim_iep, &k[i]), 0);
+        }
+        atomic_store(&start, 1);
+        for (unsigned i = 0; i < 2; i++) {
+            pthread_join(c[i], NULL);
+        }
+        ck_assert_msg((k[0].rc == BISS_OK && k[1].rc == BISS_E_IEP_OWNED) ||
+                          (k[1].rc == BISS_OK && k[0].rc == BISS_E_IEP_OWNED),
+                      "round %d: PRU0 %s, PRU1 %s", round, biss_strerror(k[0].rc),
+                      biss_strerror(k[1].rc));
+    }
+    for (unsigned i = 0; i < 2; i++) {
+        atomic_store(&v[i].stop, 1);
+        pthread_join(t[i], NULL);
+        biss_close(h[i]);
+    }
+    munmap(m, WINDOW);
+    close(fd);
+    cleanup();
+}
+END_TEST
+
+/* The IEP's lock is on the memory file too: while another process holds
+ * it (deciding who owns the IEP), a configuration waits its timeout, then
+ * is refused; once it is let go, the configuration goes on. */
+START_TEST(test_iep_lock_across_processes) {
+    make_devmem(AM335X_BASE + WINDOW);
+    make_image(64);
+    struct biss_open_params p = params(BISS_TARGET_AM335X);
+    char err[512];
+    p.errbuf = err;
+    p.errbuf_len = sizeof err;
+    biss_t *h;
+    ck_assert_int_eq(biss_open(&p, &h), BISS_OK);
+    int go[2];
+    ck_assert_int_eq(pipe(go), 0);
+    pid_t child = fork();
+    ck_assert_int_ge(child, 0);
+    if (child == 0) {
+        int fd = open(devmem, O_RDWR);
+        struct flock fl = {
+            .l_type = F_WRLCK, .l_whence = SEEK_SET, .l_start = AM335X_BASE + 0x2E000, .l_len = 1};
+        char c = fcntl(fd, F_OFD_SETLK, &fl) == 0 ? 'y' : 'n';
+        if (write(go[1], &c, 1) != 1 || read(go[0], &c, 1) < 0) {
+            _exit(1);
+        }
+        pause();
+        _exit(0);
+    }
+    char c;
+    ck_assert_int_eq(read(go[0], &c, 1), 1);
+    ck_assert_int_eq(c, 'y');
+    struct biss_config cfg = one_slave();
+    ck_assert_int_eq(biss_configure(h, &cfg), BISS_E_BUSY);
+    kill(child, SIGKILL);
+    waitpid(child, NULL, 0);
+    /* let go: the configuration goes on (and finds no firmware here) */
+    ck_assert_int_eq(biss_configure(h, &cfg), BISS_E_NOT_RUNNING);
+    biss_close(h);
+    close(go[0]);
+    close(go[1]);
+    cleanup();
+}
+END_TEST
+
+/* A file standing in for /dev/mem truncated under a reader: every access
+ * an I/O error, no bus error (a mapping of the file would raise SIGBUS
+ * past its new end); and a device that is no memory (/dev/zero, whose
+ * shared mapping ends at its own length) is refused when opened. */
+START_TEST(test_memory_gone_under_a_reader) {
+    make_devmem(AM335X_BASE + WINDOW);
+    make_image(64);
+    struct biss_open_params p = params(BISS_TARGET_AM335X);
+    biss_t *h;
+    ck_assert_int_eq(biss_open(&p, &h), BISS_OK);
+    ck_assert_int_eq(truncate(devmem, AM335X_BASE), 0);
+    struct biss_sample s;
+    struct biss_status st;
+    struct biss_stats stats;
+    ck_assert_int_eq(biss_read_sample(h, &s), BISS_E_IO);
+    ck_assert_int_eq(biss_get_status(h, &st), BISS_E_IO);
+    ck_assert_int_eq(biss_get_stats(h, &stats), BISS_E_IO);
+    struct biss_config c = one_slave();
+    ck_assert_int_eq(biss_configure(h, &c), BISS_E_IO);
+    biss_close(h);
+    char err[256];
+    p.errbuf = err;
+    p.errbuf_len = sizeof err;
+    p.devmem = "/dev/zero";
+    ck_assert_int_eq(biss_open(&p, &h), BISS_E_DEVMEM);
+    ck_assert_msg(strstr(err, "/dev/zero is not /dev/mem"), "%s", err);
+    p.devmem = "/tmp"; /* a directory */
+    ck_assert_int_eq(biss_open(&p, &h), BISS_E_DEVMEM);
     cleanup();
 }
 END_TEST
@@ -534,6 +731,9 @@ int main(void) {
     tcase_add_test(tc, test_virtual_board);
     tcase_add_test(tc, test_am437x_bases_and_iram_sizes);
     tcase_add_test(tc, test_open_errors);
+    tcase_add_test(tc, test_memory_gone_under_a_reader);
+    tcase_add_test(tc, test_iep_lock_across_processes);
+    tcase_add_test(tc, test_iep_owned_once);
     suite_add_tcase(s, tc);
     return check_run(s);
 }

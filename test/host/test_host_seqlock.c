@@ -20,14 +20,16 @@ static void assert_consistent(const struct biss_sample *s) {
     ck_assert(s->seq == k || s->seq + 1 == k);
     ck_assert_uint_eq(s->timestamp, k);
     ck_assert_uint_eq(s->proc_clocks, k & 0xffffu);
-    ck_assert_uint_eq(s->delay.raw, k & 0xffffu);
-    ck_assert_uint_eq(s->delay.avg, k >> 16);
+    ck_assert_uint_eq(s->delay.raw, 8 + k % 4096);
+    ck_assert_uint_eq(s->delay.avg, 8 + (k >> 12) % 4096);
+    ck_assert_uint_eq(s->sample_point, k & 7);
+    ck_assert_uint_eq(s->lag_periods, k >> 3 & 0xff);
     ck_assert(s->valid);
     ck_assert_uint_eq(s->nslaves, BISS_MAX_SLAVES);
     for (unsigned i = 0; i < s->nslaves; i++) {
         ck_assert_uint_eq(s->slave[i].data, (uint64_t)k << 32 | k);
         ck_assert_uint_eq(s->slave[i].crc_reg, k);
-        ck_assert_uint_eq(s->slave[i].status, k);
+        ck_assert_uint_eq(s->slave[i].status, k & 7);
     }
 }
 

@@ -1,104 +1,89 @@
-/* test_probe_layout.c - the probe's wire analysis (host/biss_probe_layout.c)
- * on frames the slave model sends: every BiSS profile and 50 random
- * layouts. The probe must name the layout the model was given, or say it
- * cannot decide; it must never name a wrong one as unique or best. */
+/* test_probe_layout.c - the probe's wire analysis (host/biss_probe_layout.c,
+ * biss_probe_fields.c) on frames the slave model sends: every BiSS profile
+ * and random layouts drawn from the documents (probe_gen.c). The probe must
+ * name the layout the model was given, or say it is ambiguous or cannot
+ * decide; it must never name a wrong one as unique or best. */
 #include "biss_probe.h"
 #include "check_run.h"
 #include "probe_frames.h"
+#include "probe_gen.h"
 #include "scenario.h"
-#include "test_rng.h"
+#include "scenario_json.h"
 
 #include "biss_crc.h"
+#include "test_rng.h"
 
 #include <check.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#define NBITS   (1 + 8 * 64)         /* the capture layout: CDS + 8 x 64 */
-#define NFRAMES 1024                 /* the AD38's A/D word moves 1000 counts/s: it needs ~80 ms */
-#define HALF    (50 * SIM_PS_PER_NS) /* 10 MHz */
-#define PERIOD  (80 * SIM_PS_PER_US)
+#define NBITS          (1 + 8 * 64) /* the capture layout: CDS + 8 x 64 */
+#define RANDOM_NBITS   (1 + 2 * 64) /* one slave: 80 bits at most, then zeros */
+#define NFRAMES        1024         /* the AD38's A/D word moves 1000 counts/s: it needs ~80 ms */
+#define RANDOM_LAYOUTS 240
+#define NOISY_LAYOUTS  60
+#define HALF           (50 * SIM_PS_PER_NS) /* 10 MHz */
+#define PERIOD         (80 * SIM_PS_PER_US)
 
-enum outcome { RECOVERED, AMBIGUOUS_OK, UNDECIDED, WRONG };
-
-static bool slave_matches(const struct biss_probe_slave *p, const biss_slave_cfg *s) {
-    unsigned c = biss_crc_width(s->crc_poly);
-    bool ew = s->has_err && s->has_warn;
-    return p->data_bits == biss_slave_cfg_data_bits(s) && p->crc_bits == c &&
-           p->crc_poly == s->crc_poly && p->crc_start == s->crc_start;
-    (void)ew;
-}
-
-static bool layout_matches(const struct biss_probe_layout *l, const biss_chain_cfg *cfg) {
-    if (l->nslaves != cfg->n) {
-        return false;
-    }
-    for (unsigned i = 0; i < cfg->n; i++) {
-        if (!slave_matches(&l->slave[i], &cfg->s[i])) {
-            return false;
-        }
-    }
-    return true;
-}
-
-/* nE/nW as the model has them: both flags, above lc_bits of life counter. */
-static bool ew_matches(const struct biss_probe_layout *l, const biss_chain_cfg *cfg) {
-    for (unsigned i = 0; i < cfg->n; i++) {
-        const biss_slave_cfg *s = &cfg->s[i];
-        bool ew = s->has_err && s->has_warn;
-        const struct biss_probe_slave *p = &l->slave[i];
-        if (p->has_ew != ew || (ew && p->ew_shift != s->lc_bits)) {
-            return false;
-        }
-    }
-    return true;
-}
-
-static enum outcome judge(const struct biss_probe_result *r, const biss_chain_cfg *cfg) {
-    switch (r->verdict) {
-    case BISS_PROBE_UNIQUE:
-    case BISS_PROBE_BEST:
-        return layout_matches(&r->layout[0], cfg) ? RECOVERED : WRONG;
-    case BISS_PROBE_AMBIGUOUS:
-        /* the truth must be among the candidates (unless more fit than are kept) */
-        for (unsigned i = 0; i < r->nkept; i++) {
-            if (layout_matches(&r->layout[i], cfg)) {
-                return AMBIGUOUS_OK;
-            }
-        }
-        return r->nlayouts > r->nkept ? AMBIGUOUS_OK : WRONG;
-    case BISS_PROBE_NONE:
-        return UNDECIDED;
-    }
-    return WRONG;
-}
+static bool last_lc_open; /* the last result's first layout had a counter that may be wider */
 
 static void print_result(const char *what, const struct biss_probe_result *r) {
-    printf("%s: %s (%s)", what, biss_probe_verdict_name(r->verdict), r->reason);
+    printf("%s: %s (%s) [%.3g steps, %u ms]", what, biss_probe_verdict_name(r->verdict), r->reason,
+           (double)r->work, r->elapsed_ms);
     for (unsigned k = 0; k < r->nkept && k < (r->verdict == BISS_PROBE_AMBIGUOUS ? 3u : 1u); k++) {
         const struct biss_probe_layout *l = &r->layout[k];
         printf(" #%u", k + 1);
         for (unsigned i = 0; i < l->nslaves; i++) {
             const struct biss_probe_slave *s = &l->slave[i];
-            printf(" [%u,%u,0x%x,0x%x ew=%d/%u rank=%u]", s->data_bits, s->crc_bits, s->crc_poly,
-                   s->crc_start, s->has_ew, s->ew_shift, s->rank);
+            printf(" [%u,%u,0x%x,0x%x ew=%d/%u lc=%u%s rank=%u]", s->data_bits, s->crc_bits,
+                   s->crc_poly, s->crc_start, s->has_ew, s->ew_shift, s->lc_bits,
+                   s->lc_open ? "+" : "", s->rank);
         }
     }
     printf("\n");
 }
 
-static enum outcome probe_chain(const char *what, const biss_chain_cfg *cfg, unsigned nframes,
-                                bool *ew_ok) {
+/* The scenario the probe writes for a layout builds the same frames: its
+ * slaves read back with the truth's word (the position takes the fill
+ * bits, which the wire cannot tell from position bits that never moved),
+ * nE/nW, counter and CRC. */
+static void scenario_matches(const char *what, const struct biss_probe_layout *l,
+                             const biss_chain_cfg *cfg) {
+    char json[4096], err[256];
+    ck_assert_int_eq(biss_probe_to_json(l, json, sizeof json), BISS_OK);
+    static scenario sc;
+    ck_assert_msg(scenario_from_json(json, &sc, err, sizeof err) == 0, "%s: %s", what, err);
+    ck_assert_uint_eq(sc.biss.n, cfg->n);
+    for (unsigned i = 0; i < cfg->n; i++) {
+        const biss_slave_cfg *a = &sc.biss.s[i], *t = &cfg->s[i];
+        ck_assert_msg(
+            a->pos_bits + a->fill_bits == t->pos_bits + t->fill_bits && a->has_err == t->has_err &&
+                a->has_warn == t->has_warn && a->lc_bits == t->lc_bits &&
+                a->crc_poly == t->crc_poly && a->crc_start == t->crc_start,
+            "%s: scenario slave %u: pos %u+%u ew %d/%d lc %u CRC 0x%x/0x%x", what, i, a->pos_bits,
+            a->fill_bits, a->has_err, a->has_warn, a->lc_bits, a->crc_poly, a->crc_start);
+    }
+}
+
+static enum probe_outcome probe_chain(const char *what, const biss_chain_cfg *cfg, unsigned nframes,
+                                      unsigned nbits, bool *ew_ok) {
     static uint8_t bits[NFRAMES * NBITS];
     static uint32_t fno[NFRAMES];
-    ck_assert_int_eq(probe_frames_from_model(cfg, nframes, NBITS, HALF, PERIOD, bits, fno), 0);
-    struct biss_probe_frames f = {nframes, NBITS, bits, fno};
+    ck_assert_int_eq(probe_frames_from_model(cfg, nframes, nbits, HALF, PERIOD, bits, fno), 0);
+    struct biss_probe_frames f = {nframes, nbits, bits, fno};
     static struct biss_probe_result r;
     ck_assert_int_eq(biss_probe_analyse(&f, &r), 0);
     print_result(what, &r);
-    enum outcome o = judge(&r, cfg);
-    *ew_ok = o == RECOVERED && ew_matches(&r.layout[0], cfg);
+    enum probe_outcome o = probe_gen_judge(&r, cfg);
+    *ew_ok = o == PROBE_RECOVERED && probe_gen_fields_match(&r.layout[0], cfg);
+    if (*ew_ok) {
+        scenario_matches(what, &r.layout[0], cfg);
+    }
+    last_lc_open = false;
+    for (unsigned i = 0; r.nkept && i < r.layout[0].nslaves; i++) {
+        last_lc_open |= r.layout[0].slave[i].lc_open;
+    }
     return o;
 }
 
@@ -112,9 +97,9 @@ START_TEST(every_profile) {
         }
         biss++;
         bool ew_ok;
-        enum outcome o = probe_chain(profile_name_at(i), &s.biss, NFRAMES, &ew_ok);
-        ck_assert_msg(o != WRONG, "%s: a wrong layout named", profile_name_at(i));
-        recovered += o == RECOVERED;
+        enum probe_outcome o = probe_chain(profile_name_at(i), &s.biss, NFRAMES, NBITS, &ew_ok);
+        ck_assert_msg(o != PROBE_WRONG, "%s: a wrong layout named", profile_name_at(i));
+        recovered += o == PROBE_RECOVERED;
         ew += ew_ok;
     }
     printf("profiles: %u BiSS, %u recovered, %u with nE/nW right\n", biss, recovered, ew);
@@ -124,53 +109,35 @@ START_TEST(every_profile) {
 }
 END_TEST
 
-static uint64_t rng = 0x5eed2026u;
-static uint32_t rnd(uint32_t n) { /* 0..n-1 */
-    return test_rng_next(&rng) % n;
-}
-
-/* Data 1..64 bits, CRC 3..16 bits with a random odd polynomial (the model
- * takes odd ones only: an even generator's last CRC bit is constant) and a
- * random start, half with nE/nW (some of those with a life counter). */
-static void random_slave(biss_slave_cfg *s) {
-    biss_slave_cfg_default(s, 0);
-    unsigned data = 1 + rnd(64);
-    s->has_err = s->has_warn = data >= 3 && rnd(2);
-    unsigned ew = s->has_err ? 2 : 0;
-    s->lc_bits = ew && data >= 6 && rnd(3) == 0 ? 1 + rnd(data - 4 < 8 ? data - 4 : 8) : 0;
-    s->fill_bits = data - ew - s->lc_bits >= 4 && rnd(4) == 0 ? rnd(4) : 0;
-    s->pos_bits = data - ew - s->lc_bits - s->fill_bits;
-    unsigned c = 3 + rnd(14);
-    s->crc_poly = (1u << c) | (rnd(1u << c) | 1u);
-    s->crc_start = rnd(1u << c);
-    s->pos0 = ((uint64_t)rnd(1u << 31) << 32 | rnd(1u << 31)) &
-              (s->pos_bits >= 64 ? ~0ull : (1ull << s->pos_bits) - 1u);
-    s->speed_cps = 20000.0 + rnd(2000000);
-}
-
+/* Layouts drawn from the documents (probe_gen.c), each through the slave
+ * model, 1024 frames (what bissctl probe captures) 80 us apart: counters with
+ * and without nE/nW, 3..16-bit CRCs, non-zero start values, 1 and 50 rev/s.
+ * A verdict of unique or best must name every field right: the split, the
+ * CRC, nE/nW and the life counter's width. */
 START_TEST(random_layouts) {
-    unsigned n[4] = {0}, ew = 0, with_ew = 0;
-    for (unsigned k = 0; k < 50; k++) {
+    uint64_t rng = 0x5eed2026u;
+    unsigned n[4] = {0}, open = 0, lc_no_ew = 0;
+    for (unsigned k = 0; k < RANDOM_LAYOUTS; k++) {
         biss_chain_cfg cfg;
-        biss_chain_cfg_default(&cfg);
-        random_slave(&cfg.s[0]);
-        ck_assert_ptr_null(biss_chain_cfg_check(&cfg));
-        char what[96];
-        const biss_slave_cfg *s = &cfg.s[0];
-        snprintf(what, sizeof what, "random %2u: D=%u (lc %u) C=%u 0x%x start 0x%x ew=%d", k,
-                 biss_slave_cfg_data_bits(s), s->lc_bits, biss_crc_width(s->crc_poly), s->crc_poly,
-                 s->crc_start, s->has_err);
+        char what[200];
+        probe_gen_layout(&rng, k, &cfg, what, sizeof what);
+        ck_assert_msg(biss_chain_cfg_check(&cfg) == NULL, "%s: %s", what,
+                      biss_chain_cfg_check(&cfg));
         bool ew_ok;
-        enum outcome o = probe_chain(what, &cfg, 256, &ew_ok);
+        enum probe_outcome o = probe_chain(what, &cfg, NFRAMES, RANDOM_NBITS, &ew_ok);
+        ck_assert_msg(o != PROBE_WRONG, "%s: a wrong layout named", what);
+        ck_assert_msg(o != PROBE_RECOVERED || ew_ok, "%s: nE/nW or life counter wrong", what);
         n[o]++;
-        ew += ew_ok;
-        with_ew += s->has_err;
+        open += last_lc_open;
+        lc_no_ew += o == PROBE_RECOVERED && cfg.s[0].lc_bits && !cfg.s[0].has_err;
     }
-    printf("random layouts: %u recovered (%u with nE/nW right), %u ambiguous, %u undecided, %u "
-           "wrong; %u had nE/nW\n",
-           n[RECOVERED], ew, n[AMBIGUOUS_OK], n[UNDECIDED], n[WRONG], with_ew);
-    ck_assert_uint_eq(n[WRONG], 0);
-    ck_assert_uint_ge(n[RECOVERED], 45);
+    printf("random layouts: %u recovered (%u with a counter and no nE/nW), %u ambiguous (%u of "
+           "them a counter that never wrapped), %u undecided, %u wrong\n",
+           n[PROBE_RECOVERED], lc_no_ew, n[PROBE_AMBIGUOUS_OK], open, n[PROBE_UNDECIDED],
+           n[PROBE_WRONG]);
+    ck_assert_uint_eq(n[PROBE_WRONG], 0);
+    ck_assert_uint_ge(n[PROBE_RECOVERED], RANDOM_LAYOUTS * 8 / 10);
+    ck_assert_uint_gt(lc_no_ew, RANDOM_LAYOUTS / 10);
 }
 END_TEST
 
@@ -223,8 +190,175 @@ START_TEST(long_chain) {
     ck_assert_uint_eq(r.end_bit, 547);
     ck_assert_int_eq(r.verdict, BISS_PROBE_BEST);
     ck_assert_uint_gt(r.nlayouts, r.nkept); /* more than listed: counted */
-    ck_assert_int_eq(judge(&r, &cfg), RECOVERED);
-    ck_assert(ew_matches(&r.layout[0], &cfg));
+    ck_assert_int_eq(probe_gen_judge(&r, &cfg), PROBE_RECOVERED);
+    ck_assert(probe_gen_fields_match(&r.layout[0], &cfg));
+}
+END_TEST
+
+/* Frames hit by noise: in `permille` of the frames, one of a glitch's
+ * marks (drawn per frame): one to three flipped bits anywhere in the frame
+ * or after it, or the frame read one bit late from a point on (a clock the
+ * slave saw and the master did not). */
+static void corrupt(uint8_t *bits, unsigned nframes, unsigned nbits, unsigned permille,
+                    uint64_t *rng, unsigned *hit) {
+    *hit = 0;
+    for (unsigned i = 0; i < nframes; i++) {
+        if (test_rng_next(rng) % 1000 >= permille) {
+            continue;
+        }
+        (*hit)++;
+        uint8_t *b = bits + (size_t)i * nbits;
+        unsigned kind = test_rng_next(rng) % 4;
+        if (kind < 3) {
+            for (unsigned k = 0; k <= kind; k++) {
+                b[1 + test_rng_next(rng) % (nbits - 1)] ^= 1;
+            }
+        } else {
+            unsigned from = 1 + test_rng_next(rng) % (nbits - 2);
+            memmove(b + from + 1, b + from, nbits - from - 1);
+        }
+    }
+}
+
+/* Layouts from the documents with 1, 3 and 5 % of their frames hit by
+ * noise: decided on the good frames, the others set aside and counted. */
+START_TEST(noisy_frames) {
+    static const unsigned rates[] = {10, 30, 50};
+    uint64_t rng = 0xbadf4a3e5u, noise = 0x6e015eu;
+    unsigned n[4] = {0};
+    for (unsigned k = 0; k < NOISY_LAYOUTS; k++) {
+        biss_chain_cfg cfg;
+        char what[200];
+        probe_gen_layout(&rng, k, &cfg, what, sizeof what);
+        static uint8_t bits[NFRAMES * RANDOM_NBITS];
+        static uint32_t fno[NFRAMES];
+        ck_assert_int_eq(
+            probe_frames_from_model(&cfg, NFRAMES, RANDOM_NBITS, HALF, PERIOD, bits, fno), 0);
+        unsigned hit, rate = rates[k % 3];
+        corrupt(bits, NFRAMES, RANDOM_NBITS, rate, &noise, &hit);
+        struct biss_probe_frames f = {NFRAMES, RANDOM_NBITS, bits, fno};
+        static struct biss_probe_result r;
+        ck_assert_int_eq(biss_probe_analyse(&f, &r), 0);
+        char w2[260];
+        snprintf(w2, sizeof w2, "%s, %u frames hit (%.0f%%)", what, hit, rate / 10.0);
+        print_result(w2, &r);
+        enum probe_outcome o = probe_gen_judge(&r, &cfg);
+        ck_assert_msg(o != PROBE_WRONG, "%s: a wrong layout named", w2);
+        if (o == PROBE_RECOVERED) { /* the frames hit were set aside and counted */
+            ck_assert_uint_eq(r.dropped, r.frames - r.layout[0].good);
+            ck_assert_uint_le(r.dropped, hit);
+        }
+        n[o]++;
+    }
+    printf("noisy frames: %u recovered, %u ambiguous, %u undecided, %u wrong\n", n[PROBE_RECOVERED],
+           n[PROBE_AMBIGUOUS_OK], n[PROBE_UNDECIDED], n[PROBE_WRONG]);
+    /* usable: decided on the good frames (the ambiguous ones: counters
+     * that never wrapped, as without noise) */
+    ck_assert_uint_ge(n[PROBE_RECOVERED], NOISY_LAYOUTS * 8 / 10);
+}
+END_TEST
+
+/* Garbage a line may carry, or a fuzzer: each frame `nbits` long (the
+ * CDS first). kind 0: one period-5 pattern, shifted by 3 bits a frame;
+ * 1: the low bit of a xorshift (a linear recurrence, as a CRC is); 2: a
+ * pattern whose period grows with the frame; 3: bytes of a nonlinear
+ * generator (test_rng). The last bit of each frame is 0, so the frame ends
+ * inside the capture. */
+static void garbage(uint8_t *bits, unsigned nframes, unsigned nbits, unsigned kind) {
+    uint64_t x = 12345, rng = 0x9a5b4e;
+    for (unsigned i = 0; i < nframes; i++) {
+        for (unsigned k = 0; k + 1 < nbits; k++) {
+            unsigned v;
+            if (kind == 0) {
+                v = (k * 7 + i * 3) % 5 < 2;
+            } else if (kind == 1) {
+                x ^= x << 13;
+                x ^= x >> 7;
+                x ^= x << 17;
+                v = x & 1u;
+            } else if (kind == 2) {
+                v = (k + i) % (3 + i % 4) == 0;
+            } else {
+                v = test_rng_next(&rng) & 1u;
+            }
+            bits[(size_t)i * nbits + k] = (uint8_t)v;
+        }
+        bits[(size_t)i * nbits + nbits - 1] = 0;
+    }
+}
+
+static unsigned progress_calls;
+static void count_progress(void *ctx, const struct biss_probe_progress *p) {
+    (void)ctx;
+    ck_assert_uint_le(p->work, p->work_limit);
+    ck_assert_uint_le(p->offsets_searched, p->end_bit);
+    progress_calls++;
+}
+
+/* The most one step of the search adds past a limit (a whole capture read
+ * once: 4096 frames of 641 bits). */
+#define OVERSHOOT ((uint64_t)BISS_PROBE_MAX_FRAMES * BISS_PROBE_MAX_BITS)
+
+/* Adversarial frames that ran for minutes before the search had limits
+ * (14 frames of period-5 garbage, 514 bits: over 5 minutes; 2 of them:
+ * 9.7 s): with the default limits the search stops at its work limit,
+ * reports progress on the way, and names nothing unique or best; the
+ * verdict says what stopped it. */
+START_TEST(garbage_default_limits) {
+    static uint8_t bits[14 * 514];
+    garbage(bits, 14, 514, 0);
+    struct biss_probe_frames f = {14, 514, bits, NULL};
+    struct biss_probe_limits lim = {.progress = count_progress};
+    static struct biss_probe_result r;
+    progress_calls = 0;
+    ck_assert_int_eq(biss_probe_analyse_limited(&f, &lim, &r), 0);
+    print_result("14 frames of period-5 garbage", &r);
+    ck_assert_int_eq(r.ran_out, BISS_PROBE_RAN_OUT_WORK);
+    ck_assert_uint_ge(r.work, BISS_PROBE_WORK_LIMIT);
+    ck_assert_uint_le(r.work, BISS_PROBE_WORK_LIMIT + OVERSHOOT);
+    ck_assert(r.verdict == BISS_PROBE_NONE || r.verdict == BISS_PROBE_AMBIGUOUS);
+    ck_assert_ptr_nonnull(strstr(r.reason, "stopped at the work limit"));
+    ck_assert_uint_gt(progress_calls, 0); /* 5e9 steps take seconds anywhere */
+}
+END_TEST
+
+/* Every kind of garbage, from 2 frames to the most a capture holds, under
+ * a small work limit: the limit holds on each, and a verdict of unique or
+ * best comes only from frames a layout really fits (kinds 0 and 1 are
+ * linear, as CRCs are: some fit). A 1 ms time limit stops the search by
+ * the clock. */
+START_TEST(garbage_bounded) {
+    static const unsigned counts[] = {2, 14, 200, BISS_PROBE_MAX_FRAMES};
+    static uint8_t bits[BISS_PROBE_MAX_FRAMES * BISS_PROBE_MAX_BITS];
+    static struct biss_probe_result r;
+    for (unsigned kind = 0; kind < 4; kind++) {
+        for (unsigned c = 0; c < 4; c++) {
+            unsigned nbits = c == 3 ? BISS_PROBE_MAX_BITS : 514;
+            garbage(bits, counts[c], nbits, kind);
+            struct biss_probe_frames f = {counts[c], nbits, bits, NULL};
+            struct biss_probe_limits lim = {.work_limit = 50000000};
+            ck_assert_int_eq(biss_probe_analyse_limited(&f, &lim, &r), 0);
+            char what[64];
+            snprintf(what, sizeof what, "garbage kind %u, %u frames", kind, counts[c]);
+            print_result(what, &r);
+            ck_assert_uint_le(r.work, lim.work_limit + OVERSHOOT);
+            ck_assert(r.ran_out == BISS_PROBE_RAN_OUT_NONE || r.verdict == BISS_PROBE_NONE ||
+                      r.verdict == BISS_PROBE_AMBIGUOUS);
+            if (kind >= 2) {
+                ck_assert(r.verdict == BISS_PROBE_NONE || r.verdict == BISS_PROBE_AMBIGUOUS);
+            }
+            for (unsigned k = 0; r.verdict <= BISS_PROBE_BEST && k < r.layout[0].nslaves; k++) {
+                ck_assert_uint_ge(r.layout[0].good * 1000u, r.frames * 600u);
+            }
+        }
+    }
+    garbage(bits, 14, 514, 0);
+    struct biss_probe_frames f = {14, 514, bits, NULL};
+    struct biss_probe_limits lim = {.time_limit_ms = 1};
+    ck_assert_int_eq(biss_probe_analyse_limited(&f, &lim, &r), 0);
+    print_result("1 ms", &r);
+    ck_assert_int_eq(r.ran_out, BISS_PROBE_RAN_OUT_TIME);
+    ck_assert_ptr_nonnull(strstr(r.reason, "stopped at the time limit"));
 }
 END_TEST
 
@@ -261,8 +395,14 @@ int main(void) {
     tcase_set_timeout(tc, 600);
     tcase_add_test(tc, every_profile);
     tcase_add_test(tc, random_layouts);
+    tcase_add_test(tc, noisy_frames);
     tcase_add_test(tc, long_chain);
     tcase_add_test(tc, cannot_decide);
     suite_add_tcase(s, tc);
+    TCase *lim = tcase_create("limits");
+    tcase_set_timeout(lim, 600);
+    tcase_add_test(lim, garbage_default_limits);
+    tcase_add_test(lim, garbage_bounded);
+    suite_add_tcase(s, lim);
     return check_run(s);
 }

@@ -36,12 +36,17 @@ static struct biss_config two_channels(void) {
     return c;
 }
 
-/* A valid frame: positions, life counters, both CRCs good. */
+/* 22.7 us in IEP counts: a free-running frame at 10 MHz. */
+#define PERIOD 4541u
+
+/* A valid frame: positions, life counters, both CRCs good; free-running
+ * (one every PERIOD). */
 static struct biss_sample frame(uint32_t n, uint64_t pos0, uint64_t pos1, uint32_t lc0,
                                 uint32_t lc1) {
     struct biss_sample s;
     memset(&s, 0, sizeof s);
     s.frame = n;
+    s.timestamp = n * PERIOD;
     s.valid = true;
     s.nslaves = 2;
     s.slave[0].position = pos0;
@@ -306,9 +311,10 @@ static struct biss_sample published(const struct biss_config *c, uint32_t n, int
     struct biss_shm_result r;
     memset(&r, 0, sizeof r);
     r.frame = n;
+    r.timestamp = n * PERIOD;
     r.flags = BISS_RF_VALID | (crc_ok ? 0 : BISS_RF_CRC_ERROR);
     r.nslaves = 2;
-    r.half = 5;
+    r.half = 10;
     for (unsigned i = 0; i < 2; i++) {
         unsigned e = i ? 1 : (unsigned)nE, w = i ? 1 : (unsigned)nW;
         r.slave[i].data_lo = 1000u << 8 | e << 7 | w << 6 | (n & 63);
@@ -477,7 +483,7 @@ START_TEST(test_speed_free_run) {
     biss_safety_init(&st);
     at(&c, &st, 1, 0, 10, &v);
     ck_assert_uint_eq(at(&c, &st, 2, 500000, 130, &v), BISS_SAFE_POS_CHECKED); /* 2.5 ms */
-    ck_assert_uint_eq(at(&c, &st, 3, 500000 + 520000, 10, &v), 0);             /* 2.6 ms: 131 */
+    ck_assert_uint_eq(at(&c, &st, 4, 500000 + 520000, 10, &v), 0);             /* 2.6 ms: 131 */
     ck_assert(v);
 }
 END_TEST
@@ -527,12 +533,67 @@ START_TEST(test_speed_iep) {
     ck_assert_uint_eq(at(&c, &st, 12, 7, 1011, &v), BISS_SAFE_POS_CHECKED);
     ck_assert_uint_eq(at(&c, &st, 13, 7, 1018, &v), BISS_SAFE_POS_CHECKED | BISS_SAFE_POS_JUMP);
     ck_assert(!v);
-    /* following another channel's IEP without its period: no check */
+    /* following another channel's IEP: timed by that channel's period */
     c.trigger = BISS_TRIGGER_IEP_FOLLOW;
-    c.iep_period_ns = 0;
+    ck_assert_int_eq(biss_config_check(&c), BISS_OK);
     biss_safety_init(&st);
     at(&c, &st, 1, 7, 1000, &v);
-    ck_assert_uint_eq(at(&c, &st, 2, 7, 3000, &v), 0);
+    ck_assert_uint_eq(at(&c, &st, 2, 7, 1006, &v), BISS_SAFE_POS_CHECKED);
+    ck_assert_uint_eq(at(&c, &st, 3, 7, 3000, &v), BISS_SAFE_POS_CHECKED | BISS_SAFE_POS_JUMP);
+    ck_assert(!v);
+    /* and without a period the check refuses to be configured (it has no
+     * time to judge by), on either IEP trigger */
+    c.iep_period_ns = 0;
+    ck_assert_int_eq(biss_config_check(&c), BISS_E_SAFETY_SPEED);
+    c.trigger = BISS_TRIGGER_IEP;
+    ck_assert_int_eq(biss_safety_config_check(&c), BISS_E_SAFETY_SPEED);
+    c.slave[0].max_speed = 0;
+    ck_assert_int_eq(biss_safety_config_check(&c), BISS_OK);
+}
+END_TEST
+
+/* Free-running: the timestamps tell the time from one frame start to the
+ * other, however long the master waited for the slave; a count that went
+ * backwards (another channel's IEP trigger restarts it every period) tells
+ * none: the position is refused rather than passed unjudged, and the next
+ * frame, within reach of it, is taken. */
+START_TEST(test_speed_free_run_count_restarted) {
+    struct biss_config c = speed_checked(); /* 50 000 counts/s: 1.1 a frame, reach 2.1 */
+    struct biss_safety_state st;
+    biss_safety_init(&st);
+    bool v;
+    at(&c, &st, 1, 0, 1000, &v);
+    /* one frame on, four frame times later (the master waited): reach 5.5 */
+    ck_assert_uint_eq(at(&c, &st, 2, 4 * PERIOD, 1004, &v), BISS_SAFE_POS_CHECKED);
+    ck_assert(v);
+    ck_assert_uint_eq(at(&c, &st, 3, 100, 1005, &v), BISS_SAFE_POS_CHECKED | BISS_SAFE_POS_JUMP);
+    ck_assert(!v);
+    ck_assert_uint_eq(at(&c, &st, 4, 100 + PERIOD, 1006, &v), BISS_SAFE_POS_CHECKED);
+    ck_assert(v);
+    ck_assert_uint_eq(st.stats.pos_resync[0], 1);
+    /* the same frame time again (no time passed) tells none either */
+    ck_assert_uint_eq(at(&c, &st, 5, 100 + PERIOD, 1006, &v),
+                      BISS_SAFE_POS_CHECKED | BISS_SAFE_POS_JUMP);
+}
+END_TEST
+
+/* Host trigger: the timestamps alone (the host chooses when frames run);
+ * a count that went backwards tells no time, and the position is refused
+ * rather than passed unjudged; the next frame is taken. */
+START_TEST(test_speed_host_trigger) {
+    struct biss_config c = speed_checked();
+    c.trigger = BISS_TRIGGER_HOST;
+    struct biss_safety_state st;
+    biss_safety_init(&st);
+    bool v;
+    at(&c, &st, 1, 1000, 1000, &v);
+    at(&c, &st, 2, 1000 + PERIOD, 1001, &v);
+    /* 1 ms later, 40 counts on: within 51 */
+    ck_assert_uint_eq(at(&c, &st, 3, 1000 + PERIOD + 200000, 1041, &v), BISS_SAFE_POS_CHECKED);
+    ck_assert(v);
+    ck_assert_uint_eq(at(&c, &st, 4, 500, 1041, &v), BISS_SAFE_POS_CHECKED | BISS_SAFE_POS_JUMP);
+    ck_assert(!v);
+    ck_assert_uint_eq(at(&c, &st, 5, 500 + PERIOD, 1042, &v), BISS_SAFE_POS_CHECKED);
     ck_assert(v);
 }
 END_TEST
@@ -566,7 +627,8 @@ END_TEST
 START_TEST(test_speed_config) {
     struct biss_config c = speed_checked();
     ck_assert_int_eq(biss_config_check(&c), BISS_OK);
-    static const double bad[] = {-1.0, NAN, INFINITY};
+    /* the range the scenario files take, 1e-9..1e18 (biss/biss_rules.h) */
+    static const double bad[] = {-1.0, NAN, INFINITY, 1e308, 1.01e18, 0.99e-9, 5e-324};
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
         c.slave[0].max_speed = bad[i];
         ck_assert_int_eq(biss_config_check(&c), BISS_E_SAFETY_SPEED);
@@ -579,8 +641,12 @@ START_TEST(test_speed_config) {
     memset(&k, 0, sizeof k);
     ck_assert_int_eq(biss_safety_parse_speed("1,6e4", &k), BISS_OK);
     ck_assert(k.slave[1].max_speed == 60000.0 && k.slave[0].max_speed == 0);
-    static const char *const spell[] = {"",      "0",   "0,",   "0,0", "0,-5", "8,1",   "0,nan",
-                                        "0,inf", "x,1", "0,1x", ",1",  "-1,5", "0,1,2", "0,1e999"};
+    ck_assert_int_eq(biss_safety_parse_speed("2,1e18", &k), BISS_OK);
+    ck_assert_int_eq(biss_safety_parse_speed("2,1e-9", &k), BISS_OK);
+    k.slave[2].max_speed = 0;
+    static const char *const spell[] = {"",      "0",       "0,",      "0,0",    "0,-5",   "8,1",
+                                        "0,nan", "0,inf",   "x,1",     "0,1x",   ",1",     "-1,5",
+                                        "0,1,2", "0,1e999", "0,1e308", "0,2e18", "0,1e-10"};
     for (size_t i = 0; i < sizeof spell / sizeof spell[0]; i++) {
         ck_assert_msg(biss_safety_parse_speed(spell[i], &k) == BISS_E_INVAL, "%s", spell[i]);
     }
@@ -608,6 +674,8 @@ int main(void) {
     tcase_add_test(tc, test_speed_free_run);
     tcase_add_test(tc, test_speed_resync);
     tcase_add_test(tc, test_speed_iep);
+    tcase_add_test(tc, test_speed_free_run_count_restarted);
+    tcase_add_test(tc, test_speed_host_trigger);
     tcase_add_test(tc, test_speed_and_ew);
     tcase_add_test(tc, test_speed_config);
     suite_add_tcase(s, tc);

@@ -8,7 +8,10 @@
 #include "check_run.h"
 
 #include <check.h>
+#include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #ifndef SCENARIO_DIR
 #error "SCENARIO_DIR must name test/scenarios"
@@ -123,6 +126,151 @@ START_TEST(test_configure_refuses_one_crc) {
 }
 END_TEST
 
+/* ---- every check on every trigger, on both PRUs ---------------------- */
+
+#define FAULT_FRAME 40
+#define LAST_FRAME  120
+#define PERIOD_NS   100000
+
+/* The two-channel encoder with its faults from FAULT_FRAME: slave 1's life
+ * counter skips, its position jumps by 1000 counts (the speed check's and
+ * the pair's fault); or (ew) slave 0 sets nE from the start. The checks:
+ * both life counters, the pair, slave 1's top speed (it moves 65 536
+ * counts/s). */
+static const char *const faulty[2] = {
+    "{\"profile\": \"biss-safety-two-channel\", \"biss\": {\"slaves\": [{}, "
+    "{\"life_counter_fault\": \"skip\", \"life_counter_fault_frame\": 40, "
+    "\"position_fault_offset\": 1000, \"position_fault_frame\": 60}]}, "
+    "\"checks\": {\"life_counter\": [0, 1], \"pairs\": [{\"a\": 0, \"b\": 1, \"shift_b\": 4, "
+    "\"tolerance\": 16}], \"max_speed\": [{\"slave\": 1, \"counts_per_s\": 80000}]}}",
+    "{\"profile\": \"biss-safety-two-channel\", \"biss\": {\"slaves\": [{\"error\": true}]}}",
+};
+
+static const char *scenario_file(char *path, size_t n, const char *json) {
+    snprintf(path, n, "/tmp/biss-safety-XXXXXX");
+    int fd = mkstemp(path);
+    ck_assert_int_ge(fd, 0);
+    ck_assert_int_eq(write(fd, json, strlen(json)), (ssize_t)strlen(json));
+    close(fd);
+    return path;
+}
+
+/* The channel under test on PRU `pru`, the default encoder on the other. */
+static void open_two(unsigned pru, const char *file, biss_t *h[2]) {
+    struct biss_open_params p[2];
+    for (unsigned i = 0; i < 2; i++) {
+        biss_open_params_default(&p[i]);
+        p[i].target = BISS_TARGET_EMU;
+        p[i].profile = "tidep0022-test-encoder";
+    }
+    p[pru].scenario_file = file;
+    int rc = biss_emu_open_pair(p, h);
+    ck_assert_msg(rc == BISS_OK, "open pair: %s", biss_strerror(rc));
+}
+
+static int configure(biss_t *h, enum biss_trigger t, uint32_t period_ns, bool ew) {
+    struct biss_config c;
+    biss_config_default(&c);
+    c.freq_hz = 10000000;
+    ck_assert_int_eq(biss_config_from_emu(h, &c), BISS_OK);
+    c.trigger = t;
+    c.iep_period_ns = period_ns;
+    c.slave[0].ew_static = ew;
+    return biss_configure(h, &c);
+}
+
+/* Every frame up to LAST_FRAME read (host trigger: each asked for);
+ * fails on a fault flagged before frame `from`; returns the flags after. */
+static uint32_t read_all(biss_t *h, bool host, uint32_t from) {
+    struct biss_sample s;
+    uint32_t after = 0, flags = 0;
+    while (after < LAST_FRAME) {
+        if (host) {
+            ck_assert_int_eq(biss_trigger(h), BISS_OK);
+        }
+        ck_assert_int_eq(biss_wait_sample(h, after, 5, &s), BISS_OK);
+        ck_assert_msg(s.frame == after + 1 || after == 0, "frame %u after %u", s.frame, after);
+        if (s.frame < from) {
+            ck_assert_msg(!(s.safety & BISS_SAFE_FAULTS), "frame %u flagged 0x%x", s.frame,
+                          s.safety);
+        } else {
+            flags |= s.safety;
+        }
+        after = s.frame;
+    }
+    return flags;
+}
+
+static const enum biss_trigger triggers[4] = {BISS_TRIGGER_HOST, BISS_TRIGGER_FREERUN,
+                                              BISS_TRIGGER_IEP, BISS_TRIGGER_IEP_FOLLOW};
+
+/* _i: PRU (bit 2), trigger (bits 1..0): the life counter, the pair and the
+ * speed check each fire from their fault on, and nothing before; then the
+ * nE/nW check on a slave that sets nE fires on every frame. Following,
+ * the other PRU owns the IEP; otherwise it stays unconfigured. */
+START_TEST(test_every_check_every_trigger) {
+    unsigned pru = (unsigned)_i >> 2;
+    enum biss_trigger t = triggers[_i & 3];
+    bool follow = t == BISS_TRIGGER_IEP_FOLLOW, host = t == BISS_TRIGGER_HOST;
+    uint32_t period = t == BISS_TRIGGER_IEP ? PERIOD_NS : 0;
+    for (unsigned ew = 0; ew < 2; ew++) {
+        char path[64];
+        biss_t *h[2];
+        open_two(pru, scenario_file(path, sizeof path, faulty[ew]), h);
+        if (follow) {
+            ck_assert_int_eq(configure(h[1 - pru], BISS_TRIGGER_IEP, PERIOD_NS, false), BISS_OK);
+        }
+        int rc = configure(h[pru], t, period, ew);
+        ck_assert_msg(rc == BISS_OK, "PRU%u %s: %s", pru, biss_trigger_name(t), biss_strerror(rc));
+        uint32_t f = read_all(h[pru], host, ew ? 0 : FAULT_FRAME);
+        struct biss_safety_stats st;
+        ck_assert_int_eq(biss_get_safety_stats(h[pru], &st), BISS_OK);
+        if (ew) {
+            ck_assert_uint_eq(f & BISS_SAFE_FAULTS, BISS_SAFE_EW_SET);
+            ck_assert_uint_ge(st.ew_set[0], LAST_FRAME - 2); /* all but the training frame */
+            ck_assert_uint_eq(st.ew_set[0], st.ew_checked[0]);
+        } else {
+            ck_assert_uint_eq(f & BISS_SAFE_FAULTS,
+                              BISS_SAFE_LC_SKIP | BISS_SAFE_DISAGREE | BISS_SAFE_POS_JUMP);
+            ck_assert_uint_ge(st.lc_skipped[1], 10);
+            ck_assert_uint_eq(st.lc_skipped[0] + st.lc_frozen[0], 0);
+            ck_assert_uint_ge(st.pair_disagree[0], 10);
+            /* the jump once, then the new position taken (two frames agree) */
+            ck_assert_uint_eq(st.pos_jumped[1], 1);
+            ck_assert_uint_eq(st.pos_resync[1], 1);
+            ck_assert_uint_ge(st.pos_checked[1], LAST_FRAME - 4);
+        }
+        biss_close(h[0]);
+        biss_close(h[1]);
+        unlink(path);
+    }
+}
+END_TEST
+
+/* A speed check with no time to judge by refuses to be configured:
+ * following no channel that owns the IEP (and given no period), or on the
+ * timestamps while the other channel's IEP trigger restarts the count;
+ * following, a period given must be the owner's. */
+START_TEST(test_speed_check_without_time_refused) {
+    char path[64];
+    biss_t *h[2];
+    open_two(1, scenario_file(path, sizeof path, faulty[0]), h);
+    ck_assert_int_eq(configure(h[1], BISS_TRIGGER_IEP_FOLLOW, 0, false), BISS_E_SAFETY_SPEED);
+    ck_assert_int_eq(configure(h[0], BISS_TRIGGER_IEP, PERIOD_NS, false), BISS_OK);
+    ck_assert_int_eq(configure(h[1], BISS_TRIGGER_FREERUN, 0, false), BISS_E_SAFETY_SPEED);
+    ck_assert_int_eq(configure(h[1], BISS_TRIGGER_HOST, 0, false), BISS_E_SAFETY_SPEED);
+    ck_assert_int_eq(configure(h[1], BISS_TRIGGER_IEP_FOLLOW, 2 * PERIOD_NS, false),
+                     BISS_E_IEP_PERIOD);
+    ck_assert_int_eq(configure(h[1], BISS_TRIGGER_IEP_FOLLOW, 0, false), BISS_OK);
+    struct biss_config c;
+    ck_assert_int_eq(biss_get_config(h[1], &c), BISS_OK);
+    ck_assert_uint_eq(c.iep_period_ns, PERIOD_NS); /* the owner's */
+    biss_close(h[0]);
+    biss_close(h[1]);
+    unlink(path);
+}
+END_TEST
+
 int main(void) {
     Suite *s = suite_create("safety_emu");
     TCase *tc = tcase_create("polled");
@@ -131,6 +279,8 @@ int main(void) {
     tcase_add_test(tc, test_polled_frozen);
     tcase_add_loop_test(tc, test_polled_skip_and_disagree, 0, 2);
     tcase_add_test(tc, test_configure_refuses_one_crc);
+    tcase_add_loop_test(tc, test_every_check_every_trigger, 0, 8);
+    tcase_add_test(tc, test_speed_check_without_time_refused);
     suite_add_tcase(s, tc);
     return check_run(s);
 }

@@ -396,6 +396,63 @@ START_TEST(command_frame_failure) {
 }
 END_TEST
 
+/* The ID lock of a chain of IDs 0..2 (host/CD.md, "IDL"): read where
+ * the slaves answer it, whichever of the two readings they follow, and
+ * the slots that answered reported either way. A codec reading the other
+ * slots than the slaves answer in shows it in header_cds. */
+START_TEST(id_lock_either_slot) {
+    add_chain();
+    static biss_cd_prog p;
+    biss_cd_result r;
+    ck_assert_int_eq(biss_cd_build_read(&p, 1, 0x7e, 1), BISS_CD_OK);
+    ck_assert_uint_eq(p.idl, 0); /* the default: IDL0 answers S */
+    ck_assert_int_eq(run(&p, 10, &r), BISS_CD_OK);
+    ck_assert(r.idl_answered);
+    ck_assert_uint_eq(r.idl, 0x07);
+    ck_assert_uint_eq(r.header_cds, 0x007); /* S, CTS, ID2 */
+    /* slaves that answer from CTS on */
+    for (unsigned i = 0; i < 3; i++) {
+        chain[i].idl_at_cts = true;
+    }
+    ck_assert_int_eq(run(&p, 10, &r), BISS_CD_OK);
+    ck_assert_uint_eq(r.header_cds, 0x00e); /* CTS, ID2, ID1 */
+    ck_assert_uint_eq(r.idl, 0x07 << 1);    /* read at S: one slot off */
+    ck_assert_int_eq(biss_cd_set_idl(&p, BISS_CD_IDL_AT_CTS), BISS_CD_OK);
+    ck_assert_int_eq(run(&p, 10, &r), BISS_CD_OK);
+    ck_assert_uint_eq(r.idl, 0x07);
+    /* only a register access has an ID lock to place */
+    static biss_cd_prog c;
+    ck_assert_int_eq(biss_cd_build_command(&c, 0x02, 1, false), BISS_CD_OK);
+    ck_assert_int_eq(biss_cd_set_idl(&c, BISS_CD_IDL_AT_CTS), BISS_CD_E_ARG);
+    ck_assert_int_eq(biss_cd_set_idl(&p, (biss_cd_idl_at)7), BISS_CD_E_ARG);
+}
+END_TEST
+
+/* The IDA slots (host/CD.md, "IDA"): the default reads IDA0 in the answer
+ * to the last header CRC bit, where the model and the firmware's IDA test
+ * put it; read one slot later the same answers show shifted, and ida_cds
+ * reports the slots that answered either way. The firmware's test reads
+ * the default slots only, so the other reading is refused with it. */
+START_TEST(ida_either_slot) {
+    add_chain();
+    static biss_cd_prog p;
+    biss_cd_result r;
+    ck_assert_int_eq(biss_cd_build_command(&p, 0x05, 1, false), BISS_CD_OK);
+    ck_assert_uint_eq(p.ida, 15);
+    ck_assert_int_eq(run(&p, 0, &r), BISS_CD_OK);
+    ck_assert_uint_eq(r.ida, 0x05);
+    ck_assert_uint_eq(r.ida_cds, 0x005); /* the CRC step and IDA step 2 */
+    ck_assert_int_eq(biss_cd_set_ida(&p, BISS_CD_IDA_AT_SLOT), BISS_CD_OK);
+    ck_assert_uint_eq(p.ida, 16);
+    ck_assert_int_eq(run(&p, 0, &r), BISS_CD_E_IDA);
+    ck_assert_uint_eq(r.ida, 0x02); /* ID 0's answer fell before slot 0 */
+    ck_assert_uint_eq(r.ida_cds, 0x005);
+    ck_assert_int_eq(biss_cd_build_command(&p, 0x05, 1, true), BISS_CD_OK);
+    ck_assert_int_eq(biss_cd_set_ida(&p, BISS_CD_IDA_AT_SLOT), BISS_CD_E_ARG);
+    ck_assert_int_eq(biss_cd_set_ida(&p, BISS_CD_IDA_AT_CRC), BISS_CD_OK);
+}
+END_TEST
+
 /* Register access to the middle slave of the chain. */
 START_TEST(chain_register_access) {
     add_chain();
@@ -429,6 +486,8 @@ int main(void) {
     tcase_add_test(tc, command_broadcast);
     tcase_add_test(tc, command_addressed);
     tcase_add_test(tc, command_ida_test);
+    tcase_add_test(tc, id_lock_either_slot);
+    tcase_add_test(tc, ida_either_slot);
     tcase_add_test(tc, command_frame_failure);
     tcase_add_test(tc, chain_register_access);
     suite_add_tcase(s, tc);

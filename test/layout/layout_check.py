@@ -114,7 +114,9 @@ def build_and_run(src, cc, include_dir, out):
     cmd = cc.split() + ["-std=c11", "-Wall", "-Wextra", "-Werror", "-D_POSIX_C_SOURCE=200809L",
                         "-I", include_dir, "-I", proto, "-I", os.path.join(src, "include"),
                         "-I", os.path.join(src, "host", "include"),
+                        "-I", os.path.join(src, "emulator", "isa"),
                         os.path.join(src, "test", "layout", "layout_roundtrip.c")] + sources + [
+                        os.path.join(src, "emulator", "isa", "pru_isa.c"),  # biss_image_pru.c
                         "-o", out]
     r = subprocess.run(cmd, capture_output=True, text=True)
     if r.returncode:

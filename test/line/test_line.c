@@ -272,6 +272,24 @@ START_TEST(glitches_are_counted_and_bounded) {
 }
 END_TEST
 
+/* The lowest rates the scenario range takes (a denormal 1e-320 Hz: the
+ * mean gap overflows a double) give no glitch, not an overflowed time
+ * (llround of infinity: a glitch every few ns). */
+START_TEST(glitch_rate_near_zero_gives_none) {
+    const double rates[] = {1e-320, 4.9e-324, 1e-300, 1e-9};
+    for (size_t i = 0; i < sizeof rates / sizeof rates[0]; i++) {
+        line_params p = ideal(1.0);
+        p.glitch_rate_hz = rates[i];
+        rig r;
+        rig_init(&r, &p, 5);
+        eq_run_until(&r.q, 1 * SIM_PS_PER_MS);
+        ck_assert_uint_eq(r.l.glitches, 0);
+        ck_assert_uint_eq(r.out.len, 0);
+        rig_free(&r);
+    }
+}
+END_TEST
+
 START_TEST(disconnect_stuck_low_then_reconnect) {
     line_params p = ideal(10.0);
     p.fault = LINE_STUCK_LOW;
@@ -345,6 +363,7 @@ int main(void) {
     tcase_add_test(tc, jitter_never_reorders_edges);
     tcase_add_test(tc, settled_step_is_exact);
     tcase_add_test(tc, glitches_are_counted_and_bounded);
+    tcase_add_test(tc, glitch_rate_near_zero_gives_none);
     tcase_add_test(tc, disconnect_stuck_low_then_reconnect);
     tcase_add_test(tc, open_line_reads_high);
     tcase_add_test(tc, usable_rate_follows_cable_length);

@@ -95,9 +95,8 @@ START_TEST(register_read) {
     /* S, the Table 7 frame for 0x67, then the sequential S = 0 */
     feed(&c, "1 10001100111 0010 101 00000000 0000 0 0", out);
     /* 16 x 0 (S + header), R W S echo 1 0 1, data 0x5F, CRC4 sent 1111, P, end */
-    ck_assert_str_eq(out, "0"
-                          "10000000" /* IDL0..7: ID 0 */
-                          "0000000"
+    ck_assert_str_eq(out, "10000000" /* IDL0..7 (the answers to S and 7 bits): ID 0 */
+                          "00000000"
                           "101"
                           "01011111"
                           "1111"
@@ -117,9 +116,8 @@ START_TEST(register_write_stores_and_echoes) {
     /* write 0x3A to 0x10 (bank 0): header 10000010000 CRC 0011, RWS 011,
      * data 00111010, CRC4 of 0x3A sent 1101, P, end */
     feed(&c, "1 10000010000 0011 011 00111010 1101 0 0", out);
-    ck_assert_str_eq(out, "0"
-                          "10000000" /* IDL0..7: ID 0 */
-                          "0000000"
+    ck_assert_str_eq(out, "10000000" /* IDL0..7 (the answers to S and 7 bits): ID 0 */
+                          "00000000"
                           "011"
                           "00111010"
                           "1101"
@@ -148,9 +146,8 @@ START_TEST(header_crc_error_is_ignored_and_counted) {
     arm(&c);
     char out[128];
     feed(&c, "1 10001100111 0011 101 00000000 0000 0 0", out); /* CRC should be 0010 */
-    ck_assert_str_eq(out, "0"
-                          "10000000" /* IDL, before the CRC is known */
-                          "000000000000000000000000");
+    ck_assert_str_eq(out, "10000000"                           /* IDL, before the CRC is known */
+                          "0000000000000000000000000");
     ck_assert_uint_eq(c.crc_errors, 1);
     ck_assert_uint_eq(c.reads, 0);
     /* 14 zeros re-arm; a good frame then works */
@@ -176,15 +173,35 @@ START_TEST(needs_fourteen_zeros_before_start) {
 }
 END_TEST
 
+/* The other reading of the ID-lock slots (host/CD.md, "IDL"): IDL0..7 in
+ * the answers to CTS and the 7 bits after it, of a register access only. */
+START_TEST(id_lock_at_cts) {
+    biss_ctrl c;
+    char out[128];
+    biss_ctrl_init(&c, 2, &regs, 0);
+    c.idl_at_cts = true;
+    arm(&c);
+    feed(&c, "1 10001100111 0010 101 00000000 0000 0 0", out);
+    ck_assert_str_eq(out, "0"
+                          "00100000" /* IDL2 */
+                          "000000000000000000000000");
+    feed(&c, ZEROS14, out);
+    feed(&c, "1 0 00100000 10 0111 00000000 1", out); /* a command: no ID lock */
+    ck_assert_str_eq(out, "000000000000000"
+                          "001"
+                          "00000"
+                          "00");
+}
+END_TEST
+
 START_TEST(other_id_stays_silent) {
     biss_ctrl c;
     biss_ctrl_init(&c, 1, &regs, 0);
     arm(&c);
     char out[128];
     feed(&c, "1 10001100111 0010 101 00000000 0000 0 0", out);
-    ck_assert_str_eq(out, "0"
-                          "01000000" /* only its ID lock */
-                          "000000000000000000000000");
+    ck_assert_str_eq(out, "01000000" /* only its ID lock */
+                          "0000000000000000000000000");
     ck_assert_uint_eq(c.reads, 0);
     ck_assert_uint_eq(c.crc_errors, 0);
 }
@@ -198,9 +215,8 @@ START_TEST(late_start_bit_delays_data) {
     /* after RWS the slave answers S = 0 for 3 frames, then S = 1; the
      * master holds CDM = 1 meanwhile (see late_start_zeros_cancel) */
     feed(&c, "1 10001100111 0010 101 111 00000000 0000 0 0", out);
-    ck_assert_str_eq(out, "0"
-                          "10000000" /* IDL0..7: ID 0 */
-                          "0000000"
+    ck_assert_str_eq(out, "10000000" /* IDL0..7 (the answers to S and 7 bits): ID 0 */
+                          "00000000"
                           "10"
                           "000"
                           "1"
@@ -219,9 +235,8 @@ START_TEST(late_start_bit_write) {
     char out[128];
     /* the master sends the data from the frame in which it sees S = 1 */
     feed(&c, "1 10000010000 0011 011 00 00111010 1101 0 0", out);
-    ck_assert_str_eq(out, "0"
-                          "10000000" /* IDL0..7: ID 0 */
-                          "0000000"
+    ck_assert_str_eq(out, "10000000" /* IDL0..7 (the answers to S and 7 bits): ID 0 */
+                          "00000000"
                           "01"
                           "00"
                           "1"
@@ -240,9 +255,8 @@ START_TEST(sequential_read_two_registers) {
     char out[128];
     /* 0x67 then, after P and S = 1, 0x68 */
     feed(&c, "1 10001100111 0010 101 00000000 0000 0 1 00000000 0000 0 0", out);
-    ck_assert_str_eq(out, "0"
-                          "10000000" /* IDL0..7: ID 0 */
-                          "0000000"
+    ck_assert_str_eq(out, "10000000" /* IDL0..7 (the answers to S and 7 bits): ID 0 */
+                          "00000000"
                           "101"
                           "01011111"
                           "1111"
@@ -272,9 +286,8 @@ START_TEST(bank_switch_through_0x40) {
     arm(&c);
     /* read 0x10 now shows bank 2's byte 0x46 */
     feed(&c, "1 10000010000 0011 101 00000000 0000 0 0", out);
-    ck_assert_str_eq(out, "0"
-                          "10000000" /* IDL0..7: ID 0 */
-                          "0000000"
+    ck_assert_str_eq(out, "10000000" /* IDL0..7 (the answers to S and 7 bits): ID 0 */
+                          "00000000"
                           "101"
                           "01000110"
                           "0010"
@@ -316,12 +329,15 @@ START_TEST(addressed_command_with_ida) {
     char o2[64], o5[64];
     feed(&c2, f, o2);
     feed(&c5, f, o5);
-    /* S + 15 header bits: 0; then IDA slots 0..7 (slot 2 = 1), then P */
-    ck_assert_str_eq(o2, "000000000000000"
+    /* S + 15 header bits: the ID lock in the first 8 (every control
+     * frame's), then 0; then IDA slots 0..7 (slot 2 = 1), then P */
+    ck_assert_str_eq(o2, "00100000"
+                         "0000000"
                          "001"
                          "00000"
                          "00");
-    ck_assert_str_eq(o5, "000000000000000"
+    ck_assert_str_eq(o5, "00000100"
+                         "0000000"
                          "000"
                          "00000"
                          "00");
@@ -360,7 +376,7 @@ START_TEST(broadcast_command) {
     arm(&c);
     char out[64];
     feed(&c, "1 0 00000000 01 1100 00000000 1", out);
-    ck_assert_str_eq(out, "0000000000000000000000000");
+    ck_assert_str_eq(out, "0001000000000000000000000"); /* ID lock only: no IDA */
     ck_assert_uint_eq(c.commands, 1);
     ck_assert_int_eq(c.last_cmd, 1);
 }
@@ -416,6 +432,7 @@ int main(void) {
     tcase_add_test(tc, header_crc_error_is_ignored_and_counted);
     tcase_add_test(tc, needs_fourteen_zeros_before_start);
     tcase_add_test(tc, other_id_stays_silent);
+    tcase_add_test(tc, id_lock_at_cts);
     tcase_add_test(tc, late_start_bit_delays_data);
     tcase_add_test(tc, late_start_bit_write);
     tcase_add_test(tc, sequential_read_two_registers);

@@ -173,6 +173,12 @@ START_TEST(json_ranges) {
     expect_error("{\"line\": {\"ns_per_m\": 1e300}}", "line.ns_per_m: 1e+300 out of range 0..100");
     expect_error("{\"line\": {\"fault_at_ns\": -1}}",
                  "line.fault_at_ns: -1 out of range 0..1000000000000");
+    expect_error("{\"sl_line\": {\"fault\": \"open\", \"fault_at_ns\": 5000, "
+                 "\"fault_until_ns\": 4000}}",
+                 "sl_line.fault_until_ns: not after fault_at_ns (0: the fault never ends)");
+    expect_error("{\"line\": {\"fault\": \"stuck_low\", \"fault_at_ns\": 5000, "
+                 "\"fault_until_ns\": 5000}}",
+                 "ma_line.fault_until_ns: not after fault_at_ns (0: the fault never ends)");
     expect_error("{\"biss\": {\"timeout\": {\"ns\": 9e9}}}",
                  "biss.timeout.ns: 9000000000 out of range 0..1000000");
     expect_error("{\"biss\": {\"busy_ns\": 9e9}}",
@@ -216,8 +222,40 @@ START_TEST(json_ranges) {
     sc.biss.busy_ps = 9000 * SIM_PS_PER_MS;
     ck_assert_int_eq(scenario_check(&sc, err, sizeof err), -1);
     ck_assert_str_eq(err, "biss.busy_ns: 9000000000 out of range 0..1000000");
+    /* where a slave answers its ID lock (host/CD.md, "IDL slots") */
+    expect_error("{\"biss\": {\"slaves\": [{\"id_lock_slot\": \"adr\"}]}}",
+                 "biss.slaves[0].id_lock_slot: expected \"s\" (IDL0 answers S) or \"cts\" (it "
+                 "answers CTS)");
+    ck_assert_int_eq(scenario_from_json("{\"biss\": {\"slaves\": [{\"id_lock_slot\": \"cts\"}]}}",
+                                        &sc, err, sizeof err),
+                     0);
+    ck_assert(sc.biss.s[0].idl_at_cts);
+    ck_assert_int_eq(scenario_from_json("{\"biss\": {\"slaves\": [{\"id_lock_slot\": \"s\"}]}}",
+                                        &sc, err, sizeof err),
+                     0);
+    ck_assert(!sc.biss.s[0].idl_at_cts);
     /* trailing white space is fine */
     ck_assert_int_eq(scenario_from_json("{\"seed\": 2}\n\t \n", &sc, err, sizeof err), 0);
+}
+END_TEST
+
+/* Many keys: the duplicate found (and a document without one refused for
+ * its first unknown key) in n log n; a scan of every pair takes minutes
+ * over 200 000 keys, past the case's timeout. */
+START_TEST(json_many_keys) {
+    enum { N = 200000 };
+    size_t cap = (size_t)N * 16 + 64;
+    char *text = malloc(cap);
+    ck_assert_ptr_nonnull(text);
+    size_t n = (size_t)snprintf(text, cap, "{");
+    for (unsigned i = 0; i < N; i++) {
+        n += (size_t)snprintf(text + n, cap - n, "\"k%u\": 0, ", i);
+    }
+    snprintf(text + n, cap - n, "\"k%u\": 1}", N / 2);
+    expect_error(text, "k100000: given twice");
+    snprintf(text + n - 2, cap - n + 2, "}");
+    expect_error(text, "k0: unknown field");
+    free(text);
 }
 END_TEST
 
@@ -271,6 +309,7 @@ int main(void) {
     tcase_add_test(tc, json_errors_name_the_field);
     tcase_add_test(tc, json_ssi_scenario);
     tcase_add_test(tc, json_ranges);
+    tcase_add_test(tc, json_many_keys);
     tcase_add_test(tc, json_exact_64_bit);
     suite_add_tcase(s, tc);
     return check_run(s);
