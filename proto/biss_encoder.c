@@ -133,7 +133,8 @@ void biss_encoder_encode(const struct biss_encoder_config *c, struct biss_slv_co
             (uint8_t)((s->has_err ? BISS_SLV_SF_NE : 0) | (s->has_warn ? BISS_SLV_SF_NW : 0) |
                       (s->no_control ? BISS_SLV_SF_NO_CONTROL : 0) |
                       (s->exec_bit == 0 ? BISS_SLV_SF_EXEC_0 : 0) |
-                      (s->protect ? BISS_SLV_SF_PROTECT : 0));
+                      (s->protect ? BISS_SLV_SF_PROTECT : 0) |
+                      (s->idl_at_cts ? BISS_SLV_SF_IDL_AT_CTS : 0));
         o->crc_bits = (uint8_t)w;
         o->id = (uint8_t)s->id;
         o->reg_wait = (uint8_t)s->reg_wait;

@@ -30,6 +30,7 @@
 .assign Word, r2, r2, TmoEnd                //   CYCLE at the timeout,
 .assign Word, r3, r3, Elapsed           //   CYCLE since
 .assign Half, r4.w0, r4.w0, WorkMax     //   ST_WORK
+.assign Word, r5, r5, PadTurns          //   the burn's turns of 2 cycles
 .assign Word, r13, r13, Addr            // an address in data RAM
 .assign Byte, r13.b0, r13.b0, LiveEw    // LIVE_EW of the slave (after its address is used)
 .assign Word, r14, r14, OutHi           // a data word, left-aligned: the XOUT to BANK_DATA
@@ -37,30 +38,40 @@
 .assign Word, r24, r24, RunAddr         // the slave's SlvRun (LAST_PERIOD is used by then)
 .assign Word, r25, r25, RecAddr         // its word in FRAME_REC
 .assign Word, r29, r29, Scr             // scratch (SHL64's too)
+.assign CtrlState, r1, r4, Shadow       // the control state before the step ahead,
+.assign Byte, r5.b0, r5.b0, ShadowFlags //   and CTRL_FLAGS (P_SHADOW)
 
 END_WORK:
     lbbo    Scr, CTRL_BASE, CTRL_CYCLE, 4   // the timeout's end: the pad counts from here
     ldi     Addr, P_WORK_PAD
     sbbo    Scr, Addr, OFFSET(SlvPriv.tmo_end) - OFFSET(SlvPriv.work_pad), 4
-    ldi     Addr, BISS_SLV_ST_FRAMES
-    lbbo    &Frames, Addr, 0, 12
-    add     Frames, Frames, 1
-    qbeq    END_COUNTED, END_KIND, END_NONE
-    add     Latches, Latches, 1
-    qbgt    END_COUNTED, END_KIND, END_CDM0
-    add     CdFrames, CdFrames, 1
+    qbbs    END_COUNTED, END_KIND, 2        // END_BUILT: PREWORK counted the frame
+    jal     RET_LEAF, COUNT_FRAME
 END_COUNTED:
-    sbbo    &Frames, Addr, 0, 12
     qbgt    END_MOTION, END_KIND, END_CDM0  // no CDM without the ACK
     // The CDM: NOT MA at the timeout (TIDEP0022 §2.1: "The CDM bit is the
-    // inverted state of the MA line during the BiSS time-out"); the
-    // control frame takes it, and its answer is the next frame's CDS. With
-    // control communication idle and armed, a 0 changes nothing.
+    // inverted state of MA line during the BiSS time-out"); the control
+    // frame takes it, and its answer is the next frame's CDS. With every
+    // slave armed, a 0 changes nothing.
     and     CDM_IN, END_KIND, 1
     ldi     Addr, BISS_SLV_ST_CDM
     sbbo    CDM_IN, Addr, 0, 1
+    qbbc    END_STEP, CTRL_FLAGS, CTRL_AHEAD
+    // the tail took the step ahead, for the CDM MA then stood for: done
+    // if it is this one (PRE_WORD and FRAME_REC's CDS are set); else the
+    // state before it, and the step again
+    clr     CTRL_FLAGS, CTRL_FLAGS, CTRL_AHEAD
+    lsr     Scr, CTRL_FLAGS, CTRL_AHEAD_CDM
+    and     Scr, Scr, 1
+    qbeq    END_BUILT_DONE, Scr, CDM_IN
+    ldi     Addr, P_SHADOW
+    lbbo    &Shadow, Addr, 0, SIZE(CtrlState) + 4
+    ldi     Addr, P_CTRL
+    sbbo    &Shadow, Addr, 0, SIZE(CtrlState)
+    mov     CTRL_FLAGS, ShadowFlags
+END_STEP:
     qbne    END_CTRL, CDM_IN, 0
-    qbne    END_CTRL_DONE, CTRL_QUIET, 0
+    qbbs    END_CTRL_DONE, CTRL_FLAGS, CTRL_QUIET
 END_CTRL:
     jal     RET_SUB, CTRL_STEP
     lsl     PRE_WORD, CDS_OUT, 30
@@ -71,6 +82,7 @@ END_CTRL_DONE:
     and     Scr, Scr, 1
     ldi     Addr, BISS_SLV_REC_CDS
     sbbo    Scr, Addr, 0, 1
+END_BUILT_DONE:
     qba     END_CFG
 END_ADAPT:
     jal     RET_SUB, ADAPT
@@ -90,19 +102,31 @@ END_CFG:
     jmp     APPLY_CONFIG
 END_PAD:
     // the work's length (ST_WORK: the longest so far), then the rest of
-    // the pad
+    // the pad, to the cycle: the cycles from the CYCLE read to the end of
+    // the burn are PAD_SELF plus the burn
     ldi     Addr, P_WORK_PAD
     lbbo    &Pad, Addr, 0, 8
     lbbo    Elapsed, CTRL_BASE, CTRL_CYCLE, 4
     sub     Elapsed, Elapsed, TmoEnd
     ldi     Addr, BISS_SLV_ST_WORK
     lbbo    WorkMax, Addr, 0, 2
-    qbge    END_PAD_WAIT, Elapsed, WorkMax  // WorkMax >= Elapsed
+    qbge    END_PAD_REST, Elapsed, WorkMax  // WorkMax >= Elapsed
     sbbo    Elapsed, Addr, 0, 2
-END_PAD_WAIT:
+END_PAD_REST:
     lbbo    Elapsed, CTRL_BASE, CTRL_CYCLE, 4
     sub     Elapsed, Elapsed, TmoEnd
-    qbgt    END_PAD_WAIT, Elapsed, Pad      // Pad > Elapsed
+    add     Elapsed, Elapsed, PAD_SELF
+    qbge    END_PAD_DONE, Pad, Elapsed      // late: no pad left
+    sub     Elapsed, Pad, Elapsed           // cycles to burn: 2 a turn,
+    lsr     PadTurns, Elapsed, 1            //   1 more when odd
+    qbbc    END_PAD_EVEN, Elapsed, 0
+    ldi     Addr, 0
+END_PAD_EVEN:
+    qbeq    END_PAD_DONE, PadTurns, 0
+END_PAD_WAIT:
+    sub     PadTurns, PadTurns, 1
+    qbne    END_PAD_WAIT, PadTurns, 0
+END_PAD_DONE:
     // CYCLE stops at 2^32 (about 21 s): past 2^31 it starts again from 0,
     // here where nothing measures across it (it takes a write only while
     // COUNTER_ENABLE is clear, docs/pru-facts.md §3)
@@ -118,7 +142,8 @@ END_PAD_WAIT:
     jmp     READY
 
 // ---- PREWORK: from the tail, once MA has stood still for 3/4 of a
-// period (frame.p, TAIL): ADAPT and BUILD for the next frame, here rather
+// period (frame.p, TAIL): ADAPT and BUILD for the next frame, and what the
+// last control step left (COMMIT, ctrl.p), here rather
 // than after the timeout, which then has little left to do (WORK_PAD
 // holds it). Then back to the tail for the rest of the timeout: its turns
 // less the ones PREWORK took (CYCLE says how many), at the level MA stood
@@ -132,6 +157,7 @@ END_PAD_WAIT:
 .assign Word, r2, r2, PwStart           // tmo_end's word: CYCLE before the work
 .assign Byte, r0.b1, r0.b1, PwAdvance   // (between's Advance)
 .assign Byte, r0.b2, r0.b2, PwRecAhead  // (between's RecAhead)
+.assign Byte, r0.b3, r0.b3, PwBurn      // cycles to burn: the work made whole turns
 PREWORK:
     mov     PwLastPeriod, Period
     sub     PwRest, FullTmo, Tmo            // the turns left: the whole less the 3/4 period
@@ -145,17 +171,58 @@ PREWORK:
     ldi     PwAdvance, 1                    // (frames with a tail are latched)
     ldi     PwRecAhead, 2                   // FRAME_REC: this frame is not counted yet
     jal     RET_SUB, BUILD
+    qbbc    PREWORK_COMMITTED, CTRL_FLAGS, CTRL_PENDING
+    jal     RET_SUB, CTRL_COMMIT            // what the last control step left
+PREWORK_COMMITTED:
+    jal     RET_LEAF, COUNT_FRAME           // the frame's counters (END_WORK leaves them)
+    // The control step ahead, for the CDM MA stands for now (END_KIND: its
+    // level), the state before it kept (P_SHADOW) for the timeout's end to
+    // go back to if MA moves after all (END_WORK). Nothing but the control
+    // state changes in a step: what else it does is COMMIT's, later.
+    ldi     PwAddr, P_CTRL
+    lbbo    &Shadow, PwAddr, 0, SIZE(CtrlState)
+    mov     ShadowFlags, CTRL_FLAGS
+    ldi     PwAddr, P_SHADOW
+    sbbo    &Shadow, PwAddr, 0, SIZE(CtrlState) + 4
+    and     CDM_IN, END_KIND, 1
+    set     CTRL_FLAGS, CTRL_FLAGS, CTRL_AHEAD
+    clr     CTRL_FLAGS, CTRL_FLAGS, CTRL_AHEAD_CDM
+    qbeq    PREWORK_CDM0, CDM_IN, 0
+    set     CTRL_FLAGS, CTRL_FLAGS, CTRL_AHEAD_CDM
+    qba     PREWORK_STEP
+PREWORK_CDM0:
+    qbbs    PREWORK_STEPPED, CTRL_FLAGS, CTRL_QUIET
+PREWORK_STEP:
+    jal     RET_SUB, CTRL_STEP
+    lsl     PRE_WORD, CDS_OUT, 30
+    set     PRE_WORD, PRE_WORD, 31          // the start bit, then the CDS
+PREWORK_STEPPED:
+    lsr     PwRest, PRE_WORD, 30            // FRAME_REC's CDS
+    and     PwRest, PwRest, 1
+    ldi     PwAddr, BISS_SLV_REC_CDS
+    sbbo    PwRest, PwAddr, 0, 1
     ldi     PwAddr, P_WORK_PAD
     lbbo    PwStart, PwAddr, OFFSET(SlvPriv.tmo_end) - OFFSET(SlvPriv.work_pad), 4
     lbbo    PwRest, PwAddr, OFFSET(SlvPriv.spare) - OFFSET(SlvPriv.work_pad), 4
     mov     Tmo, PwRest                     // FullTmo, the reload
-    lsr     TmoLeft, PwRest, 16             // the turns left, less the work's (+ 2),
-    lbbo    PwRest, CTRL_BASE, CTRL_CYCLE, 4    // at least one
+    lsr     TmoLeft, PwRest, 16             // the turns left
+    // less the work's: its cycles (CYCLE) and PW_OUTSIDE, the tail's own
+    // around them, made whole turns by burning 0..3 cycles more, so that
+    // the timeout ends where it would without the work (at least one turn)
+    lbbo    PwRest, CTRL_BASE, CTRL_CYCLE, 4
     sub     PwRest, PwRest, PwStart
-    lsr     PwRest, PwRest, 2
-    add     PwRest, PwRest, 2
+    add     PwRest, PwRest, PW_OUTSIDE + 3
+    and     PwBurn, PwRest, 3               // burn 3 - (w + 3) % 4
+    xor     PwBurn, PwBurn, 3
+    lsr     PwRest, PwRest, 2               // ceil(w / 4) turns
     qble    PREWORK_NONE, PwRest, TmoLeft   // left <= the work's
     sub     TmoLeft, TmoLeft, PwRest
+    qbbc    PREWORK_BURN2, PwBurn, 0        // 1 cycle, or 2
+    ldi     PwRest, 0
+PREWORK_BURN2:
+    qbbc    PREWORK_LEFT, PwBurn, 1         // 1 cycle, or 3
+    ldi     PwRest, 0
+    ldi     PwRest, 0
     qba     PREWORK_LEFT
 PREWORK_NONE:
     ldi     TmoLeft, 1
@@ -164,6 +231,20 @@ PREWORK_LEFT:
     jmp     TAIL_BUILT_LOW
 .leave frame
 .leave prework
+
+// COUNT_FRAME: the frame in the counters ST_FRAMES, ST_LATCHES and
+// ST_CD_FRAMES, as END_KIND says. Returns through RET_LEAF.
+COUNT_FRAME:
+    ldi     Addr, BISS_SLV_ST_FRAMES
+    lbbo    &Frames, Addr, 0, 12
+    add     Frames, Frames, 1
+    qbeq    COUNT_FRAME_DONE, END_KIND, END_NONE
+    add     Latches, Latches, 1
+    qbgt    COUNT_FRAME_DONE, END_KIND, END_CDM0
+    add     CdFrames, CdFrames, 1
+COUNT_FRAME_DONE:
+    sbbo    &Frames, Addr, 0, 12
+    jmp     RET_LEAF
 
 // ---- ADAPT: the next frame's timeout after its ACK, from this frame's MA
 // period P (LAST_PERIOD, PRU cycles). The timeout T: the fixed one, or P x
@@ -212,7 +293,8 @@ ADAPT_D:
     max     PeriodX, PeriodX, Multiplicand
     lsr     GUARD, PeriodX, 1
     add     GUARD, GUARD, PeriodX
-    lsr     PeriodX, PeriodX, 2             // turns of 4 cycles, at least one
+    add     PeriodX, PeriodX, 2             // turns of 4 cycles (the nearest), at
+    lsr     PeriodX, PeriodX, 2             //   least one
     max     PeriodX, PeriodX, 1
     mov     TMO_ADAPT, PeriodX
     jmp     RET_SUB

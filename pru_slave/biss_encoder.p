@@ -65,8 +65,10 @@
 // cycles after the polls saw the timeout end, whatever the work there took
 // (test_slave_fw holds it below); the polls' own cycles around it are
 // TMO_FIXED. The turns of 4 cycles make up the rest of the timeout.
-#define WORK_PAD        90
-#define TMO_FIXED       35
+#define WORK_PAD        56
+#define TMO_FIXED       19
+#define PW_OUTSIDE      21              // PREWORK's cycles outside its CYCLE reads (between.p)
+#define PAD_SELF        11              // END_PAD's from its CYCLE read to the burn's end
 
 #define IDLE_CHECK      0               // idle poll turns between looks at the host's block:
                                         // 65536 turns of 4 cycles, 1.3 ms (0 wraps to 65535)

@@ -10,7 +10,7 @@
     .u8     nslaves
     .u8     idl
     .u8     factor
-    .u8     running
+    .u8     idl_cts
 .ends
 
 // A slave's block of the host's configuration, its first 16 bytes
@@ -34,6 +34,8 @@
 .enter config
 .assign Byte, r0.b0, r0.b0, Xfr         // the XFR shift: 2 k (R0[4:0])
 .assign Byte, r0.b1, r0.b1, Bits        // scratch bytes above it
+.assign Byte, r1.b0, r1.b0, IdlCts      // the IDs answering the ID lock at CTS
+.assign Byte, r1.b1, r1.b1, CtlAll      // the slaves taking part in control communication
 .assign Byte, r0.b2, r0.b2, Idx         // the slave's index
 .assign Byte, r0.b3, r0.b3, Idl         // the answering slaves' IDs, bit k: ID k
 .assign Byte, r2.b0, r2.b0, CSlaves     // the chain's block from BISS_SLV_CFG_NSLAVES on:
@@ -85,8 +87,18 @@ CFG_TMO_OK:
     qbne    CFG_REFUSE, Scr, 0
 
     // ---- every slave -----------------------------------------------------------
+    ldi     Byte0xff, 0xff                  // SlvCtl.by_id: no slave of any ID yet
+    mov     Addr, P_CTL + OFFSET(SlvCtl.by_id)
+    ldi     Idx, 0
+CFG_BY_ID:
+    sbbo    Byte0xff, Addr, 0, 1
+    add     Addr, Addr, CTL_SIZE
+    add     Idx, Idx, 1
+    qbne    CFG_BY_ID, Idx, BISS_SLV_MAX_SLAVES
     ldi     Idx, 0
     ldi     Idl, 0
+    ldi     IdlCts, 0
+    ldi     CtlAll, 0
     ldi     HostAddr, BISS_SLV_CFG_SLAVE0
     ldi     RunAddr, P_RUN
 CFG_SLAVE:
@@ -118,6 +130,13 @@ CFG_SLAVE:
     lsr     Scr, Idl, Hs.id
     qbbs    CFG_REFUSE, Scr, 0
     set     Idl, Idl, Hs.id
+    set     CtlAll, CtlAll, Idx
+    lsl     Addr, Hs.id, 3                  // its ID's entry: by_id = this slave
+    mov     Scr, P_CTL + OFFSET(SlvCtl.by_id)
+    add     Addr, Addr, Scr
+    sbbo    Idx, Addr, 0, 1
+    qbbc    CFG_ID_OK, Hs.flags, 5          // BISS_SLV_SF_IDL_AT_CTS
+    set     IdlCts, IdlCts, Hs.id
 CFG_ID_OK:
     // the table and the banks inside theirs
     ldi     Err, BISS_SLV_CFGERR_TABLE
@@ -213,7 +232,7 @@ CFG_REC:
     mov     Chain.nslaves, CSlaves
     mov     Chain.idl, Idl
     mov     Chain.factor, CFactor
-    ldi     Chain.running, 1
+    mov     Chain.idl_cts, IdlCts
     ldi     Addr, P_NSLAVES
     sbbo    &Chain, Addr, 0, 4
     ldi     Addr, P_TMO_MIN
@@ -240,6 +259,7 @@ CFG_REC:
     qbgt    CFG_TMO_MAX, CTimeout, Scr2     // 11 (pad + fixed) > T: all of T
     sub     WordOut, WordOut, Scr
 CFG_TMO_MAX:
+    add     WordOut, WordOut, 2             // turns of 4 cycles, the nearest
     lsr     WordOut, WordOut, 2
     max     WordOut, WordOut, 1
     mov     TMO_MAX, WordOut
@@ -252,7 +272,7 @@ CFG_BUSY:
     mov     BUSY_CLK, CBusyClk
     lsl     END_SLOT, Idx, 1                // (Idx = the slaves now)
     mov     PRE_WORD, 0x80000000            // the start bit, CDS 0
-    ldi     CTRL_QUIET, 0                   // control communication from the start
+    ldi     CTRL_FLAGS, 0                   // control communication from the start
     // a clear control state
     ldi     WordOut, 0
     ldi     Addr, P_CTRL
@@ -260,6 +280,7 @@ CFG_BUSY:
     sbbo    WordOut, Addr, 4, 4
     sbbo    WordOut, Addr, 8, 4
     sbbo    WordOut, Addr, 12, 4
+    sbbo    CtlAll, Addr, OFFSET(CtrlState.all), 1  // none armed: 14 zeros first
     // the status: counters 0, no CDM yet, no command or register yet
     ldi     Addr, BISS_SLV_ST_TIMEOUT
     sbbo    CTimeout, Addr, 0, 4

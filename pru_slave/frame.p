@@ -65,7 +65,8 @@ R2_TMO:
 // busy clocks are done and the time from the ACK to that rise (now + one
 // period) reaches the processing time.
 BUSY_ROSE:
-    lbbo    Now, CTRL_BASE, CTRL_CYCLE, 4
+    ldi     SL_OUT, 0                       // (SL stays low: CYCLE then read one
+    lbbo    Now, CTRL_BASE, CTRL_CYCLE, 4   //  cycle after the edge, as at the ACK)
     mov     TmoLeft, Tmo
     sub     Tmp, Now, AckCyc
     add     Tmp, Tmp, Period

@@ -85,7 +85,8 @@ static int slave_config(const biss_slave_cfg *s, unsigned i, unsigned *bank0,
                                      .reg_wait = s->reg_proc_frames,
                                      .banks = banks,
                                      .bank0 = *bank0,
-                                     .protect = s->regs.protect};
+                                     .protect = s->regs.protect,
+                                     .idl_at_cts = s->idl_at_cts};
     *bank0 += banks;
     return 0;
 }

@@ -373,6 +373,10 @@ struct biss_encoder_slave {
     unsigned reg_wait;
     unsigned banks, bank0;
     bool protect;
+    /* The ID lock IDL0..7 in the CDS answering S and the 7 header bits
+     * after it (false: the default, host/CD.md "IDL slots"), or CTS and the
+     * 7 after it in a register access (true). */
+    bool idl_at_cts;
 };
 
 struct biss_encoder_config {

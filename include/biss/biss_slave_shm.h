@@ -93,6 +93,9 @@
 #define BISS_SLV_SF_EXEC_0          0x08    // a BiSS command executes on an execute bit of 0 (the
                                             // register access's stop bit P) instead of 1 (iC-MB4's EX)
 #define BISS_SLV_SF_PROTECT         0x10    // write-protected registers (WP bits) refuse writes
+#define BISS_SLV_SF_IDL_AT_CTS      0x20    // the ID lock IDL0..7 answers CTS and the 7 bits after
+                                            // it, in a register access only; without it, S and
+                                            // the 7 bits after it (host/CD.md, "IDL slots")
 
 #define BISS_SLV_EW_ERROR           0x01    // nE sent active (0)
 #define BISS_SLV_EW_WARNING         0x02    // nW sent active (0)
@@ -176,6 +179,10 @@
 #define BISS_SLV_BANK_SIZE          64
 #define BISS_SLV_TABLE              0xB00   // BISS_SLV_TABLE_ENTRIES x u64, positions right-aligned
 #define BISS_SLV_TABLE_END          0xF00
+
+// ---- firmware-private, a second part (the host must not write it) ----------
+#define BISS_SLV_PRIV2              0xF00   // the control state before a step taken in a frame's
+#define BISS_SLV_PRIV2_END          0xF20   // tail (pru_slave/README.md, "Work between frames")
 
 // ---- configuration errors (ST_CFG_ERROR) -------------------------------------
 #define BISS_SLV_CFGERR_NONE        0

@@ -120,6 +120,7 @@ struct biss_slv_shm {
     uint8_t gap_regs[BISS_SLV_POOL - BISS_SLV_REGS - BISS_SLV_MAX_SLAVES * BISS_SLV_REGS_SIZE];
     uint8_t pool[BISS_SLV_POOL_BANKS][BISS_SLV_BANK_SIZE];
     uint64_t table[BISS_SLV_TABLE_ENTRIES];
+    uint8_t priv2[BISS_SLV_PRIV2_END - BISS_SLV_PRIV2];
 };
 
 /* ---- compile-time agreement with biss_slave_shm.h ----------------------- */
@@ -220,11 +221,12 @@ BISS_SLV_REGS_AT(wp, BISS_SLV_R_WP);
 BISS_SLV_AT(pool, BISS_SLV_POOL);
 BISS_SLV_AT(pool[1], BISS_SLV_POOL + BISS_SLV_BANK_SIZE);
 BISS_SLV_AT(table, BISS_SLV_TABLE);
-_Static_assert(sizeof(struct biss_slv_shm) == BISS_SLV_TABLE_END, "shared area size");
+BISS_SLV_AT(priv2, BISS_SLV_PRIV2);
+_Static_assert(sizeof(struct biss_slv_shm) == BISS_SLV_PRIV2_END, "shared area size");
 /* The master's identification block and resource table (biss_shm.h) sit at
  * the top of the 4 KB data RAM in this image too: the same loaders and
  * ELF writer serve both firmwares. */
-_Static_assert(BISS_SLV_TABLE_END <= BISS_ID, "the shared area stays below the identification");
+_Static_assert(BISS_SLV_PRIV2_END <= BISS_ID, "the shared area stays below the identification");
 
 #undef BISS_SLV_AT
 #undef BISS_SLV_SLAVE_CFG_AT

@@ -48,6 +48,8 @@ void rig_open(struct rig *r, const biss_chain_cfg *chain, const struct pru_param
     ck_assert_int_eq(read_file(SLAVE_IMAGE_PRU1, 16384, &img, &len), READ_FILE_OK);
     ck_assert_int_eq(pru_load_image(r->core, img, len), 0);
     free(img);
+    r->trace = getenv("RIG_TRACE") ? fopen(getenv("RIG_TRACE"), "w") : NULL;
+    pru_set_trace(r->core, r->trace);
     pru_start(r->core);
     slave_fw_ram_init(&r->ram, r->core, PRU_SOC_AM335X, 1);
     r->io = slave_fw_io(&r->ram);
@@ -72,6 +74,9 @@ void rig_open(struct rig *r, const biss_chain_cfg *chain, const struct pru_param
 
 void rig_close(struct rig *r) {
     pru_icss_free(r->icss);
+    if (r->trace) {
+        fclose(r->trace);
+    }
     waveform_free(&r->ma);
     waveform_free(&r->sl);
     waveform_free(&r->sl_m);

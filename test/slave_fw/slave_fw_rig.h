@@ -19,6 +19,7 @@
 
 #include <stdbool.h>
 #include <stdint.h>
+#include <stdio.h>
 
 #define RIG_MAX_FRAMES 4096
 #define RIG_MA_BIT     1 /* the images' MA_IN_BIT (pru_slave/CMakeLists.txt) */
@@ -48,6 +49,11 @@ struct rig {
     biss_chain_cfg chain;
     event_queue q;
     biss_slave *model;
+    /* Frames the master ends inside the slaves' data (or before the ACK):
+     * the next frame is built after their timeout, whose end is then late
+     * by the work over WORK_PAD (ST_WORK says how much). */
+    bool partial_frames;
+    FILE *trace; /* RIG_TRACE=file: the firmware's instructions, one a line */
 };
 
 /* A rig with the firmware image built for PRU1 loaded and started, and
