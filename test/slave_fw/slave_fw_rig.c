@@ -103,8 +103,10 @@ struct rig_frame *rig_add(struct rig *r, unsigned half, unsigned clocks, int cdm
             f->rise[k - 1] = last;
         }
         waveform_append(&r->ma, last, 1);
-        if (k < clocks || cdm) {
+        if (k < clocks) {
             waveform_append(&r->ma, last + h, 0);
+        } else if (cdm) {
+            waveform_append(&r->ma, last + (r->cdm_fall ? r->cdm_fall : h), 0);
         }
     }
     waveform_append(&r->ma, last + gap, 1);

@@ -54,6 +54,9 @@ struct rig {
      * by the work over WORK_PAD (ST_WORK says how much). */
     bool partial_frames;
     FILE *trace; /* RIG_TRACE=file: the firmware's instructions, one a line */
+    /* Non-zero: rig_add's CDM = 1 frames fall this long after their last
+     * rise (a master that moves MA late), not half a period. */
+    sim_ps cdm_fall;
 };
 
 /* A rig with the firmware image built for PRU1 loaded and started, and

@@ -790,6 +790,44 @@ START_TEST(random_cdm_chain) {
 }
 END_TEST
 
+/* A master that moves MA after the slave took the frame's control step
+ * ahead in its tail (the CDM = 1 fall 3 us after the last rise, long after
+ * 3/4 of a period of MA standing high): the step is taken again for the
+ * CDM MA then stands for, from the state before it; the same CDS as the
+ * model's, and the same register file. Those frames' timeouts end late by
+ * the step (the work after them over WORK_PAD), as partial frames' do. */
+START_TEST(cdm_moved_late) {
+    biss_chain_cfg c = chain_of("hengstler-ad38");
+    c.busy_ps = 0;
+    c.timeout_mode = BISS_TIMEOUT_FIXED; /* 20 us: the fall inside it */
+    c.timeout_ps = 20 * US;
+    struct rig r;
+    rig_open(&r, &c, NULL);
+    r.partial_frames = true;
+    r.cdm_fall = 3 * US;
+    struct cdm_seq s = {.n = 0};
+    put_read(&s, 1, 0x78, 3, 0);
+    put_write(&s, 0, 0x6a, (const uint8_t[]){0x5a, 0xa5}, 2, 0, false);
+    put_command(&s, 0x40, 2, 1);
+    put_read(&s, 0, 0x6a, 2, 0);
+    run_cdm(&r, &s, 10, 150);
+    expect_regs(&r);
+    struct biss_slv_status st = rig_status(&r);
+    ck_assert_uint_gt(st.work, st.work_pad); /* the steps taken again */
+    for (unsigned i = 0; i < c.n; i++) {
+        const biss_ctrl *m = &r.model->ctrl[i];
+        ck_assert_uint_eq(st.slave[i].reads, m->reads);
+        ck_assert_uint_eq(st.slave[i].writes, m->writes);
+        ck_assert_uint_eq(st.slave[i].commands, m->commands);
+    }
+    ck_assert_uint_eq(r.model->ctrl[1].reads, 3);  /* ID 1 */
+    ck_assert_uint_eq(r.model->ctrl[2].writes, 2); /* ID 0 */
+    ck_assert_uint_eq(r.model->ctrl[2].reads, 2);
+    ck_assert_uint_eq(r.model->ctrl[1].commands, 1);
+    rig_close(&r);
+}
+END_TEST
+
 /* ---- strict mode ------------------------------------------------------------------ */
 
 /* Strict mode on the slave's core with its clocked scope taken from MA (the
@@ -955,6 +993,7 @@ int main(void) {
     tcase_add_test(tc, fourteen_zeros_cancel);
     tcase_add_test(tc, random_cdm);
     tcase_add_test(tc, random_cdm_chain);
+    tcase_add_test(tc, cdm_moved_late);
     suite_add_tcase(s, tc);
     tc = tcase_create("strict");
     tcase_set_timeout(tc, 600);
