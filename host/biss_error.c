@@ -89,6 +89,10 @@ static const struct err_text errors[] = {
                     "PRU1: biss_master_pru1)"},
     {BISS_E_SAFETY_SPEED, "speed check (max_speed): no such slave in the chain, or the speed "
                           "is not a finite number above 0"},
+    {BISS_E_LINE_TIMEOUT, "the slave's timeout is below 55 % of the MA period (iC-MB4 I306): "
+                          "choose a faster rate"},
+    {BISS_E_LINE_DELAY, "the line's round trip is beyond the 40 us the firmware waits for the "
+                        "ACK"},
     {BISS_E_ENC_LC_BITS, "encoder: a life counter over 32 bits"},
     {BISS_E_ENC_ID, "encoder: an ID over 7, or two answering slaves with one ID"},
     {BISS_E_ENC_TABLE, "encoder: table entries past the table's 128"},

@@ -13,12 +13,18 @@ struct command {
 };
 
 static const struct command table[] = {
-    {"info", bissctl_info, true},           {"read", bissctl_read, true},
-    {"stats", bissctl_stats, true},         {"run", bissctl_run, true},
-    {"trigger", bissctl_trigger, true},     {"start", bissctl_start, true},
-    {"stop", bissctl_stop, false},          {"reg-read", bissctl_reg_read, true},
-    {"reg-write", bissctl_reg_write, true}, {"command", bissctl_command, true},
+    {"info", bissctl_info, true},
+    {"read", bissctl_read, true},
+    {"stats", bissctl_stats, true},
+    {"run", bissctl_run, true},
+    {"trigger", bissctl_trigger, true},
+    {"start", bissctl_start, true},
+    {"stop", bissctl_stop, false},
+    {"reg-read", bissctl_reg_read, true},
+    {"reg-write", bissctl_reg_write, true},
+    {"command", bissctl_command, true},
     {"probe", bissctl_probe, false}, /* configures its own capture layout */
+    {"rates", NULL, false},          /* needs no target: bissctl_rates */
 };
 
 static const struct command *find(const char *name) {
@@ -141,11 +147,20 @@ int main(int argc, char **argv) {
         return BISSCTL_OK;
     }
     const struct command *cmd = find(o.command);
+    if (!cmd->run) {
+        return bissctl_rates(&o);
+    }
     default_target(&o);
     /* catch a bad command line before touching the target */
     rc = bissctl_check_args(&o);
     if (rc) {
         return rc;
+    }
+    if (cmd->configure && !o.no_configure && (o.config_given || !o.open.attach)) {
+        rc = bissctl_line_before(&o); /* the rate against what is known of the line */
+        if (rc) {
+            return rc;
+        }
     }
     if (cmd->configure && o.slaves_given && !o.no_configure) {
         int bad = biss_config_check(&o.cfg);

@@ -32,6 +32,8 @@ struct bissctl_opts {
     int nargs;
     bool help;
     bool attach_given;         /* --attach on the command line */
+    uint32_t slave_timeout_ns; /* --slave-timeout-ns: the slaves' shortest timeout, 0 unknown */
+    double round_trip_ns;      /* --round-trip-ns (rates): a measured round trip, < 0 none */
     struct biss_config checks; /* --check-life, --check-pair: only their fields, added to
                                   the layout (command line or profile) when it is known */
     char errbuf[2048];         /* open's detail */
@@ -77,6 +79,15 @@ int bissctl_probe(biss_t *h, const struct bissctl_opts *o); /* bissctl_probe.c *
 void bissctl_json_frame(const struct biss_sample *s, const struct biss_config *c, bool first);
 void bissctl_json_end(biss_t *h);
 
+/* The rate against the line (bissctl_line.c, proto's rules and words):
+ * before configuring, what the command line says of it (a refusal is
+ * BISSCTL_FAIL, reported; a warning is printed); each frame read noted;
+ * after the frames, what they measured (a warning, or why no slave
+ * answered, on stderr); the rates command, which needs no target. */
+int bissctl_line_before(const struct bissctl_opts *o);
+void bissctl_line_note(const struct biss_sample *s);
+void bissctl_line_report(biss_t *h, const struct bissctl_opts *o);
+int bissctl_rates(const struct bissctl_opts *o);
 /* The first line of every output on the emulator target (bissctl_cmds.c). */
 extern const char bissctl_emulated_note[];
 

@@ -237,8 +237,10 @@ int bissctl_read(biss_t *h, const struct bissctl_opts *o) {
         } else {
             print_sample(&s, layout ? &c : NULL);
         }
+        bissctl_line_note(&s);
         after = s.frame;
     }
+    bissctl_line_report(h, o);
     if (o->json) {
         bissctl_json_end(h);
     } else {
@@ -268,6 +270,17 @@ int bissctl_run(biss_t *h, const struct bissctl_opts *o) {
         print_delay(&d);
         printf("\n");
     }
+    /* the latest frame tells what the line measured, or that no slave answered */
+    struct biss_sample s;
+    if (rc == BISSCTL_OK && biss_read_sample(h, &s) == BISS_OK) {
+        if (biss_line_delay(h, &d) == BISS_OK) {
+            s.delay = d;
+            s.training = !s.valid;
+            s.no_slave = false;
+        }
+        bissctl_line_note(&s);
+        bissctl_line_report(h, o);
+    }
     return rc;
 }
 
@@ -286,6 +299,14 @@ int bissctl_start(biss_t *h, const struct bissctl_opts *o) {
     }
     if (rc) {
         return bissctl_fail("start", rc);
+    }
+    /* the configuration just went in: its first frame is the training,
+     * and what it measured is checked (a warning, or why no slave
+     * answered, on stderr) */
+    struct biss_sample s;
+    if (biss_wait_sample(h, 0, o->timeout_ms, &s) == BISS_OK) {
+        bissctl_line_note(&s);
+        bissctl_line_report(h, o);
     }
     bool emu = biss_target(h) == BISS_TARGET_EMU;
     printf("started: target=%s pru=%u firmware=%s freq_hz=%u slaves=%u trigger=%s\n",

@@ -15,7 +15,7 @@
 
 static const char *const commands[] = {"info",      "read",    "stats", "run",
                                        "trigger",   "start",   "stop",  "reg-read",
-                                       "reg-write", "command", "probe"};
+                                       "reg-write", "command", "probe", "rates"};
 
 static const char common_help[] =
     "Target:\n"
@@ -60,6 +60,11 @@ static const char common_help[] =
     "                     IEP period the other PRU's channel (--trigger iep) set up\n"
     "  --iep-period-ns NS frame period for --trigger iep\n"
     "  --proc-limit N     longest processing time accepted, MA clocks (default 1000)\n"
+    "Line (checked against the rate: TIDEP0022 Table 5, iC-MB4's shortest timeout):\n"
+    "  --cable-m M        (above) the cable's length, also on a board\n"
+    "  --slave-timeout-ns NS\n"
+    "                     the slaves' shortest timeout: refused below 55 % of the MA\n"
+    "                     period (iC-MB4 I306)\n"
     "Safety checks (host side, on every frame read; host/README.md):\n"
     "  --check-life S[,BITS]\n"
     "                     slave S's life counter (the BITS at its data word's LSB,\n"
@@ -149,6 +154,15 @@ static const char *command_help(const char *command) {
                "  unique. Progress goes to stderr about once a second on a long search.\n"
                "  Exit status 1 when it cannot decide or the result is ambiguous.\n";
     }
+    if (strcmp(command, "rates") == 0) {
+        return "bissctl [options] rates [--round-trip-ns NS]\n"
+               "  The MA rates a line allows, from what is known of it: --cable-m, a\n"
+               "  measured round trip (--round-trip-ns, as read prints delay_ns), the\n"
+               "  slaves' --slave-timeout-ns. Prints TIDEP0022 Table 5 and rates_hz=, the\n"
+               "  rates the firmware clocks exactly that the line allows, fastest first;\n"
+               "  with --freq the verdict on that rate (exit status 1 if refused). Needs\n"
+               "  no target.\n";
+    }
     if (strcmp(command, "reg-write") == 0) {
         return "bissctl [options] reg-write [--id ID] ADDR BYTE...\n"
                "  Writes the bytes to ADDR, ADDR+1, ... of the slave with control-frame\n"
@@ -184,7 +198,7 @@ void bissctl_usage(const char *command) {
            "BiSS-C master on a PRU (emulated or real) through libbiss.\n"
            "Commands: info, read [-n N], stats, run [--ms MS], trigger, start, stop,\n"
            "          reg-read ADDR [-n N], reg-write ADDR BYTE..., command IDS CMD [--force],\n"
-           "          probe [-n N] [--time-limit S] [FILE.json]\n"
+           "          probe [-n N] [--time-limit S] [FILE.json], rates\n"
            "          (also spelt reg read, reg write, cmd; bissctl COMMAND --help for each)\n\n%s",
            common_help);
 }
@@ -311,6 +325,8 @@ enum {
     OPT_FWDIR,
     OPT_RPROC_FW,
     OPT_PRU,
+    OPT_SLAVE_TIMEOUT,
+    OPT_ROUND_TRIP,
     OPT_CONFIG,
     OPT_FORCE,
     OPT_TIME_LIMIT,
@@ -348,6 +364,8 @@ static const struct option long_opts[] = {
     {"firmware-dir", required_argument, NULL, OPT_FWDIR},
     {"rproc-firmware", required_argument, NULL, OPT_RPROC_FW},
     {"pru", required_argument, NULL, OPT_PRU},
+    {"slave-timeout-ns", required_argument, NULL, OPT_SLAVE_TIMEOUT},
+    {"round-trip-ns", required_argument, NULL, OPT_ROUND_TRIP},
     {"config", required_argument, NULL, OPT_CONFIG},
     {"force", no_argument, NULL, OPT_FORCE},
     {"time-limit", required_argument, NULL, OPT_TIME_LIMIT},
@@ -363,6 +381,18 @@ static int parse_cable(const char *arg, double *m) {
         return -1;
     }
     *m = v;
+    return 0;
+}
+
+/* A round trip in ns, 0..1 ms. */
+static int parse_cable_ns(const char *arg, double *ns) {
+    char *end;
+    errno = 0;
+    double v = strtod(arg, &end);
+    if (errno || *end || end == arg || !(v >= 0 && v <= 1e6)) {
+        return -1;
+    }
+    *ns = v;
     return 0;
 }
 
@@ -573,6 +603,16 @@ static int take_command_opt(int c, const char *arg, struct bissctl_opts *o) {
     case OPT_JSON:
         o->json = true;
         return 0;
+    case OPT_SLAVE_TIMEOUT:
+        if (parse_u32(arg, &o->slave_timeout_ns) || o->slave_timeout_ns == 0) {
+            return usage_error("--slave-timeout-ns '%s': expected ns, above 0", arg);
+        }
+        return 0;
+    case OPT_ROUND_TRIP:
+        if (parse_cable_ns(arg, &o->round_trip_ns)) {
+            return usage_error("--round-trip-ns '%s': expected ns, 0..1000000", arg);
+        }
+        return 0;
     case OPT_FORCE:
         o->force = true;
         return 0;
@@ -659,6 +699,7 @@ int bissctl_parse(int argc, char **argv, struct bissctl_opts *o) {
     o->count = 1;
     o->run_ms = 100;
     o->timeout_ms = 100;
+    o->round_trip_ns = -1;
     o->open.errbuf = o->errbuf;
     o->open.errbuf_len = sizeof o->errbuf;
     o->config_file = config_file(argc, argv);

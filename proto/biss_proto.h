@@ -47,6 +47,10 @@ const char *biss_proto_cfg_error_text(uint32_t code);
 int biss_proto_half_check(unsigned half);
 /* The same as a sentence, NULL when the firmware takes it. */
 const char *biss_proto_half_problem(unsigned half);
+/* biss_line_check for any half period the firmware clocks, 100 MHz / H
+ * whole in Hz or not (biss-sim takes 97656.25 Hz). */
+int biss_proto_line_check(unsigned half, const struct biss_line_facts *f,
+                          struct biss_line_verdict *v);
 
 /* ---- the firmware image (biss_image_pru.c) ---- */
 

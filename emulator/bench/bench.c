@@ -2,6 +2,7 @@
  * on the way (see bench.h). */
 #include "bench.h"
 
+#include "frame_marks.h"
 #include "pruss.h"
 #include "vcd.h"
 
@@ -54,8 +55,9 @@ struct bench {
     biss_frame_record cap_biss; /* the frame's record, kept: the slave's ring moves on */
     ssi_frame_record cap_ssi;
 
-    uint64_t frame_limit; /* frames from this number on are not measured */
-    sim_ps forgot_at;     /* when pin history was last dropped */
+    struct frame_marks marks; /* each frame's first MA fall at the master pin (marks_scan) */
+    uint64_t frame_limit;     /* frames from this number on are not measured */
+    sim_ps forgot_at;         /* when pin history was last dropped */
     struct bench_stats st;
 
     link_model link; /* its per-edge state first */
@@ -349,6 +351,7 @@ static struct bench *bench_on(const struct bench_config *cfg, struct pru_core *c
     b->icss = icss;
     b->frame_limit = UINT64_MAX;
     b->current_frame = UINT64_MAX;
+    frame_marks_init(&b->marks);
     if (link_init(&b->link, &cfg->link, err, errlen) != 0) {
         free(b);
         return NULL;
@@ -503,6 +506,15 @@ int bench_start_image(struct bench *b, const void *image, size_t bytes) {
 /* The link catches up with the core and drops old pin history. */
 static void bench_caught_up(struct bench *b);
 
+/* The frame marks of the MA edges driven since the last look (the ring
+ * holds MA_RING of them: bench_caught_up looks after every run step once
+ * an eighth of them has come). */
+static void marks_scan(struct bench *b) {
+    struct frame_marks_edges e = {b->ma_times, MA_RING, b->st.ma_edges_master};
+    frame_marks_scan(&b->marks, &b->st, &e, &b->link, b->core, b->cfg.pru.gpo_delay_ps,
+                     b->frame_limit);
+}
+
 enum pru_stop bench_run_until(struct bench *b, int64_t t_ps) {
     if (b->icss) { /* both PRUs together; each bench's link follows its core */
         enum pru_stop why = pru_icss_run_until_time(b->icss, t_ps);
@@ -527,7 +539,14 @@ static void bench_caught_up(struct bench *b) {
     /* SL at the master older than a millisecond is never looked at again;
      * it is dropped every 16 ms: each drop moves the millisecond that is
      * kept, so dropping every millisecond cost 2 % of the run */
-    if (now - b->forgot_at > 16 * SIM_PS_PER_MS) {
+    bool forget = now - b->forgot_at > 16 * SIM_PS_PER_MS;
+    /* the frame marks in batches, an eighth of the edge ring (the slave's
+     * 256 records hold every frame of it), and before SL's history is
+     * dropped: restarts look back at it */
+    if (forget || b->st.ma_edges_master - b->marks.next >= MA_RING / 8) {
+        marks_scan(b);
+    }
+    if (forget) {
         link_forget_pins_before(&b->link, 1u << LINK_SL_MASTER, now - SIM_PS_PER_MS);
         b->forgot_at = now;
     }
@@ -557,9 +576,15 @@ enum pru_stop bench_run_frames(struct bench *b, uint64_t frames, int64_t max_ps,
 }
 
 const struct bench_stats *bench_stats(struct bench *b) {
+    marks_scan(b);
     uint64_t n = slave_frames(b);
     b->st.frames = n < b->frame_limit ? n : b->frame_limit;
     return &b->st;
+}
+
+void bench_set_ma_half(struct bench *b, unsigned half) {
+    marks_scan(b); /* the edges so far at the H they were clocked at */
+    b->marks.half_ps = (int64_t)half * PRU_PS_PER_CYCLE;
 }
 
 void bench_set_frame_limit(struct bench *b, uint64_t frames) {
@@ -567,6 +592,7 @@ void bench_set_frame_limit(struct bench *b, uint64_t frames) {
 }
 
 void bench_reset_stats(struct bench *b) {
+    marks_scan(b); /* what came before the reset is not measured after it */
     uint64_t edges_master = b->st.ma_edges_master, edges_slave = b->st.ma_edges_slave;
     memset(&b->st, 0, sizeof(b->st));
     b->st.ma_edges_master = edges_master; /* they index the edge ring */

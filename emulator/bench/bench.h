@@ -44,6 +44,13 @@ struct bench_config {
 /* Defaults: AM335x, MA on R30 bit 1, the "generic" profile. */
 void bench_config_default(struct bench_config *c);
 
+/* A measured time over frames: count, least, greatest and sum, in ps. */
+struct bench_span {
+    uint64_t n;
+    int64_t min_ps, max_ps;
+    int64_t sum_ps; /* (2^63 ps: three months of spans) */
+};
+
 /* What the bench measured at the master's MA pin and at the slave. */
 struct bench_stats {
     uint64_t frames;         /* frames the slave closed */
@@ -55,6 +62,24 @@ struct bench_stats {
     double period_sum_ps;
     uint64_t ma_edges_master; /* MA edges the PRU drove */
     uint64_t ma_edges_slave;  /* MA edges that reached the slave */
+    /* Frames as the master's MA pin shows them, once bench_set_ma_half()
+     * has told the bench H (emulator/bench/INSTRUMENTS.md): a frame's
+     * first falling edge is an MA fall at the master pin that does not
+     * close a clock period (its high phase or the low phase before it is
+     * not H). */
+    struct bench_span ma_high; /* the MA high phase before each first fall */
+    uint64_t ma_high_short;    /* ... of those, shorter than H */
+    /* SL rising at the master pin at the end of the previous frame's
+     * timeout (the slave's SL rise after it, through the SL line) to the
+     * first fall */
+    struct bench_span restart;
+    /* IEP (CMP0 resetting COUNT): the period's start (COUNT back to 0) to
+     * the first fall, and the periods the first falls lie in */
+    struct bench_span iep_phase;
+    uint32_t iep_period;  /* cycles (IEP ticks) per period, 0: no periodic IEP seen */
+    uint64_t iep_periods; /* periods from the first frame measured to the last */
+    uint64_t iep_skipped; /* ... in which no frame started */
+    uint64_t iep_crowded; /* ... in which more than one started */
 };
 
 struct bench;
@@ -104,6 +129,10 @@ enum pru_stop bench_run_frames(struct bench *b, uint64_t frames, int64_t max_ps,
                                void *ctx);
 
 const struct bench_stats *bench_stats(struct bench *b);
+
+/* The MA half period H in PRU cycles the image clocks with (0: unknown,
+ * the default: no frame marks), for the frame marks of bench_stats. */
+void bench_set_ma_half(struct bench *b, unsigned half);
 
 /* Starts the measurements afresh (e.g. after a start-up phase). */
 void bench_reset_stats(struct bench *b);

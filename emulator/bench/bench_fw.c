@@ -90,6 +90,8 @@ int bench_fw_put_block(struct bench *b, const struct biss_shm_config *blk) {
 int bench_fw_configure(struct bench *b, const struct bench_fw_settings *s) {
     struct biss_shm_config blk;
     bench_fw_block(b, s, &blk);
+    /* the frame marks follow the rate the firmware will clock */
+    bench_set_ma_half(b, biss_proto_half_check(s->half) == BISS_OK ? s->half : 0);
     return bench_fw_put_block(b, &blk);
 }
 

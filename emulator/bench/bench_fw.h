@@ -45,7 +45,8 @@ void bench_fw_block(const struct bench *b, const struct bench_fw_settings *s,
 /* Writes a block and increments CFG_SEQ. Returns 0 or a negative code. */
 int bench_fw_put_block(struct bench *b, const struct biss_shm_config *blk);
 
-/* bench_fw_block, then bench_fw_put_block. */
+/* bench_fw_block, then bench_fw_put_block; tells the bench H for its
+ * frame marks (bench_set_ma_half). */
 int bench_fw_configure(struct bench *b, const struct bench_fw_settings *s);
 
 /* The firmware's status words (zeroed if unreadable). */

@@ -63,6 +63,7 @@ struct options {
     double freq_hz;
     double cable_m; /* < 0: the profile's */
     uint64_t frames;
+    uint64_t settle; /* valid frames run before the measured ones (after the first) */
     uint64_t seed;
     int seed_set;
     const char *image;         /* any image, run as is */
@@ -72,6 +73,8 @@ struct options {
     unsigned pru; /* the PRU of the PRU-ICSS that runs the image */
     /* a second encoder on PRU1's line (sim_pair.h), and the IEP period */
     const char *pru1_profile, *pru1_scenario;
+    unsigned trigger; /* BISS_TRIG_FREERUN, _HOST or _IEP (one PRU) */
+    int trigger_set;
     double iep_period_ns;
     const char *vcd;
     int64_t vcd_unit_ps;
@@ -104,6 +107,9 @@ static void usage(FILE *f) {
                "  --freq HZ          MA clock rate (default 10000000); 100 MHz / HZ must be whole\n"
                "  --cable-m M        cable length in metres, both directions (default: profile's)\n"
                "  --frames N         frames to run (default 100)\n"
+               "  --settle-frames N  valid frames to run first, neither checked nor measured\n"
+               "                     (default 0: from the first valid frame on; e.g. for IEP\n"
+               "                     frames to reach their period after the start)\n"
                "  --seed S           random seed for noise and jitter (default: scenario's)\n"
                "  --firmware FILE    BiSS master firmware, .bin or .p (default: the PRU's\n"
                "                     image of this build, or the one installed in\n"
@@ -119,8 +125,12 @@ static void usage(FILE *f) {
                "                     a second encoder on its own line to PRU1: the firmware\n"
                "                     on both PRUs, PRU0's frames on the IEP, PRU1's following\n"
                "                     them; both checked, and their frame starts compared\n"
-               "  --iep-period-ns NS with a second encoder: the IEP period (default: twice\n"
-               "                     the longer frame)\n"
+               "  --trigger MODE     free (default: the next frame once the slave's timeout\n"
+               "                     is over), host (one frame per CMD_TRIGGER, which the\n"
+               "                     bench writes again once the firmware has taken it) or\n"
+               "                     iep (one frame per IEP period)\n"
+               "  --iep-period-ns NS the IEP period, with --trigger iep or a second encoder\n"
+               "                     (default: twice the longer frame, in whole us)\n"
                "  --pru1-firmware FILE\n"
                "                     with a second encoder: PRU1's image (default: this\n"
                "                     build's or the installed PRU1 image, or --firmware's\n"
@@ -218,7 +228,8 @@ static const char *const valued[] = {
 /* ... and those of the waveform output and the fast paths */
 static const char *const valued_out[] = {"--vcd-timescale", "--no-fast-path",  "--strict-window",
                                          "--contend",       "--pru",           "--pru1-profile",
-                                         "--pru1-scenario", "--iep-period-ns", "--pru1-firmware"};
+                                         "--pru1-scenario", "--iep-period-ns", "--trigger",
+                                         "--pru1-firmware", "--settle-frames"};
 
 static int takes_value(const char *a) {
     for (size_t i = 0; i < sizeof(valued) / sizeof(valued[0]); i++) {
@@ -308,6 +319,10 @@ static int set_option(struct options *o, const char *a, const char *v) {
         if (parse_u64(v, &o->frames) || o->frames == 0) {
             return die("--frames: '%s' is not a positive count", v);
         }
+    } else if (!strcmp(a, "--settle-frames")) {
+        if (parse_u64(v, &o->settle)) {
+            return die("--settle-frames: '%s' is not a count", v);
+        }
     } else if (!strcmp(a, "--seed")) {
         if (parse_u64(v, &o->seed)) {
             return die("--seed: '%s' is not a number", v);
@@ -323,6 +338,21 @@ static int set_option(struct options *o, const char *a, const char *v) {
         if (parse_double(v, &o->iep_period_ns) || o->iep_period_ns < 5 || o->iep_period_ns > 2e7 ||
             fmod(o->iep_period_ns, 5) != 0) {
             return die("--iep-period-ns: '%s' is not a multiple of 5 ns up to 20 ms", v);
+        }
+    } else if (!strcmp(a, "--trigger")) {
+        static const struct {
+            const char *name;
+            unsigned mode;
+        } modes[] = {{"free", BISS_TRIG_FREERUN}, {"host", BISS_TRIG_HOST}, {"iep", BISS_TRIG_IEP}};
+        o->trigger_set = 0;
+        for (unsigned t = 0; t < sizeof modes / sizeof modes[0]; t++) {
+            if (!strcmp(v, modes[t].name)) {
+                o->trigger = modes[t].mode;
+                o->trigger_set = 1;
+            }
+        }
+        if (!o->trigger_set) {
+            return die("--trigger: '%s' is not free, host or iep", v);
         }
     } else if (!strcmp(a, "--pru")) {
         if (strcmp(v, "0") && strcmp(v, "1")) {
@@ -410,6 +440,7 @@ static int parse_args(int argc, char **argv, struct options *o) {
                           .cable_m = -1,
                           .frames = 100,
                           .soc = "am335x",
+                          .trigger = BISS_TRIG_FREERUN,
                           .vcd_unit_ps = 1000,
                           .svg_frame = 2};
     pru_params_default(&o->core);
@@ -479,6 +510,44 @@ static int build_config(const struct options *o, struct bench_config *cfg) {
     return 0;
 }
 
+/* What the scenario's line and slaves allow the rate (proto's rules,
+ * libbiss.h "what a line allows"): its cable, the model's round trip, the
+ * slaves' timeout at this rate (an SSI encoder's monoflop). */
+static int line_verdict(const scenario *sc, unsigned half, struct biss_line_verdict *v) {
+    sim_ps period = 2 * (sim_ps)half * PRU_PS_PER_CYCLE;
+    sim_ps timeout = sc->protocol == SCENARIO_SSI ? sc->ssi.monoflop_ps
+                                                  : biss_chain_timeout_ps(&sc->biss, period);
+    sim_ps out = sc->protocol == SCENARIO_SSI ? sc->ssi.out_delay_ps : sc->biss.out_delay_ps;
+    struct biss_line_facts f = {.cable_m = sc->ma_line.length_m,
+                                .round_trip_ns =
+                                    (line_nominal_delay_ps(&sc->ma_line) + (double)out +
+                                     line_nominal_delay_ps(&sc->sl_line)) /
+                                    1000.0,
+                                .slave_timeout_ns = (uint32_t)((timeout + 999) / 1000)};
+    return biss_proto_line_check(half, &f, v);
+}
+
+/* The rate against the line, up front: a warning beyond TIDEP0022 Table
+ * 5, a refusal (1, message printed) for a timeout or a round trip no
+ * frame can work with. `who` names the line in a two-PRU run. */
+static int check_line(const scenario *sc, unsigned half, const char *who,
+                      struct biss_line_verdict *v) {
+    int rc = line_verdict(sc, half, v);
+    if (rc != BISS_OK && rc != BISS_E_LINE_TIMEOUT && rc != BISS_E_LINE_DELAY) {
+        memset(v, 0, sizeof *v); /* a rate beyond the firmware's (--image): no rule for it */
+        return 0;
+    }
+    char text[512];
+    biss_line_text(v, text, sizeof text);
+    if (rc != BISS_OK) {
+        return die("%s%s", who, text);
+    }
+    if (v->beyond_table) {
+        fprintf(stderr, "biss-sim: warning: %s%s\n", who, text);
+    }
+    return 0;
+}
+
 /* MA half period in PRU cycles for the rate: 100 MHz / f, whole. */
 static int half_period_cycles(double freq_hz, unsigned *half) {
     double h = 100e6 / freq_hz;
@@ -519,17 +588,40 @@ static size_t print_strict_log(struct pru_core *c) {
     return n + (size_t)lost;
 }
 
-/* Runs until the firmware has published `frames` valid frames after its
- * first one (whose training and start-up the statistics leave out). */
-static enum pru_stop run_firmware(struct bench *b, struct fw_check *fc, uint64_t frames,
-                                  int64_t max_ps, int show, struct fw_cd *cd,
-                                  const biss_cd_prog *prog) {
-    const int64_t step = 100 * SIM_PS_PER_US;
-    int64_t end = pru_time_ps(bench_core(b)) + max_ps;
+/* What run_firmware runs. */
+struct run_plan {
+    uint64_t settle;          /* valid frames after the first before the measured ones */
+    uint64_t frames;          /* valid frames checked and measured */
+    int64_t max_ps;           /* simulated time at most */
+    int show;                 /* progress on stderr */
+    const biss_cd_prog *prog; /* a control program to run, or NULL */
+    /* host-trigger mode: how often the bench (the host) looks whether its
+     * last request was taken, to ask for the next frame; 0: not that mode */
+    int64_t host_step_ps;
+};
+
+/* Asks for a frame (CMD_TRIGGER) unless one is still pending. */
+static void trigger_again(struct bench *b) {
+    struct biss_proto_io io = bench_fw_io(b);
+    uint32_t pending = 1;
+    if (biss_proto_trigger_get(&io, &pending) == 0 && !pending) {
+        biss_proto_trigger(&io);
+    }
+}
+
+/* Runs until the firmware has published p->frames valid frames after its
+ * first one and p->settle more (whose training, start-up and settling the
+ * statistics leave out); in host-trigger mode asking for each. */
+static enum pru_stop run_firmware(struct bench *b, struct fw_check *fc, struct fw_cd *cd,
+                                  const struct run_plan *p) {
+    const int64_t step = p->host_step_ps ? p->host_step_ps : 100 * SIM_PS_PER_US;
+    const uint64_t frames = p->frames;
+    const biss_cd_prog *prog = p->prog;
+    int64_t end = pru_time_ps(bench_core(b)) + p->max_ps;
     enum pru_stop why = PRU_STOP_LIMIT;
     int started = 0;
     while (pru_time_ps(bench_core(b)) < end) {
-        if (!started && fc->frames > 0) {
+        if (!started && fc->frames > p->settle) {
             /* from here on, `frames` frames are checked and measured */
             started = 1;
             fw_check_restart(fc, frames);
@@ -545,12 +637,15 @@ static enum pru_stop run_firmware(struct bench *b, struct fw_check *fc, uint64_t
         if (bench_fw_status(b).state == BISS_STATE_CFG_ERROR) {
             break;
         }
+        if (p->host_step_ps) {
+            trigger_again(b);
+        }
         int64_t next = pru_time_ps(bench_core(b)) + step;
         why = bench_run_until(b, next < end ? next : end);
         if (why != PRU_STOP_LIMIT) {
             break;
         }
-        if (show) {
+        if (p->show) {
             progress(fc->frames, frames);
         }
     }
@@ -582,14 +677,16 @@ static void pru_num_define(unsigned pru, struct sim_defines *d) {
 
 /* A second encoder on PRU1 (sim_pair.h): the firmware on both PRUs. */
 static int run_pair(const struct options *o, const struct bench_config *cfg, unsigned half) {
-    if (o->image || o->vcd || o->svg || o->cd_set || o->pru) {
-        return die("--pru1-profile/--pru1-scenario run the firmware on both PRUs: not with "
-                   "--image, --vcd, --svg, --pru or control frames");
+    if (o->image || o->vcd || o->svg || o->cd_set || o->pru || o->trigger_set) {
+        return die("--pru1-profile/--pru1-scenario run the firmware on both PRUs, PRU0 on the "
+                   "IEP and PRU1 following it: not with --image, --vcd, --svg, --pru, "
+                   "--trigger or control frames");
     }
     struct sim_pair_run r = {.cfg = {*cfg, *cfg},
                              .half = half,
                              .iep_period = (uint32_t)(o->iep_period_ns / 5),
                              .frames = o->frames,
+                             .settle = o->settle,
                              .checks = &o->checks,
                              .json = o->json};
     char err[512];
@@ -605,6 +702,10 @@ static int run_pair(const struct options *o, const struct bench_config *cfg, uns
     }
     if (o->seed_set) {
         r.cfg[1].link.seed = o->seed + 1; /* a noise of its own */
+    }
+    struct biss_line_verdict line;
+    if (check_line(&r.cfg[1].link, half, "PRU1's line: ", &line) != 0) {
+        return 1;
     }
     /* one image per PRU (pru_fw/README.md) */
     struct pruasm_image img[2];
@@ -664,6 +765,11 @@ static int run(const struct options *o) {
         return die("--freq %.10g: the firmware cannot clock it: %s", o->freq_hz, why_not);
     }
     char err[512];
+    struct biss_line_verdict line;
+    if (check_line(&cfg.link, half, (o->pru1_profile || o->pru1_scenario) ? "PRU0's line: " : "",
+                   &line) != 0) {
+        return 1;
+    }
     if (o->pru1_profile || o->pru1_scenario) {
         return run_pair(o, &cfg, half);
     }
@@ -675,11 +781,23 @@ static int run(const struct options *o) {
     struct sim_defines defs = {.n = 0};
     if (!fw_mode) {
         sim_clock_defines(b, half, o->frames, &defs);
-        if (o->cd_set) {
+        bench_set_ma_half(b, half);
+        if (o->cd_set || o->trigger_set) {
             bench_free(b);
-            return die("%s needs the firmware (not --image)", o->cd_what);
+            return die("%s needs the firmware (not --image)", o->cd_set ? o->cd_what : "--trigger");
         }
     }
+    if (o->iep_period_ns > 0 && o->trigger != BISS_TRIG_IEP) {
+        bench_free(b);
+        return die("--iep-period-ns needs --trigger iep (or a second encoder)");
+    }
+    /* IEP: the period asked for, or twice the frame in whole microseconds */
+    double frame_ps = sim_clock_frame_ps(b, half);
+    uint32_t iep_period = o->iep_period_ns > 0
+                              ? (uint32_t)(o->iep_period_ns / 5)
+                              : (uint32_t)ceil(2 * frame_ps / SIM_PS_PER_US) * 200u;
+    /* host trigger: the bench looks every two frames whether to ask again */
+    int64_t host_step = (int64_t)fmax(2 * frame_ps, 10 * SIM_PS_PER_US);
     struct pruasm_image img;
     int rc = 0;
     const char *own = own_image(o->pru); /* one per PRU */
@@ -706,8 +824,10 @@ static int run(const struct options *o) {
     if (rc == 0 && fw_mode) {
         fw_check_attach(&fc, b);
         rc = safety_checks(o, &fc.cfg);
-        struct bench_fw_settings s = {
-            .half = half, .trigger = BISS_TRIG_FREERUN, .proc_limit = 1000};
+        struct bench_fw_settings s = {.half = half,
+                                      .trigger = o->trigger,
+                                      .iep_period = o->trigger == BISS_TRIG_IEP ? iep_period : 0,
+                                      .proc_limit = 1000};
         fw_check_configure(&fc, &s);
         if (o->cd_set && cfg.link.protocol == SCENARIO_SSI) {
             rc = die("%s: an SSI encoder has no control communication", o->cd_what);
@@ -724,23 +844,33 @@ static int run(const struct options *o) {
             fw_check_watch(&fc, o->svg_frame - 1);
         }
     }
-    /* ample time: every frame at its longest, twice, plus start-up; never
-     * beyond MAX_SIM_MS (the message then says how many frames ran) */
-    double limit_ps =
-        o->max_ms > 0 ? o->max_ms * 1e9
-                      : 2 * sim_clock_frame_ps(b, half) * ((double)o->frames + 4) + SIM_PS_PER_MS;
+    /* ample time: every frame at its longest (or its IEP period, or the
+     * host's look), twice, plus start-up; never beyond MAX_SIM_MS (the
+     * message then says how many frames ran) */
+    double per_frame = o->trigger == BISS_TRIG_IEP    ? fmax(frame_ps, iep_period * 5e3)
+                       : o->trigger == BISS_TRIG_HOST ? fmax(frame_ps, (double)host_step)
+                                                      : frame_ps;
+    double limit_ps = o->max_ms > 0
+                          ? o->max_ms * 1e9
+                          : 2 * per_frame * ((double)(o->frames + o->settle) + 4) + SIM_PS_PER_MS;
     int tty = isatty(2);
     double t_start = now_seconds();
     struct fw_cd cd = {0};
     if (o->cd_set) {
-        limit_ps += 2 * sim_clock_frame_ps(b, half) * (o->cd.len + 20);
+        limit_ps += 2 * per_frame * (o->cd.len + 20);
     }
     int64_t max_ps = (int64_t)fmin(limit_ps, MAX_SIM_MS * 1e9);
-    enum pru_stop why =
-        fw_mode ? run_firmware(b, &fc, o->frames, max_ps, tty, &cd, o->cd_set ? &o->cd : NULL)
-                : bench_run_frames(b, o->frames, max_ps, NULL, NULL);
+    struct run_plan plan = {.settle = o->settle,
+                            .frames = o->frames,
+                            .max_ps = max_ps,
+                            .show = tty,
+                            .prog = o->cd_set ? &o->cd : NULL,
+                            .host_step_ps = o->trigger == BISS_TRIG_HOST ? host_step : 0};
+    enum pru_stop why = fw_mode ? run_firmware(b, &fc, &cd, &plan)
+                                : bench_run_frames(b, o->frames, max_ps, NULL, NULL);
     struct sim_result res = {b,          fw_mode ? &fc : NULL,    why,
-                             o->freq_hz, now_seconds() - t_start, cd.done ? &cd : NULL};
+                             o->freq_hz, now_seconds() - t_start, cd.done ? &cd : NULL,
+                             o->trigger};
     if (tty) {
         fprintf(stderr, "\r%40s\r", "");
     }
@@ -792,6 +922,11 @@ static int run(const struct options *o) {
         rc = 4;
     }
     uint64_t done = fw_mode ? fc.frames : bench_stats(b)->frames;
+    if (rc == 0 && fw_mode && fc.frames == 0 && fc.no_slave && line.beyond_table) {
+        char text[512];
+        biss_line_text(&line, text, sizeof text);
+        fprintf(stderr, "biss-sim: no slave answered: %s\n", text);
+    }
     if (rc == 0 && done < o->frames) {
         fprintf(stderr,
                 "biss-sim: only %llu of %llu frames completed in %.6g ms of simulated time "

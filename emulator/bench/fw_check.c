@@ -1,6 +1,8 @@
 /* fw_check.c - firmware publications against the slave models (fw_check.h). */
 #include "fw_check.h"
 
+#include "frame_marks.h"
+
 #include <string.h>
 
 uint64_t fw_check_sent_word(const biss_slave_cfg *s, const biss_slave_sent *sent) {
@@ -21,6 +23,20 @@ static const biss_frame_record *frame_record(struct fw_check *fc) {
     return n == l->biss.frames ? &l->biss.cur : NULL;
 }
 
+/* A valid frame's publication (now: the watch sees the store's own cycle)
+ * against the slave's record of it: after its last bit at the master's SL
+ * pin, and after the position's latch (an SSI encoder latches on the
+ * first fall). A record without its last bit (the slave never clocked it
+ * out) is not timed. */
+static void time_publication(struct fw_check *fc, sim_ps latch, sim_ps last, sim_ps out) {
+    if (!last) {
+        return;
+    }
+    sim_ps pub = pru_time_ps(bench_core(fc->b));
+    bench_span_add(&fc->latency, pub - (last + out + fc->sl_delay_ps));
+    bench_span_add(&fc->age, pub - latch);
+}
+
 /* An SSI frame: the code word as the encoder sent it (Gray or binary). */
 static void compare_ssi(struct fw_check *fc, const struct biss_sample *smp) {
     link_model *l = bench_link(fc->b);
@@ -35,6 +51,7 @@ static void compare_ssi(struct fw_check *fc, const struct biss_sample *smp) {
     fc->status[0] = smp->slave[0].status;
     fc->data[0] = smp->slave[0].data; /* as sent: Gray stays Gray in data */
     fc->sent[0] = r->position;
+    time_publication(fc, r->start_ps, r->last_bit_ps, l->ssi.cfg.out_delay_ps);
     if (fc->data[0] != r->code) {
         fc->mismatches++;
         if (!fc->first_mismatch_frame) {
@@ -54,6 +71,7 @@ static void compare(struct fw_check *fc, const struct biss_sample *smp) {
         fc->unmatched++;
         return;
     }
+    time_publication(fc, r->latch_ps, r->last_bit_ps, l->biss.cfg.out_delay_ps);
     bool same = true;
     for (unsigned i = 0; i < l->sc.biss.n && i < BISS_MAX_SLAVES; i++) {
         fc->data[i] = smp->slave[i].data;
@@ -213,6 +231,7 @@ void fw_check_attach(struct fw_check *fc, struct bench *b) {
     bench_fw_layout(b, &fc->cfg);
     fc->limit = UINT64_MAX;
     fc->watch = UINT64_MAX;
+    fc->sl_delay_ps = (sim_ps)(line_nominal_delay_ps(&bench_link(b)->sc.sl_line) + 0.5);
     pru_set_store_watch(bench_core(b), BISS_ST_SEQ, on_publish, fc);
 }
 
@@ -233,7 +252,9 @@ void fw_check_restart(struct fw_check *fc, uint64_t limit) {
     struct biss_config cfg = fc->cfg;
     uint64_t watch = fc->watch;
     struct fw_frame watched = fc->watched;
+    sim_ps sl_delay = fc->sl_delay_ps;
     memset(fc, 0, sizeof(*fc));
+    fc->sl_delay_ps = sl_delay;
     fc->b = b;
     fc->cfg = cfg;
     fc->limit = limit;

@@ -63,6 +63,14 @@ struct fw_check {
     uint32_t safety_first_fault; /* the firmware's number of the first, 0 none */
     uint64_t misframed;          /* valid publications the nE/nW check (ew_static) refused */
     uint64_t misframed_good;     /* of those, frames whose every word was right: good lost */
+    /* The publication of each valid frame (the cycle its ST_SEQ store
+     * issues in; emulator/bench/INSTRUMENTS.md) after the start of its
+     * last bit at the master's SL pin (the slave's rise that clocked it
+     * out, its output delay, the SL line's nominal delay), and after the
+     * position's latch (the first MA rise at the slave). */
+    struct bench_span latency;
+    struct bench_span age;
+    sim_ps sl_delay_ps; /* the SL line's nominal delay (the scenario's, fixed) */
     /* the mismatches (wrong but valid), each classified (wrong_frame.h):
      * counts per class, and the first FW_CHECK_WRONG_KEPT in full */
     uint64_t wrong_by_class[WRONG_CLASSES];

@@ -6,6 +6,8 @@
 #include "sim_image.h"
 #include "sim_report.h"
 
+#include "biss/biss_shm.h"
+
 #include <math.h>
 #include <stdbool.h>
 #include <stdio.h>
@@ -41,7 +43,7 @@ static enum pru_stop run(struct bench *b[2], struct fw_check fc[2], const struct
     int64_t end = pru_time_ps(bench_core(b[0])) + r->max_ps;
     int started = 0;
     while (pru_time_ps(bench_core(b[0])) < end) {
-        if (!started && fc[0].frames > 0 && fc[1].frames > 0) {
+        if (!started && fc[0].frames > r->settle && fc[1].frames > r->settle) {
             started = 1;
             for (unsigned i = 0; i < 2; i++) {
                 fw_check_restart(&fc[i], r->frames);
@@ -114,7 +116,8 @@ int sim_pair(const struct sim_pair_run *r) {
     struct sim_pair_run rr = *r;
     if (rr.max_ps <= 0) { /* start-up and training take a few periods */
         rr.max_ps =
-            2 * (int64_t)period * PRU_PS_PER_CYCLE * ((int64_t)r->frames + 8) + SIM_PS_PER_MS;
+            2 * (int64_t)period * PRU_PS_PER_CYCLE * ((int64_t)(r->frames + r->settle) + 8) +
+            SIM_PS_PER_MS;
     }
     if (rr.max_ps > r->cap_ps) {
         rr.max_ps = r->cap_ps;
@@ -162,7 +165,13 @@ int sim_pair(const struct sim_pair_run *r) {
         double host = seconds() - t0;
         cJSON *j = r->json ? cJSON_CreateObject() : NULL;
         for (unsigned i = 0; i < 2; i++) {
-            struct sim_result res = {b[i], &fc[i], why, 100e6 / r->half, host, NULL};
+            struct sim_result res = {b[i],
+                                     &fc[i],
+                                     why,
+                                     100e6 / r->half,
+                                     host,
+                                     NULL,
+                                     i ? BISS_TRIG_IEP_FOLLOW : BISS_TRIG_IEP};
             if (j) {
                 cJSON *one = sim_json(&res);
                 cJSON_AddStringToObject(one, "trigger", i ? "iep-follow" : "iep");

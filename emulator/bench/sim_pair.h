@@ -20,6 +20,7 @@ struct sim_pair_run {
     unsigned half;              /* MA half period of both, PRU cycles */
     uint32_t iep_period;        /* IEP counts (5 ns); 0: twice the longer frame, whole us */
     uint64_t frames;            /* valid frames each, checked and measured */
+    uint64_t settle;            /* ... after this many more, run first */
     int64_t max_ps;             /* simulated time limit; 0: twice the periods the frames take */
     int64_t cap_ps;             /* ... but never more than this */
     const void *image[2];       /* the firmware image of PRU0 and of PRU1 */
@@ -29,7 +30,8 @@ struct sim_pair_run {
 };
 
 /* Runs the firmware images on both, checks every frame of each against its
- * own encoder, and prints each PRU's summary (sim_report), how far apart
+ * own encoder, and prints each PRU's summary (sim_report; or, with json,
+ * each PRU's object of biss-sim --json in one object), how far apart
  * the frame starts of the two were and how often PRU1 stalled on PRU0's
  * scratch-pad bank. Returns biss-sim's exit code: 0, 1 (a message
  * printed), 2 (frames not done in time), 3 (a PRU fault), 5 (a frame check

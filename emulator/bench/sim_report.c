@@ -116,15 +116,68 @@ double sim_frame_minimum_ps(struct bench *b, const struct fw_check *fw) {
     /* clocks: two to the ACK, the busy ones, start, CDS, the bits, and the
      * one on which the slave starts its timeout */
     unsigned clocks = 2 + fw->proc_clocks_max + 2 + bits + 1;
-    double timeout = (double)c->timeout_ps;
-    if (c->timeout_mode == BISS_TIMEOUT_ADAPTIVE) {
-        timeout = c->adaptive_factor * period;
-        timeout = timeout < (double)c->adaptive_min_ps ? (double)c->adaptive_min_ps : timeout;
-        timeout = timeout > (double)c->adaptive_max_ps ? (double)c->adaptive_max_ps : timeout;
-    }
+    double timeout = (double)biss_chain_timeout_ps(c, (sim_ps)period);
     /* the last rising edge comes half a period before the clocks' end; the
      * slave's timeout runs from it; its end travels back over the line */
     return (clocks - 0.5) * period + timeout + bench_round_trip_ps(b);
+}
+
+/* A span in PRU cycles, each value less `less_ps`; null when empty. */
+static void add_span(cJSON *o, const char *key, const struct bench_span *s, double less_ps) {
+    if (s->n == 0) {
+        cJSON_AddNullToObject(o, key);
+        return;
+    }
+    add_min_mean_max(o, key, ((double)s->min_ps - less_ps) / PRU_PS_PER_CYCLE,
+                     ((double)s->sum_ps / (double)s->n - less_ps) / PRU_PS_PER_CYCLE,
+                     ((double)s->max_ps - less_ps) / PRU_PS_PER_CYCLE);
+}
+
+/* The publication of valid frames after their last bit at the master pin
+ * and after the position's latch (INSTRUMENTS.md), H the frames' half
+ * period. */
+static void add_publication(cJSON *f, const struct fw_check *fw) {
+    double h_ps = (double)fw->half * PRU_PS_PER_CYCLE;
+    cJSON *p = cJSON_AddObjectToObject(f, "publication_latency_cycles");
+    add_span(p, "after_last_bit_start", &fw->latency, 0);
+    add_span(p, "beyond_half_bit", &fw->latency, h_ps);
+    add_span(p, "after_last_bit_end", &fw->latency, 2 * h_ps);
+    add_span(f, "position_age_cycles", &fw->age, 0);
+}
+
+/* What the master's MA pin shows at each frame's first fall (bench_stats,
+ * INSTRUMENTS.md); null before the bench knew H. */
+static void add_frame_marks(cJSON *j, const struct bench_stats *st, unsigned half,
+                            unsigned trigger) {
+    if (st->ma_high.n == 0) {
+        cJSON_AddNullToObject(j, "frame_starts");
+        return;
+    }
+    double h_ps = (double)half * PRU_PS_PER_CYCLE;
+    cJSON *o = cJSON_AddObjectToObject(j, "frame_starts");
+    cJSON_AddNumberToObject(o, "frames", (double)st->ma_high.n);
+    add_span(o, "ma_high_before_first_fall_cycles", &st->ma_high, 0);
+    cJSON_AddNumberToObject(o, "ma_high_min_of_half", (double)st->ma_high.min_ps / h_ps);
+    cJSON_AddNumberToObject(o, "ma_high_shorter_than_half", (double)st->ma_high_short);
+    bool free_run = trigger == BISS_TRIG_FREERUN;
+    if (free_run) {
+        add_span(o, "restart_overhead_cycles", &st->restart, 0);
+        add_span(o, "restart_over_idle_filter_cycles", &st->restart, h_ps);
+    } else {
+        cJSON_AddNullToObject(o, "restart_overhead_cycles"); /* a trigger starts the frames */
+        cJSON_AddNullToObject(o, "restart_over_idle_filter_cycles");
+    }
+    if (st->iep_phase.n == 0) {
+        cJSON_AddNullToObject(o, "iep");
+        return;
+    }
+    cJSON *i = cJSON_AddObjectToObject(o, "iep");
+    cJSON_AddNumberToObject(i, "period_cycles", st->iep_period);
+    add_span(i, "trigger_to_first_fall_cycles", &st->iep_phase, 0);
+    cJSON_AddNumberToObject(i, "frames", (double)st->iep_phase.n);
+    cJSON_AddNumberToObject(i, "periods", (double)st->iep_periods);
+    cJSON_AddNumberToObject(i, "skipped_periods", (double)st->iep_skipped);
+    cJSON_AddNumberToObject(i, "crowded_periods", (double)st->iep_crowded);
 }
 
 /* The wrong frames published as valid, by class (wrong_frame.h), and the
@@ -181,6 +234,7 @@ static void add_firmware(cJSON *j, struct bench *b, const struct fw_check *fw) {
     double mean = st->periods ? st->period_sum_ps / (double)st->periods : 0;
     cJSON_AddNumberToObject(f, "frame_minimum_ns", minimum / 1000.0);
     cJSON_AddNumberToObject(f, "master_overhead_cycles", (mean - minimum) / PRU_PS_PER_CYCLE);
+    add_publication(f, fw);
 }
 
 /* The host's safety checks over every publication, when any is set. */
@@ -335,6 +389,7 @@ cJSON *sim_json(const struct sim_result *r) {
     if (r->cd) {
         add_control(j, r->cd);
     }
+    add_frame_marks(j, st, (unsigned)(100e6 / r->freq_hz + 0.5), r->trigger);
     return j;
 }
 
@@ -343,6 +398,57 @@ void sim_print_json_object(cJSON *j) {
     printf("%s\n", text);
     free(text);
     cJSON_Delete(j);
+}
+
+/* Cycles of a span as "lo .. hi cycles (mean m)", each value less less_ps. */
+static void print_span(const struct bench_span *s, double less_ps) {
+    printf("%.1f .. %.1f cycles (mean %.1f)", ((double)s->min_ps - less_ps) / PRU_PS_PER_CYCLE,
+           ((double)s->max_ps - less_ps) / PRU_PS_PER_CYCLE,
+           ((double)s->sum_ps / (double)s->n - less_ps) / PRU_PS_PER_CYCLE);
+}
+
+/* The frame starts at the master's MA pin (add_frame_marks' text). */
+static void print_frame_marks(const struct bench_stats *st, unsigned half, unsigned trigger) {
+    if (st->ma_high.n == 0) {
+        return;
+    }
+    double h_ps = (double)half * PRU_PS_PER_CYCLE;
+    printf("MA high, frame start ");
+    print_span(&st->ma_high, 0);
+    printf(" before the first fall; %llu of %llu frames shorter than H = %u\n",
+           (unsigned long long)st->ma_high_short, (unsigned long long)st->ma_high.n, half);
+    if (trigger == BISS_TRIG_FREERUN && st->restart.n) {
+        printf("restart              SL high at the master -> first MA fall ");
+        print_span(&st->restart, 0);
+        printf(", idle filter H + ");
+        print_span(&st->restart, h_ps);
+        printf("\n");
+    }
+    if (st->iep_phase.n) {
+        printf("IEP                  period %u cycles: its start -> first MA fall ",
+               st->iep_period);
+        print_span(&st->iep_phase, 0);
+        printf("; %llu frames in %llu periods, %llu without a frame, %llu with two or more\n",
+               (unsigned long long)st->iep_phase.n, (unsigned long long)st->iep_periods,
+               (unsigned long long)st->iep_skipped, (unsigned long long)st->iep_crowded);
+    }
+}
+
+/* The publications' latency and the positions' age (add_publication's text). */
+static void print_publication(const struct fw_check *fw) {
+    if (fw->latency.n == 0) {
+        return;
+    }
+    double h_ps = (double)fw->half * PRU_PS_PER_CYCLE;
+    printf("publication          last bit at the master's SL pin -> ST_SEQ store: ");
+    print_span(&fw->latency, 0);
+    printf(" after it starts, H + ");
+    print_span(&fw->latency, h_ps);
+    printf("\n");
+    printf("position age         its latch at the slave (BiSS-C: the first MA rise, SSI: the "
+           "first fall) -> publication: ");
+    print_span(&fw->age, 0);
+    printf("\n");
 }
 
 void sim_print_json(const struct sim_result *r) {
@@ -459,7 +565,9 @@ void sim_print_text(const struct sim_result *r) {
     }
     printf("PRU cycles           %lld in %.3f s host time\n", (long long)pru_cycles(bench_core(b)),
            r->host_seconds);
+    print_frame_marks(st, (unsigned)(100e6 / r->freq_hz + 0.5), r->trigger);
     if (fw) {
+        print_publication(fw);
         print_read(r);
         if (any_safety(fw)) {
             print_safety(fw);

@@ -18,6 +18,7 @@ struct sim_result {
     double freq_hz;
     double host_seconds;
     const struct fw_cd *cd; /* a control frame that ran, or NULL */
+    unsigned trigger;       /* BISS_TRIG_*: free-run frames have a restart to measure */
 };
 
 void sim_print_json(const struct sim_result *r);

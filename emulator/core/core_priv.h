@@ -465,10 +465,19 @@ static inline void fld_set(uint32_t *r, unsigned reg, unsigned sh, uint32_t mask
     r[reg] = (r[reg] & ~(mask << sh)) | ((v & mask) << sh);
 }
 
-/* A store to [addr, addr + n) of data RAM just happened: tell the watch. */
-static inline void core_store_watch(struct pru_core *c, uint32_t addr, unsigned n) {
-    if (c->watch_addr - addr < n)
+/* A store to [addr, addr + n) of data RAM by the instruction at pc, issued
+ * in `cycle`, just happened: tell the watch. The fast loop keeps pc and
+ * cycle in registers (c->pc and c->cycle lag behind), so they are brought
+ * up to date first, on a hit only: the callback's pru_cycles() and
+ * pru_pc() are the store's (the loop overwrites both when it syncs out,
+ * with what they already were or later values). */
+static inline void core_store_watch(struct pru_core *c, uint32_t addr, unsigned n, uint32_t pc,
+                                    int64_t cycle) {
+    if (c->watch_addr - addr < n) {
+        c->pc = pc;
+        c->cycle = cycle;
         c->watch_fn(c->watch_ctx, c->watch_addr);
+    }
 }
 
 /*
@@ -517,7 +526,7 @@ static inline int mem_store(struct pru_core *c, uint32_t addr, const uint8_t *sr
                             unsigned *cycles, uint32_t pc, int64_t cycle) {
     if ((uint64_t)addr + n <= c->dram_bytes) {
         burst_copy(c->dram0 + addr, src, n);
-        core_store_watch(c, addr, n);
+        core_store_watch(c, addr, n, pc, cycle);
         *cycles = mem_store_cycles(c, n);
         return 0;
     }

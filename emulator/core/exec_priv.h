@@ -26,7 +26,8 @@ bool exec_simple_step(uint32_t *r, const struct pd *d, unsigned kind, uint32_t *
 
 /*
  * LBBO/SBBO/LBCO/SBCO at pc, issued in cycle `cycle` (c->pc and c->cycle
- * may lag: they are brought up to date before anything reads them): the one
+ * may lag: they are brought up to date before anything reads them, a
+ * store watch included): the one
  * implementation of loads and stores. Every target goes through
  * mem_load()/mem_store() (which also cost it); a load that faults part way
  * leaves the registers as they were; bytes into R30/R31 or out of R31 have

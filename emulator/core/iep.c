@@ -11,6 +11,7 @@
  */
 #include "core_priv.h"
 
+#include <stddef.h>
 #include <string.h>
 
 #define G_CFG    0x00u
@@ -94,8 +95,9 @@ static int64_t quiet_ticks(const struct iep *e) {
     return k;
 }
 
-void iep_sync(struct pru_core *c, int64_t cycle) {
-    struct iep *e = &c->pru0->iep;
+/* Brings e up to the cycle boundary `cycle` (never back). In line in both
+ * callers: iep_sync() stays what it was before pru_iep_view() shared it. */
+static inline __attribute__((always_inline)) void iep_advance(struct iep *e, int64_t cycle) {
     while (e->synced < cycle) {
         if (!counting(e)) {
             e->synced = cycle;
@@ -114,6 +116,30 @@ void iep_sync(struct pru_core *c, int64_t cycle) {
             e->synced++;
         }
     }
+}
+
+void iep_sync(struct pru_core *c, int64_t cycle) {
+    iep_advance(&c->pru0->iep, cycle);
+}
+
+void pru_iep_view(const struct pru_core *c, int64_t cycle, struct pru_iep_view *v) {
+    const struct iep *now = &c->pru0->iep;
+    if (!((now->cmp_cfg & 1u) && cmp_enabled(now, 0))) {
+        /* no periods: nothing to bring up to `cycle` for */
+        *v = (struct pru_iep_view){
+            .cycle = now->synced, .count = now->count, .inc = inc_now(now), .cmp0 = now->cmp[0]};
+        return;
+    }
+    /* a copy of the counting state (not the backing store): the emulated
+     * IEP stays where it is */
+    struct iep e;
+    memcpy(&e, &c->pru0->iep, offsetof(struct iep, regs));
+    iep_advance(&e, cycle);
+    v->cycle = e.synced;
+    v->count = e.count;
+    v->inc = inc_now(&e);
+    v->cmp0 = e.cmp[0];
+    v->cmp0_resets = (e.cmp_cfg & 1u) && cmp_enabled(&e, 0);
 }
 
 uint32_t iep_read(struct pru_core *c, uint32_t ofs, int64_t at) {

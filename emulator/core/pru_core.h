@@ -20,6 +20,7 @@
 
 #include "biss/pruss_map.h"
 
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -313,8 +314,11 @@ void pru_set_inputs(struct pru_core *c, uint32_t levels);
 
 /* Calls fn(ctx, addr) right after every PRU store that writes the byte at
  * local data RAM address addr (the core's own data RAM), e.g. a firmware's
- * publication counter. The callback may read memory (pru_host_read) but
- * must not run or stop the core. fn NULL removes the watch. */
+ * publication counter. Inside the callback pru_cycles() is the cycle the
+ * store was issued in and pru_pc() its address, exactly, on every path of
+ * the execute loop (as --trace shows the store). The callback may read
+ * memory (pru_host_read) but must not run or stop the core. fn NULL
+ * removes the watch. */
 void pru_set_store_watch(struct pru_core *c, uint32_t addr, void (*fn)(void *ctx, uint32_t addr),
                          void *ctx);
 
@@ -349,6 +353,22 @@ const char *pru_fault_name(enum pru_fault_cause cause);
  * strict fault "fault: strict rule <rule> (<what>) at pc=0x.. cycle=N: <insn>"
  * and, in clocked scope, the R30 changes around it. */
 void pru_print_fault(const struct pru_core *c, FILE *f);
+
+/* The PRU-ICSS's IEP timer as an instruction issued in `cycle` would read
+ * it (or, if the IEP has been brought past that cycle already, as of that
+ * later cycle, in v->cycle), without moving the emulated IEP on: for
+ * instruments that watch a run and must not change it (the bench's IEP
+ * phase of each frame). Exact when nothing writes the IEP before `cycle`
+ * that has not been issued yet, as in a callback of an instruction issued
+ * in `cycle` or earlier. */
+struct pru_iep_view {
+    int64_t cycle;    /* the cycle boundary the values are for */
+    uint32_t count;   /* COUNT */
+    uint32_t inc;     /* the increment of this tick (DEFAULT_INC, or CMP_INC in compensation) */
+    uint32_t cmp0;    /* CMP0 */
+    bool cmp0_resets; /* CMP0 enabled and resetting COUNT (CMP_CFG bits 1 and 0) */
+};
+void pru_iep_view(const struct pru_core *c, int64_t cycle, struct pru_iep_view *v);
 
 /* Fast-forward statistics: iterations skipped so far. */
 uint64_t pru_ff_skipped(const struct pru_core *c);

@@ -102,6 +102,37 @@ int waveform_level_next(waveform *w, sim_ps t, sim_ps *next) {
     return n ? w->edges[n - 1].level : w->initial;
 }
 
+sim_ps waveform_find(const waveform *w, sim_ps t, int level, size_t *at) {
+    size_t i = *at;
+    if (i >= w->len || w->edges[i].t >= t) {
+        /* not a place before t (the record was cut, or t went back): back
+         * from the end by doubling steps to an edge before t, then a
+         * binary search from there */
+        size_t back = 1;
+        while (back < w->len && w->edges[w->len - back].t >= t) {
+            back *= 2;
+        }
+        i = first_after(w, back < w->len ? w->len - back : 0, w->len, t - 1);
+    }
+    if (i < w->len && w->edges[i].t < t) {
+        /* on from a place before t by doubling steps, then a binary search */
+        size_t step = 1;
+        while (i + step < w->len && w->edges[i + step].t < t) {
+            i += step;
+            step *= 2;
+        }
+        size_t hi = i + step < w->len ? i + step : w->len;
+        i = first_after(w, i + 1, hi, t - 1);
+    }
+    for (; i < w->len; i++) {
+        if (w->edges[i].level == level) {
+            *at = i;
+            return w->edges[i].t;
+        }
+    }
+    return SIM_NEVER;
+}
+
 void waveform_forget_before(waveform *w, sim_ps t) {
     size_t n = count_upto(w, t);
     /* Keep the transition at exactly t if there is one, so edge times stay. */

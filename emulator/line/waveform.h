@@ -56,6 +56,13 @@ sim_ps waveform_next_after(waveform *w, sim_ps t);
  * (SIM_NEVER if none): waveform_level_at and waveform_next_after at once. */
 int waveform_level_next(waveform *w, sim_ps t, sim_ps *next);
 
+/* The first transition to `level` at or after t, SIM_NEVER if none; a
+ * look elsewhere that leaves the record's place for the calls above (the
+ * core's reads of SL) where it was. *at is the caller's own place: where
+ * the answer was (an index), and where the next search starts when t has
+ * moved on (asked in time order, each search walks a few edges). */
+sim_ps waveform_find(const waveform *w, sim_ps t, int level, size_t *at);
+
 /* Level after the last transition. */
 static inline int waveform_last_level(const waveform *w) {
     return w->len ? w->edges[w->len - 1].level : w->initial;

@@ -267,18 +267,11 @@ static void start_frame(biss_slave *b, sim_ps t) {
 
 /* ---- timeout ---- */
 
-static sim_ps timeout_len(const biss_slave *b) {
-    const biss_chain_cfg *c = &b->cfg;
+sim_ps biss_chain_timeout_ps(const biss_chain_cfg *c, sim_ps period_ps) {
     if (c->timeout_mode == BISS_TIMEOUT_FIXED) {
         return c->timeout_ps;
     }
-    sim_ps period = c->adaptive_max_ps;
-    if (b->rises >= 2) {
-        period = b->last_rise - b->prev_rise;
-    } else if (b->last_edge != b->prev_edge) {
-        period = 2 * (b->last_edge - b->prev_edge);
-    }
-    sim_ps t = (sim_ps)llround(c->adaptive_factor * (double)period);
+    sim_ps t = (sim_ps)llround(c->adaptive_factor * (double)period_ps);
     if (t < c->adaptive_min_ps) {
         t = c->adaptive_min_ps;
     }
@@ -286,6 +279,17 @@ static sim_ps timeout_len(const biss_slave *b) {
         t = c->adaptive_max_ps;
     }
     return t > 0 ? t : 1;
+}
+
+static sim_ps timeout_len(const biss_slave *b) {
+    const biss_chain_cfg *c = &b->cfg;
+    sim_ps period = c->adaptive_max_ps;
+    if (b->rises >= 2) {
+        period = b->last_rise - b->prev_rise;
+    } else if (b->last_edge != b->prev_edge) {
+        period = 2 * (b->last_edge - b->prev_edge);
+    }
+    return biss_chain_timeout_ps(c, period);
 }
 
 static void close_frame(biss_slave *b, sim_ps t) {
@@ -382,8 +386,8 @@ static void on_rise(biss_slave *b, sim_ps t) {
         return;
     }
     int level = b->bit < b->nbits ? b->bits[b->bit] : 0;
-    if (b->bit < b->nbits) {
-        b->bit++;
+    if (b->bit < b->nbits && ++b->bit == b->nbits) {
+        b->cur.last_bit_ps = t;
     }
     drive_sl(b, t, level);
 }
@@ -411,10 +415,10 @@ bool biss_slave_ma_edge_quick(biss_slave *b, sim_ps t, int level) {
     int sl = 0;
     bool drive = false;
     if (level) {
-        if (b->rises < 2 || !b->started) {
-            return false; /* the first rise, the ACK, the busy clocks */
+        if (b->rises < 2 || !b->started || b->bit + 1 == b->nbits) {
+            return false; /* the first rise, the ACK, the busy clocks; the last bit */
         }
-        /* on_rise() after the start bit, and its drive_sl() */
+        /* on_rise() after the start bit, but for the last bit, and its drive_sl() */
         sl = b->bit < b->nbits ? b->bits[b->bit] : 0;
         drive = sl_moves(b, sl);
         if (drive && !eq_fits(b->q, t + b->cfg.out_delay_ps)) {
@@ -424,9 +428,7 @@ bool biss_slave_ma_edge_quick(biss_slave *b, sim_ps t, int level) {
     note_ma(b, t, level);
     if (level) {
         b->rises++;
-        if (b->bit < b->nbits) {
-            b->bit++;
-        }
+        b->bit += b->bit < b->nbits;
         if (drive) {
             b->sl_sched = sl;
             eq_put(b->q, t + b->cfg.out_delay_ps, emit_sl, b, sl);

@@ -106,6 +106,9 @@ unsigned biss_slave_cfg_data_bits(const biss_slave_cfg *s);
 /* Whether two slaves of the chain that answer control communication (not
  * no_control) share an id (then *first < *second). */
 int biss_chain_shared_id(const biss_chain_cfg *c, unsigned *first, unsigned *second);
+/* The timeout the chain's slaves apply while MA runs with period_ps: the
+ * fixed one, or the adaptive factor x the period, clamped to [min, max]. */
+sim_ps biss_chain_timeout_ps(const biss_chain_cfg *c, sim_ps period_ps);
 /* Check a configuration; return NULL or a message naming the field. */
 const char *biss_slave_cfg_check(const biss_slave_cfg *s);
 const char *biss_chain_cfg_check(const biss_chain_cfg *c);
@@ -122,13 +125,15 @@ typedef struct {
 typedef struct {
     uint64_t frame; /* 0, 1, ... */
     sim_ps start_ps, ack_ps, start_bit_ps, end_ps;
-    sim_ps latch_ps; /* first rising edge: the position's instant (0: none) */
-    int cds;         /* CDS sent in this frame */
-    int cdm;         /* CDM sampled at its timeout, -1 if none */
-    bool acked;      /* at least two rising edges */
-    bool started;    /* start bit sent */
-    bool complete;   /* every data bit was clocked out */
-    unsigned clocks; /* rising edges seen */
+    sim_ps latch_ps;    /* first rising edge: the position's instant (0: none) */
+    sim_ps last_bit_ps; /* the rise that put the frame's last bit on SL: the last
+                           slave's last CRC bit (0: not clocked out) */
+    int cds;            /* CDS sent in this frame */
+    int cdm;            /* CDM sampled at its timeout, -1 if none */
+    bool acked;         /* at least two rising edges */
+    bool started;       /* start bit sent */
+    bool complete;      /* every data bit was clocked out */
+    unsigned clocks;    /* rising edges seen */
     biss_slave_sent s[BISS_MAX_SLAVES];
 } biss_frame_record;
 
@@ -176,11 +181,11 @@ typedef struct {
 void biss_slave_init(biss_slave *b, const biss_chain_cfg *cfg, event_queue *q, sim_edge_sink out);
 
 void biss_slave_ma_edge(biss_slave *b, sim_ps t, int level);
-/* biss_slave_ma_edge() for an edge of a frame after its start bit (the
- * fixed timeout, its event pending no later than the new deadline, room
- * in the queue): the same steps with no call, so a caller that has its own
- * calls in tail position only saves no registers. Returns false, having
- * changed nothing, for any other edge. */
+/* biss_slave_ma_edge() for an edge of a frame after its start bit but
+ * the rise of its last bit (the fixed timeout, its event pending no later than
+ * the new deadline, room in the queue): the same steps with no call, so a
+ * caller that has its own calls in tail position only saves no registers.
+ * Returns false, having changed nothing, for any other edge. */
 bool biss_slave_ma_edge_quick(biss_slave *b, sim_ps t, int level);
 /* biss_slave_ma_edge() without trying the quick step first: any edge. */
 void biss_slave_ma_edge_general(biss_slave *b, sim_ps t, int level);

@@ -97,6 +97,9 @@ void ssi_slave_ma_edge(ssi_slave *s, sim_ps t, int level) {
         if (s->rises <= s->cfg.bits) {
             bit = (int)((s->cur.code >> (s->cfg.bits - s->rises)) & 1u);
         }
+        if (s->rises == s->cfg.bits) {
+            s->cur.last_bit_ps = t;
+        }
         drive_sl(s, t, bit);
     }
     eq_cancel(s->q, s->monoflop_ev);

@@ -31,9 +31,10 @@ const char *ssi_cfg_check(const ssi_cfg *c);
 
 typedef struct {
     uint64_t frame;
-    sim_ps start_ps, end_ps;
-    uint64_t position; /* binary */
-    uint64_t code;     /* as sent (Gray if configured) */
+    sim_ps start_ps, end_ps; /* start_ps: the first fall, where the position is latched */
+    sim_ps last_bit_ps;      /* the rise that put the word's last bit on SL (0: none) */
+    uint64_t position;       /* binary */
+    uint64_t code;           /* as sent (Gray if configured) */
     unsigned clocks;
     bool complete;
 } ssi_frame_record;

@@ -117,6 +117,9 @@ enum biss_error {
     BISS_E_SAFETY_SPEED = -67, /* speed check (max_speed) on a slave outside the chain, a
                                   speed outside 1e-9..1e18, or on a trigger with no time
                                   base (iep-follow without the owner's period) */
+    /* what the line allows (biss_line_check) */
+    BISS_E_LINE_TIMEOUT = -68, /* the slave's timeout is below 55 % of the MA period */
+    BISS_E_LINE_DELAY = -69,   /* the line's round trip is beyond what the firmware waits for */
     /* the encoder firmware (struct biss_encoder_config) */
     BISS_E_ENC_LC_BITS = -70,  /* a life counter over 32 bits */
     BISS_E_ENC_ID = -71,       /* an ID over 7, or two answering slaves with one ID */
@@ -330,6 +333,85 @@ void biss_config_default(struct biss_config *c);
 /* The MA half period H in PRU cycles for freq_hz, or a BISS_E_RATE_* error. */
 int biss_rate_half(uint32_t freq_hz, unsigned *half);
 
+/* ---- what a line allows (proto/biss_line.c) ----------------------------
+ *
+ * The firmware reads any line delay up to BISS_MAX_DELAY_NS (40 us) of
+ * round trip at any rate: whole MA periods of delay cost it no clock, and
+ * it waits that long for the ACK before it reports NO_SLAVE. What limits a
+ * rate on a long cable is the cable: its losses round off and delay the
+ * edges until an MA half period no longer gets through (the bench's line
+ * model: a low-pass whose time constant grows with the square of the
+ * length, emulator/slave/MODELS.md; 10 MHz fails there from about 60 m,
+ * every MA pulse swallowed, the slave never answering). The rule is
+ * TIDEP0022's (TI's BiSS-C master on the PRU, design guide, Table 5
+ * "Supported Frequencies"): 10 MHz up to 10 m of cable, 5 MHz up to 25 m,
+ * 2 MHz up to 60 m, 1 MHz up to 100 m. Beyond it a rate may still work on
+ * a good cable: a warning, not a refusal. Two hard limits: a round trip of
+ * BISS_MAX_DELAY_NS or more is never found (every frame NO_SLAVE), and a
+ * slave's timeout must last at least 55 % of the MA period (iC-MB4
+ * datasheet, BiSS B/C frame, item I306 "Ttos Permissible Timeout (Slave)",
+ * min. 55 % TMAS), or the slave may end the frame within a clock phase.
+ *
+ * A measured round trip stands for a cable of about (round trip -
+ * BISS_LINE_FIXED_NS) / BISS_LINE_NS_PER_M metres: 5 ns/m each way
+ * (twisted pair at about 2/3 c; TIDEP0022 §2.1.1: "With a cable length up
+ * to 100 meters, a cable delay of 1 us ... is possible"), after the
+ * transceivers and the encoder's output (EST: 2 x (9 + 15) ns for an RS-485
+ * driver and receiver each way, the SN65HVD78 class TIDEP0022 §2.3 uses,
+ * plus 20 ns; the bench's line model takes the same figures). A lossy
+ * cable's slow edges add to the round trip, so the estimate errs long. */
+#define BISS_LINE_FIXED_NS 68.0
+#define BISS_LINE_NS_PER_M 10.0
+
+/* The longest cable in metres TIDEP0022 Table 5 gives for MA rate freq_hz:
+ * a rate between two rows takes the faster row's length; 1 MHz and below
+ * 100 m (the design's longest). 0 for a rate above 10 MHz. */
+double biss_rate_cable_max_m(double freq_hz);
+/* The cable a measured round trip (ns) stands for, in metres (>= 0). */
+double biss_round_trip_cable_m(double round_trip_ns);
+/* The shortest slave timeout (ns) iC-MB4's I306 permits at freq_hz: 55 %
+ * of the MA period, rounded up. */
+uint32_t biss_rate_timeout_min_ns(double freq_hz);
+
+/* What is known about a line: negative or 0 fields are unknown. */
+struct biss_line_facts {
+    double cable_m;            /* its length, < 0 unknown */
+    double round_trip_ns;      /* a measured round trip (biss_line_delay), < 0 unknown */
+    double round_trip_res_ns;  /* ... and its resolution (one bit / 8), 0 exact */
+    uint32_t slave_timeout_ns; /* the slaves' shortest timeout, 0 unknown */
+};
+
+#define BISS_LINE_MAX_RATES 3
+/* biss_line_check's findings for a rate. */
+struct biss_line_verdict {
+    double freq_hz;          /* 100 MHz / H */
+    bool beyond_table;       /* the cable is longer than Table 5 gives the rate (a warning) */
+    bool timeout_short;      /* the timeout is below 55 % of the MA period (an error) */
+    bool delay_unreadable;   /* the round trip is BISS_MAX_DELAY_NS or more (an error) */
+    double cable_m;          /* the length, known or estimated (< 0: neither) */
+    bool estimated;          /* cable_m comes from the round trip */
+    double round_trip_ns;    /* as given (< 0: none) */
+    double cable_max_m;      /* Table 5's length for the rate */
+    uint32_t timeout_min_ns; /* 55 % of the MA period */
+    uint32_t slave_timeout_ns;
+    /* the rates (exact, biss_rate_half) nearest freq_hz that none of the
+     * findings above rules out, nearest first; none if no rate would do */
+    uint32_t rates[BISS_LINE_MAX_RATES];
+    unsigned nrates;
+};
+
+/* Checks MA rate freq_hz against what is known of the line. Returns
+ * BISS_OK (v->beyond_table may still warn), BISS_E_LINE_TIMEOUT or
+ * BISS_E_LINE_DELAY (the first of them that applies; v has all), or a
+ * BISS_E_RATE_* / BISS_E_INVAL for a rate or pointer no check can take. */
+int biss_line_check(uint32_t freq_hz, const struct biss_line_facts *f, struct biss_line_verdict *v);
+/* The verdict in words, one line without a newline, e.g. "10 MHz on 80 m
+ * of cable: TIDEP0022 Table 5 gives 10 MHz up to 10 m; rates that work:
+ * 1 MHz, 800 kHz, 781.25 kHz". Empty when there is nothing to say.
+ * Returns what snprintf returns. */
+int biss_line_text(const struct biss_line_verdict *v, char *buf, size_t len);
+/* A rate as people write it: "10 MHz", "781.25 kHz", "97.65625 kHz". */
+int biss_rate_text(double freq_hz, char *buf, size_t len);
 /* ---- the encoder firmware: a PRU as a BiSS-C slave (pru_slave/) -------
  *
  * biss_encoder.bin (PRU0) and biss_encoder_pru1.bin (PRU1) make a PRU a BiSS-C

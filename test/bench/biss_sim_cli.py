@@ -228,9 +228,80 @@ for args, words in [(["--pru", "2"], "--pru: '2'"),
                      "cannot read image '/nonexistent.bin'"),
                     (["--pru1-profile", "nope"], "unknown profile 'nope'"),
                     (["--pru1-profile", "generic", "--vcd", "x.vcd"], "not with"),
-                    (["--pru1-profile", "generic", "--iep-period-ns", "12"], "multiple of 5 ns")]:
+                    (["--pru1-profile", "generic", "--trigger", "host"], "not with"),
+                    (["--pru1-profile", "generic", "--iep-period-ns", "12"], "multiple of 5 ns"),
+                    (["--trigger", "sometimes"], "--trigger: 'sometimes' is not free, host or iep"),
+                    (["--iep-period-ns", "50000"], "--iep-period-ns needs --trigger iep"),
+                    (["--trigger", "iep", "--image", CLOCK_IMAGE], "--trigger needs the firmware"),
+                    (["--settle-frames", "x"], "--settle-frames: 'x' is not a count")]:
     r = run("--frames", "3", *args)
     check(r.returncode == 1 and words in r.stderr, "%s -> %r (got %d %r)" % (args, words, r.returncode, r.stderr))
+
+# the rate against the scenario's line (proto/biss_line.c), up front: a
+# warning beyond TIDEP0022 Table 5 (and, when no slave answered, why), a
+# refusal for a slave timeout below 55 % of the MA period or a round trip
+# the firmware never waits out; nothing within the table
+T5_80 = ("10 MHz on 80 m of cable: TIDEP0022 Table 5 gives 10 MHz up to 10 m; rates that work: "
+         "1 MHz, 800 kHz, 781.25 kHz")
+r = run("--freq", "10000000", "--cable-m", "80", "--frames", "3", "--json")
+check(r.returncode == 2 and r.stderr.startswith("biss-sim: warning: " + T5_80 + "\n")
+      and "biss-sim: no slave answered: " + T5_80 + "\n" in r.stderr
+      and json.loads(r.stdout)["firmware"]["no_slave"] > 0,
+      "10 MHz on 80 m: %d %r" % (r.returncode, r.stderr))
+for freq, cable in [(10e6, 10), (5e6, 25), (2e6, 60), (1e6, 100), (1e6, 2)]:
+    r = run("--freq", str(int(freq)), "--cable-m", str(cable), "--frames", "3")
+    check(r.returncode == 0 and r.stderr == "", "Table 5, %g Hz on %d m: %r" % (freq, cable, r.stderr))
+r = run("--freq", "5000000", "--cable-m", "40", "--frames", "3")
+check(r.returncode == 0 and r.stderr == "biss-sim: warning: 5 MHz on 40 m of cable: TIDEP0022 Table 5 "
+      "gives 5 MHz up to 25 m; rates that work: 2 MHz, 1.5625 MHz, 1.25 MHz\n",
+      "5 MHz on 40 m (works in the model, beyond the table): %d %r" % (r.returncode, r.stderr))
+CHAIN1_650 = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scenarios",
+                          "chain1-650ns.json")
+r = run("--scenario", CHAIN1_650, "--freq", "500000", "--frames", "3")
+check(r.returncode == 1 and r.stdout == "" and r.stderr ==
+      "biss-sim: a slave timeout of 650 ns is below 55 % of the MA period at 500 kHz (1100 ns, "
+      "iC-MB4 I306): the slave may end the frame within a clock phase; rates that work: 1 MHz, "
+      "1.25 MHz, 1.5625 MHz\n", "650 ns at 500 kHz: %d %r" % (r.returncode, r.stderr))
+r = run("--scenario", CHAIN1_650, "--freq", "1000000", "--frames", "3")
+check(r.returncode == 0 and r.stderr == "", "650 ns at 1 MHz: %r" % r.stderr)
+r = run("--profile", "hengstler-ad38", "--freq", "500000", "--frames", "3")
+check(r.returncode == 0 and r.stderr == "", "the AD38's adaptive timeout at 500 kHz: %r" % r.stderr)
+r = run("--pru1-scenario", CHAIN1_650, "--freq", "500000", "--frames", "3")
+check(r.returncode == 1 and r.stderr.startswith("biss-sim: PRU1's line: a slave timeout of 650 ns"),
+      "PRU1's 650 ns at 500 kHz: %d %r" % (r.returncode, r.stderr))
+r = run("--scenario", scenario('{"line": {"ns_per_m": 25, "tau_per_m2_ps": 0}}'), "--cable-m", "1000",
+        "--freq", "1000000", "--frames", "3")
+check(r.returncode == 1 and "a round trip of 50069 ns is beyond the 40000 ns the firmware waits for "
+      "the ACK (BISS_MAX_DELAY_NS): no slave answers at any rate" in r.stderr,
+      "a 50 us round trip: %d %r" % (r.returncode, r.stderr))
+
+# both PRUs in one JSON object: each PRU's object as biss-sim --json prints
+# it (its frame instruments too), how far apart the frame starts were on
+# the IEP period, the bank stalls
+r = run("--pru1-profile", "hengstler-ad38", "--frames", "20", "--json")
+j = json.loads(r.stdout) if r.returncode == 0 else {}
+fs = j.get("frame_starts") or {}
+check(r.returncode == 0 and j["pru0"]["frames"] == 20 and j["pru1"]["frames"] == 20
+      and j["pru1"]["profile"] == "hengstler-ad38" and j["spad_stalls"] == 0
+      and fs.get("pairs") == 20 and fs.get("pru1_minus_pru0_min_ps") == 0
+      and fs.get("pru1_minus_pru0_max_ps") == 0
+      and j["pru0"]["frame_starts"]["iep"]["period_cycles"] * 5 == fs.get("iep_period_ns")
+      and j["pru1"]["frame_starts"]["iep"]["skipped_periods"] == 0,
+      "pair --json: %d %r %r" % (r.returncode, r.stdout[:300], r.stderr))
+# one PRU under each trigger: every frame right, the trigger as asked
+for trig in ["free", "host", "iep"]:
+    r = run("--trigger", trig, "--frames", "30", "--json")
+    j = json.loads(r.stdout) if r.returncode == 0 else {}
+    fs = j.get("frame_starts") or {}
+    check(r.returncode == 0 and j["frames"] == 30 and j["position_mismatches"] == 0
+          and (fs.get("iep") is not None) == (trig == "iep")
+          and (fs.get("restart_overhead_cycles") is not None) == (trig == "free"),
+          "--trigger %s: %d %r %r" % (trig, r.returncode, fs, r.stderr))
+r = run("--trigger", "iep", "--iep-period-ns", "40000", "--frames", "20", "--json")
+j = json.loads(r.stdout) if r.returncode == 0 else {}
+check(r.returncode == 0 and j["frame_period_ns"]["min"] == 40000 == j["frame_period_ns"]["max"]
+      and j["frame_starts"]["iep"]["period_cycles"] == 8000,
+      "--trigger iep --iep-period-ns 40000: %d %r" % (r.returncode, r.stderr))
 
 # safety checks: the scenario's and the command line's, in JSON and text
 SCEN = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scenarios")

@@ -92,6 +92,33 @@ START_TEST(cmp0_reset_period) {
 }
 END_TEST
 
+/* pru_iep_view: the state a read in a later cycle would see, leaving the
+ * IEP where it was; a cycle the IEP is already past gives that later one. */
+START_TEST(view_leaves_the_iep) {
+    struct pru_core *c = pru_core_new(PRU_SOC_AM335X, NULL);
+    wr(c, CMP(0), 9);
+    wr(c, CCFG, 3);
+    wr(c, G_CFG, 0x111);
+    at(c, 5);
+    struct pru_iep_view v;
+    pru_iep_view(c, 37, &v);
+    ck_assert_int_eq(v.cycle, 37);
+    ck_assert_uint_eq(v.count, 7);
+    ck_assert_uint_eq(v.inc, 1);
+    ck_assert_uint_eq(v.cmp0, 9);
+    ck_assert(v.cmp0_resets);
+    ck_assert_uint_eq(rd(c, COUNT), 5); /* not moved on to 37 */
+    pru_iep_view(c, 2, &v);
+    ck_assert_int_eq(v.cycle, 5);
+    ck_assert_uint_eq(v.count, 5);
+    wr(c, CCFG, 2); /* CMP0 on, no reset */
+    at(c, 8);
+    pru_iep_view(c, 8, &v);
+    ck_assert(!v.cmp0_resets);
+    pru_core_free(c);
+}
+END_TEST
+
 START_TEST(status_w1c_sets_again) {
     struct pru_core *c = pru_core_new(PRU_SOC_AM335X, NULL);
     wr(c, CMP(1), 5);
@@ -269,6 +296,7 @@ Suite *iep_suite(void) {
     tcase_add_test(t, count_default_increments);
     tcase_add_test(t, count_seen_by_pru);
     tcase_add_test(t, cmp0_reset_period);
+    tcase_add_test(t, view_leaves_the_iep);
     tcase_add_test(t, status_w1c_sets_again);
     tcase_add_test(t, overflow_flag);
     tcase_add_test(t, compensation);

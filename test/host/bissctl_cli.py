@@ -23,7 +23,9 @@ def run(*args, env=None):
     taken off stdout (read --json says it in its object)."""
     r = subprocess.run([CTL, *args], capture_output=True, text=True, timeout=120, env=env)
     target = args[args.index("--target") + 1] if "--target" in args else "emu"
-    if target == "emu" and r.stdout and "--help" not in args and "--json" not in args:
+    # (rates needs no target: it opens none)
+    if (target == "emu" and r.stdout and "--help" not in args and "--json" not in args
+            and "rates" not in args):
         first, _, rest = r.stdout.partition("\n")
         if check(first.startswith(EMULATED), "%r: no emulated line: %r" % (args, r.stdout[:120])):
             r.stdout = rest
@@ -36,7 +38,7 @@ def run(*args, env=None):
 r = run("--help")
 check(r.returncode == 0 and "info" in r.stdout and "--target" in r.stdout, "--help: %r" % r.stdout)
 for cmd in ["info", "read", "stats", "run", "trigger", "start", "stop", "reg-read",
-            "reg-write", "command"]:
+            "reg-write", "command", "rates"]:
     r = run(cmd, "--help")
     check(r.returncode == 0 and r.stdout.startswith("bissctl [options] " + cmd),
           "%s --help: %r" % (cmd, r.stdout[:80]))
@@ -382,6 +384,73 @@ for spd in ["0,1e308", "0,2e18", "0,1e-10"]:
           "--check-speed %s: %r" % (spd, r.stderr))
 r = run("--check-speed", "1,5", "read")
 check(r.returncode == 1 and "speed check" in r.stderr, "--check-speed 1,5: %r" % r.stderr)
+
+# the rate against the line (proto/biss_line.c): TIDEP0022 Table 5 by the
+# cable the user names (a warning; why no slave answered once the frames
+# show it), a slave timeout below 55 % of the MA period (refused before
+# anything runs), and without a length the round trip the training frame
+# measured, or measured at 1 MHz when nothing answered
+T5_80 = ("10 MHz on 80 m of cable: TIDEP0022 Table 5 gives 10 MHz up to 10 m; rates that work: "
+         "1 MHz, 800 kHz, 781.25 kHz")
+r = run("--freq", "10000000", "--cable-m", "80", "read", "-n", "2")
+check(r.returncode == 0 and r.stdout.count("no-slave") == 2
+      and "bissctl: warning: " + T5_80 + "\n" in r.stderr
+      and "bissctl: no slave answered: " + T5_80 + "\n" in r.stderr,
+      "10 MHz, 80 m: %r %r" % (r.stdout, r.stderr))
+r = run("--freq", "10000000", "--cable-m", "80", "start")
+check(r.returncode == 0 and "bissctl: no slave answered: " + T5_80 in r.stderr,
+      "start at 10 MHz, 80 m: %d %r" % (r.returncode, r.stderr))
+r = run("--freq", "5000000", "--cable-m", "25", "read", "-n", "3")
+check(r.returncode == 0 and r.stderr == "" and r.stdout.count(" valid ") == 2,
+      "5 MHz, 25 m (Table 5): %r %r" % (r.stdout, r.stderr))
+tmp = tempfile.mkdtemp()
+far = os.path.join(tmp, "80m.json")
+with open(far, "w") as f:
+    f.write('{"profile": "tidep0022-test-encoder", "line": {"length_m": 80}}')
+r = run("--freq", "10000000", "--scenario", far, "read", "-n", "2")
+m = re.search(r"no slave answered at 10 MHz; at 1 MHz the line's round trip is (\d+) ns\n"
+              r"bissctl: no slave answered: 10 MHz on a line with a round trip of (\d+) ns "
+              r"\(about (\d+) m of cable: 5 ns/m each way after 68 ns of transceivers\): "
+              r"TIDEP0022 Table 5 gives 10 MHz up to 10 m \(a round trip up to about 168 ns\); "
+              r"rates that work: 1 MHz, 800 kHz, 781.25 kHz", r.stderr)
+check(r.returncode == 0 and m and m.group(1) == m.group(2) and 80 <= int(m.group(3)) <= 110,
+      "80 m not named, measured at 1 MHz: %r" % r.stderr)
+r = run("--scenario", far, "--freq", "1000000", "read", "-n", "3")
+check(r.returncode == 0 and r.stdout.count(" valid ") == 2 and r.stderr == "",
+      "80 m at 1 MHz: no word: %r %r" % (r.stdout, r.stderr))
+r = run("--freq", "5000000", "--scenario", far, "read", "-n", "3")
+m = re.search(r"^bissctl: warning: 5 MHz on a line with a round trip of \d+ ns \(about \d+ m of "
+              r"cable.*TIDEP0022 Table 5 gives 5 MHz up to 25 m.*rates that work: 1 MHz, 800 kHz, "
+              r"781.25 kHz$", r.stderr, re.M)
+check(r.returncode == 0 and m, "5 MHz on 80 m, measured: %r %r" % (r.stdout, r.stderr))
+r = run("--freq", "500000", "--slave-timeout-ns", "650", "read")
+check(r.returncode == 1 and r.stdout == "" and r.stderr ==
+      "bissctl: configuration: a slave timeout of 650 ns is below 55 % of the MA period at 500 kHz "
+      "(1100 ns, iC-MB4 I306): the slave may end the frame within a clock phase; rates that work: "
+      "1 MHz, 1.25 MHz, 1.5625 MHz\n", "timeout 650 ns at 500 kHz: %d %r" % (r.returncode, r.stderr))
+r = run("--freq", "1000000", "--slave-timeout-ns", "550", "read")
+check(r.returncode == 0 and r.stderr == "", "timeout 550 ns at 1 MHz: %r" % r.stderr)
+r = run("--slave-timeout-ns", "0", "read")
+check(r.returncode == 2 and "--slave-timeout-ns" in r.stderr, "timeout 0: %r" % r.stderr)
+# rates: no target, what the line allows, fastest first
+r = run("--cable-m", "30", "rates")
+check(r.returncode == 0 and re.search(r"^rates_hz=2000000,1562500,1250000,1000000,", r.stdout, re.M),
+      "rates for 30 m: %r %r" % (r.stdout, r.stderr))
+r = run("--cable-m", "30", "--slave-timeout-ns", "300", "rates")
+check(r.returncode == 0 and re.search(r"^rates_hz=2000000$", r.stdout, re.M),
+      "rates for 30 m and a 300 ns timeout: %r" % r.stdout)
+r = run("--round-trip-ns", "1046", "--freq", "10000000", "rates")
+check(r.returncode == 0 and "round trip 1046 ns: about 98 m of cable" in r.stdout
+      and "10 MHz: 10 MHz on a line with a round trip of 1046 ns" in r.stdout,
+      "rates --round-trip-ns 1046 --freq 10 MHz: %r" % r.stdout)
+r = run("--cable-m", "10", "--freq", "10000000", "rates")
+check(r.returncode == 0 and "10 MHz: within TIDEP0022 Table 5 for this line" in r.stdout,
+      "10 MHz on 10 m: %r" % r.stdout)
+r = run("--slave-timeout-ns", "650", "--freq", "500000", "rates")
+check(r.returncode == 1 and "rates that work: 1 MHz, 1.25 MHz, 1.5625 MHz" in r.stdout,
+      "rates, short timeout: %d %r" % (r.returncode, r.stdout))
+r = run("rates")
+check(r.returncode == 2 and "rates needs --cable-m" in r.stderr, "rates alone: %r" % r.stderr)
 
 # the emulator says so in JSON too; start on the emulator says the master
 # ends with bissctl
