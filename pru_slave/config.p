@@ -301,6 +301,9 @@ CFG_CLEAR_SLAVES:
     ldi     Byte0xff, 0xff
     ldi     Addr, BISS_SLV_ST_CDM
     sbbo    Byte0xff, Addr, 0, 1
+    ldi     Bits, MA_IN_BIT                 // (cleared with the word it is in)
+    ldi     Addr, BISS_SLV_ST_MA_BIT
+    sbbo    Bits, Addr, 0, 1
     ldi     Addr, BISS_SLV_ST_SLAVE0 + BISS_SLV_SS_LAST_CMD
     ldi     Idx, 0
 CFG_STATUS:

@@ -40,6 +40,9 @@ START_CLEAR:
     mov     Magic, BISS_SLV_MAGIC           // magic: a host that sees it sees a clear status
     ldi     Addr, BISS_SLV_ST_PRU
     sbbo    PruNum, Addr, 0, 4
+    ldi     PruNum, MA_IN_BIT               // and the R31 bit MA comes in on
+    ldi     Addr, BISS_SLV_ST_MA_BIT
+    sbbo    PruNum, Addr, 0, 1
     ldi     Addr, BISS_SLV_ST_MAGIC
     sbbo    Magic, Addr, 0, 4
 .leave startup

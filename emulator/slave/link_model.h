@@ -45,6 +45,14 @@ typedef struct {
     int sl_reach_on;
     scenario_protocol protocol; /* sc.protocol, here with the rest */
     line_dir ma_line, sl_line;
+    /* An external slave (link_set_external_slave): another core's pins at
+     * the slave end; the model then runs beside it on the same MA, its SL
+     * kept apart (sl_model) and compared with the external one's at every
+     * rising MA edge at the slave pin (the bit both have settled on). */
+    int external;
+    waveform sl_model;
+    uint64_t ext_compared, ext_differ; /* rising edges compared, SL levels that differed */
+    sim_ps ext_first_differ;           /* the first of them, SIM_NEVER none */
     biss_slave biss; /* its per-edge state first */
     ssi_slave ssi;
     scenario sc;
@@ -105,6 +113,22 @@ sim_ps link_next_sl_change(const link_model *l);
 
 /* Switches the fast path "sl-reach" of link_next_sl_change (on by default). */
 void link_set_sl_reach(link_model *l, int on);
+
+/* The slave end is another core (the BiSS-C encoder firmware on a PRU):
+ * MA at the slave pin is its input (link_ma_at_slave), its SL pin drives
+ * the SL line (link_sl_at_slave). The scenario's slave model still takes
+ * every MA edge, so the bench numbers and checks frames as usual, but its
+ * SL goes only to its own record (sl_model), compared with the external
+ * slave's at each rising MA edge at the slave pin: ext_compared,
+ * ext_differ. Call before any edge; BiSS-C only. MA at the slave pin then
+ * keeps its history (link_keep_history). */
+void link_set_external_slave(link_model *l, int on);
+/* MA at the slave pin at t (the queue run to t), and in *next the earliest
+ * time after t it may change unless MA at the master moves first. */
+int link_ma_at_slave(link_model *l, sim_ps t, sim_ps *next);
+/* The external slave's SL pin takes level at t (no earlier than anything
+ * the queue has run: a core's output after its inputs). */
+void link_sl_at_slave(link_model *l, sim_ps t, int level);
 
 /* Drops pin history before t (a long run keeps its memory bounded). */
 void link_forget_before(link_model *l, sim_ps t);

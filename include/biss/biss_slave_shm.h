@@ -112,7 +112,7 @@
 #define BISS_SLV_ST_CDM             0x13C   // u8:  the last CDM received (0xff: none yet)
 #define BISS_SLV_ST_CDS             0x13D   // u8:  the CDS of the next frame
 #define BISS_SLV_ST_CTRL_STATE      0x13E   // u8:  the control-frame state (BISS_SLV_CS_*)
-#define BISS_SLV_ST_RSVD0           0x13F   // u8
+#define BISS_SLV_ST_MA_BIT          0x13F   // u8:  the R31 bit the image takes MA from (MA_IN_BIT)
 #define BISS_SLV_ST_CANCELS         0x140   // u16: control frames cancelled by 14 CDM = 0
 #define BISS_SLV_ST_HDR_CRC_ERRORS  0x142   // u16: control-frame headers with a wrong CRC4
 #define BISS_SLV_ST_PERIOD          0x144   // u32: the MA period of the last frame, PRU cycles (rising

@@ -83,7 +83,7 @@ struct biss_slv_status {
     uint8_t cdm;
     uint8_t cds;
     uint8_t ctrl_state;
-    uint8_t rsvd0;
+    uint8_t ma_bit;
     uint16_t cancels;
     uint16_t hdr_crc_errors;
     uint32_t period;
@@ -180,7 +180,7 @@ BISS_SLV_AT(st.cd_frames, BISS_SLV_ST_CD_FRAMES);
 BISS_SLV_AT(st.cdm, BISS_SLV_ST_CDM);
 BISS_SLV_AT(st.cds, BISS_SLV_ST_CDS);
 BISS_SLV_AT(st.ctrl_state, BISS_SLV_ST_CTRL_STATE);
-BISS_SLV_AT(st.rsvd0, BISS_SLV_ST_RSVD0);
+BISS_SLV_AT(st.ma_bit, BISS_SLV_ST_MA_BIT);
 BISS_SLV_AT(st.cancels, BISS_SLV_ST_CANCELS);
 BISS_SLV_AT(st.hdr_crc_errors, BISS_SLV_ST_HDR_CRC_ERRORS);
 BISS_SLV_AT(st.period, BISS_SLV_ST_PERIOD);

@@ -62,6 +62,7 @@ void rig_open(struct rig *r, const biss_chain_cfg *chain, const struct pru_param
     struct biss_slv_status st = rig_status(r);
     ck_assert_uint_eq(st.magic, BISS_SLV_MAGIC);
     ck_assert_uint_eq(st.pru, 1);
+    ck_assert_uint_eq(st.ma_bit, RIG_MA_BIT);
     ck_assert_msg(st.cfg_error == 0, "configuration refused: %s",
                   biss_encoder_cfg_error_text(st.cfg_error));
     ck_assert_uint_eq(st.cfg_ack, 1);

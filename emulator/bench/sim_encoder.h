@@ -1,0 +1,44 @@
+/*
+ * sim_encoder.h - biss-sim --encoder: the master firmware on PRU0 reads
+ * the encoder firmware (pru_slave/) on PRU1 of the same PRU-ICSS through
+ * the line model (bench_new_loop), the scenario's slave model running
+ * beside the firmware on the same MA: the bench checks the master's
+ * frames against the model's, and compares the model's SL with the
+ * firmware's at every rising MA edge at the slave pin.
+ */
+#ifndef SIM_ENCODER_H
+#define SIM_ENCODER_H
+
+#include "bench.h"
+#include "slave_fw.h"
+
+#include <cjson/cJSON.h>
+#include <stddef.h>
+#include <stdio.h>
+
+struct sim_encoder {
+    struct bench *b;
+    struct slave_fw_ram ram;
+    struct biss_proto_io io;
+};
+
+/* The chain as the encoder firmware runs it: each slave that moves with
+ * time (speed_cps) moves by counts per frame instead, the nearest whole
+ * number of counts in frame_ps; register banks past the firmware's pool
+ * (16 for the chain) are dropped, the last slaves' first (a note on
+ * notes for each, unless NULL). The model beside the firmware runs the
+ * same chain. */
+void sim_encoder_chain(biss_chain_cfg *c, double frame_ps, FILE *notes);
+
+/* Loads the image on PRU1 of a bench_new_loop bench, runs it to its
+ * start, takes its MA bit, writes the chain (slave_fw_load) and runs
+ * until the firmware has accepted it. 0, or -1 with a message in err. */
+int sim_encoder_start(struct sim_encoder *e, struct bench *b, const void *image, size_t bytes,
+                      const biss_chain_cfg *chain, char *err, size_t errlen);
+
+/* The firmware's status and the comparison with the model: text lines,
+ * or the object "encoder" added to j. Returns 0, or 5 when SL differed
+ * from the model's or the firmware stopped. */
+int sim_encoder_report(const struct sim_encoder *e, cJSON *j);
+
+#endif
