@@ -94,7 +94,7 @@ struct rig_frame *rig_add(struct rig *r, unsigned half, unsigned clocks, int cdm
     f->clocks = clocks;
     f->cdm = cdm;
     f->gap = gap;
-    sim_ps h = (sim_ps)half * PS_CYC, t = r->cursor;
+    sim_ps h = (sim_ps)half * PS_CYC, t = r->cursor + r->phase;
     f->t0 = t;
     waveform_append(&r->ma, t, 0);
     sim_ps last = t;
@@ -112,7 +112,7 @@ struct rig_frame *rig_add(struct rig *r, unsigned half, unsigned clocks, int cdm
     }
     waveform_append(&r->ma, last + gap, 1);
     /* the next frame after MA has been high for a while */
-    r->cursor = last + gap + 4 * h + 2 * SIM_PS_PER_US;
+    r->cursor = last - r->phase + gap + 4 * h + 2 * SIM_PS_PER_US;
     return f;
 }
 

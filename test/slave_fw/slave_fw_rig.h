@@ -57,6 +57,8 @@ struct rig {
     /* Non-zero: rig_add's CDM = 1 frames fall this long after their last
      * rise (a master that moves MA late), not half a period. */
     sim_ps cdm_fall;
+    /* rig_add's edges this far past the PRU's cycle grid (0..4999 ps) */
+    sim_ps phase;
 };
 
 /* A rig with the firmware image built for PRU1 loaded and started, and

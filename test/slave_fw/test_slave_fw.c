@@ -257,6 +257,30 @@ START_TEST(response_time_and_margins) {
 }
 END_TEST
 
+/* Off the cycle grid (a cable's delay puts MA's edges anywhere): an edge
+ * p ps past a cycle boundary is first seen by the sample at the next
+ * boundary but one (the synchronizer's), 5000 - p ps more than an edge on
+ * it; so the response time is 20..30 ns, 4..6 cycles, with the default
+ * synchronizer. */
+START_TEST(response_time_off_grid) {
+    static const sim_ps phase[] = {1, 1000, 2500, 4055, 4999};
+    biss_chain_cfg c = chain_of("tidep0022-test-encoder");
+    struct rig r;
+    rig_open(&r, &c, NULL);
+    r.phase = phase[_i];
+    rig_add_n(&r, 6, 10, 60, NULL, 40 * US);
+    rig_run(&r);
+    expect_same(&r);
+    sim_ps lo, hi; /* (one slave: a few SL changes a frame) */
+    unsigned n;
+    rig_latency(&r, &lo, &hi, &n);
+    ck_assert_uint_gt(n, 40);
+    ck_assert_int_eq(lo, 4 * SIM_PS_PER_PRU_CYCLE + (SIM_PS_PER_PRU_CYCLE - phase[_i]));
+    ck_assert_int_eq(hi, 5 * SIM_PS_PER_PRU_CYCLE + (SIM_PS_PER_PRU_CYCLE - phase[_i]));
+    rig_close(&r);
+}
+END_TEST
+
 /* ---- the timeout ---------------------------------------------------------- */
 
 /* When SL goes high for good after `edge`, before `end`: ps after edge, or -1. */
@@ -975,6 +999,7 @@ int main(void) {
     tcase_add_test(tc, processing_time);
     tcase_add_test(tc, highest_rate);
     tcase_add_test(tc, response_time_and_margins);
+    tcase_add_loop_test(tc, response_time_off_grid, 0, 5);
     suite_add_tcase(s, tc);
     tc = tcase_create("timeout");
     tcase_set_timeout(tc, 600);
