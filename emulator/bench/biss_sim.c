@@ -837,8 +837,8 @@ static int run(const struct options *o) {
     if (o->encoder && (o->image || o->pru)) {
         return die("--encoder is PRU1's: the master firmware on PRU0 (not --image, --pru 1)");
     }
-    struct bench *b = o->encoder ? new_loop(&cfg, half, err, sizeof err)
-                                 : bench_new(&cfg, err, sizeof(err));
+    struct bench *b =
+        o->encoder ? new_loop(&cfg, half, err, sizeof err) : bench_new(&cfg, err, sizeof(err));
     if (!b) {
         return die("%s", err);
     }

@@ -53,7 +53,7 @@ typedef struct {
     waveform sl_model;
     uint64_t ext_compared, ext_differ; /* rising edges compared, SL levels that differed */
     sim_ps ext_first_differ;           /* the first of them, SIM_NEVER none */
-    biss_slave biss; /* its per-edge state first */
+    biss_slave biss;                   /* its per-edge state first */
     ssi_slave ssi;
     scenario sc;
 } link_model;
