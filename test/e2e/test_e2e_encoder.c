@@ -178,7 +178,7 @@ START_TEST(control) {
     ck_assert_int_eq(biss_cd_build_command(&p, 0x82, 3, true), BISS_CD_OK);
     run_cd(&l, &p, &cd, BISS_CD_E_WITHHELD);
     /* (the encoder counts what a control frame's last bit did in the next
-     * frame's tail: pru_slave/README.md, "COMMIT") */
+     * frame's tail: pru_slave/README.md, "Control communication") */
     bench_run_until(l.r.b, pru_time_ps(bench_core(l.r.b)) + SIM_PS_PER_MS);
     struct biss_slv_status st;
     ck_assert_int_eq(biss_proto_encoder_status(&l.enc.io, &st), 0);

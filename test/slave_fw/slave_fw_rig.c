@@ -48,7 +48,10 @@ void rig_open(struct rig *r, const biss_chain_cfg *chain, const struct pru_param
     ck_assert_int_eq(read_file(SLAVE_IMAGE_PRU1, 16384, &img, &len), READ_FILE_OK);
     ck_assert_int_eq(pru_load_image(r->core, img, len), 0);
     free(img);
-    r->trace = getenv("RIG_TRACE") ? fopen(getenv("RIG_TRACE"), "w") : NULL;
+    r->trace = getenv("RIG_TRACE") ? fopen(getenv("RIG_TRACE"), "a") : NULL;
+    if (r->trace) {
+        fprintf(r->trace, "# rig: %u slaves\n", chain->n);
+    }
     pru_set_trace(r->core, r->trace);
     pru_start(r->core);
     slave_fw_ram_init(&r->ram, r->core, PRU_SOC_AM335X, 1);

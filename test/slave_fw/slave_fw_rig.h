@@ -53,7 +53,7 @@ struct rig {
      * the next frame is built after their timeout, whose end is then late
      * by the work over WORK_PAD (ST_WORK says how much). */
     bool partial_frames;
-    FILE *trace; /* RIG_TRACE=file: the firmware's instructions, one a line */
+    FILE *trace; /* RIG_TRACE=file: the firmware's instructions appended, one a line */
     /* Non-zero: rig_add's CDM = 1 frames fall this long after their last
      * rise (a master that moves MA late), not half a period. */
     sim_ps cdm_fall;
