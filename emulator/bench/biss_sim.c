@@ -772,7 +772,7 @@ static struct bench *new_loop(struct bench_config *cfg, unsigned half, char *err
         return NULL;
     }
     biss_chain_cfg c = cfg->link.biss;
-    sim_encoder_chain(&c, sim_clock_frame_ps(b, half), stderr);
+    slave_fw_chain(&c, sim_clock_frame_ps(b, half), stderr);
     if (memcmp(&c, &cfg->link.biss, sizeof c) == 0) {
         return b;
     }

@@ -22,14 +22,6 @@ struct sim_encoder {
     struct biss_proto_io io;
 };
 
-/* The chain as the encoder firmware runs it: each slave that moves with
- * time (speed_cps) moves by counts per frame instead, the nearest whole
- * number of counts in frame_ps; register banks past the firmware's pool
- * (16 for the chain) are dropped, the last slaves' first (a note on
- * notes for each, unless NULL). The model beside the firmware runs the
- * same chain. */
-void sim_encoder_chain(biss_chain_cfg *c, double frame_ps, FILE *notes);
-
 /* Loads the image on PRU1 of a bench_new_loop bench, runs it to its
  * start, takes its MA bit, writes the chain (slave_fw_load) and runs
  * until the firmware has accepted it. 0, or -1 with a message in err. */

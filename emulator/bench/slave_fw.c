@@ -3,6 +3,9 @@
 
 #include "biss_soc.h"
 
+#include "biss/biss_slave_shm.h"
+
+#include <inttypes.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -177,4 +180,34 @@ int slave_fw_load(const struct biss_proto_io *io, const biss_chain_cfg *c, char 
         return fail(err, errlen, "the encoder firmware's data RAM: a transfer failed (%d)", rc);
     }
     return 0;
+}
+
+void slave_fw_chain(biss_chain_cfg *c, double frame_ps, FILE *notes) {
+    unsigned banks = 0;
+    for (unsigned i = 0; i < c->n; i++) {
+        biss_slave_cfg *s = &c->s[i];
+        unsigned left = BISS_ENC_POOL_BANKS - banks;
+        if (s->regs.nbanks > left) {
+            if (notes) {
+                fprintf(notes,
+                        "encoder: slave %u keeps %u of its %u register banks (the "
+                        "firmware's pool holds %u for the chain; the model's the same)\n",
+                        i, left, s->regs.nbanks, BISS_ENC_POOL_BANKS);
+            }
+            s->regs.nbanks = left;
+        }
+        banks += s->regs.nbanks;
+        if (s->speed_cps == 0.0) {
+            continue;
+        }
+        double step = s->speed_cps * frame_ps / SIM_PS_PER_S;
+        s->counts_per_frame += (int64_t)llround(step);
+        if (notes) {
+            fprintf(notes,
+                    "encoder: slave %u moves %" PRId64 " counts a frame (%g counts/s "
+                    "over a frame of %.3f us)\n",
+                    i, s->counts_per_frame, s->speed_cps, frame_ps / SIM_PS_PER_US);
+        }
+        s->speed_cps = 0.0;
+    }
 }

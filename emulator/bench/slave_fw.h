@@ -14,6 +14,7 @@
 
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 
 /* A PRU's data RAM through the host side of a core (pru_host_read/write at
  * the global address of PRU pru's data RAM). */
@@ -32,6 +33,14 @@ struct biss_proto_io slave_fw_io(struct slave_fw_ram *ram);
  * slaves' order). Register banks go to the pool in the slaves' order. */
 int slave_fw_config(const biss_chain_cfg *c, struct biss_encoder_config *e, char *err,
                     size_t errlen);
+
+/* The chain as the encoder firmware runs it: each slave that moves with
+ * time (speed_cps) moves by counts per frame instead, the nearest whole
+ * number of counts in frame_ps; register banks past the firmware's pool
+ * (16 for the chain) are dropped, the last slaves' first (a note on
+ * notes for each, unless NULL). The model beside the firmware runs the
+ * same chain. */
+void slave_fw_chain(biss_chain_cfg *c, double frame_ps, FILE *notes);
 
 /* slave_fw_config, then the register files and banks of the chain's
  * models and the configuration block with CFG_SEQ one up: 0, or -1 with
