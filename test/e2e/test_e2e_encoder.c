@@ -29,7 +29,7 @@ struct loop {
 };
 
 /* The loop for a scenario at rate half: the chain moved by counts per
- * frame (sim_encoder_chain), the encoder loaded and configured, then the
+ * frame (slave_fw_chain), the encoder loaded and configured, then the
  * master started; pp: the core parameters (NULL: defaults). */
 static void loop_open(struct loop *l, scenario sc, unsigned half, const struct pru_params *pp) {
     struct bench_config cfg;
@@ -43,7 +43,7 @@ static void loop_open(struct loop *l, scenario sc, unsigned half, const struct p
     ck_assert_msg(l->r.b, "%s", err);
     double frame_ps = (2.0 * half * 200 + 5000) * 5000.0; /* (only its order matters) */
     biss_chain_cfg c = cfg.link.biss;
-    sim_encoder_chain(&c, frame_ps, NULL);
+    slave_fw_chain(&c, frame_ps, NULL);
     bench_free(l->r.b);
     cfg.link.biss = c;
     l->r.b = bench_new_loop(&cfg, err, sizeof err);
