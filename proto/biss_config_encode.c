@@ -24,6 +24,11 @@ static void encode_slave(const struct biss_slave_config *s, struct biss_shm_slav
 void biss_config_encode(const struct biss_config *c, struct biss_shm_config *out) {
     unsigned half = 0;
     biss_rate_half(c->freq_hz, &half);
+    biss_config_encode_half(c, half, out);
+}
+
+void biss_config_encode_half(const struct biss_config *c, unsigned half,
+                             struct biss_shm_config *out) {
     memset(out, 0, sizeof *out);
     out->half = (uint16_t)half;
     out->nslaves = (uint8_t)c->nslaves;
@@ -63,8 +68,8 @@ static const char *bad_slave(const struct biss_shm_slave_cfg *s, unsigned i) {
 }
 
 static const char *bad_block(const struct biss_shm_config *in) {
-    unsigned half = in->half;
-    if (half < BISS_MIN_HALF || half > BISS_MAX_HALF || BISS_HALF_CLOCK_HZ % half != 0) {
+    /* one the firmware clocks, at a rate a biss_config names */
+    if (biss_proto_half_rate(in->half, NULL) != BISS_OK) {
         return "MA half period";
     }
     if (in->nslaves < 1 || in->nslaves > BISS_MAX_SLAVES) {
@@ -96,7 +101,7 @@ int biss_config_decode(const struct biss_shm_config *in, struct biss_config *c,
     if (*field) {
         return BISS_E_SHM_CONFIG;
     }
-    c->freq_hz = BISS_HALF_CLOCK_HZ / in->half;
+    biss_proto_half_rate(in->half, &c->freq_hz);
     c->nslaves = in->nslaves;
     c->trigger = (enum biss_trigger)in->trigger;
     c->iep_period_ns = in->iep_period * 5u;

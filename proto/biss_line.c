@@ -1,6 +1,6 @@
 /* biss_line.c - what a line allows: TIDEP0022 Table 5 (rate against cable
  * length), the firmware's longest round trip, iC-MB4's shortest slave
- * timeout, and the rates that would work (libbiss.h, "what a line
+ * timeout, and the rates that would work (biss/biss_rules.h, "what a line
  * allows"). The one copy of these rules: bissctl and biss-sim name them
  * in these words. */
 #include "biss_proto.h"
@@ -58,10 +58,6 @@ int biss_rate_text(double freq_hz, char *buf, size_t len) {
 /* Whether rate f suits a cable of cable_m (< 0: unknown) and v's slave
  * timeout. */
 static bool rate_works(uint32_t f, double cable_m, const struct biss_line_verdict *v) {
-    unsigned half;
-    if (biss_rate_half(f, &half) != BISS_OK) {
-        return false;
-    }
     if (cable_m >= 0 && biss_rate_cable_max_m(f) < cable_m) {
         return false;
     }
@@ -77,10 +73,10 @@ static void nearest_rates(struct biss_line_verdict *v, double cable_m) {
     }
     double dist[BISS_LINE_MAX_RATES];
     for (unsigned h = BISS_MIN_HALF; h <= BISS_MAX_HALF; h++) {
-        if (BISS_HALF_CLOCK_HZ % h || !rate_works(BISS_HALF_CLOCK_HZ / h, cable_m, v)) {
+        uint32_t f;
+        if (biss_proto_half_rate(h, &f) != BISS_OK || !rate_works(f, cable_m, v)) {
             continue;
         }
-        uint32_t f = BISS_HALF_CLOCK_HZ / h;
         double d = (double)f > v->freq_hz ? (double)f - v->freq_hz : v->freq_hz - (double)f;
         unsigned at = v->nrates;
         while (at > 0 && dist[at - 1] > d) {

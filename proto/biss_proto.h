@@ -9,15 +9,18 @@
  *
  * libbiss drives the firmware through it on silicon and in the emulator;
  * the bench and the end-to-end tests drive it through it on the emulated
- * PRU. Nothing here does I/O of its own or knows the emulator.
+ * PRU. Nothing here does I/O of its own or knows the emulator, and nothing
+ * here knows the host: its values are the contract's (include/biss/
+ * biss_types.h, the public rules on them biss_rules.h), as is everything
+ * it includes.
  */
 #ifndef BISS_PROTO_H
 #define BISS_PROTO_H
 
-#include "libbiss.h"
-
+#include "biss/biss_rules.h"
 #include "biss/biss_shm_struct.h"
 #include "biss/biss_slave_shm_struct.h"
+#include "biss/biss_types.h"
 #include "biss_cd.h"
 
 #include <stdbool.h>
@@ -32,6 +35,11 @@
 /* A checked config into the shm block (out->seq left 0: the caller writes
  * CFG_SEQ last, on its own). */
 void biss_config_encode(const struct biss_config *c, struct biss_shm_config *out);
+/* The same with the MA half period H given instead of c->freq_hz's, as it
+ * is: a rate the firmware clocks that no whole number of Hz names (H = 12:
+ * 8.33 MHz; 1024: 97.66 kHz), or one it refuses (its refusal tests). */
+void biss_config_encode_half(const struct biss_config *c, unsigned half,
+                             struct biss_shm_config *out);
 /* Decodes a block read back from data RAM, as untrusted input: 0,
  * BISS_E_NOT_CONFIGURED (no rate: never configured) or BISS_E_SHM_CONFIG
  * (*field names the first bad field). */
@@ -41,12 +49,23 @@ int biss_fw_cfg_error(uint32_t cfgerr);
 /* "BISS_CFGERR_HALF: ..." for a code the firmware reports in
  * BISS_ST_CFG_ERROR. */
 const char *biss_proto_cfg_error_text(uint32_t code);
-/* The firmware's rule for an MA half period in PRU cycles: BISS_OK, or
- * BISS_E_RATE_RANGE (outside BISS_MIN_HALF..BISS_MAX_HALF) or
- * BISS_E_RATE_SHIFT (no exact 8x shift clock). */
+/* The MA rate rule, once (biss_rate.c; biss_rate_half, biss/biss_rules.h,
+ * is its public face). The firmware's rule for an MA half period in PRU
+ * cycles: BISS_OK, or BISS_E_RATE_RANGE (outside
+ * BISS_MIN_HALF..BISS_MAX_HALF) or BISS_E_RATE_SHIFT (no exact 8x shift
+ * clock). */
 int biss_proto_half_check(unsigned half);
 /* The same as a sentence, NULL when the firmware takes it. */
 const char *biss_proto_half_problem(unsigned half);
+/* H to the rate a biss_config names, 100 MHz / H in whole Hz (freq_hz may
+ * be NULL): BISS_OK, the firmware's refusal of H, or BISS_E_RATE_INEXACT
+ * (the firmware clocks it, but no whole number of Hz names it). */
+int biss_proto_half_rate(unsigned half, uint32_t *freq_hz);
+/* Any rate in Hz (biss-sim's --freq takes 97656.25) to H: BISS_OK when
+ * 100 MHz / freq_hz is a whole number of PRU cycles (to 1e-9) up to 65535,
+ * else BISS_E_RATE_INEXACT or BISS_E_RATE_RANGE (BISS_E_INVAL: not above
+ * 0). Whether the firmware clocks that H is biss_proto_half_check's. */
+int biss_proto_freq_half(double freq_hz, unsigned *half);
 /* biss_line_check for any half period the firmware clocks, 100 MHz / H
  * whole in Hz or not (biss-sim takes 97656.25 Hz). */
 int biss_proto_line_check(unsigned half, const struct biss_line_facts *f,

@@ -1,5 +1,7 @@
 /* biss_rate.c - which MA rates the firmware can clock exactly: the one
- * copy of its rule (biss_master.p checks the same at configuration). */
+ * copy of its rule on the host side (the firmware's own is config.p's
+ * factor loop; test_e2e_rate_rule holds the two together at every H), and
+ * the conversions between a rate and H that rest on it. */
 #include "biss_proto.h"
 
 /* The 28-bit shift register samples SL at 8x MA from two cascaded
@@ -33,6 +35,36 @@ const char *biss_proto_half_problem(unsigned half) {
                "2 <= a, b <= 32)";
     }
     return NULL;
+}
+
+int biss_proto_half_rate(unsigned half, uint32_t *freq_hz) {
+    int rc = biss_proto_half_check(half);
+    if (rc != BISS_OK) {
+        return rc;
+    }
+    if (BISS_HALF_CLOCK_HZ % half != 0) {
+        return BISS_E_RATE_INEXACT;
+    }
+    if (freq_hz) {
+        *freq_hz = BISS_HALF_CLOCK_HZ / half;
+    }
+    return BISS_OK;
+}
+
+int biss_proto_freq_half(double freq_hz, unsigned *half) {
+    if (!half || !(freq_hz > 0)) {
+        return BISS_E_INVAL;
+    }
+    double h = BISS_HALF_CLOCK_HZ / freq_hz;
+    if (!(h <= UINT16_MAX)) {
+        return BISS_E_RATE_RANGE; /* no half period the block holds (and no double to round) */
+    }
+    unsigned n = (unsigned)(h + 0.5); /* h > 0: the nearest whole number */
+    if (h - n > 1e-9 || n - h > 1e-9) {
+        return BISS_E_RATE_INEXACT;
+    }
+    *half = n;
+    return BISS_OK;
 }
 
 int biss_rate_half(uint32_t freq_hz, unsigned *half) {

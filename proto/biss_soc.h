@@ -8,7 +8,7 @@
 #ifndef BISS_SOC_H
 #define BISS_SOC_H
 
-#include "biss/pruss_map.h"
+#include "pruss/pruss_map.h"
 
 #include <stdint.h>
 

@@ -67,17 +67,17 @@ void bench_fw_layout(const struct bench *b, struct biss_config *c) {
     }
 }
 
-void bench_fw_block(const struct bench *b, const struct bench_fw_settings *s,
-                    struct biss_shm_config *blk) {
-    struct biss_config c;
-    biss_config_default(&c);
-    bench_fw_layout(b, &c);
-    c.freq_hz = s->half ? BISS_HALF_CLOCK_HZ / s->half : 0;
-    c.trigger = (enum biss_trigger)s->trigger;
-    c.iep_period_ns = s->iep_period * 5u; /* 5 ns IEP counts */
-    c.proc_limit = s->proc_limit;
-    biss_config_encode(&c, blk);
-    blk->half = (uint16_t)s->half;
+void bench_fw_config(const struct bench *b, struct biss_config *c) {
+    biss_config_default(c);
+    bench_fw_layout(b, c);
+}
+
+void bench_fw_block(const struct biss_config *c, unsigned half, struct biss_shm_config *blk) {
+    if (half) {
+        biss_config_encode_half(c, half, blk);
+    } else {
+        biss_config_encode(c, blk);
+    }
 }
 
 int bench_fw_put_block(struct bench *b, const struct biss_shm_config *blk) {
@@ -87,11 +87,11 @@ int bench_fw_put_block(struct bench *b, const struct biss_shm_config *blk) {
     return rc ? rc : biss_proto_config_put(&io, blk, cur.seq + 1);
 }
 
-int bench_fw_configure(struct bench *b, const struct bench_fw_settings *s) {
+int bench_fw_configure(struct bench *b, const struct biss_config *c, unsigned half) {
     struct biss_shm_config blk;
-    bench_fw_block(b, s, &blk);
+    bench_fw_block(c, half, &blk);
     /* the frame marks follow the rate the firmware will clock */
-    bench_set_ma_half(b, biss_proto_half_check(s->half) == BISS_OK ? s->half : 0);
+    bench_set_ma_half(b, biss_proto_half_check(blk.half) == BISS_OK ? blk.half : 0);
     return bench_fw_put_block(b, &blk);
 }
 

@@ -572,15 +572,9 @@ static int check_line(const scenario *sc, unsigned half, const char *who,
     return 0;
 }
 
-/* MA half period in PRU cycles for the rate: 100 MHz / f, whole. */
-static int half_period_cycles(double freq_hz, unsigned *half) {
-    double h = 100e6 / freq_hz;
-    if (fabs(h - round(h)) > 1e-9 || h < 5 || h > BISS_MAX_HALF) {
-        return -1;
-    }
-    *half = (unsigned)round(h);
-    return 0;
-}
+/* The shortest MA half period the bench clocks a bare image at (--image:
+ * clock_frames.p's loops); the firmware's own limits are proto's rule. */
+#define SIM_IMAGE_MIN_HALF 5
 
 static void progress(uint64_t done, uint64_t total) {
     fprintf(stderr, "\rbiss-sim: frame %llu/%llu", (unsigned long long)done,
@@ -813,10 +807,11 @@ static int run(const struct options *o) {
     if (build_config(o, &cfg) != 0) {
         return 1;
     }
-    unsigned half;
-    if (half_period_cycles(o->freq_hz, &half) != 0) {
-        return die("--freq %g: 100 MHz / f must be a whole number of PRU cycles, 5..%d", o->freq_hz,
-                   BISS_MAX_HALF);
+    unsigned half; /* the rate's H, once, by proto's rate rule */
+    if (biss_proto_freq_half(o->freq_hz, &half) != BISS_OK || half < SIM_IMAGE_MIN_HALF ||
+        half > BISS_MAX_HALF) {
+        return die("--freq %g: 100 MHz / f must be a whole number of PRU cycles, %d..%d",
+                   o->freq_hz, SIM_IMAGE_MIN_HALF, BISS_MAX_HALF);
     }
     const char *why_not = o->image ? NULL : biss_proto_half_problem(half);
     if (why_not) {
@@ -894,11 +889,10 @@ static int run(const struct options *o) {
     if (rc == 0 && fw_mode) {
         fw_check_attach(&fc, b);
         rc = safety_checks(o, &fc.cfg);
-        struct bench_fw_settings s = {.half = half,
-                                      .trigger = o->trigger,
-                                      .iep_period = o->trigger == BISS_TRIG_IEP ? iep_period : 0,
-                                      .proc_limit = 1000};
-        fw_check_configure(&fc, &s);
+        fc.cfg.trigger = (enum biss_trigger)o->trigger;
+        fc.cfg.iep_period_ns = o->trigger == BISS_TRIG_IEP ? iep_period * 5u : 0; /* 5 ns counts */
+        fc.cfg.proc_limit = 1000;
+        fw_check_configure(&fc, half); /* H as is: --freq need not be a whole number of Hz */
         if (o->cd_set && cfg.link.protocol == SCENARIO_SSI) {
             rc = die("%s: an SSI encoder has no control communication", o->cd_what);
         }
@@ -938,9 +932,14 @@ static int run(const struct options *o) {
                             .host_step_ps = o->trigger == BISS_TRIG_HOST ? host_step : 0};
     enum pru_stop why = fw_mode ? run_firmware(b, &fc, &cd, &plan)
                                 : bench_run_frames(b, o->frames, max_ps, NULL, NULL);
-    struct sim_result res = {b,          fw_mode ? &fc : NULL,    why,
-                             o->freq_hz, now_seconds() - t_start, cd.done ? &cd : NULL,
-                             o->trigger};
+    struct sim_result res = {.b = b,
+                             .fw = fw_mode ? &fc : NULL,
+                             .why = why,
+                             .freq_hz = o->freq_hz,
+                             .half = half,
+                             .host_seconds = now_seconds() - t_start,
+                             .cd = cd.done ? &cd : NULL,
+                             .trigger = o->trigger};
     if (tty) {
         fprintf(stderr, "\r%40s\r", "");
     }

@@ -227,19 +227,16 @@ static void on_publish(void *ctx, uint32_t addr) {
 void fw_check_attach(struct fw_check *fc, struct bench *b) {
     memset(fc, 0, sizeof(*fc));
     fc->b = b;
-    biss_config_default(&fc->cfg);
-    bench_fw_layout(b, &fc->cfg);
+    bench_fw_config(b, &fc->cfg);
     fc->limit = UINT64_MAX;
     fc->watch = UINT64_MAX;
     fc->sl_delay_ps = (sim_ps)(line_nominal_delay_ps(&bench_link(b)->sc.sl_line) + 0.5);
     pru_set_store_watch(bench_core(b), BISS_ST_SEQ, on_publish, fc);
 }
 
-int fw_check_configure(struct fw_check *fc, const struct bench_fw_settings *s) {
-    fc->cfg.trigger = (enum biss_trigger)s->trigger;
-    fc->cfg.iep_period_ns = s->iep_period * 5u; /* 5 ns IEP counts */
+int fw_check_configure(struct fw_check *fc, unsigned half) {
     biss_safety_restart(&fc->safety);
-    return bench_fw_configure(fc->b, s);
+    return bench_fw_configure(fc->b, &fc->cfg, half);
 }
 
 void fw_check_watch(struct fw_check *fc, uint64_t k) {

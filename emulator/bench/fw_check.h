@@ -82,13 +82,15 @@ struct fw_check {
 /* Starts checking the bench's publications from now on (no limit). */
 void fw_check_attach(struct fw_check *fc, struct bench *b);
 
-/* Configures the firmware (bench_fw_configure: 0 or a negative code) and
- * times the host's checks as its trigger does: by the frame numbers times
- * the IEP period for BISS_TRIG_IEP and BISS_TRIG_IEP_FOLLOW (for which
- * s->iep_period is the owning channel's period: the firmware takes none),
- * else by the timestamps. The checks start afresh, as libbiss's do after a
- * configuration. */
-int fw_check_configure(struct fw_check *fc, const struct bench_fw_settings *s);
+/* Configures the firmware with fc->cfg (fw_check_attach's: the chain's
+ * layout; the caller sets its rate, trigger, IEP period, processing-time
+ * limit and safety checks) through bench_fw_configure (half: 0 for
+ * cfg.freq_hz's H; 0 or a negative code), and times the host's checks as
+ * its trigger does: by the frame numbers times cfg.iep_period_ns for
+ * BISS_TRIGGER_IEP and BISS_TRIGGER_IEP_FOLLOW (for which it is the owning
+ * channel's period: the firmware takes none), else by the timestamps. The
+ * checks start afresh, as libbiss's do after a configuration. */
+int fw_check_configure(struct fw_check *fc, unsigned half);
 
 /* Keeps the publication of the frame the slave numbers k (from 0) in
  * fc->watched, whatever the limit. */

@@ -124,14 +124,9 @@ int sim_pair(const struct sim_pair_run *r) {
     }
     r = &rr;
     struct fw_check fc[2];
-    /* the follower's checks count its frames in the owner's periods */
-    struct bench_fw_settings set[2] = {
-        {.half = r->half, .trigger = BISS_TRIG_IEP, .iep_period = period, .proc_limit = 1000},
-        {.half = r->half,
-         .trigger = BISS_TRIG_IEP_FOLLOW,
-         .iep_period = period,
-         .proc_limit = 1000},
-    };
+    /* PRU0 owns the IEP; the follower's checks count its frames in the
+     * owner's periods (5 ns IEP counts) */
+    static const enum biss_trigger trigger[2] = {BISS_TRIGGER_IEP, BISS_TRIGGER_IEP_FOLLOW};
     int rc = 0;
     for (unsigned i = 0; i < 2 && rc == 0; i++) {
         if (bench_fw_start(b[i], r->image[i], r->bytes[i]) != 0) {
@@ -144,7 +139,10 @@ int sim_pair(const struct sim_pair_run *r) {
             fprintf(stderr, "biss-sim: PRU0: more than 4 pairs checked\n");
             rc = 1;
         }
-        fw_check_configure(&fc[i], &set[i]);
+        fc[i].cfg.trigger = trigger[i];
+        fc[i].cfg.iep_period_ns = period * 5u;
+        fc[i].cfg.proc_limit = 1000;
+        fw_check_configure(&fc[i], r->half);
         int bad = rc ? BISS_OK : biss_safety_config_check(&fc[i].cfg);
         if (bad) {
             fprintf(stderr, "biss-sim: PRU%u: safety checks: %s\n", i, sim_safety_problem(bad));
@@ -165,13 +163,14 @@ int sim_pair(const struct sim_pair_run *r) {
         double host = seconds() - t0;
         cJSON *j = r->json ? cJSON_CreateObject() : NULL;
         for (unsigned i = 0; i < 2; i++) {
-            struct sim_result res = {b[i],
-                                     &fc[i],
-                                     why,
-                                     100e6 / r->half,
-                                     host,
-                                     NULL,
-                                     i ? BISS_TRIG_IEP_FOLLOW : BISS_TRIG_IEP};
+            struct sim_result res = {.b = b[i],
+                                     .fw = &fc[i],
+                                     .why = why,
+                                     .freq_hz = 100e6 / r->half,
+                                     .half = r->half,
+                                     .host_seconds = host,
+                                     .cd = NULL,
+                                     .trigger = i ? BISS_TRIG_IEP_FOLLOW : BISS_TRIG_IEP};
             if (j) {
                 cJSON *one = sim_json(&res);
                 cJSON_AddStringToObject(one, "trigger", i ? "iep-follow" : "iep");

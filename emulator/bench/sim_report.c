@@ -389,7 +389,7 @@ cJSON *sim_json(const struct sim_result *r) {
     if (r->cd) {
         add_control(j, r->cd);
     }
-    add_frame_marks(j, st, (unsigned)(100e6 / r->freq_hz + 0.5), r->trigger);
+    add_frame_marks(j, st, r->half, r->trigger);
     return j;
 }
 
@@ -565,7 +565,7 @@ void sim_print_text(const struct sim_result *r) {
     }
     printf("PRU cycles           %lld in %.3f s host time\n", (long long)pru_cycles(bench_core(b)),
            r->host_seconds);
-    print_frame_marks(st, (unsigned)(100e6 / r->freq_hz + 0.5), r->trigger);
+    print_frame_marks(st, r->half, r->trigger);
     if (fw) {
         print_publication(fw);
         print_read(r);

@@ -15,7 +15,8 @@ struct sim_result {
     struct bench *b;
     const struct fw_check *fw; /* NULL: the image is not the BiSS master firmware */
     enum pru_stop why;
-    double freq_hz;
+    double freq_hz; /* the MA rate as asked for (--freq) */
+    unsigned half;  /* ... and its half period, PRU cycles (proto's rate rule) */
     double host_seconds;
     const struct fw_cd *cd; /* a control frame that ran, or NULL */
     unsigned trigger;       /* BISS_TRIG_*: free-run frames have a restart to measure */

@@ -18,7 +18,7 @@
 #ifndef PRU_CORE_H
 #define PRU_CORE_H
 
-#include "biss/pruss_map.h"
+#include "pruss/pruss_map.h"
 
 #include <stdbool.h>
 #include <stddef.h>
@@ -265,7 +265,7 @@ uint32_t pru_iram_bytes(const struct pru_core *c);
 uint32_t pru_dram_bytes(const struct pru_core *c);
 uint32_t pru_shared_bytes(const struct pru_core *c);
 
-/* Global (ARM view) offsets inside the PRU-ICSS: include/biss/pruss_map.h. */
+/* Global (ARM view) offsets inside the PRU-ICSS: include/pruss/pruss_map.h. */
 #define PRU_OFS_DRAM0  PRUSS_OFS_DRAM0
 #define PRU_OFS_DRAM1  PRUSS_OFS_DRAM1
 #define PRU_OFS_SHARED PRUSS_OFS_SHARED

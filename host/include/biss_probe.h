@@ -8,11 +8,15 @@
  * capture layout (biss_probe below): 8 slaves x (64 data + 16 CRC bits),
  * no nE/nW, so the firmware clocks 640 bits after the CDS and publishes
  * the data words and, per slave, its CRC register, from which the 16 bits
- * after each word follow (host/biss_probe.c). After the last slave's CRC
+ * after each word follow (host/probe/biss_probe.c). After the last slave's CRC
  * the wire reads 0: the last
  * slave's SLI input is tied low and every slave passes it on ([MB4],
  * "BiSS C Frame"; the model, emulator/slave/biss_slave.h, sends 0 on every
  * further rising edge). So the frame ends after the last bit that is ever 1.
+ *
+ * The public part: the analysis of frames, the handle's probe and what it
+ * reports. The steps biss_probe takes inside (the registers' layout, the
+ * SSI words) are host/probe/biss_probe_priv.h's.
  */
 #ifndef BISS_PROBE_H
 #define BISS_PROBE_H
@@ -198,26 +202,13 @@ enum biss_probe_reg_verdict {
     BISS_PROBE_REG_DISAGREE, /* no candidate the wire kept has them */
 };
 
-/* The layout regs (of one ID) describe; false when they are of no format
- * known. Values that make no frame (a data word over 64 bits, a CRC
- * outside 3..16 bits, 0xFF "not used") are described too: *why then says
- * which and the return is still true, with out->nchannels 0. */
-bool biss_probe_reg_layout_decode(const struct biss_probe_regs *regs,
-                                  struct biss_probe_reg_layout *out, char *why, size_t why_size);
-/* The described layout against the wire's candidates: the verdict, which
- * candidate agrees (1-based; 0: none) and, for a disagreement, the first
- * field that differs from candidate 1, in words. */
-enum biss_probe_reg_verdict biss_probe_reg_compare(const struct biss_probe_reg_layout *rl,
-                                                   const struct biss_probe_result *wire,
-                                                   unsigned *agree_with, char *why,
-                                                   size_t why_size);
 const char *biss_probe_reg_verdict_name(enum biss_probe_reg_verdict v);
 
 /* ---- SSI (pure) -------------------------------------------------------------
  * An encoder no BiSS layout fits and whose registers do not answer may be
  * an SSI one (its word can pass for an ACK and start bit): its words
  * (64 bits captured, MSB first, from the first rising edge) are looked at
- * for their length, a CRC and the code (host/biss_probe_ssi.c). */
+ * for their length, a CRC and the code (host/probe/biss_probe_ssi.c). */
 struct biss_probe_ssi {
     bool tried;         /* an SSI capture was made */
     bool decided;       /* bits and code named (no CRC fits) */
@@ -232,11 +223,6 @@ struct biss_probe_ssi {
     uint32_t crc_poly;
     char verdict[240]; /* in words */
 };
-
-/* The words w[0..n-1] (fno: their frame numbers, or NULL); out->delay_ns
- * is kept. 0, or BISS_E_INVAL. "Cannot decide" is in out->verdict. */
-int biss_probe_ssi_analyse(const uint64_t *w, const uint32_t *fno, unsigned n,
-                           struct biss_probe_ssi *out);
 
 struct biss_probe_params {
     uint32_t freq_hz;      /* MA rate for the capture (must be valid for biss_rate_half) */

@@ -94,8 +94,8 @@ void e2e_run_publications(struct e2e_run *r, uint64_t n, int64_t max_ps) {
     }
 }
 
-void e2e_configure(struct e2e_run *r, const struct bench_fw_settings *s) {
-    ck_assert_int_eq(fw_check_configure(&r->fc, s), 0);
+void e2e_configure(struct e2e_run *r, unsigned half) {
+    ck_assert_int_eq(fw_check_configure(&r->fc, half), 0);
     uint32_t seq = e2e_cfg_seq(r->b);
     int64_t end = pru_time_ps(bench_core(r->b)) + 10 * SIM_PS_PER_MS;
     while (bench_fw_status(r->b).cfg_ack != seq && pru_time_ps(bench_core(r->b)) < end) {
@@ -106,9 +106,10 @@ void e2e_configure(struct e2e_run *r, const struct bench_fw_settings *s) {
 }
 
 uint64_t e2e_run_frames(struct e2e_run *r, unsigned half, unsigned proc_limit, uint64_t frames) {
-    struct bench_fw_settings s = {
-        .half = half, .trigger = BISS_TRIG_FREERUN, .proc_limit = proc_limit};
-    ck_assert_int_eq(fw_check_configure(&r->fc, &s), 0);
+    r->fc.cfg.trigger = BISS_TRIGGER_FREERUN;
+    r->fc.cfg.iep_period_ns = 0;
+    r->fc.cfg.proc_limit = proc_limit;
+    ck_assert_int_eq(fw_check_configure(&r->fc, half), 0);
     /* start-up: training, then the first valid frame */
     int64_t end = pru_time_ps(bench_core(r->b)) + 20 * SIM_PS_PER_MS;
     while (r->fc.frames == 0 && pru_time_ps(bench_core(r->b)) < end) {

@@ -34,9 +34,11 @@ void e2e_start_firmware(struct e2e_run *r);
  * valid frames checked (fewer if time ran out). */
 uint64_t e2e_run_frames(struct e2e_run *r, unsigned half, unsigned proc_limit, uint64_t frames);
 
-/* Writes the configuration and runs until the firmware has taken it (its
+/* Writes r->fc.cfg (the chain's layout; the caller sets its trigger, IEP
+ * period and limit) at half period `half` (fw_check_configure: 0 for
+ * cfg.freq_hz's) and runs until the firmware has taken it (its
  * ST_CFG_ACK), at most 10 ms of simulated time. */
-void e2e_configure(struct e2e_run *r, const struct bench_fw_settings *s);
+void e2e_configure(struct e2e_run *r, unsigned half);
 
 /* Simulated time until the firmware publishes `n` more frames of any kind,
  * at most max_ps. */

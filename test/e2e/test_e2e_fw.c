@@ -133,9 +133,13 @@ START_TEST(test_bad_config_is_flagged) {
     ck_assert_uint_eq(e2e_run_frames(&r, 10, 1000, 20), 20);
     uint32_t seq = e2e_cfg_seq(b);
     /* the good block again, with one field broken */
-    struct bench_fw_settings s = {.half = 10, .trigger = BISS_TRIG_FREERUN, .proc_limit = 1000};
+    struct biss_config c;
+    bench_fw_config(b, &c);
+    c.freq_hz = 10000000;
+    c.trigger = BISS_TRIGGER_FREERUN;
+    c.proc_limit = 1000;
     struct biss_shm_config blk;
-    bench_fw_block(b, &s, &blk);
+    bench_fw_block(&c, 0, &blk);
     memcpy((uint8_t *)&blk + bad[_i].off, &bad[_i].value, bad[_i].bytes); /* little-endian */
     ck_assert_int_eq(bench_fw_put_block(b, &blk), 0);
     uint64_t pubs = r.fc.publications;
@@ -166,8 +170,10 @@ START_TEST(test_processing_time_limit) {
     ck_assert_uint_eq(r.fc.proc_clocks_max, 23);
     ck_assert_uint_eq(r.fc.proc_errors, 0);
     ck_assert_uint_eq(r.fc.mismatches, 0);
-    struct bench_fw_settings s = {.half = 10, .trigger = BISS_TRIG_FREERUN, .proc_limit = 22};
-    e2e_configure(&r, &s);
+    r.fc.cfg.freq_hz = 10000000;
+    r.fc.cfg.trigger = BISS_TRIGGER_FREERUN;
+    r.fc.cfg.proc_limit = 22;
+    e2e_configure(&r, 0);
     fw_check_restart(&r.fc, UINT64_MAX);
     e2e_run_publications(&r, 20, 20 * SIM_PS_PER_MS);
     ck_assert_uint_ge(r.fc.proc_errors, 19); /* all but the training */
@@ -206,8 +212,12 @@ END_TEST
 START_TEST(test_host_trigger) {
     struct e2e_run r;
     struct bench *b = e2e_bench(&r, "tidep0022-test-encoder", 2, NULL);
-    struct bench_fw_settings s = {.half = 10, .trigger = BISS_TRIG_HOST, .proc_limit = 1000};
-    ck_assert_int_eq(bench_fw_configure(b, &s), 0);
+    struct biss_config c;
+    bench_fw_config(b, &c);
+    c.freq_hz = 10000000;
+    c.trigger = BISS_TRIGGER_HOST;
+    c.proc_limit = 1000;
+    ck_assert_int_eq(bench_fw_configure(b, &c, 0), 0);
     ck_assert_int_eq(bench_run_until(b, 2 * SIM_PS_PER_MS), PRU_STOP_LIMIT);
     ck_assert_uint_eq(r.fc.training, 1);
     ck_assert_uint_eq(r.fc.frames, 0); /* nothing without a trigger */
@@ -233,10 +243,13 @@ static void iep_period_exact(const char *profile, unsigned half, uint32_t period
                              const struct pru_params *p) {
     struct e2e_run r;
     struct bench *b = e2e_bench(&r, profile, 2, p);
-    struct bench_fw_settings s = {
-        .half = half, .trigger = BISS_TRIG_IEP, .iep_period = period, .proc_limit = 1000};
+    struct biss_config c;
+    bench_fw_config(b, &c);
+    c.trigger = BISS_TRIGGER_IEP;
+    c.iep_period_ns = period * 5u; /* 5 ns IEP counts */
+    c.proc_limit = 1000;
     int64_t period_ps = (int64_t)period * PRU_PS_PER_CYCLE;
-    ck_assert_int_eq(bench_fw_configure(b, &s), 0);
+    ck_assert_int_eq(bench_fw_configure(b, &c, half), 0);
     e2e_run_publications(&r, 3, 10 * SIM_PS_PER_MS);
     bench_reset_stats(b);
     fw_check_restart(&r.fc, UINT64_MAX);

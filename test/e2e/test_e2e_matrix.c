@@ -49,9 +49,11 @@ START_TEST(test_cell) {
             e2e_free(&r);
             return;
         }
-        struct bench_fw_settings s = {
-            .half = half, .trigger = BISS_TRIG_FREERUN, .proc_limit = 1000};
-        ck_assert_int_eq(bench_fw_configure(b, &s), 0);
+        struct biss_config c;
+        bench_fw_config(b, &c);
+        c.trigger = BISS_TRIGGER_FREERUN;
+        c.proc_limit = 1000;
+        ck_assert_int_eq(bench_fw_configure(b, &c, half), 0);
         e2e_run_publications(&r, 200, 50 * SIM_PS_PER_MS);
         ck_assert_uint_eq(r.fc.mismatches, 0);
         e2e_free(&r);

@@ -139,8 +139,9 @@ START_TEST(strict_log_first_frame) {
     p.strict_log = 1;
     struct e2e_run r;
     struct bench *b = e2e_bench(&r, "hengstler-ad38", 2, &p);
-    struct bench_fw_settings s = {.half = h[_i], .trigger = BISS_TRIG_FREERUN, .proc_limit = 1000};
-    e2e_configure(&r, &s);
+    r.fc.cfg.trigger = BISS_TRIGGER_FREERUN;
+    r.fc.cfg.proc_limit = 1000;
+    e2e_configure(&r, h[_i]); /* 15: no whole number of Hz */
     /* frame by frame until the first valid one; the log is cleared at each
      * publication before it (a frame's violations are logged at the MA edge
      * that closes their period, all before its publication) */

@@ -98,14 +98,15 @@ static void pair_run(struct pair *p, uint64_t n, int64_t step_ps, int64_t max_ps
 }
 
 static void configure(struct pair *p, unsigned half0, unsigned half1) {
-    struct bench_fw_settings s0 = {
-        .half = half0, .trigger = BISS_TRIG_IEP, .iep_period = PERIOD, .proc_limit = 1000};
-    struct bench_fw_settings s1 = {.half = half1,
-                                   .trigger = BISS_TRIG_IEP_FOLLOW,
-                                   .iep_period = PERIOD, /* the owner's: the checks time by it */
-                                   .proc_limit = 1000};
-    ck_assert_int_eq(fw_check_configure(&p->r[0].fc, &s0), 0);
-    ck_assert_int_eq(fw_check_configure(&p->r[1].fc, &s1), 0);
+    static const enum biss_trigger trigger[2] = {BISS_TRIGGER_IEP, BISS_TRIGGER_IEP_FOLLOW};
+    const unsigned half[2] = {half0, half1};
+    for (unsigned i = 0; i < 2; i++) {
+        struct biss_config *c = &p->r[i].fc.cfg;
+        c->trigger = trigger[i];
+        c->iep_period_ns = PERIOD * 5u; /* the follower's: the owner's, the checks time by it */
+        c->proc_limit = 1000;
+        ck_assert_int_eq(fw_check_configure(&p->r[i].fc, half[i]), 0);
+    }
     /* training frames, the IEP set up, the first periods */
     pair_run(p, 3, 5 * SIM_PS_PER_US, 10 * SIM_PS_PER_MS, NULL, NULL);
     for (unsigned i = 0; i < 2; i++) {
@@ -235,11 +236,17 @@ START_TEST(test_same_line_both) {
                   diag.first_error);
     ck_assert_int_eq(bench_fw_start(p.r[1].b, img.words, img.nwords * 4), 0);
     pruasm_image_free(&img);
-    struct bench_fw_settings s0 = {
-        .half = 10, .trigger = BISS_TRIG_IEP, .iep_period = PERIOD, .proc_limit = 1000};
-    struct bench_fw_settings s1 = {.half = 10, .trigger = BISS_TRIG_IEP_FOLLOW, .proc_limit = 1000};
-    ck_assert_int_eq(bench_fw_configure(p.r[0].b, &s0), 0);
-    ck_assert_int_eq(bench_fw_configure(p.r[1].b, &s1), 0);
+    struct biss_config c[2];
+    for (unsigned i = 0; i < 2; i++) {
+        bench_fw_config(p.r[i].b, &c[i]);
+        c[i].freq_hz = 10000000;
+        c[i].proc_limit = 1000;
+    }
+    c[0].trigger = BISS_TRIGGER_IEP;
+    c[0].iep_period_ns = PERIOD * 5u;
+    c[1].trigger = BISS_TRIGGER_IEP_FOLLOW;
+    ck_assert_int_eq(bench_fw_configure(p.r[0].b, &c[0], 0), 0);
+    ck_assert_int_eq(bench_fw_configure(p.r[1].b, &c[1], 0), 0);
     struct bench *b = p.r[0].b;
     ck_assert_int_eq(bench_run_until(b, pru_time_ps(bench_core(b)) + 5 * SIM_PS_PER_MS),
                      PRU_STOP_FAULT);

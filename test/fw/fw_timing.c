@@ -213,8 +213,7 @@ struct pru_core *fw_configure(const struct fw *f, const struct fw_config *cf, ui
         };
     }
     struct biss_shm_config blk;
-    biss_config_encode(&bc, &blk);
-    blk.half = (uint16_t)cf->half;
+    biss_config_encode_half(&bc, cf->half, &blk);
     uint32_t seq = 1;
     struct biss_proto_io io = {.read = io_read, .write = io_write, .ctx = c};
     if (biss_proto_config_put(&io, &blk, seq) != BISS_OK) {

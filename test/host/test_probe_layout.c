@@ -1,4 +1,4 @@
-/* test_probe_layout.c - the probe's wire analysis (host/biss_probe_layout.c,
+/* test_probe_layout.c - the probe's wire analysis (host/probe/biss_probe_layout.c,
  * biss_probe_fields.c) on frames the slave model sends: every BiSS profile
  * and random layouts drawn from the documents (probe_gen.c). The probe must
  * name the layout the model was given, or say it is ambiguous or cannot

@@ -1,7 +1,7 @@
-/* test_probe_regs.c - the layout from the registers (host/biss_probe_regs.c)
+/* test_probe_regs.c - the layout from the registers (host/probe/biss_probe_regs.c)
  * on the values the AD38 notes give, on other manufacturers' device IDs
  * and on values no frame can have, and its comparison with wire layouts. */
-#include "biss_probe.h"
+#include "biss_probe_priv.h"
 #include "check_run.h"
 
 #include <check.h>

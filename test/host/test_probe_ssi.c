@@ -1,7 +1,7 @@
-/* test_probe_ssi.c - SSI words (host/biss_probe_ssi.c): the word length,
+/* test_probe_ssi.c - SSI words (host/probe/biss_probe_ssi.c): the word length,
  * Gray or binary from the steps, a CRC looked for, and what it refuses to
  * guess. Words are left-aligned, as the 64-bit SSI capture reads them. */
-#include "biss_probe.h"
+#include "biss_probe_priv.h"
 #include "check_run.h"
 
 #include <check.h>

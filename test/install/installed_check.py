@@ -79,7 +79,8 @@ def check_tree(root, tmp):
     check(os.path.realpath(libdir) == os.path.realpath(os.path.dirname(os.path.dirname(pc))),
           "libdir %r beside the .pc" % libdir)
     for f in ["bin/" + t for t in a.tools.split()] + [
-            "include/libbiss.h", "share/doc/pru_biss/README.md",
+            "include/libbiss.h", "include/biss/biss_types.h", "include/biss/biss_rules.h",
+            "share/doc/pru_biss/README.md",
             "share/doc/pru_biss/host/README.md"]:
         check(os.path.exists(os.path.join(prefix, f)), "installed: " + f)
     for f in ["biss_master.bin", "biss_master.elf", "biss_master_pru1.bin",

@@ -29,22 +29,22 @@ ALLOWED = {
     "test/host/fake_backend.c": ("*", "a fake firmware for libbiss's unit tests"),
     "test/host/fake_backend.h": ("*", "its result-buffer size"),
     "test/host/test_host_cd.c": ("*", "checks the words libbiss wrote, as the firmware reads them"),
-    "test/host/test_host_encode.c": ("*", "checks proto's encoding byte by byte against the header"),
+    "test/proto/test_proto_encode.c": ("*", "checks proto's encoding byte by byte against the header"),
     "test/host/test_host_linux.c": ("*", "a stand-in /dev/mem file with a fake firmware thread"),
     "test/host/test_host_rproc.c": ("*", "a stand-in remoteproc firmware writes its words"),
     "test/host/test_host_seqlock.c": ("*", "checks the words libbiss wrote, as the firmware reads them"),
-    "test/host_cd/cd_sim.c": ("*", "a model of the firmware's control-communication engine"),
-    "test/host_cd/test_cd_build.c": ("*", "checks the codec's data RAM image against the header"),
-    "test/host_cd/test_cd_sim.c": ("*", "drives the engine model's image as the firmware would see it"),
+    "test/proto/cd_sim.c": ("*", "a model of the firmware's control-communication engine"),
+    "test/proto/test_proto_cd_build.c": ("*", "checks the codec's data RAM image against the header"),
+    "test/proto/test_proto_cd_sim.c": ("*", "drives the engine model's image as the firmware would see it"),
     "test/layout/layout_roundtrip.c": ("*", "plays the firmware's side from the header's macros"),
     "emulator/bench/fw_check.c": ({"BISS_ST_SEQ"},
                                   "the store watch on the publication counter: what the "
                                   "bench watches, not a transfer"),
-    "host/biss_open.c": ({"BISS_ID"}, "names the block's address in an error message"),
+    "host/lib/biss_open.c": ({"BISS_ID"}, "names the block's address in an error message"),
 }
 # (test/golden/pasm/fw: a frozen copy of pru_fw/ and the header, for pasm's record)
 EXEMPT_DIRS = ("proto/", "include/biss/", "pru_fw/", "test/golden/pasm/fw/", "build")
-SCANNED_DIRS = ("host", "emulator", "test", "examples", "boards")
+SCANNED_DIRS = ("host", "common", "emulator", "test", "examples", "boards")
 
 # status block, moved for the second build
 STATUS = ("PRU", "MAGIC", "SEQ", "BUF", "CFG_ACK", "CFG_ERROR", "STATE", "FRAMES", "CRC_ERRORS",

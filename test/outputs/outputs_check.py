@@ -1,5 +1,5 @@
 """outputs_check.py - every tool that writes a file writes it safely
-(emulator/util/safe_file.h): pru-elf, pruasm, biss-sim's VCD and SVG and
+(common/safe_file.h): pru-elf, pruasm, biss-sim's VCD and SVG and
 bissctl's probe scenario, each against
 
   - a new name and an existing file: written, nothing else left beside it;
