@@ -1,4 +1,4 @@
-/* bissctl_encoder.c - bissctl encoder start|status|stop: the encoder
+/* bissctl_encoder.c - bissctl encoder start|status|ew|stop: the encoder
  * firmware (pru_slave/) on a PRU of the board, by default PRU1, the other
  * end of the one-board loop (docs/hardware.md, "One board, both ends"). */
 #include "bissctl.h"
@@ -133,6 +133,44 @@ static int status(struct bissctl_opts *o, biss_encoder_t **e) {
     return BISSCTL_OK;
 }
 
+/* ew SLAVE [error] [warning]: the slave's nE / nW sent active from the
+ * next frame, the one not named inactive (neither: both inactive). */
+static int ew(struct bissctl_opts *o, biss_encoder_t **e) {
+    uint8_t slave;
+    if (o->nargs < 2 || bissctl_parse_byte(o->args[1], BISS_ENC_MAX_SLAVES - 1, &slave)) {
+        fprintf(stderr,
+                "bissctl: encoder ew needs a slave 0..%u, then error, warning, both or "
+                "neither\n",
+                BISS_ENC_MAX_SLAVES - 1);
+        return BISSCTL_USAGE;
+    }
+    bool error = false, warning = false;
+    for (int i = 2; i < o->nargs; i++) {
+        if (strcmp(o->args[i], "error") == 0) {
+            error = true;
+        } else if (strcmp(o->args[i], "warning") == 0) {
+            warning = true;
+        } else {
+            fprintf(stderr, "bissctl: encoder ew: '%s': expected error or warning\n", o->args[i]);
+            return BISSCTL_USAGE;
+        }
+    }
+    o->open.attach = true;
+    int rc = biss_encoder_open(&o->open, e);
+    if (rc) {
+        fprintf(stderr, "bissctl: encoder: %s%s%s\n", biss_strerror(rc), o->errbuf[0] ? ": " : "",
+                o->errbuf);
+        return BISSCTL_FAIL;
+    }
+    rc = biss_encoder_set_ew(*e, slave, error, warning);
+    if (rc) {
+        return bissctl_fail("encoder ew", rc);
+    }
+    printf("slave %u: nE %s, nW %s\n", slave, error ? "active" : "inactive",
+           warning ? "active" : "inactive");
+    return BISSCTL_OK;
+}
+
 static int stop(struct bissctl_opts *o, biss_encoder_t **e) {
     o->open.attach = true;
     int rc = biss_encoder_open(&o->open, e);
@@ -166,11 +204,14 @@ int bissctl_encoder(struct bissctl_opts *o) {
         rc = start(o, &e);
     } else if (strcmp(sub, "status") == 0) {
         rc = status(o, &e);
+    } else if (strcmp(sub, "ew") == 0) {
+        rc = ew(o, &e);
     } else if (strcmp(sub, "stop") == 0) {
         rc = stop(o, &e);
     } else {
-        fprintf(stderr, "bissctl: encoder: expected start CHAIN, status or stop (bissctl encoder "
-                        "--help)\n");
+        fprintf(stderr,
+                "bissctl: encoder: expected start CHAIN, status, ew SLAVE [error] [warning] "
+                "or stop (bissctl encoder --help)\n");
         return BISSCTL_USAGE;
     }
     biss_encoder_close(e);

@@ -164,7 +164,8 @@ static const char *command_help(const char *command) {
                "  no target.\n";
     }
     if (strcmp(command, "encoder") == 0) {
-        return "bissctl [options] encoder start CHAIN | status | stop\n"
+        return "bissctl [options] encoder start CHAIN | status | ew SLAVE [error] [warning] | "
+               "stop\n"
                "  The encoder firmware (a BiSS-C slave chain, pru_slave/README.md) on a PRU\n"
                "  of the board, PRU1 unless --pru says otherwise: the other end of the\n"
                "  one-board loop (docs/hardware.md, \"One board, both ends\"). start loads\n"
@@ -173,8 +174,10 @@ static const char *command_help(const char *command) {
                "  profile name, with its register files, and leaves it running; a chain\n"
                "  that moves with time moves by counts per frame (at a 50 us frame: give\n"
                "  counts_per_frame in the scenario to choose). status prints what it did\n"
-               "  (frames, control communication); stop halts its PRU. Not on the\n"
-               "  emulator, where biss-sim --encoder runs the loop.\n";
+               "  (frames, control communication); ew sends slave SLAVE's nE and nW\n"
+               "  active (error, warning) or inactive (not named) from the next frame;\n"
+               "  stop halts its PRU. Not on the emulator, where biss-sim --encoder runs\n"
+               "  the loop.\n";
     }
     if (strcmp(command, "reg-write") == 0) {
         return "bissctl [options] reg-write [--id ID] ADDR BYTE...\n"
@@ -212,7 +215,8 @@ void bissctl_usage(const char *command) {
            "Commands: info, read [-n N], stats, run [--ms MS], trigger, start, stop,\n"
            "          reg-read ADDR [-n N], reg-write ADDR BYTE..., command IDS CMD [--force],\n"
            "          probe [-n N] [--time-limit S] [FILE.json], rates,\n"
-           "          encoder start CHAIN|status|stop (the encoder firmware, PRU1)\n"
+           "          encoder start CHAIN|status|ew SLAVE [error] [warning]|stop\n"
+           "          (the encoder firmware, PRU1)\n"
            "          (also spelt reg read, reg write, cmd; bissctl COMMAND --help for each)\n\n%s",
            common_help);
 }

@@ -510,8 +510,8 @@ with tempfile.TemporaryDirectory() as d:
 # the emulator it is refused (biss-sim --encoder runs the loop); on the file
 # standing in for /dev/mem, a thread plays the firmware as its start-up and
 # its configuration handshake write data RAM (include/biss/biss_slave_shm.h)
-for args, text in [(["encoder"], "expected start CHAIN, status or stop"),
-                   (["encoder", "go"], "expected start CHAIN, status or stop"),
+for args, text in [(["encoder"], "expected start CHAIN, status, ew"),
+                   (["encoder", "go"], "expected start CHAIN, status, ew"),
                    (["encoder", "start"], "needs the chain"),
                    (["encoder", "start", "nope"], "unknown profile 'nope'"),
                    (["encoder", "start", "/nonexistent.json"], "/nonexistent.json")]:
@@ -522,7 +522,7 @@ r = subprocess.run([CTL, "encoder", "start", "tidep0022-test-encoder"], capture_
 check(r.returncode == 1 and "biss-sim --encoder" in r.stderr, "encoder on emu: %r" % r.stderr)
 
 D1, IRAM1, CTRL1 = 0x2000, 0x38000, 0x24000     # PRU1's data RAM, IRAM, CONTROL
-SLV_CFG_SEQ, SLV_NSLAVES = 0x000, 0x004
+SLV_CFG_SEQ, SLV_NSLAVES, SLV_LIVE_EW = 0x000, 0x004, 0x018
 SLV_MAGIC, SLV_PRU, SLV_ACK, SLV_ERR, SLV_FRAMES, SLV_MA_BIT = 0x120, 0x124, 0x128, 0x12C, 0x130, 0x13F
 
 
@@ -575,6 +575,17 @@ with tempfile.TemporaryDirectory() as tmp:
         r = run(*dm, "encoder", "status", env=env)
         check(r.returncode == 0 and r.stdout.startswith("pru=1 ma_bit=1 cfg_seq=1 cfg_error=0\n")
               and "frames=4321 " in r.stdout, "encoder status: %r %r" % (r.stdout, r.stderr))
+        # nE/nW live: slave 1's nE active, then both inactive
+        r = run(*dm, "encoder", "ew", "1", "error", env=env)
+        check(r.returncode == 0 and r.stdout == "slave 1: nE active, nW inactive\n"
+              and rd(mem, BASE + D1 + SLV_LIVE_EW + 1, 1) == 0x01,
+              "encoder ew: %r %r" % (r.stdout, r.stderr))
+        r = run(*dm, "encoder", "ew", "1", env=env)
+        check(r.returncode == 0 and rd(mem, BASE + D1 + SLV_LIVE_EW + 1, 1) == 0,
+              "encoder ew clear: %r" % r.stderr)
+        for args in [["ew"], ["ew", "8"], ["ew", "0", "fault"]]:
+            r = run(*dm, "encoder", *args, env=env)
+            check(r.returncode == 2 and "encoder ew" in r.stderr, "%r: %r" % (args, r.stderr))
         # the master's PRU0 is left alone throughout
         check(rd(mem, BASE + CTRL0) == 0, "PRU0 touched: %#x" % rd(mem, BASE + CTRL0))
         r = run(*dm, "encoder", "stop", env=env)
