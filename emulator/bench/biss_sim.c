@@ -789,6 +789,10 @@ static int start_encoder(const struct options *o, struct bench *b, const struct 
     }
     int rc = sim_encoder_start(e, b, img.words, img.nwords * 4, &cfg->link.biss, err, sizeof err);
     pruasm_image_free(&img);
+    if (!rc && o->core.strict) {
+        /* clocked by its input: strict's scope from MA's edges (MA_IN_BIT) */
+        pru_strict_inputs(bench_encoder_core(b), 1u << 1);
+    }
     return rc ? die("--encoder: %s (%s)", err, path) : 0;
 }
 

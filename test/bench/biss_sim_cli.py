@@ -419,6 +419,14 @@ for f in ["1000000", "2000000", "5000000", "10000000"]:
           "jumper loop at %s Hz: %r %r" % (f, {k: j.get(k) for k in ("frames", "crc_errors",
                                                                    "position_mismatches")},
                                            r.stderr))
+# strict mode on both cores, the encoder's scope from MA's edges, a window
+# of H: the AD38 chain at 10 MHz runs clean (test_e2e_encoder strict_both,
+# test_slave_fw strict_timing_critical_code show the check bites)
+r = run("--encoder", "--profile", "hengstler-ad38", "--freq", "10000000", "--frames", "100",
+        "--strict=loop1,loop0,loopfield,dram,spad", "--strict-window", "10", "--json")
+j = json.loads(r.stdout) if r.returncode == 0 else {}
+check(j.get("frames") == 100 and j.get("crc_errors") == 0 and j.get("encoder", {}).get("sl_differ") == 0,
+      "--encoder --strict: rc %d %r" % (r.returncode, r.stderr))
 r = run("--encoder=/nonexistent.bin", "--frames", "3")
 check(r.returncode == 1 and "cannot read image '/nonexistent.bin'" in r.stderr,
       "--encoder missing image: %r" % r.stderr)
