@@ -14,6 +14,7 @@ packages=(
     python3 python3-pyelftools                    # the test scripts
     python3-cffi python3-numpy python3-pytest     # the Python module (integrations/python)
     python3-pip python3-setuptools                # ... installed from the tree by pip
+    linuxcnc-uspace-dev                           # the HAL component (integrations/linuxcnc), halrun
     device-tree-compiler                          # the board overlays (dtc, fdtoverlay)
     gcc-arm-linux-gnueabihf libc6-dev-armhf-cross # the board's ARM build (crt1.o: the latter)
     qemu-user                                     # runs the ARM build on the PC

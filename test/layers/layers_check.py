@@ -45,7 +45,7 @@ LAYERS = [
     ("libbiss core", ["host/lib/", "host/include/libbiss.h"]),
     ("backends", ["host/backend/", "host/include/libbiss-emu.h"]),
     ("discovery", ["host/probe/", "host/include/biss_probe.h"]),
-    ("bissctl", ["host/bissctl/", "host/CMakeLists.txt", "host/libbiss"]),
+    ("bissctl", ["host/bissctl/", "host/bench/", "host/CMakeLists.txt", "host/libbiss"]),
     ("applications and integrations", ["examples/", "integrations/"]),
 ]
 SOURCE_EXT = (".c", ".h", ".p", ".hp")

@@ -338,6 +338,35 @@ class Master:
         return {k: getattr(st, k) for k in ("frames", "crc_errors", "no_slave", "proc_errors",
                                             "training")}
 
+    # ---- discovery ------------------------------------------------------------
+    def probe(self, freq_hz=1000000, frames=0, read_regs=True):
+        """biss_probe: an unknown encoder's layout from raw frames (and its
+        identification registers). Returns a dict: verdict (unique, best,
+        ambiguous, ...), reason, frames, delay_ns, layouts (each as its
+        biss-sim scenario, a dict, with a configure()-ready "slaves" list),
+        notes. The master's configuration afterwards is the probe's."""
+        import json
+
+        p = ffi.new("struct biss_probe_params *")
+        p.freq_hz, p.frames, p.read_regs = freq_hz, frames, read_regs
+        r = ffi.new("struct biss_probe_report *")
+        _check(lib.biss_probe(self._handle(), p, r), "probe")
+        w = r.wire
+        layouts = []
+        buf = ffi.new("char[8192]")
+        for i in range(w.nkept):
+            _check(lib.biss_probe_to_json(ffi.addressof(w.layout[i]), buf, 8192), "probe layout")
+            c = ffi.new("struct biss_config *")
+            lib.biss_config_default(c)
+            lib.biss_probe_layout_config(ffi.addressof(w.layout[i]), c)
+            d = json.loads(ffi.string(buf).decode())
+            d["slaves"] = [Slave._from(c.slave[k]) for k in range(c.nslaves)]
+            layouts.append(d)
+        return {"verdict": ffi.string(lib.biss_probe_verdict_name(w.verdict)).decode(),
+                "reason": ffi.string(w.reason).decode(), "frames": w.frames,
+                "delay_ns": r.delay_ns, "layouts": layouts,
+                "notes": [ffi.string(r.notes[i]).decode() for i in range(r.nnotes)]}
+
     # ---- control communication --------------------------------------------
     def reg_read(self, slave_id, addr, n=1):
         """n bytes from slave_id's registers from addr (biss_reg_read)."""

@@ -106,3 +106,36 @@ def test_closed_master_refuses_calls():
     with pytest.raises(ValueError):
         m.read()
     m.close()  # twice is harmless
+
+
+def test_probe_finds_the_encoders_layout():
+    with biss.open("emu", profile="posital-kit-layout-biss-c", seed=3) as m:
+        r = m.probe(frames=256)
+        assert r["verdict"] == "unique", r["reason"]
+        want = biss.open("emu", profile="posital-kit-layout-biss-c")
+        try:
+            want.configure_from_emulator()
+            _, _, slaves = want.config()
+        finally:
+            want.close()
+        got = r["layouts"][0]["slaves"]
+        assert [(s.data_bits, s.crc_bits, s.crc_poly, s.has_ew) for s in got] == \
+               [(s.data_bits, s.crc_bits, s.crc_poly, s.has_ew) for s in slaves]
+        # the layout found configures the master, and it reads
+        m.configure(got)
+        m.start()
+        s = m.wait()
+        while s.training:
+            s = m.wait(after_frame=s.frame)
+        assert s.valid and s.crc_ok == [True]
+
+
+def test_a_command_is_sent_and_its_ida_read():
+    with biss.open("emu") as m:
+        m.configure_from_emulator()
+        m.start()
+        m.run_ms(1)
+        # command 0 addressed: "the data channel of each addressed slave on"
+        # (harmless; proto/biss_cd_cmd.c)
+        ida = m.command(0x01, 0, check_ida=True)
+        assert ida & 0x01
