@@ -527,16 +527,16 @@ SLV_MAGIC, SLV_PRU, SLV_ACK, SLV_ERR, SLV_FRAMES, SLV_MA_BIT = 0x120, 0x124, 0x1
 
 
 def play_encoder(mem, stop, slaves_seen):
-    """The encoder's start-up once PRU1 is enabled, then an ack for each
-    configuration, counting its frames up."""
+    """The encoder's start-up whenever PRU1 runs without its magic (a load
+    clears data RAM), then an ack for each configuration, its frames
+    counted."""
     import time
-    up = False
     while not stop.is_set():
-        if not up and rd(mem, BASE + CTRL1) & 2:
+        up = rd(mem, BASE + CTRL1) & 2
+        if up and rd(mem, BASE + D1 + SLV_MAGIC) != 0x564c5342:
             wr(mem, BASE + D1 + SLV_PRU, 1)
             wr(mem, BASE + D1 + SLV_MA_BIT, 1, 1)
             wr(mem, BASE + D1 + SLV_MAGIC, 0x564c5342)
-            up = True
         seq = rd(mem, BASE + D1 + SLV_CFG_SEQ)
         if up and seq and seq != rd(mem, BASE + D1 + SLV_ACK):
             slaves_seen.append(rd(mem, BASE + D1 + SLV_NSLAVES, 1))
@@ -575,6 +575,12 @@ with tempfile.TemporaryDirectory() as tmp:
         r = run(*dm, "encoder", "status", env=env)
         check(r.returncode == 0 and r.stdout.startswith("pru=1 ma_bit=1 cfg_seq=1 cfg_error=0\n")
               and "frames=4321 " in r.stdout, "encoder status: %r %r" % (r.stdout, r.stderr))
+        # a profile, as docs/hardware.md section 14 shows it (stdout and the note)
+        r = run(*dm, "--timeout-ms", "2000", "encoder", "start", "tidep0022-test-encoder", env=env)
+        check(r.returncode == 0 and r.stdout == "encoder running on PRU1: 1 slave, MA in on R31 bit "
+              "1, SL out on R30 bit 0\n" and r.stderr == "encoder: slave 0 moves 3 counts a frame "
+              "(50000 counts/s over a frame of 50.000 us)\n" and seen[-1] == 1,
+              "encoder start profile: %r %r" % (r.stdout, r.stderr))
         # nE/nW live: slave 1's nE active, then both inactive
         r = run(*dm, "encoder", "ew", "1", "error", env=env)
         check(r.returncode == 0 and r.stdout == "slave 1: nE active, nW inactive\n"
