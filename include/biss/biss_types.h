@@ -335,7 +335,7 @@ struct biss_safety_stats {
  * encoder, or a chain of up to 8: MA in on an R31 bit, SL out on R30 bit
  * 0, its data RAM laid out in include/biss/biss_slave_shm.h. With the
  * master on the other PRU of the same PRU-ICSS, two wires make a complete
- * loop on one board (docs/hardware.md); alone, it is an encoder simulator
+ * loop on one board (docs/hardware.md §14); alone, it is an encoder simulator
  * for any BiSS-C master. */
 #define BISS_ENC_MAX_SLAVES    8
 #define BISS_ENC_TABLE_ENTRIES 128 /* positions in the table */
