@@ -12,7 +12,9 @@
  *    lag are this frame's, and each slave's status has only CRC_OK (set
  *    exactly when CRC_ERROR is not, for the slaves with a CRC; always for
  *    the others), nE and nW (only for a slave that sends them) and its data
- *    no bit above its data bits (the firmware masks them);
+ *    no bit above its data bits (the firmware masks them); under an IEP
+ *    trigger any of these may carry IEP_LATE too (the frame did not start
+ *    on its period's count: FRAME_END);
  *  - a frame that ended early has exactly one flag: NO_SLAVE (with SL_INIT
  *    when it was iC-MB4's INIT), PROC_ERROR, or TRAINING (which measured
  *    the line delay);
@@ -110,8 +112,12 @@ static const char *bad_slave(const struct biss_slave_config *c,
 
 const char *biss_result_problem(const struct biss_config *c, bool configured,
                                 const struct biss_shm_result *r) {
-    bool ended = biss_result_ran_to_end(r->flags);
-    if (!ended && !among(r->flags, early_flags, sizeof early_flags / sizeof early_flags[0])) {
+    bool iep =
+        !configured || c->trigger == BISS_TRIGGER_IEP || c->trigger == BISS_TRIGGER_IEP_FOLLOW;
+    bool late = iep && (r->flags & BISS_RF_IEP_LATE);
+    bool ended = biss_result_ran_to_end(late ? r->flags & ~(uint32_t)BISS_RF_IEP_LATE : r->flags);
+    if (!ended &&
+        (late || !among(r->flags, early_flags, sizeof early_flags / sizeof early_flags[0]))) {
         return "result flags: a combination the firmware never writes";
     }
     if (biss_proto_half_check(r->half) != BISS_OK) {

@@ -53,19 +53,30 @@
 #define MAJORITY5       0xfee8e880      // bit k set: three or more of k's five bits are 1
 #define IDLE_MASK       0x0f            // R31 samples that must all be high for SL idle: half
                                         // a period, longer than any glitch of under 3 samples
-#define IDLE_TURNS      25000           // SL idle polls (4 cycles): 500 us, then no slave
+#define IDLE_TURNS      36000           // SL idle polls (4 cycles) of SLAVE_IDLE: 720 us
+#define FE_TURNS        16384           // FE_POLL's: 328 us (4 FE_TURNS = 0x10000, a constant
+                                        // of the upper half). SL low through a poll and
+                                        // then through SLAVE_IDLE's (MAIN's FRAME) is no
+                                        // slave: 1.05 ms after a frame (two SLAVE_IDLE's
+                                        // after one that ends with MA low, or aborted),
+                                        // more than the longest slave timeout, 1 ms
 
 #include "icss_regs.hp"
 
-// IEP count at which periodic frames start (IEP_AT_ALIGN). From the CMP0
-// reset to the count's read: at worst a turn of MAIN, then FRAME,
-// FRAME_REGS (and SSI_FRAME), 52 to 60 cycles with 7 or 8 data-RAM loads.
-// Each load stalls while the host reads the data RAM (docs/silicon-
-// assumptions.md A5), by how much TI does not say, so the margin is wide:
-// measured, the frames stay aligned up to a 22-cycle stall on every load
-// (the e2e fw suite under --contend 1,22; the suites' harshest is 2,8,
-// TIMING.md's plausible host 40,1). Later still, the frame goes at once.
-#define IEP_ALIGN       192
+// IEP count at which every IEP-triggered frame's period 0 falls (IEP_START):
+// the period starts when the count is reset to 0, so this is the trigger to
+// the first MA fall (an SSI frame's comes 12 cycles later: SSI_STAMPED to
+// LAG_TOP). IEP_D0 is IEP_START's: from the count's read to the fall, 12
+// cycles and the wait, on the path to the next period's count (the path to
+// this period's is one shorter, and CMP0 is P - 1). IEP_C0 is FRAME_END's:
+// its count read comes at most IEP_C0 cycles after the start of the MA
+// period after the frame's last (IEP_PERIOD, P_IEP_FIX; measured: 48 to 70
+// cycles by the shape of the last slave, the last switch period taken as a
+// whole one where SWITCH_SHORT cut its tails; 6 more for FRAME_END's
+// branches before it).
+#define IEP_ALIGN       36
+#define IEP_D0          (IEP_ALIGN - 12)
+#define IEP_C0          76
 
 #include "layout.hp"
 #include "regs.hp"

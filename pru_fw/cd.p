@@ -13,9 +13,9 @@
 #define CD_F_OPEN       1                   // a register byte is under way (a WAIT passed)
 #define CD_ERR          0x10                // Cd.flags at or above: an error is pending
 
-// The registers of control communication: P_CD as Cd (CD_PREPARE,
-// CD_COMMIT) or Ab (CD_ABORT), and each step's scratch. RET_POST returns
-// from CD_PREPARE, CD_COMMIT and CD_ABORT; CD_OP returns through RET_LEAF.
+// The registers of control communication: P_CD as Cd, and each step's
+// scratch. RET_POST returns from CD_PREPARE, CD_COMMIT and CD_ABORT; CD_OP
+// returns through RET_LEAF.
 .struct CdState                             // BissPriv from cd_cmd to cd_bytes (layout.hp)
     .u32    cmd                             // CD_CMD being run (0: none)
     .u16    step                            // the next step
@@ -35,7 +35,6 @@
 .assign Byte, r1.b0, r1.b0, CdmSent         // CD_COMMIT: the CDM this frame sent
 .assign Byte, r1.b1, r1.b1, Cds             // the frame's CDS bit
 .assign CdState, r2, r6, Cd
-.assign Byte, r2.b0, r2.b0, CdmRet          // CD_COMMIT returns the CDM sent here, too
 .assign Word, r3, r3, CdSteps               // Cd.step and Cd.answered as one
 .assign Half, r5.w0, r5.w0, CdCdm           // Cd.cdm0 and Cd.cdm1 as one
 .assign Word, r6, r6, CdByteState           // Cd.crc_m .. Cd.bytes as one
@@ -54,7 +53,6 @@
 .assign Word, r9, r9, OpKind                // the op alone; then the bit it sends
 .assign Half, r9.w0, r9.w0, IdaP            // BISS_CD_IDA_STEP: the step of the command's P,
 .assign Byte, r9.b2, r9.b2, IdaExp          //   the IDA answers expected
-.assign Word, r7, r7, EdgeOut               // CD_COMMIT: the CDM edge that went out
 .assign Word, r9, r9, RespAddr              // the byte of BISS_CD_RESP for the step answered,
 .assign Word, r11, r11, RespBase            //   BISS_CD_RESP,
 .assign Word, r11, r11, RespByte            //   that byte,
@@ -67,11 +65,6 @@
 .assign Half, r9.w0, r9.w0, WaitLimit       // BISS_CD_WAIT_LIMIT
 .assign Word, r11, r11, FeedBit             // the bit fed to CRC_M
 .assign Word, r12, r12, Crc4Fb              // CRC4_FEED: the feedback bit
-.assign CdState, r4, r8, Ab                 // CD_ABORT: P_CD
-.assign Word, r9, r9, AbWord                // 0, then BISS_ST_CD_STATUS:
-.assign Byte, r9.b0, r9.b0, AbErr           //   BISS_CDST_ERR_FRAME,
-.assign Byte, r9.b1, r9.b1, AbBytes         //   bytes transferred,
-.assign Half, r9.w2, r9.w2, AbSteps         //   steps executed
 
 // crc = CRC4 (x^4 + x + 1, MSB first) of crc and bit 0 of bit. 6 cycles at
 // most; Crc4Fb is scratch.
@@ -104,7 +97,8 @@ CD_OP_DONE:
     jmp     RET_LEAF
 
 CD_PREPARE:
-    lbco    &Cd.cmd, c28, P_CD, P_SSI - P_CD
+    lbco    &Cd.cmd, c28, P_CD, P_CD_END - P_CD
+CDP_STATE:                                  // (CD_COMMIT, CD_ABORT: the state in Cd already)
     ldi     CdCdm, 0                        // CDM 0 whatever the CDS
     qbne    CDP_RUN, Cd.cmd, 0
     lbco    NewCmd, c24, BISS_CD_CMD, 12    // NewCmd, NewSteps, DoneSeq
@@ -156,23 +150,20 @@ CDP_WAIT:
     qbeq    CDP_OUT, Op, BISS_CDOP_1        // 1 either way
     ldi     Cd.cdm1, MA_MASK                // 0 once CDS is 1
 CDP_OUT:
-    sbco    &Cd.cmd, c28, P_CD, P_SSI - P_CD
+    sbco    &Cd.cmd, c28, P_CD, P_CD_END - P_CD
     jmp     RET_POST
 CDP_BAD:                                    // refused: ST_CD_SEQ, then ST_CD_STATUS
     ldi     BadStatus, BISS_CDST_ERR_STEPS  // (the next word: one store, in that order)
     sbco    NewCmd, c24, BISS_ST_CD_SEQ, 8
     qba     CDP_OUT
 
-// After a frame with CDS Cds: returns the CDM it sent in CdmSent and CdmRet.
+// After a frame with CDS Cds and CDM CdmSent (FRAME_END: MA low after it
+// for 1); then CD_PREPARE, which stores the state and returns.
 // (Calls nest through RET_POST and RET_LEAF (CD_OP): r0.w2 keeps the busy
 // clocks for BUF_STAMP, r13..r29 hold the slave records, r10.b0 is the
 // caller's.)
 CD_COMMIT:
-    lbco    &Cd.cmd, c28, P_CD, P_SSI - P_CD
-    rsb     EdgeOut, Cds, 0                 // the CDM edge that went out
-    and     EdgeOut, EdgeOut, Cd.cdm1
-    xor     EdgeOut, EdgeOut, Cd.cdm0
-    min     CdmSent, EdgeOut, 1
+    lbco    &Cd.cmd, c28, P_CD, P_CD_END - P_CD
     qbeq    CDC_ZEROS, Cd.cmd, 0            // no program
     qbeq    CDC_SENT_STEP, Cd.answered, 0
     // the answer: recorded, then checked as its step's class asks
@@ -277,23 +268,15 @@ CDC_ZEROS:
     qbeq    CDC_SAVE, CdmSent, 0
     ldi     Cd.zeros, 0
 CDC_SAVE:
-    sbco    &Cd.cmd, c28, P_CD, P_SSI - P_CD
-    mov     CdmRet, CdmSent
-    jmp     RET_POST
+    qba     CDP_STATE                       // and the next frame's CDM: CD_PREPARE stores it all
 
 // A frame failed: a running program cannot go on (the slave saw a broken
-// frame), and the zeros start again. r3 and r12 are the caller's.
+// frame) and stops as CDC_STOP stops one, with ERR_FRAME; the zeros start
+// again (the failed frame counts as one without CDM 0). Then CD_PREPARE.
 CD_ABORT:
-    lbco    &Ab.cmd, c28, P_CD, P_SSI - P_CD
-    ldi     AbWord, 0
-    sbco    AbWord, c28, P_CD_ZEROS, SIZE(BissPriv.cd_zeros) // zeros in a row: none
-    qbeq    CDA_DONE, Ab.cmd, 0
-    sbco    AbWord, c28, P_CD, SIZE(BissPriv.cd_cmd) // no program
-    sbco    Ab.cmd, c24, BISS_ST_CD_SEQ, 4
-    mov     AbSteps, Ab.step
-    ldi     AbErr, BISS_CDST_ERR_FRAME
-    mov     AbBytes, Ab.bytes
-    sbco    AbWord, c24, BISS_ST_CD_STATUS, 4
-CDA_DONE:
-    jmp     RET_POST
+    lbco    &Cd.cmd, c28, P_CD, P_CD_END - P_CD
+    ldi     CdmSent, 1
+    qbeq    CDC_ZEROS, Cd.cmd, 0            // no program
+    ldi     CdStatus, BISS_CDST_ERR_FRAME
+    qba     CDC_STOP
 .leave cd

@@ -8,7 +8,7 @@
 // Configuration: check the host's block, derive everything the clocked code
 // needs, and report the verdict.
 // The registers of the configuration. r18..r29 hold through it (the slave
-// records r13..r29 are loaded afresh at its end); r0..r11 are its scratch,
+// records r13..r29 are loaded afresh at its end); r0..r17 are its scratch,
 // named by what they hold in each step.
 .struct HostSlave                           // a slave's block of the host's configuration
     .u8     n                               // data bits
@@ -72,19 +72,22 @@
 .assign Word, r7, r7, NextIdx               // the slave's index + 1
 .assign Word, r7, r7, StartAligned          // the start value << (16 - w)
 .assign Half, r7.w0, r7.w0, StartAlignedLo
-.assign BissSlave, r6, r9, Chk              // the slave's check data (layout.hp)
+.assign BissSlave, r12, r15, Chk            // the slave's check data (layout.hp)
+.assign Half, r12.w0, r12.w0, ChkEw         //   its nE/nW pointer and shift as one
 .assign Word, r8, r8, MaskShift             // 64 - n
 .assign Word, r9, r9, Feedback              // the residue's bit 31 before its shift
-.assign Word, r9, r9, ChkShape              // Chk's [n, w, ew, flags] as one word
+.assign Word, r16, r16, Residue             // the CRC register after w ones (left-aligned)
 .assign Word, r10, r10, PolyTop             // the polynomial left-aligned to bit 31
 .assign Word, r11, r11, EndRecord           // the end record's word: its entry in w0
 .assign Half, r11.w0, r11.w0, EndEntry
 .assign Word, r4, r4, EndWord               // the end record: entry in w2, counts 0
-// CFG_IEP
-.assign Word, r2, r2, IepTurns              // N + 8 turns of 2H
-.assign Word, r2, r2, IepReg                // a word for an IEP register
-.assign Word, r3, r3, IepMin                // the shortest IEP period
-.assign Word, r4, r4, TwoH                  // 2H
+.assign Word, r17, r17, CfgLast             // LastBits of the last slave (L, for P_IEP_FIX)
+.assign Word, r3, r3, IepFix                // N + 5 - L (P_IEP_FIX)
+.assign Half, r3.w0, r3.w0, IepFixLo        //   as IEP_PERIOD loads it
+// CFG_IEP, and IEP_PERIOD (which the IEP frames call, r0..r12 only)
+.assign Word, r2, r2, IepReg                // a word for an IEP register: CMP0 (P - 1)
+.assign Half, r4.w0, r4.w0, IepHalf         // IEP_PERIOD: H
+.assign Word, r8, r8, IepCap                // 65536 x 2H
 // Accepted: the words for the private RAM
 .assign Word, r0, r0, DelayWord             // P_DELAYS: the tails (DELAY), as Tails:
 .assign Half, r0.w0, r0.w0, DelayEntry      //   the DLY_* entry,
@@ -212,6 +215,7 @@ CFG_PLAIN_FINAL:
     qbeq    CFG_REC, LastBits, 2
     ldi     EndEntry, FINAL_PLAIN2          // two
 CFG_REC:
+    mov     CfgLast, LastBits               // (the last slave's is kept: P_IEP_FIX)
     // polynomial and start value left-aligned to bit 15 (the w2 halves);
     // no CRC (w = 0): both shifted by 16, out of the halves, so 0
     rsb     Align16, Host.w, 16             // 16 - w
@@ -230,24 +234,34 @@ CFG_REC:
     mov     Chk.mask_lo, Chk.mask_hi
     ldi     Chk.mask_hi, 0
 CFG_MASK_DONE:
+    // nE/nW: where FE_SLAVE's MVI finds nW, the data word's bit ew: the
+    // register-file byte ew / 8 bytes into DataLo, bit ew mod 8 of the word
+    // read there (nE the next bit up, in the same word: ew mod 8 + 1 <= 8).
+    // Without nE/nW: the CRC register's low half, always 0.
+    ldi     ChkEw, RF_CRC_LOW               // (shift 0)
+    qbbc    CFG_EW_INFO, Host.flags, 0
+    lsr     Chk.ewptr, Host.ew, 3
+    add     Chk.ewptr, Chk.ewptr, RF_DATA_LO
+    and     Chk.ewshift, Host.ew, 7
+CFG_EW_INFO:
     // residue: the CRC register after w inverted CRC bits of a right frame
     // = w ones fed to a zero register (linearity)
-    ldi     Chk.residue, 0
+    ldi     Residue, 0
     lsl     PolyTop, Rec.poly, 16           // polynomial, left-aligned to bit 31
     qbeq    CFG_RESIDUE_DONE, Host.w, 0
     // The count from a whole register: which bits a LOOP takes from a byte
     // field is not documented (docs/silicon-assumptions.md).
     mov     LoopTurns, Host.w               // (Host.poly, start are used by then)
     loop    CFG_RESIDUE_DONE, LoopTurnsLo
-    lsl     Feedback, Chk.residue, 0        // keep bit 31 (feedback = bit31 ^ 1)
-    lsl     Chk.residue, Chk.residue, 1
+    lsl     Feedback, Residue, 0            // keep bit 31 (feedback = bit31 ^ 1)
+    lsl     Residue, Residue, 1
     qbbs    CFG_RESIDUE_STEP, Feedback, 31
-    xor     Chk.residue, Chk.residue, PolyTop
+    xor     Residue, Residue, PolyTop
 CFG_RESIDUE_STEP:
     PAD
 CFG_RESIDUE_DONE:
-    mov     ChkShape, HostWord              // n, w, ew shift, flags
-    sbbo    &Chk.mask_lo, ChkAddr, 0, SIZE(BissSlave)
+    lsr     Chk.residue, Residue, 16        // (its low half is 0, as the CRC register's)
+    sbbo    &Chk.ewptr, ChkAddr, 0, SIZE(BissSlave)
     add     ChkAddr, ChkAddr, SIZE(BissSlave)
     add     HostAddr, HostAddr, BISS_CFG_SLAVE_SIZE
     add     SlaveIdx, SlaveIdx, 1
@@ -255,6 +269,15 @@ CFG_RESIDUE_DONE:
     // after the last slave: the end of the frame
     lsl     EndWord, EndRecord, 16          // entry EndEntry (w2 = 0), counts 0
     sbbo    EndWord, RecAddr, 0, 4
+    // the MA periods of a BiSS-C frame from period 0 to the one FRAME_END
+    // starts in, beside max(m + LAG, p) and the busy clocks: period 0 and
+    // the ACK's (p + 1 in all with the idle ones up to m + LAG), LAG1, the
+    // start bit's, the CDS, and the N - (L - 1) periods of the slaves' bits
+    // (the last slave's last L - 1 bits are read after them, FINAL_*): N + 5
+    // - L (an SSI frame has fewer; IEP_PERIOD)
+    add     IepFix, NBits, 5
+    sub     IepFix, IepFix, CfgLast
+    sbco    IepFix, c28, P_IEP_FIX, 2
 
     // SSI (slave 0's BISS_SF_SSI): alone and without CRC. SsiWord = the P_SSI
     // word: SsiAckNew the ACK position a BiSS-C slave at this line delay would
@@ -283,25 +306,20 @@ CFG_SSI:
     lsl     SsiEdgesNew, Host.n, MA_BIT + 1
 CFG_SSI_DONE:
 
-    // IEP period: at least 2H (N + 8) cycles
+    // IEP (owner and follower): the thresholds for the period are worked
+    // out by the first IEP frame (P_IEP_KEY no CMP0: IEP_PERIOD). The owner
+    // sets the period up (CMP0 = P - 1 resets the count after it); a
+    // follower takes the owner's, whenever it is set up.
+    qbbc    CFG_IEP_OK, CfgTrigger, 0       // BISS_TRIG_IEP (1) and IEP_FOLLOW (3)
+    fill    &IepReg, 4
+    sbco    IepReg, c28, P_IEP_KEY, 4       // none yet
     qbne    CFG_IEP_OK, CfgTrigger, BISS_TRIG_IEP
-    add     IepTurns, NBits, 8
-    ldi     IepMin, 0
-    lsl     TwoH, CfgHalf, 1                // 2H
-CFG_IEP_MIN:                                // IepTurns = N + 8 >= 9 (no LOOP of one
-    add     IepMin, IepMin, TwoH            // instruction: docs/silicon-assumptions.md)
-    sub     IepTurns, IepTurns, 1
-    qbne    CFG_IEP_MIN, IepTurns, 0
-    ldi     CfgErr, BISS_CFGERR_IEP_PERIOD
-    qbgt    CFG_FAIL, CfgIep, IepMin        // period < minimum
-    sub     IepReg, CfgIep, 1               // CMP0 = period - 1 (the count resets after it)
+    sub     IepReg, CfgIep, 1
     sbco    IepReg, c26, IEP_CMP0, 4
     ldi     IepReg, 3                       // CMP0 enabled, resets the count
     sbco    IepReg, c26, IEP_CMP_CFG, 4
     ldi     IepReg, 0
     sbco    IepReg, c26, IEP_COUNT, 4
-    ldi     IepReg, 0xff
-    sbco    IepReg, c26, IEP_CMP_STATUS, 4
 CFG_IEP_OK:
 
     // Accepted: commit everything.
@@ -367,19 +385,20 @@ CFG_DELAY_SAVE:
     mov     HistPos, SsiAckNew              // and the history holds it (r0, r1 are
     jal     RET_POST, HIST_FILL             // set up anew by every frame)
 CFG_PROC:
-    sbco    SsiWord, c28, P_SSI, SIZE(BissPriv) - P_SSI
-    sbco    NewProc, c28, P_PROC, P_SPARE - P_PROC
+    sbco    SsiWord, c28, P_SSI, P_CFG_ACK - P_SSI
+    sbco    NewProc, c28, P_PROC, P_PROC_END - P_PROC
     sbco    Gpcfg, c4, GPCFG_OWN, 4         // shift mode at 8x the new rate (FACTOR_FOUND)
     ldi     CfgErr, BISS_CFGERR_NONE
     ldi     CfgState, BISS_STATE_RUNNING
     qba     CFG_REPORT
 CFG_FAIL:
     ldi     NewProc, 0
-    sbco    NewProc, c28, P_PROC, P_SPARE - P_PROC // not running
+    sbco    NewProc, c28, P_PROC, P_PROC_END - P_PROC // not running
     ldi     CfgState, BISS_STATE_CFG_ERROR
 CFG_REPORT:
     sbco    CfgErr, c24, BISS_ST_CFG_ERROR, 8 // CfgErr, CfgState (ST_STATE, the next word)
     sbco    NewSeq, c24, BISS_ST_CFG_ACK, 4 // then the sequence number: the verdict is out
+    sbco    NewSeq, c28, P_CFG_ACK, 4       // (and its copy beside the frame's set-up, FE)
     lbco    &Records, c28, P_RECORDS, P_DELAYS - P_RECORDS // slave records into r13..r29
     jmp     MAIN
 
@@ -392,6 +411,29 @@ DIVIDE:
     qba     DIVIDE
 DIVIDE_DONE:
     jmp     RET_DIV
+
+// An IEP frame's thresholds for the period CMP0 + 1 = P (IEP_START, when
+// P_IEP_KEY is not CMP0: after a configuration, or the owner's new period):
+// P_IEP_SLACK, the fewest max(m + LAG, p) + busy MA periods that may take a
+// frame's end count (FRAME_END's read, at most IEP_C0 into the MA period
+// after its last) a period or more past its start: Q - (N + 5 - L) for Q =
+// ceil((P - IEP_C0) / 2H), 0 if that is negative (no frame fits: every one
+// is flagged), Q at most 65536 (DIVIDE's turns). Then MAIN sets the frame
+// up again. In: IepReg = CMP0 (IEP_START's IepP).
+IEP_PERIOD:
+    lbco    IepFixLo, c28, P_IEP_FIX, 2
+    lbco    IepHalf, c28, P_HALF, 2
+    lsl     Den, IepHalf, 1                 // 2H
+    sub     Num, IepReg, IEP_C0             // Q = (P - 1 - IEP_C0) / 2H + 1
+    lsl     IepCap, Den, 16
+    min     Num, Num, IepCap
+    ldi     Quot, 1
+    jal     RET_DIV, DIVIDE
+    max     Quot, Quot, IepFixLo
+    sub     Quot, Quot, IepFixLo
+    sbco    QuotLo, c28, P_IEP_SLACK, SIZE(BissPriv.iep_slack)
+    sbco    IepReg, c28, P_IEP_KEY, 4
+    jmp     MAIN
 .leave config
 
 // The shared delay of the clocked periods: called by `jal RET_LEAF, entry`,

@@ -14,19 +14,12 @@
     set     reg, reg, 8                     // + BISS_RES0 (0x100)
 .endm
 
-// reg = the result buffer being filled (P_BUF).
-.macro RESULT_BASE
-.mparam reg
-    lbco    reg, c28, P_BUF, SIZE(BissPriv.buf)
-    RESULT_ADDR reg, reg
-.endm
-
 // ============================================================================
 // Before a frame: the slave must be idle (SL high); then the registers the
 // clocked code starts from (FRAME_REGS), and the frame's timestamp.
 // A subroutine (returns through RET_SUB; r2 it leaves alone: Trigger) so
 // that a free-run frame can have it done before SL is high (FE_IDLE_YES).
-// It loads P_DELAYS .. P_PROC (BissPriv, layout.hp) into r3..r10 as Priv
+// It loads P_DELAYS .. P_PROC (BissPriv, layout.hp) into r3..r9 as Priv
 // and sets up the clocked part's and the front's registers (regs.hp) from it.
 .struct PrivRun                             // BissPriv from delays to running
     .u32    delays
@@ -34,8 +27,8 @@
     .u16    h1
     .u16    h2
     .u16    k
-    .u32    hsum
-    .u32    buf
+    .u16    hsum
+    .u16    iep_slack
     .u8     nslaves
     .u8     trigger
     .u8     rec_end
@@ -46,12 +39,35 @@
     .u8     train_due
     .u8     running
 .ends
+// The names of the next frame's start (results.p: FE_START, IEP_START; the
+// frame set up by FRAME_REGS, Edges all ones): the registers it leaves free.
+.enter fe_start
+.assign Half, r1.w2, r1.w2, FastLeft        // FE_POLL's turns left (RecWord's upper half)
+.assign Word, r2, r2, FastBase              // the timestamp's count base
+.assign Byte, r2.b0, r2.b0, FastIdle8       // SL's newest samples
+.assign Half, r2.w2, r2.w2, FastBaseHi      //   its upper half
+.leave fe_start
+.enter iep_start
+.assign Word, r3, r3, IepEnd                // bank register 3: the count at the last frame's
+                                            // end (FRAME_END; 0 after an overrun or an abort)
+.assign Word, r8, r8, IepKey                // P_IEP_KEY: the CMP0 of P_IEP_SLACK
+.assign Word, r10, r10, IepCnt              // the count
+.assign Word, r2, r2, IepP                  // CMP0: the period less 1 (IEP_PERIOD's IepReg)
+.assign Word, r8, r8, IepD                  // the cycles left to wait, plus the poll's budget
+.assign Half, r8.w2, r8.w2, IepDHi          //   (IEP_BUDGET) until the poll ends (over IepKey)
+.assign Half, r8.w0, r8.w0, IepLate         // IEP_LATE: its entry (LAG1, LOAD_RECORD write r8)
+.assign Word, r2, r2, IepStamp              // bank register 2's word (BUF_STAMP)
+.assign Byte, r2.b0, r2.b0, IepIdle8        // SL's newest samples
+.assign Half, r6.w2, r6.w2, IepTarget       // period 0 (Crc: START_FOUND, LOAD_RECORD write it)
+.leave iep_start
+
 .enter frame_regs
-.assign PrivRun, r3, r10, Priv
+.assign PrivRun, r3, r9, Priv
 .using clocked
 .using front
 FRAME_REGS:
-    lbco    &Priv.delays, c28, P_DELAYS, P_SPARE - P_DELAYS
+    lbco    &Priv.delays, c28, P_DELAYS, P_PROC_END - P_DELAYS
+FRAME_REGS_SET:                             // (FE: Priv loaded, and the history updated)
     lsl     SlotWord, Priv.running, 8       // XFR shift 0: slave 0's slot, the step to
                                             // the next (CFG_PROC), no busy clocks
     ldi     Masks, MA_MASK | (MA_MASK << 8) // period 0 clocks
@@ -61,20 +77,23 @@ FRAME_REGS:
     mov     Tails, Priv.delays              // the tails (DELAY)
     mov     HistSum, Priv.hsum.w0           // history sum
     lbco    &CdmEdge, c28, P_CDM, P_CD_LEN - P_CDM // the CDM edge for either CDS
-    ldi     RecCds, REC_BASE                // the first record, Cds = 0
-    ldi     Crc, 0
-    ldi     Poly, 0
-    jmp     RET_SUB
+    ldi     RecWord, REC_BASE               // the first record, Cds = 0, no FE_POLL turns
+                                            // (the timestamp: BUF_STAMP)
+.using iep_start
+    ldi     IepTarget, FRAME_PERIOD0        // an IEP frame's period 0 (SSI_FRAME: its own)
+.leave iep_start
+    jmp     RET_SUB                         // (Crc, Poly: START_FOUND zeroes them)
 .leave frame_regs
 
 // The timestamp, then the first period. It waits in bank register 2 (Slot
 // = 0: unshifted; the slots start at 4) for FRAME_END or ABORT_FRAME: no
-// data-RAM store between the IEP read and the first MA edge.
+// data-RAM store between the IEP read and the first MA edge. Two
+// instructions (IEP_LATE enters STAMP_WORDS before the period 0 it is for).
 .macro FRAME_STAMP
-    ldi     AckBase, 0
     lbco    Stamp, c26, IEP_COUNT, 4
     xout    XFR_BANK, Stamp, 4
 .endm
+#define STAMP_WORDS     2
 
 .using main_loop
 FRAME:
@@ -85,11 +104,10 @@ FRAME:
     jmp     SSI_FRAME
 FRAME_BISS:
     jal     RET_SUB, FRAME_REGS
-    IEP_ALIGN_IF FRAME_STAMPED
+FRAME_SET:                                  // (test_fw_timing's frames return here)
+    fill    &Edges, 4                       // all ones while the start bit is awaited
+    qbbs    IEP_START_SLOW, Trigger, 0      // BISS_TRIG_IEP (1), IEP_FOLLOW (3): its count
 .leave main_loop
-FRAME_STAMPED:                              // the free-run path comes in here
-    fill    &Edges, 4                       // all ones while the start bit is
-                                            // awaited (Slot = 0: no XFR shift)
 FRAME_CLOCKED:                              // TRAIN comes in here, Edges its two clocks
     FRAME_STAMP
     // fall into the first period
@@ -102,9 +120,11 @@ FRAME_CLOCKED:                              // TRAIN comes in here, Edges its tw
     // Period 0 looks at nothing: its samples date from before the frame
     // (the ACK cannot come before the second rising edge), so the frame may
     // start as soon as SL is high.
+FRAME_PERIOD0:
     MA_FALL
-    add     AckBase, AckBase, 8             // 1
-    jal     RET_LEAF, DLY_S6                // 2..8
+    ldi     AckBase, 8                      // 1  WAIT_ACK's 8p from here (whatever r3 held)
+    xout    XFR_BANK, RecWord, 4            // 2  FE_POLL's turns left to bank register 1
+    jal     RET_LEAF, DLY_S5                // 3..8
     DELAY
     MA_RISE
     NEXT_CLOCK                              // 1..4
@@ -152,7 +172,7 @@ WA_TOP:
 .endm
 
 // From here to the start bit MA clocks on (both masks stay MA_MASK): Edges
-// is all ones (FRAME_STAMPED) less 2 MA_MASK for each period that counted it
+// is all ones (FRAME_BISS, FE) less 2 MA_MASK for each period that counted it
 // down, a few hundred at most (the ACK limit is some 400 periods, the lag as
 // many), so its bit 30 stays set. A training frame has made its two clocks (the
 // masks 0, Edges 0) and ends after this period.

@@ -51,243 +51,333 @@ FINAL_CRC_BIT:
 .leave clocked
 
 // The registers after the frame: what the clocked part leaves (r0, r1, the
-// results in the scratch pad), the result buffer and flags, and each
-// routine's own.
+// results in the scratch pad, the idle turns in bank register 1 and the
+// count base in bank register 2: period 0, FRAME_STAMP), the result buffer
+// and flags, and each routine's own.
 .enter results
 .assign Byte, r0.b0, r0.b0, Slot            // the XFR shift: the slot FE_SLAVE reads
 .assign Byte, r0.b1, r0.b1, SlotStep        // the step to the next slot (P_RUNNING)
-.assign Half, r0.w0, r0.w0, XfrShift        // both, 0 after BUF_STAMP (no shift)
-.assign Half, r0.w2, r0.w2, Busy            // the busy clocks (START_WAIT), for BUF_STAMP
+.assign Half, r0.w2, r0.w2, Busy            // the busy clocks (START_WAIT)
 .assign Word, r0, r0, SlotWord              // all three: 0 for a frame that did not start
-.assign Byte, r1.b0, r1.b0, CdmSent         // the CDM this frame sent (CD_COMMIT)
-.assign Byte, r1.b0, r1.b0, SlavesLeft      // FE_SLAVE: slaves left to check
-.assign Byte, r1.b1, r1.b1, Cds             // the CDS bit (CDS_PERIOD)
-.assign Half, r1.w2, r1.w2, AckPos          // this frame's ACK position Q' (ONES_B)
+.assign Word, r1, r1, FrameR1               // r1 as the frame leaves it:
+.assign Byte, r1.b0, r1.b0, CdmSent         //   the CDM this frame sent (CD_COMMIT)
+.assign Byte, r1.b1, r1.b1, Cds             //   the CDS bit (CDS_PERIOD)
+.assign Half, r1.w2, r1.w2, AckPos          //   this frame's ACK position Q' (ONES_B)
+.assign Word, r1, r1, StampTurns            // bank register 1: the idle turns left (w2)
+.assign Half, r1.w2, r1.w2, TurnsLeft       //   when the frame started (FE_POLL; 0 else)
+.assign BissSlave, r1, r4, Chk              // FE_SLAVE: the slave's check data (layout.hp)
+.assign Word, r2, r2, Stamp                 // bank register 2: the count base, then the
+                                            // timestamp (IEP COUNT at the first MA edge)
+.assign Word, r2, r2, EwBits                // FE_SLAVE: nW at bit 0, nE at bit 1
 .assign Word, r2, r2, ResBuf                // the result buffer being filled (BUF_STAMP)
-.assign Word, r2, r2, Stamp                 // BUF_STAMP: the frame's timestamp (bank register 2)
 .assign Byte, r2.b0, r2.b0, Due             // P_TRAIN_DUE: 1 a training, 2 the INIT of a low SL
 .assign Word, r2, r2, DueWord               //   as a word, to set it
 .assign Byte, r2.b0, r2.b0, Idle8           // SLAVE_IDLE: SL's newest samples
-.assign Word, r3, r3, SamplePoint           // the sample point within the bit, 0..7
-.assign Word, r3, r3, SlaveRes              // FE_SLAVE: the slave's result in the buffer
+.assign Word, r3, r3, SpLag                 // FRAME_END: the sample point 0..7 and m + LAG:
+.assign Byte, r3.b0, r3.b0, SampPt          //   BISS_R_SAMPLE_POINT,
+.assign Byte, r3.b1, r3.b1, LagPer          //   BISS_R_LAG_PERIODS
 .assign Word, r3, r3, CrcErrors             // BISS_ST_CRC_ERRORS
-.assign Word, r3, r3, Qf                    // Qf', the average the frame was read with
-.assign Word, r3, r3, NextNs                // P_NSLAVES' word, for the next frame:
-.assign Byte, r3.b1, r3.b1, NextTrigger     //   its trigger
-.assign Half, r3.w0, r3.w0, NextSsi         // P_SSI's ACK position (0: BiSS-C)
-.assign Word, r3, r3, Sum                   // HIST_SAVE: h0 + h1 + h2 + 2
-.assign Word, r3, r3, Frames                // PUBLISH: BISS_ST_FRAMES,
-.assign Word, r3, r3, Seq                   //   BISS_ST_SEQ,
-.assign Word, r3, r3, State                 //   BISS_ST_STATE
+.assign Word, r3, r3, Seq                   // PUBLISH: BISS_ST_SEQ, this publication's number
 .assign Word, r3, r3, TallyAddr             // ABORT_FRAME: the status counter to count in,
 .assign Word, r4, r4, TallyVal              //   its value
+.assign Word, r6, r6, BufNo                 // PUBLISH: the buffer published (BISS_ST_BUF)
+.assign Word, r4, r4, PubNs                 // PUBLISH: P_NSLAVES' word (slaves: b0),
+.assign Byte, r4.b0, r4.b0, PubSlaves
+.assign Half, r5.w0, r5.w0, PubHalf         //   and H (P_HALF)
 .assign Word, r4, r4, DataLo                // FE_SLAVE: a slave's result from its slot (data,
 .assign Word, r5, r5, DataHi                //   CRC register), then stored with its status
 .assign Word, r6, r6, Crc
+.assign Half, r6.w2, r6.w2, CrcHi           //   (the CRC register's upper half: its low is 0)
 .assign Word, r7, r7, Status                //   (BISS_RS_*)
-.assign BissSlave, r7, r10, Chk             // FE_SLAVE: the slave's check data (layout.hp)
-.assign Word, r5, r5, StampBuf              // BUF_STAMP: the result buffer
-.assign Word, r6, r6, LagPeriods            // m + LAG, as published
-.assign Word, r6, r6, AckJump               // Q' - Qf' + 4: 0..8 is no jump
-.assign Word, r8, r8, EwBits                // FE_SLAVE: nW at bit 0, nE at bit 1
-.assign Word, r8, r8, PrivNs                // P_NSLAVES' word; bit 31 (navg's bit 7): the last
-                                        // ACK jumped
-.assign Word, r9, r9, NeHigh                // DataHi << 1: nE at bit 0 when ew = 31
-.assign PrivRun, r3, r10, Priv              // the history as P_HIST .. P_HALF loads it (r4..r8)
-.assign PrivRun, r0, r7, Pub                // PUBLISH: P_BUF .. P_PROC, laid so that buf is r4
-.assign Byte, r10.b0, r10.b0, Shift         // the frame's sample shift (SAMPLE_POINT), until FE_SLAVE
-.assign Word, r11, r11, SlaveChk            // FE_SLAVE: the slave's check data (P_SLAVES)
+.assign Word, r4, r4, Hsum                  // FRAME_END: P_HSUM, h0 + h1 + h2 + 2,
+.assign Half, r4.w0, r4.w0, HsumLo
+.assign Word, r5, r5, PfNs                  //   P_NSLAVES' word:
+.assign Half, r4.w2, r4.w2, PfSlack         //   (P_IEP_SLACK)
+.assign Byte, r5.b0, r5.b0, PfSlaves        //   the slaves,
+.assign Byte, r5.b1, r5.b1, PfTrigger       //   the trigger,
+.assign Byte, r5.b3, r5.b3, PfNavg          //   frames in the average (bit 7: the last ACK jumped)
+.assign Word, r9, r9, BufStamp              // BUF_STAMP: the timestamp
+.assign Word, r7, r7, Qf                    // Qf', the average the frame was read with
+.assign Word, r8, r8, FeTmp                 // FRAME_END: m + LAG, the CDM, the ACK jump, navg
+.assign Word, r8, r8, Idx                   // FE_SLAVE: the slave's check data in C28's window
+                                            // (P_SLAVES + 16 k), and its result's from Base
+.assign Word, r7, r7, PrivNs                // P_NSLAVES' word; bit 31 (navg's bit 7): the last
+                                            // ACK jumped
+.assign Byte, r10.b0, r10.b0, Shift         // the frame's sample shift (SAMPLE_POINT), until
+.assign Word, r10, r10, Base                //   FRAME_END's Base: the result buffer less RES_BIAS
+.assign Word, r11, r11, Kept                // FRAME_END: r1 kept for after (CD_COMMIT's r1):
+.assign Byte, r11.b0, r11.b0, KeptCdm       //   the CDM sent (in the RecPtr byte),
+.assign Byte, r11.b1, r11.b1, KeptCds       //   the CDS bit,
+.assign Half, r11.w2, r11.w2, KeptAck       //   the ACK position
+.assign Byte, r9.b0, r9.b0, SlavesLeft      // FE_SLAVE's count (BufStamp's, once stored)
+.assign Word, r3, r3, IepEnd                // FRAME_END: the count at its end, to bank
+                                            // register 3 (IEP_START); 0 after an overrun
 .assign Word, r12, r12, ResFlags            // the result's flags, BISS_RF_*
+.assign Half, r11.w0, r11.w0, HoldLeft      // MA_HOLD: turns of 2 cycles left
+.assign PrivRun, r3, r9, Priv               // FRAME_REGS' burst: the history (r4..r6), P_NSLAVES (r7)
+.assign Half, r10.w0, r10.w0, FeSsi         //   and after it P_SSI's ACK position (0: BiSS-C),
+.assign Word, r11, r11, FeCfgAck            //   P_CFG_ACK
+.assign Byte, r10.b2, r10.b2, FeTrigger     // the trigger, past FRAME_REGS_SET
 
+// ---- after the last bit: publication first --------------------------------
+// The result buffer being filled is the one that ST_SEQ's low bit names
+// (each publication increments ST_SEQ, so the two alternate); Base points
+// RES_BIAS below it, so that one index (Idx) walks the slaves' check data in
+// the private RAM (C28 + P_SLAVES + 16 k) and their results in the buffer
+// (Base + Idx = BISS_R_SLAVE0 + 16 k), and the header is at Base + RES_BIAS.
+// Everything the buffer gets is stored before ST_BUF and ST_SEQ; the
+// history, the counters and control communication come after (POST).
+#define RES_BIAS        (P_SLAVES - BISS_R_SLAVE0)
 FRAME_END:
-    jal     RET_POST, CD_COMMIT             // Cds in; CdmSent out
-    jal     RET_STAMP, BUF_STAMP            // ResBuf; XfrShift = 0:
-    lbco    SlotStep, c28, P_RUNNING, SIZE(BissPriv.running) // slave 0's slot, and the step to the next
-    sbbo    CdmSent, ResBuf, BISS_R_CDM, 1
-    lbco    SlavesLeft, c28, P_NSLAVES, SIZE(BissPriv.nslaves) // slaves to check
-    rsb     SamplePoint, Shift, 31 - 8 * LAG // sample point 0..7 within the bit
-    sbbo    SamplePoint, ResBuf, BISS_R_SAMPLE_POINT, 1
-    sbbo    Cds, ResBuf, BISS_R_CDS, 1
-    ldi     ResFlags, BISS_RF_VALID         // frame flags
-    add     SlaveRes, ResBuf, BISS_R_SLAVE0 // slave result
-    mov     SlaveChk, BISS_PRIV + P_SLAVES  // slave check data
+    mov     Kept, FrameR1                   // Cds and AckPos, for after
+    jal     RET_STAMP, BUF_STAMP            // ResBuf; the timestamp, the busy clocks
+    rsb     SampPt, Shift, 31 - 8 * LAG     // sample point 0..7 within the bit
+    lbco    &Hsum, c28, P_HSUM, P_HALF - P_HSUM // hsum, P_NSLAVES' word
+    sub     Base, ResBuf, RES_BIAS
+    add     Qf, KeptAck, HsumLo
+    lsr     Qf, Qf, 2                       // Qf' (Hsum: + 2, rounding)
+    add     FeTmp, Qf, 8 * LAG - 4
+    lsr     LagPer, FeTmp, 3                // m + LAG = (Qf' - 4) / 8 + LAG (SAMPLE_POINT)
+    sbbo    KeptCds, ResBuf, BISS_R_CDS, 1
+    sbbo    KeptAck, ResBuf, BISS_R_DELAY_RAW, 2
+    sbbo    Qf, ResBuf, BISS_R_DELAY_AVG, 2
+    sbbo    SpLag, ResBuf, BISS_R_SAMPLE_POINT, 2
+    lsr     KeptCdm, MA_OUT.b0, MA_BIT      // MA is low after a CDM of 1 (only MA_BIT is
+    xor     KeptCdm, KeptCdm, 1             // ever set in R30)
+    sbbo    KeptCdm, ResBuf, BISS_R_CDM, 1
+    // An ACK more than half a bit from the average it was read with means
+    // this frame's bits were read at the wrong place (a glitch in WAIT_ACK,
+    // or an average spoilt by one) or the line changed: the frame is not
+    // valid, whatever its CRC says (the history, after the publication,
+    // leaves it out). SMA: the average is full with this frame.
+    ldi     ResFlags, BISS_RF_VALID
+    sub     FeTmp, KeptAck, Qf
+    add     FeTmp, FeTmp, 4
+    qbge    FE_NO_JUMP, FeTmp, 8            // Q' - Qf' + 4 in 0..8: no jump
+    xor     ResFlags, ResFlags, BISS_RF_VALID | BISS_RF_ACK_JUMP
+    qba     FE_FLAGS
+FE_NO_JUMP:
+    qbbc    FE_FLAGS, PfNavg, 1             // 2 or 3 (at most) before: 3 with this one
+    or      ResFlags, ResFlags, BISS_RF_SMA
+FE_FLAGS:
+    // IEP: BISS_RF_IEP_LATE for a frame not started on its count (its
+    // timestamp not IEP_ALIGN - 4: IEP_START) or one that ran into the next
+    // period (its end count below its start, or its clocked part possibly a
+    // period or longer: max(m + LAG, p) + busy MA periods at least
+    // P_IEP_SLACK, IEP_PERIOD); for IEP_START the count now, or 0 after an
+    // overrun (the next frame in the next period after this one's end).
+    qbbc    FE_IEP_DONE, PfTrigger, 0       // BISS_TRIG_IEP (1), IEP_FOLLOW (3)
+    qbeq    FE_IEP_ON_TIME, BufStamp, IEP_ALIGN - 4
+    or      ResFlags, ResFlags, BISS_RF_IEP_LATE
+    mov     FeTmp, ResBuf                   // bank register 2 back to the timestamp of a
+    ldi     Stamp, IEP_ALIGN - 4            // frame on its count (FRAME_STAMP wrote this
+    xout    XFR_BANK, Stamp, 4              // one's; BUF_STAMP has read it): IEP_START
+    mov     ResBuf, FeTmp                   // from FE takes it as it is
+FE_IEP_ON_TIME:
+    lsr     FeTmp, KeptAck, 3               // p
+    max     FeTmp, FeTmp, LagPer
+    add     FeTmp, FeTmp, Busy
+    lbco    IepEnd, c26, IEP_COUNT, 4       // (over SpLag)
+    qble    FE_IEP_OVER, FeTmp, PfSlack
+    qble    FE_IEP_END, IepEnd, BufStamp    // still in its period
+FE_IEP_OVER:
+    or      ResFlags, ResFlags, BISS_RF_IEP_LATE
+    ldi     IepEnd, 0
+FE_IEP_END:
+    xout    XFR_BANK, IepEnd, 4             // bank register 3 (Slot = 0: BUF_STAMP)
+FE_IEP_DONE:
+    mov     SlavesLeft, PfSlaves
+    ldi     Idx, P_SLAVES
+// Each slave: its result from its slot (data, CRC register), masked; the
+// status: the CRC register against the residue, nE and nW from the data
+// word (the MVI pointer and shift of its check data, config.p).
 FE_SLAVE:
     xin     XFR_BANK, DataLo, 12            // data lo, data hi, CRC register: its slot
     add     Slot, Slot, SlotStep            // the next slave's
-    lbbo    &Chk.mask_lo, SlaveChk, 0, SIZE(BissSlave) // mask lo, mask hi, residue, [n, w, ew, flags]
+    lbco    &Chk, c28, Idx, OFFSET(BissSlave.spare) // pointer, shift, residue, masks
     and     DataLo, DataLo, Chk.mask_lo
     and     DataHi, DataHi, Chk.mask_hi
-    ldi     Status, BISS_RS_CRC_OK          // slave status (DataLo..Status: the result)
-    qbeq    FE_CRC_DONE, Chk.wbits, 0       // no CRC
-    qbeq    FE_CRC_DONE, Crc, Chk.residue
+    ldi     Status, BISS_RS_CRC_OK
+    qbeq    FE_CRC_OK, CrcHi, Chk.residue
     ldi     Status, 0
     or      ResFlags, ResFlags, BISS_RF_CRC_ERROR
-FE_CRC_DONE:
-    qbbc    FE_EW_DONE, Chk.sflags, 0       // no nE/nW
-    // nW (data bit ew) to EwBits bit 0, nE (bit ew + 1) to bit 1
-    lsr     EwBits, DataHi, Chk.ewbits      // 32 <= ew: the shift uses ew & 31
-    qble    FE_EW_GOT, Chk.ewbits, 32
-    lsr     EwBits, DataLo, Chk.ewbits
-    lsl     NeHigh, DataHi, 1
-    qbne    FE_EW_GOT, Chk.ewbits, 31
-    or      EwBits, EwBits, NeHigh          // ew = 31: nE is bit 0 of the high word
-FE_EW_GOT:
-    qbbc    FE_NE_DONE, EwBits, 1
-    set     Status, Status, 1               // nE: BISS_RS_NE (0x02)
-FE_NE_DONE:
-    qbbc    FE_EW_DONE, EwBits, 0
+FE_CRC_OK:
+    mvid    EwBits, *Chk.ewptr
+    lsr     EwBits, EwBits, Chk.ewshift     // nW at bit 0, nE at bit 1
+    qbbc    FE_NW_DONE, EwBits, 0
     set     Status, Status, 2               // nW: BISS_RS_NW (0x04)
+FE_NW_DONE:
+    qbbc    FE_EW_DONE, EwBits, 1
+    set     Status, Status, 1               // nE: BISS_RS_NE (0x02)
 FE_EW_DONE:
-    sbbo    DataLo, SlaveRes, BISS_R_S_DATA_LO, 16 // data, CRC register, status
-    add     SlaveRes, SlaveRes, BISS_R_SLAVE_SIZE
-    add     SlaveChk, SlaveChk, SIZE(BissSlave)
+    sbbo    DataLo, Base, Idx, BISS_R_SLAVE_SIZE // data, CRC register, status
+    add     Idx, Idx, SIZE(BissSlave)
     sub     SlavesLeft, SlavesLeft, 1
     qbne    FE_SLAVE, SlavesLeft, 0
-    // frame counters
+    add     ResBuf, Base, RES_BIAS
+    jal     RET_POST, PUBLISH
+
+// ---- after the publication: counters, control communication, history,
+// then the next frame --------------------------------------------------------
     qbbc    FE_NO_CRC_ERR, ResFlags, 1
     lbco    CrcErrors, c24, BISS_ST_CRC_ERRORS, 4
     add     CrcErrors, CrcErrors, 1
     sbco    CrcErrors, c24, BISS_ST_CRC_ERRORS, 4
 FE_NO_CRC_ERR:
-    // line delay: this frame's ACK position and the average it was read with
-    lbco    &Priv.h0, c28, P_HIST, P_HALF - P_HIST // history, its sum, P_BUF, P_NSLAVES
-    add     Qf, Priv.hsum, AckPos
-    lsr     Qf, Qf, 2                       // Qf'
-    sbbo    AckPos, ResBuf, BISS_R_DELAY_RAW, 2
-    sbbo    Qf, ResBuf, BISS_R_DELAY_AVG, 2
-    add     LagPeriods, Qf, 8 * LAG - 4     // m + LAG = (Qf' - 4) / 8 + LAG (SAMPLE_POINT)
-    lsr     LagPeriods, LagPeriods, 3       // (Qf' >= 8: every Q' is)
-    sbbo    LagPeriods, ResBuf, BISS_R_LAG_PERIODS, 1
-    // History. An ACK more than half a bit from the average it was read
-    // with means this frame's bits were read at the wrong place (a glitch
-    // in WAIT_ACK, or an average spoilt by one) or the line changed: the
-    // frame is not valid, whatever its CRC says. One such ACK is left out of
-    // the average; a second in a row starts the average afresh from it.
-    // P_NSLAVES bit 31 (PrivNs) remembers the first.
-    sub     AckJump, AckPos, Qf             // Q' - Qf' + 4 in 0..8: no jump
-    add     AckJump, AckJump, 4
-    qblt    FE_ACK_JUMP, AckJump, 8
+    mov     FrameR1, Kept                   // the CDM sent, Cds, AckPos
+    jal     RET_POST, CD_COMMIT             // Cds in; and CD_PREPARE: the next frame's CDM
+    // The history and the next frame's set-up from one burst (FRAME_REGS'
+    // Priv, with P_SSI and P_CFG_ACK after it). A jump (FRAME_END) is left
+    // out of the average; a second in a row starts the average afresh from
+    // it; P_NSLAVES bit 31 (PrivNs) remembers the first.
+    lbco    &Priv.delays, c28, P_DELAYS, P_CFG_ACK + 4 - P_DELAYS
+    qbbs    FE_ACK_JUMP, ResFlags, 6        // BISS_RF_ACK_JUMP
     clr     PrivNs, PrivNs, 31
     mov     Priv.h2, Priv.h1                // h2 = h1
     mov     Priv.h1, Priv.h0                // h1 = h0
     mov     Priv.h0, AckPos                 // h0 = Q'
     qble    FE_HIST_SAVE, Priv.navg, 3      // 3 <= frames in the average: full
     add     Priv.navg, Priv.navg, 1
-    qba     FE_HIST_SAVE
+FE_HIST_SAVE:
+    jal     RET_POST, HIST_SAVE             // (Priv.hsum the new sum)
+FE_HIST_KEPT:
+    sbco    PrivNs, c28, P_NSLAVES, P_HALF - P_NSLAVES
+    // The next frame, when it is a free-run or IEP BiSS-C one (no training
+    // can be due: only a refused configuration or a missing slave asks for
+    // one, and both go through MAIN), the configuration unchanged and MA
+    // high (CDM 0), is set up now, while the slave's timeout runs, and
+    // starts when SL shows the timeout's end (FE_START), or on its count
+    // after that (IEP_START).
+    qbne    FE_SLOW, FeSsi, 0               // SSI: MAIN's FRAME
+    qbbc    FE_SLOW, MA_OUT, MA_BIT         // CDM 1: MA is raised when SL is high, then held
+.using main_loop
+    lbco    CfgSeq, c24, BISS_CFG_SEQ, 4
+    qbne    FE_SLOW, CfgSeq, FeCfgAck       // a new configuration: MAIN applies it
+.leave main_loop
+    qbeq    FE_SLOW, Priv.trigger, BISS_TRIG_HOST
+    mov     FeTrigger, Priv.trigger         // (FRAME_REGS_SET keeps r10 but not Priv)
+    jal     RET_SUB, FRAME_REGS_SET
+.using clocked
+    fill    &Edges, 4                       // all ones while the start bit is awaited
+.leave clocked
+    qbbs    IEP_START, FeTrigger, 0         // BISS_TRIG_IEP (1), IEP_FOLLOW (3): its count
+
+// The free-run frame's start: everything set up, the count base of the
+// timestamp in bank register 2 (BUF_STAMP), then the poll for SL high
+// (SLAVE_IDLE's test, at most FE_TURNS turns of 4 cycles) whose exit is
+// period 0 itself: its MA fall comes 2 cycles after the R31 read that saw
+// the slave's timeout end. Period 0 puts the turns left in bank register 1,
+// so the timestamp is the base less 4 cycles a turn left; the base is the
+// count read here, plus the cycles from that read to the fall had the
+// first turn seen SL high (less FRAME_STAMP's 4: its read comes 4 cycles
+// before the fall), plus 4 FE_TURNS.
+#define FE_BASE         4                   // (6 cycles from the read to FE_POLL, less 2; and
+                                            // 4 FE_TURNS added to the upper half)
+.using fe_start
+FE_START:
+    ldi     FastLeft, FE_TURNS
+    lbco    FastBase, c26, IEP_COUNT, 4
+    add     FastBase, FastBase, FE_BASE
+    add     FastBaseHi, FastBaseHi, 4 * FE_TURNS >> 16
+    xout    XFR_BANK, FastBase, 4           // bank register 2
+FE_POLL:
+    and     FastIdle8, SL_IN.b0, IDLE_MASK
+    qbeq    FRAME_PERIOD0, FastIdle8, IDLE_MASK
+    sub     FastLeft, FastLeft, 1
+    qbne    FE_POLL, FastLeft, 0
+    jmp     MAIN                            // SL never came high: MAIN's FRAME finds it so
+.leave fe_start
+
+// ---- IEP frames (the owner's and a follower's alike) --------------------------
+// Every IEP-triggered frame's period 0 starts when the count is IEP_ALIGN
+// after its IEP period began (the count reset to 0), with no data-RAM
+// access from the count's read to it: the loads that stall while the host
+// reads the data RAM (docs/silicon-assumptions.md A5) all come before. The
+// count is read once, here; then SL is polled (SLAVE_IDLE's test: register
+// instructions only, 4 cycles a turn, each taking 4 off the wait), so when
+// SL is high the count is known to the cycle and the rest is an exact wait
+// (2 + d cycles from IEP_HIGH's test to period 0, for d). The period is the
+// one after the last frame's end: its count then (IepEnd, bank register 3: FRAME_END) above the count now
+// means a period began since, and the frame is due at this period's
+// IEP_ALIGN; otherwise at the next period's (IepEnd = 0, after an overrun
+// or an aborted frame: the next period's). The frame waits in the period
+// it is for; one that cannot make its count (SL high after it) starts at
+// once through FRAME_STAMP (IEP_LATE), its timestamp then not IEP_ALIGN -
+// 4, and FRAME_END flags it. Entered with the frame set up (FRAME_REGS,
+// Edges; SSI_FRAME's loads), IepTarget its period 0 (FRAME_PERIOD0, or
+// SSI_STAMPED: after FRAME_STAMP). P_IEP_KEY not CMP0: the owner's period
+// is new, and IEP_PERIOD works out its thresholds first (then MAIN).
+#define IEP_BUDGET      3                   // the late poll's budget past the wait: about
+                                            // 3 x 0x10000 cycles, 983 us: more than
+                                            // SLAVE_IDLE's, so a frame the slow path
+                                            // (FE_SLOW) made late by up to that still
+                                            // comes through IEP_LATE
+.using iep_start
+IEP_START_SLOW:                             // MAIN's frames (FRAME_SET, SSI_FRAME):
+    ldi     IepStamp, IEP_ALIGN - 4         // bank register 2: the timestamp of a frame on
+    xout    XFR_BANK, IepStamp, 4           // its count (FRAME_STAMP's read comes 4 before)
+IEP_START:                                  // FE: bank register 2 holds it still (an IEP
+                                            // frame on its count leaves it, FE_IEP puts it
+                                            // back after any other)
+    xin     XFR_BANK, IepEnd, 4             // bank register 3 (Slot = 0: FRAME_REGS_SET)
+    lbco    IepKey, c28, P_IEP_KEY, 4
+    lbco    IepP, c26, IEP_CMP0, 4          // P - 1
+    lbco    IepCnt, c26, IEP_COUNT, 4       // (the last read: from here the cycles count)
+    qbne    IEP_PERIOD, IepP, IepKey        // a new period: its thresholds first
+    rsb     IepD, IepCnt, IEP_D0            // to this period's IEP_ALIGN, had SL been
+    qbgt    IEP_POLL, IepCnt, IepEnd        // high at the read, if a period began since the
+    add     IepD, IepD, IepP                // last frame's end; else the next period's (P:
+                                            // IEP_D0 has the 1)
+IEP_POLL:                                   // SLAVE_IDLE's test, 4 cycles a turn, to the
+    and     IepIdle8, SL_IN.b0, IDLE_MASK   // count: d = IepD when SL is high
+    qbeq    IEP_HIGH, IepIdle8, IDLE_MASK
+    sub     IepD, IepD, 4
+    qbbc    IEP_POLL, IepD, 31
+    ldi     IepDHi, IEP_BUDGET - 1          // past the count: late, if SL comes high within
+IEP_LATE_POLL:                              // the budget (IepD is -1..-4: its upper half
+    and     IepIdle8, SL_IN.b0, IDLE_MASK   // all ones)
+    qbeq    IEP_LATE, IepIdle8, IDLE_MASK
+    sub     IepD, IepD, 4
+    qbbc    IEP_LATE_POLL, IepD, 31
+    jmp     MAIN                            // SL never came high: MAIN's FRAME finds it so
+IEP_HIGH:
+    qbbs    IEP_LATE, IepD, 31              // past the count at the read
+    qbbc    IEP_EVEN, IepD, 0               // 2 + d cycles for every d, from single-cycle
+    sub     IepD, IepD, 1                   // instructions only (no LOOP of one instruction,
+IEP_EVEN:                                   // no count of 0: docs/silicon-assumptions.md)
+    qbeq    IEP_AT, IepD, 0
+IEP_TURN:
+    sub     IepD, IepD, 2                   // 2 cycles a turn
+    qbne    IEP_TURN, IepD, 0
+IEP_AT:
+    jmp     IepTarget
+IEP_LATE:                                   // at once, timestamped as any frame
+    sub     IepLate, IepTarget, STAMP_WORDS
+    jmp     IepLate                         // FRAME_STAMP, then period 0
+.leave iep_start
+
 FE_ACK_JUMP:
-    xor     ResFlags, ResFlags, BISS_RF_VALID | BISS_RF_ACK_JUMP // VALID set since FRAME_END,
-                                            // ACK_JUMP not: one clear, one set
     qbbs    FE_HIST_RESET, PrivNs, 31       // the second in a row
     set     PrivNs, PrivNs, 31
-    qba     FE_NO_SMA                       // the history stays as it was
+    qba     FE_HIST_KEPT                    // the history stays as it was
 FE_HIST_RESET:
-    mov     Priv.h0, AckPos
-    mov     Priv.h1, AckPos
-    mov     Priv.h2, AckPos
     ldi     Priv.navg, 0
-FE_HIST_SAVE:
-    qbgt    FE_NO_SMA, Priv.navg, 3
-    or      ResFlags, ResFlags, BISS_RF_SMA
-FE_NO_SMA:
-    sbco    PrivNs, c28, P_NSLAVES, P_HALF - P_NSLAVES
-    jal     RET_POST, HIST_SAVE
-    jal     RET_POST, PUBLISH               // and CD_PREPARE: the next frame's CDM
-    // The next frame, when it is a free-run BiSS-C one with no training due,
-    // is set up now, while the slave's timeout runs: all MAIN and FRAME look
-    // at changes only with a configuration, so once SL is high only a new
-    // one is checked for (MAIN applies it), and the frame starts at once.
-    // (No training can be due here: only a refused configuration or a
-    // missing slave asks for one, and both go through MAIN.)
-    lbco    &NextNs, c28, P_NSLAVES, P_HALF - P_NSLAVES
-    qbne    FE_SLOW, NextTrigger, BISS_TRIG_FREERUN
-    lbco    NextSsi, c28, P_SSI, SIZE(BissPriv.ssi_ack)
-    qbne    FE_SLOW, NextSsi, 0
-    jal     RET_SUB, FRAME_REGS
-    jal     RET_SUB, SLAVE_IDLE             // the slave's timeout has ended: SL high,
-    qbeq    FE_MAIN, IDLE_LEFT, 0           // or not in time: MAIN and FRAME find it so again
-.using main_loop
-FE_IDLE_YES:
-    lbco    CfgSeq, c24, BISS_CFG_SEQ, 4    // (loaded before MA may rise: no data-RAM
-    lbco    CfgAck, c24, BISS_ST_CFG_ACK, 4 // access between that edge and the frame's)
-    set     MA_OUT, MA_OUT, MA_BIT          // CDM done: MA idles high
-    qbne    FE_MAIN, CfgSeq, CfgAck         // a new configuration: MAIN applies it
-    jmp     FRAME_STAMPED
-.leave main_loop
+    jal     RET_POST, HIST_FILL             // h0 = h1 = h2 = Q'
+    qba     FE_HIST_KEPT
 FE_SLOW:
     jal     RET_SUB, SLAVE_IDLE             // the slave's timeout ends: SL high
-FE_MAIN:
+// MA high for at least a half period before any frame's first falling edge:
+// iC-MB4 gives each MA phase half the period, and after its trigger half a
+// period before the first fall (datasheet I302/I303, GETSENS); after a
+// CDM of 1 MA rises only here, when the slave's timeout is over. Held for
+// 2H cycles (turns of 2), whatever the frame before (a NO_ACK frame's last
+// rise may be as recent).
     set     MA_OUT, MA_OUT, MA_BIT          // CDM done: MA idles high
+    lbco    HoldLeft, c28, P_HALF, SIZE(BissPriv.half)
+MA_HOLD:
+    sub     HoldLeft, HoldLeft, 1
+    qbne    MA_HOLD, HoldLeft, 0
     jmp     MAIN
-
-// History Priv.h0, h1, h2 and its sum + 2 (rounding) to P_HIST/P_HSUM;
-// HIST_FILL: all three AckPos (a history started afresh from one position).
-HIST_FILL:
-    mov     Priv.h0, AckPos
-    mov     Priv.h1, AckPos
-    mov     Priv.h2, AckPos
-HIST_SAVE:
-    sbco    &Priv.h0, c28, P_HIST, OFFSET(BissPriv.k) - P_HIST
-    add     Sum, Priv.h0, Priv.h1
-    add     Sum, Sum, Priv.h2
-    add     Sum, Sum, 2
-    sbco    Sum, c28, P_HSUM, SIZE(BissPriv.hsum)
-    jmp     RET_POST
-
-// Publish the result buffer ResBuf with the flags in ResFlags: header words, then
-// the sequence number (its low bit names the buffer), then the next buffer.
-// Every publication is followed by CD_PREPARE (the next frame's CDM): it
-// goes on there, and returns through RET_POST from it.
-PUBLISH:
-    lbco    Frames, c24, BISS_ST_FRAMES, 4
-    add     Frames, Frames, 1
-    sbco    Frames, c24, BISS_ST_FRAMES, 4
-    sbbo    Frames, ResBuf, BISS_R_FRAME, 4
-    sbbo    ResFlags, ResBuf, BISS_R_FLAGS, 4
-    lbco    &Pub.buf, c28, P_BUF, P_PROC - P_BUF // P_BUF, P_NSLAVES, P_HALF
-    sbbo    Pub.nslaves, ResBuf, BISS_R_NSLAVES, 1
-    sbbo    Pub.half, ResBuf, BISS_R_HALF, 2
-    sbco    Pub.buf, c24, BISS_ST_BUF, 4
-    lbco    Seq, c24, BISS_ST_SEQ, 4
-    add     Seq, Seq, 1                     // odd seq: buffer 1, even: buffer 0
-    sbco    Seq, c24, BISS_ST_SEQ, 4
-    xor     Pub.buf, Pub.buf, 1
-    sbco    Pub.buf, c28, P_BUF, SIZE(BissPriv.buf)
-    ldi     State, BISS_STATE_RUNNING
-    sbco    State, c24, BISS_ST_STATE, 4
-    jmp     CD_PREPARE                      // which returns through RET_POST
-
-// Wait for SL high: the slave's timeout has ended. High means the newest
-// 4 samples (IDLE_MASK, half an MA period) are all 1, not just the newest:
-// a glitch on SL during the timeout must not start a frame while the slave
-// still ignores MA (it would misframe this frame and the next two). Half
-// a period keeps the master's overhead low at 1 MHz and still outlasts a
-// glitch of two samples (25 ns at 10 MHz). At most IDLE_TURNS turns of 4
-// cycles; IDLE_LEFT = 0 if SL did not come high (the turns left if it did).
-// r2.b0 is scratch (Idle8). Returns through RET_SUB: free before a frame
-// (FRAME_STAMPED and TRAIN_GO set Edges). A free-run frame waits here after
-// FRAME_REGS (FE_IDLE_YES): of what that sets up, r2, r3 and r12 are not used.
-SLAVE_IDLE:
-    mov     IDLE_LEFT, IDLE_TURNS
-SLAVE_IDLE_POLL:
-    and     Idle8, SL_IN.b0, IDLE_MASK
-    qbeq    SLAVE_IDLE_YES, Idle8, IDLE_MASK
-    sub     IDLE_LEFT, IDLE_LEFT, 1
-    qbne    SLAVE_IDLE_POLL, IDLE_LEFT, 0
-SLAVE_IDLE_YES:
-    jmp     RET_SUB
-
-// ResBuf = the result buffer being filled, with the frame's timestamp (bank
-// register 2, FRAME_STAMP) and busy clocks (Busy, START_WAIT) stored in it:
-// the clocked part stores nothing. XfrShift = 0 after (no XFR shift),
-// StampBuf = ResBuf. Returns through RET_STAMP.
-BUF_STAMP:
-    ldi     XfrShift, 0
-    xin     XFR_BANK, Stamp, 4
-    RESULT_BASE StampBuf
-    sbbo    Stamp, StampBuf, BISS_R_TIMESTAMP, 4
-    sbbo    Busy, StampBuf, BISS_R_PROC_CLOCKS, 2
-    mov     ResBuf, StampBuf
-    jmp     RET_STAMP
 
 // ---- frames that end early ---------------------------------------------------
 // No slave: the line delay is measured again once one answers (a slave
@@ -303,12 +393,14 @@ NO_SLAVE_FLAGS:                             // (SL_INIT_DONE: its own ResFlags)
 
 // ResFlags = flags, TallyAddr = the counter to increment; publish, wait for the slave.
 ABORT_FRAME:
-    jal     RET_POST, CD_ABORT
     lbbo    TallyVal, TallyAddr, 0, 4
     add     TallyVal, TallyVal, 1
     sbbo    TallyVal, TallyAddr, 0, 4
+    jal     RET_POST, CD_ABORT              // and CD_PREPARE
     jal     RET_STAMP, BUF_STAMP            // ResBuf = the result buffer
-    jal     RET_POST, PUBLISH               // and CD_PREPARE
+    ldi     IepEnd, 0                       // an IEP frame next: in the next period from
+    xout    XFR_BANK, IepEnd, 4             // now (bank register 3, IEP_START; Slot = 0)
+    jal     RET_POST, PUBLISH
     jmp     FE_SLOW                         // wait for the slave, MA high, MAIN
 
 // The ACK came but the start bit did not: this frame's ACK position is a
@@ -347,8 +439,8 @@ TRAIN_DONE:
     jal     RET_POST, HIST_FILL             // Priv.h0, h1 = Q' too
     jal     RET_STAMP, BUF_STAMP            // ResBuf (Priv.h0, h1 kept)
     sbbo    &Priv.h0, ResBuf, BISS_R_DELAY_RAW, 4 // and DELAY_AVG
-    sbco    XfrShift, c28, P_TRAIN_DUE, SIZE(BissPriv.train_due) // training done (XfrShift = 0: BUF_STAMP)
-    sbco    XfrShift, c28, P_NAVG, SIZE(BissPriv.navg) // the average starts at this frame
+    sbco    Slot, c28, P_TRAIN_DUE, SIZE(BissPriv.train_due) // training done (Slot = 0: BUF_STAMP)
+    sbco    Slot, c28, P_NAVG, SIZE(BissPriv.navg) // the average starts at this frame
     ldi     ResFlags, BISS_RF_TRAINING
     ldi     TallyAddr, BISS_ST_TRAINING
     jmp     ABORT_FRAME
@@ -367,4 +459,75 @@ TRAIN_DONE:
 SL_INIT_DONE:                               // a training proper next
     ldi     ResFlags, BISS_RF_NO_SLAVE | BISS_RF_SL_INIT
     qba     NO_SLAVE_FLAGS
+
+// ---- subroutines of the above ----------------------------------------------
+// History Priv.h0, h1, h2 and its sum + 2 (rounding) to P_HIST/P_HSUM;
+// HIST_FILL: all three AckPos (a history started afresh from one position).
+HIST_FILL:
+    mov     Priv.h0, AckPos
+    mov     Priv.h1, AckPos
+    mov     Priv.h2, AckPos
+HIST_SAVE:
+    sbco    &Priv.h0, c28, P_HIST, OFFSET(BissPriv.k) - P_HIST
+    add     Priv.hsum, Priv.h0, Priv.h1
+    add     Priv.hsum, Priv.hsum, Priv.h2
+    add     Priv.hsum, Priv.hsum, 2
+    sbco    Priv.hsum, c28, P_HSUM, SIZE(BissPriv.hsum)
+    jmp     RET_POST
+
+// Publish the result buffer ResBuf with the flags in ResFlags: the frame
+// number, the flags, the slaves and H, then ST_BUF and ST_SEQ (its number:
+// odd for buffer 0, even for 1; the buffer being filled next is ST_SEQ's low
+// bit, BUF_STAMP). Returns through RET_POST.
+PUBLISH:
+    lbco    Seq, c24, BISS_ST_SEQ, 4
+    and     BufNo, Seq, 1                   // the buffer filled (BUF_STAMP)
+    add     Seq, Seq, 1
+    sbbo    Seq, ResBuf, BISS_R_FRAME, 4
+    sbbo    ResFlags, ResBuf, BISS_R_FLAGS, 4
+    lbco    &PubNs, c28, P_NSLAVES, P_HALF + SIZE(BissPriv.half) - P_NSLAVES
+    sbbo    PubSlaves, ResBuf, BISS_R_NSLAVES, 1
+    sbbo    PubHalf, ResBuf, BISS_R_HALF, 2
+    sbco    BufNo, c24, BISS_ST_BUF, 4
+    sbco    Seq, c24, BISS_ST_SEQ, 4        // published
+    sbco    Seq, c24, BISS_ST_FRAMES, 4
+    jmp     RET_POST
+
+// Wait for SL high: the slave's timeout has ended. High means the newest
+// 4 samples (IDLE_MASK, half an MA period) are all 1, not just the newest:
+// a glitch on SL during the timeout must not start a frame while the slave
+// still ignores MA (it would misframe this frame and the next two). Half
+// a period keeps the master's overhead low at 1 MHz and still outlasts a
+// glitch of two samples (25 ns at 10 MHz). At most IDLE_TURNS turns of 4
+// cycles; IDLE_LEFT = 0 if SL did not come high (the turns left if it did).
+// r2.b0 is scratch (Idle8). Returns through RET_SUB. (The free-run frame's
+// own poll is FE_POLL, frame.p: the same turns, with period 0 as its exit.)
+SLAVE_IDLE:
+    mov     IDLE_LEFT, IDLE_TURNS
+SLAVE_IDLE_POLL:
+    and     Idle8, SL_IN.b0, IDLE_MASK
+    qbeq    SLAVE_IDLE_YES, Idle8, IDLE_MASK
+    sub     IDLE_LEFT, IDLE_LEFT, 1
+    qbne    SLAVE_IDLE_POLL, IDLE_LEFT, 0
+SLAVE_IDLE_YES:
+    jmp     RET_SUB
+
+// ResBuf = the result buffer being filled (ST_SEQ's low bit), with the
+// frame's timestamp and busy clocks (Busy, START_WAIT) stored in it: the
+// clocked part stores nothing. The timestamp is bank register 2 (the count
+// base: FRAME_STAMP, or FE_START) less four cycles for each turn of FE_POLL
+// that was left when the frame started (bank register 1's upper half,
+// period 0; 0 after FRAME_STAMP), left in BufStamp. Slot = 0 after (no XFR
+// shift). Returns through RET_STAMP.
+BUF_STAMP:
+    ldi     Slot, 0
+    xin     XFR_BANK, &StampTurns, 8        // bank registers 1 and 2: r1, r2
+    lsl     BufStamp, TurnsLeft, 2
+    sub     BufStamp, Stamp, BufStamp
+    lbco    ResBuf, c24, BISS_ST_SEQ, 4
+    and     ResBuf, ResBuf, 1
+    RESULT_ADDR ResBuf, ResBuf
+    sbbo    BufStamp, ResBuf, BISS_R_TIMESTAMP, 4
+    sbbo    Busy, ResBuf, BISS_R_PROC_CLOCKS, 2
+    jmp     RET_STAMP
 .leave results

@@ -12,13 +12,20 @@
 .using front
 SSI_FRAME:
     jal     RET_SUB, FRAME_REGS
-    lbco    &AckPos, c28, P_SSI, SIZE(BissPriv) - P_SSI // Q' (and AckPos is what FRAME_END
-                                            // records), the clocks (to r2.w0: docs/pru-facts.md §1.7)
-    IEP_ALIGN_IF SSI_ALIGNED
+    ldi     Crc, 0                          // (its w0 stays 0: LOAD_RECORD sets w2)
+    xout    XFR_BANK, RecWord, 4            // no FE_POLL turns (BUF_STAMP; period 0 is LAG_TOP's)
+    lbco    AckPos, c28, P_SSI, SIZE(BissPriv.ssi_ack) // Q' (and AckPos is what FRAME_END records)
+    lbco    SsiEdges, c28, P_SSI + 2, SIZE(BissPriv.ssi_edges) // the clocks
+    qbbc    SSI_ALIGNED, Trigger, 0         // not BISS_TRIG_IEP (1) or IEP_FOLLOW (3)
 .leave main_loop
+.using iep_start
+    ldi     IepTarget, SSI_STAMPED          // (Crc's upper half: LOAD_RECORD writes it)
+    jmp     IEP_START_SLOW
+.leave iep_start
 SSI_ALIGNED:
-    mov     Edges, SsiEdges
     FRAME_STAMP
+SSI_STAMPED:                                // an IEP frame on its count comes in here
+    mov     Edges, SsiEdges
     SAMPLE_POINT AckPos                     // sample point and lag as LAG1 derives them
     lsr     IdlePeriods, Qf, 3
     add     IdlePeriods, IdlePeriods, LAG   // periods before bit 0 is read: m + LAG

@@ -41,7 +41,7 @@ CLEAR_PRIV:
 
 // ---- the main loop: configuration, trigger, frame --------------------------
 // Its names, and those of the frame's set-up that reopens it (FRAME,
-// SSI_FRAME: IEP_ALIGN_IF). r2 is read word by word: the configuration's
+// SSI_FRAME). r2 is read word by word: the configuration's
 // sequence number, then P_PROC's word, then P_NSLAVES' two bytes over its
 // upper half (the trigger stays there until the frame starts).
 .enter main_loop
@@ -50,11 +50,9 @@ CLEAR_PRIV:
 .assign Byte, r2.b2, r2.b2, TrainDue        //   a training frame is due (P_TRAIN_DUE)
 .assign Byte, r2.b3, r2.b3, Running         //   the configuration is running (P_RUNNING)
 .assign Byte, r2.b2, r2.b2, NSlaves         // P_NSLAVES: slaves, and after it
-.assign Byte, r2.b3, r2.b3, Trigger         //   the trigger (BISS_TRIG_*), kept to IEP_ALIGN_IF
+.assign Byte, r2.b3, r2.b3, Trigger         //   the trigger (BISS_TRIG_*), kept to IEP_START
 .assign Half, r2.w0, r2.w0, SsiAck          // P_SSI's ACK position (FRAME: 0 for BiSS-C)
 .assign Word, r3, r3, CfgAck                // BISS_ST_CFG_ACK: the last configuration applied
-.assign Word, r3, r3, IepCount              // the IEP count (IEP follow)
-.assign Word, r3, r3, IepStatus             // the IEP's CMP status
 .assign Word, r3, r3, HostCmd               // BISS_CMD_TRIGGER
 MAIN:
     lbco    CfgSeq, c24, BISS_CFG_SEQ, 4
@@ -62,70 +60,16 @@ MAIN:
     qbeq    MAIN_CFG_OK, CfgSeq, CfgAck
     qbne    APPLY_CONFIG, CfgSeq, 0         // (0: the host has written none yet)
 MAIN_CFG_OK:
-    lbco    &PrivProc, c28, P_PROC, P_SPARE - P_PROC
+    lbco    &PrivProc, c28, P_PROC, P_PROC_END - P_PROC
     qbeq    MAIN, Running, 0                // not running (no or a refused configuration)
     qbeq    TRIGGER_DONE, TrainDue, 0
     jmp     TRAIN                           // a training frame is due first
 TRIGGER_DONE:
-    // Trigger, for IEP_ALIGN_IF (SLAVE_IDLE, the P_SSI loads and
-    // FRAME_REGS keep it)
+    // Trigger, for FRAME and SSI_FRAME (SLAVE_IDLE, the P_SSI loads and
+    // FRAME_REGS keep it): the host's, or a free-run or IEP frame at once
+    // (IEP_START waits for its period)
     lbco    &NSlaves, c28, P_NSLAVES, P_REC_END - P_NSLAVES
-    qbeq    WAIT_HOST, Trigger, BISS_TRIG_HOST
-    qbeq    WAIT_IEP, Trigger, BISS_TRIG_IEP
-    qbne    FRAME, Trigger, BISS_TRIG_IEP_FOLLOW // free-run
-// The other PRU owns the IEP and its CMP0 status: a new period is a count
-// below IEP_ALIGN (a MAIN turn is far shorter than IEP_ALIGN). From there
-// on the owner's path: the same loads, then IEP_AT_ALIGN, so both frames
-// start on the same count; a frame too late for it goes at once, as the
-// owner's does.
-WAIT_FOLLOW:
-    lbco    IepCount, c26, IEP_COUNT, 4
-    qble    MAIN, IepCount, IEP_ALIGN       // count >= IEP_ALIGN: not yet
-    ldi     Trigger, BISS_TRIG_IEP          // aligned as the owner's (IEP_ALIGN_IF)
-    jmp     FRAME
-WAIT_IEP:
-    lbco    IepStatus, c26, IEP_CMP_STATUS, 4
-    qbbc    MAIN, IepStatus, 0
-    sbco    IepStatus, c26, IEP_CMP_STATUS, 4 // clear the CMP0 hit (write 1 to clear: any
-                                            // other compare's too; none is used)
-    jmp     FRAME                           // which aligns before period 0 (IEP_ALIGN_IF)
-
-// The hit was seen up to one turn of MAIN late, and the loads before a
-// frame (FRAME, FRAME_REGS, SSI_FRAME) stall while the host reads the data
-// RAM (docs/silicon-assumptions.md A5). So every IEP-triggered frame starts
-// at the same count after the period's reset instead, with only this code,
-// no data-RAM access, between the count's read and period 0. Entered by
-// `jal RET_SUB, IEP_AT_ALIGN` once the frame's last load is done
-// (IEP_ALIGN_IF); it writes AlignWait (r3) and returns through RET_SUB.
-.enter iep_align
-.assign Word, r3, r3, AlignWait             // cycles to wait for IEP_ALIGN, then turns of 2
-.assign Half, r3.w2, r3.w2, AlignLate       // its upper half: set when the count is past it
-IEP_AT_ALIGN:
-    lbco    AlignWait, c26, IEP_COUNT, 4
-    rsb     AlignWait, AlignWait, IEP_ALIGN // d: cycles to wait; none if later
-    qbne    IEP_ALIGNED, AlignLate, 0       // upper half set: late, go now
-    // 3 + d cycles for every d, from single-cycle instructions only (no
-    // LOOP of one instruction, no count of 0: docs/silicon-assumptions.md)
-    qbbc    IEP_EVEN, AlignWait, 0
-    PAD                                     // d odd: one more
-IEP_EVEN:
-    lsr     AlignWait, AlignWait, 1
-    qbeq    IEP_ALIGNED, AlignWait, 0
-IEP_WAIT:
-    sub     AlignWait, AlignWait, 1         // 2 cycles a turn
-    qbne    IEP_WAIT, AlignWait, 0
-IEP_ALIGNED:
-    jmp     RET_SUB
-.leave iep_align
-
-// An IEP-triggered frame (Trigger = BISS_TRIG_IEP: TRIGGER_DONE, WAIT_FOLLOW)
-// aligns here, right after its last load; any other goes on to `next` at
-// once (one cycle more, before the frame: not clocked).
-.macro IEP_ALIGN_IF
-.mparam next
-    qbne    next, Trigger, BISS_TRIG_IEP
-    jal     RET_SUB, IEP_AT_ALIGN
-.endm
+    qbne    FRAME, Trigger, BISS_TRIG_HOST
 
 WAIT_HOST:
     lbco    HostCmd, c24, BISS_CMD_TRIGGER, 4

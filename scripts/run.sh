@@ -31,9 +31,15 @@ build/emulator/bench/biss-sim --profile tidep0022-test-encoder --freq 10000000 -
     --frames 1000 --vcd build/demo.vcd --svg build/demo.svg "$@"
 
 # The same firmware and encoder through libbiss, as a host program reads it:
-# the first frames one by one (frame 1, the first, is the training frame).
+# a second run from the start, its first frames one by one (frame 1, the
+# first, is the training frame). Its figures are those frames'; biss-sim's
+# above are its last frame's, and the firmware measures to 1/8 bit and
+# averages 4 frames, so the two may differ by a step: the run says so.
 if [ "$#" -eq 0 ]; then
     echo
-    echo "first frames through libbiss (build/host/bissctl read -n 6):"
+    echo "a second run from the start, through libbiss: its frames 1..6 (build/host/bissctl read -n 6)."
+    echo "The line delay above is biss-sim's last frame's; measured to 1/8 bit (12.5 ns at 10 MHz) and"
+    echo "averaged over 4 frames, an early frame's may be a step off. lag=N: a bit is read N MA periods"
+    echo "after the clock that made it, at sample_point/8 of the bit."
     build/host/bissctl --profile tidep0022-test-encoder --freq 10000000 --cable-m 10 read -n 6
 fi

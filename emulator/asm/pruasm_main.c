@@ -1,12 +1,14 @@
 /*
  * pruasm_main.c - the `pruasm` command: pasm 0.87's command line, messages,
- * exit status and output files, on top of the pruasm library. Output files
+ * exit status and output files, on top of the pruasm library (a usage error
+ * in the tools' one form instead of pasm's: README "Conventions"). Output files
  * are written to temporary names and renamed into place only when all of
  * them succeeded, so a failed run never leaves a partial file behind.
  */
 #include "pruasm.h"
 #include "safe_file.h"
 
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -61,26 +63,31 @@ static void usage(FILE *fp, const char *prog) {
             "    D  - define an equate: -Dname (value 1) or -Dname=value (at most 8)\n"
             "    C  - name of the C/FreeBasic array: -Cname (default PRUcode)\n\n"
             "Output files are written in the current directory, named after InFile\n"
-            "up to its first '.', or OutFileBase. Exit status 0 on success, 1 on error.\n",
+            "up to its first '.', or OutFileBase. Exit status 0 on success, 1 on an\n"
+            "error in the source or a file, 2 on bad usage.\n",
             prog);
 }
 
-static int bad_usage(const struct cli *o, const char *why) {
-    if (why)
-        fprintf(stderr, "\n%s\n\n", why);
-    usage(stderr, o->prog);
-    return 1;
-}
+#define EXIT_USAGE 2
 
-static int unsupported(const char *what) {
-    fprintf(stderr, "pruasm: %s is not supported\n", what);
-    return 1;
+/* A usage error in the tools' one form: "pruasm: MESSAGE" and the way to
+ * the help; returns EXIT_USAGE. */
+__attribute__((format(printf, 2, 3))) static int bad_usage(const struct cli *o, const char *fmt,
+                                                           ...) {
+    va_list ap;
+    va_start(ap, fmt);
+    fprintf(stderr, "%s: ", o->prog);
+    vfprintf(stderr, fmt, ap);
+    va_end(ap);
+    fprintf(stderr, "\nTry '%s --help' for more information.\n", o->prog);
+    return EXIT_USAGE;
 }
 
 /* One "-..." argument, pasm style: letters may be grouped; I, D and C take
  * the rest of the argument. Returns 0, or the exit status on error. */
 static int parse_flags(struct cli *o, const char *arg) {
-    char msg[64];
+    if (arg[1] == '-' || arg[1] == '\0') /* --help and --version are taken before */
+        return bad_usage(o, "unknown option '%s'", arg);
     for (const char *p = arg + 1; *p; p++) {
         switch (*p) {
         case 'I': {
@@ -93,36 +100,37 @@ static int parse_flags(struct cli *o, const char *arg) {
         }
         case 'D': {
             if (o->ndefines == MAX_DEFINES)
-                return bad_usage(o, "Too many command line equates");
+                return bad_usage(o, "-D: at most %d equates", MAX_DEFINES);
             size_t n = strcspn(p + 1, "=");
             if (n >= NAME_MAX_LEN)
-                return bad_usage(o, "Command line equate name too long");
+                return bad_usage(o, "-D%s: name longer than %d characters", p + 1,
+                                 NAME_MAX_LEN - 1);
             if (p[1 + n] == '=' && strlen(p + 2 + n) >= VALUE_MAX_LEN)
-                return bad_usage(o, "Command line equate data too long");
+                return bad_usage(o, "-D%s: value longer than %d characters", p + 1,
+                                 VALUE_MAX_LEN - 1);
             o->defines[o->ndefines++] = p + 1;
             return 0;
         }
         case 'C':
             if (strlen(p + 1) >= VALUE_MAX_LEN)
-                return bad_usage(o, "CArray name too long");
+                return bad_usage(o, "-C%s: longer than %d characters", p + 1, VALUE_MAX_LEN - 1);
             o->array_name = p + 1;
             return 0;
         case 'V':
             p++;
             if (*p < '0' || *p > '3')
-                return bad_usage(o, "Expected a number (0-3) after option 'V'");
+                return bad_usage(o, "-V: expected a core version, 1..3");
             if (o->core)
-                return bad_usage(o, "Do not specify more than one core version or use -V with "
-                                    "-X or -x");
+                return bad_usage(o, "one core version: -V once, not with -X or -x");
             if (*p == '0')
-                return unsupported("core version V0 (-V0)");
+                return bad_usage(o, "-V0: the legacy V0 core is not supported");
             o->core = *p - '0';
             break;
         case 'x':
-            return unsupported("core version V0 (-x)");
+            return bad_usage(o, "-x: the legacy V0 core is not supported");
         case 'X':
             if (o->core)
-                return bad_usage(o, "Do not use -X with -x or -V");
+                return bad_usage(o, "one core version: -X once, not with -V or -x");
             o->core = 2;
             break;
         case 'E':
@@ -155,8 +163,7 @@ static int parse_flags(struct cli *o, const char *arg) {
         case 'z':
             break;
         default:
-            snprintf(msg, sizeof msg, "Unknown flag '%c'", *p);
-            return bad_usage(o, msg);
+            return bad_usage(o, "unknown option '-%c'", *p);
         }
     }
     return 0;
@@ -164,7 +171,7 @@ static int parse_flags(struct cli *o, const char *arg) {
 
 static int parse_args(struct cli *o, int argc, char **argv) {
     if (argc < 2)
-        return bad_usage(o, NULL);
+        return bad_usage(o, "no InFile given");
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
             usage(stdout, o->prog);
@@ -179,7 +186,7 @@ static int parse_args(struct cli *o, int argc, char **argv) {
         else if (!o->outfile)
             o->outfile = argv[i];
         else
-            return bad_usage(o, NULL);
+            return bad_usage(o, "unexpected argument '%s' (InFile [OutFileBase])", argv[i]);
     }
     for (int i = 1; i < argc; i++) {
         if (argv[i][0] == '-') {
@@ -189,25 +196,23 @@ static int parse_args(struct cli *o, int argc, char **argv) {
         }
     }
     if (!o->infile)
-        return bad_usage(o, NULL);
+        return bad_usage(o, "no InFile given");
     return 0;
 }
 
 /* The output base name: OutFileBase, or the source's base name up to its
- * first '.'. Returns 0, or 1 after printing why not. */
+ * first '.'. Returns 0, or EXIT_USAGE after printing why not. */
 static int output_base(const struct cli *o, char *base, size_t max) {
     if (o->outfile) {
-        if (strlen(o->outfile) > 256 - 5) {
-            fprintf(stderr, "Error: Outfile name too long\n\n");
-            return 1;
-        }
+        if (strlen(o->outfile) > 256 - 5)
+            return bad_usage(o, "OutFileBase: longer than %d characters", 256 - 5);
         for (const char *p = o->outfile; *p; p++) {
             if (*p == '.') {
                 if (p[1] == '.') {
                     p++;
                 } else {
-                    fprintf(stderr, "Error: Outfile should be basename only - no '.'\n\n");
-                    return 1;
+                    return bad_usage(o, "OutFileBase '%s': expected a base name, no '.'",
+                                     o->outfile);
                 }
             }
         }
@@ -339,11 +344,14 @@ int main(int argc, char **argv) {
         return rc;
     }
     char base[300];
-    if (output_base(&o, base, sizeof base) || access(o.infile, R_OK)) {
-        if (access(o.infile, R_OK))
-            fprintf(stderr, "Fatal Error: Can't open source file '%s'\n\n", o.infile);
+    rc = output_base(&o, base, sizeof base);
+    if (!rc && access(o.infile, R_OK)) {
+        fprintf(stderr, "Fatal Error: Can't open source file '%s'\n\n", o.infile);
+        rc = 1;
+    }
+    if (rc) {
         free(o.incdirs);
-        return 1;
+        return rc;
     }
     if (!(o.outputs & (OUT_BIN | OUT_BIB | OUT_CARRAY | OUT_IMG | OUT_FB | OUT_DBG))) {
         printf("Note: Using default output '-c' (C array *_bin.h)\n\n");

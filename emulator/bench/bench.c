@@ -652,6 +652,10 @@ const struct bench_stats *bench_stats(struct bench *b) {
     return &b->st;
 }
 
+void bench_iep_published(struct bench *b, uint64_t frame, uint32_t flags) {
+    iep_track_flags(&b->st.iep_track, frame, flags);
+}
+
 void bench_set_ma_half(struct bench *b, unsigned half) {
     marks_scan(b); /* the edges so far at the H they were clocked at */
     b->marks.half_ps = (int64_t)half * PRU_PS_PER_CYCLE;

@@ -18,6 +18,7 @@
 #ifndef BENCH_H
 #define BENCH_H
 
+#include "iep_track.h"
 #include "link_model.h"
 #include "pru_core.h"
 #include "waveform.h"
@@ -76,10 +77,11 @@ struct bench_stats {
     /* IEP (CMP0 resetting COUNT): the period's start (COUNT back to 0) to
      * the first fall, and the periods the first falls lie in */
     struct bench_span iep_phase;
-    uint32_t iep_period;  /* cycles (IEP ticks) per period, 0: no periodic IEP seen */
-    uint64_t iep_periods; /* periods from the first frame measured to the last */
-    uint64_t iep_skipped; /* ... in which no frame started */
-    uint64_t iep_crowded; /* ... in which more than one started */
+    uint32_t iep_period;        /* cycles (IEP ticks) per period, 0: no periodic IEP seen */
+    uint64_t iep_periods;       /* periods from the first frame measured to the last */
+    uint64_t iep_skipped;       /* ... in which no frame started */
+    uint64_t iep_crowded;       /* ... in which more than one started */
+    struct iep_track iep_track; /* each frame's start against its BISS_RF_IEP_LATE */
 };
 
 struct bench;
@@ -145,6 +147,10 @@ enum pru_stop bench_run_frames(struct bench *b, uint64_t frames, int64_t max_ps,
                                void *ctx);
 
 const struct bench_stats *bench_stats(struct bench *b);
+
+/* The firmware published the slave's frame `frame` with flags (BISS_RF_*):
+ * for the IEP frames' judgement (iep_track.h, bench_stats' iep_track). */
+void bench_iep_published(struct bench *b, uint64_t frame, uint32_t flags);
 
 /* The MA half period H in PRU cycles the image clocks with (0: unknown,
  * the default: no frame marks), for the frame marks of bench_stats. */

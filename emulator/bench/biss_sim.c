@@ -110,15 +110,26 @@ struct options {
         checks; /* --check-life, --check-pair, --check-ew, --check-speed (their fields only) */
 };
 
+/* The MA rate when --freq is not given: libbiss's and bissctl's, one
+ * source (biss_config_default; why it is 1 MHz: README "Conventions"). */
+static double default_freq_hz(void) {
+    struct biss_config c;
+    biss_config_default(&c);
+    return c.freq_hz;
+}
+
 static void usage(FILE *f) {
     fprintf(f, "usage: biss-sim [options]\n"
                "Runs a PRU image on the emulated PRU against a cable and BiSS-C/SSI encoder "
                "models.\n\n"
                "  --profile NAME     encoder profile (default tidep0022-test-encoder);\n"
                "                     --list-profiles prints them\n"
-               "  --scenario FILE    JSON scenario: a profile plus any model parameter\n"
-               "  --freq HZ          MA clock rate (default 10000000); 100 MHz / HZ must be whole\n"
-               "  --cable-m M        cable length in metres, both directions (default: profile's)\n"
+               "  --scenario FILE    JSON scenario: a profile plus any model parameter\n");
+    fprintf(f,
+            "  --freq HZ          MA clock rate (default %.0f, as bissctl's); 100 MHz / HZ\n"
+            "                     must be whole\n",
+            default_freq_hz());
+    fprintf(f, "  --cable-m M        cable length in metres, both directions (default: profile's)\n"
                "  --frames N         frames to run (default 100)\n"
                "  --settle-frames N  valid frames to run first, neither checked nor measured\n"
                "                     (default 0: from the first valid frame on; e.g. for IEP\n"
@@ -198,10 +209,22 @@ static void usage(FILE *f) {
                "  --command IDS:CMD[:T]        BiSS command CMD (0..3) to the slaves in the\n"
                "                               hex ID mask IDS (0: all, broadcast); T = 1:\n"
                "                               IDA test (withheld unless IDA = IDS)\n"
-               "  -h, --help         this text\n");
+               "  -h, --help         this text\n"
+               "\n"
+               "exit status: 0 every frame run and checked, 1 an error (a file, the line, the\n"
+               "firmware), 2 bad usage, 3 a PRU fault or a strict-mode construct, 4 the\n"
+               "control frame failed, 5 two PRUs: a frame or their starts wrong, 124 the\n"
+               "frames did not complete in time (--max-ms)\n");
 }
 
-/* Prints "biss-sim: <message>" and returns 1, the exit code for bad input. */
+/* Exit status (README "Conventions"; the list in --help) */
+#define EXIT_ERROR   1   /* a file, the line or the firmware refused the run */
+#define EXIT_USAGE   2   /* the command line */
+#define EXIT_FAULT   3   /* the PRU faulted, or strict mode found a construct */
+#define EXIT_CD      4   /* the control frame failed */
+#define EXIT_TIMEOUT 124 /* as timeout(1): the frames did not complete in time */
+
+/* Prints "biss-sim: <message>" and returns EXIT_ERROR. */
 __attribute__((format(printf, 1, 2))) static int die(const char *fmt, ...) {
     va_list ap;
     va_start(ap, fmt);
@@ -209,7 +232,19 @@ __attribute__((format(printf, 1, 2))) static int die(const char *fmt, ...) {
     vfprintf(stderr, fmt, ap);
     fprintf(stderr, "\n");
     va_end(ap);
-    return 1;
+    return EXIT_ERROR;
+}
+
+/* A usage error in the tools' one form: "biss-sim: <message>" and the way
+ * to the help; returns EXIT_USAGE. */
+__attribute__((format(printf, 1, 2))) static int usage_error(const char *fmt, ...) {
+    va_list ap;
+    va_start(ap, fmt);
+    fprintf(stderr, "biss-sim: ");
+    vfprintf(stderr, fmt, ap);
+    fprintf(stderr, "\nTry 'biss-sim --help' for more information.\n");
+    va_end(ap);
+    return EXIT_USAGE;
 }
 
 static int parse_double(const char *s, double *out) {
@@ -315,14 +350,14 @@ static int set_control(struct options *o, const char *a, const char *v) {
         }
     }
     if (e != BISS_CD_OK) {
-        return die("%s: '%s' is not valid (%s; see --help)", a, v, biss_cd_strerror(e));
+        return usage_error("%s '%s': %s", a, v, biss_cd_strerror(e));
     }
     o->cd_set = 1;
     o->cd_what = a;
     return 0;
 }
 
-/* One option with its value; returns 0 or 1 (message printed). */
+/* One option with its value; returns 0 or EXIT_USAGE (message printed). */
 static int set_option(struct options *o, const char *a, const char *v) {
     if (!strcmp(a, "--profile")) {
         o->profile = v;
@@ -330,23 +365,23 @@ static int set_option(struct options *o, const char *a, const char *v) {
         o->scenario_file = v;
     } else if (!strcmp(a, "--freq")) {
         if (parse_double(v, &o->freq_hz) || o->freq_hz <= 0) {
-            return die("--freq: '%s' is not a positive rate in Hz", v);
+            return usage_error("--freq '%s': expected Hz, above 0", v);
         }
     } else if (!strcmp(a, "--cable-m")) {
         if (parse_double(v, &o->cable_m) || o->cable_m < 0 || o->cable_m > 1000) {
-            return die("--cable-m: '%s' is not a length of 0..1000 m", v);
+            return usage_error("--cable-m '%s': expected metres, 0..1000", v);
         }
     } else if (!strcmp(a, "--frames")) {
         if (parse_u64(v, &o->frames) || o->frames == 0) {
-            return die("--frames: '%s' is not a positive count", v);
+            return usage_error("--frames '%s': expected a positive count", v);
         }
     } else if (!strcmp(a, "--settle-frames")) {
         if (parse_u64(v, &o->settle)) {
-            return die("--settle-frames: '%s' is not a count", v);
+            return usage_error("--settle-frames '%s': expected a count", v);
         }
     } else if (!strcmp(a, "--seed")) {
         if (parse_u64(v, &o->seed)) {
-            return die("--seed: '%s' is not a number", v);
+            return usage_error("--seed '%s': expected a number", v);
         }
         o->seed_set = 1;
     } else if (!strcmp(a, "--image")) {
@@ -358,7 +393,7 @@ static int set_option(struct options *o, const char *a, const char *v) {
     } else if (!strcmp(a, "--iep-period-ns")) {
         if (parse_double(v, &o->iep_period_ns) || o->iep_period_ns < 5 || o->iep_period_ns > 2e7 ||
             fmod(o->iep_period_ns, 5) != 0) {
-            return die("--iep-period-ns: '%s' is not a multiple of 5 ns up to 20 ms", v);
+            return usage_error("--iep-period-ns '%s': expected a multiple of 5 ns up to 20 ms", v);
         }
     } else if (!strcmp(a, "--trigger")) {
         static const struct {
@@ -373,11 +408,11 @@ static int set_option(struct options *o, const char *a, const char *v) {
             }
         }
         if (!o->trigger_set) {
-            return die("--trigger: '%s' is not free, host or iep", v);
+            return usage_error("--trigger '%s': expected free, host or iep", v);
         }
     } else if (!strcmp(a, "--pru")) {
         if (strcmp(v, "0") && strcmp(v, "1")) {
-            return die("--pru: '%s' is not 0 or 1", v);
+            return usage_error("--pru '%s': expected 0 or 1", v);
         }
         o->pru = (unsigned)(v[0] - '0');
     } else if (!strcmp(a, "--firmware")) {
@@ -386,22 +421,22 @@ static int set_option(struct options *o, const char *a, const char *v) {
         o->pru1_firmware = v;
     } else if (!strcmp(a, "--check-life")) {
         if (biss_safety_parse_life(v, &o->checks)) {
-            return die("--check-life: '%s' is not S[,BITS] (slave 0..7, 1..32 bits)", v);
+            return usage_error("--check-life '%s': expected S[,BITS] (slave 0..7, 1..32 bits)", v);
         }
     } else if (!strcmp(a, "--check-ew")) {
         if (biss_safety_parse_ew(v, &o->checks)) {
-            return die("--check-ew: '%s' is not S (slave 0..7)", v);
+            return usage_error("--check-ew '%s': expected S (slave 0..7)", v);
         }
     } else if (!strcmp(a, "--check-speed")) {
         if (biss_safety_parse_speed(v, &o->checks)) {
-            return die(
-                "--check-speed: '%s' is not S,CPS (slave 0..7, counts per second 1e-9..1e18)", v);
+            return usage_error(
+                "--check-speed '%s': expected S,CPS (slave 0..7, counts per second 1e-9..1e18)", v);
         }
     } else if (!strcmp(a, "--check-pair")) {
         if (biss_safety_parse_pair(v, &o->checks)) {
-            return die("--check-pair: '%s' is not A,B,TOL[,SHIFT_A,SHIFT_B] (slaves 0..7, shifts "
-                       "0..63; at most 4 pairs)",
-                       v);
+            return usage_error("--check-pair '%s': expected A,B,TOL[,SHIFT_A,SHIFT_B] (slaves "
+                               "0..7, shifts 0..63; at most 4 pairs)",
+                               v);
         }
     } else if (!strcmp(a, "--reg-read") || !strcmp(a, "--reg-write") || !strcmp(a, "--command")) {
         return set_control(o, a, v);
@@ -417,7 +452,7 @@ static int set_option(struct options *o, const char *a, const char *v) {
             o->vcd_unit_ps = strcmp(v, units[i]) ? o->vcd_unit_ps : ps[i];
         }
         if (!o->vcd_unit_ps) {
-            return die("--vcd-timescale: '%s' is not 1ps, 10ps, 100ps or 1ns", v);
+            return usage_error("--vcd-timescale '%s': expected 1ps, 10ps, 100ps or 1ns", v);
         }
     } else if (!strcmp(a, "--no-fast-path")) {
         if (!strcmp(v, "sl-reach")) {
@@ -425,16 +460,17 @@ static int set_option(struct options *o, const char *a, const char *v) {
         } else if (!strcmp(v, "line-settled")) {
             o->no_line_settled = 1;
         } else if (pru_params_fast_path_off(&o->core, v) != 0) {
-            return die("--no-fast-path: '%s' is not ff, ff-counted, ff-r31-bits, ff-loop-delay, "
-                       "ff-count-loop, fast-loop, leaf-call, sl-reach or line-settled",
-                       v);
+            return usage_error("--no-fast-path '%s': expected ff, ff-counted, ff-r31-bits, "
+                               "ff-loop-delay, ff-count-loop, fast-loop, leaf-call, sl-reach or "
+                               "line-settled",
+                               v);
         }
     } else if (!strcmp(a, "--strict-window")) {
         char *end;
         errno = 0;
         unsigned long w = strtoul(v, &end, 10);
         if (errno || end == v || *end || w == 0 || w > 0xffffff) {
-            return die("--strict-window: '%s' is not a number of cycles (1..16777215)", v);
+            return usage_error("--strict-window '%s': expected cycles, 1..16777215", v);
         }
         o->strict_window = (unsigned)w;
     } else if (!strcmp(a, "--contend")) {
@@ -443,21 +479,22 @@ static int set_option(struct options *o, const char *a, const char *v) {
         o->svg = v;
     } else if (!strcmp(a, "--svg-frame")) {
         if (parse_u64(v, &o->svg_frame) || o->svg_frame == 0) {
-            return die("--svg-frame: '%s' is not a frame number (1 is the first)", v);
+            return usage_error("--svg-frame '%s': expected a frame number (1 is the first)", v);
         }
     } else if (!strcmp(a, "--max-ms")) {
         if (parse_double(v, &o->max_ms) || o->max_ms <= 0 || o->max_ms > MAX_SIM_MS) {
-            return die("--max-ms: '%s' is not a time of more than 0 and at most %.0f ms", v,
-                       MAX_SIM_MS);
+            return usage_error("--max-ms '%s': expected ms, above 0 and at most %.0f", v,
+                               MAX_SIM_MS);
         }
     }
     return 0;
 }
 
-/* Returns 0 to run, 1 for an error (message printed), 2 to exit 0. */
+/* Returns 0 to run, -1 to exit 0 (help printed), else EXIT_USAGE (message
+ * printed). */
 static int parse_args(int argc, char **argv, struct options *o) {
     *o = (struct options){.profile = "tidep0022-test-encoder",
-                          .freq_hz = 10e6,
+                          .freq_hz = default_freq_hz(),
                           .cable_m = -1,
                           .frames = 100,
                           .soc = "am335x",
@@ -469,17 +506,17 @@ static int parse_args(int argc, char **argv, struct options *o) {
         const char *a = argv[i];
         if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
             usage(stdout);
-            return 2;
+            return -1;
         } else if (!strcmp(a, "--list-profiles")) {
             list_profiles();
-            return 2;
+            return -1;
         } else if (!strcmp(a, "--json")) {
             o->json = 1;
         } else if (!strcmp(a, "--strict") || !strncmp(a, "--strict=", 9)) {
             const char *bad;
             if (pru_strict_parse(a[8] ? a + 9 : NULL, &o->strict, &bad) != 0) {
-                return die("--strict: unknown rule '%s' (loop1, loop0, loopfield, mvi, dram, spad)",
-                           bad);
+                return usage_error(
+                    "--strict '%s': expected loop1, loop0, loopfield, mvi, dram or spad", bad);
             }
         } else if (!strcmp(a, "--strict-log")) {
             o->strict_log = 1;
@@ -487,11 +524,11 @@ static int parse_args(int argc, char **argv, struct options *o) {
             o->encoder = 1;
             o->encoder_image = a[9] ? a + 10 : NULL;
         } else if (!takes_value(a)) {
-            return die("unknown option '%s' (see --help)", a);
+            return usage_error("unknown option '%s'", a);
         } else if (i + 1 >= argc) {
-            return die("option %s needs a value (see --help)", a);
+            return usage_error("option '%s' needs a value", a);
         } else if (set_option(o, a, argv[++i]) != 0) {
-            return 1;
+            return EXIT_USAGE;
         }
     }
     return 0;
@@ -502,14 +539,14 @@ static int build_config(const struct options *o, struct bench_config *cfg) {
     bench_config_default(cfg);
     cfg->pru_index = o->pru;
     if (pru_soc_from_name(o->soc, &cfg->soc) != 0) {
-        return die("--soc: unknown SoC '%s' (am335x, am437x-icss0, am437x-icss1)", o->soc);
+        return usage_error("--soc '%s': expected am335x, am437x-icss0 or am437x-icss1", o->soc);
     }
     if (o->scenario_file) {
         if (scenario_load_file(o->scenario_file, &cfg->link, err, sizeof(err)) != 0) {
             return die("%s", err);
         }
     } else if (profile_by_name(o->profile, &cfg->link) != 0) {
-        return die("unknown profile '%s' (see --list-profiles)", o->profile);
+        return usage_error("--profile '%s': expected a profile of --list-profiles", o->profile);
     }
     if (o->cable_m >= 0) {
         scenario_set_cable(&cfg->link, o->cable_m);
@@ -526,10 +563,10 @@ static int build_config(const struct options *o, struct bench_config *cfg) {
         cfg->pru.strict_window = o->strict_window;
     }
     if ((o->strict_log || o->strict_window) && !o->strict) {
-        return die("--strict-log and --strict-window need --strict");
+        return usage_error("--strict-log and --strict-window need --strict");
     }
     if (o->contend && pru_contend_parse(o->contend, &cfg->pru, err, sizeof(err)) != 0) {
-        return die("--contend: %s", err);
+        return usage_error("--contend %s", err);
     }
     return 0;
 }
@@ -696,9 +733,9 @@ static void pru_num_define(unsigned pru, struct sim_defines *d) {
 /* A second encoder on PRU1 (sim_pair.h): the firmware on both PRUs. */
 static int run_pair(const struct options *o, const struct bench_config *cfg, unsigned half) {
     if (o->image || o->vcd || o->svg || o->cd_set || o->pru || o->trigger_set) {
-        return die("--pru1-profile/--pru1-scenario run the firmware on both PRUs, PRU0 on the "
-                   "IEP and PRU1 following it: not with --image, --vcd, --svg, --pru, "
-                   "--trigger or control frames");
+        return usage_error("--pru1-profile/--pru1-scenario run the firmware on both PRUs, PRU0 "
+                           "on the IEP and PRU1 following it: not with --image, --vcd, --svg, "
+                           "--pru, --trigger or control frames");
     }
     struct sim_pair_run r = {.cfg = {*cfg, *cfg},
                              .half = half,
@@ -713,7 +750,8 @@ static int run_pair(const struct options *o, const struct bench_config *cfg, uns
             return die("%s", err);
         }
     } else if (profile_by_name(o->pru1_profile, &r.cfg[1].link) != 0) {
-        return die("unknown profile '%s' (see --list-profiles)", o->pru1_profile);
+        return usage_error("--pru1-profile '%s': expected a profile of --list-profiles",
+                           o->pru1_profile);
     }
     if (o->cable_m >= 0) {
         scenario_set_cable(&r.cfg[1].link, o->cable_m);
@@ -723,7 +761,7 @@ static int run_pair(const struct options *o, const struct bench_config *cfg, uns
     }
     struct biss_line_verdict line;
     if (check_line(&r.cfg[1].link, half, "PRU1's line: ", &line) != 0) {
-        return 1;
+        return EXIT_ERROR;
     }
     /* one image per PRU (pru_fw/README.md) */
     struct pruasm_image img[2];
@@ -745,7 +783,7 @@ static int run_pair(const struct options *o, const struct bench_config *cfg, uns
             for (unsigned k = 0; k <= i; k++) {
                 pruasm_image_free(&img[k]);
             }
-            return 1;
+            return EXIT_ERROR;
         }
         r.image[i] = img[i].words;
         r.bytes[i] = img[i].nwords * 4;
@@ -808,24 +846,26 @@ static int safety_checks(const struct options *o, struct biss_config *c) {
 
 static int run(const struct options *o) {
     struct bench_config cfg;
-    if (build_config(o, &cfg) != 0) {
-        return 1;
+    int bad = build_config(o, &cfg);
+    if (bad) {
+        return bad;
     }
     unsigned half; /* the rate's H, once, by proto's rate rule */
     if (biss_proto_freq_half(o->freq_hz, &half) != BISS_OK || half < SIM_IMAGE_MIN_HALF ||
         half > BISS_MAX_HALF) {
-        return die("--freq %g: 100 MHz / f must be a whole number of PRU cycles, %d..%d",
-                   o->freq_hz, SIM_IMAGE_MIN_HALF, BISS_MAX_HALF);
+        return usage_error("--freq '%.10g': expected 100 MHz / f a whole number of PRU cycles, "
+                           "%d..%d",
+                           o->freq_hz, SIM_IMAGE_MIN_HALF, BISS_MAX_HALF);
     }
     const char *why_not = o->image ? NULL : biss_proto_half_problem(half);
     if (why_not) {
-        return die("--freq %.10g: the firmware cannot clock it: %s", o->freq_hz, why_not);
+        return usage_error("--freq '%.10g': the firmware cannot clock it: %s", o->freq_hz, why_not);
     }
     char err[512];
     struct biss_line_verdict line;
     if (check_line(&cfg.link, half, (o->pru1_profile || o->pru1_scenario) ? "PRU0's line: " : "",
                    &line) != 0) {
-        return 1;
+        return EXIT_ERROR;
     }
     if (o->pru1_profile || o->pru1_scenario) {
         if (o->encoder) {
@@ -853,12 +893,13 @@ static int run(const struct options *o) {
         bench_set_ma_half(b, half);
         if (o->cd_set || o->trigger_set) {
             bench_free(b);
-            return die("%s needs the firmware (not --image)", o->cd_set ? o->cd_what : "--trigger");
+            return usage_error("%s needs the firmware (not --image)",
+                               o->cd_set ? o->cd_what : "--trigger");
         }
     }
     if (o->iep_period_ns > 0 && o->trigger != BISS_TRIG_IEP) {
         bench_free(b);
-        return die("--iep-period-ns needs --trigger iep (or a second encoder)");
+        return usage_error("--iep-period-ns needs --trigger iep (or a second encoder)");
     }
     /* IEP: the period asked for, or twice the frame in whole microseconds */
     double frame_ps = sim_clock_frame_ps(b, half);
@@ -881,7 +922,7 @@ static int run(const struct options *o) {
     if (fw_mode && wrong_pru(path, &img, o->pru)) {
         pruasm_image_free(&img);
         bench_free(b);
-        return 1;
+        return EXIT_ERROR;
     }
     if ((fw_mode ? bench_fw_start(b, img.words, img.nwords * 4)
                  : bench_start_image(b, img.words, img.nwords * 4)) != 0) {
@@ -949,10 +990,10 @@ static int run(const struct options *o) {
     }
     if (why == PRU_STOP_FAULT) {
         pru_print_fault(bench_core(b), stderr);
-        rc = 3;
+        rc = EXIT_FAULT;
     }
     if (o->strict_log && print_strict_log(bench_core(b)) > 0 && rc == 0) {
-        rc = 3;
+        rc = EXIT_FAULT;
     }
     if (o->contend) {
         uint64_t n, stall;
@@ -999,7 +1040,7 @@ static int run(const struct options *o) {
         rc = die("%s: the control frame did not end in time", o->cd_what);
     } else if (rc == 0 && o->cd_set && cd.err != BISS_CD_OK) {
         fprintf(stderr, "biss-sim: %s: %s\n", o->cd_what, biss_cd_strerror(cd.err));
-        rc = 4;
+        rc = EXIT_CD;
     }
     uint64_t done = fw_mode ? fc.frames : bench_stats(b)->frames;
     if (rc == 0 && fw_mode && fc.frames == 0 && fc.no_slave && line.beyond_table) {
@@ -1014,7 +1055,7 @@ static int run(const struct options *o) {
                 (unsigned long long)done, (unsigned long long)o->frames, (double)max_ps / 1e9,
                 o->max_ms > 0 ? "the --max-ms limit"
                               : "the limit for these frames; --max-ms sets it");
-        rc = 2;
+        rc = EXIT_TIMEOUT;
     }
     pruasm_image_free(&img);
     bench_free(b);
@@ -1029,7 +1070,7 @@ int main(int argc, char **argv) {
     struct options o;
     int rc = parse_args(argc, argv, &o);
     if (rc) {
-        return rc == 2 ? 0 : rc;
+        return rc < 0 ? 0 : rc;
     }
     return run(&o);
 }

@@ -91,7 +91,7 @@ static void restart(struct frame_marks *m, struct bench_stats *st, link_model *l
  * places them, so a first fall at pin time t lies in the period that
  * began at the last such start at or before its cycle. */
 static void iep_phase(struct frame_marks *m, struct bench_stats *st, const struct pru_iep_view *v,
-                      int64_t gpo_delay_ps, int64_t t) {
+                      int64_t gpo_delay_ps, int64_t t, int64_t frame) {
     if (!v->cmp0_resets || v->inc == 0) {
         return;
     }
@@ -111,6 +111,10 @@ static void iep_phase(struct frame_marks *m, struct bench_stats *st, const struc
     m->iep_start = start;
     st->iep_period = (uint32_t)period;
     bench_span_add(&st->iep_phase, t - start * PRU_PS_PER_CYCLE);
+    if (frame >= 0) {
+        iep_track_start(&st->iep_track, (uint64_t)frame, start, period,
+                        t - start * PRU_PS_PER_CYCLE);
+    }
 }
 
 /* Edge k's time for k >= -2 (k is unsigned: -1 wraps): before edge 0 MA
@@ -224,6 +228,6 @@ void frame_marks_scan(struct frame_marks *m, struct bench_stats *st,
             pru_iep_view(c, pru_cycles(c), &v);
             viewed = true;
         }
-        iep_phase(m, st, &v, gpo_delay_ps, t);
+        iep_phase(m, st, &v, gpo_delay_ps, t, before >= 0 ? before + 1 : -1);
     }
 }

@@ -162,6 +162,7 @@ static void count(struct fw_check *fc, const struct biss_shm_result *res, struct
     fc->delay_frames += smp->valid || smp->training;
     fc->delay_raw = smp->delay.raw;
     fc->delay_avg = smp->delay.avg;
+    fc->delay_frame = smp->frame;
     if (smp->proc_clocks > fc->proc_clocks_max && smp->valid) {
         fc->proc_clocks_max = smp->proc_clocks;
     }
@@ -216,6 +217,7 @@ static void on_publish(void *ctx, uint32_t addr) {
         fc->mismatches += fc->frames < fc->limit;
         return;
     }
+    bench_iep_published(fc->b, bench_current_frame(fc->b), res.flags);
     if (watched) {
         keep(&fc->watched, &smp);
     }

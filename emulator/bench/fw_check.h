@@ -46,6 +46,7 @@ struct fw_check {
     uint64_t unmatched;     /* valid frames whose slave record was gone */
     uint32_t last_flags;
     unsigned delay_raw, delay_avg, sample_point, lag, half;
+    uint32_t delay_frame; /* the frame (the firmware's number, 1 the first) of those five */
     unsigned delay_raw_min, delay_raw_max; /* raw ACK positions of the valid frames */
     unsigned proc_clocks_max;
     unsigned nslaves;

@@ -186,7 +186,7 @@ int sim_pair(const struct sim_pair_run *r) {
             if (rc == 0 && fc[i].frames < r->frames) {
                 fprintf(stderr, "biss-sim: PRU%u: only %llu of %llu frames in time\n", i,
                         (unsigned long long)fc[i].frames, (unsigned long long)r->frames);
-                rc = 2;
+                rc = 124; /* as timeout(1), biss-sim's EXIT_TIMEOUT */
             }
             if (rc == 0 && !j && (fc[i].mismatches || fc[i].crc_errors || fc[i].bad_results)) {
                 rc = 5;

@@ -34,7 +34,7 @@ struct sim_pair_run {
  * each PRU's object of biss-sim --json in one object), how far apart
  * the frame starts of the two were and how often PRU1 stalled on PRU0's
  * scratch-pad bank. Returns biss-sim's exit code: 0, 1 (a message
- * printed), 2 (frames not done in time), 3 (a PRU fault), 5 (a frame check
+ * printed), 124 (frames not done in time), 3 (a PRU fault), 5 (a frame check
  * failed, frame starts more than one PRU cycle apart, for a BiSS-C and an
  * SSI line their offset varying by more than one, or a bank collision;
  * with json none of these changes it, as in a single run: the object

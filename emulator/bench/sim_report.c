@@ -178,6 +178,11 @@ static void add_frame_marks(cJSON *j, const struct bench_stats *st, unsigned hal
     cJSON_AddNumberToObject(i, "periods", (double)st->iep_periods);
     cJSON_AddNumberToObject(i, "skipped_periods", (double)st->iep_skipped);
     cJSON_AddNumberToObject(i, "crowded_periods", (double)st->iep_crowded);
+    const struct iep_track *k = &st->iep_track;
+    cJSON_AddNumberToObject(i, "judged_frames", (double)k->judged);
+    cJSON_AddNumberToObject(i, "late_flagged", (double)k->late);
+    cJSON_AddNumberToObject(i, "unflagged_off_count", (double)k->unflagged_off);
+    cJSON_AddNumberToObject(i, "unflagged_skipped_periods", (double)k->unflagged_skips);
 }
 
 /* The wrong frames published as valid, by class (wrong_frame.h), and the
@@ -227,6 +232,7 @@ static void add_firmware(cJSON *j, struct bench *b, const struct fw_check *fw) {
     cJSON_AddNumberToObject(f, "delay_bit8_avg", fw->delay_avg);
     cJSON_AddNumberToObject(f, "sample_point", fw->sample_point);
     cJSON_AddNumberToObject(f, "lag_periods", fw->lag);
+    cJSON_AddNumberToObject(f, "delay_frame", fw->delay_frame); /* the frame of those four */
     cJSON_AddNumberToObject(f, "processing_clocks_max", fw->proc_clocks_max);
     cJSON_AddNumberToObject(f, "last_flags", fw->last_flags);
     const struct bench_stats *st = bench_stats(b);
@@ -431,6 +437,11 @@ static void print_frame_marks(const struct bench_stats *st, unsigned half, unsig
         printf("; %llu frames in %llu periods, %llu without a frame, %llu with two or more\n",
                (unsigned long long)st->iep_phase.n, (unsigned long long)st->iep_periods,
                (unsigned long long)st->iep_skipped, (unsigned long long)st->iep_crowded);
+        const struct iep_track *k = &st->iep_track;
+        printf("IEP flags            %llu frames judged: %llu flagged late, %llu unflagged off "
+               "their time, %llu periods skipped next to no flag\n",
+               (unsigned long long)k->judged, (unsigned long long)k->late,
+               (unsigned long long)k->unflagged_off, (unsigned long long)k->unflagged_skips);
     }
 }
 
@@ -544,10 +555,14 @@ void sim_print_text(const struct sim_result *r) {
                (unsigned long long)fw->ack_jumps);
         print_wrong(fw);
         if (fw->delay_frames) {
-            printf("line delay           %.1f ns measured by the firmware (%.1f ns in the model), "
-                   "sample point %u/8, lag %u periods\n",
-                   sim_fw_line_delay_ns(fw), bench_round_trip_ps(b) / 1000.0, fw->sample_point,
-                   fw->lag);
+            /* one frame's figures, the last one's: the firmware measures to 1/8 bit and
+             * averages 4 frames, so a run's first frames may differ from its last by a step */
+            printf("line delay           %.1f ns measured by the firmware in frame %u, the last "
+                   "(%.1f ns in the model), sample point %u/8, lag %u periods\n"
+                   "                     (lag: a bit is read that many MA periods after the "
+                   "clock that made it, at the sample point; pru_fw/README.md)\n",
+                   sim_fw_line_delay_ns(fw), fw->delay_frame, bench_round_trip_ps(b) / 1000.0,
+                   fw->sample_point, fw->lag);
         } else {
             printf("line delay           not measured: the firmware published no frame with an "
                    "ACK (%.1f ns in the model)\n",

@@ -1,8 +1,8 @@
 /*
  * pru-run - run a raw PRU IRAM image on one emulated PRU from PC 0 until HALT.
  *
- * Exit status: 0 halted, 2 did not halt within --max-cycles, 3 fault,
- * 1 bad usage or unreadable file.
+ * Exit status (README "Conventions"): 0 halted, 1 an unreadable or unfit
+ * file, 2 bad usage, 3 fault, 124 no HALT within --max-cycles.
  */
 #include "pru_core.h"
 #include "read_file.h"
@@ -11,11 +11,13 @@
 #include <errno.h>
 #include <getopt.h>
 #include <inttypes.h>
+#include <stdarg.h>
 #include <stdlib.h>
 #include <stdio.h>
 #include <string.h>
 
-#define EXIT_NOHALT        2
+#define EXIT_USAGE         2
+#define EXIT_NOHALT        124 /* as timeout(1): the limit ran out first */
 #define EXIT_FAULT         3
 #define DEFAULT_MAX_CYCLES 2000000000LL
 
@@ -34,7 +36,7 @@ static void usage(FILE *f) {
             "Runs a raw little-endian PRU IRAM image on one emulated PRU (PRU0) from\n"
             "PC 0 until HALT.\n"
             "\n"
-            "  --max-cycles N   stop after N cycles (default %lld); exit 2 if not halted\n"
+            "  --max-cycles N   stop after N cycles (default %lld); exit 124 if not halted\n"
             "  --soc NAME       am335x (default), am437x-icss0, am437x-icss1\n"
             "  --data FILE      initial contents of PRU0 data RAM (from address 0)\n"
             "  --inputs VALUE   constant GPI input levels R31[29:0] (default 0)\n"
@@ -58,7 +60,8 @@ static void usage(FILE *f) {
             "                   leaf-call (delay calls replayed from a memo)\n"
             "  --help           this text\n"
             "\n"
-            "exit status: 0 halted, 2 no HALT within the cycle limit, 3 fault, 1 usage\n",
+            "exit status: 0 halted, 1 an unreadable or unfit file, 2 bad usage, 3 fault,\n"
+            "124 no HALT within the cycle limit\n",
             (long long)DEFAULT_MAX_CYCLES, PRU_STRICT_DEFAULT_WINDOW);
 }
 
@@ -76,9 +79,14 @@ static int parse_u64(const char *s, uint64_t *out) {
     return 0;
 }
 
-static int bad(const char *msg, const char *arg) {
-    fprintf(stderr, "pru-run: %s%s%s\n", msg, arg ? ": " : "", arg ? arg : "");
-    fprintf(stderr, "try 'pru-run --help'\n");
+/* A usage error in the tools' one form (README "Conventions"); returns -1. */
+__attribute__((format(printf, 1, 2))) static int bad(const char *fmt, ...) {
+    va_list ap;
+    va_start(ap, fmt);
+    fprintf(stderr, "pru-run: ");
+    vfprintf(stderr, fmt, ap);
+    va_end(ap);
+    fprintf(stderr, "\nTry 'pru-run --help' for more information.\n");
     return -1;
 }
 
@@ -130,18 +138,18 @@ static int take_opt(int c, const char *val, struct opts *o) {
     case OPT_STRICT: {
         const char *bad_rule;
         if (pru_strict_parse(val, &o->params.strict, &bad_rule))
-            return bad("--strict: rules are loop1, loop0, loopfield, mvi, dram, spad; unknown",
+            return bad("--strict '%s': expected loop1, loop0, loopfield, mvi, dram or spad",
                        bad_rule);
         return 0;
     }
     case OPT_STRICT_SCOPE:
         if (strcmp(val, "clocked") && strcmp(val, "all"))
-            return bad("--strict-scope must be clocked or all", val);
+            return bad("--strict-scope '%s': expected clocked or all", val);
         o->params.strict_everywhere = strcmp(val, "all") == 0;
         return 0;
     case OPT_STRICT_WINDOW:
         if (parse_u64(val, &u) || u == 0 || u > 0xffffffu)
-            return bad("--strict-window needs a number of cycles from 1 to 16777215", val);
+            return bad("--strict-window '%s': expected cycles, 1..16777215", val);
         o->params.strict_window = (unsigned)u;
         return 0;
     case OPT_STRICT_LOG:
@@ -150,31 +158,31 @@ static int take_opt(int c, const char *val, struct opts *o) {
     case OPT_CONTEND: {
         char err[200];
         if (pru_contend_parse(val, &o->params, err, sizeof err))
-            return bad("--contend", err);
+            return bad("--contend %s", err);
         return 0;
     }
     case OPT_NO_FAST_PATH:
         if (pru_params_fast_path_off(&o->params, val))
-            return bad("--no-fast-path must be ff, ff-counted, ff-r31-bits, ff-loop-delay, "
-                       "ff-count-loop, fast-loop or leaf-call",
+            return bad("--no-fast-path '%s': expected ff, ff-counted, ff-r31-bits, "
+                       "ff-loop-delay, ff-count-loop, fast-loop or leaf-call",
                        val);
         return 0;
     case OPT_MAX_CYCLES:
         if (parse_u64(val, &u) || u == 0)
-            return bad("--max-cycles needs a whole number of cycles from 1 to 2^64-1", val);
+            return bad("--max-cycles '%s': expected cycles, 1..2^64-1", val);
         /* the core caps a limit at PRU_MAX_CYCLE (about 52 days) anyway */
         o->max_cycles = u > (uint64_t)INT64_MAX ? INT64_MAX : (int64_t)u;
         return 0;
     case OPT_SOC:
         if (pru_soc_from_name(val, &o->soc))
-            return bad("--soc must be am335x, am437x-icss0 or am437x-icss1", val);
+            return bad("--soc '%s': expected am335x, am437x-icss0 or am437x-icss1", val);
         return 0;
     case OPT_DATA:
         o->data = val;
         return 0;
     case OPT_INPUTS:
         if (parse_u64(val, &u) || u > 0x3fffffffu)
-            return bad("--inputs needs a value 0..0x3fffffff", val);
+            return bad("--inputs '%s': expected 0..0x3fffffff", val);
         o->inputs = (uint32_t)u;
         return 0;
     }
@@ -192,28 +200,25 @@ static int parse_args(int argc, char **argv, struct opts *o) {
     while ((c = getopt_long(argc, argv, ":h", long_opts, NULL)) != -1) {
         const char *opt = argv[optind - 1];
         if (c == '?') {
-            return bad(optopt >= OPT_DUMP_REGS ? "option takes no value"
-                       : optopt                ? "unknown option"
-                                               : "unknown option (or an ambiguous abbreviation)",
+            return bad(optopt >= OPT_DUMP_REGS ? "option '%s' takes no value"
+                       : optopt                ? "unknown option '%s'"
+                                : "unknown option '%s' (or an ambiguous abbreviation)",
                        opt);
         }
-        if (c == ':') {
-            char msg[96];
-            snprintf(msg, sizeof msg, "option '%.60s' needs a value", opt);
-            return bad(msg, NULL);
-        }
+        if (c == ':')
+            return bad("option '%s' needs a value", opt);
         if (take_opt(c, optarg, o))
             return -1;
     }
     for (int i = optind; i < argc; i++) {
         if (o->image)
-            return bad("more than one image given", argv[i]);
+            return bad("unexpected argument '%s' (one IMAGE.bin)", argv[i]);
         o->image = argv[i];
     }
     if (!o->image)
-        return bad("no image file given", NULL);
+        return bad("no IMAGE.bin given");
     if (!o->params.strict && (o->params.strict_log || o->params.strict_everywhere))
-        return bad("--strict-log and --strict-scope need --strict", NULL);
+        return bad("--strict-log and --strict-scope need --strict");
     return 0;
 }
 
@@ -300,7 +305,7 @@ int main(int argc, char **argv) {
     }
     struct opts o;
     if (parse_args(argc, argv, &o))
-        return 1;
+        return EXIT_USAGE;
     struct pru_core *c = pru_core_new(o.soc, &o.params);
     if (!c) {
         fprintf(stderr, "pru-run: out of memory\n");

@@ -50,8 +50,7 @@ static int apply_config(biss_t *h, struct bissctl_opts *o) {
             o->cfg.ssi_delay_ns = ssi_delay;
         }
         if (rc == BISS_E_NOT_EMU) {
-            fprintf(stderr, "bissctl: a real target needs --slave or --ssi (the slave layout)\n");
-            return BISSCTL_USAGE;
+            return bissctl_usage_error("a real target needs --slave or --ssi (the slave layout)");
         }
         if (rc) {
             return bissctl_fail("slave layout", rc);
@@ -107,9 +106,9 @@ static int open_target(struct bissctl_opts *o, const struct command *cmd, biss_t
         o->errbuf[0] = '\0';
     }
     if (hw && cmd->configure && !o->open.attach && !layout) {
-        fprintf(stderr, "bissctl: a real target needs --slave or --ssi (the slave layout)%s\n",
-                read_only(cmd->name) ? ", or a firmware already running to attach to" : "");
-        return BISSCTL_USAGE;
+        return bissctl_usage_error(
+            "a real target needs --slave or --ssi (the slave layout)%s",
+            read_only(cmd->name) ? ", or a firmware already running to attach to" : "");
     }
     int rc = biss_emu_open(&o->open, h);
     if (rc == BISS_E_NOT_RUNNING && hw && stop) {

@@ -45,6 +45,10 @@ struct bissctl_opts {
 #define BISSCTL_FAIL  1 /* the library reported an error */
 #define BISSCTL_USAGE 2 /* bad command line */
 
+/* A usage error, the tools' one form (README "Conventions"): "bissctl:
+ * MESSAGE" and "Try 'bissctl [COMMAND] --help' for more information." on
+ * stderr; returns BISSCTL_USAGE. */
+__attribute__((format(printf, 1, 2))) int bissctl_usage_error(const char *fmt, ...);
 /* Parses argv; on a usage error prints it to stderr and returns
  * BISSCTL_USAGE, else BISSCTL_OK. */
 int bissctl_parse(int argc, char **argv, struct bissctl_opts *o);

@@ -90,6 +90,9 @@ static void print_sample(const struct biss_sample *s, const struct biss_config *
            : s->ack_jump   ? "ack-jump"
            : s->misframed  ? "misframed"
                            : "invalid");
+    if (s->flags & BISS_RF_IEP_LATE) { /* off its IEP period's count (BISS_RF_IEP_LATE) */
+        printf(" iep-late");
+    }
     if (s->valid) {
         for (unsigned i = 0; i < s->nslaves; i++) {
             print_slave(i, &s->slave[i], c && i < c->nslaves ? &c->slave[i] : NULL);
@@ -157,8 +160,25 @@ static void print_safety_stats(biss_t *h) {
     }
 }
 
-int bissctl_stats(biss_t *h, const struct bissctl_opts *o) {
-    (void)o;
+/* An emulated master is born with the command and has run no frame yet:
+ * info and stats let it run first (--ms, as run), so their counts are
+ * those of a master that ran, and say so. On hardware they count what the
+ * running master did. */
+static int emu_run_first(biss_t *h, const struct bissctl_opts *o, const char *what) {
+    if (biss_target(h) != BISS_TARGET_EMU) {
+        return BISSCTL_OK;
+    }
+    int rc = biss_run_ms(h, o->run_ms);
+    if (rc) {
+        return bissctl_fail(what, rc);
+    }
+    printf("emulated: counts after %u ms of simulated time (a new emulated master each "
+           "command; --ms MS for longer)\n",
+           o->run_ms);
+    return BISSCTL_OK;
+}
+
+static int print_counts(biss_t *h) {
     struct biss_stats st;
     int rc = biss_get_stats(h, &st);
     if (rc) {
@@ -168,9 +188,18 @@ int bissctl_stats(biss_t *h, const struct bissctl_opts *o) {
     return BISSCTL_OK;
 }
 
+int bissctl_stats(biss_t *h, const struct bissctl_opts *o) {
+    int rc = emu_run_first(h, o, "stats");
+    return rc ? rc : print_counts(h);
+}
+
 int bissctl_info(biss_t *h, const struct bissctl_opts *o) {
     struct biss_status st;
-    int rc = biss_get_status(h, &st);
+    int rc = emu_run_first(h, o, "info");
+    if (rc) {
+        return rc;
+    }
+    rc = biss_get_status(h, &st);
     if (rc) {
         return fail_h(h, "info", rc);
     }
@@ -187,7 +216,7 @@ int bissctl_info(biss_t *h, const struct bissctl_opts *o) {
         printf("freq_hz=%u slaves=%u trigger=%s proc_limit=%u\n", c.freq_hz, c.nslaves,
                biss_trigger_name(c.trigger), c.proc_limit);
     }
-    return bissctl_stats(h, o);
+    return print_counts(h);
 }
 
 /* In host-trigger mode a frame comes only when asked for. The firmware
@@ -264,7 +293,7 @@ int bissctl_run(biss_t *h, const struct bissctl_opts *o) {
     if (rc) {
         return bissctl_fail("run", rc);
     }
-    rc = bissctl_stats(h, o);
+    rc = print_counts(h);
     struct biss_line_delay d;
     if (rc == BISSCTL_OK && biss_line_delay(h, &d) == BISS_OK) {
         print_delay(&d);
@@ -330,8 +359,7 @@ int bissctl_stop(biss_t *h, const struct bissctl_opts *o) {
 
 static int parse_addr(const struct bissctl_opts *o, uint8_t *addr) {
     if (o->nargs < 1 || bissctl_parse_byte(o->args[0], 0x7f, addr)) {
-        fprintf(stderr, "bissctl: %s needs a register address 0x00..0x7f\n", o->command);
-        return BISSCTL_USAGE;
+        return bissctl_usage_error("%s needs a register address 0x00..0x7f", o->command);
     }
     return BISSCTL_OK;
 }
@@ -361,8 +389,7 @@ int bissctl_reg_read(biss_t *h, const struct bissctl_opts *o) {
         return rc;
     }
     if (o->nargs > 1) {
-        fprintf(stderr, "bissctl: reg-read takes one address (-n N for more registers)\n");
-        return BISSCTL_USAGE;
+        return bissctl_usage_error("reg-read takes one address (-n N for more registers)");
     }
     rc = biss_reg_read(h, o->id, addr, buf, o->count);
     if (rc) {
@@ -386,13 +413,11 @@ int bissctl_reg_write(biss_t *h, const struct bissctl_opts *o) {
     }
     unsigned n = (unsigned)o->nargs - 1;
     if (n < 1 || n > BISS_REG_MAX_SEQ) {
-        fprintf(stderr, "bissctl: reg-write needs 1..64 bytes after the address\n");
-        return BISSCTL_USAGE;
+        return bissctl_usage_error("reg-write needs 1..64 bytes after the address");
     }
     for (unsigned i = 0; i < n; i++) {
         if (bissctl_parse_byte(o->args[1 + i], 0xff, &buf[i])) {
-            fprintf(stderr, "bissctl: reg-write: '%s' is not a byte\n", o->args[1 + i]);
-            return BISSCTL_USAGE;
+            return bissctl_usage_error("reg-write: '%s' is not a byte", o->args[1 + i]);
         }
     }
     rc = biss_reg_write(h, o->id, addr, buf, n);
@@ -400,30 +425,34 @@ int bissctl_reg_write(biss_t *h, const struct bissctl_opts *o) {
 }
 
 /* The slaves a command goes to, in words. */
-static void print_targets(uint8_t ids, FILE *f) {
+/* "every slave (broadcast)", "ID 1", "IDs 0, 2" */
+static const char *targets_text(uint8_t ids, char *buf, size_t size) {
     if (!ids) {
-        fprintf(f, "every slave (broadcast)");
-        return;
+        return "every slave (broadcast)";
     }
-    fprintf(f, "ID%s", (ids & (ids - 1)) ? "s" : "");
-    for (unsigned i = 0, n = 0; i < 8; i++) {
+    size_t at = (size_t)snprintf(buf, size, "ID%s", (ids & (ids - 1)) ? "s" : "");
+    for (unsigned i = 0, n = 0; i < 8 && at < size; i++) {
         if (ids >> i & 1u) {
-            fprintf(f, "%s %u", n++ ? "," : "", i);
+            at += (size_t)snprintf(buf + at, size - at, "%s %u", n++ ? "," : "", i);
         }
     }
+    return buf;
 }
 
-/* A command that changes how an encoder works goes out with --force only. */
+static void print_targets(uint8_t ids, FILE *f) {
+    char buf[48];
+    fputs(targets_text(ids, buf, sizeof buf), f);
+}
+
+/* A command that changes how an encoder works goes out with --force only
+ * (a usage error: the command's help lists what each command does). */
 static int check_command(const struct bissctl_opts *o, uint8_t ids, uint8_t cmd) {
     const biss_cd_cmd_info *c = biss_cd_cmd_effect(ids, cmd);
     if (c->changes_encoder && !o->force) {
-        fprintf(stderr, "bissctl: command 0x%02x %u to ", ids, cmd);
-        print_targets(ids, stderr);
-        fprintf(stderr,
-                " %s: that changes how an encoder works; --force sends it (bissctl command "
-                "--help lists what each command does)\n",
-                c->effect);
-        return BISSCTL_USAGE;
+        char buf[48];
+        return bissctl_usage_error(
+            "command 0x%02x %u to %s %s: that changes how an encoder works; --force sends it", ids,
+            cmd, targets_text(ids, buf, sizeof buf), c->effect);
     }
     return BISSCTL_OK;
 }
@@ -432,8 +461,7 @@ int bissctl_command(biss_t *h, const struct bissctl_opts *o) {
     uint8_t ids, cmd, ida = 0;
     if (o->nargs != 2 || bissctl_parse_byte(o->args[0], 0xff, &ids) ||
         bissctl_parse_byte(o->args[1], 3, &cmd)) {
-        fprintf(stderr, "bissctl: command needs an ID mask 0..0xff and a command 0..3\n");
-        return BISSCTL_USAGE;
+        return bissctl_usage_error("command needs an ID mask 0..0xff and a command 0..3");
     }
     int rc = check_command(o, ids, cmd);
     if (rc) {
@@ -454,12 +482,10 @@ int bissctl_check_args(const struct bissctl_opts *o) {
     if (strcmp(o->command, "reg-read") == 0) {
         int rc = parse_addr(o, &addr);
         if (!rc && o->nargs > 1) {
-            fprintf(stderr, "bissctl: reg-read takes one address (-n N for more registers)\n");
-            rc = BISSCTL_USAGE;
+            rc = bissctl_usage_error("reg-read takes one address (-n N for more registers)");
         }
         if (!rc && o->count > BISS_REG_MAX_SEQ) {
-            fprintf(stderr, "bissctl: reg-read reads at most %d registers\n", BISS_REG_MAX_SEQ);
-            rc = BISSCTL_USAGE;
+            rc = bissctl_usage_error("reg-read reads at most %d registers", BISS_REG_MAX_SEQ);
         }
         return rc;
     }
@@ -469,13 +495,11 @@ int bissctl_check_args(const struct bissctl_opts *o) {
             return rc;
         }
         if (o->nargs < 2 || o->nargs - 1 > BISS_REG_MAX_SEQ) {
-            fprintf(stderr, "bissctl: reg-write needs 1..64 bytes after the address\n");
-            return BISSCTL_USAGE;
+            return bissctl_usage_error("reg-write needs 1..64 bytes after the address");
         }
         for (int i = 1; i < o->nargs; i++) {
             if (bissctl_parse_byte(o->args[i], 0xff, &b)) {
-                fprintf(stderr, "bissctl: reg-write: '%s' is not a byte\n", o->args[i]);
-                return BISSCTL_USAGE;
+                return bissctl_usage_error("reg-write: '%s' is not a byte", o->args[i]);
             }
         }
         return BISSCTL_OK;
@@ -484,8 +508,7 @@ int bissctl_check_args(const struct bissctl_opts *o) {
         uint8_t cmd;
         if (o->nargs != 2 || bissctl_parse_byte(o->args[0], 0xff, &b) ||
             bissctl_parse_byte(o->args[1], 3, &cmd)) {
-            fprintf(stderr, "bissctl: command needs an ID mask 0..0xff and a command 0..3\n");
-            return BISSCTL_USAGE;
+            return bissctl_usage_error("command needs an ID mask 0..0xff and a command 0..3");
         }
         return check_command(o, b, cmd);
     }

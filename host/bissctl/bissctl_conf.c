@@ -51,13 +51,11 @@ int bissctl_conf_read(const char *path, struct bissctl_opts *o) {
         return BISSCTL_FAIL;
     }
     if (n == sizeof text) {
-        fprintf(stderr, "bissctl: --config %s: more than %zu bytes\n", path, sizeof text - 1);
-        return BISSCTL_USAGE;
+        return bissctl_usage_error("--config %s: more than %zu bytes", path, sizeof text - 1);
     }
     text[n] = '\0';
     if (memchr(text, '\0', n)) {
-        fprintf(stderr, "bissctl: --config %s: not a text file (a NUL byte)\n", path);
-        return BISSCTL_USAGE;
+        return bissctl_usage_error("--config %s: not a text file (a NUL byte)", path);
     }
     unsigned lineno = 0;
     for (char *save = NULL, *line = text; line; line = save) {

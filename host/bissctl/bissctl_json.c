@@ -25,6 +25,9 @@ static const char *life(uint32_t f) {
 void bissctl_json_frame(const struct biss_sample *s, const struct biss_config *c, bool first) {
     printf("%s\n    {\"frame\": %u, \"flags\": %u, \"state\": \"%s\", \"timestamp\": %u",
            first ? "" : ",", s->frame, s->flags, state(s), s->timestamp);
+    if (s->flags & BISS_RF_IEP_LATE) {
+        printf(", \"iep_late\": true");
+    }
     if (s->valid || s->training) {
         printf(", \"delay_ns\": %.1f", s->delay.ns);
     }

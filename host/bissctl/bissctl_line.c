@@ -130,8 +130,7 @@ void bissctl_line_report(biss_t *h, const struct bissctl_opts *o) {
 int bissctl_rates(const struct bissctl_opts *o) {
     struct biss_line_facts f = given_facts(o);
     if (f.cable_m < 0 && f.round_trip_ns < 0 && !f.slave_timeout_ns) {
-        fprintf(stderr, "bissctl: rates needs --cable-m, --round-trip-ns or --slave-timeout-ns\n");
-        return BISSCTL_USAGE;
+        return bissctl_usage_error("rates needs --cable-m, --round-trip-ns or --slave-timeout-ns");
     }
     printf("TIDEP0022 Table 5: 10 MHz up to 10 m of cable, 5 MHz up to 25 m, 2 MHz up to 60 m, "
            "1 MHz up to 100 m\n");

@@ -4,6 +4,7 @@
 #include "biss_cd.h"
 
 #include <errno.h>
+#include <stdarg.h>
 #include <getopt.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -77,20 +78,27 @@ static const char common_help[] =
     "  --check-speed S,CPS\n"
     "                     slave S's position moves at most CPS counts a second: a\n"
     "                     frame beyond reach of the last one accepted is misframed\n"
-    "  --no-configure     leave the configuration as it is\n";
+    "  --no-configure     leave the configuration as it is\n"
+    "\n"
+    "exit status: 0 done, 1 an error (the library's or the target's; a probe that\n"
+    "cannot decide, a command withheld, a rate refused), 2 bad usage (also a\n"
+    "command that needs --force)\n";
 
 static const char *command_help(const char *command) {
     if (strcmp(command, "info") == 0) {
-        return "bissctl [options] info\n"
-               "  Firmware state, configuration ack and error, counters.\n";
+        return "bissctl [options] info [--ms MS]\n"
+               "  Firmware state, configuration ack and error, counters. On the emulator\n"
+               "  the master starts with the command: it runs MS ms first (default 100,\n"
+               "  simulated), and the counters are of those.\n";
     }
     if (strcmp(command, "read") == 0) {
         return "bissctl [options] read [-n N] [--json]\n"
                "  Prints N published frames (default 1), one line each: frame (1 is the\n"
                "  first, a training frame after each configuration), flags,\n"
                "  per slave position, data, nE/nW, CRC (\"none\" where the layout has\n"
-               "  none); line delay, sample point (1/8 bit), lag (periods), the IEP\n"
-               "  timestamp (counts of 5 ns) and the time it stands for.\n"
+               "  none); line delay, sample point (where in a bit, in eighths, it is read),\n"
+               "  lag (how many MA periods after the clock that made a bit it is read), the\n"
+               "  IEP timestamp (counts of 5 ns) and the time it stands for.\n"
                "  In host-trigger mode each frame is triggered first. With safety checks\n"
                "  (--check-life, --check-pair, --check-ew, --check-speed) each frame's verdicts "
                "and, after\n"
@@ -98,8 +106,9 @@ static const char *command_help(const char *command) {
                "{...}}.\n";
     }
     if (strcmp(command, "stats") == 0) {
-        return "bissctl [options] stats\n"
-               "  Frame, CRC error, no-slave, processing-time error and training counters.\n";
+        return "bissctl [options] stats [--ms MS]\n"
+               "  Frame, CRC error, no-slave, processing-time error and training counters.\n"
+               "  On the emulator the master runs MS ms first (default 100, simulated).\n";
     }
     if (strcmp(command, "run") == 0) {
         return "bissctl [options] run [--ms MS]\n"
@@ -223,14 +232,20 @@ void bissctl_usage(const char *command) {
 
 /* "FILE:LINE" while a --config file is read: errors name the line */
 static const char *error_at;
+/* the command, once known: the help a usage error points to is its own */
+static const char *help_command;
 
-static int usage_error(const char *fmt, const char *arg) {
+int bissctl_usage_error(const char *fmt, ...) {
+    va_list ap;
+    va_start(ap, fmt);
     fprintf(stderr, "bissctl: ");
     if (error_at) {
         fprintf(stderr, "%s: ", error_at);
     }
-    fprintf(stderr, fmt, arg);
-    fprintf(stderr, "\n(bissctl --help for usage)\n");
+    vfprintf(stderr, fmt, ap);
+    va_end(ap);
+    fprintf(stderr, "\nTry 'bissctl%s%s --help' for more information.\n", help_command ? " " : "",
+            help_command ? help_command : "");
     return BISSCTL_USAGE;
 }
 
@@ -456,16 +471,16 @@ static int take_target_opt(int c, const char *arg, struct bissctl_opts *o) {
     case OPT_TARGET:
         o->target_given = true;
         return biss_target_from_name(arg, &o->open.target)
-                   ? usage_error("unknown target '%s' (emu, am335x, am437x, am437x-icss0, "
-                                 "am437x-icss1)",
-                                 arg)
+                   ? bissctl_usage_error("unknown target '%s' (emu, am335x, am437x, am437x-icss0, "
+                                         "am437x-icss1)",
+                                         arg)
                    : 0;
     case OPT_DEVMEM:
         o->open.devmem = arg;
         return 0;
     case OPT_PRU:
         if (strcmp(arg, "0") != 0 && strcmp(arg, "1") != 0) {
-            return usage_error("--pru '%s': expected 0 or 1", arg);
+            return bissctl_usage_error("--pru '%s': expected 0 or 1", arg);
         }
         o->open.pru = (unsigned)(arg[0] - '0');
         o->pru_given = true;
@@ -476,7 +491,7 @@ static int take_target_opt(int c, const char *arg, struct bissctl_opts *o) {
         return 0;
     case OPT_LOADER:
         return biss_loader_from_name(arg, &o->open.loader)
-                   ? usage_error("--loader '%s': expected remoteproc or devmem", arg)
+                   ? bissctl_usage_error("--loader '%s': expected remoteproc or devmem", arg)
                    : 0;
     case OPT_SYSFS:
         o->open.sysfs_root = arg;
@@ -492,7 +507,7 @@ static int take_target_opt(int c, const char *arg, struct bissctl_opts *o) {
         return 0;
     case OPT_TIMEOUT:
         if (parse_unsigned(arg, &o->timeout_ms) || o->timeout_ms == 0) {
-            return usage_error("--timeout-ms '%s': expected a positive number", arg);
+            return bissctl_usage_error("--timeout-ms '%s': expected a positive number", arg);
         }
         o->open.timeout_ms = o->timeout_ms;
         return 0;
@@ -504,11 +519,11 @@ static int take_target_opt(int c, const char *arg, struct bissctl_opts *o) {
         return 0;
     case OPT_CABLE:
         return parse_cable(arg, &o->open.cable_m)
-                   ? usage_error("--cable-m '%s': expected metres, 0..1000", arg)
+                   ? bissctl_usage_error("--cable-m '%s': expected metres, 0..1000", arg)
                    : 0;
     case OPT_SEED:
         if (parse_ulong(arg, ~0ull, &v)) {
-            return usage_error("--seed '%s': expected a number", arg);
+            return bissctl_usage_error("--seed '%s': expected a number", arg);
         }
         o->open.seed = v;
         o->open.set_seed = true;
@@ -526,7 +541,8 @@ static int take_config_opt(int c, const char *arg, struct bissctl_opts *o) {
     o->config_given = o->config_given || !error_at; /* the command line's, not a file's */
     switch (c) {
     case OPT_FREQ:
-        return parse_u32(arg, &cfg->freq_hz) ? usage_error("--freq '%s': expected Hz", arg) : 0;
+        return parse_u32(arg, &cfg->freq_hz) ? bissctl_usage_error("--freq '%s': expected Hz", arg)
+                                             : 0;
     case OPT_SLAVE:
         if (!o->slaves_given || o->slaves_from_file) { /* the command line's replace a file's */
             cfg->nslaves = 0;
@@ -534,63 +550,67 @@ static int take_config_opt(int c, const char *arg, struct bissctl_opts *o) {
             o->slaves_from_file = false;
         }
         if (cfg->nslaves == BISS_API_MAX_SLAVES) {
-            return usage_error("--slave %s: at most 8 slaves", arg);
+            return bissctl_usage_error("--slave %s: at most 8 slaves", arg);
         }
         return parse_slave(arg, &cfg->slave[cfg->nslaves++])
-                   ? usage_error("--slave '%s': expected D,C,POLY,START[,EW[,POS]]", arg)
+                   ? bissctl_usage_error("--slave '%s': expected D,C,POLY,START[,EW[,POS]]", arg)
                    : 0;
     case OPT_SSI:
         if (o->slaves_from_file) {
             o->slaves_given = o->slaves_from_file = false;
         }
         if (o->slaves_given) {
-            return usage_error("--ssi %s: an SSI encoder is alone on its line (no --slave)", arg);
+            return bissctl_usage_error("--ssi %s: an SSI encoder is alone on its line (no --slave)",
+                                       arg);
         }
         o->slaves_given = true;
         cfg->nslaves = 1;
-        return parse_ssi(arg, &cfg->slave[0]) ? usage_error("--ssi '%s': expected BITS[,gray]", arg)
-                                              : 0;
+        return parse_ssi(arg, &cfg->slave[0])
+                   ? bissctl_usage_error("--ssi '%s': expected BITS[,gray]", arg)
+                   : 0;
     case OPT_SSI_DELAY:
         return parse_u32(arg, &cfg->ssi_delay_ns)
-                   ? usage_error("--ssi-delay-ns '%s': expected ns", arg)
+                   ? bissctl_usage_error("--ssi-delay-ns '%s': expected ns", arg)
                    : 0;
     case OPT_TRIGGER:
         return biss_trigger_from_name(arg, &cfg->trigger)
-                   ? usage_error("--trigger '%s': expected host, iep or free", arg)
+                   ? bissctl_usage_error("--trigger '%s': expected host, iep or free", arg)
                    : 0;
     case OPT_IEP:
         return parse_u32(arg, &cfg->iep_period_ns)
-                   ? usage_error("--iep-period-ns '%s': expected ns", arg)
+                   ? bissctl_usage_error("--iep-period-ns '%s': expected ns", arg)
                    : 0;
     case OPT_PROC:
         return parse_u32(arg, &cfg->proc_limit)
-                   ? usage_error("--proc-limit '%s': expected MA clocks", arg)
+                   ? bissctl_usage_error("--proc-limit '%s': expected MA clocks", arg)
                    : 0;
     case OPT_CHECK_LIFE:
         return biss_safety_parse_life(arg, &o->checks)
-                   ? usage_error("--check-life '%s': expected S[,BITS] (slave 0..7, 1..32 bits)",
-                                 arg)
+                   ? bissctl_usage_error(
+                         "--check-life '%s': expected S[,BITS] (slave 0..7, 1..32 bits)", arg)
                    : 0;
     case OPT_CHECK_EW:
         return biss_safety_parse_ew(arg, &o->checks)
-                   ? usage_error("--check-ew '%s': expected S (slave 0..7)", arg)
+                   ? bissctl_usage_error("--check-ew '%s': expected S (slave 0..7)", arg)
                    : 0;
     case OPT_CHECK_SPEED:
         return biss_safety_parse_speed(arg, &o->checks)
-                   ? usage_error("--check-speed '%s': expected S,CPS (slave 0..7, counts per "
-                                 "second 1e-9..1e18)",
-                                 arg)
+                   ? bissctl_usage_error(
+                         "--check-speed '%s': expected S,CPS (slave 0..7, counts per "
+                         "second 1e-9..1e18)",
+                         arg)
                    : 0;
     case OPT_CHECK_PAIR:
         switch (biss_safety_parse_pair(arg, &o->checks)) {
         case BISS_OK:
             return 0;
         case BISS_E_SAFETY_PAIR:
-            return usage_error("--check-pair %s: at most 4 pairs", arg);
+            return bissctl_usage_error("--check-pair %s: at most 4 pairs", arg);
         default:
-            return usage_error("--check-pair '%s': expected A,B,TOL[,SHIFT_A,SHIFT_B] (slaves "
-                               "0..7, shifts 0..63)",
-                               arg);
+            return bissctl_usage_error(
+                "--check-pair '%s': expected A,B,TOL[,SHIFT_A,SHIFT_B] (slaves "
+                "0..7, shifts 0..63)",
+                arg);
         }
     }
     return 1;
@@ -600,14 +620,15 @@ static int take_command_opt(int c, const char *arg, struct bissctl_opts *o) {
     switch (c) {
     case 'n':
         if (parse_unsigned(arg, &o->count) || o->count == 0) {
-            return usage_error("-n '%s': expected a positive count", arg);
+            return bissctl_usage_error("-n '%s': expected a positive count", arg);
         }
         return 0;
     case OPT_MS:
-        return parse_unsigned(arg, &o->run_ms) ? usage_error("--ms '%s': expected ms", arg) : 0;
+        return parse_unsigned(arg, &o->run_ms) ? bissctl_usage_error("--ms '%s': expected ms", arg)
+                                               : 0;
     case OPT_ID:
         if (parse_unsigned(arg, &o->id) || o->id > 7) {
-            return usage_error("--id '%s': expected 0..7", arg);
+            return bissctl_usage_error("--id '%s': expected 0..7", arg);
         }
         return 0;
     case OPT_NOCONF:
@@ -624,12 +645,12 @@ static int take_command_opt(int c, const char *arg, struct bissctl_opts *o) {
         return 0;
     case OPT_SLAVE_TIMEOUT:
         if (parse_u32(arg, &o->slave_timeout_ns) || o->slave_timeout_ns == 0) {
-            return usage_error("--slave-timeout-ns '%s': expected ns, above 0", arg);
+            return bissctl_usage_error("--slave-timeout-ns '%s': expected ns, above 0", arg);
         }
         return 0;
     case OPT_ROUND_TRIP:
         if (parse_cable_ns(arg, &o->round_trip_ns)) {
-            return usage_error("--round-trip-ns '%s': expected ns, 0..1000000", arg);
+            return bissctl_usage_error("--round-trip-ns '%s': expected ns, 0..1000000", arg);
         }
         return 0;
     case OPT_FORCE:
@@ -637,7 +658,7 @@ static int take_command_opt(int c, const char *arg, struct bissctl_opts *o) {
         return 0;
     case OPT_TIME_LIMIT:
         return parse_seconds(arg, &o->time_limit_ms)
-                   ? usage_error("--time-limit '%s': expected seconds, 0.001..86400", arg)
+                   ? bissctl_usage_error("--time-limit '%s': expected seconds, 0.001..86400", arg)
                    : 0;
     case 'h':
         o->help = true;
@@ -683,13 +704,13 @@ int bissctl_set_option(const char *key, const char *value, const char *at, struc
     error_at = at;
     int rc;
     if (!opt) {
-        rc = usage_error("unknown key '%s' (keys are bissctl's long options, without "
-                         "the dashes)",
-                         key);
+        rc = bissctl_usage_error("unknown key '%s' (keys are bissctl's long options, without "
+                                 "the dashes)",
+                                 key);
     } else if (!file_option(opt->val)) {
-        rc = usage_error("'%s' is a command's option, not a configuration key", key);
+        rc = bissctl_usage_error("'%s' is a command's option, not a configuration key", key);
     } else if (!value || !*value) {
-        rc = usage_error("'%s' needs a value (key = value)", key);
+        rc = bissctl_usage_error("'%s' needs a value (key = value)", key);
     } else {
         rc = take_opt(opt->val, value, o);
     }
@@ -698,16 +719,24 @@ int bissctl_set_option(const char *key, const char *value, const char *at, struc
 }
 
 /* The --config FILE on the command line, if any (the last one): read
- * before the other options, which then win over it. */
+ * before the other options, which then win over it. It looks at a copy of
+ * argv: getopt_long permutes what it scans, and "info --freq" (a value
+ * missing) would come back as "--freq info". */
 static const char *config_file(int argc, char **argv) {
     const char *path = NULL;
+    char **copy = malloc(((size_t)argc + 1) * sizeof *copy);
+    if (!copy) {
+        return NULL;
+    }
+    memcpy(copy, argv, ((size_t)argc + 1) * sizeof *copy);
     opterr = 0;
     optind = 0; /* glibc: a full restart of getopt */
-    for (int c; (c = getopt_long(argc, argv, ":n:h", long_opts, NULL)) != -1;) {
+    for (int c; (c = getopt_long(argc, copy, ":n:h", long_opts, NULL)) != -1;) {
         if (c == OPT_CONFIG) {
             path = optarg;
         }
     }
+    free(copy);
     return path;
 }
 
@@ -734,10 +763,10 @@ int bissctl_parse(int argc, char **argv, struct bissctl_opts *o) {
     int c;
     while ((c = getopt_long(argc, argv, ":n:h", long_opts, NULL)) != -1) {
         if (c == '?') {
-            return usage_error("unknown option '%s'", argv[optind - 1]);
+            return bissctl_usage_error("unknown option '%s'", argv[optind - 1]);
         }
         if (c == ':') {
-            return usage_error("option '%s' needs a value", argv[optind - 1]);
+            return bissctl_usage_error("option '%s' needs a value", argv[optind - 1]);
         }
         int rc = c == OPT_CONFIG ? 0 : take_opt(c, optarg, o); /* --config: read above */
         if (rc) {
@@ -754,8 +783,9 @@ int bissctl_parse(int argc, char **argv, struct bissctl_opts *o) {
             o->command = "command";
         }
         if (!known_command(o->command)) {
-            return usage_error("unknown command '%s'", o->command);
+            return bissctl_usage_error("unknown command '%s'", o->command);
         }
+        help_command = o->command;
     }
     o->args = argv + optind;
     o->nargs = argc - optind;
@@ -763,15 +793,15 @@ int bissctl_parse(int argc, char **argv, struct bissctl_opts *o) {
         o->command && (strncmp(o->command, "reg-", 4) == 0 || strcmp(o->command, "command") == 0 ||
                        strcmp(o->command, "probe") == 0 || strcmp(o->command, "encoder") == 0);
     if (o->nargs > 0 && !takes_args) {
-        return usage_error("unexpected argument '%s'", argv[optind]);
+        return bissctl_usage_error("unexpected argument '%s'", argv[optind]);
     }
     if (!o->command && !o->help) {
-        return usage_error("%s", "no command given");
+        return bissctl_usage_error("%s", "no command given");
     }
     /* a layout from the command line takes the checks now (to be checked
      * with it); the profile's takes them when the emulator gives it */
     if (o->slaves_given && biss_safety_merge(&o->cfg, &o->checks)) {
-        return usage_error("%s", "at most 4 --check-pair in all");
+        return bissctl_usage_error("%s", "at most 4 --check-pair in all");
     }
     return BISSCTL_OK;
 }

@@ -155,8 +155,7 @@ static void print_cost(const struct biss_probe_report *r, unsigned limit_ms) {
 
 int bissctl_probe(biss_t *h, const struct bissctl_opts *o) {
     if (o->nargs > 1) {
-        fprintf(stderr, "bissctl: probe takes one FILE.json, not '%s'\n", o->args[1]);
-        return BISSCTL_USAGE;
+        return bissctl_usage_error("probe takes one FILE.json, not '%s'", o->args[1]);
     }
     struct biss_probe_params p = {
         .freq_hz = o->cfg.freq_hz,

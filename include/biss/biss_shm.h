@@ -196,6 +196,12 @@
 #define BISS_RF_SMA             0x20    // the moving average is filled (4 frames at this rate)
 #define BISS_RF_ACK_JUMP        0x40    // the ACK lay over half a bit from the average: bits read
                                         // at the wrong place, so never VALID (see pru_fw/README)
+#define BISS_RF_IEP_LATE        0x80    // IEP trigger: this frame did not start on its period's
+                                        // count (SL was not idle in time), or it ran into the
+                                        // next period (which then has no frame): the period is
+                                        // too short for the frame. With VALID and any flag it
+                                        // may have; every period without a frame lies next to
+                                        // a frame flagged so
 #define BISS_RF_SL_INIT         0x200   // SL stayed low: iC-MB4's INIT sent (two clocks, no
                                         // measurement), with NO_SLAVE; a training follows
 

@@ -145,8 +145,29 @@ int main(int argc, char **argv) {
         printf("%s %s\n", "pru-elf", BISS_VERSION);
         return 0;
     }
+    if (argc == 2 && strcmp(argv[1], "--help") == 0) {
+        printf("usage: pru-elf IMAGE.bin OUT.elf\n"
+               "Writes the raw PRU IRAM image IMAGE.bin (pruasm -b) as the ELF file Linux's\n"
+               "PRU remoteproc driver loads; OUT.elf is written whole or not at all.\n"
+               "\n"
+               "  --help     this text\n"
+               "  --version  the version\n"
+               "\n"
+               "exit status: 0 written, 1 an error (a file, libelf), 2 bad usage\n");
+        return 0;
+    }
+    for (int i = 1; i < argc; i++) {
+        if (argv[i][0] == '-' && argv[i][1]) { /* the tools' one form: README "Conventions" */
+            fprintf(stderr, "pru-elf: unknown option '%s'\n", argv[i]);
+            argc = 0;
+            break;
+        }
+    }
     if (argc != 3) {
-        fprintf(stderr, "usage: pru-elf IMAGE.bin OUT.elf\n");
+        if (argc) {
+            fprintf(stderr, "pru-elf: expected IMAGE.bin OUT.elf, not %d arguments\n", argc - 1);
+        }
+        fprintf(stderr, "Try 'pru-elf --help' for more information.\n");
         return 2;
     }
     const char *in = argv[1], *out = argv[2];

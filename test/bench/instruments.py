@@ -75,8 +75,8 @@ def some_window(values, n, want):
 
 
 cases = [
-    ("default 10 MHz", ["--frames", "100"], 10),
-    ("register read (CDM = 1 frames)", ["--frames", "30", "--reg-read", "0:0x44:8"], 10),
+    ("default encoder 10 MHz", ["--freq", "10000000", "--frames", "100"], 10),
+    ("register read (CDM = 1 frames)", ["--freq", "10000000", "--frames", "30", "--reg-read", "0:0x44:8"], 10),
     ("AD38 chain 1 MHz 100 m", ["--profile", "hengstler-ad38", "--freq", "1000000",
                                 "--cable-m", "100", "--frames", "40"], 100),
     ("SSI 2 MHz", ["--profile", "ssi", "--freq", "2000000", "--frames", "40"], 50),
@@ -126,7 +126,7 @@ for name, args, half in cases:
 
 # IEP frames: one per period, each its start's fixed time after the
 # period's start, exactly one period apart at the master pin
-j, vcd = run(["--trigger", "iep", "--iep-period-ns", "50000", "--frames", "40"])
+j, vcd = run(["--freq", "10000000", "--trigger", "iep", "--iep-period-ns", "50000", "--frames", "40"])
 if j:
     iep = j["frame_starts"]["iep"]
     check(iep["period_cycles"] == 10000 and iep["frames"] == 40 and iep["periods"] == 40

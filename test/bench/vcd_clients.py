@@ -34,7 +34,7 @@ tmp = tempfile.mkdtemp()
 vcd = os.path.join(tmp, "bench.vcd")
 vcd_ps = os.path.join(tmp, "bench_ps.vcd")
 # the default encoder (TIDEP0022: 12-bit position, nE, nW, CRC6) at 10 MHz
-common = ["--frames", "20", "--seed", "5"]
+common = ["--freq", "10000000", "--frames", "20", "--seed", "5"]
 run(SIM, *common, "--vcd", vcd)
 run(SIM, *common, "--vcd", vcd_ps, "--vcd-timescale", "1ps")
 

@@ -1,7 +1,7 @@
 /*
  * Check suite: the pru-run CLI contract - --dump-regs output, exit codes
- * (0 halted, 2 no HALT within --max-cycles, 3 fault, non-zero for bad
- * usage), --data, --soc, --help.
+ * (0 halted, 1 an unreadable file, 2 bad usage, 3 fault, 124 no HALT within
+ * --max-cycles), --data, --soc, --help.
  */
 #include "check_run.h"
 #include "core_test_util.h"
@@ -78,12 +78,12 @@ START_TEST(halts_and_dumps_registers) {
 }
 END_TEST
 
-START_TEST(no_halt_exit_2) {
+START_TEST(no_halt_exit_124) {
     const uint32_t w[] = {qba(0)};
     const char *img = write_file("loop.bin", w, sizeof w);
     char args[700];
     snprintf(args, sizeof args, "--max-cycles 1000 --dump-regs '%s'", img);
-    ck_assert_int_eq(run(args), 2);
+    ck_assert_int_eq(run(args), 124);
     ck_assert_ptr_nonnull(strstr(slurp(outf), "cycles=1000\ninstructions=1000\n"));
 }
 END_TEST
@@ -134,13 +134,13 @@ START_TEST(strict_and_contend) {
     ck_assert_ptr_nonnull(strstr(slurp(outf), "\ncycles=14\n"));
     ck_assert_ptr_nonnull(strstr(slurp(errf), "contention: 1 accesses stalled, 7 cycles"));
     snprintf(args, sizeof args, "--strict=loop2 '%s'", img);
-    ck_assert_int_eq(run(args), 1);
-    ck_assert_ptr_nonnull(strstr(slurp(errf), "unknown: loop2"));
+    ck_assert_int_eq(run(args), 2);
+    ck_assert_ptr_nonnull(strstr(slurp(errf), "pru-run: --strict 'loop2': expected loop1,"));
     snprintf(args, sizeof args, "--contend 5 '%s'", img);
-    ck_assert_int_eq(run(args), 1);
-    ck_assert_ptr_nonnull(strstr(slurp(errf), "--contend"));
+    ck_assert_int_eq(run(args), 2);
+    ck_assert_ptr_nonnull(strstr(slurp(errf), "pru-run: --contend '5' is not K,S"));
     snprintf(args, sizeof args, "--strict-log '%s'", img);
-    ck_assert_int_eq(run(args), 1);
+    ck_assert_int_eq(run(args), 2);
 }
 END_TEST
 
@@ -169,27 +169,39 @@ START_TEST(data_and_soc) {
 }
 END_TEST
 
+/* Usage errors: exit 2, "pru-run: MESSAGE" and the way to the help, the
+ * whole of stderr (README "Conventions"); files that cannot be used: exit 1. */
 START_TEST(usage_errors) {
+    static const struct {
+        const char *args, *message;
+    } usage[] = {
+        {"", "no IMAGE.bin given"},
+        {"--bogus x.bin", "unknown option '--bogus' (or an ambiguous abbreviation)"},
+        {"--soc am999 x.bin", "--soc 'am999': expected am335x, am437x-icss0 or am437x-icss1"},
+        {"--max-cycles abc x.bin", "--max-cycles 'abc': expected cycles, 1..2^64-1"},
+        {"x.bin y.bin", "unexpected argument 'y.bin' (one IMAGE.bin)"},
+        /* every usage error names its option: a value missing, one given
+         * to an option that takes none */
+        {"x.bin --max-cycles", "option '--max-cycles' needs a value"},
+        {"--dump-regs=1 x.bin", "option '--dump-regs=1' takes no value"},
+    };
+    for (size_t i = 0; i < sizeof usage / sizeof usage[0]; i++) {
+        char want[300];
+        snprintf(want, sizeof want, "pru-run: %s\nTry 'pru-run --help' for more information.\n",
+                 usage[i].message);
+        ck_assert_msg(run(usage[i].args) == 2, "%s", usage[i].args);
+        ck_assert_str_eq(slurp(errf), want);
+        ck_assert_str_eq(slurp(outf), "");
+    }
     ck_assert_int_eq(run("--help"), 0);
     ck_assert_ptr_nonnull(strstr(slurp(outf), "--max-cycles"));
-    ck_assert_int_ne(run(""), 0);
-    ck_assert_ptr_nonnull(strstr(slurp(errf), "no image"));
-    ck_assert_int_ne(run("--bogus x.bin"), 0);
-    ck_assert_ptr_nonnull(strstr(slurp(errf), "unknown option"));
-    ck_assert_int_ne(run("--soc am999 x.bin"), 0);
-    ck_assert_int_ne(run("--max-cycles abc x.bin"), 0);
-    ck_assert_int_ne(run("/nonexistent/file.bin"), 0);
-    ck_assert_ptr_nonnull(strstr(slurp(errf), "cannot open"));
+    ck_assert_int_eq(run("/nonexistent/file.bin"), 1);
+    ck_assert_str_eq(slurp(errf), "pru-run: cannot open /nonexistent/file.bin: No such file or "
+                                  "directory\n");
     const uint8_t odd[3] = {1, 2, 3};
     char args[700];
     snprintf(args, sizeof args, "'%s'", write_file("odd.bin", odd, 3));
-    ck_assert_int_ne(run(args), 0);
-    /* every usage error names its option: a value missing, one given to
-     * an option that takes none, a --data file that cannot be read */
-    ck_assert_int_eq(run("x.bin --max-cycles"), 1);
-    ck_assert_ptr_nonnull(strstr(slurp(errf), "option '--max-cycles' needs a value"));
-    ck_assert_int_eq(run("--dump-regs=1 x.bin"), 1);
-    ck_assert_ptr_nonnull(strstr(slurp(errf), "option takes no value: --dump-regs=1"));
+    ck_assert_int_eq(run(args), 1);
     const uint32_t w[] = {halt()};
     const char *img = write_file("h.bin", w, sizeof w);
     snprintf(args, sizeof args, "--data /nonexistent/d.bin '%s'", img);
@@ -222,9 +234,8 @@ START_TEST(no_fast_path) {
         ck_assert_str_eq(slurp(outf), ref);
     }
     snprintf(args, sizeof args, "--no-fast-path ff-bogus '%s'", img);
-    ck_assert_int_ne(run(args), 0);
-    ck_assert_ptr_nonnull(strstr(slurp(errf), "--no-fast-path must be"));
-    ck_assert_ptr_nonnull(strstr(slurp(errf), "ff-bogus"));
+    ck_assert_int_eq(run(args), 2);
+    ck_assert_ptr_nonnull(strstr(slurp(errf), "--no-fast-path 'ff-bogus': expected ff,"));
 }
 END_TEST
 
@@ -244,18 +255,18 @@ START_TEST(max_cycles_range) {
                                              "''"};
     for (size_t i = 0; i < sizeof bad_values / sizeof bad_values[0]; i++) {
         snprintf(args, sizeof args, "--max-cycles %s '%s'", bad_values[i], img);
-        ck_assert_int_eq(run(args), 1);
+        ck_assert_int_eq(run(args), 2);
         const char *err = slurp(errf);
-        ck_assert_msg(strstr(err, "--max-cycles needs a whole number of cycles"), "%s", err);
+        ck_assert_msg(strstr(err, "': expected cycles, 1..2^64-1"), "%s", err);
     }
     /* the value is named in the message */
     snprintf(args, sizeof args, "--max-cycles 12x '%s'", img);
-    ck_assert_int_eq(run(args), 1);
-    ck_assert_ptr_nonnull(strstr(slurp(errf), ": 12x\n"));
+    ck_assert_int_eq(run(args), 2);
+    ck_assert_ptr_nonnull(strstr(slurp(errf), "--max-cycles '12x': expected"));
     /* and the limit is still a limit */
     const uint32_t spin[] = {qba(0)};
     snprintf(args, sizeof args, "--max-cycles 0x10 '%s'", write_file("s.bin", spin, 4));
-    ck_assert_int_eq(run(args), 2);
+    ck_assert_int_eq(run(args), 124);
     ck_assert_ptr_nonnull(strstr(slurp(errf), "no HALT within 16 cycles"));
 }
 END_TEST
@@ -296,7 +307,7 @@ Suite *cli_suite(void) {
     TCase *t = tcase_create("cli");
     tcase_add_checked_fixture(t, setup, teardown);
     tcase_add_test(t, halts_and_dumps_registers);
-    tcase_add_test(t, no_halt_exit_2);
+    tcase_add_test(t, no_halt_exit_124);
     tcase_add_test(t, fault_exit_3);
     tcase_add_test(t, strict_and_contend);
     tcase_add_test(t, data_and_soc);

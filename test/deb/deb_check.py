@@ -135,6 +135,23 @@ def unpacked(deb_dir):
                     os.path.join(SOURCE, "examples", "read_positions.c"), "-o", exe, *flags)
             check(r.returncode == 0 and os.path.exists(exe),
                   "the example against libbiss-dev: %r %r" % (flags, r.stderr))
+        # the Python module over the unpacked libbiss: it loads, speaks the
+        # library's errors, and has no emulator (that is the build tree's)
+        site = os.path.join(root, "usr", "lib", "python3", "dist-packages")
+        libdir = os.path.dirname(pc[0]) if pc else ""
+        env = dict(os.environ, PYTHONPATH=site, LD_LIBRARY_PATH=os.path.dirname(libdir),
+                   PYTHONDONTWRITEBYTECODE="1")
+        r = run("/usr/bin/python3", "-c", """
+import biss
+assert not biss.HAS_EMULATOR
+assert biss.strerror(biss.lib.BISS_E_DEVMEM).startswith("the PRU-ICSS memory")
+try:
+    biss.open("am335x", loader="devmem", devmem="/nonexistent/mem")
+except biss.BissError as e:
+    print(e.name, e.detail)
+""", env=env)
+        check(r.returncode == 0 and r.stdout.startswith("BISS_E_DEVMEM /nonexistent/mem"),
+              "python3-biss over the unpacked libbiss0: %r %r" % (r.stdout, r.stderr))
     finish("unpacked packages")
 
 

@@ -135,7 +135,7 @@ static void note_starts(struct pair *p, void *ctx) {
     }
 }
 
-static void check_pair(struct pair *p, unsigned half0, unsigned half1) {
+static void check_pair_at(struct pair *p, unsigned half0, unsigned half1, uint32_t period) {
     struct starts s = {.n = {0, 0}};
     pair_run(p, MATCHED, 5 * SIM_PS_PER_US, 20 * SIM_PS_PER_MS, note_starts, &s);
     /* the same frames on both, each started on the same PRU cycle: the same
@@ -147,7 +147,7 @@ static void check_pair(struct pair *p, unsigned half0, unsigned half1) {
         ck_assert_msg(llabs(d) <= PRU_PS_PER_CYCLE, "frame %u: PRU0 at %lld ps, PRU1 at %lld ps", k,
                       (long long)s.t[0][k], (long long)s.t[1][k]);
         if (k > 0) /* one IEP period apart (CMP0 + 1 counts: TIMING.md) */
-            ck_assert_int_le(llabs(s.t[0][k] - s.t[0][k - 1] - PERIOD * PRU_PS_PER_CYCLE),
+            ck_assert_int_le(llabs(s.t[0][k] - s.t[0][k - 1] - period * PRU_PS_PER_CYCLE),
                              PRU_PS_PER_CYCLE);
     }
     unsigned half[2] = {half0, half1};
@@ -163,6 +163,19 @@ static void check_pair(struct pair *p, unsigned half0, unsigned half1) {
         ck_assert_uint_eq(fc->mismatches, 0);
         ck_assert_uint_eq(fc->crc_errors, 0);
         ck_assert_uint_eq(fc->half, half[i]);
+    }
+}
+
+static void check_pair(struct pair *p, unsigned half0, unsigned half1) {
+    check_pair_at(p, half0, half1, PERIOD);
+}
+
+/* After the first frames of a new configuration: the counts start afresh. */
+static void settle(struct pair *p) {
+    pair_run(p, 5, 5 * SIM_PS_PER_US, 10 * SIM_PS_PER_MS, NULL, NULL);
+    for (unsigned i = 0; i < 2; i++) {
+        bench_reset_stats(p->r[i].b);
+        fw_check_restart(&p->r[i].fc, UINT64_MAX);
     }
 }
 
@@ -204,8 +217,8 @@ START_TEST(test_chain_and_single) {
 END_TEST
 
 /* The host reading both PRUs' data RAMs: the loads before a frame stall,
- * on each PRU differently, but both PRUs align after their last load
- * (IEP_AT_ALIGN), so the frames still start on the same count. */
+ * on each PRU differently, but IEP_START reads the count after them and
+ * waits from it, so the frames of both still start on the same count. */
 START_TEST(test_two_encoders_contended) {
     static const char *const specs[] = {"4,3", "2,8,random:7"};
     read_pair(PRU_SOC_AM335X, "tidep0022-test-encoder", "hengstler-ad38", 10, 10, specs[_i]);
@@ -258,6 +271,54 @@ START_TEST(test_same_line_both) {
 }
 END_TEST
 
+/* A follower configured before the owner: no period kept; once the
+ * owner has set the IEP up, the follower works out its thresholds for that
+ * period (IEP_PERIOD) and both read every period together. */
+START_TEST(test_follower_before_owner) {
+    struct pair p;
+    pair_new(&p, PRU_SOC_AM335X, "tidep0022-test-encoder", "hengstler-ad38", 10, NULL);
+    p.r[1].fc.cfg.trigger = BISS_TRIGGER_IEP_FOLLOW;
+    p.r[1].fc.cfg.iep_period_ns = PERIOD * 5u; /* the owner's: the checks time by it */
+    p.r[1].fc.cfg.proc_limit = 1000;
+    ck_assert_int_eq(fw_check_configure(&p.r[1].fc, 10), 0);
+    struct bench *b = p.r[0].b;
+    ck_assert_int_eq(bench_run_until(b, pru_time_ps(bench_core(b)) + 2 * SIM_PS_PER_MS),
+                     PRU_STOP_LIMIT);
+    ck_assert_uint_eq(bench_fw_status(p.r[1].b).state, BISS_STATE_RUNNING);
+    /* no period to keep: frames, if any (while the free count is low enough
+     * for IEP_START's wait), are flagged */
+    ck_assert(p.r[1].fc.frames == 0 || (p.r[1].fc.last_flags & BISS_RF_IEP_LATE));
+    p.r[0].fc.cfg.trigger = BISS_TRIGGER_IEP;
+    p.r[0].fc.cfg.iep_period_ns = PERIOD * 5u;
+    p.r[0].fc.cfg.proc_limit = 1000;
+    ck_assert_int_eq(fw_check_configure(&p.r[0].fc, 10), 0);
+    settle(&p);
+    check_pair(&p, 10, 10);
+    pair_free(&p);
+}
+END_TEST
+
+/* The owner configured anew with another period while the follower reads:
+ * the follower takes the new period (its thresholds worked out again) and
+ * both read every period of it together. */
+START_TEST(test_owner_new_period) {
+    static const uint32_t periods[] = {13000, 7000};
+    struct pair p;
+    pair_new(&p, PRU_SOC_AM335X, "tidep0022-test-encoder", "hengstler-ad38", 10, NULL);
+    configure(&p, 10, 10);
+    check_pair(&p, 10, 10);
+    for (unsigned i = 0; i < 2; i++) {
+        p.r[0].fc.cfg.trigger = BISS_TRIGGER_IEP;
+        p.r[0].fc.cfg.iep_period_ns = periods[i] * 5u;
+        p.r[0].fc.cfg.proc_limit = 1000;
+        ck_assert_int_eq(fw_check_configure(&p.r[0].fc, 10), 0);
+        settle(&p);
+        check_pair_at(&p, 10, 10, periods[i]);
+    }
+    pair_free(&p);
+}
+END_TEST
+
 /* PRU0's data RAM as a host reads it, whichever bench's core is asked. */
 static int pru0_read(void *ctx, uint32_t off, void *buf, size_t n) {
     struct bench *b = ctx;
@@ -306,6 +367,8 @@ int main(void) {
     tcase_add_loop_test(tc, test_two_encoders_contended, 0, 2);
     tcase_add_test(tc, test_same_line_both);
     tcase_add_test(tc, test_pru1_alone);
+    tcase_add_test(tc, test_follower_before_owner);
+    tcase_add_test(tc, test_owner_new_period);
     suite_add_tcase(s, tc);
     return check_run(s);
 }

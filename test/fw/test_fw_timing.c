@@ -99,6 +99,7 @@ static void run_config(struct h_ctx *h, const struct fw_config *cf, const struct
     uint32_t regs[30];
     for (unsigned i = 0; i < 30; i++)
         regs[i] = pru_reg(c, i);
+    regs[2] = 0; /* MAIN's trigger byte (r2.b3): the host's, as configured */
     for (size_t i = 0; i < nruns; i++) {
         int rc = fw_run(&fw, c, regs, h->half, &runs[i], &h->cv, err, sizeof(err));
         if (rc != 0) {
@@ -130,8 +131,8 @@ static void biss_frames(struct h_ctx *h, const struct fw_config *cf) {
     unsigned f = final_bits(cf, &end);
     int n = (int)total_bits(cf);
     int chain = n - (int)f;
-    uint32_t frame_stamped = (uint32_t)fw_label_pc(&fw.lst, "FRAME_STAMPED");
-    ck_assert_msg(fw_label_pc(&fw.lst, "FRAME_STAMPED") >= 0, "label FRAME_STAMPED not found");
+    uint32_t frame_set = (uint32_t)fw_label_pc(&fw.lst, "FRAME_SET");
+    ck_assert_msg(fw_label_pc(&fw.lst, "FRAME_SET") >= 0, "label FRAME_SET not found");
     struct {
         unsigned ack_at;
         uint8_t pattern;
@@ -151,8 +152,8 @@ static void biss_frames(struct h_ctx *h, const struct fw_config *cf) {
     const char *names[sizeof(v) / sizeof(v[0])];
     for (size_t i = 0; i < sizeof(v) / sizeof(v[0]); i++) {
         runs[i] = (struct fw_run){.start = "FRAME_REGS",
-                                  .start_r12 = frame_stamped,
-                                  .hook = "FRAME_STAMPED",
+                                  .start_r12 = frame_set,
+                                  .hook = "FRAME_SET",
                                   .hsum = hsum_for(v[i].ack_at, v[i].pattern, v[i].m),
                                   .cdm = v[i].cdm,
                                   .ack_at = v[i].ack_at,
@@ -169,10 +170,10 @@ static void biss_frames(struct h_ctx *h, const struct fw_config *cf) {
 /* Frames that end before the data, and training frames. */
 static void other_frames(struct h_ctx *h) {
     struct fw_config cf = {.half = h->half, .nslaves = 1, .s = {{12, 6}}, .proc_limit = 4};
-    uint32_t frame_stamped = (uint32_t)fw_label_pc(&fw.lst, "FRAME_STAMPED");
+    uint32_t frame_set = (uint32_t)fw_label_pc(&fw.lst, "FRAME_SET");
     struct fw_run runs[] = {
         {.start = "FRAME_REGS",
-         .start_r12 = frame_stamped,
+         .start_r12 = frame_set,
          .hsum = -1,
          .cdm = -1,
          .ack_at = FW_NEVER,
@@ -180,8 +181,8 @@ static void other_frames(struct h_ctx *h) {
          .end = "NO_ACK",
          .chain_periods = -1},
         {.start = "FRAME_REGS",
-         .start_r12 = frame_stamped,
-         .hook = "FRAME_STAMPED",
+         .start_r12 = frame_set,
+         .hook = "FRAME_SET",
          .hsum = hsum_for(2, 0x0f, 0),
          .cdm = -1,
          .ack_at = 2,
@@ -394,11 +395,12 @@ START_TEST(extra_cycle_is_named) {
     uint32_t regs[30];
     for (unsigned i = 0; i < 30; i++)
         regs[i] = pru_reg(c, i);
+    regs[2] = 0; /* MAIN's trigger byte (r2.b3): the host's, as configured */
     const char *end;
     unsigned f = final_bits(&cf, &end);
     struct fw_run run = {.start = "FRAME_REGS",
-                         .start_r12 = (uint32_t)fw_label_pc(&bad.lst, "FRAME_STAMPED"),
-                         .hook = "FRAME_STAMPED",
+                         .start_r12 = (uint32_t)fw_label_pc(&bad.lst, "FRAME_SET"),
+                         .hook = "FRAME_SET",
                          .hsum = hsum_for(2, 0x0f, 0),
                          .cdm = 0,
                          .ack_at = 2,

@@ -185,6 +185,17 @@ def check_tree(root, tmp):
         r = run(exe, mem, env=env)
         check(r.returncode == 0 and r.stdout == "slave 0: position %d\n" % pos,
               "example: %d %r %r" % (r.returncode, r.stdout, r.stderr))
+        # a failing open: the library's words (biss_strerror) and its detail
+        # (errbuf: the path, errno), as bissctl prints them
+        missing = os.path.join(tmp, "no-such-mem")
+        r = run(exe, missing, env=env)
+        check(r.returncode == 1 and r.stdout == "" and r.stderr.startswith(
+                  "read_positions: the PRU-ICSS memory cannot be opened or mapped: " + missing
+                  + ": No such file or directory (errno 2)"),
+              "example, missing memory file: %d %r" % (r.returncode, r.stderr))
+        r = run(exe, mem, mem, env=env)
+        check(r.returncode == 2 and "usage: read_positions [MEM]" in r.stderr,
+              "example, two arguments: %d %r" % (r.returncode, r.stderr))
 
     # attaching, bissctl compares the running image (its identification
     # block, which the devmem load above wrote) with the installed one, and
