@@ -54,10 +54,9 @@ struct bench {
     enum capture_state cap_state;
     uint64_t cap_frame;
     waveform cap[4];
-    sim_ps cap_t0, cap_last;    /* first and last MA edge of the frame, at the master */
-    sim_ps cap_end;             /* when the frame was over on every pin */
-    biss_frame_record cap_biss; /* the frame's record, kept: the slave's ring moves on */
-    ssi_frame_record cap_ssi;
+    sim_ps cap_t0, cap_last; /* first and last MA edge of the frame, at the master */
+    sim_ps cap_end;          /* when the frame was over on every pin */
+    void *cap_record;        /* the frame's record, kept (the model's ring moves on), or NULL */
 
     struct frame_marks marks; /* each frame's first MA fall at the master pin (marks_scan) */
     uint64_t frame_limit;     /* frames from this number on are not measured */
@@ -209,23 +208,16 @@ static void vcd_frame_update(struct bench *b, sim_ps now) {
 /* Time after which frame cap_frame is over on every pin, -1 if unknown:
  * its close at the slave plus one round trip and a margin. */
 static sim_ps capture_end(const struct bench *b) {
-    sim_ps end = -1;
-    if (b->link.sc.protocol == SCENARIO_SSI) {
-        const ssi_frame_record *r = ssi_slave_record(&b->link.ssi, b->cap_frame);
-        end = r ? r->end_ps : -1;
-    } else {
-        const biss_frame_record *r = biss_slave_record(&b->link.biss, b->cap_frame);
-        end = r ? r->end_ps : -1;
-    }
+    sim_ps end = link_frame_end(&b->link, b->cap_frame);
     return end < 0 ? -1 : end + (sim_ps)bench_round_trip_ps(b) + 200 * SIM_PS_PER_NS;
 }
 
 /* Copies the captured frame's record, which capture_end found. */
 static void capture_keep_record(struct bench *b) {
-    if (b->link.sc.protocol == SCENARIO_SSI) {
-        b->cap_ssi = *ssi_slave_record(&b->link.ssi, b->cap_frame);
-    } else {
-        b->cap_biss = *biss_slave_record(&b->link.biss, b->cap_frame);
+    size_t n = b->link.model->record_size;
+    b->cap_record = malloc(n);
+    if (b->cap_record) {
+        memcpy(b->cap_record, link_record(&b->link, b->cap_frame), n);
     }
 }
 
@@ -262,6 +254,8 @@ static void capture_free(struct bench *b) {
             waveform_free(&b->cap[i]);
         }
     }
+    free(b->cap_record);
+    b->cap_record = NULL;
     b->cap_state = CAP_OFF;
     observe_pins_update(b);
 }
@@ -458,8 +452,9 @@ int bench_new_pair(const struct bench_config cfg[2], struct bench *b[2], char *e
 }
 
 struct bench *bench_new_loop(const struct bench_config *cfg, char *err, size_t errlen) {
-    if (cfg->link.protocol == SCENARIO_SSI) {
-        snprintf(err, errlen, "the encoder firmware is a BiSS-C slave: not an SSI scenario");
+    if (cfg->link.model != &slave_model_biss) {
+        snprintf(err, errlen,
+                 "the encoder firmware is a BiSS-C slave: not a scenario of another protocol");
         return NULL;
     }
     struct pru_icss *icss = pru_icss_new(cfg->soc, &cfg->pru);
@@ -691,7 +686,7 @@ const struct bench_config *bench_config(const struct bench *b) {
 
 double bench_round_trip_ps(const struct bench *b) {
     const scenario *sc = &b->link.sc;
-    sim_ps out = sc->protocol == SCENARIO_SSI ? sc->ssi.out_delay_ps : sc->biss.out_delay_ps;
+    sim_ps out = sc->model->out_delay(scenario_model_cfg(sc));
     return line_nominal_delay_ps(&sc->ma_line) + (double)out + line_nominal_delay_ps(&sc->sl_line);
 }
 
@@ -726,10 +721,6 @@ int bench_capture_get(struct bench *b, waveform *pins[4], sim_ps *t0, sim_ps *t1
     return 0;
 }
 
-void bench_capture_record(const struct bench *b, const biss_frame_record **biss,
-                          const ssi_frame_record **ssi) {
-    bool done = b->cap_state == CAP_DONE;
-    bool is_ssi = b->link.sc.protocol == SCENARIO_SSI;
-    *biss = done && !is_ssi ? &b->cap_biss : NULL;
-    *ssi = done && is_ssi ? &b->cap_ssi : NULL;
+const void *bench_capture_record(const struct bench *b) {
+    return b->cap_state == CAP_DONE ? b->cap_record : NULL;
 }

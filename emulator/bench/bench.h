@@ -186,10 +186,9 @@ void bench_capture_frame(struct bench *b, uint64_t k);
  * captured completely. */
 int bench_capture_get(struct bench *b, waveform *pins[4], sim_ps *t0, sim_ps *t1);
 
-/* The captured frame's slave record (BiSS-C or SSI; the other NULL), kept
- * when the frame closed: the slave's own ring of records moves on. Both
+/* The captured frame's record (the link's model's: slave_model record),
+ * kept when the frame closed: the model's own ring of records moves on.
  * NULL until the capture is complete. */
-void bench_capture_record(const struct bench *b, const biss_frame_record **biss,
-                          const ssi_frame_record **ssi);
+const void *bench_capture_record(const struct bench *b);
 
 #endif

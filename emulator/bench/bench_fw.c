@@ -36,23 +36,31 @@ struct biss_proto_word bench_fw_word(const biss_slave_cfg *s) {
                                     .has_warn = s->has_warn};
 }
 
+struct biss_proto_word bench_fw_slave_word(const slave_word *w) {
+    return (struct biss_proto_word){.pos_bits = w->pos_bits,
+                                    .fill_bits = w->fill_bits,
+                                    .lc_bits = w->lc_bits,
+                                    .has_err = w->has_err,
+                                    .has_warn = w->has_warn};
+}
+
 void bench_fw_layout(const struct bench *b, struct biss_config *c) {
     const scenario *sc = &bench_link((struct bench *)b)->sc;
-    if (sc->protocol == SCENARIO_SSI) {
-        c->nslaves = 1;
-        c->slave[0] = (struct biss_slave_config){
-            .data_bits = sc->ssi.bits, .ssi = true, .gray = sc->ssi.gray};
-        c->ssi_delay_ns = bench_ssi_delay_ns(b);
-        return;
-    }
-    c->nslaves = sc->biss.n;
-    for (unsigned i = 0; i < sc->biss.n && i < BISS_API_MAX_SLAVES; i++) {
-        const biss_slave_cfg *s = &sc->biss.s[i];
-        struct biss_proto_word w = bench_fw_word(s);
-        biss_proto_slave_layout(&w, s->crc_poly, s->crc_start, &c->slave[i]);
+    slave_word w[SLAVE_MAX_WORDS];
+    c->nslaves = sc->model->words(scenario_model_cfg(sc), w);
+    for (unsigned i = 0; i < c->nslaves && i < BISS_API_MAX_SLAVES; i++) {
+        if (w[i].ssi) {
+            /* its line delay from the model: an SSI slave gives no ACK to measure it by */
+            c->slave[i] = (struct biss_slave_config){
+                .data_bits = w[i].pos_bits, .ssi = true, .gray = w[i].gray};
+            c->ssi_delay_ns = bench_ssi_delay_ns(b);
+            continue;
+        }
+        struct biss_proto_word pw = bench_fw_slave_word(&w[i]);
+        biss_proto_slave_layout(&pw, w[i].crc_poly, w[i].crc_start, &c->slave[i]);
         /* the scenario's safety checks (the host's, not the models') */
         c->slave[i].life_check = sc->checks.life[i];
-        c->slave[i].life_bits = sc->checks.life[i] ? s->lc_bits : 0;
+        c->slave[i].life_bits = sc->checks.life[i] ? w[i].lc_bits : 0;
         c->slave[i].ew_static = sc->checks.ew_static[i];
         c->slave[i].max_speed = sc->checks.max_speed[i];
     }

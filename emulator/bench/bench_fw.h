@@ -19,13 +19,15 @@ int bench_fw_start(struct bench *b, const void *image, size_t bytes);
 /* The bench's PRU's data RAM, through host accesses at the SoC's address. */
 struct biss_proto_io bench_fw_io(struct bench *b);
 
-/* A model slave's data-word fields, for proto's layout rule. */
+/* A BiSS-C model slave's data-word fields, for proto's layout rule. */
 struct biss_proto_word bench_fw_word(const biss_slave_cfg *s);
+/* Any model's word (slave_model words), the same way. */
+struct biss_proto_word bench_fw_slave_word(const slave_word *w);
 
-/* The chain's layout as libbiss describes it: nslaves, each slave's data
- * word (proto's layout rule), or the SSI encoder with the line's round
- * trip from the model (an SSI slave gives no ACK to measure it by); and
- * the scenario's safety checks. */
+/* The model's layout as libbiss describes it (slave_model words):
+ * nslaves, each slave's data word (proto's layout rule), or an SSI
+ * encoder with the line's round trip from the model (an SSI slave gives
+ * no ACK to measure it by); and the scenario's safety checks. */
 void bench_fw_layout(const struct bench *b, struct biss_config *c);
 
 /* The configuration a host gives the chain: biss_config_default with the

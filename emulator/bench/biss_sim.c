@@ -576,9 +576,8 @@ static int build_config(const struct options *o, struct bench_config *cfg) {
  * slaves' timeout at this rate (an SSI encoder's monoflop). */
 static int line_verdict(const scenario *sc, unsigned half, struct biss_line_verdict *v) {
     sim_ps period = 2 * (sim_ps)half * PRU_PS_PER_CYCLE;
-    sim_ps timeout = sc->protocol == SCENARIO_SSI ? sc->ssi.monoflop_ps
-                                                  : biss_chain_timeout_ps(&sc->biss, period);
-    sim_ps out = sc->protocol == SCENARIO_SSI ? sc->ssi.out_delay_ps : sc->biss.out_delay_ps;
+    sim_ps timeout = sc->model->timeout(scenario_model_cfg(sc), period);
+    sim_ps out = sc->model->out_delay(scenario_model_cfg(sc));
     struct biss_line_facts f = {.cable_m = sc->ma_line.length_m,
                                 .round_trip_ns =
                                     (line_nominal_delay_ps(&sc->ma_line) + (double)out +
@@ -938,8 +937,9 @@ static int run(const struct options *o) {
         fc.cfg.iep_period_ns = o->trigger == BISS_TRIG_IEP ? iep_period * 5u : 0; /* 5 ns counts */
         fc.cfg.proc_limit = 1000;
         fw_check_configure(&fc, half); /* H as is: --freq need not be a whole number of Hz */
-        if (o->cd_set && cfg.link.protocol == SCENARIO_SSI) {
-            rc = die("%s: an SSI encoder has no control communication", o->cd_what);
+        if (o->cd_set && !scenario_chain(&cfg.link)) {
+            rc = die("%s: an %s encoder has no control communication", o->cd_what,
+                     cfg.link.model->title);
         }
     }
     if (rc != 0) {

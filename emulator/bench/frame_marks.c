@@ -22,15 +22,7 @@ void bench_span_add(struct bench_span *s, int64_t v) {
 /* The end of the slave's closed frame k (its timeout over), -1 if its
  * record is no longer kept (or not yet closed). */
 static sim_ps record_end(const link_model *l, uint64_t k) {
-    if (k >= link_frames(l)) {
-        return -1;
-    }
-    if (l->protocol == SCENARIO_SSI) {
-        const ssi_frame_record *r = ssi_slave_record(&l->ssi, k);
-        return r ? r->end_ps : -1;
-    }
-    const biss_frame_record *r = biss_slave_record(&l->biss, k);
-    return r ? r->end_ps : -1;
+    return link_frame_end(l, k);
 }
 
 /* The slave's newest frame whose timeout ended before t, among the
@@ -59,8 +51,7 @@ static int64_t ended_before(struct frame_marks *m, const link_model *l, int64_t 
         end = next;
     }
     m->record = k;
-    *sl_rise =
-        end + (l->protocol == SCENARIO_SSI ? l->sc.ssi.out_delay_ps : l->sc.biss.out_delay_ps);
+    *sl_rise = end + l->model->out_delay(link_model_cfg(l));
     return k;
 }
 

@@ -5,22 +5,22 @@
 
 #include <string.h>
 
-uint64_t fw_check_sent_word(const biss_slave_cfg *s, const biss_slave_sent *sent) {
-    struct biss_proto_word w = bench_fw_word(s);
-    return biss_proto_word_compose(&w, sent->position, sent->nE > 0, sent->nW > 0, sent->lc);
-}
-
-/* The record of the frame just published: closed, or still in its timeout. */
-static const biss_frame_record *frame_record(struct fw_check *fc) {
+/* The record of the frame just published: closed, or still in its
+ * timeout; what each slave sent, in every model's terms. */
+static const void *frame_record(struct fw_check *fc, slave_frame *f) {
     link_model *l = bench_link(fc->b);
     uint64_t n = bench_current_frame(fc->b);
-    if (n == UINT64_MAX) {
-        return NULL;
+    const void *r = n == UINT64_MAX ? NULL : link_record(l, n);
+    if (r) {
+        l->model->frame(link_model_cfg(l), r, f);
     }
-    if (n < l->biss.frames) {
-        return biss_slave_record(&l->biss, n);
-    }
-    return n == l->biss.frames ? &l->biss.cur : NULL;
+    return r;
+}
+
+/* The data word slave i sent in frame f (its word fc->words[i]). */
+static uint64_t sent_word(const struct fw_check *fc, const slave_frame *f, unsigned i) {
+    return biss_proto_word_compose(&fc->layout[i], f->word[i].code, f->word[i].nE > 0,
+                                   f->word[i].nW > 0, f->word[i].lc);
 }
 
 /* A valid frame's publication (now: the watch sees the store's own cycle)
@@ -37,63 +37,42 @@ static void time_publication(struct fw_check *fc, sim_ps latch, sim_ps last, sim
     bench_span_add(&fc->age, pub - latch);
 }
 
-/* An SSI frame: the code word as the encoder sent it (Gray or binary). */
-static void compare_ssi(struct fw_check *fc, const struct biss_sample *smp) {
-    link_model *l = bench_link(fc->b);
-    uint64_t n = bench_current_frame(fc->b);
-    const ssi_frame_record *r = n < l->ssi.frames    ? ssi_slave_record(&l->ssi, n)
-                                : n == l->ssi.frames ? &l->ssi.cur
-                                                     : NULL;
-    if (!r) {
-        fc->unmatched++;
-        return;
-    }
-    fc->status[0] = smp->slave[0].status;
-    fc->data[0] = smp->slave[0].data; /* as sent: Gray stays Gray in data */
-    fc->sent[0] = r->position;
-    time_publication(fc, r->start_ps, r->last_bit_ps, l->ssi.cfg.out_delay_ps);
-    if (fc->data[0] != r->code) {
-        fc->mismatches++;
-        if (!fc->first_mismatch_frame) {
-            fc->first_mismatch_frame = fc->publications;
-        }
-    }
-}
-
+/* Each word against what its slave sent: a word passed as right must be
+ * what was sent (a word whose CRC failed is reported as such). */
 static void compare(struct fw_check *fc, const struct biss_sample *smp) {
     link_model *l = bench_link(fc->b);
-    if (l->sc.protocol == SCENARIO_SSI) {
-        compare_ssi(fc, smp);
-        return;
-    }
-    const biss_frame_record *r = frame_record(fc);
+    slave_frame f;
+    const slave_word *w = fc->words;
+    unsigned n = fc->nwords;
+    const void *r = frame_record(fc, &f);
     if (!r) {
         fc->unmatched++;
         return;
     }
-    time_publication(fc, r->latch_ps, r->last_bit_ps, l->biss.cfg.out_delay_ps);
     bool same = true;
-    for (unsigned i = 0; i < l->sc.biss.n && i < BISS_MAX_SLAVES; i++) {
+    for (unsigned i = 0; i < n && i < BISS_MAX_SLAVES; i++) {
         fc->data[i] = smp->slave[i].data;
         fc->status[i] = smp->slave[i].status;
-        uint64_t want = fw_check_sent_word(&l->sc.biss.s[i], &r->s[i]);
-        fc->sent[i] = r->s[i].position;
-        /* a word whose CRC failed is reported as such; only a word passed
-         * as right must be what was sent */
-        same = same && (fc->data[i] == want || !(fc->status[i] & BISS_RS_CRC_OK));
+        fc->sent[i] = f.word[i].position;
+        bool crc_failed = w[i].crc_poly && !(fc->status[i] & BISS_RS_CRC_OK);
+        same = same && (fc->data[i] == sent_word(fc, &f, i) || crc_failed);
     }
+    time_publication(fc, f.latch_ps, f.last_bit_ps, l->model->out_delay(link_model_cfg(l)));
     if (!same) {
         fc->mismatches++;
         if (!fc->first_mismatch_frame) {
             fc->first_mismatch_frame = fc->publications;
         }
-        struct wrong_frame w;
+        if (!link_biss(l)) {
+            return; /* the classes are BiSS-C's, from its records */
+        }
+        struct wrong_frame wf;
         wrong_frame_classify(&l->sc.biss, r, fc->data, smp->frame, &l->sl_master,
                              pru_time_ps(bench_core(fc->b)),
-                             2 * (int64_t)smp->delay.half * PRU_PS_PER_CYCLE, &w);
-        fc->wrong_by_class[w.cls]++;
+                             2 * (int64_t)smp->delay.half * PRU_PS_PER_CYCLE, &wf);
+        fc->wrong_by_class[wf.cls]++;
         if (fc->nwrong < FW_CHECK_WRONG_KEPT) {
-            fc->wrong[fc->nwrong++] = w;
+            fc->wrong[fc->nwrong++] = wf;
         }
     }
 }
@@ -101,14 +80,12 @@ static void compare(struct fw_check *fc, const struct biss_sample *smp) {
 /* Whether every word of a decoded frame is right (CRC good, and what was
  * sent): a frame refused all the same is a good frame lost. */
 static bool words_right(struct fw_check *fc, const struct biss_sample *smp) {
-    link_model *l = bench_link(fc->b);
-    const biss_frame_record *r = l->sc.protocol == SCENARIO_BISS ? frame_record(fc) : NULL;
-    if (!r) {
+    slave_frame f;
+    if (!frame_record(fc, &f)) {
         return false;
     }
-    for (unsigned i = 0; i < l->sc.biss.n && i < BISS_MAX_SLAVES; i++) {
-        if (smp->slave[i].data != fw_check_sent_word(&l->sc.biss.s[i], &r->s[i]) ||
-            !smp->slave[i].crc_ok) {
+    for (unsigned i = 0; i < fc->nwords && i < BISS_MAX_SLAVES; i++) {
+        if (smp->slave[i].data != sent_word(fc, &f, i) || !smp->slave[i].crc_ok) {
             return false;
         }
     }
@@ -226,6 +203,15 @@ static void on_publish(void *ctx, uint32_t addr) {
     }
 }
 
+/* Each slave's word, as the configuration (fixed for the run) gives it. */
+static void words_of(struct fw_check *fc) {
+    link_model *l = bench_link(fc->b);
+    fc->nwords = l->model->words(link_model_cfg(l), fc->words);
+    for (unsigned i = 0; i < fc->nwords && i < SLAVE_MAX_WORDS; i++) {
+        fc->layout[i] = bench_fw_slave_word(&fc->words[i]);
+    }
+}
+
 void fw_check_attach(struct fw_check *fc, struct bench *b) {
     memset(fc, 0, sizeof(*fc));
     fc->b = b;
@@ -233,6 +219,7 @@ void fw_check_attach(struct fw_check *fc, struct bench *b) {
     fc->limit = UINT64_MAX;
     fc->watch = UINT64_MAX;
     fc->sl_delay_ps = (sim_ps)(line_nominal_delay_ps(&bench_link(b)->sc.sl_line) + 0.5);
+    words_of(fc);
     pru_set_store_watch(bench_core(b), BISS_ST_SEQ, on_publish, fc);
 }
 
@@ -259,4 +246,5 @@ void fw_check_restart(struct fw_check *fc, uint64_t limit) {
     fc->limit = limit;
     fc->watch = watch;
     fc->watched = watched;
+    words_of(fc);
 }

@@ -72,6 +72,11 @@ struct fw_check {
     struct bench_span latency;
     struct bench_span age;
     sim_ps sl_delay_ps; /* the SL line's nominal delay (the scenario's, fixed) */
+    /* each slave's word (the model's words) and its layout (proto's rule),
+     * taken once: the configuration is fixed for the run */
+    slave_word words[SLAVE_MAX_WORDS];
+    struct biss_proto_word layout[SLAVE_MAX_WORDS];
+    unsigned nwords;
     /* the mismatches (wrong but valid), each classified (wrong_frame.h):
      * counts per class, and the first FW_CHECK_WRONG_KEPT in full */
     uint64_t wrong_by_class[WRONG_CLASSES];
@@ -100,9 +105,5 @@ void fw_check_watch(struct fw_check *fc, uint64_t k);
 /* Starts counting afresh, checking at most `limit` more valid frames (the
  * watched frame stays). */
 void fw_check_restart(struct fw_check *fc, uint64_t limit);
-
-/* The data word slave s sent in the frame record `sent`, as on the wire
- * before the CRC (proto's layout rule). */
-uint64_t fw_check_sent_word(const biss_slave_cfg *s, const biss_slave_sent *sent);
 
 #endif

@@ -70,7 +70,7 @@ static long regs_differ(const struct sim_encoder *e, const link_model *l) {
     long n = 0;
     unsigned bank0 = 0;
     for (unsigned i = 0; i < l->sc.biss.n; i++) {
-        const regfile *m = &l->biss.cfg.s[i].regs;
+        const regfile *m = &link_biss((link_model *)l)->cfg.s[i].regs;
         struct biss_slv_regs fw;
         if (biss_proto_encoder_regs_get(&e->io, i, &fw) != 0) {
             return -1;
@@ -106,7 +106,7 @@ int sim_encoder_report(const struct sim_encoder *e, cJSON *j) {
         cJSON_AddNumberToObject(o, "frames", st.frames);
         cJSON_AddNumberToObject(o, "latches", st.latches);
         cJSON_AddNumberToObject(o, "cd_frames", st.cd_frames);
-        cJSON_AddNumberToObject(o, "model_frames", (double)l->biss.frames);
+        cJSON_AddNumberToObject(o, "model_frames", (double)link_frames(l));
         cJSON_AddNumberToObject(o, "sl_compared", (double)l->ext_compared);
         cJSON_AddNumberToObject(o, "sl_differ", (double)l->ext_differ);
         cJSON_AddNumberToObject(o, "sl_first_differ_us", first_us);
@@ -132,7 +132,7 @@ int sim_encoder_report(const struct sim_encoder *e, cJSON *j) {
     } else {
         printf("encoder (PRU1)       %" PRIu32 " frames begun, %" PRIu32 " latched, %" PRIu32
                " with a CDM (the model beside it: %" PRIu64 " frames)\n",
-               st.frames, st.latches, st.cd_frames, l->biss.frames);
+               st.frames, st.latches, st.cd_frames, link_frames(l));
         printf("encoder SL vs model  %" PRIu64 " rising MA edges compared, %" PRIu64 " differ%s\n",
                l->ext_compared, l->ext_differ, l->ext_differ ? "" : " (the same bits)");
         if (l->ext_differ) {

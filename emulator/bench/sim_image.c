@@ -45,37 +45,20 @@ int sim_load_image(const char *path, const struct sim_defines *d, struct pruasm_
     return 0;
 }
 
-/* Clocks a frame needs at the master: to the ACK, the busy time, start,
- * CDS, every slave's bits, and the round trip in whole periods. */
+/* Clocks a frame needs at the master: the model's (to the ACK, the busy
+ * time, start, CDS, every slave's bits), and the round trip in whole
+ * periods. */
 static unsigned frame_clocks(struct bench *b, unsigned half) {
     const scenario *sc = &bench_link(b)->sc;
     double period_ps = 2.0 * half * 5000.0;
-    unsigned bits;
-    if (sc->protocol == SCENARIO_SSI) {
-        bits = sc->ssi.bits + 1;
-    } else {
-        bits = 2 + 2 + sc->biss.busy_clocks + (unsigned)ceil((double)sc->biss.busy_ps / period_ps);
-        for (unsigned i = 0; i < sc->biss.n; i++) {
-            bits += biss_slave_cfg_bits(&sc->biss.s[i]);
-        }
-    }
+    unsigned bits = sc->model->clocks(scenario_model_cfg(sc), (sim_ps)period_ps);
     return bits + (unsigned)ceil(bench_round_trip_ps(b) / period_ps) + 1;
 }
 
 /* Idle time after a frame: the slave's timeout and the round trip, with margin. */
 static unsigned frame_gap_cycles(struct bench *b, unsigned half) {
     const scenario *sc = &bench_link(b)->sc;
-    double t_ps;
-    if (sc->protocol == SCENARIO_SSI) {
-        t_ps = (double)sc->ssi.monoflop_ps;
-    } else if (sc->biss.timeout_mode == BISS_TIMEOUT_FIXED) {
-        t_ps = (double)sc->biss.timeout_ps;
-    } else {
-        t_ps = sc->biss.adaptive_factor * 2.0 * half * 5000.0;
-        if (t_ps < (double)sc->biss.adaptive_min_ps) {
-            t_ps = (double)sc->biss.adaptive_min_ps;
-        }
-    }
+    double t_ps = (double)sc->model->timeout(scenario_model_cfg(sc), 2 * (sim_ps)half * 5000);
     unsigned gap = (unsigned)ceil((t_ps + 2 * bench_round_trip_ps(b)) / 5000.0) + 200;
     return gap + (gap & 1); /* the image's wait loop takes 2 cycles a turn */
 }

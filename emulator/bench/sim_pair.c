@@ -192,7 +192,7 @@ int sim_pair(const struct sim_pair_run *r) {
                 rc = 5;
             }
         }
-        bool mixed = r->cfg[0].link.protocol != r->cfg[1].link.protocol;
+        bool mixed = r->cfg[0].link.model != r->cfg[1].link.model;
         int starts = report_starts(&s, period, mixed, j);
         rc = rc || j ? rc : starts;
         /* each image keeps to its own bank: PRU1 never waits for PRU0 */

@@ -64,24 +64,25 @@ static cJSON *slaves_json(const struct sim_result *r) {
     link_model *l = bench_link(r->b);
     cJSON *arr = cJSON_CreateArray();
     uint64_t n = link_frames(l);
-    if (n == 0) {
+    const void *rec = n ? link_record(l, n - 1) : NULL;
+    if (!rec) {
         return arr;
     }
-    if (l->sc.protocol == SCENARIO_SSI) {
-        const ssi_frame_record *rec = ssi_slave_record(&l->ssi, n - 1);
+    slave_frame f;
+    l->model->frame(link_model_cfg(l), rec, &f);
+    const biss_chain_cfg *c = scenario_chain(&l->sc);
+    for (unsigned i = 0; i < f.nwords; i++) {
         cJSON *s = cJSON_CreateObject();
-        cJSON_AddNumberToObject(s, "position", rec ? (double)rec->position : 0);
-        cJSON_AddItemToArray(arr, s);
-        return arr;
-    }
-    const biss_frame_record *rec = biss_slave_record(&l->biss, n - 1);
-    for (unsigned i = 0; rec && i < l->sc.biss.n; i++) {
-        cJSON *s = cJSON_CreateObject();
-        cJSON_AddNumberToObject(s, "id", l->sc.biss.s[i].id);
-        cJSON_AddNumberToObject(s, "position", (double)rec->s[i].position);
-        cJSON_AddNumberToObject(s, "nE", rec->s[i].nE);
-        cJSON_AddNumberToObject(s, "nW", rec->s[i].nW);
-        cJSON_AddNumberToObject(s, "crc", rec->s[i].crc);
+        if (!c) { /* a word without a BiSS-C slave's ID, status bits or CRC */
+            cJSON_AddNumberToObject(s, "position", (double)f.word[i].position);
+            cJSON_AddItemToArray(arr, s);
+            continue;
+        }
+        cJSON_AddNumberToObject(s, "id", c->s[i].id);
+        cJSON_AddNumberToObject(s, "position", (double)f.word[i].position);
+        cJSON_AddNumberToObject(s, "nE", f.word[i].nE);
+        cJSON_AddNumberToObject(s, "nW", f.word[i].nW);
+        cJSON_AddNumberToObject(s, "crc", f.word[i].crc);
         if (r->fw) {
             cJSON_AddNumberToObject(s, "master_data", (double)r->fw->data[i]);
             cJSON_AddBoolToObject(s, "master_crc_ok", r->fw->status[i] & BISS_RS_CRC_OK);
@@ -470,19 +471,23 @@ void sim_print_json(const struct sim_result *r) {
 static void print_sent(const struct sim_result *r) {
     link_model *l = bench_link(r->b);
     uint64_t n = link_frames(l);
-    if (n == 0) {
+    const void *rec = n ? link_record(l, n - 1) : NULL;
+    if (!rec) {
         return;
     }
-    if (l->sc.protocol == SCENARIO_SSI) {
-        const ssi_frame_record *rec = ssi_slave_record(&l->ssi, n - 1);
-        printf("encoder sent         position %llu\n", rec ? (unsigned long long)rec->position : 0);
-        return;
-    }
-    const biss_frame_record *rec = biss_slave_record(&l->biss, n - 1);
-    for (unsigned i = 0; rec && i < l->sc.biss.n; i++) {
-        printf("slave %u sent         position %llu (0x%llx) nE=%d nW=%d crc=0x%x\n", i,
-               (unsigned long long)rec->s[i].position, (unsigned long long)rec->s[i].position,
-               rec->s[i].nE, rec->s[i].nW, rec->s[i].crc);
+    slave_frame f;
+    l->model->frame(link_model_cfg(l), rec, &f);
+    bool biss_c = scenario_chain(&l->sc) != NULL;
+    for (unsigned i = 0; i < f.nwords; i++) {
+        unsigned long long p = f.word[i].position;
+        if (!biss_c && f.nwords == 1) {
+            printf("encoder sent         position %llu\n", p);
+        } else if (!biss_c) {
+            printf("slave %u sent         position %llu (0x%llx)\n", i, p, p);
+        } else {
+            printf("slave %u sent         position %llu (0x%llx) nE=%d nW=%d crc=0x%x\n", i, p, p,
+                   f.word[i].nE, f.word[i].nW, f.word[i].crc);
+        }
     }
 }
 
@@ -628,8 +633,7 @@ static void firmware_marks(const struct sim_result *r, const struct svg_label *l
     double rt_cycles = line_delay(f->delay_raw, f->delay_avg, f->half).cycles;
     sim_ps rt = (sim_ps)(rt_cycles * PRU_PS_PER_CYCLE);
     sim_ps half = (sim_ps)f->half * PRU_PS_PER_CYCLE;
-    sim_ps out_delay =
-        l->sc.protocol == SCENARIO_SSI ? l->sc.ssi.out_delay_ps : l->sc.biss.out_delay_ps;
+    sim_ps out_delay = l->model->out_delay(link_model_cfg(l));
     static sim_ps rm[FRAME_LABELS_MAX], rs[FRAME_LABELS_MAX];
     size_t nm = rises(pins[0], t0, t1, rm, FRAME_LABELS_MAX);
     size_t ns = rises(pins[2], slave_start, t1, rs, FRAME_LABELS_MAX);
@@ -647,8 +651,8 @@ static void firmware_marks(const struct sim_result *r, const struct svg_label *l
             }
         }
     }
-    /* the line delay: the ACK answers the second rise */
-    out->has_arrow = l->sc.protocol != SCENARIO_SSI && nm >= 2;
+    /* the line delay: a BiSS-C ACK answers the second rise */
+    out->has_arrow = scenario_chain(&l->sc) && nm >= 2;
     if (out->has_arrow) {
         out->arrow.trace = 1;
         out->arrow.t0 = rm[1];
@@ -673,9 +677,11 @@ static size_t firmware_notes(const struct sim_result *r, char (*notes)[160], siz
                  (f->flags & BISS_RF_TRAINING) ? "training frame" : "not valid");
         return n;
     }
-    if (bench_link(r->b)->sc.protocol == SCENARIO_SSI) {
-        snprintf(notes[n++], 160, "  encoder word read: %llu (0x%llx), as sent (binary or Gray)",
-                 (unsigned long long)f->data[0], (unsigned long long)f->data[0]);
+    const slave_model *m = bench_link(r->b)->model;
+    if (!m->chain) {
+        snprintf(notes[n++], 160, "  encoder word read: %llu (0x%llx), %s",
+                 (unsigned long long)f->data[0], (unsigned long long)f->data[0],
+                 m->word_note ? m->word_note : "as sent");
         return n;
     }
     for (unsigned i = 0; i < c->n && i < f->nslaves && n < max; i++) {
@@ -694,17 +700,15 @@ int sim_write_svg(const struct sim_result *r, const char *path, uint64_t k, char
                   size_t errlen) {
     waveform *pins[4];
     sim_ps t0, t1;
-    const biss_frame_record *br;
-    const ssi_frame_record *sr;
-    bench_capture_record(r->b, &br, &sr);
-    if (bench_capture_get(r->b, pins, &t0, &t1) != 0 || (!br && !sr)) {
+    const void *rec = bench_capture_record(r->b);
+    if (bench_capture_get(r->b, pins, &t0, &t1) != 0 || !rec) {
         snprintf(err, errlen, "--svg: frame %llu was not captured whole (run more frames?)",
                  (unsigned long long)k);
         return -1;
     }
     static struct svg_label labels[FRAME_LABELS_MAX];
     link_model *l = bench_link(r->b);
-    size_t n = frame_labels(l, br, sr, pins[2], labels, FRAME_LABELS_MAX);
+    size_t n = frame_labels(l, rec, pins[2], labels, FRAME_LABELS_MAX);
     static const char *const names[4] = {"MA master", "SL master", "MA slave", "SL slave"};
     struct svg_trace tr[4];
     for (int i = 0; i < 4; i++) {
@@ -718,7 +722,9 @@ int sim_write_svg(const struct sim_result *r, const char *path, uint64_t k, char
     static struct svg_fw fw;
     char notes[1 + BISS_MAX_SLAVES][160];
     if (r->fw && r->fw->watched.seen) {
-        sim_ps slave_start = br ? br->start_ps : sr->start_ps;
+        slave_frame sf;
+        l->model->frame(link_model_cfg(l), rec, &sf);
+        sim_ps slave_start = sf.start_ps;
         firmware_marks(r, labels, n, pins, t0, t1, slave_start, &fw);
         tr[1].marks = fw.marks;
         tr[1].nmarks = fw.nmarks;

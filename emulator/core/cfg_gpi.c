@@ -42,7 +42,7 @@ static struct pru_core *gpcfg_owner(struct pru_core *c, uint32_t ofs) {
     return ofs == GPCFG1 ? c->pru0->pru1 : NULL;
 }
 
-void cfg_reset(struct pru_core *c) {
+static void cfg_reset(struct pru_core *c) {
     for (unsigned i = 0; i < CFG_BYTES / 4; i++)
         c->cfg_regs[i] = 0;
     c->cfg_regs[0] = 0x47000000u;    /* REVID (value not used by anyone) */
@@ -52,7 +52,7 @@ void cfg_reset(struct pru_core *c) {
     c->sh.cnt16_k = -1;
 }
 
-uint32_t pins_inputs_at(struct pru_core *c, int64_t t_ps) {
+static uint32_t pins_inputs_at(struct pru_core *c, int64_t t_ps) {
     if (!c->have_pins)
         return c->const_inputs;
     return c->pins.inputs_at(c->pins.ctx, t_ps < 0 ? 0 : t_ps);
@@ -152,7 +152,7 @@ static void shift_apply(struct pru_core *c, int64_t k_from, int64_t k_to) {
         intc_event(c, 1 + c->pru_idx); /* Cnt_16 of PRU0 / PRU1 */
 }
 
-void gpi_sync(struct pru_core *c, int64_t cycle) {
+static void gpi_sync(struct pru_core *c, int64_t cycle) {
     if (gpi_mode(c) != MODE_SHIFT || cycle < c->sh.next_edge_cycle)
         return; /* no new edge since the last evaluation */
     int64_t k = last_edge(c, cycle * PRU_PS_PER_CYCLE);
@@ -162,6 +162,8 @@ void gpi_sync(struct pru_core *c, int64_t cycle) {
         c->sh.k_done = k;
     }
 }
+
+static int64_t gpi_bits_stable_until(struct pru_core *c, int64_t cycle, uint32_t mask);
 
 static bool cnt16_high(const struct gpi_shift *s, int64_t k) {
     return s->sb && k > s->cnt16_k && (k - s->cnt16_k) % 16 == 0;
@@ -246,7 +248,7 @@ static int64_t shift_stable_until(struct pru_core *c, int64_t cycle, uint32_t ma
     return in;
 }
 
-int64_t gpi_bits_stable_until(struct pru_core *c, int64_t cycle, uint32_t mask) {
+static int64_t gpi_bits_stable_until(struct pru_core *c, int64_t cycle, uint32_t mask) {
     int64_t h = gpi_mode(c) == MODE_SHIFT ? shift_stable_until(c, cycle, mask)
                                           : input_change_cycle(c, cycle);
     if ((mask & 3u << 30) && (c->pru0->intc.ger & 1u) &&
@@ -262,7 +264,7 @@ int64_t gpi_stable_until(struct pru_core *c, int64_t cycle) {
     return gpi_bits_stable_until(c, cycle, ~0u);
 }
 
-int64_t gpi_next_cnt16(struct pru_core *c, int64_t cycle) {
+static int64_t gpi_next_cnt16(struct pru_core *c, int64_t cycle) {
     struct gpi_shift *s = &c->sh;
     if (gpi_mode(c) != MODE_SHIFT)
         return CYCLE_NEVER;
@@ -275,7 +277,7 @@ int64_t gpi_next_cnt16(struct pru_core *c, int64_t cycle) {
 
 /* ---- CFG registers ---- */
 
-uint32_t cfg_read(struct pru_core *c, uint32_t ofs, int64_t at) {
+static uint32_t cfg_read(struct pru_core *c, uint32_t ofs, int64_t at) {
     struct pru_core *g = gpcfg_owner(c, ofs);
     if (g) {
         gpi_sync(g, at);
@@ -311,7 +313,7 @@ static void gpcfg_write(struct pru_core *c, struct pru_core *w, uint32_t ofs, ui
         core_fault(w, PRU_FAULT_UNSUPPORTED, 0x26000u + ofs);
 }
 
-void cfg_write(struct pru_core *c, uint32_t ofs, uint32_t val, uint32_t bmask, int64_t at) {
+static void cfg_write(struct pru_core *c, uint32_t ofs, uint32_t val, uint32_t bmask, int64_t at) {
     ff_dirty(c);
     struct pru_core *g = gpcfg_owner(c, ofs);
     if (g) {
@@ -323,3 +325,23 @@ void cfg_write(struct pru_core *c, uint32_t ofs, uint32_t val, uint32_t bmask, i
     uint32_t *r = &c->pru0->cfg_regs[ofs / 4];
     *r = (*r & ~bmask) | (val & bmask);
 }
+
+/* A read of any CFG word, GPCFG's SB included, holds while R31 does. */
+static int64_t cfg_next_change(struct pru_core *c, int64_t cycle, uint32_t ofs) {
+    (void)ofs;
+    return gpi_stable_until(c, cycle);
+}
+
+const struct icss_block icss_cfg = {
+    .name = "CFG",
+    .base = PRUSS_OFS_CFG,
+    .size = CFG_BYTES,
+    .load_cycles = offsetof(struct pru_params, load_cfg_cycles),
+    .reset = cfg_reset,
+    .read = cfg_read,
+    .write = cfg_write,
+    .next_change = cfg_next_change,
+    /* Cnt_16 (system event 1 for PRU0, 2 for PRU1) from the shift register */
+    .raise = gpi_sync,
+    .next_raise = gpi_next_cnt16,
+};

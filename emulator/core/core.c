@@ -147,10 +147,9 @@ struct pru_core *pru_core_new(enum pru_soc soc, const struct pru_params *params)
     c->checked = c->p.strict != 0 || c->p.contend_period != 0;
     c->ff_on = c->p.fast_forward != 0 && !c->checked;
     strict_reset(c);
-    ctrl_reset(c);
-    cfg_reset(c);
-    iep_reset(c);
-    intc_reset(c);
+    for (size_t i = 0; i < icss_nblocks; i++)
+        if (icss_blocks[i]->reset)
+            icss_blocks[i]->reset(c);
     predecode_all(c);
     return c;
 }

@@ -5,6 +5,7 @@
 #ifndef PRU_CORE_PRIV_H
 #define PRU_CORE_PRIV_H
 
+#include "icss_block.h"
 #include "pru_core.h"
 #include "pru_isa.h"
 
@@ -348,38 +349,7 @@ static inline unsigned mem_store_cycles(const struct pru_core *c, unsigned n) {
     return cyc ? cyc : 1;
 }
 
-/* ctrl.c */
-uint32_t ctrl_read(struct pru_core *c, uint32_t ofs, int64_t at);
-void ctrl_write(struct pru_core *c, uint32_t ofs, uint32_t val, uint32_t bmask, int64_t at);
-void ctrl_counting_update(struct pru_core *c, int64_t at);
-void ctrl_reset(struct pru_core *c);
-
-/* cfg_gpi.c */
-uint32_t cfg_read(struct pru_core *c, uint32_t ofs, int64_t at);
-void cfg_write(struct pru_core *c, uint32_t ofs, uint32_t val, uint32_t bmask, int64_t at);
-void cfg_reset(struct pru_core *c);
-uint32_t gpi_r31(struct pru_core *c, int64_t cycle);
-int64_t gpi_stable_until(struct pru_core *c, int64_t cycle);
-/* The same for the R31 bits in mask only. */
-int64_t gpi_bits_stable_until(struct pru_core *c, int64_t cycle, uint32_t mask);
-void gpi_sync(struct pru_core *c, int64_t cycle);
-int64_t gpi_next_cnt16(struct pru_core *c, int64_t cycle);
-uint32_t pins_inputs_at(struct pru_core *c, int64_t t_ps);
-
-/* iep.c */
-void iep_reset(struct pru_core *c);
-void iep_sync(struct pru_core *c, int64_t cycle);
-uint32_t iep_read(struct pru_core *c, uint32_t ofs, int64_t at);
-void iep_write(struct pru_core *c, uint32_t ofs, uint32_t val, uint32_t bmask, int64_t at);
-int64_t iep_next_change(struct pru_core *c, int64_t cycle, uint32_t ofs);
-
-/* intc.c */
-void intc_reset(struct pru_core *c);
-void intc_event(struct pru_core *c, unsigned ev);
-uint32_t intc_host_bits(struct pru_core *c, int64_t cycle); /* R31[31:30] */
-uint32_t intc_read(struct pru_core *c, uint32_t ofs, int64_t at);
-void intc_write(struct pru_core *c, uint32_t ofs, uint32_t val, uint32_t bmask, int64_t at);
-int64_t intc_next_change(struct pru_core *c, int64_t cycle);
+/* The register blocks (ctrl.c, cfg_gpi.c, iep.c, intc.c): icss_block.h. */
 
 /* ff.c */
 void ff_backward_branch(struct pru_core *c, uint32_t pc, uint32_t top, int64_t limit);

@@ -1,14 +1,16 @@
 /*
  * ctrl.c - PRU0 control registers (docs/pru-facts.md §5.3): CONTROL with soft reset,
  * enable, sleeping, counter enable, single step and the reset PC; STATUS;
- * WAKEUP_EN; CYCLE/STALL (section 3) kept lazily; CTBIR/CTPPR.
+ * WAKEUP_EN; CYCLE/STALL (section 3) kept lazily; CTBIR/CTPPR; and the
+ * debug registers behind them (GPREG, CT_REG). Two blocks (icss_block.h):
+ * PRU0's at 0x22000 and PRU1's at 0x24000, the same for both PRUs.
  */
 #include "core_priv.h"
 #include "exec_priv.h"
 
 #define CYCLE_MAX 0xffffffffu
 
-void ctrl_reset(struct pru_core *c) {
+static void ctrl_reset(struct pru_core *c) {
     struct ctrl *k = &c->ctrl;
     *k = (struct ctrl){0};
     k->control = PRU_CTRL_SOFT_RST_N;
@@ -154,3 +156,89 @@ void ctrl_write(struct pru_core *c, uint32_t ofs, uint32_t v, uint32_t bm, int64
     }
     ff_dirty(c);
 }
+
+/* ---- the two blocks ---- */
+
+/* Debug block (CTRL + 0x400): GPREG0-31 then CT_REG0-31. */
+static uint32_t debug_read(struct pru_core *c, uint32_t ofs) {
+    unsigned i = (ofs - 0x400u) / 4u;
+    if (i < 32)
+        return i == 31 ? gpi_r31(c, c->cycle) : c->r[i];
+    if (i < 64)
+        return const_table(c, i - 32);
+    return 0;
+}
+
+/* The core whose block this is, read or written by core k. */
+static uint32_t block_read(struct pru_core *c, uint32_t ofs, int64_t at) {
+    return ofs >= 0x400u ? debug_read(c, ofs) : ctrl_read(c, ofs, at);
+}
+
+static void block_write(struct pru_core *c, uint32_t ofs, uint32_t v, uint32_t bm, int64_t at) {
+    if (ofs < 0x400u) {
+        ctrl_write(c, ofs, v, bm, at);
+    } else if (ofs < 0x47cu) { /* GPREG0..30 (host debug access) */
+        unsigned i = (ofs - 0x400u) / 4u;
+        c->r[i] = (c->r[i] & ~bm) | (v & bm);
+    }
+}
+
+static uint32_t ctrl0_read(struct pru_core *c, uint32_t ofs, int64_t at) {
+    return block_read(c->pru0, ofs, at);
+}
+
+static void ctrl0_write(struct pru_core *c, uint32_t ofs, uint32_t v, uint32_t bm, int64_t at) {
+    block_write(c->pru0, ofs, v, bm, at);
+}
+
+/* CYCLE, STALL and STATUS move every cycle. */
+static int64_t ctrl0_next_change(struct pru_core *c, int64_t cycle, uint32_t ofs) {
+    (void)c;
+    (void)ofs;
+    return cycle + 1;
+}
+
+/* PRU1's block: PRU1's registers in a PRU-ICSS; plain storage for a core
+ * alone (docs/pru-facts.md §5.1). */
+static uint32_t ctrl1_read(struct pru_core *c, uint32_t ofs, int64_t at) {
+    if (c->pru0->pru1)
+        return block_read(c->pru0->pru1, ofs, at);
+    uint32_t v;
+    memcpy(&v, c->ctrl1 + ofs, 4);
+    return v;
+}
+
+static void ctrl1_write(struct pru_core *c, uint32_t ofs, uint32_t v, uint32_t bm, int64_t at) {
+    if (c->pru0->pru1) {
+        block_write(c->pru0->pru1, ofs, v, bm, at);
+        return;
+    }
+    uint32_t old;
+    memcpy(&old, c->ctrl1 + ofs, 4);
+    old = (old & ~bm) | (v & bm);
+    memcpy(c->ctrl1 + ofs, &old, 4);
+}
+
+const struct icss_block icss_ctrl0 = {
+    .name = "CTRL0",
+    .base = PRUSS_OFS_CTRL0,
+    .size = CTRL_BYTES,
+    .load_cycles = offsetof(struct pru_params, load_ctrl_cycles),
+    .reset = ctrl_reset, /* each core's own CONTROL */
+    .read = ctrl0_read,
+    .write = ctrl0_write,
+    .next_change = ctrl0_next_change,
+};
+
+/* Its reads give the fast-forward no horizon: a core alone has plain
+ * storage here, which only the host writes; in a PRU-ICSS the two cores
+ * run in turns of a cycle (pruss.c), so no skip passes PRU1's changes
+ * (test_core_pruss, poll_other_pru_ff). */
+const struct icss_block icss_ctrl1 = {
+    .name = "CTRL1",
+    .base = PRUSS_OFS_CTRL1,
+    .size = CTRL_BYTES,
+    .load_cycles = offsetof(struct pru_params, load_ctrl_cycles),
+    .read = ctrl1_read,
+    .write = ctrl1_write,
+};

@@ -23,7 +23,7 @@
 #define CMP0     0x48u
 #define U32_MAX  0xffffffffu
 
-void iep_reset(struct pru_core *c) {
+static void iep_reset(struct pru_core *c) {
     struct iep *e = &c->pru0->iep; /* one IEP per PRU-ICSS */
     memset(e, 0, sizeof *e);
     e->global_cfg = 0x550u;
@@ -118,7 +118,7 @@ static inline __attribute__((always_inline)) void iep_advance(struct iep *e, int
     }
 }
 
-void iep_sync(struct pru_core *c, int64_t cycle) {
+static void iep_sync(struct pru_core *c, int64_t cycle) {
     iep_advance(&c->pru0->iep, cycle);
 }
 
@@ -142,7 +142,7 @@ void pru_iep_view(const struct pru_core *c, int64_t cycle, struct pru_iep_view *
     v->cmp0_resets = (e.cmp_cfg & 1u) && cmp_enabled(&e, 0);
 }
 
-uint32_t iep_read(struct pru_core *c, uint32_t ofs, int64_t at) {
+static uint32_t iep_read(struct pru_core *c, uint32_t ofs, int64_t at) {
     struct iep *e = &c->pru0->iep;
     iep_sync(c, at);
     switch (ofs) {
@@ -167,7 +167,7 @@ uint32_t iep_read(struct pru_core *c, uint32_t ofs, int64_t at) {
     }
 }
 
-void iep_write(struct pru_core *c, uint32_t ofs, uint32_t val, uint32_t bm, int64_t at) {
+static void iep_write(struct pru_core *c, uint32_t ofs, uint32_t val, uint32_t bm, int64_t at) {
     struct iep *e = &c->pru0->iep;
     uint32_t v = val & bm;
     iep_sync(c, at);
@@ -208,7 +208,7 @@ void iep_write(struct pru_core *c, uint32_t ofs, uint32_t val, uint32_t bm, int6
 }
 
 /* First cycle after `cycle` at which register `ofs` may read differently. */
-int64_t iep_next_change(struct pru_core *c, int64_t cycle, uint32_t ofs) {
+static int64_t iep_next_change(struct pru_core *c, int64_t cycle, uint32_t ofs) {
     struct iep *e = &c->pru0->iep;
     iep_sync(c, cycle);
     if (!counting(e))
@@ -228,3 +228,28 @@ int64_t iep_next_change(struct pru_core *c, int64_t cycle, uint32_t ofs) {
         return CYCLE_NEVER;
     }
 }
+
+/* The compare event (system event 7) is a level: set while any
+ * CMP_STATUS bit is. */
+static void raise_cmp(struct pru_core *c, int64_t cycle) {
+    iep_sync(c, cycle);
+    if (c->pru0->iep.cmp_status)
+        intc_event(c, 7);
+}
+
+static int64_t next_cmp(struct pru_core *c, int64_t cycle) {
+    return iep_next_change(c, cycle, CMP_STAT);
+}
+
+const struct icss_block icss_iep = {
+    .name = "IEP",
+    .base = PRUSS_OFS_IEP,
+    .size = IEP_BYTES,
+    .load_cycles = offsetof(struct pru_params, load_iep_cycles),
+    .reset = iep_reset,
+    .read = iep_read,
+    .write = iep_write,
+    .next_change = iep_next_change,
+    .raise = raise_cmp,
+    .next_raise = next_cmp,
+};

@@ -4,13 +4,14 @@
  * IEP compare (7, a level while any CMP_STATUS bit is set); raw/enabled
  * status set and clear; channel and host maps; global and host enables.
  * Host interrupt 0 -> R31[30], host 1 -> R31[31]. Other registers are
- * plain storage.
+ * plain storage. The events come from the blocks that raise them (their
+ * raise and next_raise, icss_block.h), R31 writes (intc_event).
  */
 #include "core_priv.h"
 
 #include <string.h>
 
-void intc_reset(struct pru_core *c) {
+static void intc_reset(struct pru_core *c) {
     memset(&c->pru0->intc, 0, sizeof c->pru0->intc);
 }
 
@@ -19,12 +20,11 @@ void intc_event(struct pru_core *c, unsigned ev) {
         c->pru0->intc.raw[ev / 32] |= 1u << (ev % 32);
 }
 
-/* Bring level sources up to `cycle`. */
+/* Bring the events of every block that raises some up to `cycle`. */
 static void intc_sync(struct pru_core *c, int64_t cycle) {
-    gpi_sync(c, cycle);
-    iep_sync(c, cycle);
-    if (c->pru0->iep.cmp_status)
-        intc_event(c, 7);
+    for (size_t i = 0; i < icss_nblocks; i++)
+        if (icss_blocks[i]->raise)
+            icss_blocks[i]->raise(c, cycle);
 }
 
 static bool host_pending(const struct intc *n, unsigned host) {
@@ -51,11 +51,17 @@ uint32_t intc_host_bits(struct pru_core *c, int64_t cycle) {
     return (host_pending(n, 0) ? 1u << 30 : 0) | (host_pending(n, 1) ? 1u << 31 : 0);
 }
 
-/* First cycle after `cycle` at which the status or host lines may change. */
+/* First cycle after `cycle` at which the status or host lines may change:
+ * the next event any block may raise. */
 int64_t intc_next_change(struct pru_core *c, int64_t cycle) {
-    int64_t h = iep_next_change(c, cycle, 0x44u);
-    int64_t g = gpi_next_cnt16(c, cycle);
-    return g < h ? g : h;
+    int64_t h = CYCLE_NEVER;
+    for (size_t i = 0; i < icss_nblocks; i++) {
+        if (icss_blocks[i]->next_raise) {
+            int64_t t = icss_blocks[i]->next_raise(c, cycle);
+            h = t < h ? t : h;
+        }
+    }
+    return h;
 }
 
 static uint32_t byte_regs_read(const uint8_t *a, uint32_t first) {
@@ -69,7 +75,7 @@ static void byte_regs_write(uint8_t *a, uint32_t first, uint32_t v, uint32_t bm)
             a[first + b] = (uint8_t)(v >> (8 * b));
 }
 
-uint32_t intc_read(struct pru_core *c, uint32_t ofs, int64_t at) {
+static uint32_t intc_read(struct pru_core *c, uint32_t ofs, int64_t at) {
     struct intc *n = &c->pru0->intc;
     intc_sync(c, at);
     switch (ofs) {
@@ -100,7 +106,7 @@ uint32_t intc_read(struct pru_core *c, uint32_t ofs, int64_t at) {
     }
 }
 
-void intc_write(struct pru_core *c, uint32_t ofs, uint32_t val, uint32_t bm, int64_t at) {
+static void intc_write(struct pru_core *c, uint32_t ofs, uint32_t val, uint32_t bm, int64_t at) {
     struct intc *n = &c->pru0->intc;
     uint32_t v = val & bm;
     unsigned idx = v & 63u;
@@ -164,6 +170,21 @@ void intc_write(struct pru_core *c, uint32_t ofs, uint32_t val, uint32_t bm, int
             byte_regs_write(n->regs, ofs, val, bm);
         break;
     }
-    if (c->pru0->iep.cmp_status) /* the IEP event is a level: it sets again */
-        intc_event(c, 7);
+    intc_sync(c, at); /* a level event (the IEP's) sets again */
 }
+
+static int64_t next_change(struct pru_core *c, int64_t cycle, uint32_t ofs) {
+    (void)ofs;
+    return intc_next_change(c, cycle);
+}
+
+const struct icss_block icss_intc = {
+    .name = "INTC",
+    .base = PRUSS_OFS_INTC,
+    .size = INTC_BYTES,
+    .load_cycles = offsetof(struct pru_params, load_intc_cycles),
+    .reset = intc_reset,
+    .read = intc_read,
+    .write = intc_write,
+    .next_change = next_change,
+};

@@ -1,22 +1,25 @@
 /*
  * memmap.c - the PRU-local data space (docs/pru-facts.md §5.1), the constant
  * table (§5.2), the host's global view (§5.4) and the cost of each access (§3).
+ * RAMs are bytes here; the register blocks are registered in icss_blocks and
+ * reached through their interface (icss_block.h).
  */
 #include "core_priv.h"
 
 #include <stdlib.h>
 #include <string.h>
 
+const struct icss_block *const icss_blocks[] = {
+    &icss_intc, &icss_ctrl0, &icss_ctrl1, &icss_cfg, &icss_iep,
+};
+const size_t icss_nblocks = sizeof icss_blocks / sizeof icss_blocks[0];
+
 enum region {
     RG_NONE,
     RG_DRAM0,
     RG_DRAM1,
     RG_SHARED,
-    RG_INTC,
-    RG_CTRL0,
-    RG_CTRL1,
-    RG_CFG,
-    RG_IEP,
+    RG_BLOCK, /* a register block: hit.blk */
     RG_EXT,
     RG_IRAM0,
     RG_IRAM1,
@@ -24,9 +27,10 @@ enum region {
 
 struct hit {
     enum region rg;
-    uint32_t ofs;  /* offset inside the block */
-    uint32_t size; /* size of the block */
-    uint8_t *mem;  /* RAM blocks: bytes at ofs */
+    uint32_t ofs;                 /* offset inside the block */
+    uint32_t size;                /* size of the block */
+    uint8_t *mem;                 /* RAM blocks: bytes at ofs */
+    const struct icss_block *blk; /* RG_BLOCK */
 };
 
 static bool inside(uint32_t addr, uint32_t n, uint32_t base, uint32_t size) {
@@ -36,14 +40,6 @@ static bool inside(uint32_t addr, uint32_t n, uint32_t base, uint32_t size) {
 /* Find the block holding [addr, addr+n) of the local space; host adds IRAM. */
 static enum region find_local(struct pru_core *c, uint32_t addr, uint32_t n, bool host,
                               struct hit *h) {
-    static const struct {
-        enum region rg;
-        uint32_t base, size;
-    } regs[] = {
-        {RG_INTC, 0x20000u, INTC_BYTES},  {RG_CTRL0, 0x22000u, CTRL_BYTES},
-        {RG_CTRL1, 0x24000u, CTRL_BYTES}, {RG_CFG, 0x26000u, CFG_BYTES},
-        {RG_IEP, 0x2E000u, IEP_BYTES},
-    };
     h->mem = NULL;
     if (inside(addr, n, 0, c->dram_bytes)) {
         h->ofs = addr;
@@ -63,11 +59,13 @@ static enum region find_local(struct pru_core *c, uint32_t addr, uint32_t n, boo
         h->mem = c->shared + h->ofs;
         return h->rg = RG_SHARED;
     }
-    for (unsigned i = 0; i < sizeof regs / sizeof regs[0]; i++) {
-        if (inside(addr, n, regs[i].base, regs[i].size)) {
-            h->ofs = addr - regs[i].base;
-            h->size = regs[i].size;
-            return h->rg = regs[i].rg;
+    for (size_t i = 0; i < icss_nblocks; i++) {
+        const struct icss_block *b = icss_blocks[i];
+        if (inside(addr, n, b->base, b->size)) {
+            h->ofs = addr - b->base;
+            h->size = b->size;
+            h->blk = b;
+            return h->rg = RG_BLOCK;
         }
     }
     if (host && inside(addr, n, PRU_OFS_IRAM0, c->iram_bytes)) {
@@ -127,84 +125,12 @@ uint32_t const_table(const struct pru_core *c, unsigned n) {
     }
 }
 
-/* Debug block (CTRL + 0x400): GPREG0-31 then CT_REG0-31. */
-static uint32_t debug_read(struct pru_core *c, uint32_t ofs) {
-    unsigned i = (ofs - 0x400u) / 4u;
-    if (i < 32)
-        return i == 31 ? gpi_r31(c, c->cycle) : c->r[i];
-    if (i < 64)
-        return const_table(c, i - 32);
-    return 0;
-}
-
-/* The core whose CONTROL block rg is in this PRU-ICSS: PRU0's at 0x22000,
- * PRU1's at 0x24000 for both PRUs (docs/pru-facts.md §5.1); NULL for a
- * core alone, whose PRU1 block is plain storage. */
-static struct pru_core *ctrl_owner(struct pru_core *c, enum region rg) {
-    return rg == RG_CTRL0 ? c->pru0 : c->pru0->pru1;
-}
-
-static uint32_t reg_read(struct pru_core *c, enum region rg, uint32_t ofs, int64_t at) {
-    struct pru_core *k = rg == RG_CTRL0 || rg == RG_CTRL1 ? ctrl_owner(c, rg) : NULL;
-    if (k)
-        return ofs >= 0x400u ? debug_read(k, ofs) : ctrl_read(k, ofs, at);
-    switch (rg) {
-    case RG_INTC:
-        return intc_read(c, ofs, at);
-    case RG_CTRL1: {
-        uint32_t v;
-        memcpy(&v, c->ctrl1 + ofs, 4);
-        return v;
-    }
-    case RG_CFG:
-        return cfg_read(c, ofs, at);
-    case RG_IEP:
-        return iep_read(c, ofs, at);
-    default:
-        return 0;
-    }
-}
-
-static void reg_write(struct pru_core *c, enum region rg, uint32_t ofs, uint32_t v, uint32_t bm,
-                      int64_t at) {
-    struct pru_core *k = rg == RG_CTRL0 || rg == RG_CTRL1 ? ctrl_owner(c, rg) : NULL;
-    if (k) {
-        if (ofs < 0x400u) {
-            ctrl_write(k, ofs, v, bm, at);
-        } else if (ofs < 0x47cu) { /* GPREG0..30 (host debug access) */
-            unsigned i = (ofs - 0x400u) / 4u;
-            k->r[i] = (k->r[i] & ~bm) | (v & bm);
-        }
-        return;
-    }
-    switch (rg) {
-    case RG_INTC:
-        intc_write(c, ofs, v, bm, at);
-        break;
-    case RG_CTRL1: {
-        uint32_t old;
-        memcpy(&old, c->ctrl1 + ofs, 4);
-        old = (old & ~bm) | (v & bm);
-        memcpy(c->ctrl1 + ofs, &old, 4);
-        break;
-    }
-    case RG_CFG:
-        cfg_write(c, ofs, v, bm, at);
-        break;
-    case RG_IEP:
-        iep_write(c, ofs, v, bm, at);
-        break;
-    default:
-        break;
-    }
-}
-
 /* Register blocks: byte accesses become aligned word reads. */
 static void regs_load(struct pru_core *c, const struct hit *h, uint8_t *dst, unsigned n,
                       int64_t at) {
     uint32_t first = h->ofs & ~3u;
     for (uint32_t w = first; w < h->ofs + n; w += 4) {
-        uint32_t v = reg_read(c, h->rg, w, at);
+        uint32_t v = h->blk->read(c, w, at);
         for (unsigned b = 0; b < 4; b++) {
             uint32_t o = w + b;
             if (o >= h->ofs && o < h->ofs + n)
@@ -226,52 +152,31 @@ static void regs_store(struct pru_core *c, const struct hit *h, const uint8_t *s
                 bm |= 0xffu << (8u * b);
             }
         }
-        reg_write(c, h->rg, w, v, bm, at);
+        h->blk->write(c, w, v, bm, at);
     }
 }
 
-static unsigned load_cycles(const struct pru_core *c, enum region rg, unsigned n) {
-    const struct pru_params *p = &c->p;
-    switch (rg) {
+static unsigned load_cycles(const struct pru_core *c, const struct hit *h, unsigned n) {
+    switch (h->rg) {
     case RG_DRAM0:
     case RG_DRAM1:
     case RG_SHARED:
         return mem_local_load_cycles(c, n);
-    case RG_INTC:
-        return p->load_intc_cycles + mem_beats(n) - 1;
-    case RG_CTRL0:
-    case RG_CTRL1:
-        return p->load_ctrl_cycles + mem_beats(n) - 1;
-    case RG_CFG:
-        return p->load_cfg_cycles + mem_beats(n) - 1;
-    case RG_IEP:
-        return p->load_iep_cycles + mem_beats(n) - 1;
+    case RG_BLOCK: {
+        unsigned first;
+        memcpy(&first, (const char *)&c->p + h->blk->load_cycles, sizeof first);
+        return first + mem_beats(n) - 1;
+    }
     default:
-        return p->load_ext_cycles + mem_beats(n) - 1;
+        return c->p.load_ext_cycles + mem_beats(n) - 1;
     }
 }
 
 /* How far ahead a value read from a block can be known unchanged (ff.c). */
-static void note_horizon(struct pru_core *c, const struct hit *h, unsigned n) {
-    if (!ff_input_read(c))
+static void note_horizon(struct pru_core *c, const struct hit *h) {
+    if (!ff_input_read(c) || !h->blk->next_change)
         return;
-    switch (h->rg) {
-    case RG_CTRL0:
-        ff_horizon(c, c->cycle + 1);
-        break; /* CYCLE, STALL, STATUS */
-    case RG_CFG:
-        ff_horizon(c, gpi_stable_until(c, c->cycle));
-        break;
-    case RG_INTC:
-        ff_horizon(c, intc_next_change(c, c->cycle));
-        break;
-    case RG_IEP:
-        ff_horizon(c, iep_next_change(c, c->cycle, h->ofs & ~3u));
-        (void)n;
-        break;
-    default:
-        break;
-    }
+    ff_horizon(c, h->blk->next_change(c, c->cycle, h->ofs & ~3u));
 }
 
 /* Block holding the byte at addr and how many bytes of n fit in it. */
@@ -301,12 +206,12 @@ int mem_load_any(struct pru_core *c, uint32_t addr, uint8_t *out, unsigned n, un
             return -1;
         }
         if (done == 0)
-            *cycles = load_cycles(c, h.rg, n);
+            *cycles = load_cycles(c, &h, n);
         if (h.mem) {
             memcpy(dst + done, h.mem, chunk);
         } else {
             regs_load(c, &h, dst + done, chunk, c->cycle);
-            note_horizon(c, &h, chunk);
+            note_horizon(c, &h);
         }
     }
     memcpy(out, dst, n);

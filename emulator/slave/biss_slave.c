@@ -1,6 +1,5 @@
 #include "biss_slave.h"
 
-#include "biss/biss_rules.h"
 #include "biss_crc.h"
 #include "slave_motion.h"
 
@@ -55,67 +54,6 @@ int biss_chain_shared_id(const biss_chain_cfg *c, unsigned *first, unsigned *sec
     return 0;
 }
 
-const char *biss_slave_cfg_check(const biss_slave_cfg *s) {
-    if (s->id > 7) {
-        return "id: must be 0..7";
-    }
-    if (s->pos_bits < 1 || s->pos_bits > 64) {
-        return "position_bits: must be 1..64";
-    }
-    if (s->fill_bits > 64) {
-        return "fill_bits: must be 0..64";
-    }
-    if (s->lc_bits > 32) {
-        return "life_counter_bits: must be 0..32";
-    }
-    if (s->lc_fault != BISS_LC_FAULT_NONE && s->lc_bits == 0) {
-        return "life_counter_fault: the slave has no life counter (life_counter_bits 0)";
-    }
-    if (biss_slave_cfg_data_bits(s) > 64) {
-        return "position_bits: with fill_bits, nE, nW and life_counter_bits more than 64 data "
-               "bits before the CRC";
-    }
-    if (s->crc_poly != 0 && !biss_crc_poly_valid(s->crc_poly)) {
-        return "crc_poly: must be an odd polynomial of degree 1..16 (with its top term)";
-    }
-    if (s->crc_poly != 0 && (s->crc_start >> biss_crc_width(s->crc_poly)) != 0) {
-        return "crc_start: wider than the CRC";
-    }
-    return NULL;
-}
-
-const char *biss_chain_cfg_check(const biss_chain_cfg *c) {
-    if (c->n < 1 || c->n > BISS_MAX_SLAVES) {
-        return "slaves: a chain has 1 to 8 slaves";
-    }
-    for (unsigned i = 0; i < c->n; i++) {
-        const char *e = biss_slave_cfg_check(&c->s[i]);
-        if (e) {
-            return e;
-        }
-    }
-    unsigned first, second;
-    if (biss_chain_shared_id(c, &first, &second)) {
-        return "slaves: two slaves with one id (each answers control frames for its own; a "
-               "data-only channel of the same device has \"control\": false)";
-    }
-    if (c->out_delay_ps <= 0) {
-        return "output_delay_ns: must be > 0 (every effect follows its cause)";
-    }
-    if (c->busy_ps < 0) {
-        return "busy_ns: must be >= 0";
-    }
-    if (c->timeout_mode == BISS_TIMEOUT_FIXED && c->timeout_ps <= 0) {
-        return "timeout.ns: must be > 0";
-    }
-    if (c->timeout_mode == BISS_TIMEOUT_ADAPTIVE &&
-        (c->adaptive_factor <= 0.0 || c->adaptive_max_ps <= 0 ||
-         c->adaptive_min_ps > c->adaptive_max_ps)) {
-        return "timeout: adaptive needs factor > 0 and 0 <= min_ns <= max_ns, max_ns > 0";
-    }
-    return NULL;
-}
-
 void biss_slave_init(biss_slave *b, const biss_chain_cfg *cfg, event_queue *q, sim_edge_sink out) {
     memset(b, 0, sizeof *b);
     b->cfg = *cfg;
@@ -126,7 +64,7 @@ void biss_slave_init(biss_slave *b, const biss_chain_cfg *cfg, event_queue *q, s
         b->ctrl[i].cmd_stop = b->cfg.s[i].cmd_exec;
         b->ctrl[i].idl_at_cts = b->cfg.s[i].idl_at_cts;
     }
-    b->phase = BISS_IDLE;
+    b->st.in_frame = false;
     b->ma = 1;
     b->sl_sched = 1;
     b->last_edge = b->prev_edge = b->last_rise = b->prev_rise = eq_now(q);
@@ -138,7 +76,7 @@ void biss_slave_on_frame(biss_slave *b, biss_frame_fn fn, void *ctx) {
 }
 
 const biss_frame_record *biss_slave_record(const biss_slave *b, uint64_t n) {
-    if (n >= b->frames || b->frames - n > BISS_RECORD_RING) {
+    if (n >= b->st.frames || b->st.frames - n > BISS_RECORD_RING) {
         return NULL;
     }
     return &b->ring[n % BISS_RECORD_RING];
@@ -253,7 +191,7 @@ static void build_slave_data(biss_slave *b, unsigned i, sim_ps t) {
 
 static void start_frame(biss_slave *b, sim_ps t) {
     memset(&b->cur, 0, sizeof b->cur);
-    b->cur.frame = b->frames;
+    b->cur.frame = b->st.frames;
     b->cur.start_ps = t;
     b->cur.cdm = -1;
     b->cur.cds = b->cds;
@@ -262,7 +200,7 @@ static void start_frame(biss_slave *b, sim_ps t) {
     push_bits(b, (uint64_t)b->cds, 1, NULL, 0);
     b->rises = 0;
     b->started = false;
-    b->phase = BISS_ACTIVE;
+    b->st.in_frame = true;
 }
 
 /* ---- timeout ---- */
@@ -296,10 +234,10 @@ static void close_frame(biss_slave *b, sim_ps t) {
     b->cur.end_ps = t;
     b->cur.clocks = b->rises;
     b->cur.complete = b->started && b->bit >= b->nbits;
-    b->ring[b->frames % BISS_RECORD_RING] = b->cur;
-    b->frames++;
+    b->ring[b->st.frames % BISS_RECORD_RING] = b->cur;
+    b->st.frames++;
     if (b->on_frame) {
-        b->on_frame(b->on_frame_ctx, &b->ring[(b->frames - 1) % BISS_RECORD_RING]);
+        b->on_frame(b->on_frame_ctx, &b->ring[(b->st.frames - 1) % BISS_RECORD_RING]);
     }
 }
 
@@ -315,7 +253,7 @@ static void on_timeout(void *ctx, sim_ps t, int64_t arg) {
         b->timeout_ev_at = b->timeout_due;
         return;
     }
-    if (b->phase != BISS_ACTIVE) {
+    if (!b->st.in_frame) {
         return;
     }
     if (b->rises >= 2) {
@@ -333,7 +271,7 @@ static void on_timeout(void *ctx, sim_ps t, int64_t arg) {
         b->lost = false; /* a whole frame after the loss: defined again */
     }
     drive_sl(b, t, 1);
-    b->phase = BISS_IDLE;
+    b->st.in_frame = false;
     close_frame(b, t);
 }
 
@@ -405,7 +343,7 @@ static inline void note_ma(biss_slave *b, sim_ps t, int level) {
 
 bool biss_slave_ma_edge_quick(biss_slave *b, sim_ps t, int level) {
     level = level ? 1 : 0;
-    if (level == b->ma || b->phase != BISS_ACTIVE || b->cfg.timeout_mode != BISS_TIMEOUT_FIXED) {
+    if (level == b->ma || !b->st.in_frame || b->cfg.timeout_mode != BISS_TIMEOUT_FIXED) {
         return false;
     }
     sim_ps due = t + b->cfg.timeout_ps; /* timeout_len() */
@@ -452,7 +390,7 @@ void biss_slave_ma_edge_general(biss_slave *b, sim_ps t, int level) {
         return;
     }
     note_ma(b, t, level);
-    if (b->phase == BISS_IDLE) {
+    if (!b->st.in_frame) {
         if (level) {
             return; /* MA returning high after a CDM = 1: not a frame */
         }

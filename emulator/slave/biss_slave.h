@@ -32,8 +32,10 @@
 #include "event_queue.h"
 #include "regfile.h"
 #include "sim_time.h"
+#include "slave_status.h"
 
 #include <stdbool.h>
+#include <stddef.h>
 #include <stdint.h>
 
 #define BISS_MAX_SLAVES     8
@@ -109,9 +111,10 @@ int biss_chain_shared_id(const biss_chain_cfg *c, unsigned *first, unsigned *sec
 /* The timeout the chain's slaves apply while MA runs with period_ps: the
  * fixed one, or the adaptive factor x the period, clamped to [min, max]. */
 sim_ps biss_chain_timeout_ps(const biss_chain_cfg *c, sim_ps period_ps);
-/* Check a configuration; return NULL or a message naming the field. */
-const char *biss_slave_cfg_check(const biss_slave_cfg *s);
-const char *biss_chain_cfg_check(const biss_chain_cfg *c);
+/* Checks a configuration against its tables (biss_model.c): every range
+ * and relation. Returns 0, or -1 with a message naming the field
+ * ("slaves[0].crc_poly: ...") in err. */
+int biss_chain_cfg_check(const biss_chain_cfg *c, char *err, size_t errlen);
 
 /* What one slave sent in one frame. */
 typedef struct {
@@ -139,16 +142,14 @@ typedef struct {
 
 typedef void (*biss_frame_fn)(void *ctx, const biss_frame_record *rec);
 
-typedef enum { BISS_IDLE, BISS_ACTIVE } biss_phase;
-
 /* What every MA edge touches comes first, the large arrays and the
  * per-slave configuration last, so the edge's fields share cache lines
  * and pages. */
 typedef struct {
+    slave_status st; /* closed frames; in a frame (from its first MA edge to its timeout) */
     event_queue *q;
     sim_edge_sink out;
 
-    biss_phase phase;
     int ma;
     sim_ps last_edge, prev_edge, last_rise, prev_rise;
     unsigned rises;
@@ -163,7 +164,6 @@ typedef struct {
     bool lost;               /* SL held low since lost_at (biss_slave_lose_sync) */
     sim_ps lost_at;
 
-    uint64_t frames;  /* closed frames */
     uint64_t latches; /* frames whose data were latched (a first rising edge) */
     biss_frame_fn on_frame;
     void *on_frame_ctx;

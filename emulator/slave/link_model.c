@@ -19,11 +19,13 @@ static inline void record(link_model *l, link_pin pin, waveform *w, sim_ps t, in
     }
 }
 
+/* Any model's MA edge through its table, but BiSS-C's, whose quick step
+ * was tried already. */
 static __attribute__((noinline)) void ma_slave_general(link_model *l, sim_ps t, int level) {
-    if (l->protocol == SCENARIO_SSI) {
-        ssi_slave_ma_edge(&l->ssi, t, level);
+    if (l->biss_quick) {
+        biss_slave_ma_edge_general((biss_slave *)l->slave, t, level);
     } else {
-        biss_slave_ma_edge_general(&l->biss, t, level);
+        l->model->ma_edge(l->slave, t, level);
     }
     observe(l, LINK_MA_SLAVE, t, level);
 }
@@ -39,15 +41,16 @@ static __attribute__((noinline)) void compare_external(link_model *l, sim_ps t) 
     }
 }
 
-/* A BiSS frame's clock edges take the slave's quick step, with calls in
- * tail position only (no saved registers); the rest goes out of line. */
+/* A BiSS frame's clock edges take the slave's quick step, called directly
+ * rather than through the model's table, with calls in tail position only
+ * (no saved registers); the rest goes out of line. */
 static void at_ma_slave(void *ctx, sim_ps t, int level) {
     link_model *l = ctx;
     record(l, LINK_MA_SLAVE, &l->ma_slave, t, level);
     if (l->external && level) {
         compare_external(l, t);
     }
-    if (l->protocol != SCENARIO_SSI && biss_slave_ma_edge_quick(&l->biss, t, level)) {
+    if (l->biss_quick && biss_slave_ma_edge_quick((biss_slave *)l->slave, t, level)) {
         observe(l, LINK_MA_SLAVE, t, level);
         return;
     }
@@ -114,8 +117,10 @@ int link_init(link_model *l, const scenario *sc, char *err, size_t errlen) {
         return -1;
     }
     memset(l, 0, sizeof *l);
+    l->slave = &l->own.status; /* zeroed with the rest */
     l->sc = *sc;
-    l->protocol = sc->protocol;
+    l->model = sc->model;
+    l->biss_quick = sc->model == &slave_model_biss;
     eq_init(&l->q);
     waveform_init(&l->ma_master, 1);
     waveform_init(&l->ma_slave, 1);
@@ -131,15 +136,12 @@ int link_init(link_model *l, const scenario *sc, char *err, size_t errlen) {
     line_dir_init(&l->ma_line, &l->sc.ma_line, &l->q, sim_rng_derive(sc->seed, 1), 1, to_slave);
     line_dir_init(&l->sl_line, &l->sc.sl_line, &l->q, sim_rng_derive(sc->seed, 2), 1,
                   (sim_edge_sink){at_sl_master, l});
-    if (sc->protocol == SCENARIO_SSI) {
-        ssi_slave_init(&l->ssi, &l->sc.ssi, &l->q, from_slave);
-    } else {
-        biss_slave_init(&l->biss, &l->sc.biss, &l->q, from_slave);
-    }
+    l->model->init(l->slave, link_model_cfg(l), &l->q, from_slave);
     return 0;
 }
 
 void link_free(link_model *l) {
+    l->slave = NULL;
     waveform_free(&l->ma_master);
     waveform_free(&l->ma_slave);
     waveform_free(&l->sl_slave);
@@ -220,7 +222,7 @@ sim_ps link_next_sl_change(const link_model *l) {
 }
 
 void link_set_external_slave(link_model *l, int on) {
-    l->external = on && l->protocol != SCENARIO_SSI;
+    l->external = on && l->model == &slave_model_biss;
     if (l->external) {
         l->history_pins |= 1u << LINK_MA_SLAVE;
     }
@@ -254,4 +256,17 @@ void link_forget_pins_before(link_model *l, unsigned mask, sim_ps t) {
 
 void link_forget_before(link_model *l, sim_ps t) {
     link_forget_pins_before(l, 0xfu, t);
+}
+
+sim_ps link_frame_end(const link_model *l, uint64_t n) {
+    const void *r = n < link_frames(l) ? link_record(l, n) : NULL;
+    return r ? l->model->end(r) : -1;
+}
+
+biss_slave *link_biss(link_model *l) {
+    return l->model == &slave_model_biss ? (biss_slave *)l->slave : NULL;
+}
+
+ssi_slave *link_ssi(link_model *l) {
+    return l->model == &slave_model_ssi ? (ssi_slave *)l->slave : NULL;
 }

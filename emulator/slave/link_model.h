@@ -20,6 +20,7 @@
 #include "event_queue.h"
 #include "line_model.h"
 #include "scenario.h"
+#include "slave_model.h"
 #include "ssi_slave.h"
 #include "waveform.h"
 
@@ -43,7 +44,11 @@ typedef struct {
      * path "sl-reach"; off: every pending event counts as a change) */
     sim_ps sl_reach_ps;
     int sl_reach_on;
-    scenario_protocol protocol; /* sc.protocol, here with the rest */
+    const slave_model *model; /* sc.model, here with the rest */
+    slave_status *slave;      /* the model's state (its first member): &own.status */
+    /* the BiSS-C chain's clock edges take its quick step, called directly
+     * (link_model.c at_ma_slave): the model the table names is this */
+    bool biss_quick;
     line_dir ma_line, sl_line;
     /* An external slave (link_set_external_slave): another core's pins at
      * the slave end; the model then runs beside it on the same MA, its SL
@@ -53,8 +58,9 @@ typedef struct {
     waveform sl_model;
     uint64_t ext_compared, ext_differ; /* rising edges compared, SL levels that differed */
     sim_ps ext_first_differ;           /* the first of them, SIM_NEVER none */
-    biss_slave biss;                   /* its per-edge state first */
-    ssi_slave ssi;
+    /* the model's state in place, beside the lines, as the edges use them
+     * together (every model's fits: slave_model_register) */
+    slave_state_room own;
     scenario sc;
 } link_model;
 
@@ -135,16 +141,37 @@ void link_forget_before(link_model *l, sim_ps t);
 /* The same for the pins in mask (bit 1 << link_pin) only. */
 void link_forget_pins_before(link_model *l, unsigned mask, sim_ps t);
 
-/* Closed frame records of the slave model (BiSS or SSI). In line: the
- * bench asks on every MA edge. */
+/* Closed frame records of the slave model. In line: the bench asks on
+ * every MA edge. */
 static inline uint64_t link_frames(const link_model *l) {
-    return l->protocol == SCENARIO_SSI ? l->ssi.frames : l->biss.frames;
+    return l->slave->frames;
 }
 
 /* Whether the slave model is inside a frame (from its first MA edge to
  * its timeout). */
 static inline bool link_in_frame(const link_model *l) {
-    return l->protocol == SCENARIO_SSI ? l->ssi.active : l->biss.phase == BISS_ACTIVE;
+    return l->slave->in_frame;
 }
+
+/* The model's record of frame n (slave_model record): closed and still
+ * kept, or the open one (n == link_frames); NULL otherwise. */
+static inline const void *link_record(const link_model *l, uint64_t n) {
+    return l->model->record(l->slave, n);
+}
+
+/* The end of the model's closed frame n, -1 if not closed or no longer
+ * kept. */
+sim_ps link_frame_end(const link_model *l, uint64_t n);
+
+/* The configuration of the link's model. */
+static inline const void *link_model_cfg(const link_model *l) {
+    return scenario_model_cfg(&l->sc);
+}
+
+/* The state of the BiSS-C chain model (its control communication, register
+ * files, records), NULL if the link has another model. */
+biss_slave *link_biss(link_model *l);
+/* The same for the SSI model. */
+ssi_slave *link_ssi(link_model *l);
 
 #endif

@@ -12,9 +12,14 @@
 static void base(scenario *s, const char *name) {
     memset(s, 0, sizeof *s);
     snprintf(s->profile, sizeof s->profile, "%s", name);
-    s->protocol = SCENARIO_BISS;
-    biss_chain_cfg_default(&s->biss);
-    ssi_cfg_default(&s->ssi);
+    /* every model in the table from its defaults, BiSS-C chosen */
+    const slave_model *m;
+    for (size_t i = 0; (m = slave_model_at(i)); i++) {
+        if (m->cfg_offset != offsetof(scenario, ext)) {
+            m->cfg_default((char *)s + m->cfg_offset);
+        }
+    }
+    s->model = &slave_model_biss;
     line_params_default(&s->ma_line);
     line_params_default(&s->sl_line);
     scenario_set_cable(s, 2.0); /* TIDEP0022 Table 10's shortest setup */
@@ -184,7 +189,7 @@ static void generic(scenario *s) {
 
 static void ssi(scenario *s) {
     base(s, "ssi");
-    s->protocol = SCENARIO_SSI;
+    s->model = &slave_model_ssi;
     s->ssi.bits = 13;
     s->ssi.speed_cps = 50000.0;
 }

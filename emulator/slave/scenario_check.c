@@ -1,98 +1,38 @@
-/* scenario_check.c - scenario_check (scenario.h): every numeric field in
- * its range (scenario_fields.h), then what the models need of the fields
- * together. */
+/* scenario_check.c - the scenario's top-level table and scenario_check
+ * (scenario.h): every field in its range and every table's relations
+ * (scenario_fields.h), the model's configuration by the model's own
+ * tables (slave_model.h), then the master's checks against the model. */
 #include "scenario.h"
 #include "scenario_fields.h"
 
 #include <stdio.h>
 
-/* What one line direction needs beyond the ranges. */
-static const char *check_line(const line_params *p) {
-    if (p->driver_delay_ps + p->receiver_delay_ps + p->length_m * p->ps_per_m <= 0.0) {
-        return "total delay must be > 0 (every effect follows its cause)";
-    }
-    /* 0 is "for good"; an end at or before the start would read as that */
-    if (p->fault_until_ps != 0 && p->fault_until_ps <= p->fault_at_ps) {
-        return "fault_until_ns: not after fault_at_ns (0: the fault never ends)";
-    }
-    return NULL;
-}
-
-static int check_lines(const scenario *s, char *err, size_t errlen) {
-    static const char *const names[2] = {"ma_line", "sl_line"};
-    const line_params *p[2] = {&s->ma_line, &s->sl_line};
-    for (int i = 0; i < 2; i++) {
-        char prefix[16];
-        snprintf(prefix, sizeof prefix, "%s.", names[i]);
-        if (sf_check_all(sf_line, p[i], prefix, err, errlen)) {
-            return -1;
-        }
-        const char *e = check_line(p[i]);
-        if (e) {
-            snprintf(err, errlen, "%s%s", prefix, e);
-            return -1;
-        }
-    }
-    return 0;
-}
-
-static int check_biss(const biss_chain_cfg *b, char *err, size_t errlen) {
-    const char *e;
-    if (b->n >= 1 && b->n <= BISS_MAX_SLAVES) {
-        for (unsigned i = 0; i < b->n; i++) {
-            char prefix[32];
-            snprintf(prefix, sizeof prefix, "biss.slaves[%u].", i);
-            if (sf_check_all(sf_slave, &b->s[i], prefix, err, errlen)) {
-                return -1;
-            }
-            if ((e = biss_slave_cfg_check(&b->s[i]))) {
-                snprintf(err, errlen, "%s%s", prefix, e);
-                return -1;
-            }
-        }
-        unsigned first, second;
-        if (biss_chain_shared_id(b, &first, &second)) {
-            snprintf(err, errlen, "biss.slaves[%u].id: %u is slaves[%u]'s id too", second,
-                     b->s[second].id, first);
-            return -1;
-        }
-    }
-    if (sf_check_all(sf_chain, b, "biss.", err, errlen) ||
-        sf_check_all(sf_timeout, b, "biss.timeout.", err, errlen)) {
-        return -1;
-    }
-    if ((e = biss_chain_cfg_check(b))) {
-        snprintf(err, errlen, "biss.%s", e);
-        return -1;
-    }
-    return 0;
-}
-
-/* The checks name slaves of the chain; a life counter checked exists; a
- * slave that never sets nE/nW has them and is not told to set them. */
+/* The checks name slaves of a BiSS-C chain; a life counter checked exists;
+ * a slave that never sets nE/nW has them and is not told to set them. */
 static int check_checks(const scenario *s, char *err, size_t errlen) {
     const scenario_checks *c = &s->checks;
-    unsigned n = s->protocol == SCENARIO_BISS ? s->biss.n : 0;
+    const biss_chain_cfg *chain = scenario_chain(s);
+    unsigned n = chain ? chain->n : 0;
     for (unsigned i = 0; i < BISS_MAX_SLAVES; i++) {
         if (c->life[i] && i >= n) {
             snprintf(err, errlen, "checks.life_counter: slave %u is not in the chain (%u slaves)",
                      i, n);
             return -1;
         }
-        if (c->life[i] && s->biss.s[i].lc_bits == 0) {
+        if (c->life[i] && chain->s[i].lc_bits == 0) {
             snprintf(err, errlen,
                      "checks.life_counter: slave %u has no life counter (life_counter_bits 0)", i);
             return -1;
         }
     }
     for (unsigned i = 0; i < BISS_MAX_SLAVES; i++) {
-        const biss_slave_cfg *sl = &s->biss.s[i];
         if (!c->ew_static[i]) {
             continue;
         }
-        if (i >= n || !sl->has_err || !sl->has_warn) {
+        const biss_slave_cfg *sl = i < n ? &chain->s[i] : NULL;
+        if (!sl || !sl->has_err || !sl->has_warn) {
             snprintf(err, errlen, "checks.ew_static: slave %u %s", i,
-                     i >= n ? "is not in the chain" : "sends no nE/nW (error_bit, warning_bit)");
+                     !sl ? "is not in the chain" : "sends no nE/nW (error_bit, warning_bit)");
             return -1;
         }
         /* the check says the slave never sets them: a model told to is
@@ -119,8 +59,8 @@ static int check_checks(const scenario *s, char *err, size_t errlen) {
                      k, a, b, n);
             return -1;
         }
-        if (s->biss.s[a].pos_bits + c->pair[k].shift_a > 64 ||
-            s->biss.s[b].pos_bits + c->pair[k].shift_b > 64) {
+        if (chain->s[a].pos_bits + c->pair[k].shift_a > 64 ||
+            chain->s[b].pos_bits + c->pair[k].shift_b > 64) {
             snprintf(err, errlen, "checks.pairs[%u]: a shifted position wider than 64 bits", k);
             return -1;
         }
@@ -128,23 +68,44 @@ static int check_checks(const scenario *s, char *err, size_t errlen) {
     return 0;
 }
 
-int scenario_check(const scenario *s, char *err, size_t errlen) {
-    if (sf_check_all(sf_top, s, "", err, errlen) || check_lines(s, err, errlen)) {
+/* After the scenario's own fields: the model's configuration, then the
+ * checks against it. */
+static int check_scenario(const void *obj, char *err, size_t errlen) {
+    const scenario *s = obj;
+    if (!s->model) {
+        snprintf(err, errlen, "protocol: no model");
         return -1;
     }
-    if (s->protocol == SCENARIO_SSI) {
-        const char *e;
-        if (sf_check_all(sf_ssi, &s->ssi, "ssi.", err, errlen)) {
-            return -1;
-        }
-        if ((e = ssi_cfg_check(&s->ssi))) {
-            snprintf(err, errlen, "ssi.%s", e);
-            return -1;
-        }
-        return check_checks(s, err, errlen);
-    }
-    if (check_biss(&s->biss, err, errlen)) {
+    char prefix[64];
+    snprintf(prefix, sizeof prefix, "%s.", s->model->name);
+    if (sf_check_object(s->model->cfg, scenario_model_cfg(s), prefix, err, errlen)) {
         return -1;
     }
     return check_checks(s, err, errlen);
+}
+
+static const sf_field scenario_fields[] = {
+    SF_FIELD("seed", SF_U64, scenario, seed, 0, 0, SF_U64_MAX),
+    /* "line": both directions at once, each checked under its own name */
+    {.name = "line",
+     .kind = SF_OBJECT,
+     .offset = offsetof(scenario, ma_line),
+     .offset2 = offsetof(scenario, sl_line),
+     .sub = &sf_line,
+     .unchecked = true},
+    {.name = "ma_line", .kind = SF_OBJECT, .offset = offsetof(scenario, ma_line), .sub = &sf_line},
+    {.name = "sl_line", .kind = SF_OBJECT, .offset = offsetof(scenario, sl_line), .sub = &sf_line},
+    /* against the model, by check_checks */
+    {.name = "checks",
+     .kind = SF_OBJECT,
+     .offset = offsetof(scenario, checks),
+     .sub = &sf_checks,
+     .unchecked = true},
+    SF_END,
+};
+
+const sf_table sf_scenario = {.fields = scenario_fields, .check = check_scenario};
+
+int scenario_check(const scenario *s, char *err, size_t errlen) {
+    return sf_check_object(&sf_scenario, s, "", err, errlen);
 }

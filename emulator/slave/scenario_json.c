@@ -90,20 +90,9 @@ static int parse_field(ctx *c, const cJSON *item, const sf_field *f, void *obj) 
     return 0;
 }
 
-/* If the key of item is a numeric field of table t, parses it into obj
- * (*r: 0 or -1) and returns 1; else returns 0. */
-static int number_field(ctx *c, const sf_field *t, const cJSON *item, void *obj, int *r) {
-    const sf_field *f = sf_find(t, item->string);
-    if (!f) {
-        return 0;
-    }
-    *r = parse_field(c, item, f, obj);
-    return 1;
-}
-
-/* A whole number 0..hi outside the tables (bank count, register value). */
+/* A whole number 0..hi outside the tables (a register value, an index). */
 static int get_whole(ctx *c, const cJSON *item, const char *field, double hi, unsigned *out) {
-    const sf_field f = {field, SF_UNSIGNED, 0, 0, 0, hi};
+    const sf_field f = {.name = field, .kind = SF_UNSIGNED, .hi = hi};
     return parse_field(c, item, &f, out);
 }
 
@@ -134,39 +123,16 @@ static void pop(ctx *c, size_t saved) {
     c->path[saved] = '\0';
 }
 
-/* ---- line ---- */
-
-static int parse_fault(ctx *c, const cJSON *item, line_fault *f) {
-    static const char *names[] = {"none", "stuck_low", "stuck_high", "open"};
-    if (cJSON_IsString(item)) {
-        for (int i = 0; i < 4; i++) {
-            if (strcmp(item->valuestring, names[i]) == 0) {
-                *f = (line_fault)i;
-                return 0;
-            }
-        }
+/* "expected \"a\", \"b\" or \"c\"" for a list of names. */
+static void expected_names(const char *const *names, size_t n, char *buf, size_t len) {
+    size_t at = (size_t)snprintf(buf, len, "expected");
+    for (size_t i = 0; i < n && at < len; i++) {
+        const char *sep = i == 0 ? " " : i + 1 == n ? " or " : ", ";
+        at += (size_t)snprintf(buf + at, len - at, "%s\"%s\"", sep, names[i]);
     }
-    return fail(c, "fault", "expected \"none\", \"stuck_low\", \"stuck_high\" or \"open\"");
 }
 
-static int parse_line(ctx *c, const cJSON *obj, line_params *p) {
-    const cJSON *it;
-    cJSON_ArrayForEach(it, obj) {
-        int r;
-        if (number_field(c, sf_line, it, p, &r)) {
-        } else if (!strcmp(it->string, "fault")) {
-            r = parse_fault(c, it, &p->fault);
-        } else {
-            r = fail(c, it->string, "unknown field");
-        }
-        if (r) {
-            return -1;
-        }
-    }
-    return 0;
-}
-
-/* ---- BiSS slaves ---- */
+/* ---- register files ---- */
 
 static int parse_addr(ctx *c, const char *text, const char *field, unsigned *bank, uint8_t *addr) {
     /* "0x44" or "bank2:0x10" */
@@ -187,8 +153,8 @@ static int parse_addr(ctx *c, const char *text, const char *field, unsigned *ban
     return 0;
 }
 
-static int parse_registers(ctx *c, const cJSON *obj, regfile *r) {
-    if (expect_object(c, obj, "registers")) {
+static int parse_registers(ctx *c, const cJSON *obj, const char *field, regfile *r) {
+    if (expect_object(c, obj, field)) {
         return -1;
     }
     const cJSON *it;
@@ -196,11 +162,11 @@ static int parse_registers(ctx *c, const cJSON *obj, regfile *r) {
         unsigned bank = 0;
         uint8_t addr = 0;
         unsigned v;
-        if (parse_addr(c, it->string, "registers", &bank, &addr)) {
+        if (parse_addr(c, it->string, field, &bank, &addr)) {
             return -1;
         }
         size_t saved = strlen(c->path);
-        push(c, "registers"); /* a bad value is named by its address */
+        push(c, "%s", field); /* a bad value is named by its address */
         if (get_whole(c, it, it->string, 255, &v)) {
             return -1;
         }
@@ -229,138 +195,43 @@ static int parse_flags(ctx *c, const cJSON *arr, const char *field, regfile *r, 
     return 0;
 }
 
-static int parse_lc_fault(ctx *c, const cJSON *item, biss_lc_fault *f) {
-    static const char *names[] = {"none", "frozen", "skip"};
-    if (cJSON_IsString(item)) {
-        for (int i = 0; i < 3; i++) {
-            if (strcmp(item->valuestring, names[i]) == 0) {
-                *f = (biss_lc_fault)i;
-                return 0;
-            }
-        }
-    }
-    return fail(c, "life_counter_fault", "expected \"none\", \"frozen\" or \"skip\"");
-}
+/* ---- a table's object ---- */
 
-/* Which CDS slots carry the ID lock IDL0..7 (host/CD.md, "IDL"). */
-static int parse_idl_slot(ctx *c, const cJSON *it, bool *at_cts) {
-    if (cJSON_IsString(it) && (!strcmp(it->valuestring, "s") || !strcmp(it->valuestring, "cts"))) {
-        *at_cts = !strcmp(it->valuestring, "cts");
-        return 0;
-    }
-    return fail(c, "id_lock_slot", "expected \"s\" (IDL0 answers S) or \"cts\" (it answers CTS)");
-}
+static int parse_object(ctx *c, const cJSON *json, const sf_table *t, void *obj);
 
-static int parse_slave(ctx *c, const cJSON *obj, biss_slave_cfg *s) {
-    /* the bank count first, so "registers" may fill any bank whatever the
-     * order of the fields */
-    const cJSON *banks = cJSON_GetObjectItemCaseSensitive(obj, "banks");
-    if (banks) {
-        unsigned n;
-        if (get_whole(c, banks, "banks", REGFILE_MAX_BANKS, &n)) {
-            return -1;
-        }
-        s->regs.nbanks = n ? n : 1;
+static int parse_choice(ctx *c, const cJSON *item, const sf_field *f, void *obj) {
+    size_t n = 0;
+    while (f->names[n]) {
+        n++;
     }
-    const cJSON *it;
-    cJSON_ArrayForEach(it, obj) {
-        const char *k = it->string;
-        int r = 0;
-        if (number_field(c, sf_slave, it, s, &r)) {
-        } else if (!strcmp(k, "error_bit")) {
-            r = get_bool(c, it, k, &s->has_err);
-        } else if (!strcmp(k, "warning_bit")) {
-            r = get_bool(c, it, k, &s->has_warn);
-        } else if (!strcmp(k, "error")) {
-            r = get_bool(c, it, k, &s->error);
-        } else if (!strcmp(k, "warning")) {
-            r = get_bool(c, it, k, &s->warning);
-        } else if (!strcmp(k, "control")) {
-            bool on = true;
-            r = get_bool(c, it, k, &on);
-            s->no_control = !on;
-        } else if (!strcmp(k, "banks")) {
-            continue; /* done above */
-        } else if (!strcmp(k, "registers")) {
-            r = parse_registers(c, it, &s->regs);
-        } else if (!strcmp(k, "read_only")) {
-            r = parse_flags(c, it, k, &s->regs, REG_RO);
-        } else if (!strcmp(k, "write_protected")) {
-            r = parse_flags(c, it, k, &s->regs, REG_WP);
-        } else if (!strcmp(k, "protect")) {
-            r = get_bool(c, it, k, &s->regs.protect);
-        } else if (!strcmp(k, "life_counter_fault")) {
-            r = parse_lc_fault(c, it, &s->lc_fault);
-        } else if (!strcmp(k, "id_lock_slot")) {
-            r = parse_idl_slot(c, it, &s->idl_at_cts);
-        } else {
-            r = fail(c, k, "unknown field");
-        }
-        if (r) {
-            return -1;
-        }
-    }
-    return 0;
-}
-
-static int parse_timeout(ctx *c, const cJSON *obj, biss_chain_cfg *b) {
-    const cJSON *it;
-    cJSON_ArrayForEach(it, obj) {
-        const char *k = it->string;
-        int r;
-        if (!strcmp(k, "mode")) {
-            if (cJSON_IsString(it) && !strcmp(it->valuestring, "fixed")) {
-                b->timeout_mode = BISS_TIMEOUT_FIXED;
-                r = 0;
-            } else if (cJSON_IsString(it) && !strcmp(it->valuestring, "adaptive")) {
-                b->timeout_mode = BISS_TIMEOUT_ADAPTIVE;
-                r = 0;
+    for (size_t i = 0; cJSON_IsString(item) && i < n; i++) {
+        if (!strcmp(item->valuestring, f->names[i])) {
+            char *p = (char *)obj + f->offset;
+            if (f->size == sizeof(bool)) {
+                *(bool *)p = i != 0;
             } else {
-                r = fail(c, k, "expected \"fixed\" or \"adaptive\"");
+                *(int *)p = (int)i;
             }
-        } else if (number_field(c, sf_timeout, it, b, &r)) {
-        } else {
-            r = fail(c, k, "unknown field");
-        }
-        if (r) {
-            return -1;
+            return 0;
         }
     }
-    return 0;
+    char what[160];
+    expected_names(f->names, n, what, sizeof what);
+    return fail(c, f->name, "%s", f->expect ? f->expect : what);
 }
 
-static int parse_biss(ctx *c, const cJSON *obj, biss_chain_cfg *b) {
-    const cJSON *it;
-    cJSON_ArrayForEach(it, obj) {
-        const char *k = it->string;
-        size_t saved = strlen(c->path);
-        int r = 0;
-        if (number_field(c, sf_chain, it, b, &r)) {
-        } else if (!strcmp(k, "timeout")) {
-            if (!(r = expect_object(c, it, k))) {
-                push(c, "timeout");
-                r = parse_timeout(c, it, b);
-            }
-        } else if (!strcmp(k, "slaves")) {
-            int n = cJSON_GetArraySize(it);
-            if (!cJSON_IsArray(it) || n < 1 || n > BISS_MAX_SLAVES) {
-                r = fail(c, k, "expected an array of 1 to 8 slave objects");
-            } else {
-                b->n = (unsigned)n;
-                for (int i = 0; i < n && !r; i++) {
-                    const cJSON *so = cJSON_GetArrayItem(it, i);
-                    push(c, "slaves[%d]", i);
-                    r = cJSON_IsObject(so) ? parse_slave(c, so, &b->s[i])
-                                           : fail(c, NULL, "expected an object");
-                    if (!r) {
-                        pop(c, saved);
-                    }
-                }
-            }
-        } else {
-            r = fail(c, k, "unknown field");
+/* Each element of a JSON array of objects, with the path "name[i]". */
+typedef int (*element_fn)(ctx *c, const cJSON *elem, const sf_field *f, void *obj, unsigned i);
+
+static int each_object(ctx *c, const cJSON *arr, const sf_field *f, void *obj, element_fn fn) {
+    size_t saved = strlen(c->path);
+    for (int i = 0; i < cJSON_GetArraySize(arr); i++) {
+        const cJSON *e = cJSON_GetArrayItem(arr, i);
+        push(c, "%s[%d]", f->name, i);
+        if (!cJSON_IsObject(e)) {
+            return fail(c, NULL, "expected an object");
         }
-        if (r) {
+        if (fn(c, e, f, obj, (unsigned)i)) {
             return -1;
         }
         pop(c, saved);
@@ -368,107 +239,37 @@ static int parse_biss(ctx *c, const cJSON *obj, biss_chain_cfg *b) {
     return 0;
 }
 
-static int parse_ssi(ctx *c, const cJSON *obj, ssi_cfg *s) {
-    const cJSON *it;
-    cJSON_ArrayForEach(it, obj) {
-        int r;
-        if (number_field(c, sf_ssi, it, s, &r)) {
-        } else if (!strcmp(it->string, "gray")) {
-            r = get_bool(c, it, it->string, &s->gray);
-        } else {
-            r = fail(c, it->string, "unknown field");
-        }
-        if (r) {
-            return -1;
-        }
+static int array_element(ctx *c, const cJSON *elem, const sf_field *f, void *obj, unsigned i) {
+    void *e = (char *)obj + f->offset + i * f->elem_size;
+    if (f->sub->init) {
+        f->sub->init(e);
     }
+    return parse_object(c, elem, f->sub, e);
+}
+
+static int indexed_element(ctx *c, const cJSON *elem, const sf_field *f, void *obj, unsigned i) {
+    (void)i;
+    struct sf_indexed x = {0};
+    if (parse_object(c, elem, f->sub, &x)) {
+        return -1;
+    }
+    ((double *)((char *)obj + f->offset))[x.index] = x.value;
     return 0;
 }
 
-/* ---- the master's safety checks ---- */
-
-static const sf_field sf_pair[] = {
-    {"a", SF_UNSIGNED, 0, 0, 0, BISS_MAX_SLAVES - 1},
-    {"b", SF_UNSIGNED, 0, 0, 0, BISS_MAX_SLAVES - 1},
-    {"shift_a", SF_UNSIGNED, 0, 0, 0, 63},
-    {"shift_b", SF_UNSIGNED, 0, 0, 0, 63},
-    {"tolerance", SF_U64, 0, 0, 0, 18446744073709551615.0},
-};
-
-static int parse_pair(ctx *c, const cJSON *obj, scenario_checks *k, unsigned i) {
-    k->pair[i].distinct_crc = true;
-    void *where[] = {&k->pair[i].a, &k->pair[i].b, &k->pair[i].shift_a, &k->pair[i].shift_b,
-                     &k->pair[i].tolerance};
-    bool has_a = false, has_b = false;
-    const cJSON *it;
-    cJSON_ArrayForEach(it, obj) {
-        const char *n = it->string;
-        int r = -1;
-        size_t f = 0;
-        while (f < 5 && strcmp(sf_pair[f].name, n)) {
-            f++;
-        }
-        if (f < 5) {
-            r = parse_field(c, it, &sf_pair[f], where[f]);
-            has_a |= f == 0;
-            has_b |= f == 1;
-        } else if (!strcmp(n, "distinct_crc")) {
-            r = get_bool(c, it, n, &k->pair[i].distinct_crc);
-        } else {
-            r = fail(c, n, "unknown field");
-        }
-        if (r) {
-            return -1;
-        }
-    }
-    return has_a && has_b ? 0 : fail(c, has_a ? "b" : "a", "missing (the pair's two slaves)");
-}
-
-static const sf_field sf_speed[] = {
-    {"slave", SF_UNSIGNED, 0, 0, 0, BISS_MAX_SLAVES - 1},
-    {"counts_per_s", SF_DOUBLE, 0, 1, BISS_MAX_SPEED_MIN_CPS, BISS_MAX_SPEED_MAX_CPS},
-};
-
-/* One {"slave": S, "counts_per_s": V} of max_speed. */
-static int parse_speed(ctx *c, const cJSON *obj, scenario_checks *k) {
-    unsigned slave = 0;
-    double cps = 0;
-    void *where[] = {&slave, &cps};
-    bool has[2] = {false, false};
-    const cJSON *it;
-    cJSON_ArrayForEach(it, obj) {
-        size_t f = 0;
-        while (f < 2 && strcmp(sf_speed[f].name, it->string)) {
-            f++;
-        }
-        if (f == 2) {
-            return fail(c, it->string, "unknown field");
-        }
-        if (parse_field(c, it, &sf_speed[f], where[f])) {
-            return -1;
-        }
-        has[f] = true;
-    }
-    if (!has[0] || !has[1]) {
-        return fail(c, has[0] ? "counts_per_s" : "slave",
-                    "missing (the slave and its top speed in counts per second)");
-    }
-    k->max_speed[slave] = cps;
-    return 0;
-}
-
-/* An array of slave indices (0..7) into a per-slave set. */
-static int slave_set(ctx *c, const cJSON *it, const char *n, bool *set) {
+/* An array of whole numbers 0..hi, each setting its bool. */
+static int parse_set(ctx *c, const cJSON *it, const sf_field *f, void *obj) {
     if (!cJSON_IsArray(it)) {
-        return fail(c, n, "expected an array of slave indices (0..7)");
+        return fail(c, f->name, "expected an array of slave indices (0..%.0f)", f->hi);
     }
+    bool *set = (bool *)((char *)obj + f->offset);
     const cJSON *e;
     int i = 0;
     cJSON_ArrayForEach(e, it) {
         unsigned v = 0;
         char name[32];
-        snprintf(name, sizeof name, "%s[%d]", n, i++);
-        if (get_whole(c, e, name, BISS_MAX_SLAVES - 1, &v)) {
+        snprintf(name, sizeof name, "%s[%d]", f->name, i++);
+        if (get_whole(c, e, name, f->hi, &v)) {
             return -1;
         }
         set[v] = true;
@@ -476,57 +277,115 @@ static int slave_set(ctx *c, const cJSON *it, const char *n, bool *set) {
     return 0;
 }
 
-static int parse_checks(ctx *c, const cJSON *obj, scenario_checks *k) {
-    const cJSON *it;
-    cJSON_ArrayForEach(it, obj) {
-        const char *n = it->string;
-        size_t saved = strlen(c->path);
-        int r = 0;
-        if (!strcmp(n, "life_counter")) {
-            r = slave_set(c, it, n, k->life);
-        } else if (!strcmp(n, "ew_static")) {
-            r = slave_set(c, it, n, k->ew_static);
-        } else if (!strcmp(n, "max_speed")) {
-            if (!cJSON_IsArray(it)) {
-                r = fail(c, n, "expected an array of {\"slave\", \"counts_per_s\"} objects");
-            }
-            for (int i = 0; !r && i < cJSON_GetArraySize(it); i++) {
-                const cJSON *so = cJSON_GetArrayItem(it, i);
-                push(c, "max_speed[%d]", i);
-                r = cJSON_IsObject(so) ? parse_speed(c, so, k)
-                                       : fail(c, NULL, "expected an object");
-                if (!r) {
-                    pop(c, saved);
-                }
-            }
-        } else if (!strcmp(n, "pairs")) {
-            int cnt = cJSON_GetArraySize(it);
-            if (!cJSON_IsArray(it) || cnt > SCENARIO_MAX_PAIRS) {
-                r = fail(c, n, "expected an array of at most 4 pair objects");
-            } else {
-                k->npairs = (unsigned)cnt;
-                for (int i = 0; i < cnt && !r; i++) {
-                    const cJSON *po = cJSON_GetArrayItem(it, i);
-                    push(c, "pairs[%d]", i);
-                    r = cJSON_IsObject(po) ? parse_pair(c, po, k, (unsigned)i)
-                                           : fail(c, NULL, "expected an object");
-                    if (!r) {
-                        pop(c, saved);
-                    }
-                }
-            }
-        } else {
-            r = fail(c, n, "unknown field");
+static int parse_value(ctx *c, const cJSON *it, const sf_field *f, void *obj) {
+    char *p = (char *)obj + f->offset;
+    size_t saved = strlen(c->path);
+    int r = 0;
+    switch (f->kind) {
+    case SF_BOOL:
+    case SF_NOT:
+        if (!(r = get_bool(c, it, f->name, (bool *)p)) && f->kind == SF_NOT) {
+            *(bool *)p = !*(bool *)p;
         }
-        if (r) {
+        return r;
+    case SF_CHOICE:
+        return parse_choice(c, it, f, obj);
+    case SF_OBJECT:
+        if (expect_object(c, it, f->name)) {
             return -1;
         }
+        push(c, "%s", f->name);
+        r = parse_object(c, it, f->sub, p);
+        if (!r && f->offset2) {
+            r = parse_object(c, it, f->sub, (char *)obj + f->offset2);
+        }
+        break;
+    case SF_ARRAY: {
+        int n = cJSON_GetArraySize(it);
+        if (!cJSON_IsArray(it) || n < f->lo || n > f->hi) {
+            return fail(c, f->name, "%s", f->expect);
+        }
+        *(unsigned *)((char *)obj + f->count_offset) = (unsigned)n;
+        return each_object(c, it, f, obj, array_element);
+    }
+    case SF_SET:
+        return parse_set(c, it, f, obj);
+    case SF_INDEXED:
+        if (!cJSON_IsArray(it)) {
+            return fail(c, f->name, "%s", f->expect);
+        }
+        return each_object(c, it, f, obj, indexed_element);
+    case SF_REGS:
+        return parse_registers(c, it, f->name, (regfile *)p);
+    case SF_REGFLAGS:
+        return parse_flags(c, it, f->name, (regfile *)p, (uint8_t)f->hi);
+    case SF_REGBANKS: {
+        unsigned n;
+        if (get_whole(c, it, f->name, f->hi, &n)) {
+            return -1;
+        }
+        ((regfile *)p)->nbanks = n ? n : 1;
+        return 0;
+    }
+    default:
+        return parse_field(c, it, f, obj);
+    }
+    if (!r) {
         pop(c, saved);
+    }
+    return r;
+}
+
+/* The members of a JSON object by table t into obj: a register file's bank
+ * count first (its registers may then fill any bank, whatever the order),
+ * then each member in the document's order; every required field given. */
+static int parse_object(ctx *c, const cJSON *json, const sf_table *t, void *obj) {
+    for (const sf_field *f = t->fields; f->name; f++) {
+        const cJSON *it =
+            f->kind == SF_REGBANKS ? cJSON_GetObjectItemCaseSensitive(json, f->name) : NULL;
+        if (it && parse_value(c, it, f, obj)) {
+            return -1;
+        }
+    }
+    bool given[64] = {false};
+    const cJSON *it;
+    cJSON_ArrayForEach(it, json) {
+        const sf_field *f = sf_find(t, it->string);
+        if (!f) {
+            return fail(c, it->string, "unknown field");
+        }
+        given[f - t->fields] = true;
+        if (f->kind != SF_REGBANKS && parse_value(c, it, f, obj)) {
+            return -1;
+        }
+    }
+    for (const sf_field *f = t->fields; f->name; f++) {
+        if (f->required && !given[f - t->fields]) {
+            return fail(c, f->name, "%s", t->missing);
+        }
     }
     return 0;
 }
 
 /* ---- top level ---- */
+
+/* "protocol": the model, named; a model's configuration in ext starts
+ * from its defaults. */
+static int parse_protocol(ctx *c, const cJSON *it, scenario *s) {
+    const slave_model *m = cJSON_IsString(it) ? slave_model_find(it->valuestring) : NULL;
+    if (m) {
+        scenario_set_model(s, m);
+        return 0;
+    }
+    const char *names[16];
+    size_t n = 0;
+    while (n < 16 && (names[n] = slave_model_at(n) ? slave_model_at(n)->name : NULL)) {
+        n++;
+    }
+    char what[256];
+    expected_names(names, n, what, sizeof what);
+    return fail(c, "protocol", "%s", what);
+}
 
 static int parse_top(ctx *c, const cJSON *root, scenario *s) {
     const cJSON *prof = cJSON_GetObjectItemCaseSensitive(root, "profile");
@@ -540,47 +399,31 @@ static int parse_top(ctx *c, const cJSON *root, scenario *s) {
     if (profile_by_name(name, s)) {
         return fail(c, "profile", "unknown profile \"%s\"", name);
     }
+    const cJSON *proto = cJSON_GetObjectItemCaseSensitive(root, "protocol");
+    if (proto && parse_protocol(c, proto, s)) {
+        return -1;
+    }
     const cJSON *it;
     cJSON_ArrayForEach(it, root) {
         const char *k = it->string;
+        const slave_model *m = slave_model_find(k);
+        const sf_field *f = sf_find(&sf_scenario, k);
         int r = 0;
         c->path[0] = '\0';
-        if (!strcmp(k, "profile")) {
+        if (!strcmp(k, "profile") || !strcmp(k, "protocol")) {
             continue;
-        } else if (number_field(c, sf_top, it, s, &r)) {
-        } else if (!strcmp(k, "protocol")) {
-            if (cJSON_IsString(it) && !strcmp(it->valuestring, "biss")) {
-                s->protocol = SCENARIO_BISS;
-            } else if (cJSON_IsString(it) && !strcmp(it->valuestring, "ssi")) {
-                s->protocol = SCENARIO_SSI;
-            } else {
-                r = fail(c, k, "expected \"biss\" or \"ssi\"");
-            }
-        } else if (!strcmp(k, "line") || !strcmp(k, "ma_line") || !strcmp(k, "sl_line")) {
-            if (!(r = expect_object(c, it, k))) {
+        } else if (m) {
+            /* a model's configuration object */
+            if (m->cfg_offset == offsetof(scenario, ext) && m != s->model) {
+                r = fail(c, k,
+                         "not the scenario's protocol (\"%s\"): its configuration has no place",
+                         s->model->name);
+            } else if (!(r = expect_object(c, it, k))) {
                 push(c, "%s", k);
-                if (k[0] != 's') {
-                    r = parse_line(c, it, &s->ma_line);
-                }
-                if (!r && k[0] != 'm') {
-                    r = parse_line(c, it, &s->sl_line);
-                }
+                r = parse_object(c, it, m->cfg, (char *)s + m->cfg_offset);
             }
-        } else if (!strcmp(k, "biss")) {
-            if (!(r = expect_object(c, it, k))) {
-                push(c, "biss");
-                r = parse_biss(c, it, &s->biss);
-            }
-        } else if (!strcmp(k, "ssi")) {
-            if (!(r = expect_object(c, it, k))) {
-                push(c, "ssi");
-                r = parse_ssi(c, it, &s->ssi);
-            }
-        } else if (!strcmp(k, "checks")) {
-            if (!(r = expect_object(c, it, k))) {
-                push(c, "checks");
-                r = parse_checks(c, it, &s->checks);
-            }
+        } else if (f) {
+            r = parse_value(c, it, f, s);
         } else {
             r = fail(c, k, "unknown field");
         }

@@ -11,19 +11,6 @@ void ssi_cfg_default(ssi_cfg *c) {
     c->monoflop_ps = 20 * SIM_PS_PER_US;
 }
 
-const char *ssi_cfg_check(const ssi_cfg *c) {
-    if (c->bits < 1 || c->bits > 64) {
-        return "bits: must be 1..64";
-    }
-    if (c->out_delay_ps <= 0) {
-        return "output_delay_ns: must be > 0";
-    }
-    if (c->monoflop_ps <= 0) {
-        return "monoflop_ns: must be > 0";
-    }
-    return NULL;
-}
-
 uint64_t ssi_to_gray(uint64_t v) {
     return v ^ (v >> 1);
 }
@@ -42,7 +29,7 @@ void ssi_slave_init(ssi_slave *s, const ssi_cfg *cfg, event_queue *q, sim_edge_s
 }
 
 const ssi_frame_record *ssi_slave_record(const ssi_slave *s, uint64_t n) {
-    if (n >= s->frames || s->frames - n > SSI_RECORD_RING) {
+    if (n >= s->st.frames || s->st.frames - n > SSI_RECORD_RING) {
         return NULL;
     }
     return &s->ring[n % SSI_RECORD_RING];
@@ -65,13 +52,13 @@ static void on_monoflop(void *ctx, sim_ps t, int64_t arg) {
     (void)arg;
     ssi_slave *s = ctx;
     s->monoflop_ev = 0;
-    s->active = false;
+    s->st.in_frame = false;
     drive_sl(s, t, 1);
     s->cur.end_ps = t;
     s->cur.clocks = s->rises;
     s->cur.complete = s->rises >= s->cfg.bits;
-    s->ring[s->frames % SSI_RECORD_RING] = s->cur;
-    s->frames++;
+    s->ring[s->st.frames % SSI_RECORD_RING] = s->cur;
+    s->st.frames++;
 }
 
 void ssi_slave_ma_edge(ssi_slave *s, sim_ps t, int level) {
@@ -80,14 +67,14 @@ void ssi_slave_ma_edge(ssi_slave *s, sim_ps t, int level) {
         return;
     }
     s->ma = level;
-    if (!s->active) {
+    if (!s->st.in_frame) {
         if (level) {
             return;
         }
-        s->active = true;
+        s->st.in_frame = true;
         s->rises = 0;
         memset(&s->cur, 0, sizeof s->cur);
-        s->cur.frame = s->frames;
+        s->cur.frame = s->st.frames;
         s->cur.start_ps = t;
         s->cur.position = ssi_slave_position_at(s, t);
         s->cur.code = s->cfg.gray ? ssi_to_gray(s->cur.position) : s->cur.position;

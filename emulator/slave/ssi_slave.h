@@ -11,8 +11,10 @@
 
 #include "event_queue.h"
 #include "sim_time.h"
+#include "slave_status.h"
 
 #include <stdbool.h>
+#include <stddef.h>
 #include <stdint.h>
 
 #define SSI_RECORD_RING 256
@@ -27,7 +29,9 @@ typedef struct {
 } ssi_cfg;
 
 void ssi_cfg_default(ssi_cfg *c);
-const char *ssi_cfg_check(const ssi_cfg *c);
+/* Checks a configuration against its table (ssi_model.c). Returns 0, or
+ * -1 with a message naming the field in err. */
+int ssi_cfg_check(const ssi_cfg *c, char *err, size_t errlen);
 
 typedef struct {
     uint64_t frame;
@@ -40,17 +44,16 @@ typedef struct {
 } ssi_frame_record;
 
 typedef struct {
+    slave_status st; /* closed frames; in a frame (from its first fall to the monoflop's end) */
     ssi_cfg cfg;
     event_queue *q;
     sim_edge_sink out;
-    bool active;
     int ma;
     unsigned rises;
     int sl_sched;
     eq_id monoflop_ev;
     ssi_frame_record cur;
     ssi_frame_record ring[SSI_RECORD_RING];
-    uint64_t frames;
 } ssi_slave;
 
 void ssi_slave_init(ssi_slave *s, const ssi_cfg *cfg, event_queue *q, sim_edge_sink out);

@@ -27,7 +27,7 @@ static int chain_of(const char *what, biss_chain_cfg *c) {
                 what);
         return BISSCTL_USAGE;
     }
-    if (sc.protocol != SCENARIO_BISS) {
+    if (sc.model != &slave_model_biss) {
         fprintf(stderr, "bissctl: encoder: %s is not a BiSS-C chain\n", what);
         return BISSCTL_USAGE;
     }

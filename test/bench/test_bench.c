@@ -63,7 +63,7 @@ START_TEST(test_clocked_frames_exact_timing) {
     ck_assert_int_eq(st->period_min_ps, period);
     ck_assert_int_eq(st->period_max_ps, period);
     /* the slave saw complete frames with valid records */
-    const biss_frame_record *r = biss_slave_record(&bench_link(b)->biss, 9);
+    const biss_frame_record *r = biss_slave_record(link_biss(bench_link(b)), 9);
     ck_assert_ptr_nonnull(r);
     ck_assert(r->acked && r->started && r->complete);
     bench_free(b);
@@ -82,7 +82,7 @@ START_TEST(test_round_trip_on_long_cable) {
     ck_assert_int_eq(bench_open_vcd(b, "bench_round_trip.vcd", 1), 0);
     bench_run_until(b, 200 * SIM_PS_PER_US);
     ck_assert_int_eq(bench_close_vcd(b), 0);
-    const biss_frame_record *r = biss_slave_record(&bench_link(b)->biss, 0);
+    const biss_frame_record *r = biss_slave_record(link_biss(bench_link(b)), 0);
     ck_assert_ptr_nonnull(r);
     ck_assert(r->complete);
     /* ACK at the slave = 2nd rising edge at the slave + output delay; the

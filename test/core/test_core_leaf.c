@@ -203,6 +203,11 @@ static void same_state(struct pru_core *const *c, unsigned prog, int64_t chunk_e
     }
 }
 
+/* Chunks a program may take: one that has not halted by then fails (the
+ * suite's bound is its work, PROGRAMS programs of at most MAX_CHUNKS
+ * chunks, not a wall-clock time, which a loaded machine would overrun). */
+#define MAX_CHUNKS 10000u
+
 /* Runs program w each way in the same random chunks of cycles (of at most
  * `most`); returns the leaf calls replayed. */
 static uint64_t compare_runs(const uint32_t *w, unsigned prog, unsigned most) {
@@ -210,7 +215,7 @@ static uint64_t compare_runs(const uint32_t *w, unsigned prog, unsigned most) {
     uint32_t seed = rnd();
     for (unsigned m = 0; m < MODES; m++)
         c[m] = core_for(w, (enum mode)m, seed);
-    for (unsigned chunks = 0; chunks < 10000; chunks++) {
+    for (unsigned chunks = 0; chunks < MAX_CHUNKS; chunks++) {
         int64_t end = pru_cycles(c[0]) + 1 + rnd() % (rnd() % 4 ? most / 10 : most);
         enum pru_stop s[MODES];
         for (unsigned m = 0; m < MODES; m++)
@@ -304,7 +309,7 @@ END_TEST
 static Suite *leaf_suite(void) {
     Suite *s = suite_create("core_leaf");
     TCase *t = tcase_create("leaf");
-    tcase_set_timeout(t, 120);
+    tcase_set_timeout(t, 0); /* none: bounded by its work (MAX_CHUNKS) */
     tcase_add_test(t, random_leaf_routines_match);
     tcase_add_test(t, refused_routines_not_replayed);
     tcase_add_test(t, firmware_delay_replayed);

@@ -253,6 +253,54 @@ START_TEST(spad_collision_strict) {
 }
 END_TEST
 
+/* PRU0 polls a register of PRU1 through PRU1's CONTROL block (its debug
+ * registers, 0x24414: R5) until PRU1, after a delay, sets it: the same
+ * instructions with the fast-forward on as with it off (the block gives no
+ * horizon of its own: the two cores run in turns of a cycle, pruss.c). */
+static void poll_other_pru(bool ff, uint64_t *insns, uint32_t *pc) {
+    uint32_t w0[16], w1[8];
+    unsigned n0 = 0, n1 = 0;
+    mov32(w0, &n0, 1, 0x24000u + 0x400u + 4u * 5u);
+    w0[n0++] = burst(PRU_OP_LBBO, 4 * 2, 1, 0, 4);
+    w0[n0++] = qbi(PRU_OP_QBEQ, -1, R(2), 0);
+    w0[n0++] = halt();
+    w1[n1++] = ldi(R(3), 400);
+    w1[n1++] = alui(PRU_OP_SUB, R(3), R(3), 1);
+    w1[n1++] = qbi(PRU_OP_QBNE, -1, R(3), 0);
+    w1[n1++] = ldi(R(5), 7);
+    w1[n1++] = halt();
+    struct pru_params p;
+    pru_params_default(&p);
+    p.fast_forward = ff;
+    struct pru_icss *s = pru_icss_new(PRU_SOC_AM335X, &p);
+    ck_assert_ptr_nonnull(s);
+    struct pru_core *c0 = pru_icss_core(s, 0), *c1 = pru_icss_core(s, 1);
+    ck_assert_int_eq(pru_load_image(c0, w0, n0 * 4), 0);
+    ck_assert_int_eq(pru_load_image(c1, w1, n1 * 4), 0);
+    pru_start(c0);
+    pru_start(c1);
+    ck_assert_int_eq(pru_icss_run_until_cycle(s, 100000), PRU_STOP_HALT);
+    ck_assert(pru_halted(c0) && pru_halted(c1));
+    ck_assert_uint_eq(pru_reg(c0, 2), 7);
+    *insns = pru_instructions(c0);
+    *pc = pru_pc(c0);
+    pru_icss_free(s);
+}
+
+START_TEST(poll_other_pru_ff) {
+    uint64_t on, off;
+    uint32_t pc_on, pc_off;
+    poll_other_pru(true, &on, &pc_on);
+    poll_other_pru(false, &off, &pc_off);
+    /* PRU1's 400 turns of 2 cycles: about 800 cycles of polls, each 2
+     * instructions and a few cycles */
+    ck_assert_uint_gt(off, 300);
+    ck_assert_uint_lt(off, 500);
+    ck_assert_uint_eq(on, off);
+    ck_assert_uint_eq(pc_on, pc_off);
+}
+END_TEST
+
 /* The host starts PRU1 through CTRL1 and may not write IRAM1 while it runs. */
 START_TEST(host_controls_pru1) {
     uint32_t w[2] = {alu(PRU_OP_ADD, R(0), R(0), R(0)), jmpi(0)};
@@ -280,6 +328,7 @@ Suite *pruss_suite(void) {
     tcase_add_test(t, gpcfg_per_pru);
     tcase_add_test(t, own_control_block);
     tcase_add_test(t, host_controls_pru1);
+    tcase_add_test(t, poll_other_pru_ff);
     tcase_add_test(t, scratch_pad_shared);
     tcase_add_test(t, spad_collision_stalls_pru1);
     tcase_add_test(t, spad_collision_strict);

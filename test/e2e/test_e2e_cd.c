@@ -73,7 +73,7 @@ START_TEST(test_sequential_64_across_bank_switch) {
     struct bench *b = e2e_bench(&r, "posital-kit-layout-biss-c", 10, NULL);
     ck_assert_uint_eq(e2e_run_frames(&r, 10, 1000, 10), 10);
     fw_check_restart(&r.fc, UINT64_MAX);
-    regfile *regs = &bench_link(b)->biss.cfg.s[0].regs;
+    regfile *regs = &link_biss(bench_link(b))->cfg.s[0].regs;
     for (unsigned a = 0x20; a < 0x40; a++) {
         regfile_poke(regs, 2, (uint8_t)a, (uint8_t)(0xa0 ^ a));
     }
@@ -126,14 +126,14 @@ START_TEST(test_commands_with_and_without_ida) {
     ck_assert_int_eq(run_cd(&r, &p, 10, &cd), BISS_CD_OK);
     ck_assert_uint_eq(cd.result.ida, 0x02);
     link_model *l = bench_link(b);
-    ck_assert_int_eq(l->biss.ctrl[1].last_cmd, 1);
-    ck_assert_int_eq(l->biss.ctrl[2].last_cmd, -1);
+    ck_assert_int_eq(link_biss(l)->ctrl[1].last_cmd, 1);
+    ck_assert_int_eq(link_biss(l)->ctrl[2].last_cmd, -1);
     ck_assert_int_eq(biss_cd_build_command(&p, 0x00, 2, false), BISS_CD_OK); /* broadcast */
     ck_assert_int_eq(run_cd(&r, &p, 10, &cd), BISS_CD_OK);
     ck_assert_uint_eq(cd.result.ida, 0);
-    ck_assert_int_eq(l->biss.ctrl[1].last_cmd, 2);
-    ck_assert_int_eq(l->biss.ctrl[2].last_cmd, 2);
-    ck_assert_int_eq(l->biss.ctrl[0].last_cmd, -1); /* data only */
+    ck_assert_int_eq(link_biss(l)->ctrl[1].last_cmd, 2);
+    ck_assert_int_eq(link_biss(l)->ctrl[2].last_cmd, 2);
+    ck_assert_int_eq(link_biss(l)->ctrl[0].last_cmd, -1); /* data only */
     /* an ID nobody has (2, as 7): the IDA says so */
     ck_assert_int_eq(biss_cd_build_command(&p, 0x04, 1, false), BISS_CD_OK);
     ck_assert_int_eq(run_cd(&r, &p, 10, &cd), BISS_CD_E_IDA);
@@ -145,13 +145,13 @@ START_TEST(test_commands_with_and_without_ida) {
     ck_assert_int_eq(run_cd(&r, &p, 10, &cd), BISS_CD_E_WITHHELD);
     ck_assert_uint_eq(cd.status, BISS_CDST_ERR_IDA);
     ck_assert_uint_eq(cd.result.ida, 0x02);
-    ck_assert_int_eq(l->biss.ctrl[1].last_cmd, 2);
-    ck_assert_uint_eq(l->biss.ctrl[1].commands_dropped, 1);
+    ck_assert_int_eq(link_biss(l)->ctrl[1].last_cmd, 2);
+    ck_assert_uint_eq(link_biss(l)->ctrl[1].commands_dropped, 1);
     ck_assert_int_eq(biss_cd_build_command(&p, 0x03, 3, true), BISS_CD_OK);
     ck_assert_int_eq(run_cd(&r, &p, 10, &cd), BISS_CD_OK);
     ck_assert_uint_eq(cd.result.ida, 0x03);
-    ck_assert_int_eq(l->biss.ctrl[1].last_cmd, 3);
-    ck_assert_int_eq(l->biss.ctrl[2].last_cmd, 3);
+    ck_assert_int_eq(link_biss(l)->ctrl[1].last_cmd, 3);
+    ck_assert_int_eq(link_biss(l)->ctrl[2].last_cmd, 3);
     assert_positions_clean(&r);
     e2e_free(&r);
 }
@@ -167,8 +167,8 @@ START_TEST(test_ad38_registers_by_id) {
     ck_assert_uint_eq(e2e_run_frames(&r, 10, 1000, 10), 10);
     fw_check_restart(&r.fc, UINT64_MAX);
     link_model *l = bench_link(b);
-    regfile_poke(&l->biss.cfg.s[2].regs, 0, 0x67, 0x40);
-    regfile_poke(&l->biss.cfg.s[1].regs, 0, 0x69, 0x0a);
+    regfile_poke(&link_biss(l)->cfg.s[2].regs, 0, 0x67, 0x40);
+    regfile_poke(&link_biss(l)->cfg.s[1].regs, 0, 0x69, 0x0a);
     static biss_cd_prog p;
     struct fw_cd cd;
     ck_assert_int_eq(biss_cd_build_read(&p, 0, 0x67, 1), BISS_CD_OK);
@@ -182,8 +182,8 @@ START_TEST(test_ad38_registers_by_id) {
     ck_assert_uint_eq(cd.result.byte[0].data, 0x0a);
     ck_assert_int_eq(biss_cd_build_read(&p, 2, 0x67, 1), BISS_CD_OK);
     ck_assert_int_eq(run_cd(&r, &p, 10, &cd), BISS_CD_E_NO_ECHO);
-    ck_assert_uint_eq(l->biss.ctrl[2].reads, 1);
-    ck_assert_uint_eq(l->biss.ctrl[1].reads, 1);
+    ck_assert_uint_eq(link_biss(l)->ctrl[2].reads, 1);
+    ck_assert_uint_eq(link_biss(l)->ctrl[1].reads, 1);
     assert_positions_clean(&r);
     e2e_free(&r);
 }
@@ -195,7 +195,7 @@ START_TEST(test_late_start_bit) {
     static const uint8_t serial[] = {0x00, 0xd9};
     struct e2e_run r;
     struct bench *b = e2e_bench(&r, "tidep0022-test-encoder", 2, NULL);
-    bench_link(b)->biss.ctrl[0].reg_proc_frames = 3;
+    link_biss(bench_link(b))->ctrl[0].reg_proc_frames = 3;
     ck_assert_uint_eq(e2e_run_frames(&r, 10, 1000, 10), 10);
     fw_check_restart(&r.fc, UINT64_MAX);
     static biss_cd_prog p;
@@ -224,7 +224,7 @@ START_TEST(test_late_start_never_cancels) {
     unsigned late = lates[_i % 3], half = halves[_i / 3];
     struct e2e_run r;
     struct bench *b = e2e_bench(&r, "tidep0022-test-encoder", 2, NULL);
-    biss_ctrl *ctrl = &bench_link(b)->biss.ctrl[0];
+    biss_ctrl *ctrl = &link_biss(bench_link(b))->ctrl[0];
     ctrl->reg_proc_frames = late;
     ck_assert_uint_eq(e2e_run_frames(&r, half, 1000, 10), 10);
     fw_check_restart(&r.fc, UINT64_MAX);
@@ -256,13 +256,13 @@ END_TEST
 static void run_flipped(struct e2e_run *r, const biss_cd_prog *p, unsigned byte, unsigned bit,
                         struct fw_cd *cd) {
     struct bench *b = r->b;
-    biss_slave *sl = &bench_link(b)->biss;
+    biss_slave *sl = link_biss(bench_link(b));
     fw_cd_issue(cd, b, p, 10);
     unsigned seen = 0; /* data bits of the byte seen (frames answering them) */
     int flipped = 0, in_bit = 0;
     int64_t end = pru_time_ps(bench_core(b)) + 100 * SIM_PS_PER_MS;
     while (!fw_cd_poll(cd) && pru_time_ps(bench_core(b)) < end) {
-        int here = sl->phase == BISS_ACTIVE && sl->bit == 0 && sl->ctrl[0].state == CTRL_DATA &&
+        int here = sl->st.in_frame && sl->bit == 0 && sl->ctrl[0].state == CTRL_DATA &&
                    sl->ctrl[0].count == bit;
         if (here && !in_bit && !flipped && seen++ == byte) {
             sl->bits[0] ^= 1;
@@ -321,7 +321,7 @@ START_TEST(test_corrupted_echo_fails_write) {
     ck_assert_uint_eq(cd.status, BISS_CDST_ERR_ECHO);
     ck_assert_uint_eq(cd.result.good_bytes, 0);
     ck_assert_int_eq(cd.result.byte[1].start, BISS_CD_S_NOT_REACHED);
-    regfile *regs = &bench_link(b)->biss.cfg.s[0].regs;
+    regfile *regs = &link_biss(bench_link(b))->cfg.s[0].regs;
     ck_assert_uint_eq(regfile_read(regs, 0x10), 0x3c);
     ck_assert_uint_ne(regfile_read(regs, 0x11), 0xc3);
     assert_positions_clean(&r);

@@ -89,7 +89,7 @@ static void write_expect(struct corner_run *c, unsigned addr, const uint8_t *byt
     ck_assert_msg(err == BISS_CD_OK, "%s: writing %u bytes at 0x%02x: %s", c->name, n, addr,
                   biss_cd_strerror(err));
     ck_assert_uint_eq(cd.result.good_bytes, n);
-    const regfile *regs = &bench_link(c->r.b)->biss.cfg.s[0].regs;
+    const regfile *regs = &link_biss(bench_link(c->r.b))->cfg.s[0].regs;
     for (unsigned i = 0; i < n; i++) {
         ck_assert_msg(regfile_read(regs, (uint8_t)(addr + i)) == bytes[i],
                       "%s: the slave stored 0x%02x at 0x%02x, not 0x%02x", c->name,

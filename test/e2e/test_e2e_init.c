@@ -23,7 +23,7 @@ START_TEST(test_sl_stuck_low_brought_back_by_init) {
     link_model *l = bench_link(b);
     struct pru_core *core = bench_core(b);
     sim_ps t = pru_time_ps(core);
-    biss_slave_lose_sync(&l->biss, t);
+    biss_slave_lose_sync(link_biss(l), t);
     fw_check_restart(&r.fc, UINT64_MAX);
     /* the flags of every publication, until valid frames come again */
     uint32_t flags_seen = 0;
@@ -38,7 +38,7 @@ START_TEST(test_sl_stuck_low_brought_back_by_init) {
     ck_assert_msg(r.fc.frames >= 20, "no valid frames after SL went low (flags 0x%x)", flags_seen);
     ck_assert(flags_seen & BISS_RF_SL_INIT);
     ck_assert(flags_seen & BISS_RF_TRAINING);
-    ck_assert(!l->biss.lost);
+    ck_assert(!link_biss(l)->lost);
     ck_assert_uint_eq(r.fc.mismatches, 0);
     ck_assert_uint_eq(bench_fw_status(b).state, BISS_STATE_RUNNING);
     ck_assert_int_eq(bench_stats(b)->half_min_ps, (int64_t)half * PRU_PS_PER_CYCLE);

@@ -208,8 +208,8 @@ START_TEST(strict_control_frames) {
     ck_assert_int_eq(run_cd(&r, &prog, &cd), BISS_CD_OK);
     ck_assert_uint_eq(cd.result.ida, 0x03);
     link_model *l = bench_link(b);
-    ck_assert_int_eq(l->biss.ctrl[1].last_cmd, 3);
-    ck_assert_int_eq(l->biss.ctrl[2].last_cmd, 3);
+    ck_assert_int_eq(link_biss(l)->ctrl[1].last_cmd, 3);
+    ck_assert_int_eq(link_biss(l)->ctrl[2].last_cmd, 3);
     ck_assert_uint_eq(r.fc.mismatches, 0);
     ck_assert_uint_eq(r.fc.crc_errors, 0);
     ck_assert_int_eq(bench_stats(b)->half_min_ps, (int64_t)h[_i] * PRU_PS_PER_CYCLE);

@@ -131,7 +131,7 @@ static biss_t *emu(enum biss_trigger t) {
 }
 
 static regfile *slave_regs(biss_t *h) {
-    return bench_link(biss_emu_bench(h))->biss.ctrl[0].regs;
+    return link_biss(bench_link(biss_emu_bench(h)))->ctrl[0].regs;
 }
 
 START_TEST(test_emu_register_read) {
@@ -202,7 +202,7 @@ START_TEST(test_emu_command) {
     int rc = biss_command(h, 0x01, 0, false, &ida);
     ck_assert_msg(rc == BISS_OK, "%s", biss_strerror(rc));
     ck_assert_uint_eq(ida, 0x01);
-    const biss_ctrl *ctrl = &bench_link(biss_emu_bench(h))->biss.ctrl[0];
+    const biss_ctrl *ctrl = &link_biss(bench_link(biss_emu_bench(h)))->ctrl[0];
     ck_assert_int_eq(ctrl->last_cmd, 0);
     ck_assert_int_eq(biss_command(h, 0x01, 4, false, &ida), BISS_E_INVAL);
     /* IDs 0 and 1, only 0 present: executed and reported after the fact,

@@ -65,7 +65,7 @@ static void assert_starts_after(const struct biss_sample *s, sim_ps start_ps) {
 static const biss_frame_record *sent_for(biss_t *h, const struct biss_sample *s) {
     link_model *l = bench_link(biss_emu_bench(h));
     ck_assert_uint_ge(s->frame, 1);
-    const biss_frame_record *rec = biss_slave_record(&l->biss, s->frame - 1);
+    const biss_frame_record *rec = biss_slave_record(link_biss(l), s->frame - 1);
     ck_assert_msg(rec != NULL, "no slave record for frame %u (%llu recorded)", s->frame,
                   (unsigned long long)link_frames(l));
     struct biss_config c;
@@ -389,7 +389,7 @@ static void ssi_run(const char *scenario_file, bool gray) {
         after = s[i].frame;
     }
     ck_assert_int_eq(biss_run_ms(h, 1), BISS_OK);
-    const ssi_slave *m = &bench_link(biss_emu_bench(h))->ssi;
+    const ssi_slave *m = link_ssi(bench_link(biss_emu_bench(h)));
     for (unsigned i = 0; i < 20; i++) {
         ck_assert_msg(s[i].valid && !s[i].training, "frame %u flags 0x%x", s[i].frame, s[i].flags);
         const ssi_frame_record *rec = ssi_slave_record(m, s[i].frame - 1);

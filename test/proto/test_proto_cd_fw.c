@@ -149,17 +149,17 @@ START_TEST(fw_commands) {
     ck_assert_int_eq(biss_cd_build_command(&p, 0, 2, false), BISS_CD_OK);
     ck_assert_int_eq(rig_run(&r, &p, 0, &res), BISS_CD_OK);
     ck_assert_uint_eq(res.ida, 0);
-    ck_assert_int_eq(bench_link(r.run.b)->biss.ctrl[0].last_cmd, 2);
+    ck_assert_int_eq(link_biss(bench_link(r.run.b))->ctrl[0].last_cmd, 2);
     ck_assert_int_eq(biss_cd_build_command(&p, 0x01, 1, false), BISS_CD_OK); /* ID 0 */
     ck_assert_int_eq(rig_run(&r, &p, 0, &res), BISS_CD_OK);
     ck_assert_uint_eq(res.ida, 0x01);
-    ck_assert_int_eq(bench_link(r.run.b)->biss.ctrl[0].last_cmd, 1);
+    ck_assert_int_eq(link_biss(bench_link(r.run.b))->ctrl[0].last_cmd, 1);
     ck_assert_int_eq(biss_cd_build_command(&p, 0x08, 3, false), BISS_CD_OK); /* ID 3: none */
     ck_assert_int_eq(rig_run(&r, &p, 0, &res), BISS_CD_E_IDA);
     ck_assert_uint_eq(res.ida, 0);
     /* IDs 0 and 3 with the IDA test: ID 3 does not answer, so the firmware
      * sends P inverted and slave 0, addressed, drops the command */
-    const biss_ctrl *ctrl = &bench_link(r.run.b)->biss.ctrl[0];
+    const biss_ctrl *ctrl = &link_biss(bench_link(r.run.b))->ctrl[0];
     ck_assert_int_eq(biss_cd_build_command(&p, 0x09, 2, true), BISS_CD_OK);
     ck_assert_int_eq(rig_run(&r, &p, 0, &res), BISS_CD_E_WITHHELD);
     ck_assert_uint_eq(res.ida, 0x01);
@@ -183,7 +183,7 @@ START_TEST(fw_ida_test_either_execute_bit) {
     unsigned ex = (unsigned)_i;
     fw_rig r;
     rig_start(&r, 0);
-    biss_ctrl *ctrl = &bench_link(r.run.b)->biss.ctrl[0];
+    biss_ctrl *ctrl = &link_biss(bench_link(r.run.b))->ctrl[0];
     ck_assert_uint_eq(ctrl->cmd_stop, BISS_CD_EX_DEFAULT);
     ctrl->cmd_stop = (uint8_t)ex;
     static biss_cd_prog p;

@@ -95,7 +95,7 @@ static int run_frames(const char *profile, double cable_m, sim_ps h, int frames,
         sim_ps rt;
         clock_frame(l, t, h, 30, bits, &rt);
         link_sl(l, t + 100 * US);
-        const biss_frame_record *rec = biss_slave_record(&l->biss, (uint64_t)f);
+        const biss_frame_record *rec = biss_slave_record(link_biss(l), (uint64_t)f);
         uint64_t pos;
         if (rec && decode12(bits, 30, &pos) == 0) {
             if (pos == rec->s[0].position) {

@@ -99,7 +99,9 @@ START_TEST(ad38_chain) {
     ck_assert(b->s[0].no_control && !b->s[1].no_control && !b->s[2].no_control);
     /* two answering slaves with one ID are refused */
     b->s[0].no_control = false;
-    ck_assert_ptr_nonnull(biss_chain_cfg_check(b));
+    char err[200];
+    ck_assert_int_eq(biss_chain_cfg_check(b, err, sizeof err), -1);
+    ck_assert_str_eq(err, "slaves[1].id: 1 is slaves[0]'s id too");
 }
 END_TEST
 
@@ -291,7 +293,7 @@ START_TEST(json_ssi_scenario) {
                                         "true, \"monoflop_ns\": 30000}}",
                                         &sc, err, sizeof err),
                      0);
-    ck_assert_int_eq(sc.protocol, SCENARIO_SSI);
+    ck_assert_ptr_eq(sc.model, &slave_model_ssi);
     ck_assert_uint_eq(sc.ssi.bits, 25);
     ck_assert(sc.ssi.gray);
     ck_assert_int_eq(sc.ssi.monoflop_ps, 30 * SIM_PS_PER_US);

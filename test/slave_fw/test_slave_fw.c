@@ -72,7 +72,9 @@ static void expect_words(struct rig *r) {
         }
         for (unsigned i = 0; i < r->chain.n; i++) {
             unsigned n = biss_slave_cfg_data_bits(&r->chain.s[i]);
-            uint64_t want = fw_check_sent_word(&r->chain.s[i], &m->s[i]);
+            struct biss_proto_word w = bench_fw_word(&r->chain.s[i]);
+            uint64_t want = biss_proto_word_compose(&w, m->s[i].position, m->s[i].nE > 0,
+                                                    m->s[i].nW > 0, m->s[i].lc);
             uint64_t got = r->frames[k].rec.word[i] >> (64 - n);
             ck_assert_msg(got == want, "frame %u slave %u: word %llx, the model sent %llx", k, i,
                           (unsigned long long)got, (unsigned long long)want);
@@ -141,9 +143,12 @@ static biss_chain_cfg chain8(void) {
         c.s[i].has_warn = s[i].w;
         c.s[i].pos0 = 0x0123456789abcdefull * (i + 1);
         c.s[i].speed_cps = 0;
-        c.s[i].counts_per_frame = (int64_t)(0x0111111111111111ull * (i + 1)) - 5;
+        c.s[i].counts_per_frame = (int64_t)(0x0001111111111111ull * (i + 1)) - 5;
     }
-    ck_assert_ptr_null(biss_chain_cfg_check(&c));
+    {
+        char err[160];
+        ck_assert_msg(biss_chain_cfg_check(&c, err, sizeof err) == 0, "%s", err);
+    }
     return c;
 }
 
@@ -646,7 +651,10 @@ START_TEST(commands) {
     biss_slave_cfg_default(&c.s[3], 5);
     c.s[3].cmd_exec = 0;
     c.s[3].counts_per_frame = 1;
-    ck_assert_ptr_null(biss_chain_cfg_check(&c));
+    {
+        char err[160];
+        ck_assert_msg(biss_chain_cfg_check(&c, err, sizeof err) == 0, "%s", err);
+    }
     struct rig r;
     rig_open(&r, &c, NULL);
     struct cdm_seq s = {.n = 0};
@@ -762,7 +770,10 @@ START_TEST(random_cdm_chain) {
     c.s[4].idl_at_cts = true;
     c.s[5].cmd_exec = 0;
     c.s[6].reg_proc_frames = 1;
-    ck_assert_ptr_null(biss_chain_cfg_check(&c));
+    {
+        char err[160];
+        ck_assert_msg(biss_chain_cfg_check(&c, err, sizeof err) == 0, "%s", err);
+    }
     struct rig r;
     rig_open(&r, &c, NULL);
     rnd_state = 1; /* (the same script however the tests run) */
