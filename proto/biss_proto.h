@@ -19,6 +19,7 @@
 
 #include "biss/biss_rules.h"
 #include "biss/biss_shm_struct.h"
+#include "biss/biss_slave_shm_struct.h"
 #include "biss/biss_types.h"
 #include "biss_cd.h"
 
@@ -239,6 +240,41 @@ int biss_proto_cd_answer(const struct biss_proto_io *io, biss_cd_answer *a);
 /* Whether the firmware has ended command cmd (1, 0 not yet, or an error);
  * with 1 the answer is read into *a. */
 int biss_proto_cd_ended(const struct biss_proto_io *io, uint32_t cmd, biss_cd_answer *a);
+
+/* ---- the encoder firmware (biss_encoder.c; include/biss/biss_slave_shm.h) ---- */
+
+/* A checked configuration (biss_encoder_config_check) into the firmware's
+ * block (out->seq left 0), the live nE/nW bits included. */
+void biss_encoder_encode(const struct biss_encoder_config *c, struct biss_slv_config *out);
+/* A slave's live nE/nW bits (BISS_SLV_EW_*). */
+uint8_t biss_encoder_ew_bits(const struct biss_encoder_slave *s);
+/* ST_CFG_ERROR as a return value: 0, or BISS_E_ENC_REFUSED. */
+int biss_encoder_fw_error(uint32_t cfgerr);
+/* "BISS_SLV_CFGERR_TABLE: ..." for a code the firmware reports. */
+const char *biss_encoder_cfg_error_text(uint32_t code);
+/* The block (all but its seq), then CFG_SEQ = seq. */
+int biss_proto_encoder_put(const struct biss_proto_io *io, const struct biss_slv_config *blk,
+                           uint32_t seq);
+int biss_proto_encoder_seq_get(const struct biss_proto_io *io, uint32_t *seq);
+/* LIVE_EW: every slave's nE/nW bits, taken from the next frame on. */
+int biss_proto_encoder_ew_put(const struct biss_proto_io *io,
+                              const uint8_t live[BISS_SLV_MAX_SLAVES]);
+/* The status block; the next frame's record. */
+int biss_proto_encoder_status(const struct biss_proto_io *io, struct biss_slv_status *st);
+int biss_proto_encoder_rec(const struct biss_proto_io *io, struct biss_slv_frame_rec *rec);
+/* A slave's register file (0x40..0x7F, the read-only and write-protected
+ * bits); a bank of the pool (0x00..0x3F of the slave whose bank it is);
+ * n positions into the table from entry start. BISS_E_INVAL out of range. */
+int biss_proto_encoder_regs_put(const struct biss_proto_io *io, unsigned slave,
+                                const struct biss_slv_regs *r);
+int biss_proto_encoder_regs_get(const struct biss_proto_io *io, unsigned slave,
+                                struct biss_slv_regs *r);
+int biss_proto_encoder_bank_put(const struct biss_proto_io *io, unsigned bank,
+                                const uint8_t bytes[BISS_SLV_BANK_SIZE]);
+int biss_proto_encoder_bank_get(const struct biss_proto_io *io, unsigned bank,
+                                uint8_t bytes[BISS_SLV_BANK_SIZE]);
+int biss_proto_encoder_table_put(const struct biss_proto_io *io, unsigned start,
+                                 const uint64_t *pos, unsigned n);
 
 /* The low `bits` bits set (all 64 for bits >= 64). */
 static inline uint64_t biss_low_mask(unsigned bits) {

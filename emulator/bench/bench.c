@@ -31,6 +31,10 @@ struct bench {
     struct pru_icss *icss;
     bool owns_icss;
     struct bench *peer;
+    /* bench_new_loop: PRU1 is the slave end, MA on its R31 bit enc_ma_bit,
+     * SL on its R30 bit 0 (NULL: a slave model) */
+    struct pru_core *encoder;
+    unsigned enc_ma_bit;
 
     uint64_t prev_frame; /* frame number + 1 of the previous in-frame edge, 0 none */
     int64_t prev_t;
@@ -323,6 +327,31 @@ static void pins_outputs(void *ctx, int64_t t, uint32_t r30) {
     link_ma(&b->link, t, level);
 }
 
+/* PRU1 as the slave end (bench_new_loop): MA at the slave pin on its R31
+ * bit enc_ma_bit, its R30 bit 0 the SL pin. */
+static uint32_t enc_inputs_at(void *ctx, int64_t t) {
+    struct bench *b = ctx;
+    sim_ps next;
+    return (uint32_t)link_ma_at_slave(&b->link, t, &next) << b->enc_ma_bit;
+}
+
+static int64_t enc_next_change(void *ctx, int64_t t) {
+    struct bench *b = ctx;
+    sim_ps next;
+    link_ma_at_slave(&b->link, t, &next);
+    return next;
+}
+
+static uint32_t enc_inputs_run(void *ctx, int64_t t, int64_t *next) {
+    struct bench *b = ctx;
+    return (uint32_t)link_ma_at_slave(&b->link, t, next) << b->enc_ma_bit;
+}
+
+static void enc_outputs(void *ctx, int64_t t, uint32_t r30) {
+    struct bench *b = ctx;
+    link_sl_at_slave(&b->link, t, (int)(r30 & 1u));
+}
+
 /* ---- life cycle --------------------------------------------------------- */
 
 /* A bench on core (a core alone when icss is NULL); it owns what it is
@@ -419,6 +448,47 @@ int bench_new_pair(const struct bench_config cfg[2], struct bench *b[2], char *e
     b[0]->owns_icss = true;
     b[0]->peer = b[1];
     b[1]->peer = b[0];
+    return 0;
+}
+
+struct bench *bench_new_loop(const struct bench_config *cfg, char *err, size_t errlen) {
+    if (cfg->link.model != &slave_model_biss) {
+        snprintf(err, errlen,
+                 "the encoder firmware is a BiSS-C slave: not a scenario of another protocol");
+        return NULL;
+    }
+    struct pru_icss *icss = pru_icss_new(cfg->soc, &cfg->pru);
+    if (!icss) {
+        snprintf(err, errlen, "out of memory");
+        return NULL;
+    }
+    struct bench *b = bench_on(cfg, pru_icss_core(icss, 0), icss, err, errlen);
+    if (!b) {
+        pru_icss_free(icss);
+        return NULL;
+    }
+    b->owns_icss = true;
+    b->encoder = pru_icss_core(icss, 1);
+    b->enc_ma_bit = 1;
+    link_set_external_slave(&b->link, 1);
+    struct pru_pins pins = {.ctx = b,
+                            .inputs_at = enc_inputs_at,
+                            .next_input_change = enc_next_change,
+                            .outputs_changed = enc_outputs,
+                            .inputs_run = enc_inputs_run};
+    pru_set_pins(b->encoder, &pins);
+    return b;
+}
+
+struct pru_core *bench_encoder_core(struct bench *b) {
+    return b->encoder;
+}
+
+int bench_set_encoder_ma_bit(struct bench *b, unsigned bit) {
+    if (!b->encoder || bit > 29) {
+        return -1;
+    }
+    b->enc_ma_bit = bit;
     return 0;
 }
 
@@ -541,7 +611,8 @@ static void bench_caught_up(struct bench *b) {
         marks_scan(b);
     }
     if (forget) {
-        link_forget_pins_before(&b->link, 1u << LINK_SL_MASTER, now - SIM_PS_PER_MS);
+        unsigned kept = 1u << LINK_SL_MASTER | (b->encoder ? 1u << LINK_MA_SLAVE : 0);
+        link_forget_pins_before(&b->link, kept, now - SIM_PS_PER_MS);
         b->forgot_at = now;
     }
     /* MA at both ends and SL at the slave keep no history (bench_on) */

@@ -98,6 +98,22 @@ void bench_free(struct bench *b);
  * a message in err (and b[] NULL). */
 int bench_new_pair(const struct bench_config cfg[2], struct bench *b[2], char *err, size_t errlen);
 
+/* The master's PRU0 and, as the slave end of its line, the BiSS-C
+ * encoder firmware (pru_slave/) on PRU1 of the same PRU-ICSS: MA at the
+ * slave pin on one of PRU1's R31 bits (1 unless set), its R30 bit 0 the SL pin
+ * (the one-board loop of docs/hardware.md, through the line model). The
+ * scenario's slave model runs beside the firmware on the same MA: the
+ * bench numbers and checks frames by it, and compares its SL with the
+ * firmware's at every rising MA edge at the slave pin
+ * (link_set_external_slave). cfg->pru_index is ignored. Load and start the
+ * encoder (bench_encoder_core, slave_fw.h) before the master. */
+struct bench *bench_new_loop(const struct bench_config *cfg, char *err, size_t errlen);
+/* The encoder's core (PRU1) of a bench_new_loop bench, else NULL. */
+struct pru_core *bench_encoder_core(struct bench *b);
+/* The R31 bit MA comes in on at PRU1 (the image's BISS_SLV_ST_MA_BIT):
+ * 0, or -1 for no encoder or a bit over 29. */
+int bench_set_encoder_ma_bit(struct bench *b, unsigned bit);
+
 /* Records MA_master, SL_master, MA_slave, SL_slave and frame (scope
  * "bench") from now on, with the timescale unit_ps (1, 10, 100 or 1000 ps:
  * vcd.h says how edges keep their order). The frame wire is high from a

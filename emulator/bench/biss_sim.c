@@ -18,6 +18,7 @@
 #include "default_image.h"
 #include "scenario_json.h"
 #include "sim_image.h"
+#include "sim_encoder.h"
 #include "sim_pair.h"
 #include "sim_report.h"
 
@@ -39,6 +40,7 @@
 #define BISS_BUILD_DIR           "/nonexistent"
 #define BISS_SIM_FIRMWARE        "biss_master.bin"
 #define BISS_SIM_FIRMWARE_PRU1   "biss_master_pru1.bin"
+#define BISS_SIM_ENCODER_PRU1    "biss_encoder_pru1.bin"
 #define BISS_BIN_TO_FIRMWARE_DIR "../../lib/firmware"
 #define BISS_FIRMWARE_DIR        "/lib/firmware"
 #endif
@@ -57,6 +59,15 @@ static const char *own_image(unsigned pru) {
     return default_image(&d[pru], buf[pru], sizeof buf[pru]);
 }
 
+/* The encoder firmware's PRU1 image (pru_slave/), likewise. */
+static const char *own_encoder_image(void) {
+    static char buf[PATH_MAX + 64];
+    const struct default_image d = {BISS_BUILD_DIR, BISS_SIM_ENCODER_PRU1,
+                                    BISS_BIN_TO_FIRMWARE_DIR "/biss_encoder_pru1.bin",
+                                    BISS_FIRMWARE_DIR "/biss_encoder_pru1.bin"};
+    return default_image(&d, buf, sizeof buf);
+}
+
 struct options {
     const char *profile;
     const char *scenario_file;
@@ -69,6 +80,8 @@ struct options {
     const char *image;         /* any image, run as is */
     const char *firmware;      /* the BiSS master firmware (default: this tree's) */
     const char *pru1_firmware; /* PRU1's, with a second encoder */
+    int encoder;               /* the encoder firmware on PRU1 as the slave end */
+    const char *encoder_image; /* ... this image (default: this tree's) */
     const char *soc;
     unsigned pru; /* the PRU of the PRU-ICSS that runs the image */
     /* a second encoder on PRU1's line (sim_pair.h), and the IEP period */
@@ -142,6 +155,14 @@ static void usage(FILE *f) {
                "                     iep (one frame per IEP period)\n"
                "  --iep-period-ns NS the IEP period, with --trigger iep or a second encoder\n"
                "                     (default: twice the longer frame, in whole us)\n"
+               "  --encoder[=FILE]   the slave end is the encoder firmware (pru_slave/) on\n"
+               "                     PRU1 of the same PRU-ICSS (default: this build's\n"
+               "                     biss_encoder_pru1.bin, or the installed one), the\n"
+               "                     scenario's chain loaded into it; the slave model runs\n"
+               "                     beside it on the same MA: the master's frames are\n"
+               "                     checked against the model's, and the firmware's SL\n"
+               "                     against the model's at every rising MA edge (a chain\n"
+               "                     that moves with time moves by counts per frame)\n"
                "  --pru1-firmware FILE\n"
                "                     with a second encoder: PRU1's image (default: this\n"
                "                     build's or the installed PRU1 image, or --firmware's\n"
@@ -499,6 +520,9 @@ static int parse_args(int argc, char **argv, struct options *o) {
             }
         } else if (!strcmp(a, "--strict-log")) {
             o->strict_log = 1;
+        } else if (!strcmp(a, "--encoder") || !strncmp(a, "--encoder=", 10)) {
+            o->encoder = 1;
+            o->encoder_image = a[9] ? a + 10 : NULL;
         } else if (!takes_value(a)) {
             return usage_error("unknown option '%s'", a);
         } else if (i + 1 >= argc) {
@@ -771,6 +795,44 @@ static int run_pair(const struct options *o, const struct bench_config *cfg, uns
     return rc;
 }
 
+/* A bench with the encoder firmware on PRU1 at the slave end (--encoder):
+ * its chain first moved by counts per frame at this rate's frame. */
+static struct bench *new_loop(struct bench_config *cfg, unsigned half, char *err, size_t errlen) {
+    struct bench *b = bench_new_loop(cfg, err, errlen);
+    if (!b) {
+        return NULL;
+    }
+    biss_chain_cfg c = cfg->link.biss;
+    slave_fw_chain(&c, sim_clock_frame_ps(b, half), stderr);
+    if (memcmp(&c, &cfg->link.biss, sizeof c) == 0) {
+        return b;
+    }
+    bench_free(b);
+    cfg->link.biss = c;
+    return bench_new_loop(cfg, err, errlen);
+}
+
+/* The encoder image loaded on PRU1 and the chain into it. */
+static int start_encoder(const struct options *o, struct bench *b, const struct bench_config *cfg,
+                         struct sim_encoder *e) {
+    char err[512];
+    struct sim_defines d = {.n = 0};
+    pru_num_define(1, &d);
+    snprintf(d.text[d.n++], sizeof d.text[0], "MA_IN_BIT=1");
+    const char *path = o->encoder_image ? o->encoder_image : own_encoder_image();
+    struct pruasm_image img;
+    if (sim_load_image(path, &d, &img, err, sizeof err) != 0) {
+        return die("--encoder: %s", err);
+    }
+    int rc = sim_encoder_start(e, b, img.words, img.nwords * 4, &cfg->link.biss, err, sizeof err);
+    pruasm_image_free(&img);
+    if (!rc && o->core.strict) {
+        /* clocked by its input: strict's scope from MA's edges (MA_IN_BIT) */
+        pru_strict_inputs(bench_encoder_core(b), 1u << 1);
+    }
+    return rc ? die("--encoder: %s (%s)", err, path) : 0;
+}
+
 /* The scenario's safety checks and the command line's, against the
  * chain's layout: a specific message for each bad one. */
 static int safety_checks(const struct options *o, struct biss_config *c) {
@@ -805,11 +867,23 @@ static int run(const struct options *o) {
         return EXIT_ERROR;
     }
     if (o->pru1_profile || o->pru1_scenario) {
+        if (o->encoder) {
+            return die("--encoder runs on PRU1: not with a second encoder");
+        }
         return run_pair(o, &cfg, half);
     }
-    struct bench *b = bench_new(&cfg, err, sizeof(err));
+    if (o->encoder && (o->image || o->pru)) {
+        return die("--encoder is PRU1's: the master firmware on PRU0 (not --image, --pru 1)");
+    }
+    struct bench *b =
+        o->encoder ? new_loop(&cfg, half, err, sizeof err) : bench_new(&cfg, err, sizeof(err));
     if (!b) {
         return die("%s", err);
+    }
+    struct sim_encoder enc = {0};
+    if (o->encoder && start_encoder(o, b, &cfg, &enc) != 0) {
+        bench_free(b);
+        return 1;
     }
     int fw_mode = o->image == NULL;
     struct sim_defines defs = {.n = 0};
@@ -945,9 +1019,16 @@ static int run(const struct options *o) {
         rc = die("error writing the VCD: %s", bench_vcd_error(b));
     }
     if (o->json) {
-        sim_print_json(&res);
+        cJSON *j = sim_json(&res);
+        if (o->encoder && sim_encoder_report(&enc, j) && rc == 0) {
+            rc = 5;
+        }
+        sim_print_json_object(j);
     } else {
         sim_print_text(&res);
+        if (o->encoder && sim_encoder_report(&enc, NULL) && rc == 0) {
+            rc = 5;
+        }
         if (o->vcd) {
             printf("VCD written to %s\n", o->vcd);
         }

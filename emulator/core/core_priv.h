@@ -239,7 +239,9 @@ struct ff_probe {
  * clocked one. */
 #define STRICT_PENDING 64u
 struct strict_state {
-    int64_t last_edge; /* issue cycle of the last R30 change, INT64_MIN: none */
+    int64_t last_edge;    /* issue cycle of the last R30 change, INT64_MIN: none */
+    uint32_t inputs;      /* R31 bits whose changes are edges too (pru_strict_inputs) */
+    uint32_t inputs_seen; /* their last levels an instruction read */
     struct pru_strict_hit pending[STRICT_PENDING];
     unsigned n_pending;
     uint64_t pending_over; /* violations beyond `pending` in this window */

@@ -471,8 +471,13 @@ static void exec_checked(struct pru_core *c, const struct pd *d, int64_t limit) 
         exec_traced(c, d, limit);
     else
         exec_one(c, d, limit);
-    if (c->r30_pins != r30 && c->p.strict && !c->p.strict_everywhere)
-        strict_edge(c, issued);
+    if (c->p.strict && !c->p.strict_everywhere) {
+        uint32_t in = c->r[31] & c->st.inputs; /* as the instruction read R31, if it did */
+        if (c->r30_pins != r30 || in != c->st.inputs_seen) {
+            c->st.inputs_seen = in;
+            strict_edge(c, issued);
+        }
+    }
 }
 
 /* PD_MVI_LD as exec_mvi() does it: the pointer, R31 refreshed, the bytes,

@@ -165,6 +165,12 @@ struct pru_strict_hit {
 size_t pru_strict_hits(const struct pru_core *c, const struct pru_strict_hit **hits,
                        uint64_t *lost);
 void pru_strict_clear(struct pru_core *c);
+/* Input edges as clocked-scope edges: a change of the R31 bits in mask, as
+ * an instruction reads them, counts as an R30 change does (TIMING.md,
+ * "Strict mode"): for a program clocked by its inputs, such as the encoder
+ * firmware (pru_slave/), whose outputs may stand still for many of its
+ * input's periods. 0 (the default): R30 changes only. Per core. */
+void pru_strict_inputs(struct pru_core *c, uint32_t mask);
 /* Contention so far: PRU accesses that met a host access, stall cycles added. */
 void pru_contend_stats(const struct pru_core *c, uint64_t *collisions, uint64_t *stall_cycles);
 /* Scratch-pad collisions this core stalled for (only PRU1 of a PRU-ICSS

@@ -71,6 +71,7 @@ int pru_strict_parse(const char *list, unsigned *rules, const char **bad) {
 
 void strict_reset(struct pru_core *c) {
     c->st.last_edge = INT64_MIN;
+    c->st.inputs_seen = 0;
     c->st.n_pending = 0;
     c->st.pending_over = 0;
 }
@@ -202,6 +203,11 @@ bool strict_before(struct pru_core *c, const struct pd *d) {
         }
     }
     return false;
+}
+
+void pru_strict_inputs(struct pru_core *c, uint32_t mask) {
+    c->st.inputs = mask;
+    c->st.inputs_seen = c->r[31] & mask;
 }
 
 void strict_edge(struct pru_core *c, int64_t cycle) {

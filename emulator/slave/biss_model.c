@@ -46,6 +46,8 @@ static const sf_field slave_fields[] = {
     S("crc_start", SF_U32, crc_start, 0, 0xffff),
     S("position", SF_U64, pos0, 0, SF_U64_MAX),
     SF_FIELD("speed_cps", SF_DOUBLE, biss_slave_cfg, speed_cps, 1, -SF_MAX_SPEED, SF_MAX_SPEED),
+    SF_FIELD("counts_per_frame", SF_I64, biss_slave_cfg, counts_per_frame, 0, -SF_MAX_STEP,
+             SF_MAX_STEP),
     S("register_processing_frames", SF_UNSIGNED, reg_proc_frames, 0, 1000),
     S("command_execute_bit", SF_U8, cmd_exec, 0, 1),
     S("life_counter_fault_frame", SF_UNSIGNED, lc_fault_frame, 1, SF_MAX_FRAME_NO),

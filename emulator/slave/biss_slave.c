@@ -95,7 +95,9 @@ static uint64_t mask_bits(unsigned n) {
 
 uint64_t biss_slave_position_at(const biss_slave *b, unsigned i, sim_ps t) {
     const biss_slave_cfg *s = &b->cfg.s[i];
-    return slave_position_at(s->pos0, s->speed_cps, s->pos_bits, t);
+    uint64_t stepped = (uint64_t)s->counts_per_frame * b->latches; /* modulo 2^64 */
+    return (slave_position_at(s->pos0, s->speed_cps, s->pos_bits, t) + stepped) &
+           mask_bits(s->pos_bits);
 }
 
 /* ---- SL output ---- */
@@ -301,6 +303,7 @@ static void on_rise(biss_slave *b, sim_ps t) {
         for (unsigned i = 0; i < b->cfg.n; i++) {
             build_slave_data(b, i, t);
         }
+        b->latches++;
         return;
     }
     if (b->rises == 2) {

@@ -59,6 +59,10 @@ typedef struct {
     uint32_t crc_start;
     uint64_t pos0;            /* position at time 0 */
     double speed_cps;         /* counts per second, may be negative */
+    int64_t counts_per_frame; /* added at every latch (first rising edge) after the
+                                 first, may be negative: the motion of an encoder
+                                 simulator (pru_slave/), whose positions step with the
+                                 frames, not with time */
     bool error, warning;      /* drive nE / nW low (active) */
     unsigned reg_proc_frames; /* late S in register access */
     uint8_t cmd_exec;         /* the bit after IDA that executes a command (biss_ctrl cmd_stop) */
@@ -160,6 +164,7 @@ typedef struct {
     bool lost;               /* SL held low since lost_at (biss_slave_lose_sync) */
     sim_ps lost_at;
 
+    uint64_t latches; /* frames whose data were latched (a first rising edge) */
     biss_frame_fn on_frame;
     void *on_frame_ctx;
     biss_frame_record cur;
@@ -192,7 +197,8 @@ void biss_slave_on_frame(biss_slave *b, biss_frame_fn fn, void *ctx);
 /* Record of closed frame n, if still in the ring; NULL otherwise. */
 const biss_frame_record *biss_slave_record(const biss_slave *b, uint64_t n);
 
-/* Position slave i would latch at time t. */
+/* Position slave i would latch at time t (its counts_per_frame motion as of
+ * the next latch included). */
 uint64_t biss_slave_position_at(const biss_slave *b, unsigned i, sim_ps t);
 
 /* The last slave loses its frame (a disconnect, a broken frame): SL goes

@@ -30,12 +30,26 @@ static __attribute__((noinline)) void ma_slave_general(link_model *l, sim_ps t, 
     observe(l, LINK_MA_SLAVE, t, level);
 }
 
+/* An external slave: at a rising MA edge at the slave pin, its SL and the
+ * model's, each settled on the bit the last rise asked for. */
+static __attribute__((noinline)) void compare_external(link_model *l, sim_ps t) {
+    l->ext_compared++;
+    if (waveform_last_level(&l->sl_slave) != waveform_last_level(&l->sl_model)) {
+        if (l->ext_differ++ == 0) {
+            l->ext_first_differ = t;
+        }
+    }
+}
+
 /* A BiSS frame's clock edges take the slave's quick step, called directly
  * rather than through the model's table, with calls in tail position only
  * (no saved registers); the rest goes out of line. */
 static void at_ma_slave(void *ctx, sim_ps t, int level) {
     link_model *l = ctx;
     record(l, LINK_MA_SLAVE, &l->ma_slave, t, level);
+    if (l->external && level) {
+        compare_external(l, t);
+    }
     if (l->biss_quick && biss_slave_ma_edge_quick((biss_slave *)l->slave, t, level)) {
         observe(l, LINK_MA_SLAVE, t, level);
         return;
@@ -45,6 +59,10 @@ static void at_ma_slave(void *ctx, sim_ps t, int level) {
 
 static void at_sl_slave(void *ctx, sim_ps t, int level) {
     link_model *l = ctx;
+    if (l->external) { /* the model beside an external slave: its own record */
+        l->sl_model.initial = level ? 1 : 0;
+        return;
+    }
     record(l, LINK_SL_SLAVE, &l->sl_slave, t, level);
     line_dir_input(&l->sl_line, t, level);
     observe(l, LINK_SL_SLAVE, t, level);
@@ -108,6 +126,8 @@ int link_init(link_model *l, const scenario *sc, char *err, size_t errlen) {
     waveform_init(&l->ma_slave, 1);
     waveform_init(&l->sl_slave, 1);
     waveform_init(&l->sl_master, 1);
+    waveform_init(&l->sl_model, 1);
+    l->ext_first_differ = SIM_NEVER;
     l->history_pins = 0xfu;
     l->sl_reach_ps = sl_reach(&l->sc.sl_line);
     l->sl_reach_on = 1;
@@ -126,6 +146,7 @@ void link_free(link_model *l) {
     waveform_free(&l->ma_slave);
     waveform_free(&l->sl_slave);
     waveform_free(&l->sl_master);
+    waveform_free(&l->sl_model);
     eq_free(&l->q);
 }
 
@@ -198,6 +219,31 @@ void link_set_sl_reach(link_model *l, int on) {
 sim_ps link_next_sl_change(const link_model *l) {
     /* pending events are a handful: a scan, not a second queue */
     return sl_change_before(l, SIM_NEVER);
+}
+
+void link_set_external_slave(link_model *l, int on) {
+    l->external = on && l->model == &slave_model_biss;
+    if (l->external) {
+        l->history_pins |= 1u << LINK_MA_SLAVE;
+    }
+}
+
+int link_ma_at_slave(link_model *l, sim_ps t, sim_ps *next) {
+    advance(l, t);
+    sim_ps recorded;
+    int level = waveform_level_next(&l->ma_slave, t, &recorded);
+    sim_ps pending = eq_next_time(&l->q);
+    *next = recorded < pending ? recorded : pending;
+    return level;
+}
+
+void link_sl_at_slave(link_model *l, sim_ps t, int level) {
+    if (waveform_last_level(&l->sl_slave) == level) {
+        return;
+    }
+    record(l, LINK_SL_SLAVE, &l->sl_slave, t, level);
+    line_dir_input(&l->sl_line, t, level);
+    observe(l, LINK_SL_SLAVE, t, level);
 }
 
 void link_forget_pins_before(link_model *l, unsigned mask, sim_ps t) {

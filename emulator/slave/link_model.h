@@ -50,6 +50,14 @@ typedef struct {
      * (link_model.c at_ma_slave): the model the table names is this */
     bool biss_quick;
     line_dir ma_line, sl_line;
+    /* An external slave (link_set_external_slave): another core's pins at
+     * the slave end; the model then runs beside it on the same MA, its SL
+     * kept apart (sl_model) and compared with the external one's at every
+     * rising MA edge at the slave pin (the bit both have settled on). */
+    int external;
+    waveform sl_model;
+    uint64_t ext_compared, ext_differ; /* rising edges compared, SL levels that differed */
+    sim_ps ext_first_differ;           /* the first of them, SIM_NEVER none */
     /* the model's state in place, beside the lines, as the edges use them
      * together (every model's fits: slave_model_register) */
     slave_state_room own;
@@ -111,6 +119,22 @@ sim_ps link_next_sl_change(const link_model *l);
 
 /* Switches the fast path "sl-reach" of link_next_sl_change (on by default). */
 void link_set_sl_reach(link_model *l, int on);
+
+/* The slave end is another core (the BiSS-C encoder firmware on a PRU):
+ * MA at the slave pin is its input (link_ma_at_slave), its SL pin drives
+ * the SL line (link_sl_at_slave). The scenario's slave model still takes
+ * every MA edge, so the bench numbers and checks frames as usual, but its
+ * SL goes only to its own record (sl_model), compared with the external
+ * slave's at each rising MA edge at the slave pin: ext_compared,
+ * ext_differ. Call before any edge; BiSS-C only. MA at the slave pin then
+ * keeps its history (link_keep_history). */
+void link_set_external_slave(link_model *l, int on);
+/* MA at the slave pin at t (the queue run to t), and in *next the earliest
+ * time after t it may change unless MA at the master moves first. */
+int link_ma_at_slave(link_model *l, sim_ps t, sim_ps *next);
+/* The external slave's SL pin takes level at t (no earlier than anything
+ * the queue has run: a core's output after its inputs). */
+void link_sl_at_slave(link_model *l, sim_ps t, int level);
 
 /* Drops pin history before t (a long run keeps its memory bounded). */
 void link_forget_before(link_model *l, sim_ps t);

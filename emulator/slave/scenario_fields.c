@@ -199,6 +199,9 @@ void sf_store(const sf_field *f, void *obj, double v, uint64_t u) {
     case SF_U32:
         *(uint32_t *)p = (uint32_t)v;
         break;
+    case SF_I64:
+        *(int64_t *)p = (int64_t)v;
+        break;
     case SF_U64:
         *(uint64_t *)p = u;
         break;
@@ -221,6 +224,8 @@ static double load(const sf_field *f, const void *obj) {
         return *(const uint8_t *)p;
     case SF_U32:
         return *(const uint32_t *)p;
+    case SF_I64:
+        return (double)*(const int64_t *)p;
     default:
         return 0;
     }

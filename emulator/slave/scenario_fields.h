@@ -26,6 +26,7 @@ typedef enum {
     SF_UNSIGNED, /* unsigned, whole */
     SF_U8,       /* uint8_t, whole */
     SF_U32,      /* uint32_t, whole */
+    SF_I64,      /* int64_t, whole (within what a double holds exactly: lo, hi) */
     SF_U64,      /* uint64_t, whole, any value (0 .. 2^64 - 1) */
     SF_BOOL,     /* bool from true / false */
     SF_NOT,      /* bool from true / false, stored inverted */
@@ -128,6 +129,8 @@ void sf_format(double v, char *buf, size_t len);
 #define SF_U64_MAX   18446744073709551615.0
 /* Frame numbers as biss-sim counts them (1 = the first), in an unsigned. */
 #define SF_MAX_FRAME_NO 4294967295.0
+/* Counts a frame: every whole number a JSON number holds exactly. */
+#define SF_MAX_STEP 9007199254740991.0
 
 /* Field initialisers for the tables: F for a number (JSON unit `scale`,
  * range lo..hi), and the others by kind. */

@@ -495,3 +495,7 @@ int biss_open(const struct biss_open_params *p, biss_t **out) {
     static const struct biss_backends linux_only = {.linux_open = biss_linux_backend_open};
     return biss_open_with(p, &linux_only, out);
 }
+
+int biss_encoder_open(const struct biss_open_params *p, biss_encoder_t **out) {
+    return biss_encoder_open_with(p, biss_linux_backend_open, out);
+}

@@ -25,6 +25,7 @@ static const struct command table[] = {
     {"command", bissctl_command, true},
     {"probe", bissctl_probe, false}, /* configures its own capture layout */
     {"rates", NULL, false},          /* needs no target: bissctl_rates */
+    {"encoder", NULL, false},        /* its own handle: bissctl_encoder */
 };
 
 static const struct command *find(const char *name) {
@@ -146,6 +147,10 @@ int main(int argc, char **argv) {
         return BISSCTL_OK;
     }
     const struct command *cmd = find(o.command);
+    if (!cmd->run && strcmp(cmd->name, "encoder") == 0) {
+        default_target(&o);
+        return bissctl_encoder(&o);
+    }
     if (!cmd->run) {
         return bissctl_rates(&o);
     }

@@ -32,6 +32,7 @@ struct bissctl_opts {
     int nargs;
     bool help;
     bool attach_given;         /* --attach on the command line */
+    bool pru_given;            /* --pru on the command line (or in the file) */
     uint32_t slave_timeout_ns; /* --slave-timeout-ns: the slaves' shortest timeout, 0 unknown */
     double round_trip_ns;      /* --round-trip-ns (rates): a measured round trip, < 0 none */
     struct biss_config checks; /* --check-life, --check-pair: only their fields, added to
@@ -77,6 +78,8 @@ int bissctl_reg_read(biss_t *h, const struct bissctl_opts *o);
 int bissctl_reg_write(biss_t *h, const struct bissctl_opts *o);
 int bissctl_command(biss_t *h, const struct bissctl_opts *o);
 int bissctl_probe(biss_t *h, const struct bissctl_opts *o); /* bissctl_probe.c */
+/* encoder start|status|stop (bissctl_encoder.c): opens its own handle. */
+int bissctl_encoder(struct bissctl_opts *o);
 
 /* read --json (bissctl_json.c): one frame of the "frames" array (after the
  * opening, which the first prints), then the end with the safety counts. */

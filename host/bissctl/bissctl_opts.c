@@ -14,9 +14,9 @@
 #define BISS_FIRMWARE_DIR_TEXT "/lib/firmware"
 #endif
 
-static const char *const commands[] = {"info",      "read",    "stats", "run",
-                                       "trigger",   "start",   "stop",  "reg-read",
-                                       "reg-write", "command", "probe", "rates"};
+static const char *const commands[] = {"info",  "read",  "stats",    "run",       "trigger",
+                                       "start", "stop",  "reg-read", "reg-write", "command",
+                                       "probe", "rates", "encoder"};
 
 static const char common_help[] =
     "Target:\n"
@@ -172,6 +172,22 @@ static const char *command_help(const char *command) {
                "  with --freq the verdict on that rate (exit status 1 if refused). Needs\n"
                "  no target.\n";
     }
+    if (strcmp(command, "encoder") == 0) {
+        return "bissctl [options] encoder start CHAIN | status | ew SLAVE [error] [warning] | "
+               "stop\n"
+               "  The encoder firmware (a BiSS-C slave chain, pru_slave/README.md) on a PRU\n"
+               "  of the board, PRU1 unless --pru says otherwise: the other end of the\n"
+               "  one-board loop (docs/hardware.md, \"One board, both ends\"). start loads\n"
+               "  it (--firmware names another image; --loader as for the master), takes\n"
+               "  the chain CHAIN, a scenario file (JSON, emulator/slave/MODELS.md) or a\n"
+               "  profile name, with its register files, and leaves it running; a chain\n"
+               "  that moves with time moves by counts per frame (at a 50 us frame: give\n"
+               "  counts_per_frame in the scenario to choose). status prints what it did\n"
+               "  (frames, control communication); ew sends slave SLAVE's nE and nW\n"
+               "  active (error, warning) or inactive (not named) from the next frame;\n"
+               "  stop halts its PRU. Not on the emulator, where biss-sim --encoder runs\n"
+               "  the loop.\n";
+    }
     if (strcmp(command, "reg-write") == 0) {
         return "bissctl [options] reg-write [--id ID] ADDR BYTE...\n"
                "  Writes the bytes to ADDR, ADDR+1, ... of the slave with control-frame\n"
@@ -207,7 +223,9 @@ void bissctl_usage(const char *command) {
            "BiSS-C master on a PRU (emulated or real) through libbiss.\n"
            "Commands: info, read [-n N], stats, run [--ms MS], trigger, start, stop,\n"
            "          reg-read ADDR [-n N], reg-write ADDR BYTE..., command IDS CMD [--force],\n"
-           "          probe [-n N] [--time-limit S] [FILE.json], rates\n"
+           "          probe [-n N] [--time-limit S] [FILE.json], rates,\n"
+           "          encoder start CHAIN|status|ew SLAVE [error] [warning]|stop\n"
+           "          (the encoder firmware, PRU1)\n"
            "          (also spelt reg read, reg write, cmd; bissctl COMMAND --help for each)\n\n%s",
            common_help);
 }
@@ -465,6 +483,7 @@ static int take_target_opt(int c, const char *arg, struct bissctl_opts *o) {
             return bissctl_usage_error("--pru '%s': expected 0 or 1", arg);
         }
         o->open.pru = (unsigned)(arg[0] - '0');
+        o->pru_given = true;
         return 0;
     case OPT_ATTACH:
         o->open.attach = true;
@@ -772,7 +791,7 @@ int bissctl_parse(int argc, char **argv, struct bissctl_opts *o) {
     o->nargs = argc - optind;
     bool takes_args =
         o->command && (strncmp(o->command, "reg-", 4) == 0 || strcmp(o->command, "command") == 0 ||
-                       strcmp(o->command, "probe") == 0);
+                       strcmp(o->command, "probe") == 0 || strcmp(o->command, "encoder") == 0);
     if (o->nargs > 0 && !takes_args) {
         return bissctl_usage_error("unexpected argument '%s'", argv[optind]);
     }

@@ -276,6 +276,70 @@ int biss_get_status(biss_t *h, struct biss_status *st);
 int biss_get_stats(biss_t *h, struct biss_stats *st);
 int biss_get_safety_stats(biss_t *h, struct biss_safety_stats *st);
 
+/* ---- the encoder firmware on a board (pru_slave/, host/lib/biss_enc.c) ----
+ * Its configuration and limits: biss/biss_types.h, biss/biss_rules.h. */
+
+/* The handle drives one PRU's encoder; the master
+ * on the other PRU is a biss_t of its own (biss_open). */
+typedef struct biss_encoder biss_encoder_t;
+
+/* Loads and starts the encoder firmware on PRU p->pru of a Linux target,
+ * as biss_open does the master (p->target, loader, devmem, sysfs_root,
+ * firmware_dir, timeout_ms, errbuf alike): the image p->firmware, else
+ * $BISS_ENCODER_FIRMWARE, else biss_encoder.bin or biss_encoder_pru1.bin
+ * of the build tree or the firmware directory; through remoteproc the
+ * ELF p->rproc_firmware, else biss_encoder.elf or biss_encoder_pru1.elf.
+ * Waits for its magic and checks it was assembled for that PRU. With
+ * p->attach nothing is loaded: the running encoder is adopted. The
+ * emulator target is refused (BISS_E_TARGET): there the encoder runs
+ * beside the master, `biss-sim --encoder`. */
+int biss_encoder_open(const struct biss_open_params *p, biss_encoder_t **out);
+/* Releases the handle; an encoder it started through remoteproc stops
+ * with it unless biss_encoder_leave_running was called. */
+void biss_encoder_close(biss_encoder_t *e);
+int biss_encoder_leave_running(biss_encoder_t *e);
+/* Halts its PRU (SL then stays where it was: take the line off first). */
+int biss_encoder_stop(biss_encoder_t *e);
+/* Checks c (biss_encoder_config_check), writes it with CFG_SEQ one up and
+ * waits for the firmware's ack; its refusal is BISS_E_ENC_REFUSED. Register
+ * files and the table are kept (set them before or after). */
+int biss_encoder_configure(biss_encoder_t *e, const struct biss_encoder_config *c);
+/* nE / nW of slave i sent active or not, from the next frame on. */
+int biss_encoder_set_ew(biss_encoder_t *e, unsigned slave, bool error, bool warning);
+/* n positions into the table from entry start (BISS_ENC_TABLE_ENTRIES). */
+int biss_encoder_table(biss_encoder_t *e, unsigned start, const uint64_t *pos, unsigned n);
+/* A byte of a slave's register file as the host sets it (no access rights
+ * applied): addr 0x40..0x7F is the slave's direct register; 0x00..0x3F is
+ * in its register bank `bank` (< its banks in the configuration in force,
+ * read back from data RAM). read_only / write_protected: the register's
+ * rights for control frames (protected ones refuse writes when the slave's
+ * protect is set). */
+int biss_encoder_reg_set(biss_encoder_t *e, unsigned slave, unsigned bank, uint8_t addr,
+                         uint8_t value, bool read_only, bool write_protected);
+int biss_encoder_reg_get(biss_encoder_t *e, unsigned slave, unsigned bank, uint8_t addr,
+                         uint8_t *value);
+
+/* What the encoder did since its configuration. */
+struct biss_encoder_status {
+    unsigned pru, ma_bit;        /* the PRU it was assembled for, its MA input (R31 bit) */
+    uint32_t cfg_seq, cfg_error; /* the configuration in force (or refused), BISS_SLV_CFGERR_* */
+    uint32_t frames;             /* frames begun (an MA fall while idle) */
+    uint32_t latches;            /* ... with the first rising edge (data latched) */
+    uint32_t cd_frames;          /* ... that brought a CDM */
+    int cdm;                     /* the last CDM, -1 none yet */
+    unsigned cds;                /* the next frame's CDS */
+    unsigned ctrl_state;         /* BISS_SLV_CS_* of biss_slave_shm.h */
+    unsigned cancels, header_crc_errors;
+    uint32_t period_ns;  /* the last frame's MA period (0: none) */
+    uint32_t timeout_ns; /* the next frame's timeout after its ACK */
+    unsigned work_cycles, work_pad_cycles;
+    struct biss_encoder_slave_status {
+        unsigned reads, writes, refused, write_crc_errors, commands, dropped;
+        int last_cmd, last_addr, last_value; /* -1: none */
+    } slave[BISS_ENC_MAX_SLAVES];
+};
+int biss_encoder_get_status(biss_encoder_t *e, struct biss_encoder_status *st);
+
 #ifdef __cplusplus
 }
 #endif

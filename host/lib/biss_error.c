@@ -93,6 +93,16 @@ static const struct err_text errors[] = {
                           "choose a faster rate"},
     {BISS_E_LINE_DELAY, "the line's round trip is beyond the 40 us the firmware waits for the "
                         "ACK"},
+    {BISS_E_ENC_LC_BITS, "encoder: a life counter over 32 bits"},
+    {BISS_E_ENC_ID, "encoder: an ID over 7, or two answering slaves with one ID"},
+    {BISS_E_ENC_TABLE, "encoder: table entries past the table's 128"},
+    {BISS_E_ENC_BANKS, "encoder: register banks past the pool's 16"},
+    {BISS_E_ENC_TIMEOUT, "encoder: timeout 0 or over 1.31 ms, or an adaptive factor (1..255 "
+                         "sixteenths) or minimum out of range"},
+    {BISS_E_ENC_BUSY, "encoder: processing time over 83 ms or 65535 clocks"},
+    {BISS_E_ENC_REG_WAIT, "encoder: register processing time over 255 frames, or an execute "
+                          "bit other than 0 or 1"},
+    {BISS_E_ENC_REFUSED, "the encoder firmware refused the configuration"},
 };
 
 const char *biss_strerror(int err) {

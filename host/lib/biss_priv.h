@@ -110,6 +110,10 @@ struct biss_backends {
 /* biss_open on the backends b offers (a NULL opener: its targets refused,
  * with a message that says where they are). */
 int biss_open_with(const struct biss_open_params *p, const struct biss_backends *b, biss_t **out);
+/* biss_encoder_open on the Linux backend's opener (NULL: every target
+ * refused); the emulator target is refused whatever the opener. */
+int biss_encoder_open_with(const struct biss_open_params *p, biss_backend_open_fn linux_open,
+                           biss_encoder_t **out);
 
 /* Register helpers over the backend (data RAM offsets are BISS_* values). */
 int biss_dram_read(biss_t *h, uint32_t off, void *buf, size_t n);

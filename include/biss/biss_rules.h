@@ -105,6 +105,16 @@ int biss_rate_text(double freq_hz, char *buf, size_t len);
  * error. */
 int biss_config_check(const struct biss_config *c);
 
+/* ---- the encoder firmware's configuration (proto/biss_encoder.c) ---- */
+
+/* One slave as the TIDEP0022 test encoder: 12-bit position from 0, step 0,
+ * nE, nW, CRC6 0x43, ID 0; a fixed 20 us timeout, no processing time. */
+void biss_encoder_config_default(struct biss_encoder_config *c);
+/* Checks every field as the encoder firmware would, and more: 0 or the
+ * first specific error (BISS_E_NSLAVES, BISS_E_POS_BITS, BISS_E_DATA_BITS,
+ * BISS_E_CRC_POLY, BISS_E_CRC_START, BISS_E_ENC_*). */
+int biss_encoder_config_check(const struct biss_encoder_config *c);
+
 #ifdef __cplusplus
 }
 #endif

@@ -113,6 +113,17 @@ enum biss_error {
     /* what the line allows (biss_line_check) */
     BISS_E_LINE_TIMEOUT = -68, /* the slave's timeout is below 55 % of the MA period */
     BISS_E_LINE_DELAY = -69,   /* the line's round trip is beyond what the firmware waits for */
+    /* the encoder firmware (struct biss_encoder_config) */
+    BISS_E_ENC_LC_BITS = -70,  /* a life counter over 32 bits */
+    BISS_E_ENC_ID = -71,       /* an ID over 7, or two answering slaves with one ID */
+    BISS_E_ENC_TABLE = -72,    /* table entries past BISS_ENC_TABLE_ENTRIES */
+    BISS_E_ENC_BANKS = -73,    /* register banks past BISS_ENC_POOL_BANKS */
+    BISS_E_ENC_TIMEOUT = -74,  /* timeout 0 or too long, or an adaptive factor or minimum
+                                  out of range */
+    BISS_E_ENC_BUSY = -75,     /* processing time too long (cycles or clocks) */
+    BISS_E_ENC_REG_WAIT = -76, /* register processing time over 255 frames, or an execute
+                                  bit other than 0 or 1 */
+    BISS_E_ENC_REFUSED = -77,  /* the encoder firmware refused the configuration */
 };
 
 /* ---- configuration ----------------------------------------------------- */
@@ -316,6 +327,72 @@ struct biss_safety_stats {
     uint32_t pos_resync[BISS_API_MAX_SLAVES];   /* ... beyond reach, but in reach of the
                                                    one refused before: taken as the new
                                                    reference, valid */
+};
+
+/* ---- the encoder firmware: a PRU as a BiSS-C slave (pru_slave/) -------
+ *
+ * biss_encoder.bin (PRU0) and biss_encoder_pru1.bin (PRU1) make a PRU a BiSS-C
+ * encoder, or a chain of up to 8: MA in on an R31 bit, SL out on R30 bit
+ * 0, its data RAM laid out in include/biss/biss_slave_shm.h. With the
+ * master on the other PRU of the same PRU-ICSS, two wires make a complete
+ * loop on one board (docs/hardware.md §14); alone, it is an encoder simulator
+ * for any BiSS-C master. */
+#define BISS_ENC_MAX_SLAVES    8
+#define BISS_ENC_TABLE_ENTRIES 128 /* positions in the table */
+#define BISS_ENC_POOL_BANKS    16  /* register banks 0x00..0x3F the slaves share */
+
+/* One slave: its data word, MSB first on the wire,
+ *   [position][fill zeros][nE][nW][life counter]   (at most 64 bits)
+ * then the CRC over it (MSB first, inverted). */
+struct biss_encoder_slave {
+    unsigned pos_bits;  /* 1..64 */
+    unsigned fill_bits; /* zeros after the position */
+    bool has_err;       /* the word has nE */
+    bool has_warn;      /* ... and nW */
+    unsigned lc_bits;   /* life counter, 0..32: 0 in the first frame, +1 a frame */
+    uint32_t crc_poly;  /* WITH its top term (0x43, 0x190D9), degree 1..16; 0: no CRC */
+    uint32_t crc_start; /* < 2^degree */
+    /* The position: `position` in the first frame, then + step every frame
+     * (modulo 2^pos_bits; a negative step counts down); or, with table_len
+     * > 0, frame k sends the table's entry table_start + k mod table_len
+     * (biss_encoder_table). Frames count from the configuration. */
+    uint64_t position;
+    int64_t step;
+    unsigned table_start, table_len;
+    bool error, warning; /* nE / nW sent active (biss_encoder_set_ew changes them live) */
+    /* Control communication: its ID (0..7), unless no_control (a data
+     * channel whose device answers through another slave of the same ID);
+     * the execute bit of a command (1: iC-MB4's EX; 0: the stop bit P);
+     * register processing time (late S, frames 0..255); its register
+     * banks in the pool (addresses 0x00..0x3F, bank chosen by 0x40); with
+     * protect, write-protected registers refuse writes. */
+    unsigned id;
+    bool no_control;
+    unsigned exec_bit;
+    unsigned reg_wait;
+    unsigned banks, bank0;
+    bool protect;
+    /* The ID lock IDL0..7 in the CDS answering S and the 7 header bits
+     * after it (false: the default, host/CD.md "IDL slots"), or CTS and the
+     * 7 after it in a register access (true). */
+    bool idl_at_cts;
+};
+
+struct biss_encoder_config {
+    unsigned nslaves; /* 1..8, slave[0] nearest the master */
+    struct biss_encoder_slave slave[BISS_ENC_MAX_SLAVES];
+    /* The timeout: MA still this long ends the frame. Fixed: timeout_ns.
+     * Adaptive: the MA period times factor16 / 16, within [timeout_min_ns,
+     * timeout_ns] (the Hengstler AD38's "adaptive slave timeout"). At most
+     * 1.31 ms. */
+    bool adaptive;
+    uint32_t timeout_ns;
+    uint32_t timeout_min_ns;
+    unsigned factor16; /* 1..255 (24: 1.5) */
+    /* Processing time: the start bit comes no earlier than busy_ns after
+     * the ACK and no earlier than busy_clocks MA clocks after it. */
+    uint32_t busy_ns;
+    unsigned busy_clocks;
 };
 
 #ifdef __cplusplus

@@ -409,4 +409,32 @@ for args, words in [(["--check-speed", "1,5"], "BISS_E_SAFETY_SPEED"),
 refused(["--frames", "3", "--check-speed", "0"], "--check-speed '0': expected S,CPS", 2)
 refused(["--frames", "3", "--check-speed", "0,0"], "--check-speed '0,0': expected S,CPS", 2)
 
+# the one-board loop (docs/hardware.md section 14): the master on PRU0
+# against the encoder firmware on PRU1, joined by two jumper wires (no
+# transceivers, 0.2 m: test/scenarios/encoder-jumper.json), at every rate
+# from 1 to 10 MHz: every frame good, SL the model's at every rising edge
+JUMPER = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scenarios",
+                      "encoder-jumper.json")
+for f in ["1000000", "2000000", "5000000", "10000000"]:
+    r = run("--encoder", "--scenario", JUMPER, "--freq", f, "--frames", "500", "--json")
+    j = json.loads(r.stdout) if r.returncode == 0 else {}
+    e = j.get("encoder", {})
+    check(j.get("frames") == 500 and j.get("crc_errors") == 0 and j.get("position_mismatches") == 0
+          and e.get("sl_differ") == 0 and e.get("sl_compared", 0) > 500 * 20
+          and j.get("slaves", [{}])[0].get("master_crc_ok") is True,
+          "jumper loop at %s Hz: %r %r" % (f, {k: j.get(k) for k in ("frames", "crc_errors",
+                                                                   "position_mismatches")},
+                                           r.stderr))
+# strict mode on both cores, the encoder's scope from MA's edges, a window
+# of H: the AD38 chain at 10 MHz runs clean (test_e2e_encoder strict_both,
+# test_slave_fw strict_timing_critical_code show the check bites)
+r = run("--encoder", "--profile", "hengstler-ad38", "--freq", "10000000", "--frames", "100",
+        "--strict=loop1,loop0,loopfield,dram,spad", "--strict-window", "10", "--json")
+j = json.loads(r.stdout) if r.returncode == 0 else {}
+check(j.get("frames") == 100 and j.get("crc_errors") == 0 and j.get("encoder", {}).get("sl_differ") == 0,
+      "--encoder --strict: rc %d %r" % (r.returncode, r.stderr))
+r = run("--encoder=/nonexistent.bin", "--frames", "3")
+check(r.returncode == 1 and "cannot read image '/nonexistent.bin'" in r.stderr,
+      "--encoder missing image: %r" % r.stderr)
+
 finish("biss-sim")

@@ -5,7 +5,9 @@ output is what the build prints today.
 - The readelf excerpt (program headers of biss_master.elf) is readelf's
   output for the built ELF, and the dmesg excerpt's image size its size.
 - Each block after a "<!-- emulator output: bissctl ARGS -->" line is what
-  the build's bissctl prints for ARGS (the emulator is deterministic).
+  the build's bissctl prints for ARGS (the emulator is deterministic); after
+  "<!-- emulator output: biss-sim ARGS -->" what biss-sim prints, less its
+  "PRU cycles" line (it gives the host's time).
 - The scope table after "<!-- scope: biss-sim ARGS -->" holds what the
   emulator's VCD of MA at the master pin shows for ARGS: MA period, idle
   level, clocks per frame, the burst, the gap and the frame period (the
@@ -65,6 +67,19 @@ for m in re.finditer(r"<!-- emulator output: bissctl (.*?) -->", doc):
           "hardware.md shows for bissctl %s:\n%s\nit prints:\n%s%s" % (
               m.group(1), shown, r.stdout, r.stderr))
 check(blocks >= 1, "hardware.md has an emulator output block")
+
+# biss-sim's output, as shown, but for the line that gives the host's time
+sims = 0
+for m in re.finditer(r"<!-- emulator output: biss-sim (.*?) -->", doc):
+    sims += 1
+    args = shlex.split(m.group(1))
+    shown = block_after(m.end())
+    r = subprocess.run([biss_sim, *args], capture_output=True, text=True, timeout=120)
+    got = "".join(l for l in r.stdout.splitlines(True) if not l.startswith("PRU cycles "))
+    check(r.returncode == 0 and shown is not None and got == shown,
+          "hardware.md shows for biss-sim %s:\n%s\nit prints:\n%s%s" % (
+              m.group(1), shown, got, r.stderr))
+check(sims >= 1, "hardware.md has a biss-sim output block (the one-board loop, emulated)")
 
 
 def ma_bursts(vcd):

@@ -147,6 +147,45 @@ START_TEST(clocked_scope_from_r30) {
 }
 END_TEST
 
+/* Clocked scope from input edges (pru_strict_inputs): a store between two
+ * changes of a watched R31 bit, as the program reads them, is caught as
+ * between two R30 changes; unwatched (the default), the same run halts. */
+START_TEST(clocked_scope_from_inputs) {
+    const uint32_t w[] = {
+        alu(PRU_OP_AND, R(1), R(31), R(31)), /* 0: bit 1 low */
+        alu(PRU_OP_AND, R(1), R(31), R(31)), /* 1: high: an edge at cycle 1 */
+        burst(PRU_OP_SBBO, 4, 2, 0, 4),      /* 2 */
+        alu(PRU_OP_AND, R(1), R(31), R(31)), /* 3: low: an edge at cycle 3 */
+        halt(),
+    };
+    struct pru_params p;
+    pru_params_default(&p);
+    p.strict = PRU_STRICT_ALL;
+    for (int watched = 0; watched <= 1; watched++) {
+        struct pru_core *c = core_params(&p, w, N(w));
+        if (watched) {
+            pru_strict_inputs(c, 1u << 1);
+        }
+        ck_assert_int_eq(pru_run_until_cycle(c, 1), PRU_STOP_LIMIT);
+        pru_set_inputs(c, 1u << 1);
+        ck_assert_int_eq(pru_run_until_cycle(c, 3), PRU_STOP_LIMIT);
+        pru_set_inputs(c, 1u << 2); /* bit 2 is not watched */
+        enum pru_stop why = pru_run(c, 100);
+        if (!watched) {
+            ck_assert_int_eq(why, PRU_STOP_HALT);
+        } else {
+            ck_assert_int_eq(why, PRU_STOP_FAULT);
+            const struct pru_fault *f = pru_get_fault(c);
+            ck_assert_uint_eq(f->rule, PRU_STRICT_DRAM);
+            ck_assert_uint_eq(f->pc, 2);
+            ck_assert_int_eq(f->edge_from, 1);
+            ck_assert_int_eq(f->edge_to, 3);
+        }
+        pru_core_free(c);
+    }
+}
+END_TEST
+
 /* The log: every (pc, rule) once with its count, and the run goes on. */
 START_TEST(log_counts) {
     const uint32_t w[] = {
@@ -298,6 +337,7 @@ static Suite *strict_suite(void) {
     tcase_add_test(t, mvi_any);
     tcase_add_test(t, dram_load_store);
     tcase_add_test(t, clocked_scope_from_r30);
+    tcase_add_test(t, clocked_scope_from_inputs);
     tcase_add_test(t, log_counts);
     tcase_add_test(t, parse_rules);
     suite_add_tcase(s, t);

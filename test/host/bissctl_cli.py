@@ -38,7 +38,7 @@ def run(*args, env=None):
 r = run("--help")
 check(r.returncode == 0 and "info" in r.stdout and "--target" in r.stdout, "--help: %r" % r.stdout)
 for cmd in ["info", "read", "stats", "run", "trigger", "start", "stop", "reg-read",
-            "reg-write", "command", "rates"]:
+            "reg-write", "command", "rates", "encoder"]:
     r = run(cmd, "--help")
     check(r.returncode == 0 and r.stdout.startswith("bissctl [options] " + cmd),
           "%s --help: %r" % (cmd, r.stdout[:80]))
@@ -505,5 +505,104 @@ with tempfile.TemporaryDirectory() as d:
     r = run("--config", os.path.join(d, "none.conf"), "info")
     check(r.returncode == 1 and "none.conf: No such file or directory (errno 2)" in r.stderr,
           "--config missing: %r" % r.stderr)
+
+# bissctl encoder: the encoder firmware (pru_slave/) on PRU1 of a board. On
+# the emulator it is refused (biss-sim --encoder runs the loop); on the file
+# standing in for /dev/mem, a thread plays the firmware as its start-up and
+# its configuration handshake write data RAM (include/biss/biss_slave_shm.h)
+for args, text in [(["encoder"], "expected start CHAIN, status, ew"),
+                   (["encoder", "go"], "expected start CHAIN, status, ew"),
+                   (["encoder", "start"], "needs the chain"),
+                   (["encoder", "start", "nope"], "unknown profile 'nope'"),
+                   (["encoder", "start", "/nonexistent.json"], "/nonexistent.json")]:
+    r = run(*args)
+    check(r.returncode == 2 and text in r.stderr, "%r: rc %d %r" % (args, r.returncode, r.stderr))
+r = subprocess.run([CTL, "encoder", "start", "tidep0022-test-encoder"], capture_output=True,
+                   text=True, timeout=120)
+check(r.returncode == 1 and "biss-sim --encoder" in r.stderr, "encoder on emu: %r" % r.stderr)
+
+D1, IRAM1, CTRL1 = 0x2000, 0x38000, 0x24000     # PRU1's data RAM, IRAM, CONTROL
+SLV_CFG_SEQ, SLV_NSLAVES, SLV_LIVE_EW = 0x000, 0x004, 0x018
+SLV_MAGIC, SLV_PRU, SLV_ACK, SLV_ERR, SLV_FRAMES, SLV_MA_BIT = 0x120, 0x124, 0x128, 0x12C, 0x130, 0x13F
+
+
+def play_encoder(mem, stop, slaves_seen):
+    """The encoder's start-up whenever PRU1 runs without its magic (a load
+    clears data RAM), then an ack for each configuration, its frames
+    counted."""
+    import time
+    while not stop.is_set():
+        up = rd(mem, BASE + CTRL1) & 2
+        if up and rd(mem, BASE + D1 + SLV_MAGIC) != 0x564c5342:
+            wr(mem, BASE + D1 + SLV_PRU, 1)
+            wr(mem, BASE + D1 + SLV_MA_BIT, 1, 1)
+            wr(mem, BASE + D1 + SLV_MAGIC, 0x564c5342)
+        seq = rd(mem, BASE + D1 + SLV_CFG_SEQ)
+        if up and seq and seq != rd(mem, BASE + D1 + SLV_ACK):
+            slaves_seen.append(rd(mem, BASE + D1 + SLV_NSLAVES, 1))
+            wr(mem, BASE + D1 + SLV_ERR, 0)
+            wr(mem, BASE + D1 + SLV_FRAMES, 4321)
+            wr(mem, BASE + D1 + SLV_ACK, seq)
+        time.sleep(0.001)
+
+
+with tempfile.TemporaryDirectory() as tmp:
+    import threading
+    env = dict(os.environ, BISS_LOCK_DIR=tmp)
+    mem = os.path.join(tmp, "mem")
+    with open(mem, "wb") as f:
+        f.truncate(BASE + 0x80000)
+    wr(mem, CLKCTRL, 2)
+    dm = ["--target", "am335x", "--loader", "devmem", "--devmem", mem, "--sysfs", tmp]
+    # nothing answers: loaded on PRU1, enabled, and the missing magic named
+    r = run(*dm, "--timeout-ms", "50", "encoder", "start", "tidep0022-test-encoder", env=env)
+    check(r.returncode == 1 and "no encoder magic" in r.stderr and "PRU1" in r.stderr
+          and rd(mem, BASE + CTRL1) & 2 and rd(mem, BASE + IRAM1) != 0
+          and rd(mem, BASE + CTRL0) == 0, "encoder, no firmware: %r" % r.stderr)
+    wr(mem, BASE + CTRL1, 1)
+    stop, seen = threading.Event(), []
+    t = threading.Thread(target=play_encoder, args=(mem, stop, seen))
+    t.start()
+    try:
+        r = run(*dm, "--timeout-ms", "2000", "encoder", "start", "encoder-ad38.json", env=env)
+        check(r.returncode == 2 and "encoder-ad38.json" in r.stderr, "missing file: %r" % r.stderr)
+        scen = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scenarios",
+                            "encoder-ad38.json")
+        r = run(*dm, "--timeout-ms", "2000", "encoder", "start", scen, env=env)
+        check(r.returncode == 0 and r.stdout == "encoder running on PRU1: 3 slaves, MA in on R31 "
+              "bit 1, SL out on R30 bit 0\n" and seen == [3] and rd(mem, BASE + CTRL1) & 2,
+              "encoder start: %r %r %r" % (r.stdout, r.stderr, seen))
+        r = run(*dm, "encoder", "status", env=env)
+        check(r.returncode == 0 and r.stdout.startswith("pru=1 ma_bit=1 cfg_seq=1 cfg_error=0\n")
+              and "frames=4321 " in r.stdout, "encoder status: %r %r" % (r.stdout, r.stderr))
+        # a profile, as docs/hardware.md section 14 shows it (stdout and the note)
+        r = run(*dm, "--timeout-ms", "2000", "encoder", "start", "tidep0022-test-encoder", env=env)
+        check(r.returncode == 0 and r.stdout == "encoder running on PRU1: 1 slave, MA in on R31 bit "
+              "1, SL out on R30 bit 0\n" and r.stderr == "encoder: slave 0 moves 3 counts a frame "
+              "(50000 counts/s over a frame of 50.000 us)\n" and seen[-1] == 1,
+              "encoder start profile: %r %r" % (r.stdout, r.stderr))
+        # nE/nW live: slave 1's nE active, then both inactive
+        r = run(*dm, "encoder", "ew", "1", "error", env=env)
+        check(r.returncode == 0 and r.stdout == "slave 1: nE active, nW inactive\n"
+              and rd(mem, BASE + D1 + SLV_LIVE_EW + 1, 1) == 0x01,
+              "encoder ew: %r %r" % (r.stdout, r.stderr))
+        r = run(*dm, "encoder", "ew", "1", env=env)
+        check(r.returncode == 0 and rd(mem, BASE + D1 + SLV_LIVE_EW + 1, 1) == 0,
+              "encoder ew clear: %r" % r.stderr)
+        for args in [["ew"], ["ew", "8"], ["ew", "0", "fault"]]:
+            r = run(*dm, "encoder", *args, env=env)
+            check(r.returncode == 2 and "encoder ew" in r.stderr, "%r: %r" % (args, r.stderr))
+        # the master's PRU0 is left alone throughout
+        check(rd(mem, BASE + CTRL0) == 0, "PRU0 touched: %#x" % rd(mem, BASE + CTRL0))
+        r = run(*dm, "encoder", "stop", env=env)
+        check(r.returncode == 0 and r.stdout == "stopped: the encoder on PRU1\n"
+              and not rd(mem, BASE + CTRL1) & 2, "encoder stop: %r %r" % (r.stdout, r.stderr))
+    finally:
+        stop.set()
+        t.join()
+    # the image for the other PRU is refused by name
+    wr(mem, BASE + D1 + SLV_PRU, 0)
+    r = run(*dm, "encoder", "status", env=env)
+    check(r.returncode == 1 and "assembled for PRU0" in r.stderr, "encoder other PRU: %r" % r.stderr)
 
 finish("bissctl CLI")

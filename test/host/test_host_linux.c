@@ -7,6 +7,7 @@
 #include "libbiss-emu.h"
 
 #include "biss/biss_shm.h"
+#include "biss/biss_slave_shm.h"
 
 #include "biss_oserr.h"
 #include "check_run.h"
@@ -461,6 +462,125 @@ START_TEST(test_virtual_board) {
 END_TEST
 
 /* AM437x: ICSS1 (12 KB IRAM) and ICSS0 (4 KB) at their own bases. */
+/* The encoder firmware's handle (libbiss "the encoder firmware") on the
+ * same stand-in board: PRU1's IRAM and CONTROL, a virtual encoder that
+ * comes up when its PRU is enabled (magic, PRU, MA bit) and acks each
+ * configuration, refusing a chain of 3 (as if the chain were bad) with
+ * CFGERR_ID; the bytes of the configuration, the live nE/nW, the table and
+ * the register files land where biss_slave_shm.h says. */
+struct venc {
+    volatile uint32_t *dram;
+    volatile uint32_t *control;
+    atomic_int stop;
+};
+
+static void *virtual_encoder(void *arg) {
+    struct venc *v = arg;
+    volatile uint32_t *d = v->dram;
+    bool up = false;
+    while (!atomic_load(&v->stop)) {
+        if (!up && (*v->control & 2u)) { /* ENABLE: its start-up */
+            d[BISS_SLV_ST_CFG_ACK / 4] = 0xffffffffu;
+            d[BISS_SLV_ST_PRU / 4] = 1;
+            ((volatile uint8_t *)d)[BISS_SLV_ST_MA_BIT] = 1;
+            d[BISS_SLV_ST_MAGIC / 4] = BISS_SLV_MAGIC;
+            up = true;
+        }
+        uint32_t cfg = d[BISS_SLV_CFG_SEQ / 4];
+        if (up && cfg != 0 && cfg != d[BISS_SLV_ST_CFG_ACK / 4]) {
+            uint8_t n = ((volatile uint8_t *)d)[BISS_SLV_CFG_NSLAVES];
+            d[BISS_SLV_ST_CFG_ERROR / 4] = n == 3 ? BISS_SLV_CFGERR_ID : BISS_SLV_CFGERR_NONE;
+            d[BISS_SLV_ST_FRAMES / 4] = 7;
+            d[BISS_SLV_ST_CFG_ACK / 4] = cfg;
+        }
+        nanosleep(&(struct timespec){.tv_nsec = 100000}, NULL);
+    }
+    return NULL;
+}
+
+START_TEST(test_encoder_virtual_board) {
+    make_devmem(AM335X_BASE + WINDOW);
+    make_image(64);
+    int fd = open(devmem, O_RDWR);
+    ck_assert_int_ge(fd, 0);
+    uint8_t *m = mmap(NULL, WINDOW, PROT_READ | PROT_WRITE, MAP_SHARED, fd, AM335X_BASE);
+    ck_assert_ptr_ne(m, MAP_FAILED);
+    struct venc v = {.dram = (volatile uint32_t *)(m + 0x2000),
+                     .control = (volatile uint32_t *)(m + 0x24000)};
+    pthread_t t;
+    ck_assert_int_eq(pthread_create(&t, NULL, virtual_encoder, &v), 0);
+
+    struct biss_open_params p = params(BISS_TARGET_AM335X);
+    p.pru = 1;
+    p.timeout_ms = 2000;
+    biss_encoder_t *e;
+    ck_assert_int_eq(biss_encoder_open(&p, &e), BISS_OK);
+    /* the image in PRU1's IRAM (0x38000), word i = 0x1000 + i */
+    uint32_t w;
+    memcpy(&w, m + 0x38000 + 4 * 5, 4);
+    ck_assert_uint_eq(w, 0x1005);
+
+    struct biss_encoder_config c;
+    biss_encoder_config_default(&c);
+    c.nslaves = 2;
+    c.slave[1] = c.slave[0];
+    c.slave[1].id = 1;
+    c.slave[1].pos_bits = 36;
+    c.slave[1].banks = 2;
+    c.slave[1].bank0 = 3;
+    c.slave[1].position = 0x123456789ull;
+    c.slave[1].step = -5;
+    ck_assert_int_eq(biss_encoder_configure(e, &c), BISS_OK);
+    ck_assert_uint_eq(m[0x2000 + BISS_SLV_CFG_NSLAVES], 2);
+    ck_assert_uint_eq(m[0x2000 + BISS_SLV_CFG_SLAVE0 + BISS_SLV_CFG_SLAVE_SIZE], 36);
+    ck_assert_int_eq(biss_encoder_set_ew(e, 1, true, false), BISS_OK);
+    ck_assert_uint_eq(m[0x2000 + BISS_SLV_LIVE_EW + 1], BISS_SLV_EW_ERROR);
+    const uint64_t tab[2] = {0xabc, 0xdef};
+    ck_assert_int_eq(biss_encoder_table(e, 126, tab, 2), BISS_OK);
+    ck_assert_int_eq(biss_encoder_table(e, 127, tab, 2), BISS_E_INVAL);
+    uint64_t got;
+    memcpy(&got, m + 0x2000 + BISS_SLV_TABLE + 127 * 8, 8);
+    ck_assert_uint_eq(got, 0xdef);
+    /* a direct register (read-only), and byte 0x10 of slave 1's bank 1 =
+     * pool bank 3 + 1 */
+    ck_assert_int_eq(biss_encoder_reg_set(e, 1, 0, 0x7e, 0x5a, true, false), BISS_OK);
+    ck_assert_int_eq(biss_encoder_reg_set(e, 1, 1, 0x10, 0xc3, false, true), BISS_OK);
+    ck_assert_int_eq(biss_encoder_reg_set(e, 1, 2, 0x10, 0xc3, false, false), BISS_E_INVAL);
+    uint32_t regs = 0x2000 + BISS_SLV_REGS + BISS_SLV_REGS_SIZE;
+    ck_assert_uint_eq(m[regs + 0x7e - 0x40], 0x5a);
+    ck_assert_uint_eq(m[regs + BISS_SLV_R_RO + 0x7e / 8] >> (0x7e % 8) & 1u, 1);
+    ck_assert_uint_eq(m[regs + BISS_SLV_R_WP + 0x10 / 8] >> (0x10 % 8) & 1u, 1);
+    ck_assert_uint_eq(m[0x2000 + BISS_SLV_POOL + 4 * BISS_SLV_BANK_SIZE + 0x10], 0xc3);
+    uint8_t b;
+    ck_assert_int_eq(biss_encoder_reg_get(e, 1, 1, 0x10, &b), BISS_OK);
+    ck_assert_uint_eq(b, 0xc3);
+    struct biss_encoder_status st;
+    ck_assert_int_eq(biss_encoder_get_status(e, &st), BISS_OK);
+    ck_assert_uint_eq(st.pru, 1);
+    ck_assert_uint_eq(st.ma_bit, 1);
+    ck_assert_uint_eq(st.frames, 7);
+    ck_assert_int_eq(st.cdm, 0);
+    /* a refusal comes back as the firmware's */
+    c.nslaves = 3;
+    c.slave[2] = c.slave[0];
+    c.slave[2].id = 2;
+    ck_assert_int_eq(biss_encoder_configure(e, &c), BISS_E_ENC_REFUSED);
+    ck_assert_int_eq(biss_encoder_stop(e), BISS_OK);
+    uint32_t control;
+    memcpy(&control, m + 0x24000, 4);
+    ck_assert_uint_eq(control & 2u, 0);
+    biss_encoder_close(e);
+    /* the emulator target: not there (biss-sim --encoder) */
+    p.target = BISS_TARGET_EMU;
+    ck_assert_int_eq(biss_encoder_open(&p, &e), BISS_E_TARGET);
+    atomic_store(&v.stop, 1);
+    pthread_join(t, NULL);
+    munmap(m, WINDOW);
+    close(fd);
+    cleanup();
+}
+END_TEST
+
 START_TEST(test_am437x_bases_and_iram_sizes) {
     make_devmem(ICSS0_BASE + WINDOW);
     make_image(12 * 1024);
@@ -731,6 +851,7 @@ int main(void) {
     tcase_add_test(tc, test_config_bytes_in_data_ram);
     tcase_add_test(tc, test_pru1_offsets);
     tcase_add_test(tc, test_virtual_board);
+    tcase_add_test(tc, test_encoder_virtual_board);
     tcase_add_test(tc, test_am437x_bases_and_iram_sizes);
     tcase_add_test(tc, test_open_errors);
     tcase_add_test(tc, test_memory_gone_under_a_reader);

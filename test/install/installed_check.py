@@ -84,7 +84,9 @@ def check_tree(root, tmp):
             "share/doc/pru_biss/host/README.md"]:
         check(os.path.exists(os.path.join(prefix, f)), "installed: " + f)
     for f in ["biss_master.bin", "biss_master.elf", "biss_master_pru1.bin",
-              "biss_master_pru1.elf", "BB-BISS-PRU0-00A0.dtbo", "BB-BISS-PRU01-00A0.dtbo"]:
+              "biss_master_pru1.elf", "biss_encoder.bin", "biss_encoder.elf",
+              "biss_encoder_pru1.bin", "biss_encoder_pru1.elf", "BB-BISS-PRU0-00A0.dtbo",
+              "BB-BISS-PRU01-00A0.dtbo"]:
         check(os.path.exists(os.path.join(fw, f)), "installed: %s/%s" % (a.firmware_dir, f))
     # the kernel's names are another firmware's unless asked for (kernel-fw-names)
     for f in ["am335x-pru0-fw", "am335x-pru1-fw", "am437x-pru0_0-fw", "am437x-pru0_1-fw"]:
