@@ -95,17 +95,19 @@
 .assign Byte, r0.b3, r0.b3, DelayTurns      //   the turns
 .assign Word, r2, r2, DelayL                // L = H - 11 cycles, then the rest r
 .assign Word, r3, r3, DelayBase             // the entry L or r counts back from
-.assign Word, r3, r3, NewHist01             // P_HIST: h0, h1 (0),
-.assign Word, r4, r4, NewHist2K             //   h2 (0), K
-.assign Word, r2, r2, NewNs                 // P_NSLAVES' word: slaves, trigger, the end record,
-.assign Byte, r2.b2, r2.b2, NewRecEnd       //   frames in the average (0)
-.assign Word, r7, r7, NewHalf               // P_HALF's word: H, the ACK limit
-.assign Half, r7.w0, r7.w0, NewHalfLo
-.assign Word, r2, r2, NewProc               // P_PROC's word: the processing-time limit,
-.assign Half, r2.w0, r2.w0, NewProcLimit
-.assign Half, r2.w2, r2.w2, NewRunDue       //   training due and running,
-.assign Byte, r2.b2, r2.b2, NewDue
-.assign Byte, r2.b3, r2.b3, NewRunning      //   running = the slot step
+.assign Word, r1, r1, NewHist01             // P_HIST: h0, h1 (0),
+.assign Word, r2, r2, NewHist2K             //   h2 (0), K (stored with DelayWord: r0..r2)
+// P_NSLAVES .. P_SSI, one store (CFG_PROC) from r24..r27 (NBits, HostAddr,
+// RecAddr are done with by then; SsiWord is r27)
+.assign Word, r24, r24, NewNs               // P_NSLAVES' word: slaves, trigger, the end record,
+.assign Byte, r24.b2, r24.b2, NewRecEnd     //   frames in the average (0)
+.assign Word, r25, r25, NewHalf             // P_HALF's word: H, the ACK limit
+.assign Half, r25.w0, r25.w0, NewHalfLo
+.assign Word, r26, r26, NewProc             // P_PROC's word: the processing-time limit,
+.assign Half, r26.w0, r26.w0, NewProcLimit
+.assign Half, r26.w2, r26.w2, NewRunDue     //   training due and running,
+.assign Byte, r26.b2, r26.b2, NewDue
+.assign Byte, r26.b3, r26.b3, NewRunning    //   running = the slot step
 .assign Word, r0, r0, XfrShiftCfg           // R0: the XFR shift while the step is probed
 .assign Word, r6, r6, Probe                 // bank register 6's word
 .assign Word, r3, r3, ProbeVal              // the word written with a shift of 29
@@ -339,19 +341,17 @@ CFG_IEP_OK:
     ldi     DelayBase, DLY_L0               // entry DLY_L0 - r
 CFG_DELAY_ENTRY:
     sub     DelayEntry, DelayBase, DelayL
-CFG_DELAY_SAVE:
-    sbco    DelayWord, c28, P_DELAYS, SIZE(BissPriv.delays)
+CFG_DELAY_SAVE:                             // (stored with the history: P_DELAYS..P_HSUM)
     // K = N + 2 - LAG: the clocks after the start bit's period are the CDS,
     // the N bits and one more, on which the slave starts its timeout (SL
     // low); LAG of them are already out when the start bit is seen.
     ldi     NewHist01, 0                    // history empty (training fills it)
     sub     NewHist2K, NBits, LAG - 2
     lsl     NewHist2K, NewHist2K, 16        // and K
-    sbco    &NewHist01, c28, P_HIST, P_HSUM - P_HIST
+    sbco    &DelayWord, c28, P_DELAYS, P_HSUM - P_DELAYS // DelayWord, NewHist01, NewHist2K
     mov     NewNs, CfgSlavesTrig            // slaves, trigger, -, frames in the average (0)
     lsl     NewRecEnd, CfgSlaves, 3         // the end record's register-file address
     add     NewRecEnd, NewRecEnd, REC_BASE
-    sbco    NewNs, c28, P_NSLAVES, P_HALF - P_NSLAVES
     // ACK limit in periods x 8: (BISS_MAX_DELAY_NS / 10 / H + 4) x 8
     mov     Num, BISS_MAX_DELAY_NS / 10
     mov     Den, CfgHalf
@@ -359,7 +359,6 @@ CFG_DELAY_SAVE:
     jal     RET_DIV, DIVIDE
     lsl     NewHalf, Quot, 16 + 3           // to w2
     mov     NewHalfLo, CfgHalf
-    sbco    NewHalf, c28, P_HALF, P_PROC - P_HALF
     mov     NewProcLimit, CfgProc           // processing-time limit
     ldi     NewRunDue, 0x0101               // running, training due (BiSS-C)
     // The step between the slaves' result slots in this PRU's bank, for
@@ -385,8 +384,7 @@ CFG_DELAY_SAVE:
     mov     HistPos, SsiAckNew              // and the history holds it (r0, r1 are
     jal     RET_POST, HIST_FILL             // set up anew by every frame)
 CFG_PROC:
-    sbco    SsiWord, c28, P_SSI, P_CFG_ACK - P_SSI
-    sbco    NewProc, c28, P_PROC, P_PROC_END - P_PROC
+    sbco    &NewNs, c28, P_NSLAVES, P_CFG_ACK - P_NSLAVES // NewNs, NewHalf, NewProc, SsiWord
     sbco    Gpcfg, c4, GPCFG_OWN, 4         // shift mode at 8x the new rate (FACTOR_FOUND)
     ldi     CfgErr, BISS_CFGERR_NONE
     ldi     CfgState, BISS_STATE_RUNNING
