@@ -8,9 +8,7 @@
 #include "biss/biss_slave_shm_struct.h"
 #include "biss_oserr.h"
 #include "default_image.h"
-#include "read_file.h"
 
-#include <errno.h>
 #include <limits.h>
 #include <stddef.h>
 #include <stdio.h>
@@ -48,32 +46,6 @@ static const char *encoder_path(const struct biss_open_params *p, char *buf, siz
          BISS_INSTALLED_ENCODER_PRU1},
     };
     return default_image(&d[p->pru ? 1 : 0], buf, len);
-}
-
-static int read_image(biss_t *h, const char *path, struct biss_errbuf *e) {
-    char *buf;
-    size_t n;
-    switch (read_file(path, h->be.iram_bytes + 1u, &buf, &n)) {
-    case READ_FILE_OK:
-        break;
-    case READ_FILE_TOO_BIG:
-        return biss_err(e, BISS_E_FIRMWARE_SIZE, "%s: more than the %u bytes of this PRU's IRAM",
-                        path, (unsigned)h->be.iram_bytes);
-    case READ_FILE_NOMEM:
-        return BISS_E_NOMEM;
-    default: {
-        int err = errno;
-        return biss_err(e, BISS_E_FIRMWARE_IO, "%s: %s (errno %d)", path, strerror(err), err);
-    }
-    }
-    if (n == 0 || n % 4 != 0) {
-        free(buf);
-        return biss_err(e, BISS_E_FIRMWARE_SIZE, "%s: %zu bytes, not whole 32-bit words", path, n);
-    }
-    h->image = (uint8_t *)buf;
-    h->image_bytes = n;
-    snprintf(h->firmware, sizeof h->firmware, "%s", path);
-    return BISS_OK;
 }
 
 static int magic_seen(biss_t *h, void *arg) {
@@ -145,7 +117,7 @@ int biss_encoder_open_with(const struct biss_open_params *p, biss_backend_open_f
     if (!p->attach) {
         char buf[PATH_MAX + 64];
         bool rproc = p->loader == BISS_LOADER_REMOTEPROC;
-        rc = rproc ? BISS_OK : read_image(h, encoder_path(p, buf, sizeof buf), &e);
+        rc = rproc ? BISS_OK : biss_read_image(h, encoder_path(p, buf, sizeof buf), false, &e);
         if (!rc) {
             rc = biss_exclusive(h);
         }

@@ -67,7 +67,12 @@ static const char *firmware_path(const struct biss_open_params *p, char *buf, si
     return default_firmware(p->pru, buf, len);
 }
 
-static int read_image(biss_t *h, const char *path, struct biss_errbuf *e) {
+/* An IRAM image from path into h (h->image, h->firmware): whole 32-bit
+ * words, no more than the PRU's IRAM; with master set, also a master image
+ * assembled for h's PRU (one image per PRU, pru_fw/README.md: the other
+ * PRU's, started, points its private area at the shared block and says
+ * nothing). The encoder's images (biss_enc.c) take it with master false. */
+int biss_read_image(biss_t *h, const char *path, bool master, struct biss_errbuf *e) {
     char *buf;
     size_t n;
     switch (read_file(path, h->be.iram_bytes + 1u, &buf, &n)) {
@@ -87,9 +92,7 @@ static int read_image(biss_t *h, const char *path, struct biss_errbuf *e) {
         free(buf);
         return biss_err(e, BISS_E_FIRMWARE_SIZE, "%s: %zu bytes, not whole 32-bit words", path, n);
     }
-    /* one image per PRU (pru_fw/README.md): the other PRU's, started,
-     * points its private area at the shared block and says nothing */
-    int built = biss_image_pru(buf, n);
+    int built = master ? biss_image_pru(buf, n) : -1;
     if (built >= 0 && (unsigned)built != h->be.pru) {
         free(buf);
         return biss_err(e, BISS_E_FW_PRU, "%s was assembled for PRU%d, not PRU%u: load %s", path,
@@ -227,7 +230,7 @@ static int expected_image(biss_t *h, const struct biss_open_params *p, bool load
     const char *env = getenv("BISS_FIRMWARE");
     bool given = (p->firmware && *p->firmware) || (env && *env);
     struct biss_errbuf why = {h->unchecked, sizeof h->unchecked};
-    int rc = read_image(h, path, (loads || given) ? e : &why);
+    int rc = biss_read_image(h, path, true, (loads || given) ? e : &why);
     return rc && !loads && !given ? BISS_OK : rc;
 }
 
@@ -292,7 +295,7 @@ int biss_open_with(const struct biss_open_params *p, const struct biss_backends 
     }
     if (p->target == BISS_TARGET_EMU) {
         char buf[PATH_MAX + 64];
-        rc = read_image(h, firmware_path(p, buf, sizeof buf), &e);
+        rc = biss_read_image(h, firmware_path(p, buf, sizeof buf), true, &e);
         if (!rc) {
             rc = biss_pru_load_and_start(h);
         }

@@ -134,6 +134,9 @@ int biss_pru_write_id(biss_t *h);
  * for this one or no firmware runs (no magic). */
 struct biss_errbuf;
 int biss_pru_image_check(biss_t *h, struct biss_errbuf *e);
+/* An IRAM image from path into h, checked (biss_open.c); master: also
+ * assembled for h's PRU. */
+int biss_read_image(biss_t *h, const char *path, bool master, struct biss_errbuf *e);
 
 /* Waits (handle locked) until done(h, arg) returns nonzero or timeout_ms
  * of backend time passed; returns 0, BISS_E_TIMEOUT, or done's error if
