@@ -16,6 +16,7 @@
 #include "biss_lock.h"
 #include "biss_oserr.h"
 #include "biss_rproc.h"
+#include "mmio.h"
 
 #include <errno.h>
 #include <fcntl.h>
@@ -71,13 +72,6 @@ static int in_window(const struct lnx *l, uint32_t off, size_t n) {
     return off <= l->map_len && n <= l->map_len - off;
 }
 
-static int aligned(uint32_t off, size_t n) {
-    return off % 4 == 0 && n % 4 == 0;
-}
-
-/* Peripheral memory: 32-bit accesses for whole words (what the PRU RAMs
- * and registers expect), bytes otherwise; volatile so none is merged,
- * split or dropped. */
 /* A file standing in for /dev/mem: all of it, or an I/O error (a file
  * truncated under us reads short). */
 static int file_io(struct lnx *l, uint32_t off, void *buf, size_t n, bool write) {
@@ -94,18 +88,7 @@ static int lnx_read(void *ctx, uint32_t off, void *buf, size_t n) {
     if (!l->map) {
         return file_io(l, off, buf, n, false);
     }
-    if (aligned(off, n)) {
-        const volatile uint32_t *src = (const volatile uint32_t *)(l->map + off);
-        uint32_t *dst = buf;
-        for (size_t i = 0; i < n / 4; i++) {
-            dst[i] = src[i];
-        }
-    } else {
-        uint8_t *dst = buf;
-        for (size_t i = 0; i < n; i++) {
-            dst[i] = l->map[off + i];
-        }
-    }
+    mmio_read(buf, l->map, off, n);
     return BISS_OK;
 }
 
@@ -117,18 +100,7 @@ static int lnx_write(void *ctx, uint32_t off, const void *buf, size_t n) {
     if (!l->map) {
         return file_io(l, off, (void *)buf, n, true);
     }
-    if (aligned(off, n)) {
-        volatile uint32_t *dst = (volatile uint32_t *)(l->map + off);
-        const uint32_t *src = buf;
-        for (size_t i = 0; i < n / 4; i++) {
-            dst[i] = src[i];
-        }
-    } else {
-        const uint8_t *src = buf;
-        for (size_t i = 0; i < n; i++) {
-            l->map[off + i] = src[i];
-        }
-    }
+    mmio_write(l->map, off, buf, n);
     return BISS_OK;
 }
 

@@ -18,14 +18,15 @@
  * A third path shows what the read costs where the PRU-ICSS is mapped (a
  * board's /dev/mem; the Linux backend reads a regular file with pread, so
  * the file cannot show it): the same snapshot in this process's memory
- * behind a backend that reads as backend_linux.c's mapped path does
- * (volatile 32-bit loads), counting the words each read takes.
+ * behind a backend that reads with backend_linux.c's mapped copy
+ * (mmio.h: volatile 32-bit loads), counting the words each read takes.
  *
  * usage: biss-read-cost [--calls N] [--dir DIR] [--json]
  */
 #include "bench.h"
 #include "biss_priv.h"
 #include "libbiss-emu.h"
+#include "mmio.h"
 #include "pru_core.h"
 #include "pruss/pruss_map.h"
 
@@ -112,21 +113,8 @@ static int mapped_read(void *ctx, uint32_t off, void *buf, size_t n) {
     if (off > PRUSS_AM335X_WINDOW || n > PRUSS_AM335X_WINDOW - off) {
         return BISS_E_IO;
     }
-    if (off % 4 == 0 && n % 4 == 0) { /* as backend_linux.c's lnx_read */
-        const volatile uint32_t *src = (const volatile uint32_t *)(m->icss + off);
-        uint32_t *dst = buf;
-        for (size_t i = 0; i < n / 4; i++) {
-            dst[i] = src[i];
-        }
-        m->words += n / 4;
-    } else {
-        const volatile uint8_t *src = m->icss + off;
-        uint8_t *dst = buf;
-        for (size_t i = 0; i < n; i++) {
-            dst[i] = src[i];
-        }
-        m->words += n;
-    }
+    mmio_read(buf, m->icss, off, n); /* backend_linux.c's mapped path */
+    m->words += mmio_words(off, n) ? n / 4 : n;
     return BISS_OK;
 }
 
@@ -135,7 +123,7 @@ static int mapped_write(void *ctx, uint32_t off, const void *buf, size_t n) {
     if (off > PRUSS_AM335X_WINDOW || n > PRUSS_AM335X_WINDOW - off) {
         return BISS_E_IO;
     }
-    memcpy(m->icss + off, buf, n);
+    mmio_write(m->icss, off, buf, n);
     return BISS_OK;
 }
 
