@@ -47,14 +47,21 @@ static __attribute__((noinline)) void compare_external(link_model *l, sim_ps t) 
 static void at_ma_slave(void *ctx, sim_ps t, int level) {
     link_model *l = ctx;
     record(l, LINK_MA_SLAVE, &l->ma_slave, t, level);
-    if (l->external && level) {
-        compare_external(l, t);
-    }
     if (l->biss_quick && biss_slave_ma_edge_quick((biss_slave *)l->slave, t, level)) {
         observe(l, LINK_MA_SLAVE, t, level);
         return;
     }
     ma_slave_general(l, t, level);
+}
+
+/* MA at the slave pin with an external slave: the comparison at a rising
+ * edge, then the model's step as ever (the MA line's sink only while an
+ * external slave is set: the model's own edges pay no test for it). */
+static void at_ma_slave_external(void *ctx, sim_ps t, int level) {
+    if (level) {
+        compare_external(ctx, t);
+    }
+    at_ma_slave(ctx, t, level);
 }
 
 static void at_sl_slave(void *ctx, sim_ps t, int level) {
@@ -223,6 +230,7 @@ sim_ps link_next_sl_change(const link_model *l) {
 
 void link_set_external_slave(link_model *l, int on) {
     l->external = on && l->model == &slave_model_biss;
+    l->ma_line.out = (sim_edge_sink){l->external ? at_ma_slave_external : at_ma_slave, l};
     if (l->external) {
         l->history_pins |= 1u << LINK_MA_SLAVE;
     }
