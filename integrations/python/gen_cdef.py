@@ -23,6 +23,7 @@ import sys
 LINEMARK = re.compile(r'^# (\d+) "([^"]+)"')
 DEFINE = re.compile(r'^#define ([A-Za-z_][A-Za-z0-9_]*)(?:\s+(.*))?$')
 INT_SUFFIX = re.compile(r'\b(0[xX][0-9a-fA-F]+|\d+)[uUlL]+\b')
+STATIC_INLINE = re.compile(r'static\s+inline\b')
 
 
 def preprocess(cc, includes, headers):
@@ -55,7 +56,7 @@ def drop_definitions(code):
     file scope) and the `static inline` before it."""
     out, i, n = [], 0, len(code)
     while i < n:
-        m = re.compile(r'static\s+inline\b').search(code, i)
+        m = STATIC_INLINE.search(code, i)
         if not m:
             out.append(code[i:])
             break

@@ -273,6 +273,11 @@ class Master:
         _check(lib.biss_run_ms(self._handle(), ms), "run_ms")
 
     # ---- samples ----------------------------------------------------------
+    def _latest_frame(self, s):
+        """The newest published frame's number (into s), or the number
+        before frame 0 when none is published yet: what to wait after."""
+        return s.frame if lib.biss_read_sample(self._handle(), s) == 0 else 0xFFFFFFFF
+
     def read(self):
         """The latest published frame (biss_read_sample)."""
         s = ffi.new("struct biss_sample *")
@@ -284,8 +289,7 @@ class Master:
         latest one now, or any if none yet) (biss_wait_sample)."""
         s = ffi.new("struct biss_sample *")
         if after_frame is None:
-            rc = lib.biss_read_sample(self._handle(), s)
-            after_frame = s.frame if rc == 0 else 0xFFFFFFFF
+            after_frame = self._latest_frame(s)
         _check(lib.biss_wait_sample(self._handle(), after_frame & 0xFFFFFFFF, timeout_ms, s), "wait")
         return Sample(s)
 
@@ -298,8 +302,7 @@ class Master:
 
         s = ffi.new("struct biss_sample *")
         h = self._handle()
-        rc = lib.biss_read_sample(h, s)
-        last = s.frame if rc == 0 else 0xFFFFFFFF
+        last = self._latest_frame(s)
         out = {"frame": np.zeros(n, np.uint32), "valid": np.zeros(n, bool),
                "crc_error": np.zeros(n, bool), "timestamp": np.zeros(n, np.uint32)}
         pos = None
