@@ -84,15 +84,10 @@ int biss_encoder_open_with(const struct biss_open_params *p, biss_backend_open_f
         return BISS_E_INVAL;
     }
     *out = NULL;
-    if (!p) {
-        return BISS_E_INVAL;
-    }
-    if (p->errbuf && p->errbuf_len) {
-        p->errbuf[0] = '\0';
-    }
-    struct biss_errbuf e = {p->errbuf, p->errbuf_len};
-    if (p->pru > 1) {
-        return biss_err(&e, BISS_E_INVAL, "pru %u: a PRU-ICSS has PRU 0 and PRU 1", p->pru);
+    struct biss_errbuf e;
+    int rc = biss_open_params_check(p, &e);
+    if (rc) {
+        return rc;
     }
     if (p->target == BISS_TARGET_EMU || !linux_open) {
         return biss_err(&e, BISS_E_TARGET,
@@ -104,7 +99,7 @@ int biss_encoder_open_with(const struct biss_open_params *p, biss_backend_open_f
         q.rproc_firmware = p->pru ? "biss_encoder_pru1.elf" : "biss_encoder.elf";
     }
     struct biss_backend be;
-    int rc = linux_open(&q, &be);
+    rc = linux_open(&q, &be);
     if (rc) {
         return rc;
     }

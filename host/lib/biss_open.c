@@ -268,23 +268,32 @@ static int open_linux(biss_t *h, const struct biss_open_params *p, struct biss_e
     return rc ? rc : biss_pru_image_check(h, e);
 }
 
-int biss_open_with(const struct biss_open_params *p, const struct biss_backends *b, biss_t **out) {
-    if (!out) {
-        return BISS_E_INVAL;
-    }
-    *out = NULL;
-    if (!p || !b) {
+int biss_open_params_check(const struct biss_open_params *p, struct biss_errbuf *e) {
+    if (!p) {
         return BISS_E_INVAL;
     }
     if (p->errbuf && p->errbuf_len) {
         p->errbuf[0] = '\0';
     }
-    struct biss_errbuf e = {p->errbuf, p->errbuf_len};
+    *e = (struct biss_errbuf){p->errbuf, p->errbuf_len};
     if (p->pru > 1) {
-        return biss_err(&e, BISS_E_INVAL, "pru %u: a PRU-ICSS has PRU 0 and PRU 1", p->pru);
+        return biss_err(e, BISS_E_INVAL, "pru %u: a PRU-ICSS has PRU 0 and PRU 1", p->pru);
+    }
+    return BISS_OK;
+}
+
+int biss_open_with(const struct biss_open_params *p, const struct biss_backends *b, biss_t **out) {
+    if (!out) {
+        return BISS_E_INVAL;
+    }
+    *out = NULL;
+    struct biss_errbuf e;
+    int rc = b ? biss_open_params_check(p, &e) : BISS_E_INVAL;
+    if (rc) {
+        return rc;
     }
     struct biss_backend be;
-    int rc = open_backend(p, b, &be, &e);
+    rc = open_backend(p, b, &be, &e);
     if (rc) {
         return rc;
     }

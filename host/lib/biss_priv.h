@@ -134,6 +134,9 @@ int biss_pru_write_id(biss_t *h);
  * for this one or no firmware runs (no magic). */
 struct biss_errbuf;
 int biss_pru_image_check(biss_t *h, struct biss_errbuf *e);
+/* What every open checks first (biss_open.c): p given, its errbuf cleared
+ * and taken into e, pru 0 or 1. */
+int biss_open_params_check(const struct biss_open_params *p, struct biss_errbuf *e);
 /* An IRAM image from path into h, checked (biss_open.c); master: also
  * assembled for h's PRU. */
 int biss_read_image(biss_t *h, const char *path, bool master, struct biss_errbuf *e);
