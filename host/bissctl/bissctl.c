@@ -24,8 +24,9 @@ static const struct command table[] = {
     {"reg-write", bissctl_reg_write, true},
     {"command", bissctl_command, true},
     {"probe", bissctl_probe, false}, /* configures its own capture layout */
-    {"rates", NULL, false},          /* needs no target: bissctl_rates */
-    {"encoder", NULL, false},        /* its own handle: bissctl_encoder */
+    {"record", bissctl_record, true},
+    {"rates", NULL, false},   /* needs no target: bissctl_rates */
+    {"encoder", NULL, false}, /* its own handle: bissctl_encoder */
 };
 
 static const struct command *find(const char *name) {
