@@ -227,7 +227,8 @@ int biss_proto_pub_seq(const struct biss_proto_io *io, uint32_t *seq);
 int biss_proto_result_get(const struct biss_proto_io *io, unsigned nslaves,
                           struct biss_shm_result *r);
 /* Whether slot (a data-RAM offset) starts a slot of the ring laid out for
- * nslaves: 0, or BISS_E_SHM_RESULT. */
+ * nslaves (1..8; 0: for some slave count, not known): 0, or
+ * BISS_E_SHM_RESULT. */
 int biss_proto_slot_check(uint32_t slot, unsigned nslaves);
 
 /* ---- every frame: the result ring (biss_ring.c) ---- */

@@ -65,9 +65,11 @@ int biss_proto_pub_seq(const struct biss_proto_io *io, uint32_t *seq) {
 }
 
 int biss_proto_slot_check(uint32_t slot, unsigned nslaves) {
-    if (nslaves < 1 || nslaves > BISS_MAX_SLAVES || slot < BISS_RING0 ||
-        slot > BISS_RING_END - BISS_RING_STRIDE(nslaves) ||
-        (slot - BISS_RING0) % BISS_RING_STRIDE(nslaves) != 0) {
+    /* any layout: on the grid every stride keeps (16 bytes), with a header's room */
+    unsigned step = nslaves ? BISS_RING_STRIDE(nslaves) : BISS_R_SLAVE_SIZE;
+    unsigned room = nslaves ? BISS_RING_STRIDE(nslaves) : BISS_RING_STRIDE(1);
+    if (nslaves > BISS_MAX_SLAVES || slot < BISS_RING0 || slot > BISS_RING_END - room ||
+        (slot - BISS_RING0) % step != 0) {
         return BISS_E_SHM_RESULT;
     }
     return BISS_OK;
@@ -80,9 +82,7 @@ int biss_proto_result_get(const struct biss_proto_io *io, unsigned nslaves,
     if (rc) {
         return rc;
     }
-    /* a slot starts on the ring's 16-byte grid and holds a header at least */
-    if (buf < BISS_RING0 || buf > BISS_RING_END - BISS_RING_STRIDE(1) ||
-        (buf - BISS_RING0) % BISS_R_SLAVE_SIZE != 0) {
+    if (biss_proto_slot_check(buf, 0) != BISS_OK) {
         return BISS_E_SHM_RESULT;
     }
     if (nslaves > BISS_MAX_SLAVES) {

@@ -32,7 +32,7 @@ static int ring_head(const struct biss_proto_io *io, struct ring_head *h) {
         }
         atomic_thread_fence(memory_order_acquire);
         rc = rd(io, BISS_ST_BUF, &buf, 4);
-        if (!rc && biss_proto_slot_check(buf, 1) != BISS_OK) {
+        if (!rc && biss_proto_slot_check(buf, 0) != BISS_OK) {
             return BISS_E_SHM_RESULT;
         }
         if (!rc) {
@@ -45,7 +45,7 @@ static int ring_head(const struct biss_proto_io *io, struct ring_head *h) {
         if (r->frame != h->seq) {
             continue; /* a publication in between */
         }
-        if (biss_proto_slot_check(buf, r->nslaves) != BISS_OK) {
+        if (r->nslaves == 0 || biss_proto_slot_check(buf, r->nslaves) != BISS_OK) {
             return BISS_E_SHM_RESULT;
         }
         h->slot = buf;

@@ -61,6 +61,12 @@ static void firmware_step(struct fake *f) {
     }
 }
 
+void fake_steps(struct fake *f, unsigned k) {
+    for (unsigned i = 0; i < k; i++) {
+        firmware_step(f);
+    }
+}
+
 static void interleave(struct fake *f) {
     f->accesses++;
     if (f->max_steps == 0) {
@@ -77,6 +83,9 @@ static int fake_read(void *ctx, uint32_t off, void *buf, size_t n) {
     struct fake *f = ctx;
     ck_assert_uint_le(off + n, ICSS_WINDOW);
     interleave(f);
+    if (f->before_read) {
+        f->before_read(f, off - ICSS_DRAM0, n);
+    }
     memcpy(buf, f->mem + off, n);
     return BISS_OK;
 }

@@ -31,6 +31,9 @@ struct fake {
     uint32_t frame; /* the frame being written, from 1 */
     unsigned word;  /* its next word (its slot: frame - 1 modulo the ring's
                        FAKE_SLOTS); then ST_BUF, then ST_SEQ */
+    /* called before each host read (a data-RAM offset), to script the
+     * firmware's stores in the middle of a reader's sequence */
+    void (*before_read)(struct fake *f, uint32_t off, size_t n);
     /* what the host did */
     unsigned long accesses;
 };
@@ -39,6 +42,8 @@ struct fake {
 biss_t *fake_handle(struct fake **f);
 
 uint32_t fake_dram32(const struct fake *f, uint32_t off);
+/* k of the firmware's stores (publishing: result words, ST_BUF, ST_SEQ). */
+void fake_steps(struct fake *f, unsigned k);
 void fake_set_dram32(struct fake *f, uint32_t off, uint32_t v);
 
 /* The word the fake writes at index i of frame k's result slot. */
