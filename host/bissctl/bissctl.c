@@ -69,7 +69,7 @@ static int apply_config(biss_t *h, struct bissctl_opts *o) {
  * rather than reloading it (stop, too: it halts what runs). */
 static bool read_only(const char *command) {
     return strcmp(command, "info") == 0 || strcmp(command, "stats") == 0 ||
-           strcmp(command, "read") == 0;
+           strcmp(command, "read") == 0 || strcmp(command, "record") == 0;
 }
 
 static int open_failed(struct bissctl_opts *o, int rc) {
