@@ -202,9 +202,8 @@ CDC_NEXT:
     mov     Cd.answered, Cd.step            // its CDS comes with the next frame
     qba     CDC_ZEROS
 CDC_END:
-    ldi     CdStatus, BISS_CDST_DONE
-    qbgt    CDC_STOP, Cd.flags, CD_ERR
-    lsr     CdStatus, Cd.flags, 4           // the error pending
+    lsr     CdStatus, Cd.flags, 4           // the error pending (BISS_CDST_ERR_* > DONE),
+    max     CdStatus, CdStatus, BISS_CDST_DONE // else 0: DONE
 CDC_STOP:
     mov     CdStatusBytes, Cd.bytes         // bytes transferred
     mov     CdStatusSteps, Cd.step          // steps executed

@@ -79,11 +79,10 @@
 .assign Word, r4, r4, EndWord               // the end record: entry in w2, counts 0
 .assign Word, r17, r17, LastBits            // d: the bits read after the switch's (CFG_SHAPE);
                                             // the last slave's is L (P_IEP_FIX)
-.assign Word, r3, r3, IepFix                // N + 5 - L (P_IEP_FIX)
+.assign Word, r3, r3, IepFix                // 1 - (N + 5 - L) (P_IEP_FIX)
 .assign Word, r8, r8, RingNext              // CFG_RING: BISS_ST_RING_NEXT, and after it
 .assign Half, r9.w0, r9.w0, RingStride      //   ST_RING_STRIDE,
 .assign Half, r9.w2, r9.w2, RingLast        //   ST_RING_LAST
-.assign Half, r3.w0, r3.w0, IepFixLo        //   as IEP_PERIOD loads it
 // CFG_IEP, and IEP_PERIOD (which the IEP frames call, r0..r12 only)
 .assign Word, r2, r2, IepReg                // a word for an IEP register: CMP0 (P - 1)
 .assign Half, r4.w0, r4.w0, IepHalf         // IEP_PERIOD: H
@@ -284,9 +283,9 @@ CFG_RESIDUE_DONE:
     // start bit's, the CDS, and the N - (L - 1) periods of the slaves' bits
     // (the last slave's last L - 1 bits are read after them, FINAL_*): N + 5
     // - L (an SSI frame has fewer; IEP_PERIOD)
-    add     IepFix, NBits, 3 + LAG          // (NBits: N + 2 - LAG)
-    sub     IepFix, IepFix, LastBits
-    sbco    IepFix, c28, P_IEP_FIX, 2
+    sub     IepFix, LastBits, NBits         // 1 - (N + 5 - L): IEP_PERIOD's start
+    sub     IepFix, IepFix, 2 + LAG         // (NBits: N + 2 - LAG)
+    sbco    IepFix, c28, P_IEP_FIX, 4
 
     // SSI (slave 0's BISS_SF_SSI): alone and without CRC. SsiWord = the P_SSI
     // word: SsiAckNew the ACK position a BiSS-C slave at this line delay would
@@ -314,6 +313,24 @@ CFG_SSI:
     // its monoflop ends (SL high again: ready), 2n edges after period 0's
     lsl     SsiEdgesNew, Host.n, MA_BIT + 1
 CFG_SSI_DONE:
+    // The step between the slaves' result slots in this PRU's bank, for
+    // the XFR shift (R0[4:0]). TI calls R0[4:0] "the number of 32-bit
+    // offset" for XIN and XOUT but gives no direction. Up, slot k sits at
+    // bank registers 4 + 3k .. 6 + 3k (k <= 7: at most 27, never past the
+    // bank's 30). Down, the step must be 29: 4 - 29k = 4 + 3k only modulo
+    // 32, so look for exactly that: register 3 written with a shift of 29
+    // lands in bank register 6 only if the shift goes down and wraps as a
+    // 5-bit offset (up, it is bank register 0). Found: step 29; else 3
+    // (docs/silicon-assumptions.md A6). R0[4:0] is still 0 from XfrZero
+    // (DIVIDE's calls write only r0.w2), and 0 after.
+    ldi     Probe, 0
+    xout    XFR_BANK, Probe, 4              // bank register 6 cleared
+    ldi     XfrShiftCfg, 32 - XFR_SLOT
+    ldi     ProbeVal, 32 - 2 * XFR_SLOT
+    xout    XFR_BANK, ProbeVal, 4           // 26 to bank register 6 (down) or 0 (up)
+    ldi     XfrShiftCfg, 0
+    xin     XFR_BANK, Probe, 4
+    add     NewRunning, Probe, XFR_SLOT     // running = the step: 3 up, 29 down
 
     // IEP (owner and follower): the thresholds for the period are worked
     // out by the first IEP frame (P_IEP_KEY no CMP0: IEP_PERIOD). The owner
@@ -327,28 +344,9 @@ CFG_SSI_DONE:
     sbco    IepReg, c26, IEP_CMP0, 4
     ldi     IepReg, 3                       // CMP0 enabled, resets the count
     sbco    IepReg, c26, IEP_CMP_CFG, 4
-    ldi     IepReg, 0
-    sbco    IepReg, c26, IEP_COUNT, 4
+    sbco    XfrZero, c26, IEP_COUNT, 4      // 0 (the probe's last R0)
 CFG_IEP_OK:
 
-    // The step between the slaves' result slots in this PRU's bank, for
-    // the XFR shift (R0[4:0]). TI calls R0[4:0] "the number of 32-bit
-    // offset" for XIN and XOUT but gives no direction. Up, slot k sits at
-    // bank registers 4 + 3k .. 6 + 3k (k <= 7: at most 27, never past the
-    // bank's 30). Down, the step must be 29: 4 - 29k = 4 + 3k only modulo
-    // 32, so look for exactly that: register 3 written with a shift of 29
-    // lands in bank register 6 only if the shift goes down and wraps as a
-    // 5-bit offset (up, it is bank register 0). Found: step 29; else 3
-    // (docs/silicon-assumptions.md A6). R0[4:0] is still 0 from XfrZero
-    // (DIVIDE's calls write only r0.w2).
-    ldi     Probe, 0
-    xout    XFR_BANK, Probe, 4              // bank register 6 cleared
-    ldi     XfrShiftCfg, 32 - XFR_SLOT
-    ldi     ProbeVal, 32 - 2 * XFR_SLOT
-    xout    XFR_BANK, ProbeVal, 4           // 26 to bank register 6 (down) or 0 (up)
-    ldi     XfrShiftCfg, 0
-    xin     XFR_BANK, Probe, 4
-    add     NewRunning, Probe, XFR_SLOT     // running = the step: 3 up, 29 down
 
     // Accepted: commit everything.
     // The tails of the half periods (DELAY in biss_periods.hp): none at
@@ -424,16 +422,16 @@ DIVIDE:
 // is flagged), Q at most 65536 (DIVIDE's turns). Then MAIN sets the frame
 // up again. In: IepReg = CMP0 (IEP_START's IepP).
 IEP_PERIOD:
-    lbco    IepFixLo, c28, P_IEP_FIX, 2
+    lbco    Quot, c28, P_IEP_FIX, 4         // 1 - (N + 5 - L): Q - (N + 5 - L) after
     lbco    IepHalf, c28, P_HALF, 2
     lsl     Den, IepHalf, 1                 // 2H
     sub     Num, IepReg, IEP_C0             // Q = (P - 1 - IEP_C0) / 2H + 1
     lsl     IepCap, Den, 16
     min     Num, Num, IepCap
-    ldi     Quot, 1
     jal     RET_DIV, DIVIDE
-    max     Quot, Quot, IepFixLo
-    sub     Quot, Quot, IepFixLo
+    qbbc    IEP_SLACK, Quot, 31             // -(N + 5) < Quot <= 65536 - 3
+    ldi     Quot, 0
+IEP_SLACK:
     sbco    QuotLo, c28, P_IEP_SLACK, SIZE(BissPriv.iep_slack)
     sbco    IepReg, c28, P_IEP_KEY, 4
     jmp     MAIN
