@@ -353,8 +353,7 @@ CFG_IEP_OK:
     // H = 10 (DelayWord = 0), else the routine's entry for L = H - 11 cycles
     // (DelayEntry), DelayGate = 1, and its 4-cycle turns (DelayTurns); the
     // frame keeps this word in Tails.
-    ldi     DelayWord, 0
-    qbeq    CFG_DELAY_SAVE, CfgHalf, 10
+    qbeq    CFG_DELAY_SAVE, CfgHalf, 10     // (DelayWord is 0: the probe's last R0)
     ldi     DelayGate, 1
     sub     DelayL, CfgHalf, 11             // L >= 1
     ldi     DelayBase, DLY_S1 + 1           // short: entry DLY_S1 + 1 - L
