@@ -193,7 +193,11 @@ static void usage(FILE *f) {
                "                     calls replayed from a memo), sl-reach (the SL input\n"
                "                     stays until an event could reach the master's pin),\n"
                "                     line-settled (a cable edge after a settled level\n"
-               "                     without the low-pass arithmetic)\n"
+               "                     without the low-pass arithmetic), run-ahead (two PRUs:\n"
+               "                     each runs ahead to its next cross-PRU event, not both\n"
+               "                     cycle by cycle)\n"
+               "  --ff-two-pru       two PRUs: let the fast-forward act in the runs ahead too\n"
+               "                     (faster; the same results but skipped_iterations)\n"
                "  --max-ms T         stop after T ms of simulated time (default: ample)\n"
                "  --strict[=RULES]   stop with a fault report on a construct of uncertain\n"
                "                     silicon behaviour in clocked code (between two MA edges\n"
@@ -461,8 +465,8 @@ static int set_option(struct options *o, const char *a, const char *v) {
             o->no_line_settled = 1;
         } else if (pru_params_fast_path_off(&o->core, v) != 0) {
             return usage_error("--no-fast-path '%s': expected ff, ff-counted, ff-r31-bits, "
-                               "ff-loop-delay, ff-count-loop, fast-loop, leaf-call, sl-reach or "
-                               "line-settled",
+                               "ff-loop-delay, ff-count-loop, fast-loop, leaf-call, run-ahead, "
+                               "sl-reach or line-settled",
                                v);
         }
     } else if (!strcmp(a, "--strict-window")) {
@@ -520,6 +524,8 @@ static int parse_args(int argc, char **argv, struct options *o) {
             }
         } else if (!strcmp(a, "--strict-log")) {
             o->strict_log = 1;
+        } else if (!strcmp(a, "--ff-two-pru")) {
+            o->core.ff_pair = 1;
         } else if (!strcmp(a, "--encoder") || !strncmp(a, "--encoder=", 10)) {
             o->encoder = 1;
             o->encoder_image = a[9] ? a + 10 : NULL;

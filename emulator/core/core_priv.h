@@ -318,7 +318,26 @@ struct pru_core {
     struct pru_core *pru0, *pru1;
     unsigned pru_idx;
     bool borrowed;
+    /* Run-ahead (pruss.c, TIMING.md "Two PRUs"): a cross-PRU event issued
+     * in this cycle or later waits for the other PRU (the core stops in
+     * front of it, xblocked set); CYCLE_NEVER while the core runs alone or
+     * the two take turns cycle by cycle. */
+    int64_t xlimit;
+    bool xblocked;
 };
+
+/* pruss.c: run-ahead. Whether the cross-PRU event at cycle (an
+ * instruction issued then) must wait for the other PRU; when it may go on
+ * under a fast-forward probe, the probe's horizon is that PRU's next event
+ * at the earliest (xlimit). */
+static inline bool xpru_wait(struct pru_core *c, int64_t cycle);
+/* An access that changes what the other PRU may already have run ahead
+ * through (its CONTROL block or GPCFG, the INTC turned on), by c at
+ * c->cycle: a PRU_FAULT_RUN_AHEAD (at addr) if the other PRU is past it. */
+void xpru_exclusive(struct pru_core *c, uint32_t addr);
+/* cfg_gpi.c: whether an R31 read at cycle is a cross-PRU event: the INTC
+ * drives R31[31:30], or the read brings a Cnt_16 event to the INTC. */
+bool gpi_r31_shared(struct pru_core *c, int64_t cycle);
 
 /* core.c */
 void core_fault(struct pru_core *c, enum pru_fault_cause cause, uint32_t addr);
@@ -394,6 +413,14 @@ static inline void ff_horizon(struct pru_core *c, int64_t cycle) {
 }
 static inline void ff_dirty(struct pru_core *c) {
     c->ff.dirty = true;
+}
+
+static inline bool xpru_wait(struct pru_core *c, int64_t cycle) {
+    if (cycle >= c->xlimit)
+        return true;
+    if (c->xlimit != CYCLE_NEVER && ff_input_read(c))
+        ff_horizon(c, c->xlimit);
+    return false;
 }
 
 /* exec_mem.c: whether XFR device dev, issued by c in this cycle, meets

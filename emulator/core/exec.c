@@ -846,6 +846,9 @@ k_jali:
     LEAF_CALL();
     JUMPED();
 k_r31: /* R31 read first; then the instruction's own handler */
+    if (__builtin_expect(c->xlimit != CYCLE_NEVER, 0) && gpi_r31_shared(c, cyc) &&
+        xpru_wait(c, cyc))
+        goto xblocked;
     r[31] = gpi_r31(c, cyc);
     goto *kinds[d->inner];
 
@@ -876,11 +879,16 @@ r30_written:
     NEXT();
 
 k_mvi_ld:
+    if (__builtin_expect(c->xlimit != CYCLE_NEVER, 0) && gpi_r31_shared(c, cyc) &&
+        xpru_wait(c, cyc))
+        goto xblocked;
     if (!mvi_load(c, r, d, cyc))
         goto k_general;
     pc++;
     NEXT();
 k_xfr_fixed : {
+    if (xpru_wait(c, cyc)) /* a scratch-pad bank (ZERO/FILL: none, but rare) */
+        goto xblocked;
     int stall = exec_xfr_fixed(c, d, cyc);
     if (stall < 0)
         goto k_general;
@@ -899,7 +907,10 @@ at_loop_end:
     SYNC_IN();
     goto top;
 
-k_slow:
+k_slow: /* every instruction here counts as a cross-PRU event: memory,
+         * XFR, R31 writes, SLP, HALT and all the general path runs */
+    if (xpru_wait(c, cyc))
+        goto xblocked;
     if (d->burst_bytes && (d->flags & PD_EFFECTS) == 0) {
         /* a fixed-length burst without R31 or pin effects: what
          * exec_one() does, without its checks, for speed */
@@ -936,6 +947,10 @@ k_general:
         goto out;
     goto top;
 
+xblocked: /* in front of a cross-PRU event the other PRU has not reached */
+    c->xblocked = true;
+    c->stop = true;
+    c->stop_reason = PRU_STOP_LIMIT;
 out:
     SYNC_OUT();
 #undef SYNC_OUT
@@ -961,14 +976,19 @@ enum pru_stop exec_run(struct pru_core *c, int64_t limit, bool one_step) {
     bool unbounded = limit >= PRU_MAX_CYCLE; /* "until HALT": time stays put when idle */
     if (unbounded)
         limit = PRU_MAX_CYCLE;
+    /* run-ahead (pruss.c): idle time and the general path go no further
+     * than the other PRU (a wake-up, an enable, any instruction there may
+     * be a cross-PRU event); CYCLE_NEVER otherwise */
+    int64_t xlim = limit < c->xlimit ? limit : c->xlimit;
+    c->xblocked = false;
     for (;;) {
         if (!enabled(c)) {
-            if (!unbounded && c->cycle < limit && !one_step)
-                c->cycle = limit;
+            if (!unbounded && c->cycle < xlim && !one_step)
+                c->cycle = xlim;
             return c->halted ? PRU_STOP_HALT : PRU_STOP_DISABLED;
         }
         if (c->sleeping) {
-            if (!sleep_until(c, one_step ? c->cycle + 1 : limit))
+            if (!sleep_until(c, one_step ? c->cycle + 1 : xlim))
                 return one_step ? PRU_STOP_STEP : PRU_STOP_LIMIT;
         }
         if (c->cycle >= limit)
@@ -980,12 +1000,16 @@ enum pru_stop exec_run(struct pru_core *c, int64_t limit, bool one_step) {
         bool stepping = one_step || (c->ctrl.control & PRU_CTRL_SINGLE_STEP);
         if (c->trace_on || stepping || c->checked || !c->p.fast_loop) {
             const struct pd *d = &c->pd[c->pc];
+            if (c->cycle >= xlim) {
+                c->xblocked = c->cycle < limit;
+                return PRU_STOP_LIMIT;
+            }
             if (c->checked)
-                exec_checked(c, d, limit);
+                exec_checked(c, d, xlim);
             else if (c->trace_on)
-                exec_traced(c, d, limit);
+                exec_traced(c, d, xlim);
             else
-                exec_one(c, d, limit);
+                exec_one(c, d, xlim);
         } else {
             run_fast(c, limit);
         }
