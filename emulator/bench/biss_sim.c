@@ -196,8 +196,6 @@ static void usage(FILE *f) {
                "                     without the low-pass arithmetic), run-ahead (two PRUs:\n"
                "                     each runs ahead to its next cross-PRU event, not both\n"
                "                     cycle by cycle)\n"
-               "  --ff-two-pru       two PRUs: let the fast-forward act in the runs ahead too\n"
-               "                     (faster; the same results but skipped_iterations)\n"
                "  --max-ms T         stop after T ms of simulated time (default: ample)\n"
                "  --strict[=RULES]   stop with a fault report on a construct of uncertain\n"
                "                     silicon behaviour in clocked code (between two MA edges\n"
@@ -524,8 +522,6 @@ static int parse_args(int argc, char **argv, struct options *o) {
             }
         } else if (!strcmp(a, "--strict-log")) {
             o->strict_log = 1;
-        } else if (!strcmp(a, "--ff-two-pru")) {
-            o->core.ff_pair = 1;
         } else if (!strcmp(a, "--encoder") || !strncmp(a, "--encoder=", 10)) {
             o->encoder = 1;
             o->encoder_image = a[9] ? a + 10 : NULL;

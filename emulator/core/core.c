@@ -32,7 +32,6 @@ void pru_params_default(struct pru_params *p) {
     p->fast_loop = 1;
     p->leaf_call = 1;
     p->run_ahead = 1;
-    p->ff_pair = 0;
     p->strict = 0;
     p->strict_everywhere = 0;
     p->strict_window = PRU_STRICT_DEFAULT_WINDOW;

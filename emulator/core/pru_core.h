@@ -114,12 +114,6 @@ struct pru_params {
      * both taking turns cycle by cycle; 0: cycle by cycle (results are
      * identical, or a PRU_FAULT_RUN_AHEAD where they could not be). */
     int run_ahead;
-    /* With run_ahead, the fast-forward acts in the runs ahead too, as in a
-     * core alone: faster (issue 30: about 1.7 times), the same results
-     * but for the skips counted (pru_ff_skipped()); 0 (the default): it
-     * does not act with two PRUs, as cycle by cycle, so every output is
-     * that of cycle by cycle byte for byte. */
-    int ff_pair;
 
     /* Strict mode (TIMING.md "Strict mode"): the PRU_STRICT_* rules checked,
      * 0 = off. A rule broken stops the core with PRU_FAULT_STRICT, or with

@@ -94,12 +94,7 @@ static enum pru_stop run_turns(struct pru_icss *s, int64_t cycle, bool ahead) {
         int64_t other = a == 0 ? o->cycle + 1 : o->cycle;
         int64_t to = other < cycle ? other : cycle;
         c->xlimit = ahead ? other : CYCLE_NEVER;
-        /* ahead, the fast-forward acts only when asked (ff_pair) */
-        bool ff = c->ff_on;
-        c->ff_on = ff && (!ahead || c->p.ff_pair);
-        enum pru_stop why = exec_run(c, ahead ? cycle : to, false);
-        c->ff_on = ff;
-        if (why == PRU_STOP_FAULT)
+        if (exec_run(c, ahead ? cycle : to, false) == PRU_STOP_FAULT)
             return PRU_STOP_FAULT;
     }
     return PRU_STOP_LIMIT;

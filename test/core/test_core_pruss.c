@@ -337,7 +337,7 @@ static void run_pair(const uint32_t *w0, unsigned n0, const uint32_t *w1, unsign
     struct pru_params p;
     pru_params_default(&p);
     p.run_ahead = ahead;
-    p.ff_pair = ff;
+    p.fast_forward = ff;
     struct pru_icss *s = pru_icss_new(PRU_SOC_AM335X, &p);
     ck_assert_ptr_nonnull(s);
     struct pru_core *c[2] = {pru_icss_core(s, 0), pru_icss_core(s, 1)};
@@ -424,7 +424,7 @@ START_TEST(run_ahead_same_as_turns) {
     ck_assert_uint_le(n0, 32);
     ck_assert_uint_le(n1, 32);
     struct pair_end turns, ahead, ahead_ff;
-    run_pair(w0, n0, w1, n1, false, false, 20000, &turns);
+    run_pair(w0, n0, w1, n1, false, true, 20000, &turns);
     run_pair(w0, n0, w1, n1, true, false, 20000, &ahead);
     run_pair(w0, n0, w1, n1, true, true, 20000, &ahead_ff);
     /* they did interact: PRU0 saw every count, PRU1 stalled on the bank */
@@ -456,7 +456,7 @@ START_TEST(run_ahead_intc_on_faults) {
     w1[n1++] = qbi(PRU_OP_QBNE, -1, R(3), 0);
     w1[n1++] = halt();
     struct pair_end e;
-    run_pair(w0, n0, w1, n1, false, false, 2000, &e);
+    run_pair(w0, n0, w1, n1, false, true, 2000, &e);
     ck_assert_uint_eq(e.pc[0], 6);
     struct pru_params p;
     pru_params_default(&p);

@@ -282,14 +282,14 @@ struct pair_end {
 
 /* test_same_line_both's pair without strict mode: PRU1's image on PRU0's
  * bank, PRU1 stalling whenever both store a result there in one cycle;
- * run ahead (run_ahead 1, its fast-forward ff_pair as given) or cycle by
- * cycle, for 3 ms after the configuration. */
+ * run ahead (run_ahead 1) or cycle by cycle, with the fast-forward (ff)
+ * or without, for 3 ms after the configuration. */
 static void same_bank_run(bool ahead, bool ff, struct pair_end *e) {
     struct pair p;
     struct pru_params pp;
     pru_params_default(&pp);
     pp.run_ahead = ahead;
-    pp.ff_pair = ff;
+    pp.fast_forward = ff;
     pair_open(&p, PRU_SOC_AM335X, "hengstler-ad38", "hengstler-ad38", (const double[2]){5, 5}, &pp);
     e2e_start_firmware(&p.r[0]);
     const char *defs[] = {"PRU_NUM=1", "XFR_BANK=10"};
@@ -335,7 +335,7 @@ static void same_bank_run(bool ahead, bool ff, struct pair_end *e) {
  * is as cycle by cycle. */
 START_TEST(test_same_bank_run_ahead) {
     struct pair_end turns, ahead, ahead_ff;
-    same_bank_run(false, false, &turns);
+    same_bank_run(false, true, &turns);
     same_bank_run(true, false, &ahead);
     same_bank_run(true, true, &ahead_ff);
     ck_assert_uint_gt(turns.stalls[1], 10); /* they met on the bank */
