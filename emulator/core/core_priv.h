@@ -87,6 +87,11 @@ enum {
      * fixed length within r0..r29: imm the bytes, target the register-file
      * start (exec_xfr_fixed(); what it cannot do goes the general way) */
     PD_XFR_FIXED,
+    /* a PRU of a PRU-ICSS: an instruction that is a cross-PRU event
+     * (TIMING.md "Two PRUs"): the kinds PD_SLOW, PD_R31_READ, PD_MVI_LD and
+     * PD_XFR_FIXED, in .xfast; the fast loop sees first whether it must
+     * wait for the other PRU (run-ahead, pruss.c) */
+    PD_XPRU,
     PD_END, /* fast loop: one past the end of IRAM (leave the loop) */
     PD_KIND_END,
 };
@@ -122,6 +127,7 @@ struct pd {
     uint32_t target; /* absolute branch/jump target, LOOP end */
     struct pru_insn in;
     uint8_t inner; /* PD_R31_READ: the fast kind to run once R31 is read */
+    uint8_t xfast; /* PD_XPRU: the fast kind once the other PRU is there */
 };
 
 /* Lazily evaluated 28-bit GPI shift register (cfg_gpi.c). */

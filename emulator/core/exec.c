@@ -506,6 +506,15 @@ __attribute__((cold)) bool exec_simple_step(uint32_t *r, const struct pd *d, uns
     return exec_simple(r, d, kind, pc, carry);
 }
 
+/* Run-ahead (pruss.c): whether the instruction at cyc of fast kind `kind`,
+ * a cross-PRU event (an R31 read: if gpi_r31_shared() says so), must wait
+ * for the other PRU. Out of line: a core alone never calls it. */
+static __attribute__((noinline)) bool xpru_blocks(struct pru_core *c, int64_t cyc, unsigned kind) {
+    if ((kind == PD_R31_READ || kind == PD_MVI_LD) && !gpi_r31_shared(c, cyc))
+        return false;
+    return xpru_wait(c, cyc);
+}
+
 /* Leave the fast loop so that exec_run() re-evaluates enable/sleep/step. */
 void exec_recheck(struct pru_core *c) {
     c->recheck = true;
@@ -599,6 +608,7 @@ static void run_fast(struct pru_core *c, int64_t limit) {
         [PD_QBBC32I] = &&k_qbbc32i,
         [PD_MVI_LD] = &&k_mvi_ld,
         [PD_XFR_FIXED] = &&k_xfr_fixed,
+        [PD_XPRU] = &&k_xpru,
         [PD_END] = &&out,
     };
 #pragma GCC diagnostic pop
@@ -846,9 +856,6 @@ k_jali:
     LEAF_CALL();
     JUMPED();
 k_r31: /* R31 read first; then the instruction's own handler */
-    if (__builtin_expect(c->xlimit != CYCLE_NEVER, 0) && gpi_r31_shared(c, cyc) &&
-        xpru_wait(c, cyc))
-        goto xblocked;
     r[31] = gpi_r31(c, cyc);
     goto *kinds[d->inner];
 
@@ -879,16 +886,11 @@ r30_written:
     NEXT();
 
 k_mvi_ld:
-    if (__builtin_expect(c->xlimit != CYCLE_NEVER, 0) && gpi_r31_shared(c, cyc) &&
-        xpru_wait(c, cyc))
-        goto xblocked;
     if (!mvi_load(c, r, d, cyc))
         goto k_general;
     pc++;
     NEXT();
 k_xfr_fixed : {
-    if (xpru_wait(c, cyc)) /* a scratch-pad bank (ZERO/FILL: none, but rare) */
-        goto xblocked;
     int stall = exec_xfr_fixed(c, d, cyc);
     if (stall < 0)
         goto k_general;
@@ -907,10 +909,12 @@ at_loop_end:
     SYNC_IN();
     goto top;
 
-k_slow: /* every instruction here counts as a cross-PRU event: memory,
-         * XFR, R31 writes, SLP, HALT and all the general path runs */
-    if (xpru_wait(c, cyc))
+k_xpru: /* a PRU of a PRU-ICSS: a cross-PRU event (predecode.c) */
+    if (xpru_blocks(c, cyc, d->xfast))
         goto xblocked;
+    goto *kinds[d->xfast];
+
+k_slow:
     if (d->burst_bytes && (d->flags & PD_EFFECTS) == 0) {
         /* a fixed-length burst without R31 or pin effects: what
          * exec_one() does, without its checks, for speed */

@@ -40,6 +40,8 @@ struct pru_icss *pru_icss_new(enum pru_soc soc, const struct pru_params *params)
     p1->pru1 = p1;
     p1->pru_idx = 1;
     p0->pru1 = p1;
+    predecode_all(p0); /* the cross-PRU events (PD_XPRU) */
+    predecode_all(p1);
     return s;
 }
 
