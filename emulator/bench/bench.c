@@ -388,6 +388,7 @@ static struct bench *bench_on(const struct bench_config *cfg, struct pru_core *c
     observe_pins_update(b);
     link_set_sl_reach(&b->link, !cfg->no_sl_reach);
     link_set_line_settled(&b->link, !cfg->no_line_settled);
+    link_set_slave_quick(&b->link, !cfg->no_slave_quick);
     struct pru_pins pins = {.ctx = b,
                             .inputs_at = pins_inputs_at,
                             .next_input_change = pins_next_change,

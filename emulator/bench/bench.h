@@ -40,6 +40,9 @@ struct bench_config {
     /* the fast path "line-settled" off: every edge through the lines'
      * low-pass arithmetic (line_dir_set_settled_fast) */
     int no_line_settled;
+    /* the fast path "slave-quick" off: every MA edge through a BiSS-C
+     * chain's general step (link_set_slave_quick) */
+    int no_slave_quick;
 };
 
 /* Defaults: AM335x, MA on R30 bit 1, the "generic" profile. */

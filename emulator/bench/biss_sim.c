@@ -101,7 +101,7 @@ struct options {
     /* fast paths switched off (--no-fast-path): the core's in its
      * parameters (otherwise the defaults), the link's here */
     struct pru_params core;
-    int no_sl_reach, no_line_settled;
+    int no_sl_reach, no_line_settled, no_slave_quick;
     /* strict and contention modes (emulator/core/TIMING.md) */
     unsigned strict, strict_window;
     int strict_log;
@@ -193,9 +193,10 @@ static void usage(FILE *f) {
                "                     calls replayed from a memo), sl-reach (the SL input\n"
                "                     stays until an event could reach the master's pin),\n"
                "                     line-settled (a cable edge after a settled level\n"
-               "                     without the low-pass arithmetic), run-ahead (two PRUs:\n"
-               "                     each runs ahead to its next cross-PRU event, not both\n"
-               "                     cycle by cycle)\n"
+               "                     without the low-pass arithmetic), slave-quick (a\n"
+               "                     BiSS-C chain's clock edges in one step), run-ahead\n"
+               "                     (two PRUs: each runs ahead to its next cross-PRU\n"
+               "                     event, not both cycle by cycle)\n"
                "  --max-ms T         stop after T ms of simulated time (default: ample)\n"
                "  --strict[=RULES]   stop with a fault report on a construct of uncertain\n"
                "                     silicon behaviour in clocked code (between two MA edges\n"
@@ -461,10 +462,12 @@ static int set_option(struct options *o, const char *a, const char *v) {
             o->no_sl_reach = 1;
         } else if (!strcmp(v, "line-settled")) {
             o->no_line_settled = 1;
+        } else if (!strcmp(v, "slave-quick")) {
+            o->no_slave_quick = 1;
         } else if (pru_params_fast_path_off(&o->core, v) != 0) {
             return usage_error("--no-fast-path '%s': expected ff, ff-counted, ff-r31-bits, "
-                               "ff-loop-delay, ff-count-loop, fast-loop, leaf-call, run-ahead, "
-                               "sl-reach or line-settled",
+                               "ff-loop-delay, ff-count-loop, fast-loop, leaf-call, sl-reach, "
+                               "line-settled, slave-quick or run-ahead",
                                v);
         }
     } else if (!strcmp(a, "--strict-window")) {
@@ -558,6 +561,7 @@ static int build_config(const struct options *o, struct bench_config *cfg) {
     }
     cfg->pru = o->core; /* the defaults, fast paths off as asked */
     cfg->no_sl_reach = o->no_sl_reach;
+    cfg->no_slave_quick = o->no_slave_quick;
     cfg->no_line_settled = o->no_line_settled;
     cfg->pru.strict = o->strict;
     cfg->pru.strict_log = o->strict_log;

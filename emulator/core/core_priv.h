@@ -178,7 +178,8 @@ struct ff_body {
     uint64_t iram_gen; /* IRAM's generation when decoded */
     uint32_t r31_mask; /* R31 bits it looks at */
     int counter;       /* a counted poll's counter register, -1 if it is none */
-    uint32_t step;     /* ... added to it per iteration (mod 2^32) */
+    uint8_t sel;       /* ... its field (a whole register or part of one) */
+    uint32_t step;     /* ... added to the field per iteration (mod 2^width) */
     uint32_t end;      /* ... the value that ends the loop */
     int cl_reg;        /* a count loop's counter register (ff.c), -1 if it is none */
     uint8_t cl_sel;    /* ... its field */

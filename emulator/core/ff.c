@@ -11,11 +11,13 @@
  * skipped: cycles, instructions and STALL advance as if they had run.
  *
  * Two refinements, each with its own switch (pru_params):
- * - ff_counted: a poll with a time-out counts a register down (or up) by a
- *   constant and closes the loop with QBNE on it. When the body (decoded
- *   from IRAM) uses that register nowhere else, iterations differ only in
- *   it, so they are skipped up to the one before the counter would end the
- *   loop (or wrap), with the counter advanced by as many steps.
+ * - ff_counted: a poll with a time-out counts a register or a field of one
+ *   (the firmware's FE_POLL: r1.w2) down (or up) by a constant and closes
+ *   the loop with QBNE on it. When the body (decoded from IRAM) uses that
+ *   register nowhere else, iterations differ only in the field, so they
+ *   are skipped up to the one before the counter would end the loop (or
+ *   wrap at the field's width), with the counter advanced by as many
+ *   steps.
  * - ff_r31_bits: when the body looks at R31 only through QBBS/QBBC, the
  *   horizon of its R31 reads covers only the bits it tests, so e.g. the
  *   Cnt_16 pulses of a shift-mode input do not cut the skip short.
@@ -86,16 +88,23 @@ static uint32_t r31_mask(const struct pru_insn *in, uint32_t n) {
     return mask;
 }
 
+/* The largest value of a field (its bits shifted down). */
+static uint32_t field_max(unsigned sel) {
+    uint32_t bits = field_bits(sel);
+    return bits >> __builtin_ctz(bits);
+}
+
 /* A counted poll (see the top): the closing branch in[n-1] is QBNE top,
- * x, imm; one ADD/SUB x, x, imm steps x; no other instruction reads or
- * writes x, and every one is of a kind a poll uses. Sets b->counter (x, or
- * -1 if the body is no such loop), b->step and b->end. */
+ * x.f, imm; one ADD/SUB x.f, x.f, imm steps the field (x.f the same field
+ * throughout: x, or x.w2 and so on); no other instruction reads or writes
+ * register x, and every one is of a kind a poll uses. Sets b->counter (x,
+ * or -1 if the body is no such loop), b->sel, b->step and b->end. */
 static void counted(struct ff_body *b, const struct pru_insn *in, uint32_t n) {
     b->counter = -1;
     const struct pru_insn *br = &in[n - 1];
-    if (br->op != PRU_OP_QBNE || br->rs1sel != PRU_SEL_R || !br->io || br->rs1 > 30)
+    if (br->op != PRU_OP_QBNE || !br->io || br->rs1 > 30)
         return;
-    unsigned x = br->rs1;
+    unsigned x = br->rs1, sel = br->rs1sel;
     int updates = 0;
     for (uint32_t i = 0; i + 1 < n; i++) {
         const struct pru_insn *a = &in[i];
@@ -103,17 +112,18 @@ static void counted(struct ff_body *b, const struct pru_insn *in, uint32_t n) {
         if (!poll_kind(a))
             return;
         if ((f == PRU_FMT_ALU || f == PRU_FMT_LDI) && a->rd == x) {
-            if ((a->op != PRU_OP_ADD && a->op != PRU_OP_SUB) || a->rdsel != PRU_SEL_R ||
-                a->rs1 != x || a->rs1sel != PRU_SEL_R || !a->io || a->imm == 0)
+            if ((a->op != PRU_OP_ADD && a->op != PRU_OP_SUB) || a->rdsel != sel || a->rs1 != x ||
+                a->rs1sel != sel || !a->io || a->imm == 0 || a->imm > field_max(sel))
                 return;
-            b->step = a->op == PRU_OP_SUB ? 0u - a->imm : a->imm;
+            b->step = (a->op == PRU_OP_SUB ? 0u - a->imm : a->imm) & field_max(sel);
             updates++;
         } else if (reads_reg(a, x)) {
             return;
         }
     }
-    if (updates == 1) {
+    if (updates == 1 && br->imm <= field_max(sel)) {
         b->counter = (int)x;
+        b->sel = (uint8_t)sel;
         b->end = br->imm;
     }
 }
@@ -219,23 +229,31 @@ static inline const struct ff_body *body(struct pru_core *c, uint32_t top, uint3
 }
 
 /* Iterations a counted poll (body b, NULL if none) may still skip:
- * counter x moved by `step` this iteration. The values after the next n
- * steps must all differ from the end value and not wrap, nor may this
- * iteration's step have wrapped (the carry of ADD/SUB stays what it left).
- * -1 if the loop is no counted poll with this counter and step. */
-static int64_t counted_room(struct pru_core *c, const struct ff_body *b, int x, uint32_t step) {
-    if (!b || b->counter != x || b->step != step)
+ * register x changed from `old` this iteration. Only the counter's field
+ * may have changed, by the body's step; the values after the next n steps
+ * must all differ from the end value and not wrap at the field's width,
+ * nor may this iteration's step have wrapped (the carry of ADD/SUB, bit
+ * W of the wide result, stays what it left). -1 if the loop is no counted
+ * poll with this counter and step. *step is the field's step. */
+static int64_t counted_room(struct pru_core *c, const struct ff_body *b, int x, uint32_t old,
+                            uint32_t *step) {
+    if (!b || b->counter != x)
         return -1;
-    bool down = step > 0x7fffffffu;
-    uint32_t k = down ? 0u - step : step;
-    uint32_t v = c->r[x], before = v - step;
-    if (down ? before < k : before > 0xffffffffu - k)
+    uint32_t bits = field_bits(b->sel), max = field_max(b->sel);
+    unsigned sh = (unsigned)__builtin_ctz(bits);
+    uint32_t v = (c->r[x] & bits) >> sh, before = (old & bits) >> sh;
+    if (((c->r[x] ^ old) & ~bits) != 0 || ((v - before) & max) != b->step)
+        return -1;
+    *step = b->step;
+    bool down = b->step > max / 2;
+    uint32_t k = down ? (0u - b->step) & max : b->step;
+    if (down ? before < k : before > max - k)
         return -1;
     if (down) {
         uint32_t lo = b->end < v ? b->end + 1 : 0;
         return (int64_t)((v - lo) / k);
     }
-    uint32_t hi = b->end > v ? b->end - 1 : 0xffffffffu;
+    uint32_t hi = b->end > v ? b->end - 1 : max;
     return (int64_t)((hi - v) / k);
 }
 
@@ -287,8 +305,7 @@ static int64_t repeat_room(struct pru_core *c, const struct ff_body *b, int *x, 
         return INT64_MAX;
     if (!c->p.ff_counted || (*x = one_changed(c)) < 0)
         return -1;
-    *step = c->r[*x] - f->regs[*x];
-    return counted_room(c, b, *x, *step);
+    return counted_room(c, b, *x, f->regs[*x], step);
 }
 
 /* A count loop's branch from pc back to top was taken, before its cycle
@@ -378,8 +395,13 @@ void ff_backward_branch(struct pru_core *c, uint32_t pc, uint32_t top, int64_t l
             c->cycle += n * len;
             c->insns += di;
             c->stall_total += n * (c->stall_total - f->stall0);
-            if (x >= 0)
-                c->r[x] += (uint32_t)n * step;
+            if (x >= 0) {
+                /* the field's n steps, the rest of the register as it is */
+                uint32_t bits = field_bits(b->sel);
+                unsigned sh = (unsigned)__builtin_ctz(bits);
+                uint32_t v = ((c->r[x] & bits) >> sh) + (uint32_t)n * step;
+                c->r[x] = (c->r[x] & ~bits) | ((v << sh) & bits);
+            }
             f->skipped += (uint64_t)n;
             now += n * len;
             insns += di;

@@ -83,8 +83,9 @@ struct pru_params {
     /* Skip idle polling loops in whole iterations (results are identical). */
     int fast_forward;
     /* With fast_forward, also skip counted polls: a loop whose only changing
-     * register is a counter stepped by a constant and closed by QBNE on it
-     * (a poll with a time-out), up to the iteration before it would end. */
+     * register is a counter (a register or a field of one) stepped by a
+     * constant and closed by QBNE on it (a poll with a time-out), up to
+     * the iteration before it would end. */
     int ff_counted;
     /* With fast_forward, a loop that looks at R31 only through QBBS/QBBC is
      * skipped until one of the bits it tests may change (not every R31 bit:

@@ -1,12 +1,8 @@
 #include "biss_crc.h"
 
+/* The index of the top set bit; every frame bit's CRC step asks for it. */
 unsigned biss_crc_width(uint32_t poly) {
-    unsigned w = 0;
-    while (poly > 1) {
-        poly >>= 1;
-        w++;
-    }
-    return w;
+    return poly > 1 ? 31u - (unsigned)__builtin_clz(poly) : 0u;
 }
 
 uint32_t biss_crc_bit(uint32_t crc, uint32_t poly, int bit) {

@@ -68,6 +68,12 @@ void biss_slave_init(biss_slave *b, const biss_chain_cfg *cfg, event_queue *q, s
     b->ma = 1;
     b->sl_sched = 1;
     b->last_edge = b->prev_edge = b->last_rise = b->prev_rise = eq_now(q);
+    b->quick = true;
+    b->memo_period = b->memo_timeout = -1;
+}
+
+void biss_slave_set_quick(biss_slave *b, bool on) {
+    b->quick = on;
 }
 
 void biss_slave_on_frame(biss_slave *b, biss_frame_fn fn, void *ctx) {
@@ -341,12 +347,35 @@ static inline void note_ma(biss_slave *b, sim_ps t, int level) {
     }
 }
 
+/* timeout_len() as it will be once the quick step has taken the edge at t
+ * (note_ma(), and at a rise on_rise()'s count: a rise here is the third or
+ * later). The adaptive timeout through a memo of the last period: a
+ * clocked frame's periods are alike, so one llround() a frame, not one an
+ * edge (biss_chain_timeout_ps() is a function of the period alone). */
+static inline sim_ps quick_timeout(biss_slave *b, sim_ps t, int level) {
+    const biss_chain_cfg *c = &b->cfg;
+    if (c->timeout_mode == BISS_TIMEOUT_FIXED) {
+        return c->timeout_ps;
+    }
+    sim_ps period = c->adaptive_max_ps;
+    if (b->rises + (unsigned)level >= 2) {
+        period = level ? t - b->last_rise : b->last_rise - b->prev_rise;
+    } else if (t != b->last_edge) {
+        period = 2 * (t - b->last_edge);
+    }
+    if (period != b->memo_period) {
+        b->memo_period = period;
+        b->memo_timeout = biss_chain_timeout_ps(c, period);
+    }
+    return b->memo_timeout;
+}
+
 bool biss_slave_ma_edge_quick(biss_slave *b, sim_ps t, int level) {
     level = level ? 1 : 0;
-    if (level == b->ma || !b->st.in_frame || b->cfg.timeout_mode != BISS_TIMEOUT_FIXED) {
+    if (level == b->ma || !b->st.in_frame || !b->quick) {
         return false;
     }
-    sim_ps due = t + b->cfg.timeout_ps; /* timeout_len() */
+    sim_ps due = t + quick_timeout(b, t, level); /* timeout_len() */
     if (!b->timeout_ev || b->timeout_ev_at > due) {
         return false; /* restart_timeout() would schedule */
     }

@@ -160,6 +160,9 @@ typedef struct {
     sim_ps timeout_ev_at;    /* ... its time */
     sim_ps timeout_due;      /* when the timeout is due: at or after timeout_ev_at */
     eq_id timeout_due_order; /* ... the event's place among events at that time */
+    bool quick;              /* the quick step on (biss_slave_set_quick), default on */
+    sim_ps memo_period;      /* the quick step's adaptive timeout: the last period */
+    sim_ps memo_timeout;     /* ... and its timeout (biss_chain_timeout_ps), -1 none */
     int cds;                 /* CDS for the next frame */
     bool lost;               /* SL held low since lost_at (biss_slave_lose_sync) */
     sim_ps lost_at;
@@ -187,6 +190,9 @@ void biss_slave_ma_edge(biss_slave *b, sim_ps t, int level);
  * caller that has its own calls in tail position only saves no registers.
  * Returns false, having changed nothing, for any other edge. */
 bool biss_slave_ma_edge_quick(biss_slave *b, sim_ps t, int level);
+/* The quick step on (default) or off: off, every edge takes the general
+ * step (the same results, slower: the fast path "slave-quick"). */
+void biss_slave_set_quick(biss_slave *b, bool on);
 /* biss_slave_ma_edge() without trying the quick step first: any edge. */
 void biss_slave_ma_edge_general(biss_slave *b, sim_ps t, int level);
 sim_edge_sink biss_slave_sink(biss_slave *b);

@@ -219,6 +219,13 @@ void link_set_line_settled(link_model *l, int on) {
     line_dir_set_settled_fast(&l->sl_line, on);
 }
 
+void link_set_slave_quick(link_model *l, int on) {
+    biss_slave *b = link_biss(l);
+    if (b) {
+        biss_slave_set_quick(b, on != 0);
+    }
+}
+
 void link_set_sl_reach(link_model *l, int on) {
     l->sl_reach_on = on;
 }

@@ -117,6 +117,10 @@ sim_ps link_next_change(const link_model *l);
  * it is link_next_change(). */
 sim_ps link_next_sl_change(const link_model *l);
 
+/* A BiSS-C chain's quick step for clocked edges (biss_slave_set_quick) on
+ * (default) or off: the fast path "slave-quick"; other models have none. */
+void link_set_slave_quick(link_model *l, int on);
+
 /* Switches the fast path "sl-reach" of link_next_sl_change (on by default). */
 void link_set_sl_reach(link_model *l, int on);
 

@@ -38,6 +38,12 @@ cases = [
     ("default-10MHz", ["--frames", "200"]),
     ("default-1MHz-100m", ["--frames", "100", "--freq", "1000000", "--cable-m", "100"]),
     ("chain-2MHz", ["--profile", "hengstler-ad38", "--freq", "2000000", "--frames", "60"]),
+    # the AD38 chain's adaptive timeout at the top rate, and a fixed 650 ns
+    # one (the slave's quick step either way)
+    ("chain-10MHz", ["--scenario", os.path.join(SCEN, "encoder-ad38.json"), "--freq", "10000000",
+                     "--frames", "100"]),
+    ("chain8-650ns", ["--scenario", os.path.join(SCEN, "chain8-650ns.json"), "--freq", "10000000",
+                      "--frames", "60"]),
     ("ssi", ["--profile", "ssi", "--frames", "100"]),
     ("register-read", ["--frames", "60", "--reg-read", "0:0x78:4"]),
     # the bench's clocking image: its half periods are LOOP delays (the
@@ -61,13 +67,17 @@ paths = ["ff-counted", "ff-r31-bits", "ff-loop-delay", "ff-count-loop", "ff"]
 # the core's leaf calls (the firmware's delay tails replayed from a memo,
 # leaf.h leaf_call()): the same registers, cycles and pins, no iteration
 # skipped either
-loops = ["fast-loop", "leaf-call", "line-settled"]
+# the BiSS-C slave's quick step (biss_slave_set_quick): a clocked MA edge
+# in one step, the adaptive timeout's included; it skips nothing either
+loops = ["fast-loop", "leaf-call", "line-settled", "slave-quick"]
 # the link's bound on the next SL change (link_next_sl_change): it may
 # change how far the core skips, so only the results and the VCD count
 bounds = ["sl-reach"]
 skips_less = {p: [] for p in paths}  # the cases in which the path skipped something
+all_skipped = {}  # iterations skipped with every fast path on, by case
 for name, args in cases:
     ref, ref_vcd, ref_skip = run(name, args, [])
+    all_skipped[name] = ref_skip
     for path in paths:
         j, vcd, skip = run(name, args, [path])
         what = "%s without %s" % (name, path)
@@ -93,6 +103,10 @@ for path, where in skips_less.items():
 # the default run at 10 MHz idles in a counted poll; at 1 MHz the image's
 # MA half periods are mostly LOOP delays
 check("default-10MHz" in skips_less["ff-counted"], "ff-counted at 10 MHz: %s" % skips_less)
+# its poll counts a field (r1.w2): the 20 us timeout's 4-cycle turns, some
+# 990 a frame, all but a few skipped
+check(all_skipped["default-10MHz"] > 200 * 900,
+      "default-10MHz: %d turns skipped in 200 frames" % all_skipped["default-10MHz"])
 check("image-1MHz" in skips_less["ff-loop-delay"], "ff-loop-delay at 1 MHz: %s" % skips_less)
 # the firmware's clocked periods at 1 MHz wait in its countdown delay
 check("default-1MHz-100m" in skips_less["ff-count-loop"], "ff-count-loop at 1 MHz: %s" % skips_less)

@@ -1,7 +1,8 @@
 /*
  * Check suite: the fast-forward's skips (emulator/core/ff.c, TIMING.md
  * "Fast-forward") give exactly the cycles, instructions and registers of
- * running every instruction: counted polls, polls on one R31 bit of a
+ * running every instruction: counted polls (on a register or a field of
+ * one), polls on one R31 bit of a
  * shift-mode input, LOOP delays, countdown loops; and loops that look alike but are not
  * skippable run as they are.
  */
@@ -153,6 +154,104 @@ START_TEST(counter_read_elsewhere_runs) {
     }
     ck_assert_uint_eq(r3[0], 1000u * 1001u / 2u);
     ck_assert_uint_eq(r3[1], r3[0]);
+}
+END_TEST
+
+/* A counted poll on a field of r2 (the firmware's FE_POLL counts r1.w2):
+ * the rest of r2 holds 0x5a5a (w0) or 0x5a (b0) and must keep it. */
+struct field_counter {
+    const char *name;
+    unsigned field;    /* W2(2), B1(2), ... */
+    int op;            /* PRU_OP_SUB or PRU_OP_ADD */
+    unsigned step;     /* its immediate */
+    unsigned start;    /* the field's first value */
+    unsigned end;      /* QBNE's value */
+    unsigned other;    /* the other field: W0(2) or B0(2) (0: none) */
+    int other_written; /* the body also writes the other field: no counted poll */
+};
+
+struct field_outcome {
+    struct outcome o;
+    uint32_t carry; /* the carry the loop left (adc r3, r4, 0 after it) */
+};
+
+/* Shift mode at 80 MHz as counted_poll(); the poll waits for the newest 4
+ * samples low through and r1.b3, r31.b0, 15 and steps f's field. */
+static struct field_outcome field_poll(enum path p, int64_t t_fall, const struct field_counter *f) {
+    struct edge_in in = {t_fall};
+    struct pru_core *c = ff_core(p, &in);
+    uint32_t prog[16];
+    unsigned n = 0;
+    prog[n++] = ldi(R(1), 2u | 3u << 3);
+    prog[n++] = burst(PRU_OP_SBCO, 4 * 1, 4, 8, 4); /* GPCFG0 */
+    if (f->other)
+        prog[n++] = ldi(f->other, f->other == W0(2) ? 0x5a5a : 0x5a);
+    prog[n++] = ldi(f->field, f->start);
+    prog[n++] = qbi(PRU_OP_QBBC, 0, R(31), 0); /* until the high level is sampled */
+    unsigned top = n;
+    prog[n++] = alui(PRU_OP_AND, f->other_written ? f->other : B3(1), B0(31), 15);
+    prog[n++] = qbi(PRU_OP_QBEQ, 0, f->other_written ? f->other : B3(1), 0); /* to DONE */
+    unsigned exit_at = n - 1;
+    prog[n++] = alui(f->op, f->field, f->field, f->step);
+    int back = (int)top - (int)n;
+    prog[n++] = qbi(PRU_OP_QBNE, back, f->field, f->end);
+    prog[exit_at] =
+        qbi(PRU_OP_QBEQ, (int)(n - exit_at), f->other_written ? f->other : B3(1), 0); /* DONE: */
+    prog[n++] = alui(PRU_OP_ADC, R(3), R(4), 0);
+    prog[n++] = halt();
+    pru_load_image(c, prog, n * 4);
+    pru_start(c);
+    ck_assert_int_eq(pru_run(c, 10000000), PRU_STOP_HALT);
+    struct field_outcome o = {
+        {pru_cycles(c), pru_instructions(c), pru_ff_skipped(c), pru_reg(c, 2)}, pru_reg(c, 3)};
+    pru_core_free(c);
+    return o;
+}
+
+/* Counter fields at their corners: a half-word counted down to 0 as the
+ * firmware's (ended by the fall, or timing out with the other half kept), a
+ * byte counted up by 3 that wraps twice at the byte's width before it meets
+ * its end (the carry of the wrapping step included), and a body that also
+ * writes another field of the counter's register (no counted poll: it runs
+ * as it is). Every fast path on, each off and all off: the same cycles,
+ * instructions, r2 and carry. */
+START_TEST(counted_field_poll_exact) {
+    static const struct field_counter fc[] = {
+        {"w2 down, fall", W2(2), PRU_OP_SUB, 1, 60000, 0, W0(2), 0},
+        {"w2 down, time-out", W2(2), PRU_OP_SUB, 1, 5000, 0, W0(2), 0},
+        {"w2 down by 255, time-out", W2(2), PRU_OP_SUB, 255, 255 * 200, 0, W0(2), 0},
+        {"b1 up by 3, two wraps", B1(2), PRU_OP_ADD, 3, 10, 2, B0(2), 0},
+        {"w1 down, b0 written too", W1(2), PRU_OP_SUB, 1, 5000, 0, B0(2), 1},
+    };
+    for (unsigned i = 0; i < sizeof fc / sizeof fc[0]; i++) {
+        const struct field_counter *f = &fc[i];
+        int64_t falls[] = {20000000, 20000000 + 7250, INT64_MAX};
+        for (unsigned k = 0; k < 3; k++) {
+            int64_t t = i == 0 ? falls[k] : INT64_MAX;
+            struct field_outcome ref = field_poll(NONE, t, f);
+            ck_assert_uint_eq(ref.o.skipped, 0);
+            for (enum path p = ALL; p < NONE; p++) {
+                struct field_outcome o = field_poll(p, t, f);
+                same(&o.o, &ref.o, f->name, t);
+                ck_assert_msg(o.carry == ref.carry, "%s: carry %u vs %u", f->name, o.carry,
+                              ref.carry);
+            }
+            struct field_outcome all = field_poll(ALL, t, f);
+            struct field_outcome no_counted = field_poll(NO_COUNTED, t, f);
+            ck_assert_uint_eq(no_counted.o.skipped, 0);
+            if (f->other_written) {
+                ck_assert_uint_eq(all.o.skipped, 0);
+            } else {
+                ck_assert_msg(all.o.skipped * 10 > all.o.insns / 4 * 9,
+                              "%s: %llu turns of %llu skipped", f->name,
+                              (unsigned long long)all.o.skipped,
+                              (unsigned long long)all.o.insns / 4);
+            }
+        }
+    }
+    /* the time-outs end with the counter at its end, the rest kept */
+    ck_assert_uint_eq(field_poll(ALL, INT64_MAX, &fc[1]).o.r2, 0x5a5au);
+    ck_assert_uint_eq(field_poll(ALL, INT64_MAX, &fc[3]).o.r2, 0x025au);
 }
 END_TEST
 
@@ -314,6 +413,7 @@ int main(void) {
     tcase_add_test(tc, counted_poll_exact);
     tcase_add_test(tc, counted_poll_times_out);
     tcase_add_test(tc, counter_read_elsewhere_runs);
+    tcase_add_test(tc, counted_field_poll_exact);
     tcase_add_test(tc, loop_delay_exact);
     tcase_add_test(tc, loop_with_work_runs);
     tcase_add_test(tc, count_loop_exact);

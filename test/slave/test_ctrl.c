@@ -48,6 +48,10 @@ START_TEST(crc_widths_and_start_value) {
     ck_assert_uint_eq(biss_crc_width(0x43), 6);
     ck_assert_uint_eq(biss_crc_width(0x190d9), 16);
     ck_assert_uint_eq(biss_crc_width(0), 0);
+    /* the corners: x^0 alone is no CRC, x^1 a one-bit one, the top term */
+    ck_assert_uint_eq(biss_crc_width(1), 0);
+    ck_assert_uint_eq(biss_crc_width(3), 1);
+    ck_assert_uint_eq(biss_crc_width(0x80000000u), 31);
     /* a start value is the register content before the first bit */
     uint32_t a = biss_crc_bits(0x43, 0x15, 0x3a7, 12);
     uint32_t b = 0x15;
