@@ -181,6 +181,7 @@ struct ff_body {
     uint8_t sel;       /* ... its field (a whole register or part of one) */
     uint32_t step;     /* ... added to the field per iteration (mod 2^width) */
     uint32_t end;      /* ... the value that ends the loop */
+    bool sign_end;     /* ... or: it ends when the counter goes below 0 (QBBC top, x, 31) */
     int cl_reg;        /* a count loop's counter register (ff.c), -1 if it is none */
     uint8_t cl_sel;    /* ... its field */
     uint32_t cl_step;  /* ... subtracted from it per turn (> 0) */
