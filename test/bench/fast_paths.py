@@ -46,6 +46,8 @@ cases = [
                       "--frames", "60"]),
     ("ssi", ["--profile", "ssi", "--frames", "100"]),
     ("register-read", ["--frames", "60", "--reg-read", "0:0x78:4"]),
+    # IEP-triggered frames wait in IEP_POLL, counted down below 0
+    ("iep-10MHz", ["--trigger", "iep", "--frames", "100"]),
     # the bench's clocking image: its half periods are LOOP delays (the
     # firmware's are not: docs/silicon-assumptions.md A2)
     ("image-1MHz", ["--image", os.path.join(os.path.dirname(__file__), "clock_frames.p"),
@@ -103,6 +105,7 @@ for path, where in skips_less.items():
 # the default run at 10 MHz idles in a counted poll; at 1 MHz the image's
 # MA half periods are mostly LOOP delays
 check("default-10MHz" in skips_less["ff-counted"], "ff-counted at 10 MHz: %s" % skips_less)
+check("iep-10MHz" in skips_less["ff-counted"], "ff-counted, IEP frames: %s" % skips_less)
 # its poll counts a field (r1.w2): the 20 us timeout's 4-cycle turns, some
 # 990 a frame, all but a few skipped
 check(all_skipped["default-10MHz"] > 200 * 900,
