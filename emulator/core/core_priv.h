@@ -328,10 +328,9 @@ struct pru_core {
     bool borrowed;
     /* Run-ahead (pruss.c, TIMING.md "Two PRUs"): a cross-PRU event issued
      * in this cycle or later waits for the other PRU (the core stops in
-     * front of it, xblocked set); CYCLE_NEVER while the core runs alone or
-     * the two take turns cycle by cycle. */
+     * front of it); CYCLE_NEVER while the core runs alone or the two take
+     * turns cycle by cycle. */
     int64_t xlimit;
-    bool xblocked;
 };
 
 /* pruss.c: run-ahead. Whether the cross-PRU event at cycle (an

@@ -952,7 +952,6 @@ k_general:
     goto top;
 
 xblocked: /* in front of a cross-PRU event the other PRU has not reached */
-    c->xblocked = true;
     c->stop = true;
     c->stop_reason = PRU_STOP_LIMIT;
 out:
@@ -984,7 +983,6 @@ enum pru_stop exec_run(struct pru_core *c, int64_t limit, bool one_step) {
      * than the other PRU (a wake-up, an enable, any instruction there may
      * be a cross-PRU event); CYCLE_NEVER otherwise */
     int64_t xlim = limit < c->xlimit ? limit : c->xlimit;
-    c->xblocked = false;
     for (;;) {
         if (!enabled(c)) {
             if (!unbounded && c->cycle < xlim && !one_step)
@@ -1004,10 +1002,8 @@ enum pru_stop exec_run(struct pru_core *c, int64_t limit, bool one_step) {
         bool stepping = one_step || (c->ctrl.control & PRU_CTRL_SINGLE_STEP);
         if (c->trace_on || stepping || c->checked || !c->p.fast_loop) {
             const struct pd *d = &c->pd[c->pc];
-            if (c->cycle >= xlim) {
-                c->xblocked = c->cycle < limit;
+            if (c->cycle >= xlim)
                 return PRU_STOP_LIMIT;
-            }
             if (c->checked)
                 exec_checked(c, d, xlim);
             else if (c->trace_on)
