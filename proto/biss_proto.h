@@ -221,11 +221,32 @@ int biss_proto_trigger_get(const struct biss_proto_io *io, uint32_t *pending);
 int biss_proto_trigger(const struct biss_proto_io *io);
 /* The publication counter alone. */
 int biss_proto_pub_seq(const struct biss_proto_io *io, uint32_t *seq);
-/* The result buffer ST_BUF names, its header and nslaves slave results
- * (the rest zeroed): 0, or BISS_E_SHM_RESULT for a buffer index the
- * firmware never writes. */
+/* The result slot ST_BUF names, its header and nslaves slave results
+ * (the rest zeroed): 0, or BISS_E_SHM_RESULT for an offset that is no
+ * slot of the ring. */
 int biss_proto_result_get(const struct biss_proto_io *io, unsigned nslaves,
                           struct biss_shm_result *r);
+/* Whether slot (a data-RAM offset) starts a slot of the ring laid out for
+ * nslaves (1..8; 0: for some slave count, not known): 0, or
+ * BISS_E_SHM_RESULT. */
+int biss_proto_slot_check(uint32_t slot, unsigned nslaves);
+
+/* ---- every frame: the result ring (biss_ring.c) ---- */
+
+/* Reads the publications after *cursor (ST_SEQ numbers; 0: from the
+ * first), oldest first, at most max of them, into out (each a slot as the
+ * firmware wrote it: out[i].frame is its publication number), *n of them;
+ * *cursor moves past those returned and those lost. *lost (set, not
+ * added to) counts the publications after *cursor the ring no longer held
+ * whole: overwritten before this call, or while it copied them (ST_SEQ
+ * read after the copy, biss_shm.h), or not of the ring's layout now (a
+ * configuration since restarted it). Returns 0 (also with *n = 0: nothing
+ * new, or nothing published yet), BISS_E_RETRY (the newest slot never
+ * settled: racing publications 1000 times), BISS_E_SHM_RESULT (ST_BUF or
+ * the newest slot's slave count is nothing the firmware writes) or the
+ * transfer's error. */
+int biss_proto_ring_read(const struct biss_proto_io *io, uint32_t *cursor,
+                         struct biss_shm_result *out, unsigned max, unsigned *n, uint32_t *lost);
 /* A control program: BISS_E_CD_STEPS for a length outside
  * 1..BISS_CD_MAX_STEPS, BISS_E_CD_BUSY while the last one runs, else puts
  * PROG, STEPS, WAIT_LIMIT and the IDA test, then CD_CMD = *cmd (the next

@@ -64,6 +64,17 @@ int biss_proto_pub_seq(const struct biss_proto_io *io, uint32_t *seq) {
     return rd(io, BISS_ST_SEQ, seq, 4);
 }
 
+int biss_proto_slot_check(uint32_t slot, unsigned nslaves) {
+    /* any layout: on the grid every stride keeps (16 bytes), with a header's room */
+    unsigned step = nslaves ? BISS_RING_STRIDE(nslaves) : BISS_R_SLAVE_SIZE;
+    unsigned room = nslaves ? BISS_RING_STRIDE(nslaves) : BISS_RING_STRIDE(1);
+    if (nslaves > BISS_MAX_SLAVES || slot < BISS_RING0 || slot > BISS_RING_END - room ||
+        (slot - BISS_RING0) % step != 0) {
+        return BISS_E_SHM_RESULT;
+    }
+    return BISS_OK;
+}
+
 int biss_proto_result_get(const struct biss_proto_io *io, unsigned nslaves,
                           struct biss_shm_result *r) {
     uint32_t buf;
@@ -71,17 +82,21 @@ int biss_proto_result_get(const struct biss_proto_io *io, unsigned nslaves,
     if (rc) {
         return rc;
     }
-    if (buf > 1) {
-        return BISS_E_SHM_RESULT; /* the firmware only ever writes 0 or 1 */
+    if (biss_proto_slot_check(buf, 0) != BISS_OK) {
+        return BISS_E_SHM_RESULT;
     }
     if (nslaves > BISS_MAX_SLAVES) {
         nslaves = BISS_MAX_SLAVES;
     }
     memset(r, 0, sizeof *r);
     /* header and only the slaves that can be in it: fewer bus reads on
-     * silicon, so fewer races with the next publication */
+     * silicon, so fewer races with the next publication; never past the
+     * ring (a caller that does not know the layout asks for 8) */
     size_t n = offsetof(struct biss_shm_result, slave) + nslaves * sizeof r->slave[0];
-    return rd(io, BISS_RES0 + buf * BISS_RES_SIZE, r, n);
+    if (n > BISS_RING_END - buf) {
+        n = BISS_RING_END - buf;
+    }
+    return rd(io, buf, r, n);
 }
 
 int biss_proto_cd_load(const struct biss_proto_io *io, const biss_cd_prog *p, unsigned wait_limit) {

@@ -23,8 +23,9 @@
  *    biss_proto_half_check); a frame that ran waited at most the ACK limit
  *    the configuration gives (BISS_MAX_DELAY_NS) and at most the
  *    processing-time limit (PROC_LIMIT) for the slave.
- * The status words: ST_STATE one of BISS_STATE_*, ST_BUF 0 or 1, ST_PRU 0
- * or 1, ST_CFG_ERROR one of BISS_CFGERR_*. */
+ * The status words: ST_STATE one of BISS_STATE_*, ST_BUF a slot of the
+ * ring (0 before the first publication), ST_PRU 0 or 1, ST_CFG_ERROR one
+ * of BISS_CFGERR_*. */
 #include "biss_proto.h"
 
 static const uint32_t ended_flags[] = {
@@ -165,8 +166,8 @@ const char *biss_status_problem(const struct biss_shm_status *st, uint32_t st_pr
     if (st->state > BISS_STATE_NO_SLAVE) {
         return "firmware state (ST_STATE): not a BISS_STATE_*";
     }
-    if (st->buf > 1) {
-        return "result buffer (ST_BUF): not 0 or 1";
+    if (st->seq != 0 ? biss_proto_slot_check(st->buf, 0) != BISS_OK : st->buf != 0) {
+        return "result slot (ST_BUF): not a slot of the ring";
     }
     if (st->cfg_error > BISS_CFGERR_SSI) {
         return "configuration error (ST_CFG_ERROR): not a BISS_CFGERR_*";

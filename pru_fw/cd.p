@@ -81,13 +81,14 @@ CRC4_FEED_END:
 
 // Op = step OpStep of the program: bits 1..0 its op, 3..2 its class;
 // CD_PAST_END past the length. (biss_shm_struct.h asserts BISS_CD_PROG.)
+#define CD_PROG_BIT     9                   // BISS_CD_PROG = 0x200: bit 9 above step / 2 <= 511
 CD_OP_STEP:                                 // the same for step Cd.step
     mov     OpStep, Cd.step
 CD_OP:
     ldi     Op, CD_PAST_END
     qble    CD_OP_DONE, OpStep, Cd.len      // length <= step
     lsr     Op, OpStep, 1
-    set     Op, Op, 10                      // BISS_CD_PROG (0x400) + step / 2
+    set     Op, Op, CD_PROG_BIT             // BISS_CD_PROG + step / 2
     lbco    Op, c24, Op, 1
     qbbc    CD_OP_LOW, OpStep, 0
     lsr     Op, Op, 4                       // odd steps: the high nibble

@@ -83,6 +83,9 @@
 .assign Word, r4, r4, EndWord               // the end record: entry in w2, counts 0
 .assign Word, r17, r17, CfgLast             // LastBits of the last slave (L, for P_IEP_FIX)
 .assign Word, r3, r3, IepFix                // N + 5 - L (P_IEP_FIX)
+.assign Word, r8, r8, RingNext              // CFG_RING: BISS_ST_RING_NEXT, and after it
+.assign Half, r9.w0, r9.w0, RingStride      //   ST_RING_STRIDE,
+.assign Half, r9.w2, r9.w2, RingLast        //   ST_RING_LAST
 .assign Half, r3.w0, r3.w0, IepFixLo        //   as IEP_PERIOD loads it
 // CFG_IEP, and IEP_PERIOD (which the IEP frames call, r0..r12 only)
 .assign Word, r2, r2, IepReg                // a word for an IEP register: CMP0 (P - 1)
@@ -385,6 +388,16 @@ CFG_DELAY_SAVE:                             // (stored with the history: P_DELAY
     jal     RET_POST, HIST_FILL             // set up anew by every frame)
 CFG_PROC:
     sbco    &NewNs, c28, P_NSLAVES, P_CFG_ACK - P_NSLAVES // NewNs, NewHalf, NewProc, SsiWord
+    // The result ring afresh from its first slot, at this slave count's
+    // stride (biss_shm_struct.h's BISS_RING_STRIDE and BISS_RING_SLOTS):
+    // ST_RING_NEXT, ST_RING_STRIDE, ST_RING_LAST in one store.
+CFG_RING:
+    lsl     RingStride, CfgSlaves, 4        // x BISS_R_SLAVE_SIZE (16)
+    add     RingStride, RingStride, BISS_R_SLAVE0
+    ldi     RingNext, BISS_RING_END
+    sub     RingLast, RingNext, RingStride  // the last slot's highest start
+    ldi     RingNext, BISS_RING0
+    sbco    RingNext, c24, BISS_ST_RING_NEXT, 8
     sbco    Gpcfg, c4, GPCFG_OWN, 4         // shift mode at 8x the new rate (FACTOR_FOUND)
     ldi     CfgErr, BISS_CFGERR_NONE
     ldi     CfgState, BISS_STATE_RUNNING

@@ -1,18 +1,7 @@
-// frame.p - a BiSS-C frame: the result-buffer macros, FRAME_REGS and the
+// frame.p - a BiSS-C frame: FRAME_REGS and the
 // timestamp, then the clocked part (WAIT_ACK, LAG, START_WAIT, CDS and the
 // slaves' entries; the periods themselves are in biss_periods.hp).
 // Included by biss_master.p.
-
-// The result buffer's address for the buffer number (0/1) in buf, to reg:
-// BISS_RES0 (0x100, bit 8) + buf * BISS_RES_SIZE (< 0x100), branch-free (the
-// same number of cycles either way: FRAME_REGS lies between an IEP trigger
-// and the frame). biss_shm_struct.h asserts that layout.
-.macro RESULT_ADDR
-.mparam reg, buf
-    rsb     reg, buf, 0                     // 0 or ~0
-    and     reg, reg, BISS_RES_SIZE
-    set     reg, reg, 8                     // + BISS_RES0 (0x100)
-.endm
 
 // ============================================================================
 // Before a frame: the slave must be idle (SL high); then the registers the

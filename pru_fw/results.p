@@ -52,7 +52,7 @@ FINAL_CRC_BIT:
 
 // The registers after the frame: what the clocked part leaves (r0, r1, the
 // results in the scratch pad, the idle turns in bank register 1 and the
-// count base in bank register 2: period 0, FRAME_STAMP), the result buffer
+// count base in bank register 2: period 0, FRAME_STAMP), the result slot
 // and flags, and each routine's own.
 .enter results
 .assign Byte, r0.b0, r0.b0, Slot            // the XFR shift: the slot FE_SLAVE reads
@@ -69,7 +69,7 @@ FINAL_CRC_BIT:
 .assign Word, r2, r2, Stamp                 // bank register 2: the count base, then the
                                             // timestamp (IEP COUNT at the first MA edge)
 .assign Word, r2, r2, EwBits                // FE_SLAVE: nW at bit 0, nE at bit 1
-.assign Word, r2, r2, ResBuf                // the result buffer being filled (BUF_STAMP)
+.assign Word, r2, r2, ResBuf                // the result slot being filled (BUF_STAMP)
 .assign Byte, r2.b0, r2.b0, Due             // P_TRAIN_DUE: 1 a training, 2 the INIT of a low SL
 .assign Word, r2, r2, DueWord               //   as a word, to set it
 .assign Byte, r2.b0, r2.b0, Idle8           // SLAVE_IDLE: SL's newest samples
@@ -80,7 +80,9 @@ FINAL_CRC_BIT:
 .assign Word, r3, r3, Seq                   // PUBLISH: BISS_ST_SEQ, this publication's number
 .assign Word, r3, r3, TallyAddr             // ABORT_FRAME: the status counter to count in,
 .assign Word, r4, r4, TallyVal              //   its value
-.assign Word, r6, r6, BufNo                 // PUBLISH: the buffer published (BISS_ST_BUF)
+.assign Half, r5.w0, r5.w0, RingStride      // PUBLISH: ST_RING_STRIDE,
+.assign Half, r5.w2, r5.w2, RingLast        //   ST_RING_LAST,
+.assign Word, r6, r6, RingNext              //   the slot filled next (ST_RING_NEXT)
 .assign Word, r4, r4, PubNs                 // PUBLISH: P_NSLAVES' word (slaves: b0),
 .assign Byte, r4.b0, r4.b0, PubSlaves
 .assign Half, r5.w0, r5.w0, PubHalf         //   and H (P_HALF)
@@ -104,7 +106,7 @@ FINAL_CRC_BIT:
 .assign Word, r7, r7, PrivNs                // P_NSLAVES' word; bit 31 (navg's bit 7): the last
                                             // ACK jumped
 .assign Byte, r10.b0, r10.b0, Shift         // the frame's sample shift (SAMPLE_POINT), until
-.assign Word, r10, r10, Base                //   FRAME_END's Base: the result buffer less RES_BIAS
+.assign Word, r10, r10, Base                //   FRAME_END's Base: the result slot less RES_BIAS
 .assign Word, r11, r11, Kept                // FRAME_END: r1 kept for after (CD_COMMIT's r1):
 .assign Byte, r11.b0, r11.b0, KeptCdm       //   the CDM sent (in the RecPtr byte),
 .assign Byte, r11.b1, r11.b1, KeptCds       //   the CDS bit,
@@ -120,13 +122,13 @@ FINAL_CRC_BIT:
 .assign Byte, r10.b2, r10.b2, FeTrigger     // the trigger, past FRAME_REGS_SET
 
 // ---- after the last bit: publication first --------------------------------
-// The result buffer being filled is the one that ST_SEQ's low bit names
-// (each publication increments ST_SEQ, so the two alternate); Base points
-// RES_BIAS below it, so that one index (Idx) walks the slaves' check data in
-// the private RAM (C28 + P_SLAVES + 16 k) and their results in the buffer
-// (Base + Idx = BISS_R_SLAVE0 + 16 k), and the header is at Base + RES_BIAS.
-// Everything the buffer gets is stored before ST_BUF and ST_SEQ; the
-// history, the counters and control communication come after (POST).
+// The result slot being filled is the one ST_RING_NEXT names (BUF_STAMP);
+// Base points RES_BIAS below it, so that one index (Idx) walks the slaves'
+// check data in the private RAM (C28 + P_SLAVES + 16 k) and their results
+// in the slot (Base + Idx = BISS_R_SLAVE0 + 16 k), and the header is at
+// Base + RES_BIAS. Everything the slot gets is stored before ST_BUF and
+// ST_SEQ; the history, the counters and control communication come after
+// (POST).
 #define RES_BIAS        (P_SLAVES - BISS_R_SLAVE0)
 FRAME_END:
     mov     Kept, FrameR1                   // Cds and AckPos, for after
@@ -397,7 +399,7 @@ ABORT_FRAME:
     add     TallyVal, TallyVal, 1
     sbbo    TallyVal, TallyAddr, 0, 4
     jal     RET_POST, CD_ABORT              // and CD_PREPARE
-    jal     RET_STAMP, BUF_STAMP            // ResBuf = the result buffer
+    jal     RET_STAMP, BUF_STAMP            // ResBuf = the result slot
     ldi     IepEnd, 0                       // an IEP frame next: in the next period from
     xout    XFR_BANK, IepEnd, 4             // now (bank register 3, IEP_START; Slot = 0)
     jal     RET_POST, PUBLISH
@@ -475,22 +477,28 @@ HIST_SAVE:
     sbco    Priv.hsum, c28, P_HSUM, SIZE(BissPriv.hsum)
     jmp     RET_POST
 
-// Publish the result buffer ResBuf with the flags in ResFlags: the frame
-// number, the flags, the slaves and H, then ST_BUF and ST_SEQ (its number:
-// odd for buffer 0, even for 1; the buffer being filled next is ST_SEQ's low
-// bit, BUF_STAMP). Returns through RET_POST.
+// Publish the result slot ResBuf with the flags in ResFlags: the frame
+// number (its publication number), the flags, the slaves and H, then
+// ST_BUF (the slot) and ST_SEQ; then ST_RING_NEXT, the slot BUF_STAMP
+// fills next, one stride on, back to BISS_RING0 past ST_RING_LAST (the
+// geometry the configuration set: CFG_RING). Returns through RET_POST.
 PUBLISH:
     lbco    Seq, c24, BISS_ST_SEQ, 4
-    and     BufNo, Seq, 1                   // the buffer filled (BUF_STAMP)
     add     Seq, Seq, 1
     sbbo    Seq, ResBuf, BISS_R_FRAME, 4
     sbbo    ResFlags, ResBuf, BISS_R_FLAGS, 4
     lbco    &PubNs, c28, P_NSLAVES, P_HALF + SIZE(BissPriv.half) - P_NSLAVES
     sbbo    PubSlaves, ResBuf, BISS_R_NSLAVES, 1
     sbbo    PubHalf, ResBuf, BISS_R_HALF, 2
-    sbco    BufNo, c24, BISS_ST_BUF, 4
+    sbco    ResBuf, c24, BISS_ST_BUF, 4
     sbco    Seq, c24, BISS_ST_SEQ, 4        // published
     sbco    Seq, c24, BISS_ST_FRAMES, 4
+    lbco    &RingStride, c24, BISS_ST_RING_STRIDE, 4 // and ST_RING_LAST
+    add     RingNext, ResBuf, RingStride
+    qbge    PUB_NEXT, RingNext, RingLast
+    ldi     RingNext, BISS_RING0
+PUB_NEXT:
+    sbco    RingNext, c24, BISS_ST_RING_NEXT, 4
     jmp     RET_POST
 
 // Wait for SL high: the slave's timeout has ended. High means the newest
@@ -512,7 +520,7 @@ SLAVE_IDLE_POLL:
 SLAVE_IDLE_YES:
     jmp     RET_SUB
 
-// ResBuf = the result buffer being filled (ST_SEQ's low bit), with the
+// ResBuf = the result slot being filled (ST_RING_NEXT: PUBLISH), with the
 // frame's timestamp and busy clocks (Busy, START_WAIT) stored in it: the
 // clocked part stores nothing. The timestamp is bank register 2 (the count
 // base: FRAME_STAMP, or FE_START) less four cycles for each turn of FE_POLL
@@ -524,9 +532,7 @@ BUF_STAMP:
     xin     XFR_BANK, &StampTurns, 8        // bank registers 1 and 2: r1, r2
     lsl     BufStamp, TurnsLeft, 2
     sub     BufStamp, Stamp, BufStamp
-    lbco    ResBuf, c24, BISS_ST_SEQ, 4
-    and     ResBuf, ResBuf, 1
-    RESULT_ADDR ResBuf, ResBuf
+    lbco    ResBuf, c24, BISS_ST_RING_NEXT, 4
     sbbo    BufStamp, ResBuf, BISS_R_TIMESTAMP, 4
     sbbo    Busy, ResBuf, BISS_R_PROC_CLOCKS, 2
     jmp     RET_STAMP

@@ -24,8 +24,9 @@ static const struct command table[] = {
     {"reg-write", bissctl_reg_write, true},
     {"command", bissctl_command, true},
     {"probe", bissctl_probe, false}, /* configures its own capture layout */
-    {"rates", NULL, false},          /* needs no target: bissctl_rates */
-    {"encoder", NULL, false},        /* its own handle: bissctl_encoder */
+    {"record", bissctl_record, true},
+    {"rates", NULL, false},   /* needs no target: bissctl_rates */
+    {"encoder", NULL, false}, /* its own handle: bissctl_encoder */
 };
 
 static const struct command *find(const char *name) {
@@ -68,7 +69,7 @@ static int apply_config(biss_t *h, struct bissctl_opts *o) {
  * rather than reloading it (stop, too: it halts what runs). */
 static bool read_only(const char *command) {
     return strcmp(command, "info") == 0 || strcmp(command, "stats") == 0 ||
-           strcmp(command, "read") == 0;
+           strcmp(command, "read") == 0 || strcmp(command, "record") == 0;
 }
 
 static int open_failed(struct bissctl_opts *o, int rc) {

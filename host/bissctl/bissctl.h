@@ -26,6 +26,9 @@ struct bissctl_opts {
     const char *command;
     unsigned count;      /* read -n */
     unsigned run_ms;     /* run --ms */
+    unsigned record_ms;  /* record --seconds, in ms */
+    unsigned poll_ms;    /* record --poll-ms */
+    const char *format;  /* record --format: "csv", "npy", or NULL (by the extension) */
     unsigned timeout_ms; /* per sample */
     unsigned id;         /* reg-read/reg-write: control-frame ID */
     char **args;         /* words after the command */
@@ -77,7 +80,8 @@ int bissctl_stop(biss_t *h, const struct bissctl_opts *o);
 int bissctl_reg_read(biss_t *h, const struct bissctl_opts *o);
 int bissctl_reg_write(biss_t *h, const struct bissctl_opts *o);
 int bissctl_command(biss_t *h, const struct bissctl_opts *o);
-int bissctl_probe(biss_t *h, const struct bissctl_opts *o); /* bissctl_probe.c */
+int bissctl_probe(biss_t *h, const struct bissctl_opts *o);  /* bissctl_probe.c */
+int bissctl_record(biss_t *h, const struct bissctl_opts *o); /* bissctl_record.c */
 /* encoder start|status|stop (bissctl_encoder.c): opens its own handle. */
 int bissctl_encoder(struct bissctl_opts *o);
 

@@ -504,6 +504,9 @@ int bissctl_check_args(const struct bissctl_opts *o) {
         }
         return BISSCTL_OK;
     }
+    if (strcmp(o->command, "record") == 0 && o->nargs != 1) {
+        return bissctl_usage_error("record needs one FILE (.csv or .npy)");
+    }
     if (strcmp(o->command, "command") == 0) {
         uint8_t cmd;
         if (o->nargs != 2 || bissctl_parse_byte(o->args[0], 0xff, &b) ||

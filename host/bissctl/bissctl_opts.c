@@ -16,7 +16,7 @@
 
 static const char *const commands[] = {"info",  "read",  "stats",    "run",       "trigger",
                                        "start", "stop",  "reg-read", "reg-write", "command",
-                                       "probe", "rates", "encoder"};
+                                       "probe", "rates", "encoder",  "record"};
 
 static const char common_help[] =
     "Target:\n"
@@ -30,7 +30,8 @@ static const char common_help[] =
     "  --pru N            the PRU of that PRU-ICSS: 0 (default) or 1 (its own line)\n"
     "  --devmem PATH      file mapped at the PRU-ICSS base (default /dev/mem)\n"
     "  --attach           use the firmware already running (no load, no restart);\n"
-    "                     info, stats, read and stop attach by default when one runs\n"
+    "                     info, stats, read, record and stop attach by default when\n"
+    "                     one runs\n"
     "  --loader L         remoteproc (default: the kernel's pru_rproc loads the ELF) or\n"
     "                     devmem (IRAM and CONTROL written through /dev/mem)\n"
     "  --sysfs DIR        sysfs root (default /sys), also of the device tree\n"
@@ -104,6 +105,20 @@ static const char *command_help(const char *command) {
                "and, after\n"
                "  the last, their counts. --json: one JSON object, {\"frames\": [...], \"safety\": "
                "{...}}.\n";
+    }
+    if (strcmp(command, "record") == 0) {
+        return "bissctl [options] record [--seconds S] [--poll-ms MS] [--format csv|npy] FILE\n"
+               "  Records every frame for S seconds (default 1; emu: simulated) into FILE,\n"
+               "  read from the firmware's result ring every MS ms (default 1): CSV (a\n"
+               "  header line, then a line a frame) or NumPy's .npy (a structured array,\n"
+               "  numpy.load(FILE)), by --format or else FILE's extension (.npy; anything\n"
+               "  else CSV). Columns: seq (the publication number: consecutive unless\n"
+               "  frames were lost), timestamp (IEP counts of 5 ns), flags, valid, and per\n"
+               "  slave sN_position, sN_data, sN_error, sN_warning, sN_crc_ok. The ring\n"
+               "  holds a little over 1 ms of frames at 10 MHz (60 slots for one slave,\n"
+               "  18 for eight). Progress on stderr once a second; at the end the frames\n"
+               "  recorded and lost. Frames the ring no longer held when read are lost,\n"
+               "  counted and reported: exit status 1 if any were.\n";
     }
     if (strcmp(command, "stats") == 0) {
         return "bissctl [options] stats [--ms MS]\n"
@@ -224,6 +239,7 @@ void bissctl_usage(const char *command) {
            "Commands: info, read [-n N], stats, run [--ms MS], trigger, start, stop,\n"
            "          reg-read ADDR [-n N], reg-write ADDR BYTE..., command IDS CMD [--force],\n"
            "          probe [-n N] [--time-limit S] [FILE.json], rates,\n"
+           "          record [--seconds S] [--poll-ms MS] FILE.csv|FILE.npy,\n"
            "          encoder start CHAIN|status|ew SLAVE [error] [warning]|stop\n"
            "          (the encoder firmware, PRU1)\n"
            "          (also spelt reg read, reg write, cmd; bissctl COMMAND --help for each)\n\n%s",
@@ -363,6 +379,9 @@ enum {
     OPT_CONFIG,
     OPT_FORCE,
     OPT_TIME_LIMIT,
+    OPT_SECONDS,
+    OPT_POLL_MS,
+    OPT_FORMAT,
 };
 
 static const struct option long_opts[] = {
@@ -402,6 +421,9 @@ static const struct option long_opts[] = {
     {"config", required_argument, NULL, OPT_CONFIG},
     {"force", no_argument, NULL, OPT_FORCE},
     {"time-limit", required_argument, NULL, OPT_TIME_LIMIT},
+    {"seconds", required_argument, NULL, OPT_SECONDS},
+    {"poll-ms", required_argument, NULL, OPT_POLL_MS},
+    {"format", required_argument, NULL, OPT_FORMAT},
     {"help", no_argument, NULL, 'h'},
     {NULL, 0, NULL, 0},
 };
@@ -660,6 +682,21 @@ static int take_command_opt(int c, const char *arg, struct bissctl_opts *o) {
         return parse_seconds(arg, &o->time_limit_ms)
                    ? bissctl_usage_error("--time-limit '%s': expected seconds, 0.001..86400", arg)
                    : 0;
+    case OPT_SECONDS:
+        return parse_seconds(arg, &o->record_ms)
+                   ? bissctl_usage_error("--seconds '%s': expected seconds, 0.001..86400", arg)
+                   : 0;
+    case OPT_POLL_MS:
+        if (parse_unsigned(arg, &o->poll_ms) || o->poll_ms == 0 || o->poll_ms > 60000) {
+            return bissctl_usage_error("--poll-ms '%s': expected ms, 1..60000", arg);
+        }
+        return 0;
+    case OPT_FORMAT:
+        if (strcmp(arg, "csv") && strcmp(arg, "npy")) {
+            return bissctl_usage_error("--format '%s': expected csv or npy", arg);
+        }
+        o->format = arg;
+        return 0;
     case 'h':
         o->help = true;
         return 0;
@@ -746,6 +783,8 @@ int bissctl_parse(int argc, char **argv, struct bissctl_opts *o) {
     biss_config_default(&o->cfg);
     o->count = 1;
     o->run_ms = 100;
+    o->record_ms = 1000;
+    o->poll_ms = 1;
     o->timeout_ms = 100;
     o->round_trip_ns = -1;
     o->open.errbuf = o->errbuf;
@@ -791,7 +830,8 @@ int bissctl_parse(int argc, char **argv, struct bissctl_opts *o) {
     o->nargs = argc - optind;
     bool takes_args =
         o->command && (strncmp(o->command, "reg-", 4) == 0 || strcmp(o->command, "command") == 0 ||
-                       strcmp(o->command, "probe") == 0 || strcmp(o->command, "encoder") == 0);
+                       strcmp(o->command, "probe") == 0 || strcmp(o->command, "encoder") == 0 ||
+                       strcmp(o->command, "record") == 0);
     if (o->nargs > 0 && !takes_args) {
         return bissctl_usage_error("unexpected argument '%s'", argv[optind]);
     }

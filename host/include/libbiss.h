@@ -175,6 +175,26 @@ int biss_wait_sample(biss_t *h, uint32_t after_frame, unsigned timeout_ms, struc
 /* The line delay of the latest frame that measured one. */
 int biss_line_delay(biss_t *h, struct biss_line_delay *d);
 
+/* ---- every frame: the result ring (biss/biss_shm.h) ---------------------- */
+/* Every frame published since the last call, oldest first: at most max of
+ * them into out, *n of them (0: nothing new). Each sample's seq is its
+ * publication number (ST_SEQ), one more than the frame's before it unless
+ * frames were lost between them. *lost counts the frames of this call's
+ * span that the ring no longer held whole (the host polled too rarely:
+ * overwritten before or while they were copied): never returned, never
+ * silent. The first call starts at the handle's configuration (the frames
+ * of the configuration before it are not of this layout) or, on a handle
+ * that did not configure, at the newest frame; a later configuration
+ * counts the earlier layout's frames not yet read as lost. Frames beyond
+ * max wait for the next call (the ring keeps biss_ring_capacity of them).
+ * Works the same on every target; on the emulator time moves only in the
+ * blocking calls (biss_run_ms between reads: the host's poll period). */
+int biss_ring_read(biss_t *h, struct biss_sample *out, unsigned max, unsigned *n, uint32_t *lost);
+/* Frames the ring keeps for a reader at this handle's configuration (its
+ * slots less the one being filled): a reader that falls further behind
+ * loses frames. BISS_E_NOT_CONFIGURED without one. */
+int biss_ring_capacity(biss_t *h, unsigned *frames);
+
 /* ---- control communication (CDM/CDS, one bit per frame) ---------------- */
 /* A raw program for the firmware: ops[i] is an op, 0 (send CDM 0), 1 (send
  * CDM 1), 2 (wait: CDM 0 until a frame's CDS is 1, then the next step in

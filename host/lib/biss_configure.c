@@ -163,6 +163,10 @@ static int exchange(biss_t *h, struct biss_config *c) {
     }
     if (!rc) {
         h->cfg_pub_seq = st.seq; /* publications from here on are of this layout */
+        if (h->ring_started && (int32_t)(st.seq - h->ring_cursor) > 0) {
+            h->ring_skipped += st.seq - h->ring_cursor; /* the last layout's, unread */
+            h->ring_cursor = st.seq;
+        }
         h->cfg = *c;
         h->configured = true;
         biss_safety_restart(&h->safety); /* counters from a new layout's frames on */

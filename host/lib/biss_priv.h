@@ -83,6 +83,11 @@ struct biss {
     uint32_t cfg_pub_seq;
     bool cfg_pub_seq_valid;
     bool attached;
+    /* biss_ring_read: the last publication returned or counted lost, and
+     * the frames of an earlier layout a configuration skipped (lost) */
+    uint32_t ring_cursor;
+    uint32_t ring_skipped;
+    bool ring_started;
     /* what the last BISS_E_SHM_RESULT refusal found in data RAM (a static
      * text of biss_result_check.c), or NULL */
     const char *problem;

@@ -17,17 +17,29 @@
 //    it, and echoes the sequence number in ST_CFG_ACK (with ST_CFG_ERROR
 //    set to the reason when it refuses the configuration; it then runs no
 //    frames until a valid one arrives).
-//  - Results are double-buffered: the firmware fills one result buffer
-//    while the host may read the other, then publishes it: ST_BUF names the
-//    buffer, then ST_SEQ is incremented. A reader reads ST_SEQ, ST_BUF, that
-//    buffer, then ST_SEQ again; equal sequence numbers mean a consistent
-//    frame (the firmware starts filling a buffer only after publishing the
-//    other one).
+//  - Results go to a ring of result slots (BISS_RING0..BISS_RING_END): the
+//    firmware fills the slot ST_RING_NEXT names, stores its publication
+//    number in it (R_FRAME), then publishes it: ST_BUF names the slot (its
+//    byte offset), then ST_SEQ is incremented; then ST_RING_NEXT moves on
+//    one stride, back to BISS_RING0 where a whole slot no longer fits. The
+//    newest sample: a reader reads ST_SEQ, ST_BUF, that slot, then ST_SEQ
+//    again; equal sequence numbers mean a consistent frame (the firmware
+//    starts filling a slot only after publishing the one before it).
+//    Every frame: the slot of publication s is (s - ST_SEQ) strides from
+//    ST_BUF's, modulo the ring; it holds s until the firmware starts
+//    filling it again, after publishing s + slots - 1. A reader copies the
+//    slots, then reads ST_SEQ again: the copies of publications from
+//    ST_SEQ - slots + 2 on are whole; older ones are lost (overwritten).
+//    The ring lives in the PRU's own data RAM, not in the PRU-ICSS shared
+//    RAM: AM437x's PRU-ICSS0 has none (and 4 KB of data RAM per PRU), and
+//    each PRU's master keeps its own ring beside its own results.
+//    A configuration accepted starts the ring afresh at BISS_RING0 with
+//    the stride of its slave count.
 
 #ifndef BISS_SHM_H
 #define BISS_SHM_H
 
-#define BISS_SHM_VERSION        1
+#define BISS_SHM_VERSION        2       // 2: the result ring (1: two result buffers)
 #define BISS_DRAM_BYTES         4096    // fits AM437x ICSS0's 4 KB data RAM
 
 // ---- limits ------------------------------------------------------------
@@ -77,7 +89,7 @@
                                         // 1), written with ST_MAGIC; the host refuses a mismatch
 #define BISS_ST_MAGIC           0x080   // u32: BISS_MAGIC once the firmware runs
 #define BISS_ST_SEQ             0x084   // u32: publication counter (see protocol above)
-#define BISS_ST_BUF             0x088   // u32: result buffer of the last publication (0/1)
+#define BISS_ST_BUF             0x088   // u32: the slot of the last publication (its offset)
 #define BISS_ST_CFG_ACK         0x08C   // u32: CFG_SEQ of the configuration in force (or refused)
 #define BISS_ST_CFG_ERROR       0x090   // u32: BISS_CFGERR_* of the last configuration, 0 = accepted
 #define BISS_ST_STATE           0x094   // u32: BISS_STATE_*
@@ -114,8 +126,18 @@
                                         // answers of the 8 steps 9..2 before it equal IDA_EXPECT
 #define BISS_CD_IDA_EXPECT      0x0C2   // u8 (host): those answers, bit k = step P - 9 + k
 #define BISS_ST_CD_END          0x0C4
-#define BISS_CD_PROG            0x400   // 512 bytes
-#define BISS_CD_RESP            0x600   // 128 bytes
+
+// ---- the result ring's pointer and geometry (firmware writes on each
+// accepted configuration; ST_RING_NEXT on each publication) --------------
+#define BISS_ST_RING_NEXT       0x0C4   // u32: the slot the next frame fills (the firmware's own)
+#define BISS_ST_RING_STRIDE     0x0C8   // u16: the slots' stride in force, BISS_R_SLAVE0 +
+                                        //      slaves x BISS_R_SLAVE_SIZE
+#define BISS_ST_RING_LAST       0x0CA   // u16: the last slot's highest start, BISS_RING_END - stride
+#define BISS_ST_RING_END        0x0CC
+
+// (control communication, continued: the program and its answers)
+#define BISS_CD_PROG            0x200   // 512 bytes
+#define BISS_CD_RESP            0x400   // 128 bytes
 #define BISS_CD_MAX_STEPS       1024
 
 #define BISS_CDOP_0             0       // send CDM 0
@@ -151,11 +173,17 @@
 #define BISS_STATE_CFG_ERROR    2
 #define BISS_STATE_NO_SLAVE     3
 
-// ---- result buffers (firmware writes, host reads after ST_SEQ) ------------
-#define BISS_RES0               0x100   // buffer 0; buffer 1 follows at + BISS_RES_SIZE
-#define BISS_RES_SIZE           0x0A0
-// per buffer, offsets within it:
-#define BISS_R_FRAME            0x00    // u32: frame number (ST_FRAMES at publication)
+// ---- result ring (firmware writes, host reads after ST_SEQ) ----------------
+// Slots of BISS_R_SLAVE0 + slaves x BISS_R_SLAVE_SIZE bytes (a header and
+// the configured slaves' results), from BISS_RING0 on, as many as fit below
+// BISS_RING_END: 60 for one slave (48 bytes), 18 for eight (160 bytes).
+// (biss_shm_struct.h has the stride and slot count as C macros: the
+// assembler has no macros with arguments.)
+#define BISS_RING0              0x480   // the first slot
+#define BISS_RING_END           0xFE0   // the ring's end (BISS_ID follows)
+// per slot, offsets within it:
+#define BISS_R_FRAME            0x00    // u32: frame number: its publication number (ST_SEQ,
+                                        //      ST_FRAMES at publication)
 #define BISS_R_FLAGS            0x04    // u32: BISS_RF_*
 #define BISS_R_TIMESTAMP        0x08    // u32: IEP COUNT when the frame's first MA edge was due
 #define BISS_R_PROC_CLOCKS      0x0C    // u16: processing time (busy) of the slave, MA clocks
@@ -167,7 +195,7 @@
 #define BISS_R_LAG_PERIODS      0x15    // u8:  whole MA periods between a clock and its bit
 #define BISS_R_HALF             0x16    // u16: MA half period H of this frame
 #define BISS_R_CDM              0x18    // u8:  CDM sent in this frame's timeout
-#define BISS_R_SLAVE0           0x20    // first of BISS_MAX_SLAVES slave results
+#define BISS_R_SLAVE0           0x20    // first of the slaves' results (the header's size)
 #define BISS_R_SLAVE_SIZE       16
 // per slave result, offsets within it:
 #define BISS_R_S_DATA_LO        0       // u32: data bits 31..0 (right-aligned, masked)
@@ -221,8 +249,8 @@
 #define BISS_CFGERR_SSI         8       // SSI: one slave, no CRC
 
 // ---- firmware-private area (the host must not write it) -------------------
-#define BISS_PRIV               0x300
-#define BISS_PRIV_END           0x400   // (the CD program and answers follow)
+#define BISS_PRIV               0x100   // (C28's page: a multiple of 256)
+#define BISS_PRIV_END           0x200   // (the CD program and answers follow)
 
 // ---- image identification and remoteproc resource table -------------------
 // The top 32 bytes of the 4 KB data RAM, which the firmware never touches:

@@ -79,7 +79,8 @@ struct biss_shm_slave_result {
     uint32_t status; /* BISS_RS_* */
 };
 
-/* One result buffer (BISS_R_*). */
+/* One result slot of the ring (BISS_R_*), with room for every slave: a
+ * slot in data RAM holds only the configured slaves' (BISS_RING_STRIDE). */
 struct biss_shm_result {
     uint32_t frame;
     uint32_t flags; /* BISS_RF_* */
@@ -110,15 +111,26 @@ struct biss_shm {
     struct biss_shm_status st;
     uint8_t gap_st[BISS_CD_CMD - BISS_ST_END];
     struct biss_shm_cd cd;
-    uint8_t gap_cd[BISS_RES0 - BISS_ST_CD_END];
-    struct biss_shm_result res[2];
-    uint8_t gap_res[BISS_PRIV - BISS_RES0 - 2 * BISS_RES_SIZE];
+    uint32_t ring_next;
+    uint16_t ring_stride;
+    uint16_t ring_last;
+    uint8_t gap_ring[BISS_PRIV - BISS_ST_RING_END];
     uint8_t priv[BISS_PRIV_END - BISS_PRIV];
     uint8_t gap_priv[BISS_CD_PROG - BISS_PRIV_END];
     uint8_t cd_prog[BISS_SHM_CD_PROG_BYTES];
     uint8_t gap_prog[BISS_CD_RESP - BISS_CD_PROG - BISS_SHM_CD_PROG_BYTES];
     uint8_t cd_resp[BISS_SHM_CD_RESP_BYTES];
+    uint8_t gap_resp[BISS_RING0 - BISS_CD_RESP - BISS_SHM_CD_RESP_BYTES];
+    uint8_t ring[BISS_RING_END - BISS_RING0]; /* the result slots */
 };
+
+/* The ring's geometry for a slave count n (1..BISS_MAX_SLAVES): a slot is
+ * the header and n slave results; as many slots as fit. The firmware works
+ * out the same stride (pru_fw/config.p: n << 4, + BISS_R_SLAVE0) and last
+ * slot start (BISS_RING_END - stride) and reports them in ST_RING_STRIDE
+ * and ST_RING_LAST. */
+#define BISS_RING_STRIDE(n) (BISS_R_SLAVE0 + (unsigned)(n)*BISS_R_SLAVE_SIZE)
+#define BISS_RING_SLOTS(n)  ((BISS_RING_END - BISS_RING0) / BISS_RING_STRIDE(n))
 
 /* ---- compile-time agreement with biss_shm.h ---------------------------- */
 #define BISS_SHM_AT(member, off)                                                                   \
@@ -152,6 +164,10 @@ BISS_SHM_SLAVE_CFG_AT(crc_poly, BISS_CFG_S_CRC_POLY);
 BISS_SHM_SLAVE_CFG_AT(crc_start, BISS_CFG_S_CRC_START);
 
 BISS_SHM_AT(cmd_trigger, BISS_CMD_TRIGGER);
+BISS_SHM_AT(ring_next, BISS_ST_RING_NEXT);
+BISS_SHM_AT(ring_stride, BISS_ST_RING_STRIDE);
+BISS_SHM_AT(ring_last, BISS_ST_RING_LAST);
+BISS_SHM_AT(gap_ring, BISS_ST_RING_END);
 BISS_SHM_AT(st_pru, BISS_ST_PRU);
 
 BISS_SHM_AT(st, BISS_ST_MAGIC);
@@ -179,11 +195,15 @@ BISS_SHM_AT(cd.ida_step, BISS_CD_IDA_STEP);
 BISS_SHM_AT(cd.ida_expect, BISS_CD_IDA_EXPECT);
 _Static_assert(BISS_CD_CMD + sizeof(struct biss_shm_cd) == BISS_ST_CD_END, "cd area size");
 
-BISS_SHM_AT(res[0], BISS_RES0);
-BISS_SHM_AT(res[1], BISS_RES0 + BISS_RES_SIZE);
-_Static_assert(sizeof(struct biss_shm_result) == BISS_RES_SIZE, "result buffer size");
-_Static_assert(BISS_RES0 == 0x100 && BISS_RES_SIZE < 0x100,
-               "pru_fw/frame.p's RESULT_ADDR adds BISS_RES0 as bit 8 to at most one BISS_RES_SIZE");
+BISS_SHM_AT(ring, BISS_RING0);
+_Static_assert(sizeof(struct biss_shm_result) == BISS_RING_STRIDE(BISS_MAX_SLAVES),
+               "a slot of every slave is the whole result struct");
+_Static_assert(BISS_R_SLAVE_SIZE == 16, "pru_fw/config.p's stride: slaves << 4");
+_Static_assert(BISS_R_SLAVE0 < 256 && BISS_RING0 < 0x10000 && BISS_RING_END < 0x10000,
+               "config.p's immediates: the header an 8-bit, the ring's bounds 16-bit ones");
+_Static_assert(BISS_RING0 % 4 == 0 && BISS_R_SLAVE0 % 4 == 0 && BISS_R_SLAVE_SIZE % 4 == 0,
+               "slots of whole words");
+_Static_assert(BISS_RING_SLOTS(BISS_MAX_SLAVES) >= 2, "a ring of at least two slots");
 BISS_SHM_RESULT_AT(frame, BISS_R_FRAME);
 BISS_SHM_RESULT_AT(flags, BISS_R_FLAGS);
 BISS_SHM_RESULT_AT(timestamp, BISS_R_TIMESTAMP);
@@ -208,12 +228,13 @@ BISS_SHM_AT(priv, BISS_PRIV);
 BISS_SHM_AT(cd_prog, BISS_CD_PROG);
 BISS_SHM_AT(cd_resp, BISS_CD_RESP);
 _Static_assert(BISS_CD_PROG + BISS_SHM_CD_PROG_BYTES <= BISS_CD_RESP, "CD program fits its area");
-/* The firmware's CD_OP forms BISS_CD_PROG + step / 2 by setting bit 10 of
- * step / 2 (at most 511). */
-_Static_assert(BISS_CD_PROG == 0x400 && BISS_SHM_CD_PROG_BYTES <= 0x400,
+/* The firmware's CD_OP forms BISS_CD_PROG + step / 2 by setting bit 9
+ * (CD_PROG_BIT) of step / 2 (at most 511). */
+_Static_assert(BISS_CD_PROG == 0x200 && BISS_SHM_CD_PROG_BYTES <= 0x200,
                "CD_OP's program address is a bit set");
-_Static_assert(sizeof(struct biss_shm) == BISS_CD_RESP + BISS_SHM_CD_RESP_BYTES,
-               "shared area size");
+/* C28 (the private area) is set in 256-byte pages. */
+_Static_assert(BISS_PRIV % 256 == 0 && BISS_PRIV_END - BISS_PRIV == 256, "private area: one page");
+_Static_assert(sizeof(struct biss_shm) == BISS_RING_END, "shared area size");
 _Static_assert(sizeof(struct biss_shm) <= BISS_DRAM_BYTES, "shared area fits the data RAM");
 
 /* The identification block and the resource table (biss_shm.h). */

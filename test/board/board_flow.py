@@ -15,8 +15,8 @@ linking there, its "name" attribute on 5.10 and newer only (Linux 5.4's
 sysfs-class-remoteproc ABI), the pruss driver's link to the bound PRU-ICSS,
 and the device tree's root compatible and chosen/overlays entry under
 firmware/devicetree/base. While configured, the stand-in firmware publishes
-a frame a millisecond the way biss_shm.h's protocol has it (fill the buffer
-not named by ST_BUF, name it, bump ST_SEQ), so "bissctl read" has frames.
+a frame a millisecond the way biss_shm.h's protocol has it (fill the slot
+after ST_BUF's in the ring, name it, bump ST_SEQ), so "bissctl read" has frames.
 
 Then the master that keeps running: "bissctl start" leaves it running after
 it exits, "read" and "info" attach to it without restarting or
@@ -31,6 +31,7 @@ hardware (AM335x; AM437x: ICSS0), none says "emulated".
 usage: board_flow.py BISSCTL BISS_MASTER_ELF BISS_MASTER_BIN UNIT CONFIG [ARM_BISSCTL]
 """
 import os
+import re
 import shlex
 import shutil
 import struct
@@ -46,6 +47,11 @@ from checks import check, finish, use_debian_pyelftools  # noqa: E402
 use_debian_pyelftools()
 from elftools.elf.elffile import ELFFile  # noqa: E402
 
+# the contract's version, as biss_shm.h has it
+with open(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "include", "biss",
+                       "biss_shm.h"), encoding="utf-8") as _f:
+    SHM_VERSION = int(re.search(r"^#define BISS_SHM_VERSION\s+(\d+)", _f.read(), re.M).group(1))
+
 
 
 ctl, elf_path, bin_path, unit_path, conf_path = sys.argv[1:6]
@@ -55,7 +61,7 @@ MAGIC, CFG_SEQ, ST_CFG_ACK, ST_CFG_ERROR, ST_STATE = 0x80, 0x00, 0x8C, 0x90, 0x9
 # include/biss/biss_shm.h: configuration, status and result offsets
 CFG_HALF, CFG_NSLAVES = 0x04, 0x06
 ST_SEQ, ST_BUF, ST_FRAMES = 0x84, 0x88, 0x98
-RES0, RES_SIZE = 0x100, 0xA0
+RING0, RING_END, R_SLAVE_SIZE = 0x480, 0xFE0, 16
 R_FRAME, R_FLAGS, R_TIMESTAMP, R_NSLAVES = 0x00, 0x04, 0x08, 0x0F
 R_DELAY_RAW, R_DELAY_AVG, R_SAMPLE_POINT, R_HALF, R_SLAVE0 = 0x10, 0x12, 0x14, 0x16, 0x20
 RF_VALID, RF_SMA = 0x01, 0x20
@@ -139,24 +145,28 @@ class Board:
 
     def publish(self):
         """One frame of TIDEP0022's test encoder (14 data bits: a 12-bit
-        position counting up, nE and nW high, CRC good) into the buffer the
-        host is not reading, then ST_BUF, then ST_SEQ (biss_shm.h)."""
+        position counting up, nE and nW high, CRC good) into the ring's
+        slot after the newest (its stride: the header and the slaves;
+        back to the first where a slot no longer fits), numbered as its
+        publication, then ST_BUF, then ST_SEQ (biss_shm.h)."""
         self.frames += 1
-        buf = 1 - self.r32(ST_BUF) if self.r32(ST_SEQ) else 0
-        at = RES0 + buf * RES_SIZE
+        nslaves = self.r32(CFG_NSLAVES) & 0xFF
+        stride = R_SLAVE0 + nslaves * R_SLAVE_SIZE
+        seq = self.r32(ST_SEQ) + 1
+        at = RING0 + (seq - 1) % ((RING_END - RING0) // stride) * stride
         half = self.r32(CFG_HALF) & 0xFFFF
         data = ((self.frames & 0xFFF) << 2) | 0x3
-        rec = bytearray(RES_SIZE)
-        struct.pack_into("<III", rec, R_FRAME, self.frames, RF_VALID | RF_SMA, self.frames * 200000)
-        rec[R_NSLAVES] = self.r32(CFG_NSLAVES) & 0xFF
+        rec = bytearray(stride)
+        struct.pack_into("<III", rec, R_FRAME, seq, RF_VALID | RF_SMA, self.frames * 200000)
+        rec[R_NSLAVES] = nslaves
         struct.pack_into("<HHBxH", rec, R_DELAY_RAW, 30, 30, 4, half)
         struct.pack_into("<IIII", rec, R_SLAVE0, data, 0, 0, RS_CRC_OK | RS_NE | RS_NW)
         with open(self.mem, "r+b") as f:
             f.seek(BASE + at)
             f.write(rec)
-        self.w32(ST_FRAMES, self.frames)
-        self.w32(ST_BUF, buf)
-        self.w32(ST_SEQ, self.r32(ST_SEQ) + 1)
+        self.w32(ST_FRAMES, seq)
+        self.w32(ST_BUF, at)
+        self.w32(ST_SEQ, seq)
 
     def kernel(self):
         running = False
@@ -226,7 +236,7 @@ def flow(cmd, label):
             check(r.returncode == 0 and r.stdout.startswith("frames="),
                   "%s stats: %r %r" % (label, r.stdout, r.stderr))
             r = subprocess.run([*cmd, *tree, "info"], capture_output=True, text=True, timeout=120)
-            check(r.returncode == 0 and "(attached)" in r.stdout and "shm_version=1" in r.stdout
+            check(r.returncode == 0 and "(attached)" in r.stdout and ("shm_version=%d" % SHM_VERSION) in r.stdout
                   and "pru=enabled" in r.stdout, "%s info: %r %r" % (label, r.stdout, r.stderr))
             check(b.get("state") == "running\n", "%s: still running" % label)
             # stop halts it through sysfs

@@ -12,6 +12,11 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 from checks import check, finish  # noqa: E402
 from memfile import rd, wr  # noqa: E402
 
+# the contract's version, as biss_shm.h has it
+with open(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "include", "biss",
+                       "biss_shm.h"), encoding="utf-8") as _f:
+    SHM_VERSION = int(re.search(r"^#define BISS_SHM_VERSION\s+(\d+)", _f.read(), re.M).group(1))
+
 CTL = sys.argv[1]
 # the first line of every output on the emulator (this machine has no TI
 # device tree, so the emulator is also the default target)
@@ -214,7 +219,7 @@ with tempfile.TemporaryDirectory() as tmp:
     check(r.returncode == 0 and "frames=1234" in r.stdout and rd(mem, BASE + 0x34000) == 0xdeadbeef,
           "default attach: %r %r" % (r.stdout, r.stderr))
     r = run(*dm, "info", env=env)
-    check(r.returncode == 0 and "(attached)" in r.stdout and "shm_version=1" in r.stdout,
+    check(r.returncode == 0 and "(attached)" in r.stdout and ("shm_version=%d" % SHM_VERSION) in r.stdout,
           "default attach info: %r %r" % (r.stdout, r.stderr))
     # two processes on one PRU: the second is told who holds it
     holder = subprocess.Popen([CTL, *dm, "--slave", "14,6,0x43,0,0", "--no-configure", "--attach",
@@ -249,20 +254,20 @@ with tempfile.TemporaryDirectory() as tmp:
     check(r.returncode == 1 and "bad slave data bits" in r.stderr, "junk slave: %r" % r.stderr)
     wr(mem, BASE + 0x10, 0x0100060e)   # 14 data bits, CRC6, nE/nW at 0
     wr(mem, BASE + 0x14, 0x00000003)   # 0x43
-    wr(mem, BASE + 0x100, 5)           # a publication: frame 5 ...
-    wr(mem, BASE + 0x104, 0x41)        # ... VALID with ACK_JUMP: never written so
-    wr(mem, BASE + 0x10C, 0x01000000)  # one slave
-    wr(mem, BASE + 0x114, 0x000a0307)  # H = 10, lag 3, sample point 7
-    wr(mem, BASE + 0x88, 0)            # ST_BUF
+    wr(mem, BASE + 0x480, 1)           # a publication in the ring's first slot: 1 ...
+    wr(mem, BASE + 0x484, 0x41)        # ... VALID with ACK_JUMP: never written so
+    wr(mem, BASE + 0x48C, 0x01000000)  # one slave
+    wr(mem, BASE + 0x494, 0x000a0307)  # H = 10, lag 3, sample point 7
+    wr(mem, BASE + 0x88, 0x480)        # ST_BUF
     wr(mem, BASE + 0x84, 1)            # ST_SEQ
     r = run(*dm, "--attach", "read", env=env)
     check(r.returncode == 1 and "result flags: a combination the firmware never writes" in r.stderr
           and "pos=" not in r.stdout, "junk flags: %r %r" % (r.stdout, r.stderr))
-    wr(mem, BASE + 0x104, 0x01)        # VALID ...
-    wr(mem, BASE + 0x114, 0x000a03ff)  # ... with sample point 255
+    wr(mem, BASE + 0x484, 0x01)        # VALID ...
+    wr(mem, BASE + 0x494, 0x000a03ff)  # ... with sample point 255
     r = run(*dm, "--attach", "read", env=env)
     check(r.returncode == 1 and "sample point: not 0..7" in r.stderr, "junk point: %r" % r.stderr)
-    wr(mem, BASE + 0x114, 0x000a0307)
+    wr(mem, BASE + 0x494, 0x000a0307)
     wr(mem, BASE + 0x94, 7)            # ST_STATE
     r = run(*dm, "--attach", "stats", env=env)
     check(r.returncode == 1 and "ST_STATE" in r.stderr, "junk state: %r" % r.stderr)
@@ -275,7 +280,7 @@ with tempfile.TemporaryDirectory() as tmp:
     check(r.returncode == 1 and "identification" in r.stderr, "no id: %r" % r.stderr)
     # stop attaches (no reload) and halts
     wr(mem, BASE + 0xFE0, 0x44495342)
-    wr(mem, BASE + 0xFE4, 1)
+    wr(mem, BASE + 0xFE4, SHM_VERSION)
     wr(mem, BASE + 0x04, 0)
     r = run(*dm, "stop", env=env)
     check(r.returncode == 0 and rd(mem, BASE + CTRL0) == 1 and rd(mem, BASE + 0x34000) == 0xdeadbeef,

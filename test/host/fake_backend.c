@@ -40,24 +40,30 @@ uint32_t fake_result_word(uint32_t k, unsigned i) {
     return k;
 }
 
-/* One store of the firmware: a result word, ST_BUF, or ST_SEQ. The frame
- * k fills buffer k % 2 only after k - 1 published the other one. */
+/* One store of the firmware: a result word, ST_BUF, or ST_SEQ. Frame k
+ * fills the ring's slot (k - 1) % FAKE_SLOTS only after k - 1 published
+ * the one before it (biss_shm.h). */
 static void firmware_step(struct fake *f) {
     if (!f->publishing) {
         return;
     }
-    uint32_t buf = f->frame % 2;
+    uint32_t slot = BISS_RING0 + (f->frame - 1) % FAKE_SLOTS * BISS_RING_STRIDE(BISS_MAX_SLAVES);
     if (f->word < FAKE_RESULT_WORDS) {
-        fake_set_dram32(f, BISS_RES0 + buf * BISS_RES_SIZE + f->word * 4,
-                        fake_result_word(f->frame, f->word));
+        fake_set_dram32(f, slot + f->word * 4, fake_result_word(f->frame, f->word));
         f->word++;
     } else if (f->word == FAKE_RESULT_WORDS) {
-        fake_set_dram32(f, BISS_ST_BUF, buf);
+        fake_set_dram32(f, BISS_ST_BUF, slot);
         f->word++;
     } else {
         fake_set_dram32(f, BISS_ST_SEQ, f->frame);
         f->frame++;
         f->word = 0;
+    }
+}
+
+void fake_steps(struct fake *f, unsigned k) {
+    for (unsigned i = 0; i < k; i++) {
+        firmware_step(f);
     }
 }
 
@@ -77,6 +83,9 @@ static int fake_read(void *ctx, uint32_t off, void *buf, size_t n) {
     struct fake *f = ctx;
     ck_assert_uint_le(off + n, ICSS_WINDOW);
     interleave(f);
+    if (f->before_read) {
+        f->before_read(f, off - ICSS_DRAM0, n);
+    }
     memcpy(buf, f->mem + off, n);
     return BISS_OK;
 }

@@ -6,7 +6,7 @@
 #define _GNU_SOURCE /* F_OFD_SETLK */
 #include "libbiss-emu.h"
 
-#include "biss/biss_shm.h"
+#include "biss/biss_shm_struct.h"
 #include "biss/biss_slave_shm.h"
 
 #include "biss_oserr.h"
@@ -242,8 +242,9 @@ static void *virtual_firmware(void *arg) {
         }
         if (atomic_load(&v->publish) > 0) {
             seq++;
-            uint32_t buf = seq % 2;
-            volatile uint32_t *r = d + (BISS_RES0 + buf * BISS_RES_SIZE) / 4;
+            /* the ring's slots of one slave, from the first (biss_shm.h) */
+            uint32_t buf = BISS_RING0 + (seq - 1) % BISS_RING_SLOTS(1) * BISS_RING_STRIDE(1);
+            volatile uint32_t *r = d + buf / 4;
             r[BISS_R_FRAME / 4] = seq;
             r[BISS_R_FLAGS / 4] = BISS_RF_VALID;
             r[BISS_R_PROC_CLOCKS / 4] = 1u << 24; /* one slave */
@@ -412,7 +413,7 @@ START_TEST(test_virtual_board) {
     ck_assert_int_eq(biss_open(&pa, &h2), BISS_OK);
     /* a published result no firmware with this configuration writes */
     uint32_t buf = file32(AM335X_BASE + BISS_ST_BUF);
-    off_t res = AM335X_BASE + BISS_RES0 + buf * BISS_RES_SIZE;
+    off_t res = AM335X_BASE + buf;
     uint32_t word = file32(res + (BISS_R_NSLAVES & ~3u));
     file_write32(res + (BISS_R_NSLAVES & ~3u), (word & 0x00ffffffu) | 200u << 24);
     ck_assert_int_eq(biss_read_sample(h2, &s), BISS_E_SHM_RESULT);

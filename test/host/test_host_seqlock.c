@@ -61,6 +61,122 @@ START_TEST(test_reader_never_sees_a_torn_frame) {
 }
 END_TEST
 
+/* The ring reader while the firmware publishes under it: before each of
+ * its reads the fake stores 0..60 words (a publication is 42), and every
+ * 50th call the host was away for 1 ms (1000 stores: 23 publications;
+ * the ring keeps 17 of eight slaves). Every frame returned is whole, each
+ * seq once and in order; the frames not returned are exactly the ones
+ * counted lost, and some were. */
+START_TEST(test_ring_reader_counts_what_it_misses) {
+    struct fake *f;
+    biss_t *h = fake_handle(&f);
+    f->publishing = true;
+    f->max_steps = 60;
+    f->steps_per_us = 1;
+    struct biss_sample buf[32];
+    uint32_t done = 0; /* the last seq returned or counted lost */
+    uint64_t got = 0, lost_total = 0;
+    for (int call = 0; call < 20000; call++) {
+        if (call % 50 == 49) {
+            ck_assert_int_eq(biss_run_ms(h, 1), BISS_OK);
+        }
+        unsigned n;
+        uint32_t lost;
+        int rc = biss_ring_read(h, buf, 32, &n, &lost);
+        ck_assert_msg(rc == BISS_OK, "call %d: %s: %s", call, biss_strerror(rc),
+                      biss_shm_problem(h));
+        uint32_t gaps = 0;
+        for (unsigned i = 0; i < n; i++) {
+            assert_consistent(&buf[i]);
+            ck_assert_uint_eq(buf[i].seq, buf[i].frame);
+            if (call > 0) { /* (the first call starts at the newest) */
+                ck_assert_uint_gt(buf[i].seq, done);
+                gaps += buf[i].seq - done - 1;
+            }
+            done = buf[i].seq;
+        }
+        /* every frame not returned is counted: the gaps, then any after */
+        ck_assert_uint_ge(lost, gaps);
+        done += lost - gaps;
+        got += n;
+        lost_total += lost;
+    }
+    ck_assert_uint_gt(got, 10000);
+    ck_assert_uint_gt(lost_total, 0);
+    /* the reader's place is the one counted here: the next is done + 1 */
+    f->max_steps = 0;
+    unsigned n;
+    uint32_t lost;
+    ck_assert_int_eq(biss_ring_read(h, buf, 32, &n, &lost), BISS_OK);
+    ck_assert_uint_eq(done + n + lost, fake_dram32(f, BISS_ST_SEQ));
+    biss_close(h);
+}
+END_TEST
+
+/* The firmware begins refilling a slot while the reader copies it: frame
+ * 18 published, the reader 17 behind (all the ring keeps), and while it
+ * copies, frame 19 is published and frame 20's timestamp stored in the
+ * oldest copied slot (frame 2's), as BUF_STAMP does first; its frame
+ * number still says 2. ST_SEQ read after the copy shows it: frame 2 is
+ * counted lost, frames 3..18 come whole. Without the stores, all 17. */
+static bool refill_armed;
+
+static void refill_during_copy(struct fake *f, uint32_t off, size_t n) {
+    if (!refill_armed || off < BISS_RING0 || n <= BISS_R_SLAVE0) {
+        return; /* not the copy */
+    }
+    refill_armed = false;
+    fake_steps(f, FAKE_RESULT_WORDS + 2); /* frame 19, whole */
+    uint32_t slot2 = BISS_RING0 + 1 * BISS_RING_STRIDE(BISS_MAX_SLAVES);
+    fake_set_dram32(f, slot2 + BISS_R_TIMESTAMP, 20);
+}
+
+static void ring_behind_by_17(biss_t **h, struct fake **f) {
+    *h = fake_handle(f);
+    (*f)->publishing = true;
+    fake_steps(*f, FAKE_RESULT_WORDS + 2); /* frame 1 */
+    struct biss_sample buf[32];
+    unsigned n;
+    uint32_t lost;
+    ck_assert_int_eq(biss_ring_read(*h, buf, 32, &n, &lost), BISS_OK);
+    ck_assert_uint_eq(n, 1);                      /* the newest, where a reader starts */
+    fake_steps(*f, 17 * (FAKE_RESULT_WORDS + 2)); /* frames 2..18 */
+    ck_assert_uint_eq(FAKE_SLOTS - 1, 17);
+}
+
+START_TEST(test_ring_copy_being_refilled_is_lost) {
+    struct fake *f;
+    biss_t *h;
+    struct biss_sample buf[32];
+    unsigned n;
+    uint32_t lost;
+    ring_behind_by_17(&h, &f);
+    ck_assert_int_eq(biss_ring_read(h, buf, 32, &n, &lost), BISS_OK);
+    ck_assert_uint_eq(n, 17);
+    ck_assert_uint_eq(lost, 0);
+    ck_assert_uint_eq(buf[0].seq, 2);
+    biss_close(h);
+
+    ring_behind_by_17(&h, &f);
+    f->before_read = refill_during_copy;
+    refill_armed = true;
+    ck_assert_int_eq(biss_ring_read(h, buf, 32, &n, &lost), BISS_OK);
+    ck_assert(!refill_armed); /* the stores came during the copy */
+    ck_assert_uint_eq(lost, 1);
+    ck_assert_uint_eq(n, 16);
+    for (unsigned i = 0; i < n; i++) {
+        ck_assert_uint_eq(buf[i].seq, 3 + i);
+        assert_consistent(&buf[i]);
+    }
+    /* next: frame 19 */
+    ck_assert_int_eq(biss_ring_read(h, buf, 32, &n, &lost), BISS_OK);
+    ck_assert_uint_eq(n, 1);
+    ck_assert_uint_eq(lost, 0);
+    ck_assert_uint_eq(buf[0].seq, 19);
+    biss_close(h);
+}
+END_TEST
+
 /* A whole publication (42 stores) before every access: ST_SEQ differs
  * at each re-read, so no read can complete. */
 START_TEST(test_reader_gives_up) {
@@ -244,6 +360,8 @@ int main(void) {
     TCase *tc = tcase_create("protocol");
     tcase_add_test(tc, test_reader_never_sees_a_torn_frame);
     tcase_add_test(tc, test_reader_gives_up);
+    tcase_add_test(tc, test_ring_reader_counts_what_it_misses);
+    tcase_add_test(tc, test_ring_copy_being_refilled_is_lost);
     tcase_add_test(tc, test_nothing_published);
     tcase_add_test(tc, test_wait_sample);
     tcase_add_test(tc, test_configure_handshake);

@@ -53,7 +53,7 @@ runner = shlex.split(a.run)
 BASE, CLKCTRL, IRAM = 0x4A300000, 0x44E000E8, 0x34000
 CFG_SEQ, MAGIC, ST_SEQ, ST_BUF, ST_CFG_ACK, ST_CFG_ERROR, ST_STATE = (
     0x00, 0x80, 0x84, 0x88, 0x8C, 0x90, 0x94)
-RES0, RF_VALID, RS_CRC_OK, R_SLAVE0 = 0x100, 0x01, 0x01, 0x20
+RING0, RF_VALID, RS_CRC_OK, R_SLAVE0 = 0x480, 0x01, 0x01, 0x20
 
 
 def run(*args, **kw):
@@ -159,14 +159,14 @@ def check_tree(root, tmp):
     wr(mem, BASE + ST_CFG_ACK, seq)
     wr(mem, BASE + ST_CFG_ERROR, 0)
     wr(mem, BASE + ST_STATE, 1)
-    res = BASE + RES0
-    wr(mem, res + 0x00, 7)             # frame
+    res = BASE + RING0                 # the ring's first slot
+    wr(mem, res + 0x00, 1)             # frame: publication 1
     wr(mem, res + 0x04, RF_VALID)
     wr(mem, res + 0x0F, 1, 1)          # nslaves
     wr(mem, res + 0x16, 10, 2)         # half
     wr(mem, res + R_SLAVE0, pos << 2 | 3)  # data_lo: nE, nW = 1: no error, no warning
     wr(mem, res + R_SLAVE0 + 12, RS_CRC_OK)
-    wr(mem, BASE + ST_BUF, 0)
+    wr(mem, BASE + ST_BUF, RING0)
     wr(mem, BASE + ST_SEQ, 1)
 
     # the example, built against the installed tree with pkg-config

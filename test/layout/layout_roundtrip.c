@@ -118,8 +118,8 @@ static void configuration(const struct biss_proto_io *io) {
 }
 
 static void result(const struct biss_proto_io *io) {
-    uint32_t res = BISS_RES0 + BISS_RES_SIZE; /* buffer 1 */
-    put(BISS_ST_BUF, 1, 4);
+    uint32_t res = BISS_RING0 + BISS_RING_STRIDE(1); /* the ring's second slot */
+    put(BISS_ST_BUF, res, 4);
     put(BISS_ST_SEQ, 99, 4);
     put(res + BISS_R_FRAME, 77, 4);
     put(res + BISS_R_FLAGS, BISS_RF_VALID | BISS_RF_SMA, 4);
@@ -155,8 +155,18 @@ static void result(const struct biss_proto_io *io) {
     SAME(s.slave[0].position, 0x2abcd);
     SAME(s.slave[0].error, 0);
     SAME(s.slave[0].warning, 1);
-    put(BISS_ST_BUF, 2, 4); /* a buffer the firmware never names */
+    /* the ring: the newest slot holds ST_SEQ's publication */
+    put(res + BISS_R_FRAME, 99, 4);
+    uint32_t cursor = 98, lost = 9;
+    unsigned n = 9;
+    SAME(biss_proto_ring_read(io, &cursor, &r, 1, &n, &lost), 0);
+    SAME(n, 1);
+    SAME(lost, 0);
+    SAME(r.frame, 99);
+    SAME(cursor, 99);
+    put(BISS_ST_BUF, res + 4, 4); /* no slot the firmware fills */
     SAME(biss_proto_result_get(io, 1, &r), BISS_E_SHM_RESULT);
+    SAME(biss_proto_ring_read(io, &cursor, &r, 1, &n, &lost), BISS_E_SHM_RESULT);
 }
 
 static void control(const struct biss_proto_io *io) {

@@ -122,7 +122,7 @@ END_TEST
 
 /* A result buffer as the firmware writes it, byte by byte. */
 static void result_bytes(uint8_t *b) {
-    memset(b, 0, BISS_RES_SIZE);
+    memset(b, 0, BISS_RING_STRIDE(BISS_MAX_SLAVES));
     put32(b, BISS_R_FRAME, 77);
     put32(b, BISS_R_FLAGS, BISS_RF_VALID | BISS_RF_CRC_ERROR | BISS_RF_SMA);
     put32(b, BISS_R_TIMESTAMP, 123456);
@@ -157,7 +157,7 @@ static struct biss_config two_slaves(void) {
 }
 
 START_TEST(test_result_decode) {
-    uint8_t b[BISS_RES_SIZE];
+    uint8_t b[BISS_RING_STRIDE(BISS_MAX_SLAVES)];
     result_bytes(b);
     struct biss_shm_result r;
     memcpy(&r, b, sizeof r);
@@ -211,7 +211,7 @@ END_TEST
 
 /* The two-slave result buffer published with only `flags`, decoded. */
 static void decode_with_flags(uint32_t flags, struct biss_sample *s) {
-    uint8_t b[BISS_RES_SIZE];
+    uint8_t b[BISS_RING_STRIDE(BISS_MAX_SLAVES)];
     result_bytes(b);
     put32(b, BISS_R_FLAGS, flags);
     struct biss_shm_result r;
@@ -327,7 +327,7 @@ static void expect_junk(struct biss_shm_result r, bool configured, const char *f
 }
 
 START_TEST(test_junk_result_refused) {
-    uint8_t b[BISS_RES_SIZE];
+    uint8_t b[BISS_RING_STRIDE(BISS_MAX_SLAVES)];
     result_bytes(b);
     struct biss_shm_result good, r;
     memcpy(&good, b, sizeof good);
@@ -403,9 +403,15 @@ START_TEST(test_junk_status_refused) {
     ck_assert_ptr_nonnull(strstr(biss_status_problem(&st, 2), "ST_PRU"));
     st.state = 4;
     ck_assert_ptr_nonnull(strstr(biss_status_problem(&st, 0), "ST_STATE"));
-    st.state = 0, st.buf = 2;
+    st.state = 0, st.buf = 2; /* before the first publication: 0 */
     ck_assert_ptr_nonnull(strstr(biss_status_problem(&st, 0), "ST_BUF"));
-    st.buf = 1, st.cfg_error = 9;
+    st.seq = 5, st.buf = BISS_RING0 + 3 * BISS_R_SLAVE_SIZE; /* a slot's start, some layout */
+    ck_assert_ptr_null(biss_status_problem(&st, 0));
+    st.buf = BISS_RING0 + 4; /* off the slots' grid */
+    ck_assert_ptr_nonnull(strstr(biss_status_problem(&st, 0), "ST_BUF"));
+    st.buf = BISS_RING_END - BISS_R_SLAVE_SIZE; /* no room for a header */
+    ck_assert_ptr_nonnull(strstr(biss_status_problem(&st, 0), "ST_BUF"));
+    st.buf = BISS_RING0, st.cfg_error = 9;
     ck_assert_ptr_nonnull(strstr(biss_status_problem(&st, 0), "ST_CFG_ERROR"));
     st.magic = 0; /* not running: nothing judged */
     ck_assert_ptr_null(biss_status_problem(&st, 7));

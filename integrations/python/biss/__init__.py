@@ -318,6 +318,25 @@ class Master:
         out["position"] = pos if pos is not None else np.zeros((0, 0), np.uint64)
         return out
 
+    def read_ring(self, max_frames=1024):
+        """Every frame published since the last call, oldest first, at
+        most max_frames (the rest wait for the next call), from the
+        firmware's result ring (biss_ring_read): (samples, lost), lost the
+        frames the ring no longer held (the host read too rarely). Each
+        Sample's seq is its publication number."""
+        buf = ffi.new("struct biss_sample[]", max_frames)
+        n = ffi.new("unsigned *")
+        lost = ffi.new("uint32_t *")
+        _check(lib.biss_ring_read(self._handle(), buf, max_frames, n, lost), "read_ring")
+        return [Sample(buf[i]) for i in range(n[0])], lost[0]
+
+    def ring_capacity(self):
+        """Frames the ring keeps for a reader at this configuration
+        (biss_ring_capacity): read it at least that often."""
+        n = ffi.new("unsigned *")
+        _check(lib.biss_ring_capacity(self._handle(), n), "ring_capacity")
+        return n[0]
+
     def line_delay_ns(self):
         """The measured round trip, averaged (biss_line_delay)."""
         d = ffi.new("struct biss_line_delay *")

@@ -34,6 +34,24 @@ def test_positions_advance_as_the_encoder_turns(master):
     assert b["position"].shape == (200, 1)
 
 
+def test_every_frame_from_the_ring(master):
+    # at 5 MHz a frame takes some 25 us: 40 a ms, the ring keeps 59
+    assert master.ring_capacity() == 59
+    master.read_ring()  # from here on
+    seqs, lost = [], 0
+    for _ in range(20):
+        master.run_ms(1)
+        got, gone = master.read_ring()
+        seqs += [x.seq for x in got]
+        lost += gone
+        assert all(x.valid and x.frame == x.seq for x in got)
+    assert lost == 0 and len(seqs) > 700
+    assert seqs == list(range(seqs[0], seqs[0] + len(seqs)))
+    master.run_ms(3)  # too long: the ring keeps the newest 59
+    got, gone = master.read_ring()
+    assert len(got) == 59 and gone > 0 and got[0].seq == seqs[-1] + gone + 1
+
+
 def test_a_sample_carries_the_frame(master):
     s = master.wait()
     assert s.valid and s.nslaves == 1 and s.crc_ok == [True]

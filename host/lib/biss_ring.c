@@ -1,0 +1,87 @@
+/* biss_ring.c - every frame: the result ring read through the protocol
+ * layer (proto/biss_ring.c), each frame checked and decoded as a sample. */
+#include "biss_priv.h"
+
+#include "biss/biss_shm_struct.h"
+
+/* The first call's cursor: the configuration's first publication, or, on
+ * a handle that did not configure, the newest one (returned). */
+static int ring_start(biss_t *h) {
+    if (h->configured && h->cfg_pub_seq_valid) {
+        h->ring_cursor = h->cfg_pub_seq;
+    } else {
+        struct biss_proto_io io = biss_io(h);
+        uint32_t seq;
+        int rc = biss_proto_pub_seq(&io, &seq);
+        if (rc) {
+            return rc;
+        }
+        h->ring_cursor = seq ? seq - 1 : 0;
+    }
+    h->ring_started = true;
+    return BISS_OK;
+}
+
+static int decode(biss_t *h, const struct biss_shm_result *r, struct biss_sample *s) {
+    const char *why = biss_result_problem(&h->cfg, h->configured, r);
+    if (why) {
+        h->problem = why; /* the firmware never writes it: junk, named */
+        return BISS_E_SHM_RESULT;
+    }
+    int rc = biss_sample_decode(&h->cfg, h->configured, r->frame, r, s);
+    if (!rc && h->configured) {
+        biss_safety_check(&h->cfg, &h->safety, s);
+    }
+    return rc;
+}
+
+/* Chunks of at most one ring's worth (the protocol layer's copy). */
+#define CHUNK BISS_RING_SLOTS(1)
+
+static int ring_read_locked(biss_t *h, struct biss_sample *out, unsigned max, unsigned *n,
+                            uint32_t *lost) {
+    int rc = h->ring_started ? BISS_OK : ring_start(h);
+    *lost = h->ring_skipped;
+    h->ring_skipped = 0;
+    struct biss_proto_io io = biss_io(h);
+    struct biss_shm_result raw[CHUNK];
+    while (!rc && *n < max) {
+        unsigned want = max - *n < CHUNK ? max - *n : CHUNK;
+        unsigned got;
+        uint32_t gone;
+        rc = biss_proto_ring_read(&io, &h->ring_cursor, raw, want, &got, &gone);
+        *lost += gone;
+        for (unsigned i = 0; !rc && i < got; i++) {
+            rc = decode(h, &raw[i], &out[*n]);
+            *n += !rc;
+        }
+        if (got + gone < want) {
+            break; /* caught up with the firmware */
+        }
+    }
+    return rc;
+}
+
+int biss_ring_read(biss_t *h, struct biss_sample *out, unsigned max, unsigned *n, uint32_t *lost) {
+    if (!h || (!out && max) || !n || !lost) {
+        return BISS_E_INVAL;
+    }
+    *n = 0;
+    pthread_mutex_lock(&h->lock);
+    int rc = ring_read_locked(h, out, max, n, lost);
+    pthread_mutex_unlock(&h->lock);
+    return rc;
+}
+
+int biss_ring_capacity(biss_t *h, unsigned *frames) {
+    if (!h || !frames) {
+        return BISS_E_INVAL;
+    }
+    pthread_mutex_lock(&h->lock);
+    int rc = h->configured ? BISS_OK : BISS_E_NOT_CONFIGURED;
+    if (!rc) {
+        *frames = BISS_RING_SLOTS(h->cfg.nslaves) - 1;
+    }
+    pthread_mutex_unlock(&h->lock);
+    return rc;
+}
