@@ -96,10 +96,11 @@ static void publish(uint8_t *dram) {
 /* What happens between two timed ring reads: the poll period's frames. */
 struct between {
     int (*run)(struct between *b);
-    biss_t *emu;   /* the emulator: 1 ms of it */
-    uint8_t *dram; /* the stand-ins: publish() per frame on this image, */
-    int fd;        /* then written to the memory file (fd >= 0) */
-    unsigned per;  /* frames a poll */
+    biss_t *emu;          /* the emulator: 1 ms of it */
+    uint8_t *dram;        /* the stand-ins: publish() per frame on this image, */
+    int fd;               /* then written to the memory file (fd >= 0) */
+    unsigned per;         /* frames a poll */
+    unsigned long *words; /* the mapped path's count of 32-bit reads, or NULL */
 };
 
 static int between_emu(struct between *b) {
@@ -122,6 +123,7 @@ struct ring_cost {
     double ns_call;     /* per biss_ring_read */
     double frames_call; /* frames it returned */
     unsigned long lost; /* frames lost over the run (0: the reader kept up) */
+    double words_call;  /* the mapped path: 32-bit reads of the PRU-ICSS a call */
 };
 
 /* calls timed ring reads, b->run between them (not timed); the first read
@@ -134,6 +136,9 @@ static int time_ring(biss_t *h, unsigned long calls, struct between *b, struct r
     double ns = 0;
     unsigned long frames = 0;
     c->lost = 0;
+    if (b->words) {
+        *b->words = 0; /* the timed calls' */
+    }
     for (unsigned long i = 0; rc == BISS_OK && i < calls; i++) {
         rc = b->run(b);
         if (rc != BISS_OK) {
@@ -147,6 +152,7 @@ static int time_ring(biss_t *h, unsigned long calls, struct between *b, struct r
     }
     c->ns_call = ns / (double)calls;
     c->frames_call = (double)frames / (double)calls;
+    c->words_call = b->words ? (double)*b->words / (double)calls : 0;
     return rc;
 }
 
@@ -426,6 +432,7 @@ int main(int argc, char **argv) {
             rc = time_reads(hm, calls, &sm, &ns_map);
             words = (double)the_map.words / (double)calls;
             b.dram = the_map.icss + PRUSS_OFS_DRAM0;
+            b.words = &the_map.words;
             if (rc == BISS_OK) {
                 rc = time_ring(hm, ring_calls, &b, &ring_map);
             }
@@ -468,9 +475,9 @@ int main(int argc, char **argv) {
                "\"file_pread_ns\": %.1f, \"emulator_ns\": %.1f, \"frame\": %u, "
                "\"ring_calls\": %lu, \"ring_frames_per_call\": %.1f, "
                "\"ring_mapped_ns\": %.1f, \"ring_file_pread_ns\": %.1f, "
-               "\"ring_emulator_ns\": %.1f}\n",
+               "\"ring_emulator_ns\": %.1f, \"ring_mapped_words\": %.1f}\n",
                calls, ns_map, words, ns_linux, ns_emu, sl.frame, ring_calls, ring_emu.frames_call,
-               ring_map.ns_call, ring_file.ns_call, ring_emu.ns_call);
+               ring_map.ns_call, ring_file.ns_call, ring_emu.ns_call, ring_map.words_call);
     } else {
         printf("biss_read_sample, %lu calls each (frame %u, %u slave(s)):\n", calls, sl.frame,
                sl.nslaves);
@@ -481,8 +488,9 @@ int main(int argc, char **argv) {
         printf("  emulator backend                      %8.1f ns/call\n", ns_emu);
         printf("biss_ring_read after each 1 ms, %lu calls each (%.1f frames a call):\n", ring_calls,
                ring_emu.frames_call);
-        printf("  mapped PRU-ICSS (a board's /dev/mem)  %8.1f ns/call, %6.1f ns/frame\n",
-               ring_map.ns_call, ring_map.ns_call / ring_emu.frames_call);
+        printf("  mapped PRU-ICSS (a board's /dev/mem)  %8.1f ns/call, %6.1f ns/frame, %.1f "
+               "32-bit reads of it a call\n",
+               ring_map.ns_call, ring_map.ns_call / ring_emu.frames_call, ring_map.words_call);
         printf("  Linux backend on a file (pread)       %8.1f ns/call, %6.1f ns/frame\n",
                ring_file.ns_call, ring_file.ns_call / ring_emu.frames_call);
         printf("  emulator backend                      %8.1f ns/call, %6.1f ns/frame\n",
