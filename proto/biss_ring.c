@@ -14,8 +14,12 @@ static int rd(const struct biss_proto_io *io, uint32_t off, void *buf, size_t n)
 }
 
 /* The newest publication: its number, its slot and the slave count of its
- * layout, consistent (the slot holds that number: a publication between
- * the reads of ST_SEQ and ST_BUF shows as a slot one ahead). */
+ * layout, consistent. The slot ST_BUF names holds ST_SEQ's number, or one
+ * more while the firmware is between its stores of ST_BUF and ST_SEQ (or
+ * published between our reads of them): that slot is whole (every store
+ * to it precedes ST_BUF's), so it is the newest. Waiting for ST_SEQ
+ * instead would wait for ever on the emulator, whose PRU stands still
+ * while the host reads and may stand between those two stores. */
 struct ring_head {
     uint32_t seq;
     uint32_t slot;
@@ -42,8 +46,10 @@ static int ring_head(const struct biss_proto_io *io, struct ring_head *h) {
             return rc;
         }
         const struct biss_shm_result *r = &hdr;
-        if (r->frame != h->seq) {
-            continue; /* a publication in between */
+        if (r->frame == h->seq + 1) {
+            h->seq = r->frame; /* published, ST_SEQ not yet bumped */
+        } else if (r->frame != h->seq) {
+            continue; /* publications in between */
         }
         if (r->nslaves == 0 || biss_proto_slot_check(buf, r->nslaves) != BISS_OK) {
             return BISS_E_SHM_RESULT;

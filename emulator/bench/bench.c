@@ -470,6 +470,7 @@ struct bench *bench_new_loop(const struct bench_config *cfg, char *err, size_t e
     }
     b->owns_icss = true;
     b->encoder = pru_icss_core(icss, 1);
+    pru_icss_lockstep(icss); /* PRU0's MA is PRU1's input */
     b->enc_ma_bit = 1;
     link_set_external_slave(&b->link, 1);
     struct pru_pins pins = {.ctx = b,

@@ -194,7 +194,9 @@ static void usage(FILE *f) {
                "                     stays until an event could reach the master's pin),\n"
                "                     line-settled (a cable edge after a settled level\n"
                "                     without the low-pass arithmetic), slave-quick (a\n"
-               "                     BiSS-C chain's clock edges in one step)\n"
+               "                     BiSS-C chain's clock edges in one step), run-ahead\n"
+               "                     (two PRUs: each runs ahead to its next cross-PRU\n"
+               "                     event, not both cycle by cycle)\n"
                "  --max-ms T         stop after T ms of simulated time (default: ample)\n"
                "  --strict[=RULES]   stop with a fault report on a construct of uncertain\n"
                "                     silicon behaviour in clocked code (between two MA edges\n"
@@ -465,7 +467,7 @@ static int set_option(struct options *o, const char *a, const char *v) {
         } else if (pru_params_fast_path_off(&o->core, v) != 0) {
             return usage_error("--no-fast-path '%s': expected ff, ff-counted, ff-r31-bits, "
                                "ff-loop-delay, ff-count-loop, fast-loop, leaf-call, sl-reach, "
-                               "line-settled or slave-quick",
+                               "line-settled, slave-quick or run-ahead",
                                v);
         }
     } else if (!strcmp(a, "--strict-window")) {

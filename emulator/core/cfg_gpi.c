@@ -184,6 +184,21 @@ uint32_t gpi_r31(struct pru_core *c, int64_t cycle) {
     return v;
 }
 
+bool gpi_r31_shared(struct pru_core *c, int64_t cycle) {
+    const struct intc *n = &c->pru0->intc;
+    if ((n->ger & 1u) && (n->hier & 3u))
+        return true; /* R31[31:30] follow the INTC (intc_host_bits) */
+    if (gpi_mode(c) != MODE_SHIFT || cycle < c->sh.next_edge_cycle)
+        return false; /* gpi_sync() does nothing */
+    const struct gpi_shift *s = &c->sh;
+    int64_t k = last_edge(c, cycle * PRU_PS_PER_CYCLE);
+    /* shift_apply() raises Cnt_16 for a pulse edge in (k_done, k]: without a
+     * start bit yet, one 16 edges after a start bit at k_done + 1 or later */
+    if (!s->sb)
+        return k >= s->k_done + 17;
+    return k >= s->cnt16_k + ((s->k_done - s->cnt16_k) / 16 + 1) * 16;
+}
+
 /* First cycle after `cycle` at which the input level may differ from now. */
 static int64_t input_change_cycle(struct pru_core *c, int64_t cycle) {
     if (!c->have_pins)
@@ -280,6 +295,8 @@ static int64_t gpi_next_cnt16(struct pru_core *c, int64_t cycle) {
 static uint32_t cfg_read(struct pru_core *c, uint32_t ofs, int64_t at) {
     struct pru_core *g = gpcfg_owner(c, ofs);
     if (g) {
+        if (g != c)
+            xpru_exclusive(c, 0x26000u + ofs); /* the other PRU's GPI, as of `at` */
         gpi_sync(g, at);
         return (c->pru0->cfg_regs[ofs / 4] & ~(GP_SB | GP_GPO_SEL)) | (g->sh.sb ? GP_SB : 0);
     }
@@ -317,6 +334,8 @@ static void cfg_write(struct pru_core *c, uint32_t ofs, uint32_t val, uint32_t b
     ff_dirty(c);
     struct pru_core *g = gpcfg_owner(c, ofs);
     if (g) {
+        if (g != c)
+            xpru_exclusive(c, 0x26000u + ofs); /* the other PRU's GPI changes */
         gpcfg_write(g, c, ofs, val, bmask, at);
         return;
     }

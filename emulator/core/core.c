@@ -31,6 +31,7 @@ void pru_params_default(struct pru_params *p) {
     p->ff_count_loop = 1;
     p->fast_loop = 1;
     p->leaf_call = 1;
+    p->run_ahead = 1;
     p->strict = 0;
     p->strict_everywhere = 0;
     p->strict_window = PRU_STRICT_DEFAULT_WINDOW;
@@ -59,6 +60,8 @@ int pru_params_fast_path_off(struct pru_params *p, const char *name) {
         p->fast_loop = 0;
     else if (strcmp(name, "leaf-call") == 0)
         p->leaf_call = 0;
+    else if (strcmp(name, "run-ahead") == 0)
+        p->run_ahead = 0;
     else
         return -1;
     return 0;
@@ -120,6 +123,7 @@ struct pru_core *pru_core_new(enum pru_soc soc, const struct pru_params *params)
         pru_params_default(&c->p);
     c->soc = soc;
     c->pru0 = c; /* alone until pruss.c pairs it */
+    c->xlimit = CYCLE_NEVER;
     c->cfg_regs = c->own_cfg;
     c->spad = c->own_spad;
     for (unsigned i = 0; i < 3; i++)
@@ -198,6 +202,8 @@ const char *pru_fault_name(enum pru_fault_cause cause) {
         [PRU_FAULT_GPO_SHIFT] = "GPO shift-out mode enabled (not modelled)",
         [PRU_FAULT_UNSUPPORTED] = "unsupported peripheral mode",
         [PRU_FAULT_STRICT] = "strict-mode rule broken",
+        [PRU_FAULT_RUN_AHEAD] = "cross-PRU access the run-ahead cannot order (rerun with "
+                                "--no-fast-path run-ahead)",
     };
     return (unsigned)cause < sizeof names / sizeof names[0] ? names[cause] : "unknown";
 }

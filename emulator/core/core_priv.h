@@ -87,6 +87,11 @@ enum {
      * fixed length within r0..r29: imm the bytes, target the register-file
      * start (exec_xfr_fixed(); what it cannot do goes the general way) */
     PD_XFR_FIXED,
+    /* a PRU of a PRU-ICSS: an instruction that is a cross-PRU event
+     * (TIMING.md "Two PRUs"): the kinds PD_SLOW, PD_R31_READ, PD_MVI_LD and
+     * PD_XFR_FIXED, in .xfast; the fast loop sees first whether it must
+     * wait for the other PRU (run-ahead, pruss.c) */
+    PD_XPRU,
     PD_END, /* fast loop: one past the end of IRAM (leave the loop) */
     PD_KIND_END,
 };
@@ -122,6 +127,7 @@ struct pd {
     uint32_t target; /* absolute branch/jump target, LOOP end */
     struct pru_insn in;
     uint8_t inner; /* PD_R31_READ: the fast kind to run once R31 is read */
+    uint8_t xfast; /* PD_XPRU: the fast kind once the other PRU is there */
 };
 
 /* Lazily evaluated 28-bit GPI shift register (cfg_gpi.c). */
@@ -175,6 +181,7 @@ struct ff_body {
     uint8_t sel;       /* ... its field (a whole register or part of one) */
     uint32_t step;     /* ... added to the field per iteration (mod 2^width) */
     uint32_t end;      /* ... the value that ends the loop */
+    bool sign_end;     /* ... or: it ends when the counter goes below 0 (QBBC top, x, 31) */
     int cl_reg;        /* a count loop's counter register (ff.c), -1 if it is none */
     uint8_t cl_sel;    /* ... its field */
     uint32_t cl_step;  /* ... subtracted from it per turn (> 0) */
@@ -319,7 +326,25 @@ struct pru_core {
     struct pru_core *pru0, *pru1;
     unsigned pru_idx;
     bool borrowed;
+    /* Run-ahead (pruss.c, TIMING.md "Two PRUs"): a cross-PRU event issued
+     * in this cycle or later waits for the other PRU (the core stops in
+     * front of it); CYCLE_NEVER while the core runs alone or the two take
+     * turns cycle by cycle. */
+    int64_t xlimit;
 };
+
+/* pruss.c: run-ahead. Whether the cross-PRU event at cycle (an
+ * instruction issued then) must wait for the other PRU; when it may go on
+ * under a fast-forward probe, the probe's horizon is that PRU's next event
+ * at the earliest (xlimit). */
+static inline bool xpru_wait(struct pru_core *c, int64_t cycle);
+/* An access that changes what the other PRU may already have run ahead
+ * through (its CONTROL block or GPCFG, the INTC turned on), by c at
+ * c->cycle: a PRU_FAULT_RUN_AHEAD (at addr) if the other PRU is past it. */
+void xpru_exclusive(struct pru_core *c, uint32_t addr);
+/* cfg_gpi.c: whether an R31 read at cycle is a cross-PRU event: the INTC
+ * drives R31[31:30], or the read brings a Cnt_16 event to the INTC. */
+bool gpi_r31_shared(struct pru_core *c, int64_t cycle);
 
 /* core.c */
 void core_fault(struct pru_core *c, enum pru_fault_cause cause, uint32_t addr);
@@ -395,6 +420,14 @@ static inline void ff_horizon(struct pru_core *c, int64_t cycle) {
 }
 static inline void ff_dirty(struct pru_core *c) {
     c->ff.dirty = true;
+}
+
+static inline bool xpru_wait(struct pru_core *c, int64_t cycle) {
+    if (cycle >= c->xlimit)
+        return true;
+    if (c->xlimit != CYCLE_NEVER && ff_input_read(c))
+        ff_horizon(c, c->xlimit);
+    return false;
 }
 
 /* exec_mem.c: whether XFR device dev, issued by c in this cycle, meets

@@ -183,12 +183,22 @@ static void block_write(struct pru_core *c, uint32_t ofs, uint32_t v, uint32_t b
     }
 }
 
+/* The other PRU's block shows its registers, PC and counters as of `at`
+ * and its writes stop, start or move it: nothing it may have run ahead
+ * through (xpru_exclusive). */
+static struct pru_core *other_block(struct pru_core *c, struct pru_core *owner, uint32_t base,
+                                    uint32_t ofs) {
+    if (owner != c)
+        xpru_exclusive(c, base + ofs);
+    return owner;
+}
+
 static uint32_t ctrl0_read(struct pru_core *c, uint32_t ofs, int64_t at) {
-    return block_read(c->pru0, ofs, at);
+    return block_read(other_block(c, c->pru0, PRUSS_OFS_CTRL0, ofs), ofs, at);
 }
 
 static void ctrl0_write(struct pru_core *c, uint32_t ofs, uint32_t v, uint32_t bm, int64_t at) {
-    block_write(c->pru0, ofs, v, bm, at);
+    block_write(other_block(c, c->pru0, PRUSS_OFS_CTRL0, ofs), ofs, v, bm, at);
 }
 
 /* CYCLE, STALL and STATUS move every cycle. */
@@ -202,7 +212,7 @@ static int64_t ctrl0_next_change(struct pru_core *c, int64_t cycle, uint32_t ofs
  * alone (docs/pru-facts.md §5.1). */
 static uint32_t ctrl1_read(struct pru_core *c, uint32_t ofs, int64_t at) {
     if (c->pru0->pru1)
-        return block_read(c->pru0->pru1, ofs, at);
+        return block_read(other_block(c, c->pru0->pru1, PRUSS_OFS_CTRL1, ofs), ofs, at);
     uint32_t v;
     memcpy(&v, c->ctrl1 + ofs, 4);
     return v;
@@ -210,7 +220,7 @@ static uint32_t ctrl1_read(struct pru_core *c, uint32_t ofs, int64_t at) {
 
 static void ctrl1_write(struct pru_core *c, uint32_t ofs, uint32_t v, uint32_t bm, int64_t at) {
     if (c->pru0->pru1) {
-        block_write(c->pru0->pru1, ofs, v, bm, at);
+        block_write(other_block(c, c->pru0->pru1, PRUSS_OFS_CTRL1, ofs), ofs, v, bm, at);
         return;
     }
     uint32_t old;
@@ -231,9 +241,9 @@ const struct icss_block icss_ctrl0 = {
 };
 
 /* Its reads give the fast-forward no horizon: a core alone has plain
- * storage here, which only the host writes; in a PRU-ICSS the two cores
- * run in turns of a cycle (pruss.c), so no skip passes PRU1's changes
- * (test_core_pruss, poll_other_pru_ff). */
+ * storage here, which only the host writes; in a PRU-ICSS a load is a
+ * cross-PRU event, and no skip passes the other PRU (pruss.c, xpru_wait;
+ * test_core_pruss, poll_other_pru_ff). */
 const struct icss_block icss_ctrl1 = {
     .name = "CTRL1",
     .base = PRUSS_OFS_CTRL1,

@@ -506,6 +506,15 @@ __attribute__((cold)) bool exec_simple_step(uint32_t *r, const struct pd *d, uns
     return exec_simple(r, d, kind, pc, carry);
 }
 
+/* Run-ahead (pruss.c): whether the instruction at cyc of fast kind `kind`,
+ * a cross-PRU event (an R31 read: if gpi_r31_shared() says so), must wait
+ * for the other PRU. Out of line: a core alone never calls it. */
+static __attribute__((noinline)) bool xpru_blocks(struct pru_core *c, int64_t cyc, unsigned kind) {
+    if ((kind == PD_R31_READ || kind == PD_MVI_LD) && !gpi_r31_shared(c, cyc))
+        return false;
+    return xpru_wait(c, cyc);
+}
+
 /* Leave the fast loop so that exec_run() re-evaluates enable/sleep/step. */
 void exec_recheck(struct pru_core *c) {
     c->recheck = true;
@@ -599,6 +608,7 @@ static void run_fast(struct pru_core *c, int64_t limit) {
         [PD_QBBC32I] = &&k_qbbc32i,
         [PD_MVI_LD] = &&k_mvi_ld,
         [PD_XFR_FIXED] = &&k_xfr_fixed,
+        [PD_XPRU] = &&k_xpru,
         [PD_END] = &&out,
     };
 #pragma GCC diagnostic pop
@@ -899,6 +909,11 @@ at_loop_end:
     SYNC_IN();
     goto top;
 
+k_xpru: /* a PRU of a PRU-ICSS: a cross-PRU event (predecode.c) */
+    if (xpru_blocks(c, cyc, d->xfast))
+        goto xblocked;
+    goto *kinds[d->xfast];
+
 k_slow:
     if (d->burst_bytes && (d->flags & PD_EFFECTS) == 0) {
         /* a fixed-length burst without R31 or pin effects: what
@@ -936,6 +951,9 @@ k_general:
         goto out;
     goto top;
 
+xblocked: /* in front of a cross-PRU event the other PRU has not reached */
+    c->stop = true;
+    c->stop_reason = PRU_STOP_LIMIT;
 out:
     SYNC_OUT();
 #undef SYNC_OUT
@@ -961,14 +979,18 @@ enum pru_stop exec_run(struct pru_core *c, int64_t limit, bool one_step) {
     bool unbounded = limit >= PRU_MAX_CYCLE; /* "until HALT": time stays put when idle */
     if (unbounded)
         limit = PRU_MAX_CYCLE;
+    /* run-ahead (pruss.c): idle time and the general path go no further
+     * than the other PRU (a wake-up, an enable, any instruction there may
+     * be a cross-PRU event); CYCLE_NEVER otherwise */
+    int64_t xlim = limit < c->xlimit ? limit : c->xlimit;
     for (;;) {
         if (!enabled(c)) {
-            if (!unbounded && c->cycle < limit && !one_step)
-                c->cycle = limit;
+            if (!unbounded && c->cycle < xlim && !one_step)
+                c->cycle = xlim;
             return c->halted ? PRU_STOP_HALT : PRU_STOP_DISABLED;
         }
         if (c->sleeping) {
-            if (!sleep_until(c, one_step ? c->cycle + 1 : limit))
+            if (!sleep_until(c, one_step ? c->cycle + 1 : xlim))
                 return one_step ? PRU_STOP_STEP : PRU_STOP_LIMIT;
         }
         if (c->cycle >= limit)
@@ -980,12 +1002,14 @@ enum pru_stop exec_run(struct pru_core *c, int64_t limit, bool one_step) {
         bool stepping = one_step || (c->ctrl.control & PRU_CTRL_SINGLE_STEP);
         if (c->trace_on || stepping || c->checked || !c->p.fast_loop) {
             const struct pd *d = &c->pd[c->pc];
+            if (c->cycle >= xlim)
+                return PRU_STOP_LIMIT;
             if (c->checked)
-                exec_checked(c, d, limit);
+                exec_checked(c, d, xlim);
             else if (c->trace_on)
-                exec_traced(c, d, limit);
+                exec_traced(c, d, xlim);
             else
-                exec_one(c, d, limit);
+                exec_one(c, d, xlim);
         } else {
             run_fast(c, limit);
         }

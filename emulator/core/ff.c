@@ -17,7 +17,8 @@
  *   register nowhere else, iterations differ only in the field, so they
  *   are skipped up to the one before the counter would end the loop (or
  *   wrap at the field's width), with the counter advanced by as many
- *   steps.
+ *   steps. The same for a register counted down and tested by QBBC on
+ *   its bit 31 (the firmware's IEP_POLL: until the count goes below 0).
  * - ff_r31_bits: when the body looks at R31 only through QBBS/QBBC, the
  *   horizon of its R31 reads covers only the bits it tests, so e.g. the
  *   Cnt_16 pulses of a shift-mode input do not cut the skip short.
@@ -95,14 +96,17 @@ static uint32_t field_max(unsigned sel) {
 }
 
 /* A counted poll (see the top): the closing branch in[n-1] is QBNE top,
- * x.f, imm; one ADD/SUB x.f, x.f, imm steps the field (x.f the same field
- * throughout: x, or x.w2 and so on); no other instruction reads or writes
- * register x, and every one is of a kind a poll uses. Sets b->counter (x,
- * or -1 if the body is no such loop), b->sel, b->step and b->end. */
+ * x.f, imm, or QBBC top, x, 31 (x whole: until x goes below 0); one
+ * ADD/SUB x.f, x.f, imm steps the field (x.f the same field throughout:
+ * x, or x.w2 and so on; for QBBC a SUB); no other instruction reads or
+ * writes register x, and every one is of a kind a poll uses. Sets
+ * b->counter (x, or -1 if the body is no such loop), b->sel, b->step and
+ * b->end or b->sign_end. */
 static void counted(struct ff_body *b, const struct pru_insn *in, uint32_t n) {
     b->counter = -1;
     const struct pru_insn *br = &in[n - 1];
-    if (br->op != PRU_OP_QBNE || !br->io || br->rs1 > 30)
+    bool sign = br->op == PRU_OP_QBBC && br->io && br->imm == 31 && br->rs1sel == 7;
+    if ((br->op != PRU_OP_QBNE && !sign) || !br->io || br->rs1 > 30)
         return;
     unsigned x = br->rs1, sel = br->rs1sel;
     int updates = 0;
@@ -121,10 +125,13 @@ static void counted(struct ff_body *b, const struct pru_insn *in, uint32_t n) {
             return;
         }
     }
-    if (updates == 1 && br->imm <= field_max(sel)) {
+    if (updates == 1 && sign && b->step <= 0x80000000u)
+        return; /* counted up: bit 31 sets at the wrap, not below 0 */
+    if (updates == 1 && (sign || br->imm <= field_max(sel))) {
         b->counter = (int)x;
         b->sel = (uint8_t)sel;
-        b->end = br->imm;
+        b->end = sign ? 0 : br->imm;
+        b->sign_end = sign;
     }
 }
 
@@ -249,6 +256,8 @@ static int64_t counted_room(struct pru_core *c, const struct ff_body *b, int x, 
     uint32_t k = down ? (0u - b->step) & max : b->step;
     if (down ? before < k : before > max - k)
         return -1;
+    if (b->sign_end) /* down (counted()): the next n values stay at 0 or above */
+        return (int64_t)(v / k);
     if (down) {
         uint32_t lo = b->end < v ? b->end + 1 : 0;
         return (int64_t)((v - lo) / k);

@@ -106,10 +106,16 @@ static uint32_t intc_read(struct pru_core *c, uint32_t ofs, int64_t at) {
     }
 }
 
+/* Host interrupts 0/1 can be pending: R31[31:30] follow the INTC. */
+static bool intc_live(const struct intc *n) {
+    return (n->ger & 1u) && (n->hier & 3u);
+}
+
 static void intc_write(struct pru_core *c, uint32_t ofs, uint32_t val, uint32_t bm, int64_t at) {
     struct intc *n = &c->pru0->intc;
     uint32_t v = val & bm;
     unsigned idx = v & 63u;
+    bool was_live = intc_live(n);
     intc_sync(c, at);
     ff_dirty(c);
     switch (ofs) {
@@ -171,6 +177,8 @@ static void intc_write(struct pru_core *c, uint32_t ofs, uint32_t val, uint32_t 
         break;
     }
     intc_sync(c, at); /* a level event (the IEP's) sets again */
+    if (!was_live && intc_live(n))
+        xpru_exclusive(c, PRUSS_OFS_INTC + ofs); /* the other PRU's R31 reads change */
 }
 
 static int64_t next_change(struct pru_core *c, int64_t cycle, uint32_t ofs) {

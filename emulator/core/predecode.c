@@ -243,6 +243,14 @@ void predecode_word(struct pru_core *c, uint32_t pc) {
         d->fast = mvi_form(d, &in);
     if (f == PRU_FMT_XFR)
         d->fast = xfr_form(d, &in);
+    /* Two PRUs: every instruction the fast loop does not run as register
+     * work (or an R30 write: each PRU its own pins) is a cross-PRU event */
+    bool xpru = d->fast == PD_SLOW || d->fast == PD_R31_READ || d->fast == PD_MVI_LD ||
+                d->fast == PD_XFR_FIXED;
+    if (c->pru0->pru1 && xpru) {
+        d->xfast = d->fast;
+        d->fast = PD_XPRU;
+    }
 }
 
 void predecode_all(struct pru_core *c) {

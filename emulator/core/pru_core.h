@@ -110,6 +110,11 @@ struct pru_params {
      * is replayed from a memo of what it read and wrote (leaf.h
      * leaf_call(); results are identical). */
     int leaf_call;
+    /* Two PRUs of one PRU-ICSS (pruss.h): each core runs ahead of the other
+     * up to its next cross-PRU event (TIMING.md "Two PRUs") instead of
+     * both taking turns cycle by cycle; 0: cycle by cycle (results are
+     * identical, or a PRU_FAULT_RUN_AHEAD where they could not be). */
+    int run_ahead;
 
     /* Strict mode (TIMING.md "Strict mode"): the PRU_STRICT_* rules checked,
      * 0 = off. A rule broken stops the core with PRU_FAULT_STRICT, or with
@@ -185,7 +190,8 @@ void pru_params_default(struct pru_params *p);
 
 /* Turns the core's fast path `name` off (--no-fast-path of pru-run and
  * biss-sim): ff (all of the fast-forward), ff-counted, ff-r31-bits,
- * ff-loop-delay, ff-count-loop, fast-loop, leaf-call. Returns 0, or -1 if
+ * ff-loop-delay, ff-count-loop, fast-loop, leaf-call, run-ahead. Returns 0,
+ * or -1 if
  * there is none of that name. */
 int pru_params_fast_path_off(struct pru_params *p, const char *name);
 
@@ -230,6 +236,10 @@ enum pru_fault_cause {
     PRU_FAULT_GPO_SHIFT,    /* GPO shift-out mode enabled (not modelled) */
     PRU_FAULT_UNSUPPORTED,  /* other mode not modelled (GPI parallel/MII) */
     PRU_FAULT_STRICT,       /* strict mode: a construct of uncertain silicon behaviour */
+    /* run_ahead: an access that changes what the other PRU already ran
+     * ahead through (its CONTROL or GPCFG, the INTC turned on): rerun with
+     * run_ahead 0 */
+    PRU_FAULT_RUN_AHEAD,
 };
 
 struct pru_fault {

@@ -12,11 +12,13 @@
  * global addresses (PRU1's data RAM at +0x2000, its CONTROL at +0x24000,
  * its IRAM at +0x38000).
  *
- * Running: the cores take turns so that every instruction is executed in
- * the order of the cycles it is issued in (PRU0 first within a cycle): a
- * core runs only up to the cycle the other has reached, so both see the
- * IEP count, the other's stores and shared RAM as they are in that cycle.
- * Two accesses issued in the same cycle are done PRU0's first.
+ * Running: the cores take turns so that every instruction that one PRU
+ * can observe of the other (a cross-PRU event: memory, scratch pad,
+ * INTC, ... TIMING.md "Two PRUs") is executed in the order of the cycles
+ * it is issued in (PRU0 first within a cycle): so both see the IEP count,
+ * the other's stores and shared RAM as they are in that cycle. Between
+ * its events a core runs ahead (pru_params.run_ahead; with 0 both run
+ * cycle by cycle, with the same results).
  *
  * Both on one scratch-pad bank in one cycle: PRU0 goes first and PRU1
  * stalls (pru_params.spad_stall_cycles, docs/pru-facts.md §3). Not shared:
@@ -50,6 +52,11 @@ unsigned pru_core_index(const struct pru_core *c);
  * PRU_STOP_LIMIT. The limit must be below PRU_MAX_CYCLE. */
 enum pru_stop pru_icss_run_until_cycle(struct pru_icss *s, int64_t cycle);
 enum pru_stop pru_icss_run_until_time(struct pru_icss *s, int64_t t_ps);
+/* The PRUs see each other through their pins (one's R30 drives the
+ * other's R31, e.g. a master and an encoder firmware on one cable): pins
+ * are then cross-PRU too, and the two run cycle by cycle whatever
+ * pru_params.run_ahead says. */
+void pru_icss_lockstep(struct pru_icss *s);
 /* The time both PRUs have reached (the earlier of their clocks). */
 int64_t pru_icss_cycles(const struct pru_icss *s);
 

@@ -21,6 +21,13 @@
  * behind a backend that reads with backend_linux.c's mapped copy
  * (mmio.h: volatile 32-bit loads), counting the words each read takes.
  *
+ * The ring read (biss_ring_read: every frame since the last call) is timed
+ * on the same three paths with frames published between the calls: on the
+ * emulator by the firmware itself (biss_run_ms of 1 ms, the servo loop's
+ * poll), on the snapshot by a stand-in of the firmware's PUBLISH
+ * (publish() below) that renumbers the newest slot into the next one, as
+ * many frames as the emulator published in 1 ms.
+ *
  * usage: biss-read-cost [--calls N] [--dir DIR] [--json]
  */
 #include "bench.h"
@@ -58,6 +65,95 @@ static int time_reads(biss_t *h, unsigned long calls, struct biss_sample *s, dou
     }
     *ns = (now_ns() - t0) / (double)calls;
     return BISS_OK;
+}
+
+/* ---- the ring read ------------------------------------------------------ */
+/* The firmware's PUBLISH (pru_fw/results.p) on a data-RAM image: the slot
+ * ST_RING_NEXT names gets the newest slot's words under the next
+ * publication number, then ST_BUF, ST_SEQ (and ST_FRAMES), then
+ * ST_RING_NEXT moves on one stride, back to BISS_RING0 past ST_RING_LAST. */
+static void publish(uint8_t *dram) {
+    uint32_t seq, buf, next;
+    uint16_t stride, last;
+    memcpy(&seq, dram + BISS_ST_SEQ, 4);
+    memcpy(&buf, dram + BISS_ST_BUF, 4);
+    memcpy(&next, dram + BISS_ST_RING_NEXT, 4);
+    memcpy(&stride, dram + BISS_ST_RING_STRIDE, 2);
+    memcpy(&last, dram + BISS_ST_RING_LAST, 2);
+    seq++;
+    memmove(dram + next, dram + buf, stride);
+    memcpy(dram + next + BISS_R_FRAME, &seq, 4);
+    memcpy(dram + BISS_ST_BUF, &next, 4);
+    memcpy(dram + BISS_ST_SEQ, &seq, 4);
+    memcpy(dram + BISS_ST_FRAMES, &seq, 4);
+    next += stride;
+    if (next > last) {
+        next = BISS_RING0;
+    }
+    memcpy(dram + BISS_ST_RING_NEXT, &next, 4);
+}
+
+/* What happens between two timed ring reads: the poll period's frames. */
+struct between {
+    int (*run)(struct between *b);
+    biss_t *emu;          /* the emulator: 1 ms of it */
+    uint8_t *dram;        /* the stand-ins: publish() per frame on this image, */
+    int fd;               /* then written to the memory file (fd >= 0) */
+    unsigned per;         /* frames a poll */
+    unsigned long *words; /* the mapped path's count of 32-bit reads, or NULL */
+};
+
+static int between_emu(struct between *b) {
+    return biss_run_ms(b->emu, 1);
+}
+
+static int between_publish(struct between *b) {
+    for (unsigned i = 0; i < b->per; i++) {
+        publish(b->dram);
+    }
+    if (b->fd >= 0 &&
+        pwrite(b->fd, b->dram, PRUSS_AM335X_DRAM0_BYTES,
+               (off_t)PRUSS_AM335X_BASE + PRUSS_OFS_DRAM0) != (ssize_t)PRUSS_AM335X_DRAM0_BYTES) {
+        return BISS_E_IO;
+    }
+    return BISS_OK;
+}
+
+struct ring_cost {
+    double ns_call;     /* per biss_ring_read */
+    double frames_call; /* frames it returned */
+    unsigned long lost; /* frames lost over the run (0: the reader kept up) */
+    double words_call;  /* the mapped path: 32-bit reads of the PRU-ICSS a call */
+};
+
+/* calls timed ring reads, b->run between them (not timed); the first read
+ * (the frames before) is not timed either. */
+static int time_ring(biss_t *h, unsigned long calls, struct between *b, struct ring_cost *c) {
+    struct biss_sample out[BISS_RING_SLOTS(1)];
+    unsigned n;
+    uint32_t lost;
+    int rc = biss_ring_read(h, out, BISS_RING_SLOTS(1), &n, &lost);
+    double ns = 0;
+    unsigned long frames = 0;
+    c->lost = 0;
+    if (b->words) {
+        *b->words = 0; /* the timed calls' */
+    }
+    for (unsigned long i = 0; rc == BISS_OK && i < calls; i++) {
+        rc = b->run(b);
+        if (rc != BISS_OK) {
+            break;
+        }
+        double t0 = now_ns();
+        rc = biss_ring_read(h, out, BISS_RING_SLOTS(1), &n, &lost);
+        ns += now_ns() - t0;
+        frames += n;
+        c->lost += lost;
+    }
+    c->ns_call = ns / (double)calls;
+    c->frames_call = (double)frames / (double)calls;
+    c->words_call = b->words ? (double)*b->words / (double)calls : 0;
+    return rc;
 }
 
 /* The regions of the PRU-ICSS a handle on PRU0 reads, copied from the
@@ -166,9 +262,11 @@ static int mapped_open(const struct biss_open_params *p, struct biss_backend *be
 
 static void usage(FILE *f) {
     fprintf(f, "usage: biss-read-cost [--calls N] [--dir DIR] [--json]\n"
-               "The cost of one biss_read_sample: attached to a snapshot of the emulated\n"
-               "PRU-ICSS in a memory file (a board's path), and on the emulator.\n"
-               "  --calls N   reads timed on each path (default 1000000)\n"
+               "The cost of one biss_read_sample, and of one biss_ring_read after each 1 ms:\n"
+               "attached to a snapshot of the emulated PRU-ICSS in a memory file (a board's\n"
+               "path), mapped, and on the emulator.\n"
+               "  --calls N   reads timed on each path (default 1000000; ring reads N/1000,\n"
+               "              at least 10)\n"
                "  --dir DIR   where the memory file goes (default /dev/shm, else /tmp)\n"
                "  --json      one JSON object instead of the table\n"
                "  --help, --version\n");
@@ -236,10 +334,23 @@ int main(int argc, char **argv) {
     struct biss_sample se, sl;
     double ns_emu, ns_linux;
     rc = time_reads(emu, calls, &se, &ns_emu);
+    /* the ring: the firmware publishes between the reads, 1 ms at a time */
+    unsigned long ring_calls = calls / 1000 < 10 ? 10 : calls / 1000;
+    struct ring_cost ring_emu, ring_file = {0}, ring_map = {0};
+    struct between b = {.run = between_emu, .emu = emu, .fd = -1};
+    if (rc == BISS_OK) {
+        rc = time_ring(emu, ring_calls, &b, &ring_emu);
+    }
+    if (rc == BISS_OK) {
+        rc = biss_read_sample(emu, &se); /* the frame the snapshot holds */
+    }
     if (rc != BISS_OK) {
         fprintf(stderr, "biss-read-cost: reading the emulator: %s\n", biss_strerror(rc));
         return 1;
     }
+    /* the stand-ins publish as many frames a poll as the firmware did */
+    b = (struct between){
+        .run = between_publish, .fd = -1, .per = (unsigned)(ring_emu.frames_call + 0.5)};
 
     char path[4096];
     snprintf(path, sizeof path, "%s/biss-read-cost-XXXXXX", dir);
@@ -250,6 +361,24 @@ int main(int argc, char **argv) {
     }
     rc = snapshot(bench_core(biss_emu_bench(emu)), biss_firmware_path(emu), fd);
     close(fd);
+    /* the same snapshot, copied into memory (the mapped path) before the
+     * file's ring timing publishes into the file */
+    double ns_map = 0;
+    double words = 0;
+    struct biss_sample sm;
+    if (rc == 0) {
+        the_map.icss = malloc(PRUSS_AM335X_WINDOW);
+        int in = open(path, O_RDONLY);
+        if (!the_map.icss || in < 0 ||
+            pread(in, the_map.icss, PRUSS_AM335X_WINDOW, (off_t)PRUSS_AM335X_BASE) !=
+                (ssize_t)PRUSS_AM335X_WINDOW) {
+            fprintf(stderr, "biss-read-cost: %s: no copy in memory\n", path);
+            rc = 1;
+        }
+        if (in >= 0) {
+            close(in);
+        }
+    }
     biss_t *board = NULL;
     if (rc == 0) {
         struct biss_open_params pb;
@@ -265,6 +394,19 @@ int main(int argc, char **argv) {
         if (rc == BISS_OK) {
             rc = time_reads(board, calls, &sl, &ns_linux);
         }
+        static uint8_t dram[PRUSS_AM335X_DRAM0_BYTES];
+        b.dram = dram;
+        b.fd = rc == BISS_OK ? open(path, O_RDWR) : -1;
+        if (b.fd >= 0 && pread(b.fd, dram, sizeof dram,
+                               (off_t)PRUSS_AM335X_BASE + PRUSS_OFS_DRAM0) == sizeof dram) {
+            rc = time_ring(board, ring_calls, &b, &ring_file);
+        } else if (rc == BISS_OK) {
+            rc = BISS_E_IO;
+        }
+        if (b.fd >= 0) {
+            close(b.fd);
+        }
+        b.fd = -1;
         if (rc != BISS_OK) {
             fprintf(stderr, "biss-read-cost: attached to %s: %s%s%s\n", path, biss_strerror(rc),
                     err[0] ? ": " : "", err);
@@ -274,23 +416,6 @@ int main(int argc, char **argv) {
         rc = 1;
     }
     biss_close(board);
-    /* the same snapshot, mapped */
-    double ns_map = 0;
-    double words = 0;
-    struct biss_sample sm;
-    if (rc == BISS_OK) {
-        the_map.icss = malloc(PRUSS_AM335X_WINDOW);
-        int in = open(path, O_RDONLY);
-        if (!the_map.icss || in < 0 ||
-            pread(in, the_map.icss, PRUSS_AM335X_WINDOW, (off_t)PRUSS_AM335X_BASE) !=
-                (ssize_t)PRUSS_AM335X_WINDOW) {
-            fprintf(stderr, "biss-read-cost: %s: no copy in memory\n", path);
-            rc = 1;
-        }
-        if (in >= 0) {
-            close(in);
-        }
-    }
     if (rc == BISS_OK) {
         struct biss_open_params pm;
         biss_open_params_default(&pm);
@@ -306,6 +431,11 @@ int main(int argc, char **argv) {
             the_map.words = 0;
             rc = time_reads(hm, calls, &sm, &ns_map);
             words = (double)the_map.words / (double)calls;
+            b.dram = the_map.icss + PRUSS_OFS_DRAM0;
+            b.words = &the_map.words;
+            if (rc == BISS_OK) {
+                rc = time_ring(hm, ring_calls, &b, &ring_map);
+            }
             biss_close(hm);
         }
         if (rc != BISS_OK) {
@@ -328,10 +458,26 @@ int main(int argc, char **argv) {
                 (unsigned long long)se.slave[0].position);
         return 1;
     }
+    /* the reader keeps up with a 1 ms poll on every path, and the stand-ins'
+     * polls return exactly the frames published */
+    if (ring_emu.lost || ring_file.lost || ring_map.lost || b.per == 0 ||
+        ring_file.frames_call != (double)b.per || ring_map.frames_call != (double)b.per) {
+        fprintf(stderr,
+                "biss-read-cost: the ring read lost frames or returned others than published "
+                "(emulator %.1f a call, %lu lost; file %.1f, %lu lost; mapped %.1f, %lu lost; "
+                "%u published a call)\n",
+                ring_emu.frames_call, ring_emu.lost, ring_file.frames_call, ring_file.lost,
+                ring_map.frames_call, ring_map.lost, b.per);
+        return 1;
+    }
     if (json) {
         printf("{\"calls\": %lu, \"mapped_ns\": %.1f, \"mapped_words\": %.1f, "
-               "\"file_pread_ns\": %.1f, \"emulator_ns\": %.1f, \"frame\": %u}\n",
-               calls, ns_map, words, ns_linux, ns_emu, sl.frame);
+               "\"file_pread_ns\": %.1f, \"emulator_ns\": %.1f, \"frame\": %u, "
+               "\"ring_calls\": %lu, \"ring_frames_per_call\": %.1f, "
+               "\"ring_mapped_ns\": %.1f, \"ring_file_pread_ns\": %.1f, "
+               "\"ring_emulator_ns\": %.1f, \"ring_mapped_words\": %.1f}\n",
+               calls, ns_map, words, ns_linux, ns_emu, sl.frame, ring_calls, ring_emu.frames_call,
+               ring_map.ns_call, ring_file.ns_call, ring_emu.ns_call, ring_map.words_call);
     } else {
         printf("biss_read_sample, %lu calls each (frame %u, %u slave(s)):\n", calls, sl.frame,
                sl.nslaves);
@@ -340,6 +486,15 @@ int main(int argc, char **argv) {
                ns_map, words);
         printf("  Linux backend on a file (pread)       %8.1f ns/call\n", ns_linux);
         printf("  emulator backend                      %8.1f ns/call\n", ns_emu);
+        printf("biss_ring_read after each 1 ms, %lu calls each (%.1f frames a call):\n", ring_calls,
+               ring_emu.frames_call);
+        printf("  mapped PRU-ICSS (a board's /dev/mem)  %8.1f ns/call, %6.1f ns/frame, %.1f "
+               "32-bit reads of it a call\n",
+               ring_map.ns_call, ring_map.ns_call / ring_emu.frames_call, ring_map.words_call);
+        printf("  Linux backend on a file (pread)       %8.1f ns/call, %6.1f ns/frame\n",
+               ring_file.ns_call, ring_file.ns_call / ring_emu.frames_call);
+        printf("  emulator backend                      %8.1f ns/call, %6.1f ns/frame\n",
+               ring_emu.ns_call, ring_emu.ns_call / ring_emu.frames_call);
     }
     return 0;
 }

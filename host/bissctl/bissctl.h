@@ -27,7 +27,7 @@ struct bissctl_opts {
     unsigned count;      /* read -n */
     unsigned run_ms;     /* run --ms */
     unsigned record_ms;  /* record --seconds, in ms */
-    unsigned poll_ms;    /* record --poll-ms */
+    unsigned poll_us;    /* record --poll-ms, in us */
     const char *format;  /* record --format: "csv", "npy", or NULL (by the extension) */
     unsigned timeout_ms; /* per sample */
     unsigned id;         /* reg-read/reg-write: control-frame ID */

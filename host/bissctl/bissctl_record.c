@@ -206,17 +206,18 @@ int bissctl_record(biss_t *h, const struct bissctl_opts *o) {
     double start = now_s(), shown = start;
     bool emu = biss_target(h) == BISS_TARGET_EMU;
     rc = BISS_OK;
-    for (unsigned ms = 0; !ferr && !rc && ms < o->record_ms;) {
-        unsigned step = o->poll_ms < o->record_ms - ms ? o->poll_ms : o->record_ms - ms;
-        rc = biss_run_ms(h, step); /* the poll period (emu: simulated) */
-        ms += step;
+    const uint64_t record_us = (uint64_t)o->record_ms * 1000u;
+    for (uint64_t us = 0; !ferr && !rc && us < record_us;) {
+        unsigned step = o->poll_us < record_us - us ? o->poll_us : (unsigned)(record_us - us);
+        rc = biss_run_us(h, step); /* the poll period (emu: simulated) */
+        us += step;
         if (!rc) {
             rc = drain(h, &r, buf, &cnt, &ferr);
         }
         double t = now_s();
         if (t - shown >= 1.0) {
             shown = t;
-            fprintf(stderr, "record: %.1f of %.1f s%s, %llu frames, %llu lost\n", ms / 1000.0,
+            fprintf(stderr, "record: %.1f of %.1f s%s, %llu frames, %llu lost\n", us / 1e6,
                     o->record_ms / 1000.0, emu ? " (simulated)" : "",
                     (unsigned long long)cnt.frames, (unsigned long long)cnt.lost);
         }
@@ -235,10 +236,10 @@ int bissctl_record(biss_t *h, const struct bissctl_opts *o) {
         return bissctl_fail("record", rc);
     }
     printf("recorded=%llu lost=%llu first_seq=%u last_seq=%u seconds=%.3f ring_frames=%u "
-           "poll_ms=%u format=%s file=%s\n",
+           "poll_ms=%g format=%s file=%s\n",
            (unsigned long long)cnt.frames, (unsigned long long)cnt.lost, cnt.first_seq,
-           cnt.last_seq, o->record_ms / 1000.0, capacity, o->poll_ms, r.npy ? "npy" : "csv",
-           r.path);
+           cnt.last_seq, o->record_ms / 1000.0, capacity, o->poll_us / 1000.0,
+           r.npy ? "npy" : "csv", r.path);
     if (cnt.lost) {
         fprintf(stderr,
                 "bissctl: record: %llu frames lost: the ring holds %u frames; read it more "

@@ -156,8 +156,10 @@ int biss_stop(biss_t *h);
  * published with `training` set and counts in biss_stats.training. */
 int biss_trigger(biss_t *h);
 /* Lets time pass: the emulator runs for ms simulated milliseconds, on
- * hardware the call sleeps. */
+ * hardware the call sleeps. biss_run_us the same in microseconds (a reader
+ * of every frame that must poll more often than once a millisecond). */
 int biss_run_ms(biss_t *h, unsigned ms);
+int biss_run_us(biss_t *h, unsigned us);
 
 /* ---- samples (struct biss_sample: biss/biss_types.h) ---------------------- */
 /* What the handle's last BISS_E_SHM_RESULT found in data RAM, by name

@@ -42,8 +42,12 @@ static int advance(biss_t *h, unsigned us) {
 }
 
 int biss_wait_for(biss_t *h, unsigned timeout_ms, int (*done)(biss_t *h, void *arg), void *arg) {
+    return biss_wait_for_us(h, (uint64_t)timeout_ms * 1000u, done, arg);
+}
+
+int biss_wait_for_us(biss_t *h, uint64_t timeout_us, int (*done)(biss_t *h, void *arg), void *arg) {
     const struct biss_backend_ops *ops = h->be.ops;
-    uint64_t deadline = ops->now_us(h->be.ctx) + (uint64_t)timeout_ms * 1000u;
+    uint64_t deadline = ops->now_us(h->be.ctx) + timeout_us;
     for (;;) {
         int rc = done(h, arg);
         if (rc < 0) {

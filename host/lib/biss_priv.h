@@ -150,6 +150,8 @@ int biss_read_image(biss_t *h, const char *path, bool master, struct biss_errbuf
  * of backend time passed; returns 0, BISS_E_TIMEOUT, or done's error if
  * it returned a negative value. */
 int biss_wait_for(biss_t *h, unsigned timeout_ms, int (*done)(biss_t *h, void *arg), void *arg);
+/* The same with the timeout in microseconds. */
+int biss_wait_for_us(biss_t *h, uint64_t timeout_us, int (*done)(biss_t *h, void *arg), void *arg);
 
 /* Both locks, in order, for a long exchange with the firmware. */
 void biss_op_begin(biss_t *h);

@@ -74,14 +74,10 @@ int biss_ring_read(biss_t *h, struct biss_sample *out, unsigned max, unsigned *n
 }
 
 int biss_ring_capacity(biss_t *h, unsigned *frames) {
-    if (!h || !frames) {
-        return BISS_E_INVAL;
-    }
-    pthread_mutex_lock(&h->lock);
-    int rc = h->configured ? BISS_OK : BISS_E_NOT_CONFIGURED;
+    struct biss_config c;
+    int rc = frames ? biss_get_config(h, &c) : BISS_E_INVAL;
     if (!rc) {
-        *frames = BISS_RING_SLOTS(h->cfg.nslaves) - 1;
+        *frames = BISS_RING_SLOTS(c.nslaves) - 1;
     }
-    pthread_mutex_unlock(&h->lock);
     return rc;
 }

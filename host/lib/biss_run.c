@@ -91,6 +91,16 @@ int biss_run_ms(biss_t *h, unsigned ms) {
     return rc == BISS_E_TIMEOUT ? BISS_OK : rc;
 }
 
+int biss_run_us(biss_t *h, unsigned us) {
+    if (!h) {
+        return BISS_E_INVAL;
+    }
+    pthread_mutex_lock(&h->lock);
+    int rc = biss_wait_for_us(h, us, never, NULL);
+    pthread_mutex_unlock(&h->lock);
+    return rc == BISS_E_TIMEOUT ? BISS_OK : rc;
+}
+
 /* The status words, refused (named in h->problem) where a running
  * firmware never writes them. Handle locked. */
 static int status_words(biss_t *h, struct biss_shm_status *s) {

@@ -59,7 +59,9 @@ struct outcome {
  * with a time-out on R31 bit 0 low: qbbc DONE, r31, 0; sub r2, r2, 1;
  * qbne POLL, r2, 0 (once bit 0 shows the high level); or with `field`, on
  * the newest 4 samples all low through and r1.b3, r31.b0, 15 (as the
- * firmware waits for SL idle). */
+ * firmware waits for SL idle); with `field` 2, the same test counted down
+ * by 4 until the count goes below 0: sub r2, r2, 4; qbbc POLL, r2, 31 (the
+ * firmware's IEP_POLL). */
 static struct outcome counted_poll(enum path p, int64_t t_fall, unsigned count, int field) {
     struct edge_in in = {t_fall};
     struct pru_core *c = ff_core(p, &in);
@@ -72,8 +74,8 @@ static struct outcome counted_poll(enum path p, int64_t t_fall, unsigned count, 
     if (field) { /* the newest 4 samples low: and r1.b3, r31.b0, 15; qbeq DONE, r1.b3, 0 */
         prog[n++] = alui(PRU_OP_AND, B3(1), B0(31), 15);
         prog[n++] = qbi(PRU_OP_QBEQ, 3, B3(1), 0);
-        prog[n++] = alui(PRU_OP_SUB, R(2), R(2), 1);
-        prog[n++] = qbi(PRU_OP_QBNE, -3, R(2), 0);
+        prog[n++] = alui(PRU_OP_SUB, R(2), R(2), field == 2 ? 4 : 1);
+        prog[n++] = field == 2 ? qbi(PRU_OP_QBBC, -3, R(2), 31) : qbi(PRU_OP_QBNE, -3, R(2), 0);
     } else {
         prog[n++] = qbi(PRU_OP_QBBC, 3, R(31), 0);
         prog[n++] = alui(PRU_OP_SUB, R(2), R(2), 1);
@@ -99,7 +101,7 @@ static void same(const struct outcome *a, const struct outcome *b, const char *w
  * same cycle with every fast path, without each, and without any (a shift
  * edge between the fall and the next cycle boundary must not be missed). */
 START_TEST(counted_poll_exact) {
-    for (int field = 0; field < 2; field++) {
+    for (int field = 0; field < 3; field++) {
         for (int64_t t = 20000000; t < 20000000 + 25000; t += 250) {
             struct outcome ref = counted_poll(NONE, t, 60000, field);
             ck_assert_uint_eq(ref.skipped, 0);
@@ -119,13 +121,28 @@ START_TEST(counted_poll_exact) {
 }
 END_TEST
 
-/* No fall: the counter ends the poll, on the same cycle with r2 = 0. */
+/* No fall: the counter ends the poll, on the same cycle with r2 = 0; or,
+ * counted down by 4 to below 0, with r2 = -4 .. -1 (counts that are a
+ * multiple of the step and not; one step, none left). */
 START_TEST(counted_poll_times_out) {
     struct outcome ref = counted_poll(NONE, INT64_MAX, 5000, 0);
     struct outcome all = counted_poll(ALL, INT64_MAX, 5000, 0);
     same(&all, &ref, "time-out", INT64_MAX);
     ck_assert_uint_eq(all.r2, 0);
     ck_assert_uint_gt(all.skipped, 4900);
+    static const unsigned counts[] = {20000, 20001, 20003, 4, 3, 0};
+    for (unsigned i = 0; i < sizeof counts / sizeof counts[0]; i++) {
+        ref = counted_poll(NONE, INT64_MAX, counts[i], 2);
+        all = counted_poll(ALL, INT64_MAX, counts[i], 2);
+        struct outcome no_counted = counted_poll(NO_COUNTED, INT64_MAX, counts[i], 2);
+        same(&all, &ref, "time-out below 0", INT64_MAX);
+        same(&no_counted, &ref, "time-out below 0, ff-counted off", INT64_MAX);
+        ck_assert_uint_eq(all.r2, counts[i] % 4 - 4);
+        if (counts[i] > 100) {
+            ck_assert_uint_gt(all.skipped, counts[i] / 4 - 10);
+            ck_assert_uint_eq(no_counted.skipped, 0);
+        }
+    }
 }
 END_TEST
 

@@ -107,11 +107,13 @@ static uint32_t expect_r31(const struct geom *g, const struct wave *w, int64_t c
 }
 
 /* Host sets shift mode with codes (c0, c1) at cycle `cfg_cycle`, then R31 is
- * compared at every cycle up to `cycles`. The pins give the input only
+ * compared at every cycle up to `cycles` (gap_max 1), or at cycles 1 to
+ * gap_max apart (a read that finds no new shift edge, one, or many, whose
+ * samples it takes in runs of the input). The pins give the input only
  * (use_next 0: one run per edge), also its next change (1), or both in one
  * call (2). */
-static void check_shift(unsigned c0, unsigned c1, int frac_cycle, int64_t phase, int use_next,
-                        unsigned seed) {
+static void check_shift_gaps(unsigned c0, unsigned c1, int frac_cycle, int64_t phase, int use_next,
+                             unsigned seed, unsigned gap_max) {
     static struct wave w;
     wave_random(&w, seed, 20000, 600);
     struct pru_params p;
@@ -130,7 +132,9 @@ static void check_shift(unsigned c0, unsigned c1, int frac_cycle, int64_t phase,
     struct geom g = {cfg_cycle * 5000, phase, 1250 * (int64_t)(2 + c0) * (2 + c1), p.gpi_delay_ps,
                      frac_cycle};
     int64_t end = 400 + 40 * g.period / 5000; /* at least ~40 shift periods */
-    for (int64_t cy = cfg_cycle; cy < end; cy++) {
+    uint32_t gaps = seed * 2654435761u + 1u;
+    for (int64_t cy = cfg_cycle; cy < end; cy += 1 + (gap_max > 1 ? gaps % gap_max : 0)) {
+        gaps = gaps * 1103515245u + 12345u;
         pru_run_until_cycle(c, cy);
         uint32_t got = pru_reg(c, 31);
         uint32_t want = expect_r31(&g, &w, cy);
@@ -140,6 +144,11 @@ static void check_shift(unsigned c0, unsigned c1, int frac_cycle, int64_t phase,
                          c0, c1, frac_cycle, (long long)phase, use_next, (long long)cy, got, want);
     }
     pru_core_free(c);
+}
+
+static void check_shift(unsigned c0, unsigned c1, int frac_cycle, int64_t phase, int use_next,
+                        unsigned seed) {
+    check_shift_gaps(c0, c1, frac_cycle, phase, use_next, seed, 1);
 }
 
 /* (2+c0)(2+c1)/4 = ratio0 * ratio1 for 80, 40, 16, 8 MHz: 2.5, 5, 12.5, 25 */
@@ -161,6 +170,19 @@ START_TEST(shift_all_divisor_combos) {
         for (int ph = 0; ph < 3; ph++)
             for (int nx = 0; nx < 3; nx++)
                 check_shift(c0, c1, frac, phases[ph], nx, (unsigned)(i * 7 + ph));
+}
+END_TEST
+
+/* Reads 1 to 80 cycles apart: up to 32 shift edges new at 80 MHz, a
+ * fraction of one at 8 MHz, so a read finds none, one or many (the 28-bit
+ * register shifted over runs of the input at once, cfg_gpi.c
+ * shift_apply); every read against the direct evaluation. */
+START_TEST(shift_sparse_reads) {
+    int i = _i;
+    unsigned c0 = combos[i][0], c1 = combos[i][1];
+    for (int frac = 0; frac < 2; frac++)
+        for (int nx = 0; nx < 3; nx++)
+            check_shift_gaps(c0, c1, frac, 1250 * (int64_t)nx, nx, (unsigned)(i * 5 + nx + 11), 80);
 }
 END_TEST
 
@@ -350,6 +372,7 @@ Suite *gpi_suite(void) {
     TCase *t = tcase_create("shift");
     tcase_set_timeout(t, 120);
     tcase_add_loop_test(t, shift_all_divisor_combos, 0, NCOMBO);
+    tcase_add_loop_test(t, shift_sparse_reads, 0, NCOMBO);
     tcase_add_test(t, shift_literal_values);
     tcase_add_test(t, shift_read_by_instructions);
     tcase_add_test(t, direct_mode_delay);

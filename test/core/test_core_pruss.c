@@ -256,8 +256,10 @@ END_TEST
 /* PRU0 polls a register of PRU1 through PRU1's CONTROL block (its debug
  * registers, 0x24414: R5) until PRU1, after a delay, sets it: the same
  * instructions with the fast-forward on as with it off (the block gives no
- * horizon of its own: the two cores run in turns of a cycle, pruss.c). */
-static void poll_other_pru(bool ff, uint64_t *insns, uint32_t *pc) {
+ * horizon of its own: the two cores run in turns of a cycle, pruss.c).
+ * Cycle by cycle only: with run_ahead a look at the other PRU's registers
+ * faults (PRU_FAULT_RUN_AHEAD) where that PRU has run past it. */
+static void poll_other_pru(bool ff, uint64_t *insns, uint32_t *pc, bool ahead) {
     uint32_t w0[16], w1[8];
     unsigned n0 = 0, n1 = 0;
     mov32(w0, &n0, 1, 0x24000u + 0x400u + 4u * 5u);
@@ -272,6 +274,7 @@ static void poll_other_pru(bool ff, uint64_t *insns, uint32_t *pc) {
     struct pru_params p;
     pru_params_default(&p);
     p.fast_forward = ff;
+    p.run_ahead = ahead;
     struct pru_icss *s = pru_icss_new(PRU_SOC_AM335X, &p);
     ck_assert_ptr_nonnull(s);
     struct pru_core *c0 = pru_icss_core(s, 0), *c1 = pru_icss_core(s, 1);
@@ -279,6 +282,20 @@ static void poll_other_pru(bool ff, uint64_t *insns, uint32_t *pc) {
     ck_assert_int_eq(pru_load_image(c1, w1, n1 * 4), 0);
     pru_start(c0);
     pru_start(c1);
+    if (ahead) {
+        /* PRU1's countdown touches nothing of PRU0's: it runs ahead of
+         * PRU0's first look at its registers, which then could not see
+         * them as they were: a fault, not a wrong value */
+        ck_assert_int_eq(pru_icss_run_until_cycle(s, 100000), PRU_STOP_FAULT);
+        const struct pru_fault *f = pru_get_fault(c0);
+        ck_assert_int_eq(f->cause, PRU_FAULT_RUN_AHEAD);
+        ck_assert_uint_eq(f->pc, 2); /* the LBBO */
+        ck_assert_uint_eq(f->addr, 0x24414u);
+        ck_assert_int_eq(f->cycle, 2);
+        ck_assert_int_eq(pru_get_fault(c1)->cause, PRU_FAULT_NONE);
+        pru_icss_free(s);
+        return;
+    }
     ck_assert_int_eq(pru_icss_run_until_cycle(s, 100000), PRU_STOP_HALT);
     ck_assert(pru_halted(c0) && pru_halted(c1));
     ck_assert_uint_eq(pru_reg(c0, 2), 7);
@@ -290,14 +307,171 @@ static void poll_other_pru(bool ff, uint64_t *insns, uint32_t *pc) {
 START_TEST(poll_other_pru_ff) {
     uint64_t on, off;
     uint32_t pc_on, pc_off;
-    poll_other_pru(true, &on, &pc_on);
-    poll_other_pru(false, &off, &pc_off);
+    poll_other_pru(true, &on, &pc_on, false);
+    poll_other_pru(false, &off, &pc_off, false);
+    poll_other_pru(true, &on, &pc_on, true); /* (asserts the fault) */
     /* PRU1's 400 turns of 2 cycles: about 800 cycles of polls, each 2
      * instructions and a few cycles */
     ck_assert_uint_gt(off, 300);
     ck_assert_uint_lt(off, 500);
     ck_assert_uint_eq(on, off);
     ck_assert_uint_eq(pc_on, pc_off);
+}
+END_TEST
+
+/* ---- run-ahead (pruss.c): the same run as cycle by cycle ---- */
+
+#define IEP_LOCAL 0x2E000u
+
+/* What a run leaves: each PRU's time, instructions, registers, PC,
+ * bank stalls, its data RAM's first 512 bytes and the shared RAM's. */
+struct pair_end {
+    int64_t cycles[2];
+    uint64_t insns[2], collisions[2];
+    uint32_t pc[2], regs[2][30];
+    uint8_t dram[2][512], shared[64];
+};
+
+static void run_pair(const uint32_t *w0, unsigned n0, const uint32_t *w1, unsigned n1, bool ahead,
+                     bool ff, int64_t cycles, struct pair_end *e) {
+    struct pru_params p;
+    pru_params_default(&p);
+    p.run_ahead = ahead;
+    p.fast_forward = ff;
+    struct pru_icss *s = pru_icss_new(PRU_SOC_AM335X, &p);
+    ck_assert_ptr_nonnull(s);
+    struct pru_core *c[2] = {pru_icss_core(s, 0), pru_icss_core(s, 1)};
+    ck_assert_int_eq(pru_load_image(c[0], w0, n0 * 4), 0);
+    ck_assert_int_eq(pru_load_image(c[1], w1, n1 * 4), 0);
+    pru_start(c[0]);
+    pru_start(c[1]);
+    /* in steps, as the bench runs: each run ends with both at its limit */
+    for (int64_t t = 0; t < cycles; t += 997)
+        ck_assert_int_ne(pru_icss_run_until_cycle(s, t + 997), PRU_STOP_FAULT);
+    memset(e, 0, sizeof *e);
+    for (unsigned i = 0; i < 2; i++) {
+        e->cycles[i] = pru_cycles(c[i]);
+        e->insns[i] = pru_instructions(c[i]);
+        e->collisions[i] = pru_spad_collisions(c[i]);
+        e->pc[i] = pru_pc(c[i]);
+        for (unsigned r = 0; r < 30; r++)
+            e->regs[i][r] = pru_reg(c[i], r);
+        ck_assert_int_eq(pru_host_read(c[0], BASE + 0x2000u * i, e->dram[i], sizeof e->dram[i]), 0);
+    }
+    ck_assert_int_eq(pru_host_read(c[0], SHARED, e->shared, sizeof e->shared), 0);
+    pru_icss_free(s);
+}
+
+static void same_end(const struct pair_end *a, const struct pair_end *b) {
+    for (unsigned i = 0; i < 2; i++) {
+        ck_assert_int_eq(a->cycles[i], b->cycles[i]);
+        ck_assert_uint_eq(a->insns[i], b->insns[i]);
+        ck_assert_uint_eq(a->collisions[i], b->collisions[i]);
+        ck_assert_uint_eq(a->pc[i], b->pc[i]);
+        ck_assert_mem_eq(a->regs[i], b->regs[i], sizeof a->regs[i]);
+        ck_assert_mem_eq(a->dram[i], b->dram[i], sizeof a->dram[i]);
+    }
+    ck_assert_mem_eq(a->shared, b->shared, sizeof a->shared);
+}
+
+/*
+ * The PRUs interact through every path two firmwares use: PRU0 starts the
+ * IEP; PRU1, after a delay that grows each turn (private work, run
+ * ahead), counts, stores the count in shared RAM, XOUTs it to bank 10 for
+ * 8 cycles and reads the IEP; PRU0 polls the shared RAM for a new count, then XOUTs to
+ * the same bank (PRU1 stalls when both meet there), XINs it and stores
+ * the IEP count and what it read into its data RAM; PRU1 logs PRU0's last
+ * store from PRU0's data RAM (0x2000) into its own. Run ahead, with and
+ * without the fast-forward, and cycle by cycle: the same in every byte.
+ */
+START_TEST(run_ahead_same_as_turns) {
+    uint32_t w0[32], w1[32];
+    unsigned n0 = 0, n1 = 0;
+    mov32(w0, &n0, 1, 0x10000u);  /* 0, 1 */
+    mov32(w0, &n0, 8, IEP_LOCAL); /* 2, 3 */
+    w0[n0++] = ldi(R(2), 0x11);   /* 4: count, increment 1 */
+    w0[n0++] = burst(PRU_OP_SBBO, 4 * 2, 8, 0, 4);
+    w0[n0++] = ldi(R(5), 0);
+    w0[n0++] = ldi(R(12), 0x100);
+    w0[n0++] = burst(PRU_OP_LBBO, 4 * 4, 1, 0, 4); /* 8: poll */
+    w0[n0++] = qb(PRU_OP_QBEQ, -1, R(4), R(5));
+    w0[n0++] = alui(PRU_OP_ADD, R(5), R(4), 0);
+    w0[n0++] = xfr(PRU_OP_XOUT, 10, 4 * 5, 4);
+    w0[n0++] = xfr(PRU_OP_XIN, 10, 4 * 7, 4);
+    w0[n0++] = burst(PRU_OP_LBBO, 4 * 9, 8, COUNT, 4);
+    w0[n0++] = burst(PRU_OP_SBBO, 4 * 9, 12, 0, 8); /* r9, r10 */
+    w0[n0++] = burst(PRU_OP_SBBO, 4 * 7, 12, 8, 4);
+    w0[n0++] = alui(PRU_OP_ADD, R(12), R(12), 12);
+    w0[n0++] = qbi(PRU_OP_QBNE, -9, R(5), 40);
+    w0[n0++] = halt();
+    mov32(w1, &n1, 1, 0x10000u);  /* 0, 1 */
+    mov32(w1, &n1, 8, IEP_LOCAL); /* 2, 3 */
+    w1[n1++] = ldi(R(6), 0);
+    w1[n1++] = ldi(R(12), 0x100);
+    w1[n1++] = alui(PRU_OP_ADD, R(3), R(6), 5); /* 6: delay 2 (r6 + 5) cycles */
+    w1[n1++] = alui(PRU_OP_SUB, R(3), R(3), 1);
+    w1[n1++] = qbi(PRU_OP_QBNE, -1, R(3), 0);
+    w1[n1++] = alui(PRU_OP_ADD, R(6), R(6), 1);
+    w1[n1++] = burst(PRU_OP_SBBO, 4 * 6, 1, 0, 4);
+    for (unsigned k = 0; k < 8; k++) /* over the cycles in which PRU0 XOUTs its copy */
+        w1[n1++] = xfr(PRU_OP_XOUT, 10, 4 * 6, 4);
+    w1[n1++] = burst(PRU_OP_LBBO, 4 * 9, 8, COUNT, 4);
+    w1[n1++] = burst(PRU_OP_LBBO, 4 * 10, 12, 0x2000u - 0x100u, 4); /* PRU0's RAM at 0x2000 */
+    w1[n1++] = burst(PRU_OP_SBBO, 4 * 9, 12, 0, 8);
+    w1[n1++] = alui(PRU_OP_ADD, R(12), R(12), 8);
+    w1[n1++] = qbi(PRU_OP_QBNE, -17, R(6), 40);
+    w1[n1++] = halt();
+    ck_assert_uint_le(n0, 32);
+    ck_assert_uint_le(n1, 32);
+    struct pair_end turns, ahead, ahead_ff;
+    run_pair(w0, n0, w1, n1, false, true, 20000, &turns);
+    run_pair(w0, n0, w1, n1, true, false, 20000, &ahead);
+    run_pair(w0, n0, w1, n1, true, true, 20000, &ahead_ff);
+    /* they did interact: PRU0 saw every count, PRU1 stalled on the bank */
+    ck_assert_uint_eq(turns.regs[0][5], 40);
+    ck_assert_uint_eq(turns.regs[1][6], 40);
+    ck_assert_uint_gt(turns.collisions[1], 0);
+    ck_assert_uint_eq(turns.collisions[0], 0);
+    ck_assert_int_ge(turns.cycles[0], 20000); /* both halted: time ran on to the limit */
+    same_end(&ahead, &turns);
+    same_end(&ahead_ff, &turns);
+}
+END_TEST
+
+/* PRU1 counts down (run ahead, nothing of it shared) while PRU0 turns the
+ * INTC on (GER, then host 0): PRU1's R31 reads would have seen the host
+ * line from there on, so run ahead that store faults; cycle by cycle it
+ * runs. */
+START_TEST(run_ahead_intc_on_faults) {
+    uint32_t w0[16], w1[8];
+    unsigned n0 = 0, n1 = 0;
+    mov32(w0, &n0, 1, 0x20000u);
+    w0[n0++] = ldi(R(2), 1);
+    w0[n0++] = burst(PRU_OP_SBBO, 4 * 2, 1, 0x10, 4); /* 3: GER */
+    w0[n0++] = ldi(R(2), 0);
+    w0[n0++] = burst(PRU_OP_SBBO, 4 * 2, 1, 0x34, 4); /* 5: HIEISR host 0 */
+    w0[n0++] = halt();
+    w1[n1++] = ldi(R(3), 400);
+    w1[n1++] = alui(PRU_OP_SUB, R(3), R(3), 1);
+    w1[n1++] = qbi(PRU_OP_QBNE, -1, R(3), 0);
+    w1[n1++] = halt();
+    struct pair_end e;
+    run_pair(w0, n0, w1, n1, false, true, 2000, &e);
+    ck_assert_uint_eq(e.pc[0], 6);
+    struct pru_params p;
+    pru_params_default(&p);
+    struct pru_icss *s = pru_icss_new(PRU_SOC_AM335X, &p);
+    struct pru_core *c0 = pru_icss_core(s, 0), *c1 = pru_icss_core(s, 1);
+    ck_assert_int_eq(pru_load_image(c0, w0, n0 * 4), 0);
+    ck_assert_int_eq(pru_load_image(c1, w1, n1 * 4), 0);
+    pru_start(c0);
+    pru_start(c1);
+    ck_assert_int_eq(pru_icss_run_until_cycle(s, 2000), PRU_STOP_FAULT);
+    const struct pru_fault *f = pru_get_fault(c0);
+    ck_assert_int_eq(f->cause, PRU_FAULT_RUN_AHEAD);
+    ck_assert_uint_eq(f->pc, 5); /* GER alone leaves the host lines off */
+    ck_assert_uint_eq(f->addr, 0x20034u);
+    pru_icss_free(s);
 }
 END_TEST
 
@@ -332,6 +506,8 @@ Suite *pruss_suite(void) {
     tcase_add_test(t, scratch_pad_shared);
     tcase_add_test(t, spad_collision_stalls_pru1);
     tcase_add_test(t, spad_collision_strict);
+    tcase_add_test(t, run_ahead_same_as_turns);
+    tcase_add_test(t, run_ahead_intc_on_faults);
     suite_add_tcase(s, t);
     return s;
 }

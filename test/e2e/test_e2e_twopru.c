@@ -271,6 +271,94 @@ START_TEST(test_same_line_both) {
 }
 END_TEST
 
+/* What a run of the pair leaves: each PRU's time, instructions, bank
+ * stalls and checked frames, and its status and results in data RAM. */
+struct pair_end {
+    int64_t cycles[2];
+    uint64_t insns[2], stalls[2], frames[2], publications[2], mismatches[2];
+    int64_t half_min[2], half_max[2];
+    uint8_t dram[2][1024];
+};
+
+/* test_same_line_both's pair without strict mode: PRU1's image on PRU0's
+ * bank, PRU1 stalling whenever both store a result there in one cycle;
+ * run ahead (run_ahead 1) or cycle by cycle, with the fast-forward (ff)
+ * or without, for 3 ms after the configuration. */
+static void same_bank_run(bool ahead, bool ff, struct pair_end *e) {
+    struct pair p;
+    struct pru_params pp;
+    pru_params_default(&pp);
+    pp.run_ahead = ahead;
+    pp.fast_forward = ff;
+    pair_open(&p, PRU_SOC_AM335X, "hengstler-ad38", "hengstler-ad38", (const double[2]){5, 5}, &pp);
+    e2e_start_firmware(&p.r[0]);
+    const char *defs[] = {"PRU_NUM=1", "XFR_BANK=10"};
+    struct pruasm_options opt = {.core = 3, .defines = defs, .ndefines = 2};
+    struct pruasm_image img;
+    struct pruasm_diag diag = {0};
+    ck_assert_msg(pruasm_assemble_file(&opt, FIRMWARE_SOURCE, &img, &diag) == 0, "%s",
+                  diag.first_error);
+    ck_assert_int_eq(bench_fw_start(p.r[1].b, img.words, img.nwords * 4), 0);
+    pruasm_image_free(&img);
+    static const enum biss_trigger trigger[2] = {BISS_TRIGGER_IEP, BISS_TRIGGER_IEP_FOLLOW};
+    for (unsigned i = 0; i < 2; i++) {
+        fw_check_attach(&p.r[i].fc, p.r[i].b);
+        p.r[i].fc.cfg.trigger = trigger[i];
+        p.r[i].fc.cfg.iep_period_ns = PERIOD * 5u;
+        p.r[i].fc.cfg.proc_limit = 1000;
+        ck_assert_int_eq(fw_check_configure(&p.r[i].fc, 10), 0);
+    }
+    struct bench *b = p.r[0].b;
+    for (int k = 0; k < 600; k++) /* the bench's steps: a quarter period */
+        ck_assert_int_eq(bench_run_until(b, pru_time_ps(bench_core(b)) + 5 * SIM_PS_PER_US),
+                         PRU_STOP_LIMIT);
+    for (unsigned i = 0; i < 2; i++) {
+        struct pru_core *c = bench_core(p.r[i].b);
+        const struct bench_stats *st = bench_stats(p.r[i].b);
+        e->cycles[i] = pru_cycles(c);
+        e->insns[i] = pru_instructions(c);
+        e->stalls[i] = pru_spad_collisions(c);
+        e->frames[i] = p.r[i].fc.frames;
+        e->publications[i] = p.r[i].fc.publications;
+        e->mismatches[i] = p.r[i].fc.mismatches;
+        e->half_min[i] = st->half_min_ps;
+        e->half_max[i] = st->half_max_ps;
+        ck_assert_int_eq(pru_host_read(c, 0x4A300000u + 0x2000u * i, e->dram[i], sizeof e->dram[i]),
+                         0);
+    }
+    pair_free(&p);
+}
+
+/* The two-PRU run ahead where the PRUs do interact: on one scratch-pad
+ * bank PRU1 stalls for PRU0 (cross-PRU events in the clocked code of
+ * both), and every stall, instruction, frame and byte of their results
+ * is as cycle by cycle. */
+START_TEST(test_same_bank_run_ahead) {
+    struct pair_end turns, ahead, ahead_ff;
+    same_bank_run(false, true, &turns);
+    same_bank_run(true, false, &ahead);
+    same_bank_run(true, true, &ahead_ff);
+    ck_assert_uint_gt(turns.stalls[1], 10); /* they met on the bank */
+    ck_assert_uint_eq(turns.stalls[0], 0);
+    ck_assert_uint_gt(turns.publications[0], 40);
+    ck_assert_uint_gt(turns.publications[1], 40);
+    const struct pair_end *e[2] = {&ahead, &ahead_ff};
+    for (unsigned k = 0; k < 2; k++) {
+        for (unsigned i = 0; i < 2; i++) {
+            ck_assert_int_eq(e[k]->cycles[i], turns.cycles[i]);
+            ck_assert_uint_eq(e[k]->insns[i], turns.insns[i]);
+            ck_assert_uint_eq(e[k]->stalls[i], turns.stalls[i]);
+            ck_assert_uint_eq(e[k]->frames[i], turns.frames[i]);
+            ck_assert_uint_eq(e[k]->publications[i], turns.publications[i]);
+            ck_assert_uint_eq(e[k]->mismatches[i], turns.mismatches[i]);
+            ck_assert_int_eq(e[k]->half_min[i], turns.half_min[i]);
+            ck_assert_int_eq(e[k]->half_max[i], turns.half_max[i]);
+            ck_assert_mem_eq(e[k]->dram[i], turns.dram[i], sizeof turns.dram[i]);
+        }
+    }
+}
+END_TEST
+
 /* A follower configured before the owner: no period kept; once the
  * owner has set the IEP up, the follower works out its thresholds for that
  * period (IEP_PERIOD) and both read every period together. */
@@ -369,6 +457,7 @@ int main(void) {
     tcase_add_test(tc, test_pru1_alone);
     tcase_add_test(tc, test_follower_before_owner);
     tcase_add_test(tc, test_owner_new_period);
+    tcase_add_test(tc, test_same_bank_run_ahead);
     suite_add_tcase(s, tc);
     return check_run(s);
 }

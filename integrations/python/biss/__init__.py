@@ -272,6 +272,11 @@ class Master:
         """Lets time pass: the emulator runs ms simulated milliseconds."""
         _check(lib.biss_run_ms(self._handle(), ms), "run_ms")
 
+    def run_us(self, us):
+        """The same in microseconds (a ring reader polling more often than
+        once a millisecond)."""
+        _check(lib.biss_run_us(self._handle(), us), "run_us")
+
     # ---- samples ----------------------------------------------------------
     def _latest_frame(self, s):
         """The newest published frame's number (into s), or the number

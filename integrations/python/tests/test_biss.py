@@ -50,6 +50,15 @@ def test_every_frame_from_the_ring(master):
     master.run_ms(3)  # too long: the ring keeps the newest 59
     got, gone = master.read_ring()
     assert len(got) == 59 and gone > 0 and got[0].seq == seqs[-1] + gone + 1
+    # polled every 250 us: some 10 frames a call, none lost
+    master.read_ring()
+    seqs = []
+    for _ in range(40):
+        master.run_us(250)
+        got, gone = master.read_ring()
+        assert gone == 0 and 5 <= len(got) <= 15
+        seqs += [x.seq for x in got]
+    assert seqs == list(range(seqs[0], seqs[0] + len(seqs)))
 
 
 def test_a_sample_carries_the_frame(master):
