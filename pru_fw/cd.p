@@ -25,8 +25,8 @@
     .u8     cdm0                            // the CDM edge for CDS 0
     .u8     cdm1                            // its change for CDS 1
     .u16    len                             // the program's length
-    .u8     crc_m                           // CRC_M
-    .u8     crc_s                           // CRC_S
+    .u8     crc_m                           // CRC_M, in bits 7..4 (CRC4_FEED)
+    .u8     crc_s                           // CRC_S, likewise
     .u8     flags                           // CD_F_*; bits 7..4 the first error (BISS_CDST_*),
                                         // pending until the control frame ends
     .u8     bytes                           // bytes transferred
@@ -54,7 +54,6 @@
 .assign Half, r9.w0, r9.w0, IdaP            // BISS_CD_IDA_STEP: the step of the command's P,
 .assign Byte, r9.b2, r9.b2, IdaExp          //   the IDA answers expected
 .assign Word, r9, r9, RespAddr              // the byte of BISS_CD_RESP for the step answered,
-.assign Word, r11, r11, RespBase            //   BISS_CD_RESP,
 .assign Word, r11, r11, RespByte            //   that byte,
 .assign Word, r12, r12, RespBit             //   and the step's bit in it
 .assign Word, r11, r11, IdaSlot             // k = step - (P - 9): IDA slot k if k < 8
@@ -66,22 +65,24 @@
 .assign Word, r11, r11, FeedBit             // the bit fed to CRC_M
 .assign Word, r12, r12, Crc4Fb              // CRC4_FEED: the feedback bit
 
-// crc = CRC4 (x^4 + x + 1, MSB first) of crc and bit 0 of bit. 6 cycles at
-// most; Crc4Fb is scratch.
+// crc = CRC4 (x^4 + x + 1, MSB first) of crc and bit 0 of bit. The CRC
+// register is a byte field's bits 7..4 (Cd.crc_m, Cd.crc_s; bits 3..0
+// stay 0): its shift drops the top bit by itself, a byte written keeping
+// the result's low 8 bits. 5 cycles at most; Crc4Fb is scratch.
 .macro CRC4_FEED
 .mparam crc, bit
-    lsr     Crc4Fb, crc, 3
+    lsr     Crc4Fb, crc, 7
     xor     Crc4Fb, Crc4Fb, bit             // feedback
     lsl     crc, crc, 1
-    and     crc, crc, 0x0f
     qbbc    CRC4_FEED_END, Crc4Fb, 0
-    xor     crc, crc, 0x03
+    xor     crc, crc, 0x03 << 4
 CRC4_FEED_END:
 .endm
 
 // Op = step OpStep of the program: bits 1..0 its op, 3..2 its class;
 // CD_PAST_END past the length. (biss_shm_struct.h asserts BISS_CD_PROG.)
 #define CD_PROG_BIT     9                   // BISS_CD_PROG = 0x200: bit 9 above step / 2 <= 511
+#define CD_RESP_BIT     10                  // BISS_CD_RESP = 0x400: bit 10 above step / 8 <= 127
 CD_OP_STEP:                                 // the same for step Cd.step
     mov     OpStep, Cd.step
 CD_OP:
@@ -97,66 +98,16 @@ CD_OP_LOW:
 CD_OP_DONE:
     jmp     RET_LEAF
 
-CD_PREPARE:
+
+// A frame failed: a running program cannot go on (the slave saw a broken
+// frame) and stops as CDC_STOP stops one, with ERR_FRAME; the zeros start
+// again (the failed frame counts as one without CDM 0). Then CD_PREPARE.
+CD_ABORT:
     lbco    &Cd.cmd, c28, P_CD, P_CD_END - P_CD
-CDP_STATE:                                  // (CD_COMMIT, CD_ABORT: the state in Cd already)
-    ldi     CdCdm, 0                        // CDM 0 whatever the CDS
-    qbne    CDP_RUN, Cd.cmd, 0
-    lbco    NewCmd, c24, BISS_CD_CMD, 12    // NewCmd, NewSteps, DoneSeq
-    qbeq    CDP_OUT, NewCmd, DoneSeq        // no new program
-    qbgt    CDP_OUT, Cd.zeros, 14           // not before 14 frames with CDM 0
-    mov     MaxSteps, BISS_CD_MAX_STEPS
-    qbeq    CDP_BAD, NewSteps, 0
-    qblt    CDP_BAD, NewSteps, MaxSteps
-    mov     Cd.cmd, NewCmd                  // run it from step 0
-    ldi     CdSteps, 0
-    ldi     Cd.waits, 0
-    mov     Cd.len, NewSteps
-    ldi     CdByteState, 0                  // CRCs 0, no byte, no error
-    ldi     CdStatus, BISS_CDST_BUSY
-    sbco    CdStatus, c24, BISS_ST_CD_STATUS, 4
-CDP_RUN:
-    jal     RET_LEAF, CD_OP_STEP
-    qbbs    CDP_OUT, Op, 4                  // past the end: CDM 0
-    qbgt    CDP_STEP, Cd.flags, CD_ERR
-    qbeq    CDP_OUT, Op, BISS_CDOP_1        // an error ends the frame at the next master S
-CDP_STEP:
-    and     OpKind, Op, 3
-    qbeq    CDP_WAIT, OpKind, BISS_CDOP_WAIT
-    qbne    CDP_BIT, OpKind, BISS_CDOP_CRC
-    lsr     OpKind, Cd.crc_m, 3             // CRC_M's next bit, inverted
-    xor     OpKind, OpKind, 1
-CDP_BIT:
-    qbbc    CDP_IDA, OpKind, 0
-    ldi     Cd.cdm0, MA_MASK
-CDP_IDA:
-    // A command's P with the IDA test failed goes out inverted: the slaves
-    // take that as a broken control frame and do not execute it.
-    lbco    &IdaP, c24, BISS_CD_IDA_STEP, 2
-    qbne    CDP_OUT, IdaP, Cd.step
-    qbgt    CDP_OUT, Cd.flags, CD_ERR
-    xor     Cd.cdm0, Cd.cdm0, MA_MASK
-    qba     CDP_OUT
-CDP_WAIT:
-    // While the slave's S is late the master sends CDM 1 (MA low in the
-    // timeout): 13 CDM 0 already follow a read byte (D, CRC, P), and any
-    // control frame is cancelled by 14 (TIDEP0022 §2.1.3). TI's own PRU
-    // firmware does the same: it keeps its S (clock held low) until the
-    // slave's start bit comes (motor-control-sdk, bissc_main.asm,
-    // BISSC_SKIP_CTRL_SB?). CDS 1 ends the wait: send the next step now.
-    ldi     Cd.cdm0, MA_MASK
-    add     OpStep, Cd.step, 1
-    jal     RET_LEAF, CD_OP
-    and     Op, Op, CD_PAST_END | 3
-    qbeq    CDP_OUT, Op, BISS_CDOP_1        // 1 either way
-    ldi     Cd.cdm1, MA_MASK                // 0 once CDS is 1
-CDP_OUT:
-    sbco    &Cd.cmd, c28, P_CD, P_CD_END - P_CD
-    jmp     RET_POST
-CDP_BAD:                                    // refused: ST_CD_SEQ, then ST_CD_STATUS
-    ldi     BadStatus, BISS_CDST_ERR_STEPS  // (the next word: one store, in that order)
-    sbco    NewCmd, c24, BISS_ST_CD_SEQ, 8
-    qba     CDP_OUT
+    ldi     CdmSent, 1
+    qbeq    CDC_ZEROS, Cd.cmd, 0            // no program
+    ldi     CdStatus, BISS_CDST_ERR_FRAME
+    qba     CDC_STOP
 
 // After a frame with CDS Cds and CDM CdmSent (FRAME_END: MA low after it
 // for 1); then CD_PREPARE, which stores the state and returns.
@@ -170,8 +121,7 @@ CD_COMMIT:
     // the answer: recorded, then checked as its step's class asks
     sub     OpStep, Cd.answered, 1          // the step this CDS answers
     lsr     RespAddr, OpStep, 3
-    mov     RespBase, BISS_CD_RESP
-    add     RespAddr, RespAddr, RespBase
+    set     RespAddr, RespAddr, CD_RESP_BIT // BISS_CD_RESP + step / 8
     lbco    RespByte, c24, RespAddr, 1
     and     RespBit, OpStep, 7
     clr     RespByte, RespByte, RespBit
@@ -192,10 +142,9 @@ CDC_CLASS:
     lsr     Op, Op, 2
     qbeq    CDC_SENT_STEP, Op, BISS_CDCL_NONE
     qbne    CDC_FEED_S, Op, BISS_CDCL_CHECK
-    lsr     CheckBit, Cd.crc_s, 3           // CHECK: the next bit of CRC_S, inverted
+    lsr     CheckBit, Cd.crc_s, 7           // CHECK: the next bit of CRC_S, inverted
     xor     CheckBit, CheckBit, Cds
     lsl     Cd.crc_s, Cd.crc_s, 1           // (fed its uninverted value: a shift)
-    and     Cd.crc_s, Cd.crc_s, 0x0f
     ldi     ErrCode, BISS_CDST_ERR_CRC << 4
     qbbc    CDC_ERR, CheckBit, 0
     qba     CDC_SENT_STEP
@@ -253,9 +202,8 @@ CDC_NEXT:
     mov     Cd.answered, Cd.step            // its CDS comes with the next frame
     qba     CDC_ZEROS
 CDC_END:
-    ldi     CdStatus, BISS_CDST_DONE
-    qbgt    CDC_STOP, Cd.flags, CD_ERR
-    lsr     CdStatus, Cd.flags, 4           // the error pending
+    lsr     CdStatus, Cd.flags, 4           // the error pending (BISS_CDST_ERR_* > DONE),
+    max     CdStatus, CdStatus, BISS_CDST_DONE // else 0: DONE
 CDC_STOP:
     mov     CdStatusBytes, Cd.bytes         // bytes transferred
     mov     CdStatusSteps, Cd.step          // steps executed
@@ -266,18 +214,72 @@ CDC_STOP:
 CDC_ZEROS:
     add     Cd.zeros, Cd.zeros, 1           // frames with CDM 0 in a row
     min     Cd.zeros, Cd.zeros, 255
-    qbeq    CDC_SAVE, CdmSent, 0
-    ldi     Cd.zeros, 0
-CDC_SAVE:
-    qba     CDP_STATE                       // and the next frame's CDM: CD_PREPARE stores it all
+    qbeq    CD_PREPARE, CdmSent, 0
+    ldi     Cd.zeros, 0                     // and the next frame's CDM: CD_PREPARE stores it all
 
-// A frame failed: a running program cannot go on (the slave saw a broken
-// frame) and stops as CDC_STOP stops one, with ERR_FRAME; the zeros start
-// again (the failed frame counts as one without CDM 0). Then CD_PREPARE.
-CD_ABORT:
-    lbco    &Cd.cmd, c28, P_CD, P_CD_END - P_CD
-    ldi     CdmSent, 1
-    qbeq    CDC_ZEROS, Cd.cmd, 0            // no program
-    ldi     CdStatus, BISS_CDST_ERR_FRAME
-    qba     CDC_STOP
+// The next frame's CDM for either CDS (the state in Cd: CD_COMMIT and
+// CD_ABORT fall or branch into it), and the state stored. Its PAD keeps
+// every path after a frame as long as it was when a branch led here: the
+// next free-run frame's poll (FE_POLL, 4-cycle turns) then reads SL on the
+// same cycles as before, against the same phase of the 8x shift clock.
+CD_PREPARE:
+    PAD
+    ldi     CdCdm, 0                        // CDM 0 whatever the CDS
+    qbne    CDP_RUN, Cd.cmd, 0
+    lbco    NewCmd, c24, BISS_CD_CMD, 12    // NewCmd, NewSteps, DoneSeq
+    qbeq    CDP_OUT, NewCmd, DoneSeq        // no new program
+    qbgt    CDP_OUT, Cd.zeros, 14           // not before 14 frames with CDM 0
+    mov     MaxSteps, BISS_CD_MAX_STEPS
+    qbeq    CDP_BAD, NewSteps, 0
+    qblt    CDP_BAD, NewSteps, MaxSteps
+    mov     Cd.cmd, NewCmd                  // run it from step 0
+    ldi     CdSteps, 0
+    ldi     Cd.waits, 0
+    mov     Cd.len, NewSteps
+    ldi     CdByteState, 0                  // CRCs 0, no byte, no error
+    ldi     CdStatus, BISS_CDST_BUSY
+    sbco    CdStatus, c24, BISS_ST_CD_STATUS, 4
+CDP_RUN:
+    jal     RET_LEAF, CD_OP_STEP
+    qbbs    CDP_OUT, Op, 4                  // past the end: CDM 0
+    qbgt    CDP_STEP, Cd.flags, CD_ERR
+    qbeq    CDP_OUT, Op, BISS_CDOP_1        // an error ends the frame at the next master S
+CDP_STEP:
+    and     OpKind, Op, 3
+    qbeq    CDP_WAIT, OpKind, BISS_CDOP_WAIT
+    qbne    CDP_BIT, OpKind, BISS_CDOP_CRC
+    lsr     OpKind, Cd.crc_m, 7             // CRC_M's next bit, inverted
+    xor     OpKind, OpKind, 1
+CDP_BIT:
+    qbbc    CDP_IDA, OpKind, 0
+    ldi     Cd.cdm0, MA_MASK
+CDP_IDA:
+    // A command's P with the IDA test failed goes out inverted: the slaves
+    // take that as a broken control frame and do not execute it.
+    lbco    &IdaP, c24, BISS_CD_IDA_STEP, 2
+    qbne    CDP_OUT, IdaP, Cd.step
+    qbgt    CDP_OUT, Cd.flags, CD_ERR
+    xor     Cd.cdm0, Cd.cdm0, MA_MASK
+    qba     CDP_OUT
+CDP_WAIT:
+    // While the slave's S is late the master sends CDM 1 (MA low in the
+    // timeout): 13 CDM 0 already follow a read byte (D, CRC, P), and any
+    // control frame is cancelled by 14 (TIDEP0022 §2.1.3). TI's own PRU
+    // firmware does the same: it keeps its S (clock held low) until the
+    // slave's start bit comes (motor-control-sdk, bissc_main.asm,
+    // BISSC_SKIP_CTRL_SB?). CDS 1 ends the wait: send the next step now.
+    ldi     Cd.cdm0, MA_MASK
+    add     OpStep, Cd.step, 1
+    jal     RET_LEAF, CD_OP
+    and     Op, Op, CD_PAST_END | 3
+    qbeq    CDP_OUT, Op, BISS_CDOP_1        // 1 either way
+    ldi     Cd.cdm1, MA_MASK                // 0 once CDS is 1
+CDP_OUT:
+    sbco    &Cd.cmd, c28, P_CD, P_CD_END - P_CD
+    jmp     RET_POST
+CDP_BAD:                                    // refused: ST_CD_SEQ, then ST_CD_STATUS
+    ldi     BadStatus, BISS_CDST_ERR_STEPS  // (the next word: one store, in that order)
+    sbco    NewCmd, c24, BISS_ST_CD_SEQ, 8
+    qba     CDP_OUT
+
 .leave cd

@@ -35,10 +35,11 @@
 .assign Word, r21, r21, CfgIep              //   IEP period,
 .assign Half, r22.w0, r22.w0, CfgProc       //   processing-time limit,
 .assign Half, r22.w2, r22.w2, CfgSsiNs      //   SSI round trip (ns)
-.assign Word, r23, r23, SlaveIdx            // the slave being checked
-.assign Word, r24, r24, NBits               // N: the bits of all slaves
-.assign Word, r25, r25, HostAddr            // its block in the host's configuration
-.assign Word, r26, r26, RecAddr             // its record in P_RECORDS
+.assign Word, r23, r23, SlaveOff          // 8 x the slave's index: its block at
+                                            // BISS_CFG_SLAVE0 + SlaveOff, its record at
+                                            // C28 + P_RECORDS + SlaveOff
+.assign Word, r24, r24, NBits               // N + 2 - LAG: the bits of all slaves, and 2 - LAG
+.assign Word, r25, r25, SlavesOff           // 8 x slaves: SlaveOff's end
 .assign Word, r27, r27, Pass                // FACTOR: 1 whole ratios only, 2 any
 .assign Word, r27, r27, ChkAddr             // the slave's check data in P_SLAVES
 .assign Word, r27, r27, SsiWord             // P_SSI's word (0: BiSS-C):
@@ -66,27 +67,22 @@
 .assign Word, r4, r4, EwPlus1               // ew + 1
 .assign CfgRecord, r4, r5, Rec              // the slave's record, 8 bytes
 .assign Half, r4.w0, r4.w0, RecCounts       //   its counts together
-.assign Word, r5, r5, PolyAligned           // the polynomial << (16 - w)
-.assign Word, r6, r6, LastBits              // d: the bits read after the switch's (CFG_SHAPE)
 .assign Word, r6, r6, Align16               // 16 - w
-.assign Word, r7, r7, NextIdx               // the slave's index + 1
-.assign Word, r7, r7, StartAligned          // the start value << (16 - w)
-.assign Half, r7.w0, r7.w0, StartAlignedLo
+.assign Word, r7, r7, NextOff               // SlaveOff of the next slave
 .assign BissSlave, r12, r15, Chk            // the slave's check data (layout.hp)
 .assign Half, r12.w0, r12.w0, ChkEw         //   its nE/nW pointer and shift as one
 .assign Word, r8, r8, MaskShift             // 64 - n
-.assign Word, r9, r9, Feedback              // the residue's bit 31 before its shift
 .assign Word, r16, r16, Residue             // the CRC register after w ones (left-aligned)
-.assign Word, r10, r10, PolyTop             // the polynomial left-aligned to bit 31
+.assign Word, r10, r10, PolyHalf            // the polynomial left-aligned to bit 30
 .assign Word, r11, r11, EndRecord           // the end record's word: its entry in w0
 .assign Half, r11.w0, r11.w0, EndEntry
 .assign Word, r4, r4, EndWord               // the end record: entry in w2, counts 0
-.assign Word, r17, r17, CfgLast             // LastBits of the last slave (L, for P_IEP_FIX)
-.assign Word, r3, r3, IepFix                // N + 5 - L (P_IEP_FIX)
+.assign Word, r17, r17, LastBits            // d: the bits read after the switch's (CFG_SHAPE);
+                                            // the last slave's is L (P_IEP_FIX)
+.assign Word, r3, r3, IepFix                // 1 - (N + 5 - L) (P_IEP_FIX)
 .assign Word, r8, r8, RingNext              // CFG_RING: BISS_ST_RING_NEXT, and after it
 .assign Half, r9.w0, r9.w0, RingStride      //   ST_RING_STRIDE,
 .assign Half, r9.w2, r9.w2, RingLast        //   ST_RING_LAST
-.assign Half, r3.w0, r3.w0, IepFixLo        //   as IEP_PERIOD loads it
 // CFG_IEP, and IEP_PERIOD (which the IEP frames call, r0..r12 only)
 .assign Word, r2, r2, IepReg                // a word for an IEP register: CMP0 (P - 1)
 .assign Half, r4.w0, r4.w0, IepHalf         // IEP_PERIOD: H
@@ -100,15 +96,14 @@
 .assign Word, r3, r3, DelayBase             // the entry L or r counts back from
 .assign Word, r1, r1, NewHist01             // P_HIST: h0, h1 (0),
 .assign Word, r2, r2, NewHist2K             //   h2 (0), K (stored with DelayWord: r0..r2)
-// P_NSLAVES .. P_SSI, one store (CFG_PROC) from r24..r27 (NBits, HostAddr,
-// RecAddr are done with by then; SsiWord is r27)
+// P_NSLAVES .. P_SSI, one store (CFG_PROC) from r24..r27 (NBits, SlavesOff
+// are done with by then; SsiWord is r27)
 .assign Word, r24, r24, NewNs               // P_NSLAVES' word: slaves, trigger, the end record,
 .assign Byte, r24.b2, r24.b2, NewRecEnd     //   frames in the average (0)
 .assign Word, r25, r25, NewHalf             // P_HALF's word: H, the ACK limit
 .assign Half, r25.w0, r25.w0, NewHalfLo
 .assign Word, r26, r26, NewProc             // P_PROC's word: the processing-time limit,
 .assign Half, r26.w0, r26.w0, NewProcLimit
-.assign Half, r26.w2, r26.w2, NewRunDue     //   training due and running,
 .assign Byte, r26.b2, r26.b2, NewDue
 .assign Byte, r26.b3, r26.b3, NewRunning    //   running = the slot step
 .assign Word, r0, r0, XfrShiftCfg           // R0: the XFR shift while the step is probed
@@ -149,8 +144,19 @@ FACTOR_NEXT:
     add     FactorA, FactorA, 1
     qbge    FACTOR_A, FactorA, 32           // a <= 32
     add     Pass, Pass, 1
-    qbeq    FACTOR_PASS, Pass, 2
-    jmp     CFG_FAIL                        // CfgErr is still CFGERR_HALF
+    qbeq    FACTOR_PASS, Pass, 2            // else refused: CfgErr is still CFGERR_HALF
+// The verdict: refused (from any check, and from here), or accepted
+// (CFG_RING); then MAIN.
+CFG_FAIL:
+    ldi     NewProc, 0
+    sbco    NewProc, c28, P_PROC, P_PROC_END - P_PROC // not running
+    ldi     CfgState, BISS_STATE_CFG_ERROR
+CFG_REPORT:
+    sbco    CfgErr, c24, BISS_ST_CFG_ERROR, 8 // CfgErr, CfgState (ST_STATE, the next word)
+    sbco    NewSeq, c24, BISS_ST_CFG_ACK, 4 // then the sequence number: the verdict is out
+    sbco    NewSeq, c28, P_CFG_ACK, 4       // (and its copy beside the frame's set-up, FE)
+    lbco    &Records, c28, P_RECORDS, P_DELAYS - P_RECORDS // slave records into r13..r29
+    jmp     MAIN
 FACTOR_FOUND:
     // divisor codes (ratio = 1 + code / 2): a - 2 at bit 3, b - 2 at bit 8
     // (Gpcfg keeps it until the configuration is accepted: CFG_PROC)
@@ -161,25 +167,34 @@ FACTOR_FOUND:
     or      Gpcfg, Gpcfg, SHIFT_MODE
 
     // Slaves: records for the clocked code, verdict data for the checks.
-    ldi     SlaveIdx, 0                     // slave index
-    ldi     NBits, 0                        // N: bits of all slaves
-    mov     HostAddr, BISS_CFG_SLAVE0       // host block
-    mov     RecAddr, BISS_PRIV + P_RECORDS
+    // A host block and a record are both 8 bytes (BISS_CFG_SLAVE_SIZE,
+    // SIZE(CfgRecord)), so one offset walks both.
+    ldi     SlaveOff, 0
+    lsl     SlavesOff, CfgSlaves, 3
+    ldi     NBits, 2 - LAG                  // N + 2 - LAG, from the bits of all slaves (K)
     mov     ChkAddr, BISS_PRIV + P_SLAVES
     ldi     EndRecord, FRAME_END            // the end record's entry
     ldi     XfrZero, 0                      // R0[4:0] = 0 for FILL: whether the XFR
                                             // shift moves it is not documented
 CFG_SLAVE:
-    lbbo    &Host.n, HostAddr, 0, 8         // n, w, ew, flags, poly, start
+    lbbo    &Host.n, SlaveOff, BISS_CFG_SLAVE0, 8 // n, w, ew, flags, poly, start
     ldi     CfgErr, BISS_CFGERR_DATA_BITS
     qbeq    CFG_FAIL, Host.n, 0
     qblt    CFG_FAIL, Host.n, BISS_MAX_DATA_BITS
     ldi     CfgErr, BISS_CFGERR_CRC_BITS
     qblt    CFG_FAIL, Host.w, BISS_MAX_CRC_BITS
+    // nE/nW: where FE_SLAVE's MVI finds nW, the data word's bit ew: the
+    // register-file byte ew / 8 bytes into DataLo, bit ew mod 8 of the word
+    // read there (nE the next bit up, in the same word: ew mod 8 + 1 <= 8).
+    // Without nE/nW: the CRC register's low half, always 0.
     ldi     CfgErr, BISS_CFGERR_EW
+    ldi     ChkEw, RF_CRC_LOW               // (shift 0)
     qbbc    CFG_EW_OK, Host.flags, 0
     add     EwPlus1, Host.ew, 1             // nE's bit must lie in the data word
     qble    CFG_FAIL, EwPlus1, Host.n       // n <= ew + 1
+    lsr     Chk.ewptr, Host.ew, 3
+    add     Chk.ewptr, Chk.ewptr, RF_DATA_LO
+    and     Chk.ewshift, Host.ew, 7
 CFG_EW_OK:
     add     NBits, NBits, Host.n
     add     NBits, NBits, Host.w
@@ -192,8 +207,8 @@ CFG_EW_OK:
     // last is a data bit with CRC (w = 1) or another slave's (n = 1, w = 0).
     mov     RecCounts, HostNW               // n data bits, w CRC bits
     ldi     LastBits, 1                     // the switch's bit
-    add     NextIdx, SlaveIdx, 1
-    qbne    CFG_SHAPE, NextIdx, CfgSlaves   // not the last slave
+    add     NextOff, SlaveOff, 8
+    qbne    CFG_SHAPE, NextOff, SlavesOff   // not the last slave
     ldi     LastBits, 3                     // the last: up to two more
 CFG_SHAPE:
     qbeq    CFG_NOCRC, Host.w, 0
@@ -219,16 +234,14 @@ CFG_PLAIN_FINAL:
     ldi     EndEntry, FINAL_PLAIN           // one bit after the switch
     qbeq    CFG_REC, LastBits, 2
     ldi     EndEntry, FINAL_PLAIN2          // two
-CFG_REC:
-    mov     CfgLast, LastBits               // (the last slave's is kept: P_IEP_FIX)
-    // polynomial and start value left-aligned to bit 15 (the w2 halves);
-    // no CRC (w = 0): both shifted by 16, out of the halves, so 0
+CFG_REC:                                    // (the last slave's LastBits is kept: P_IEP_FIX)
+    // polynomial and start value left-aligned to bit 15 (into the halves,
+    // which keep the shift's low 16 bits); no CRC (w = 0): both shifted by
+    // 16, out of the halves, so 0
     rsb     Align16, Host.w, 16             // 16 - w
-    lsl     PolyAligned, Host.poly, Align16
-    lsl     StartAligned, Host.start, Align16
-    mov     Rec.start, StartAlignedLo
-    sbbo    &Rec.data_bits, RecAddr, 0, 8
-    add     RecAddr, RecAddr, 8
+    lsl     Rec.poly, Host.poly, Align16
+    lsl     Rec.start, Host.start, Align16
+    sbco    &Rec.data_bits, c28, SlaveOff, 8 // P_RECORDS (0) + SlaveOff
     // data mask: n ones. A shift takes its count & 31 (docs/pru-facts.md
     // §1.3), so ~0 >> (64 - n) is the high word's mask for n > 32 and the
     // low word's (~0 >> (32 - n)) for n <= 32 (n = 32, 64: a shift by 0).
@@ -239,50 +252,40 @@ CFG_REC:
     mov     Chk.mask_lo, Chk.mask_hi
     ldi     Chk.mask_hi, 0
 CFG_MASK_DONE:
-    // nE/nW: where FE_SLAVE's MVI finds nW, the data word's bit ew: the
-    // register-file byte ew / 8 bytes into DataLo, bit ew mod 8 of the word
-    // read there (nE the next bit up, in the same word: ew mod 8 + 1 <= 8).
-    // Without nE/nW: the CRC register's low half, always 0.
-    ldi     ChkEw, RF_CRC_LOW               // (shift 0)
-    qbbc    CFG_EW_INFO, Host.flags, 0
-    lsr     Chk.ewptr, Host.ew, 3
-    add     Chk.ewptr, Chk.ewptr, RF_DATA_LO
-    and     Chk.ewshift, Host.ew, 7
-CFG_EW_INFO:
     // residue: the CRC register after w inverted CRC bits of a right frame
-    // = w ones fed to a zero register (linearity)
+    // = w ones fed to a zero register (linearity). A step with feedback
+    // (bit 31 ^ 1 = 1: bit 31 clear) is (r << 1) ^ poly = (r ^ poly >> 1)
+    // << 1: the polynomial, left-aligned to bit 31, has bit 0 clear, and
+    // bit 31 goes out either way.
     ldi     Residue, 0
-    lsl     PolyTop, Rec.poly, 16           // polynomial, left-aligned to bit 31
+    lsl     PolyHalf, Rec.poly, 15          // the polynomial, left-aligned to bit 30
     qbeq    CFG_RESIDUE_DONE, Host.w, 0
     // The count from a whole register: which bits a LOOP takes from a byte
     // field is not documented (docs/silicon-assumptions.md).
     mov     LoopTurns, Host.w               // (Host.poly, start are used by then)
     loop    CFG_RESIDUE_DONE, LoopTurnsLo
-    lsl     Feedback, Residue, 0            // keep bit 31 (feedback = bit31 ^ 1)
-    lsl     Residue, Residue, 1
-    qbbs    CFG_RESIDUE_STEP, Feedback, 31
-    xor     Residue, Residue, PolyTop
+    qbbs    CFG_RESIDUE_STEP, Residue, 31   // bit 31 set: no feedback
+    xor     Residue, Residue, PolyHalf
 CFG_RESIDUE_STEP:
-    PAD
+    lsl     Residue, Residue, 1
 CFG_RESIDUE_DONE:
     lsr     Chk.residue, Residue, 16        // (its low half is 0, as the CRC register's)
     sbbo    &Chk.ewptr, ChkAddr, 0, SIZE(BissSlave)
     add     ChkAddr, ChkAddr, SIZE(BissSlave)
-    add     HostAddr, HostAddr, BISS_CFG_SLAVE_SIZE
-    add     SlaveIdx, SlaveIdx, 1
-    qbgt    CFG_SLAVE, SlaveIdx, CfgSlaves  // while index < slaves
+    mov     SlaveOff, NextOff
+    qbne    CFG_SLAVE, SlaveOff, SlavesOff  // while index < slaves
     // after the last slave: the end of the frame
     lsl     EndWord, EndRecord, 16          // entry EndEntry (w2 = 0), counts 0
-    sbbo    EndWord, RecAddr, 0, 4
+    sbco    EndWord, c28, SlaveOff, 4
     // the MA periods of a BiSS-C frame from period 0 to the one FRAME_END
     // starts in, beside max(m + LAG, p) and the busy clocks: period 0 and
     // the ACK's (p + 1 in all with the idle ones up to m + LAG), LAG1, the
     // start bit's, the CDS, and the N - (L - 1) periods of the slaves' bits
     // (the last slave's last L - 1 bits are read after them, FINAL_*): N + 5
     // - L (an SSI frame has fewer; IEP_PERIOD)
-    add     IepFix, NBits, 5
-    sub     IepFix, IepFix, CfgLast
-    sbco    IepFix, c28, P_IEP_FIX, 2
+    sub     IepFix, LastBits, NBits         // 1 - (N + 5 - L): IEP_PERIOD's start
+    sub     IepFix, IepFix, 2 + LAG         // (NBits: N + 2 - LAG)
+    sbco    IepFix, c28, P_IEP_FIX, 4
 
     // SSI (slave 0's BISS_SF_SSI): alone and without CRC. SsiWord = the P_SSI
     // word: SsiAckNew the ACK position a BiSS-C slave at this line delay would
@@ -310,6 +313,24 @@ CFG_SSI:
     // its monoflop ends (SL high again: ready), 2n edges after period 0's
     lsl     SsiEdgesNew, Host.n, MA_BIT + 1
 CFG_SSI_DONE:
+    // The step between the slaves' result slots in this PRU's bank, for
+    // the XFR shift (R0[4:0]). TI calls R0[4:0] "the number of 32-bit
+    // offset" for XIN and XOUT but gives no direction. Up, slot k sits at
+    // bank registers 4 + 3k .. 6 + 3k (k <= 7: at most 27, never past the
+    // bank's 30). Down, the step must be 29: 4 - 29k = 4 + 3k only modulo
+    // 32, so look for exactly that: register 3 written with a shift of 29
+    // lands in bank register 6 only if the shift goes down and wraps as a
+    // 5-bit offset (up, it is bank register 0). Found: step 29; else 3
+    // (docs/silicon-assumptions.md A6). R0[4:0] is still 0 from XfrZero
+    // (DIVIDE's calls write only r0.w2), and 0 after.
+    ldi     Probe, 0
+    xout    XFR_BANK, Probe, 4              // bank register 6 cleared
+    ldi     XfrShiftCfg, 32 - XFR_SLOT
+    ldi     ProbeVal, 32 - 2 * XFR_SLOT
+    xout    XFR_BANK, ProbeVal, 4           // 26 to bank register 6 (down) or 0 (up)
+    ldi     XfrShiftCfg, 0
+    xin     XFR_BANK, Probe, 4
+    add     NewRunning, Probe, XFR_SLOT     // running = the step: 3 up, 29 down
 
     // IEP (owner and follower): the thresholds for the period are worked
     // out by the first IEP frame (P_IEP_KEY no CMP0: IEP_PERIOD). The owner
@@ -323,17 +344,16 @@ CFG_SSI_DONE:
     sbco    IepReg, c26, IEP_CMP0, 4
     ldi     IepReg, 3                       // CMP0 enabled, resets the count
     sbco    IepReg, c26, IEP_CMP_CFG, 4
-    ldi     IepReg, 0
-    sbco    IepReg, c26, IEP_COUNT, 4
+    sbco    XfrZero, c26, IEP_COUNT, 4      // 0 (the probe's last R0)
 CFG_IEP_OK:
+
 
     // Accepted: commit everything.
     // The tails of the half periods (DELAY in biss_periods.hp): none at
     // H = 10 (DelayWord = 0), else the routine's entry for L = H - 11 cycles
     // (DelayEntry), DelayGate = 1, and its 4-cycle turns (DelayTurns); the
     // frame keeps this word in Tails.
-    ldi     DelayWord, 0
-    qbeq    CFG_DELAY_SAVE, CfgHalf, 10
+    qbeq    CFG_DELAY_SAVE, CfgHalf, 10     // (DelayWord is 0: the probe's last R0)
     ldi     DelayGate, 1
     sub     DelayL, CfgHalf, 11             // L >= 1
     ldi     DelayBase, DLY_S1 + 1           // short: entry DLY_S1 + 1 - L
@@ -349,12 +369,10 @@ CFG_DELAY_SAVE:                             // (stored with the history: P_DELAY
     // the N bits and one more, on which the slave starts its timeout (SL
     // low); LAG of them are already out when the start bit is seen.
     ldi     NewHist01, 0                    // history empty (training fills it)
-    sub     NewHist2K, NBits, LAG - 2
-    lsl     NewHist2K, NewHist2K, 16        // and K
+    lsl     NewHist2K, NBits, 16            // and K (NBits: N + 2 - LAG)
     sbco    &DelayWord, c28, P_DELAYS, P_HSUM - P_DELAYS // DelayWord, NewHist01, NewHist2K
     mov     NewNs, CfgSlavesTrig            // slaves, trigger, -, frames in the average (0)
-    lsl     NewRecEnd, CfgSlaves, 3         // the end record's register-file address
-    add     NewRecEnd, NewRecEnd, REC_BASE
+    add     NewRecEnd, SlavesOff, REC_BASE  // the end record's register-file address
     // ACK limit in periods x 8: (BISS_MAX_DELAY_NS / 10 / H + 4) x 8
     mov     Num, BISS_MAX_DELAY_NS / 10
     mov     Den, CfgHalf
@@ -363,25 +381,7 @@ CFG_DELAY_SAVE:                             // (stored with the history: P_DELAY
     lsl     NewHalf, Quot, 16 + 3           // to w2
     mov     NewHalfLo, CfgHalf
     mov     NewProcLimit, CfgProc           // processing-time limit
-    ldi     NewRunDue, 0x0101               // running, training due (BiSS-C)
-    // The step between the slaves' result slots in this PRU's bank, for
-    // the XFR shift (R0[4:0]). TI calls R0[4:0] "the number of 32-bit
-    // offset" for XIN and XOUT but gives no direction. Up, slot k sits at
-    // bank registers 4 + 3k .. 6 + 3k (k <= 7: at most 27, never past the
-    // bank's 30). Down, the step must be 29: 4 - 29k = 4 + 3k only modulo
-    // 32, so look for exactly that: register 3 written with a shift of 29
-    // lands in bank register 6 only if the shift goes down and wraps as a
-    // 5-bit offset (up, it is bank register 0). Found: step 29; else 3
-    // (docs/silicon-assumptions.md A6).
-    ldi     XfrShiftCfg, 0
-    ldi     Probe, 0
-    xout    XFR_BANK, Probe, 4              // bank register 6 cleared
-    ldi     XfrShiftCfg, 32 - XFR_SLOT
-    ldi     ProbeVal, 32 - 2 * XFR_SLOT
-    xout    XFR_BANK, ProbeVal, 4           // 26 to bank register 6 (down) or 0 (up)
-    ldi     XfrShiftCfg, 0
-    xin     XFR_BANK, Probe, 4
-    add     NewRunning, Probe, XFR_SLOT     // running = the step: 3 up, 29 down
+    ldi     NewDue, 1                       // training due (BiSS-C)
     qbeq    CFG_PROC, SsiAckNew, 0
     ldi     NewDue, 0                       // SSI: the delay is given, nothing to train
     mov     HistPos, SsiAckNew              // and the history holds it (r0, r1 are
@@ -402,25 +402,14 @@ CFG_RING:
     ldi     CfgErr, BISS_CFGERR_NONE
     ldi     CfgState, BISS_STATE_RUNNING
     qba     CFG_REPORT
-CFG_FAIL:
-    ldi     NewProc, 0
-    sbco    NewProc, c28, P_PROC, P_PROC_END - P_PROC // not running
-    ldi     CfgState, BISS_STATE_CFG_ERROR
-CFG_REPORT:
-    sbco    CfgErr, c24, BISS_ST_CFG_ERROR, 8 // CfgErr, CfgState (ST_STATE, the next word)
-    sbco    NewSeq, c24, BISS_ST_CFG_ACK, 4 // then the sequence number: the verdict is out
-    sbco    NewSeq, c28, P_CFG_ACK, 4       // (and its copy beside the frame's set-up, FE)
-    lbco    &Records, c28, P_RECORDS, P_DELAYS - P_RECORDS // slave records into r13..r29
-    jmp     MAIN
 
 // Quot += Num / Den, Num = Num mod Den: repeated subtraction (configuration
 // only). Returns through RET_DIV.
-DIVIDE:
-    qbgt    DIVIDE_DONE, Num, Den
+DIVIDE_TURN:
     sub     Num, Num, Den
     add     Quot, Quot, 1
-    qba     DIVIDE
-DIVIDE_DONE:
+DIVIDE:
+    qble    DIVIDE_TURN, Num, Den           // Den <= Num
     jmp     RET_DIV
 
 // An IEP frame's thresholds for the period CMP0 + 1 = P (IEP_START, when
@@ -432,16 +421,16 @@ DIVIDE_DONE:
 // is flagged), Q at most 65536 (DIVIDE's turns). Then MAIN sets the frame
 // up again. In: IepReg = CMP0 (IEP_START's IepP).
 IEP_PERIOD:
-    lbco    IepFixLo, c28, P_IEP_FIX, 2
+    lbco    Quot, c28, P_IEP_FIX, 4         // 1 - (N + 5 - L): Q - (N + 5 - L) after
     lbco    IepHalf, c28, P_HALF, 2
     lsl     Den, IepHalf, 1                 // 2H
     sub     Num, IepReg, IEP_C0             // Q = (P - 1 - IEP_C0) / 2H + 1
     lsl     IepCap, Den, 16
     min     Num, Num, IepCap
-    ldi     Quot, 1
     jal     RET_DIV, DIVIDE
-    max     Quot, Quot, IepFixLo
-    sub     Quot, Quot, IepFixLo
+    qbbc    IEP_SLACK, Quot, 31             // -(N + 5) < Quot <= 65536 - 3
+    ldi     Quot, 0
+IEP_SLACK:
     sbco    QuotLo, c28, P_IEP_SLACK, SIZE(BissPriv.iep_slack)
     sbco    IepReg, c28, P_IEP_KEY, 4
     jmp     MAIN

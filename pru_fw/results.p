@@ -73,9 +73,11 @@ FINAL_CRC_BIT:
 .assign Byte, r2.b0, r2.b0, Due             // P_TRAIN_DUE: 1 a training, 2 the INIT of a low SL
 .assign Word, r2, r2, DueWord               //   as a word, to set it
 .assign Byte, r2.b0, r2.b0, Idle8           // SLAVE_IDLE: SL's newest samples
-.assign Word, r3, r3, SpLag                 // FRAME_END: the sample point 0..7 and m + LAG:
-.assign Byte, r3.b0, r3.b0, SampPt          //   BISS_R_SAMPLE_POINT,
-.assign Byte, r3.b1, r3.b1, LagPer          //   BISS_R_LAG_PERIODS
+.assign Half, r6.w0, r6.w0, DelayRaw        // FRAME_END: the slot's BISS_R_DELAY_RAW .. LAG_PERIODS
+                                            //   from r6 and r7.w0 (one store): Q',
+.assign Half, r6.w2, r6.w2, Qf              //   Qf', the average the frame was read with,
+.assign Byte, r7.b0, r7.b0, SampPt          //   the sample point 0..7,
+.assign Byte, r7.b1, r7.b1, LagPer          //   and m + LAG
 .assign Word, r3, r3, CrcErrors             // BISS_ST_CRC_ERRORS
 .assign Word, r3, r3, Seq                   // PUBLISH: BISS_ST_SEQ, this publication's number
 .assign Word, r3, r3, TallyAddr             // ABORT_FRAME: the status counter to count in,
@@ -99,7 +101,6 @@ FINAL_CRC_BIT:
 .assign Byte, r5.b1, r5.b1, PfTrigger       //   the trigger,
 .assign Byte, r5.b3, r5.b3, PfNavg          //   frames in the average (bit 7: the last ACK jumped)
 .assign Word, r9, r9, BufStamp              // BUF_STAMP: the timestamp
-.assign Word, r7, r7, Qf                    // Qf', the average the frame was read with
 .assign Word, r8, r8, FeTmp                 // FRAME_END: m + LAG, the CDM, the ACK jump, navg
 .assign Word, r8, r8, Idx                   // FE_SLAVE: the slave's check data in C28's window
                                             // (P_SLAVES + 16 k), and its result's from Base
@@ -141,9 +142,8 @@ FRAME_END:
     add     FeTmp, Qf, 8 * LAG - 4
     lsr     LagPer, FeTmp, 3                // m + LAG = (Qf' - 4) / 8 + LAG (SAMPLE_POINT)
     sbbo    KeptCds, ResBuf, BISS_R_CDS, 1
-    sbbo    KeptAck, ResBuf, BISS_R_DELAY_RAW, 2
-    sbbo    Qf, ResBuf, BISS_R_DELAY_AVG, 2
-    sbbo    SpLag, ResBuf, BISS_R_SAMPLE_POINT, 2
+    mov     DelayRaw, KeptAck
+    sbbo    &DelayRaw, ResBuf, BISS_R_DELAY_RAW, BISS_R_HALF - BISS_R_DELAY_RAW // and AVG, SP, LAG
     lsr     KeptCdm, MA_OUT.b0, MA_BIT      // MA is low after a CDM of 1 (only MA_BIT is
     xor     KeptCdm, KeptCdm, 1             // ever set in R30)
     sbbo    KeptCdm, ResBuf, BISS_R_CDM, 1
@@ -179,7 +179,7 @@ FE_IEP_ON_TIME:
     lsr     FeTmp, KeptAck, 3               // p
     max     FeTmp, FeTmp, LagPer
     add     FeTmp, FeTmp, Busy
-    lbco    IepEnd, c26, IEP_COUNT, 4       // (over SpLag)
+    lbco    IepEnd, c26, IEP_COUNT, 4
     qble    FE_IEP_OVER, FeTmp, PfSlack
     qble    FE_IEP_END, IepEnd, BufStamp    // still in its period
 FE_IEP_OVER:
@@ -362,10 +362,6 @@ FE_ACK_JUMP:
     qbbs    FE_HIST_RESET, PrivNs, 31       // the second in a row
     set     PrivNs, PrivNs, 31
     qba     FE_HIST_KEPT                    // the history stays as it was
-FE_HIST_RESET:
-    ldi     Priv.navg, 0
-    jal     RET_POST, HIST_FILL             // h0 = h1 = h2 = Q'
-    qba     FE_HIST_KEPT
 FE_SLOW:
     jal     RET_SUB, SLAVE_IDLE             // the slave's timeout ends: SL high
 // MA high for at least a half period before any frame's first falling edge:
@@ -402,8 +398,31 @@ ABORT_FRAME:
     jal     RET_STAMP, BUF_STAMP            // ResBuf = the result slot
     ldi     IepEnd, 0                       // an IEP frame next: in the next period from
     xout    XFR_BANK, IepEnd, 4             // now (bank register 3, IEP_START; Slot = 0)
-    jal     RET_POST, PUBLISH
-    jmp     FE_SLOW                         // wait for the slave, MA high, MAIN
+    ldi     RET_POST, FE_SLOW               // PUBLISH, then wait for the slave, MA high, MAIN
+
+// Publish the result slot ResBuf with the flags in ResFlags: the frame
+// number (its publication number), the flags, the slaves and H, then
+// ST_BUF (the slot) and ST_SEQ; then ST_RING_NEXT, the slot BUF_STAMP
+// fills next, one stride on, back to BISS_RING0 past ST_RING_LAST (the
+// geometry the configuration set: CFG_RING). Returns through RET_POST.
+PUBLISH:
+    lbco    Seq, c24, BISS_ST_SEQ, 4
+    add     Seq, Seq, 1
+    sbbo    Seq, ResBuf, BISS_R_FRAME, 4
+    sbbo    ResFlags, ResBuf, BISS_R_FLAGS, 4
+    lbco    &PubNs, c28, P_NSLAVES, P_HALF + SIZE(BissPriv.half) - P_NSLAVES
+    sbbo    PubSlaves, ResBuf, BISS_R_NSLAVES, 1
+    sbbo    PubHalf, ResBuf, BISS_R_HALF, 2
+    sbco    ResBuf, c24, BISS_ST_BUF, 4
+    sbco    Seq, c24, BISS_ST_SEQ, 4        // published
+    sbco    Seq, c24, BISS_ST_FRAMES, 4
+    lbco    &RingStride, c24, BISS_ST_RING_STRIDE, 4 // and ST_RING_LAST
+    add     RingNext, ResBuf, RingStride
+    qbge    PUB_NEXT, RingNext, RingLast
+    ldi     RingNext, BISS_RING0
+PUB_NEXT:
+    sbco    RingNext, c24, BISS_ST_RING_NEXT, 4
+    jmp     RET_POST
 
 // The ACK came but the start bit did not: this frame's ACK position is a
 // measurement all the same, and the average starts afresh from it (an
@@ -465,6 +484,11 @@ SL_INIT_DONE:                               // a training proper next
 // ---- subroutines of the above ----------------------------------------------
 // History Priv.h0, h1, h2 and its sum + 2 (rounding) to P_HIST/P_HSUM;
 // HIST_FILL: all three AckPos (a history started afresh from one position).
+// FE_HIST_RESET: the second ACK jump in a row (FE_ACK_JUMP): h0 = h1 = h2
+// = Q', the average afresh from this frame's, then back to FE_HIST_KEPT.
+FE_HIST_RESET:
+    ldi     Priv.navg, 0
+    ldi     RET_POST, FE_HIST_KEPT
 HIST_FILL:
     mov     Priv.h0, AckPos
     mov     Priv.h1, AckPos
@@ -477,29 +501,6 @@ HIST_SAVE:
     sbco    Priv.hsum, c28, P_HSUM, SIZE(BissPriv.hsum)
     jmp     RET_POST
 
-// Publish the result slot ResBuf with the flags in ResFlags: the frame
-// number (its publication number), the flags, the slaves and H, then
-// ST_BUF (the slot) and ST_SEQ; then ST_RING_NEXT, the slot BUF_STAMP
-// fills next, one stride on, back to BISS_RING0 past ST_RING_LAST (the
-// geometry the configuration set: CFG_RING). Returns through RET_POST.
-PUBLISH:
-    lbco    Seq, c24, BISS_ST_SEQ, 4
-    add     Seq, Seq, 1
-    sbbo    Seq, ResBuf, BISS_R_FRAME, 4
-    sbbo    ResFlags, ResBuf, BISS_R_FLAGS, 4
-    lbco    &PubNs, c28, P_NSLAVES, P_HALF + SIZE(BissPriv.half) - P_NSLAVES
-    sbbo    PubSlaves, ResBuf, BISS_R_NSLAVES, 1
-    sbbo    PubHalf, ResBuf, BISS_R_HALF, 2
-    sbco    ResBuf, c24, BISS_ST_BUF, 4
-    sbco    Seq, c24, BISS_ST_SEQ, 4        // published
-    sbco    Seq, c24, BISS_ST_FRAMES, 4
-    lbco    &RingStride, c24, BISS_ST_RING_STRIDE, 4 // and ST_RING_LAST
-    add     RingNext, ResBuf, RingStride
-    qbge    PUB_NEXT, RingNext, RingLast
-    ldi     RingNext, BISS_RING0
-PUB_NEXT:
-    sbco    RingNext, c24, BISS_ST_RING_NEXT, 4
-    jmp     RET_POST
 
 // Wait for SL high: the slave's timeout has ended. High means the newest
 // 4 samples (IDLE_MASK, half an MA period) are all 1, not just the newest:

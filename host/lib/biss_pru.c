@@ -91,8 +91,28 @@ int biss_pru_image_check(biss_t *h, struct biss_errbuf *e) {
                     h->be.pru, pru, h->be.pru ? "biss_master_pru1" : "biss_master", h->be.pru);
 }
 
+/* The longest slave timeout the ranges allow (pru_fw/README.md, "Start-up
+ * and recovery"). A firmware halted inside a frame leaves its slave inside
+ * it, waiting for more clocks with SL high; if the next firmware's first
+ * frame came within the slave's timeout, the slave would take its clocks as
+ * that frame's (an ACK a period early, the data misread). MA stands still
+ * this long after the halt, so the slave has timed out first. */
+#define SLAVE_TIMEOUT_MAX_US 1000
+
+static int halt_and_settle(biss_t *h) {
+    bool was_on = false;
+    int rc = biss_pru_enabled(h, &was_on);
+    if (!rc) {
+        rc = biss_pru_halt(h);
+    }
+    if (!rc && was_on) {
+        rc = h->be.ops->advance(h->be.ctx, SLAVE_TIMEOUT_MAX_US);
+    }
+    return rc;
+}
+
 int biss_pru_load_and_start(biss_t *h) {
-    int rc = biss_pru_halt(h);
+    int rc = halt_and_settle(h);
     if (h->be.ops->pru_start) {
         /* the kernel loads the ELF (code, identification block) and starts */
         if (!rc) {

@@ -232,6 +232,10 @@ _Static_assert(BISS_CD_PROG + BISS_SHM_CD_PROG_BYTES <= BISS_CD_RESP, "CD progra
  * (CD_PROG_BIT) of step / 2 (at most 511). */
 _Static_assert(BISS_CD_PROG == 0x200 && BISS_SHM_CD_PROG_BYTES <= 0x200,
                "CD_OP's program address is a bit set");
+/* CD_COMMIT forms BISS_CD_RESP + step / 8 by setting bit 10 (CD_RESP_BIT) of
+ * step / 8 (at most 127). */
+_Static_assert(BISS_CD_RESP == 0x400 && BISS_SHM_CD_RESP_BYTES <= 0x400,
+               "CD_COMMIT's answer address is a bit set");
 /* C28 (the private area) is set in 256-byte pages. */
 _Static_assert(BISS_PRIV % 256 == 0 && BISS_PRIV_END - BISS_PRIV == 256, "private area: one page");
 _Static_assert(sizeof(struct biss_shm) == BISS_RING_END, "shared area size");
