@@ -453,27 +453,21 @@ static int parse_cable_ns(const char *arg, double *ns) {
 }
 
 /* Seconds (a decimal fraction allowed) as ms, 1 ms .. a day. */
-static int parse_seconds(const char *arg, unsigned *ms) {
+/* A decimal number in lo..hi, times scale, rounded: --seconds and
+ * --time-limit to ms (0.001..86400 s), --poll-ms to us (0.01..60000 ms). */
+static int parse_scaled(const char *arg, double lo, double hi, double scale, unsigned *out) {
     char *end;
     errno = 0;
     double v = strtod(arg, &end);
-    if (errno || *end || end == arg || !(v >= 0.001 && v <= 86400)) {
+    if (errno || *end || end == arg || !(v >= lo && v <= hi)) {
         return -1;
     }
-    *ms = (unsigned)(v * 1000.0 + 0.5);
+    *out = (unsigned)(v * scale + 0.5);
     return 0;
 }
 
-/* Milliseconds, to the microsecond: 0.01 .. 60000. */
-static int parse_poll_ms(const char *arg, unsigned *us) {
-    char *end;
-    errno = 0;
-    double v = strtod(arg, &end);
-    if (errno || *end || end == arg || !(v >= 0.01 && v <= 60000)) {
-        return -1;
-    }
-    *us = (unsigned)(v * 1000.0 + 0.5);
-    return 0;
+static int parse_seconds(const char *arg, unsigned *ms) {
+    return parse_scaled(arg, 0.001, 86400, 1000.0, ms);
 }
 
 /* BITS[,gray] */
@@ -700,7 +694,7 @@ static int take_command_opt(int c, const char *arg, struct bissctl_opts *o) {
                    ? bissctl_usage_error("--seconds '%s': expected seconds, 0.001..86400", arg)
                    : 0;
     case OPT_POLL_MS:
-        return parse_poll_ms(arg, &o->poll_us)
+        return parse_scaled(arg, 0.01, 60000, 1000.0, &o->poll_us)
                    ? bissctl_usage_error("--poll-ms '%s': expected ms, 0.01..60000", arg)
                    : 0;
     case OPT_FORMAT:

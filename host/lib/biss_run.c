@@ -81,17 +81,7 @@ static int never(biss_t *h, void *arg) {
     return 0;
 }
 
-int biss_run_ms(biss_t *h, unsigned ms) {
-    if (!h) {
-        return BISS_E_INVAL;
-    }
-    pthread_mutex_lock(&h->lock);
-    int rc = biss_wait_for(h, ms, never, NULL);
-    pthread_mutex_unlock(&h->lock);
-    return rc == BISS_E_TIMEOUT ? BISS_OK : rc;
-}
-
-int biss_run_us(biss_t *h, unsigned us) {
+static int run_for(biss_t *h, uint64_t us) {
     if (!h) {
         return BISS_E_INVAL;
     }
@@ -99,6 +89,14 @@ int biss_run_us(biss_t *h, unsigned us) {
     int rc = biss_wait_for_us(h, us, never, NULL);
     pthread_mutex_unlock(&h->lock);
     return rc == BISS_E_TIMEOUT ? BISS_OK : rc;
+}
+
+int biss_run_ms(biss_t *h, unsigned ms) {
+    return run_for(h, (uint64_t)ms * 1000u);
+}
+
+int biss_run_us(biss_t *h, unsigned us) {
+    return run_for(h, us);
 }
 
 /* The status words, refused (named in h->problem) where a running
