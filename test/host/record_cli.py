@@ -2,9 +2,10 @@
 """bissctl record as a user runs it on the emulator (10 MHz, the default
 encoder): every frame into CSV and into .npy, which numpy loads (the
 user's tool, not a reader of ours); the two files of one run hold the same
-frames; seq runs from the configuration's first frame without a gap; a
-host polling every 2 ms (the ring keeps 59 frames, 2 ms bring 88) loses
-frames, says how many, exits 1, and the count is the file's gaps; the
+frames; seq runs from the configuration's first frame without a gap; 10^6
+frames read every ms, none lost; a host polling every 2 ms (the ring keeps
+59 frames, 2 ms bring 88) loses frames, says how many, exits 1, and the
+count is the file's gaps; the
 AD38's chain, whose frames fill the ring in 0.5 ms, polled every 0.25 ms
 loses none; bad command lines and files are refused by name."""
 import csv
@@ -61,6 +62,23 @@ with tempfile.TemporaryDirectory() as tmp:
         int(row["flags"], 16) == int(x["flags"]) and int(row["s0_position"]) == int(x["s0_position"])
         and int(row["s0_data"], 16) == int(x["s0_data"]) for row, x in zip(rows, a))
     check(same, "csv and npy of one run hold the same frames")
+    # 10^6 frames (23 s at 10 MHz, 22.7 us a frame), read every ms: none
+    # lost, seq without a gap, and the encoder model's motion in every step
+    # (it turns at a constant speed: its 12-bit position moves k or k + 1
+    # counts a frame period; test_host_ring compares each position with the
+    # model's own record of that frame)
+    million = os.path.join(tmp, "million.npy")
+    r, s3 = record(million, "--seconds", "23")
+    m = np.load(million)
+    mseq = m["seq"].astype(np.int64)
+    check(r.returncode == 0 and s3 and s3["lost"] == 0 and len(m) == s3["recorded"] >= 1000000,
+          "10^6 frames: %r %r" % (r.stdout, r.stderr[-300:]))
+    check(mseq[0] == 1 and bool(np.all(np.diff(mseq) == 1)), "10^6 frames: seq without a gap")
+    msteps = np.diff(m["s0_position"][1:].astype(np.int64)) % 4096
+    check(bool(np.all(m["valid"][1:] == 1)) and msteps.max() - msteps.min() <= 1 and
+          msteps.min() > 0, "10^6 frames: every one valid, the model's steady motion: %r..%r" %
+          (msteps.min(), msteps.max()))
+    os.remove(million)
     # --format wins over the extension
     other = os.path.join(tmp, "frames.dat")
     r, _ = record(other, "--seconds", "0.01", "--format", "npy")
