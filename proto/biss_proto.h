@@ -231,6 +231,15 @@ int biss_proto_result_get(const struct biss_proto_io *io, unsigned nslaves,
  * BISS_E_SHM_RESULT. */
 int biss_proto_slot_check(uint32_t slot, unsigned nslaves);
 
+/* The publication number of the slot ST_BUF named after ST_SEQ read st_seq:
+ * the slot's own (R_FRAME, slot_frame) when it is one ahead, published with
+ * ST_SEQ not yet bumped (whole: every store to it precedes ST_BUF's; the
+ * emulator's PRU may stand still there while the host reads), else st_seq.
+ * A slot whose frame is neither is a publication further on. */
+static inline uint32_t biss_proto_slot_seq(uint32_t st_seq, uint32_t slot_frame) {
+    return slot_frame == st_seq + 1 ? slot_frame : st_seq;
+}
+
 /* ---- every frame: the result ring (biss_ring.c) ---- */
 
 /* Reads the publications after *cursor (ST_SEQ numbers; 0: from the

@@ -14,12 +14,9 @@ static int rd(const struct biss_proto_io *io, uint32_t off, void *buf, size_t n)
 }
 
 /* The newest publication: its number, its slot and the slave count of its
- * layout, consistent. The slot ST_BUF names holds ST_SEQ's number, or one
- * more while the firmware is between its stores of ST_BUF and ST_SEQ (or
- * published between our reads of them): that slot is whole (every store
- * to it precedes ST_BUF's), so it is the newest. Waiting for ST_SEQ
- * instead would wait for ever on the emulator, whose PRU stands still
- * while the host reads and may stand between those two stores. */
+ * layout, consistent: the slot ST_BUF names holds that number
+ * (biss_proto_slot_seq: ST_SEQ's, or one more while the firmware is
+ * between its stores of ST_BUF and ST_SEQ). */
 struct ring_head {
     uint32_t seq;
     uint32_t slot;
@@ -46,9 +43,8 @@ static int ring_head(const struct biss_proto_io *io, struct ring_head *h) {
             return rc;
         }
         const struct biss_shm_result *r = &hdr;
-        if (r->frame == h->seq + 1) {
-            h->seq = r->frame; /* published, ST_SEQ not yet bumped */
-        } else if (r->frame != h->seq) {
+        h->seq = biss_proto_slot_seq(h->seq, r->frame);
+        if (r->frame != h->seq) {
             continue; /* publications in between */
         }
         if (r->nslaves == 0 || biss_proto_slot_check(buf, r->nslaves) != BISS_OK) {

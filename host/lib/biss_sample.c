@@ -13,10 +13,9 @@
 
 /* Reads ST_SEQ, ST_BUF, that buffer, ST_SEQ again; equal sequence numbers
  * mean the firmware did not start refilling the buffer meanwhile (it only
- * does so after publishing the other one, which bumps ST_SEQ). The slot
- * may be the one being published, whole, with ST_SEQ not yet bumped: its
- * own number (R_FRAME, one more) is then the sample's seq, as the ring
- * reader gives it. */
+ * does so after publishing the other one, which bumps ST_SEQ). The
+ * sample's seq is the slot's publication number (biss_proto_slot_seq), as
+ * the ring reader gives it. */
 static int read_consistent(biss_t *h, struct biss_shm_result *r, uint32_t *seq) {
     struct biss_proto_io io = biss_io(h);
     unsigned n = h->configured ? h->cfg.nslaves : BISS_MAX_SLAVES;
@@ -40,7 +39,7 @@ static int read_consistent(biss_t *h, struct biss_shm_result *r, uint32_t *seq) 
             return rc;
         }
         if (s1 == s2) {
-            *seq = r->frame == s1 + 1 ? r->frame : s1;
+            *seq = biss_proto_slot_seq(s1, r->frame);
             return BISS_OK;
         }
     }
