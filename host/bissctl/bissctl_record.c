@@ -18,7 +18,6 @@ struct rec_file {
     bool npy;
     unsigned nslaves;
     uint64_t rows;
-    long header_bytes; /* npy: the header's length, rewritten at the end */
 };
 
 /* ---- NumPy .npy, format version 1.0 (numpy.lib.format): the magic
@@ -29,7 +28,8 @@ struct rec_file {
 #define NPY_PREFIX 10
 #define NPY_ALIGN  64
 
-/* The fields of a row, as descr names them, and their sizes. */
+/* The columns of a row, as the CSV header and npy's descr name them, and
+ * their npy types. */
 static const struct {
     const char *name, *type;
 } frame_fields[] = {{"seq", "<u4"}, {"timestamp", "<u4"}, {"flags", "<u4"}, {"valid", "|u1"}};
@@ -79,7 +79,6 @@ static int npy_write_header(struct rec_file *r) {
         fwrite(h, 1, (size_t)hlen, r->f) != (size_t)hlen) {
         return -1;
     }
-    r->header_bytes = NPY_PREFIX + hlen;
     return fseek(r->f, 0, SEEK_END);
 }
 
@@ -110,9 +109,13 @@ static int npy_row(struct rec_file *r, const struct biss_sample *s) {
 
 /* ---- CSV: a header line, then one line a frame ---- */
 static int csv_header(struct rec_file *r) {
-    fprintf(r->f, "seq,timestamp,flags,valid");
-    for (unsigned i = 0; i < r->nslaves; i++) {
-        fprintf(r->f, ",s%u_position,s%u_data,s%u_error,s%u_warning,s%u_crc_ok", i, i, i, i, i);
+    for (size_t i = 0; i < sizeof frame_fields / sizeof frame_fields[0]; i++) {
+        fprintf(r->f, "%s%s", i ? "," : "", frame_fields[i].name);
+    }
+    for (unsigned s = 0; s < r->nslaves; s++) {
+        for (size_t i = 0; i < sizeof slave_fields / sizeof slave_fields[0]; i++) {
+            fprintf(r->f, ",s%u_%s", s, slave_fields[i].name);
+        }
     }
     return fprintf(r->f, "\n") < 0 ? -1 : 0;
 }
