@@ -146,6 +146,12 @@ int biss_open_params_check(const struct biss_open_params *p, struct biss_errbuf 
  * assembled for h's PRU. */
 int biss_read_image(biss_t *h, const char *path, bool master, struct biss_errbuf *e);
 
+/* A published result as a sample (seq its publication number): refused
+ * as BISS_E_SHM_RESULT, named in h->problem, where the firmware never
+ * writes such words; the host's safety checks run on it. Handle locked. */
+int biss_result_to_sample(biss_t *h, const struct biss_shm_result *r, uint32_t seq,
+                          struct biss_sample *s);
+
 /* Waits (handle locked) until done(h, arg) returns nonzero or timeout_ms
  * of backend time passed; returns 0, BISS_E_TIMEOUT, or done's error if
  * it returned a negative value. */

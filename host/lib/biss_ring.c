@@ -22,19 +22,6 @@ static int ring_start(biss_t *h) {
     return BISS_OK;
 }
 
-static int decode(biss_t *h, const struct biss_shm_result *r, struct biss_sample *s) {
-    const char *why = biss_result_problem(&h->cfg, h->configured, r);
-    if (why) {
-        h->problem = why; /* the firmware never writes it: junk, named */
-        return BISS_E_SHM_RESULT;
-    }
-    int rc = biss_sample_decode(&h->cfg, h->configured, r->frame, r, s);
-    if (!rc && h->configured) {
-        biss_safety_check(&h->cfg, &h->safety, s);
-    }
-    return rc;
-}
-
 /* Chunks of at most one ring's worth (the protocol layer's copy). */
 #define CHUNK BISS_RING_SLOTS(1)
 
@@ -52,7 +39,7 @@ static int ring_read_locked(biss_t *h, struct biss_sample *out, unsigned max, un
         rc = biss_proto_ring_read(&io, &h->ring_cursor, raw, want, &got, &gone);
         *lost += gone;
         for (unsigned i = 0; !rc && i < got; i++) {
-            rc = decode(h, &raw[i], &out[*n]);
+            rc = biss_result_to_sample(h, &raw[i], raw[i].frame, &out[*n]);
             *n += !rc;
         }
         if (got + gone < want) {

@@ -46,6 +46,20 @@ static int read_consistent(biss_t *h, struct biss_shm_result *r, uint32_t *seq) 
     return BISS_E_RETRY;
 }
 
+int biss_result_to_sample(biss_t *h, const struct biss_shm_result *r, uint32_t seq,
+                          struct biss_sample *s) {
+    const char *why = biss_result_problem(&h->cfg, h->configured, r);
+    if (why) {
+        h->problem = why; /* the firmware never writes it: junk, named */
+        return BISS_E_SHM_RESULT;
+    }
+    int rc = biss_sample_decode(&h->cfg, h->configured, seq, r, s);
+    if (!rc && h->configured) {
+        biss_safety_check(&h->cfg, &h->safety, s);
+    }
+    return rc;
+}
+
 static int read_sample_locked(biss_t *h, struct biss_sample *s) {
     struct biss_shm_result r;
     uint32_t seq = 0;
@@ -53,18 +67,7 @@ static int read_sample_locked(biss_t *h, struct biss_sample *s) {
     if (!rc && h->configured && h->cfg_pub_seq_valid && (int32_t)(seq - h->cfg_pub_seq) <= 0) {
         return BISS_E_NO_SAMPLE; /* published under the previous configuration */
     }
-    const char *why = rc ? NULL : biss_result_problem(&h->cfg, h->configured, &r);
-    if (why) {
-        h->problem = why; /* the firmware never writes it: junk, named */
-        return BISS_E_SHM_RESULT;
-    }
-    if (!rc) {
-        rc = biss_sample_decode(&h->cfg, h->configured, seq, &r, s);
-    }
-    if (!rc && h->configured) {
-        biss_safety_check(&h->cfg, &h->safety, s);
-    }
-    return rc;
+    return rc ? rc : biss_result_to_sample(h, &r, seq, s);
 }
 
 int biss_read_sample(biss_t *h, struct biss_sample *s) {
