@@ -216,6 +216,8 @@ int biss_proto_id_put(const struct biss_proto_io *io, const struct biss_shm_id *
                       const uint8_t rsc[16]);
 /* ST_PRU: the PRU (0 or 1) the running image was assembled for. */
 int biss_proto_fw_pru_get(const struct biss_proto_io *io, uint32_t *pru);
+/* ST_OFF_GRID: the frames refused for an SL edge off the bit grid. */
+int biss_proto_off_grid_get(const struct biss_proto_io *io, uint32_t *frames);
 /* CMD_TRIGGER: read (nonzero while a frame is pending) and set. */
 int biss_proto_trigger_get(const struct biss_proto_io *io, uint32_t *pending);
 int biss_proto_trigger(const struct biss_proto_io *io);

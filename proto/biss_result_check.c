@@ -35,6 +35,13 @@ static const uint32_t ended_flags[] = {
     BISS_RF_VALID | BISS_RF_CRC_ERROR | BISS_RF_SMA,
     BISS_RF_ACK_JUMP,
     BISS_RF_ACK_JUMP | BISS_RF_CRC_ERROR,
+    /* an edge off the bit grid: as a valid frame's flags, VALID left out */
+    BISS_RF_OFF_GRID,
+    BISS_RF_OFF_GRID | BISS_RF_CRC_ERROR,
+    BISS_RF_OFF_GRID | BISS_RF_SMA,
+    BISS_RF_OFF_GRID | BISS_RF_CRC_ERROR | BISS_RF_SMA,
+    BISS_RF_OFF_GRID | BISS_RF_ACK_JUMP,
+    BISS_RF_OFF_GRID | BISS_RF_ACK_JUMP | BISS_RF_CRC_ERROR,
 };
 
 static const uint32_t early_flags[] = {

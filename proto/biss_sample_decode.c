@@ -67,6 +67,7 @@ int biss_sample_decode(const struct biss_config *c, bool configured, uint32_t se
     s->training = (r->flags & BISS_RF_TRAINING) != 0;
     s->sma = (r->flags & BISS_RF_SMA) != 0;
     s->ack_jump = (r->flags & BISS_RF_ACK_JUMP) != 0;
+    s->off_grid = (r->flags & BISS_RF_OFF_GRID) != 0;
     s->timestamp = r->timestamp;
     s->proc_clocks = r->proc_clocks;
     s->cds = r->cds;

@@ -353,13 +353,16 @@ CFG_IEP_OK:
     // H = 10 (DelayWord = 0), else the routine's entry for L = H - 11 cycles
     // (DelayEntry), DelayGate = 1, and its 4-cycle turns (DelayTurns); the
     // frame keeps this word in Tails.
+    // From L = GRID_MIN_L on, every tail checks a bit's samples (DLY_CHK).
     qbeq    CFG_DELAY_SAVE, CfgHalf, 10     // (DelayWord is 0: the probe's last R0)
     ldi     DelayGate, 1
     sub     DelayL, CfgHalf, 11             // L >= 1
-    ldi     DelayBase, DLY_S1 + 1           // short: entry DLY_S1 + 1 - L
-    qbge    CFG_DELAY_ENTRY, DelayL, 7
-    sub     DelayL, DelayL, 2               // long: L - 2 = 4 n + r, n >= 1 (L >= 8)
-    lsr     DelayTurns, DelayL, 2           // n <= (1013 - 2) / 4 = 252
+    ldi     DelayBase, DLY_S1 + 1           // short, no check (H 12, 14, 15): DLY_S1 + 1 - L
+    qbgt    CFG_DELAY_ENTRY, DelayL, GRID_MIN_L
+    ldi     DelayBase, DLY_CHK + GRID_MIN_L // short, checked: DLY_CHK + GRID_MIN_L - L
+    qbge    CFG_DELAY_ENTRY, DelayL, GRID_MIN_L + 5
+    sub     DelayL, DelayL, GRID_MIN_L + 2  // long: L - 7 = 4 n + r, n >= 1 (L >= 11)
+    lsr     DelayTurns, DelayL, 2           // n <= (1013 - 7) / 4 = 251
     and     DelayL, DelayL, 3
     ldi     DelayBase, DLY_L0               // entry DLY_L0 - r
 CFG_DELAY_ENTRY:
@@ -438,9 +441,15 @@ IEP_SLACK:
 
 // The shared delay of the clocked periods: called by `jal RET_LEAF, entry`,
 // it costs from its entry to its return included: DLY_Sk k cycles (k =
-// 1..7), DLY_Lr 2 + r + 4 DlyTurns cycles (r = 0..3, DlyTurns >= 1, so the turn
-// counter never starts at 0 nor wraps). Single-cycle instructions only
-// (docs/pru-facts.md §3): no LOOP. It writes DlyCount and the carry.
+// 1..7), DLY_Ck 5 + k cycles (k = 0..5; DLY_C0 is DLY_CHK), DLY_Lr 7 + r + 4
+// DlyTurns cycles (r = 0..3, DlyTurns >= 1, so the turn counter never starts
+// at 0 nor wraps). The DLY_C and DLY_L entries end in the bit-grid check
+// (GRID_CHECK): the tails of every period take them from H = 16 on (CFG's
+// DelayEntry), so every bit read there has its next bit's samples checked,
+// twice (both halves: the marks only accumulate). The DLY_S entries, which
+// the periods also call by name for a fixed few cycles, check nothing.
+// Single-cycle instructions only (docs/pru-facts.md §3): no LOOP. It writes
+// DlyCount and the carry, and GridMarks from the DLY_C and DLY_L entries.
 .using clocked
 DLY_S7:
     PAD
@@ -469,5 +478,18 @@ DLY_TURN:                                   // 4 cycles a turn
     PAD
     PAD
     qbne    DLY_TURN, DlyCount, 0
+    qba     DLY_CHK
+DLY_C5:
+    PAD
+DLY_C4:
+    PAD
+DLY_C3:
+    PAD
+DLY_C2:
+    PAD
+DLY_C1:
+    PAD
+DLY_CHK:
+    GRID_CHECK                              // 4 cycles
     jmp     RET_LEAF
 .leave clocked

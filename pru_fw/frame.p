@@ -243,7 +243,7 @@ START_FOUND:                                // t = 6
     MA_RISE
     ldi     Poly, 0                         // 1  (its w0 stays 0 from here on)
     NEXT_CLOCK                              // 2..5
-    PAD                                     // 6
+    ldi     GridMarks, 0                    // 6  (WAIT_ACK's raw samples marked it)
     ldi     Crc, 0                          // 7  (its w0 stays 0 from here on)
     DELAY
     PAD

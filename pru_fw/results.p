@@ -79,6 +79,7 @@ FINAL_CRC_BIT:
 .assign Byte, r7.b0, r7.b0, SampPt          //   the sample point 0..7,
 .assign Byte, r7.b1, r7.b1, LagPer          //   and m + LAG
 .assign Word, r3, r3, CrcErrors             // BISS_ST_CRC_ERRORS
+.assign Word, r3, r3, OffGridFrames         // BISS_ST_OFF_GRID
 .assign Word, r3, r3, Seq                   // PUBLISH: BISS_ST_SEQ, this publication's number
 .assign Word, r3, r3, TallyAddr             // ABORT_FRAME: the status counter to count in,
 .assign Word, r4, r4, TallyVal              //   its value
@@ -116,6 +117,7 @@ FINAL_CRC_BIT:
 .assign Word, r3, r3, IepEnd                // FRAME_END: the count at its end, to bank
                                             // register 3 (IEP_START); 0 after an overrun
 .assign Word, r12, r12, ResFlags            // the result's flags, BISS_RF_*
+.assign Byte, r11.b3, r11.b3, GridSeen      // the clocked part's GridMarks (until Kept)
 .assign Half, r11.w0, r11.w0, HoldLeft      // MA_HOLD: turns of 2 cycles left
 .assign PrivRun, r3, r9, Priv               // FRAME_REGS' burst: the history (r4..r6), P_NSLAVES (r7)
 .assign Half, r10.w0, r10.w0, FeSsi         //   and after it P_SSI's ACK position (0: BiSS-C),
@@ -132,6 +134,10 @@ FINAL_CRC_BIT:
 // (POST).
 #define RES_BIAS        (P_SLAVES - BISS_R_SLAVE0)
 FRAME_END:
+    ldi     ResFlags, BISS_RF_VALID
+    qbeq    FE_ON_GRID, GridSeen, 0         // a bit's samples disagreed (GRID_CHECK):
+    ldi     ResFlags, BISS_RF_OFF_GRID      // an edge off the bit grid, not valid
+FE_ON_GRID:
     mov     Kept, FrameR1                   // Cds and AckPos, for after
     jal     RET_STAMP, BUF_STAMP            // ResBuf; the timestamp, the busy clocks
     rsb     SampPt, Shift, 31 - 8 * LAG     // sample point 0..7 within the bit
@@ -152,11 +158,11 @@ FRAME_END:
     // or an average spoilt by one) or the line changed: the frame is not
     // valid, whatever its CRC says (the history, after the publication,
     // leaves it out). SMA: the average is full with this frame.
-    ldi     ResFlags, BISS_RF_VALID
     sub     FeTmp, KeptAck, Qf
     add     FeTmp, FeTmp, 4
     qbge    FE_NO_JUMP, FeTmp, 8            // Q' - Qf' + 4 in 0..8: no jump
-    xor     ResFlags, ResFlags, BISS_RF_VALID | BISS_RF_ACK_JUMP
+    clr     ResFlags, ResFlags, 0           // BISS_RF_VALID
+    set     ResFlags, ResFlags, 6           // BISS_RF_ACK_JUMP
     qba     FE_FLAGS
 FE_NO_JUMP:
     qbbc    FE_FLAGS, PfNavg, 1             // 2 or 3 (at most) before: 3 with this one
@@ -226,6 +232,11 @@ FE_EW_DONE:
     add     CrcErrors, CrcErrors, 1
     sbco    CrcErrors, c24, BISS_ST_CRC_ERRORS, 4
 FE_NO_CRC_ERR:
+    qbbc    FE_NO_OFF_GRID, ResFlags, 8     // BISS_RF_OFF_GRID
+    lbco    OffGridFrames, c24, BISS_ST_OFF_GRID, 4
+    add     OffGridFrames, OffGridFrames, 1
+    sbco    OffGridFrames, c24, BISS_ST_OFF_GRID, 4
+FE_NO_OFF_GRID:
     mov     FrameR1, Kept                   // the CDM sent, Cds, AckPos
     jal     RET_POST, CD_COMMIT             // Cds in; and CD_PREPARE: the next frame's CDM
     // The history and the next frame's set-up from one burst (FRAME_REGS'

@@ -18,6 +18,7 @@ START:
     set     MA_OUT, MA_OUT, MA_BIT          // MA idles high
     // status and private areas start clear: stores of r0.. (zero)
     sbco    Zeros, c24, BISS_ST_SEQ, BISS_ST_END - BISS_ST_SEQ
+    sbco    Zeros, c24, BISS_ST_OFF_GRID, BISS_ST_LINK_END - BISS_ST_OFF_GRID
     ldi     Addr, BISS_PRIV
     loop    CLEAR_PRIV, (BISS_PRIV_END - BISS_PRIV) / 64
     sbbo    Zeros, Addr, 0, 64

@@ -92,17 +92,17 @@ static bool words_right(struct fw_check *fc, const struct biss_sample *smp) {
     return true;
 }
 
-/* A frame the firmware refused for its ACK (BISS_RF_ACK_JUMP): was every
- * word right all the same? Then the rule cost a good frame. */
-static void judge_refused(struct fw_check *fc, const struct biss_shm_result *res) {
+/* A frame the firmware refused for its ACK (BISS_RF_ACK_JUMP) or an edge
+ * off the bit grid (BISS_RF_OFF_GRID): was every word right all the same?
+ * Then the rule cost a good frame. */
+static bool refused_good(struct fw_check *fc, const struct biss_shm_result *res) {
     /* a refused frame is not VALID, so decode its words as if it were */
     struct biss_shm_result as_valid = *res;
-    as_valid.flags = (as_valid.flags & ~(uint32_t)BISS_RF_ACK_JUMP) | BISS_RF_VALID;
+    as_valid.flags =
+        (as_valid.flags & ~(uint32_t)(BISS_RF_ACK_JUMP | BISS_RF_OFF_GRID)) | BISS_RF_VALID;
     struct biss_sample smp;
-    if (biss_sample_decode(&fc->cfg, true, 0, &as_valid, &smp) == BISS_OK &&
-        words_right(fc, &smp)) {
-        fc->ack_jump_good++;
-    }
+    return biss_sample_decode(&fc->cfg, true, 0, &as_valid, &smp) == BISS_OK &&
+           words_right(fc, &smp);
 }
 
 /* A decoded publication as struct fw_frame. */
@@ -134,7 +134,11 @@ static void count(struct fw_check *fc, const struct biss_shm_result *res, struct
     fc->training += smp->training;
     if (smp->ack_jump) {
         fc->ack_jumps++;
-        judge_refused(fc, res);
+        fc->ack_jump_good += refused_good(fc, res);
+    }
+    if (smp->off_grid) {
+        fc->off_grid++;
+        fc->off_grid_good += refused_good(fc, res);
     }
     fc->delay_frames += smp->valid || smp->training;
     fc->delay_raw = smp->delay.raw;

@@ -42,6 +42,8 @@ struct fw_check {
     uint64_t no_slave, proc_errors, training;
     uint64_t ack_jumps;     /* frames refused for an ACK away from the average */
     uint64_t ack_jump_good; /* of those, frames whose every word was right: good frames lost */
+    uint64_t off_grid;      /* frames refused for an SL edge off the bit grid */
+    uint64_t off_grid_good; /* of those, frames whose every word was right */
     uint64_t delay_frames;  /* publications with a line delay (valid or training) */
     uint64_t unmatched;     /* valid frames whose slave record was gone */
     uint32_t last_flags;

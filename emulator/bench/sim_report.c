@@ -223,6 +223,8 @@ static void add_firmware(cJSON *j, struct bench *b, const struct fw_check *fw) {
     cJSON_AddNumberToObject(f, "processing_errors", (double)fw->proc_errors);
     cJSON_AddNumberToObject(f, "ack_jumps", (double)fw->ack_jumps);
     cJSON_AddNumberToObject(f, "ack_jumps_good_lost", (double)fw->ack_jump_good);
+    cJSON_AddNumberToObject(f, "off_grid", (double)fw->off_grid);
+    cJSON_AddNumberToObject(f, "off_grid_good_lost", (double)fw->off_grid_good);
     cJSON_AddNumberToObject(f, "training_frames", (double)fw->training);
     if (fw->delay_frames) {
         cJSON_AddNumberToObject(f, "line_delay_ns", sim_fw_line_delay_ns(fw));
@@ -554,10 +556,11 @@ void sim_print_text(const struct sim_result *r) {
            (unsigned long long)(fw ? fw->frames : st->frames), stop_name(r->why));
     if (fw) {
         printf("checked              %llu CRC errors, %llu position mismatches, %llu no-slave, "
-               "%llu processing-time errors, %llu refused for an ACK jump\n",
+               "%llu processing-time errors, %llu refused for an ACK jump, %llu for an edge "
+               "off the bit grid\n",
                (unsigned long long)fw->crc_errors, (unsigned long long)fw->mismatches,
                (unsigned long long)fw->no_slave, (unsigned long long)fw->proc_errors,
-               (unsigned long long)fw->ack_jumps);
+               (unsigned long long)fw->ack_jumps, (unsigned long long)fw->off_grid);
         print_wrong(fw);
         if (fw->delay_frames) {
             /* one frame's figures, the last one's: the firmware measures to 1/8 bit and

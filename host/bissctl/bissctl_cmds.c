@@ -88,6 +88,7 @@ static void print_sample(const struct biss_sample *s, const struct biss_config *
            : s->no_slave   ? "no-slave"
            : s->proc_error ? "proc-error"
            : s->ack_jump   ? "ack-jump"
+           : s->off_grid   ? "off-grid"
            : s->misframed  ? "misframed"
                            : "invalid");
     if (s->flags & BISS_RF_IEP_LATE) { /* off its IEP period's count (BISS_RF_IEP_LATE) */
@@ -113,8 +114,8 @@ static void print_sample(const struct biss_sample *s, const struct biss_config *
 }
 
 static void print_stats(const struct biss_stats *st) {
-    printf("frames=%u crc_errors=%u no_slave=%u proc_errors=%u training=%u\n", st->frames,
-           st->crc_errors, st->no_slave, st->proc_errors, st->training);
+    printf("frames=%u crc_errors=%u no_slave=%u proc_errors=%u training=%u off_grid=%u\n",
+           st->frames, st->crc_errors, st->no_slave, st->proc_errors, st->training, st->off_grid);
 }
 
 /* The safety checks' counts over the frames this run read, for the

@@ -11,6 +11,7 @@ static const char *state(const struct biss_sample *s) {
            : s->no_slave   ? "no-slave"
            : s->proc_error ? "proc-error"
            : s->ack_jump   ? "ack-jump"
+           : s->off_grid   ? "off-grid"
            : s->misframed  ? "misframed"
                            : "invalid";
 }

@@ -292,6 +292,7 @@ struct biss_status {
 
 struct biss_stats {
     uint32_t frames, crc_errors, no_slave, proc_errors, training;
+    uint32_t off_grid; /* frames refused for an SL edge off the bit grid (BISS_ST_OFF_GRID) */
 };
 
 int biss_get_status(biss_t *h, struct biss_status *st);

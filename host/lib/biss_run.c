@@ -160,8 +160,13 @@ int biss_get_stats(biss_t *h, struct biss_stats *st) {
         return BISS_E_INVAL;
     }
     struct biss_shm_status s;
+    uint32_t off_grid = 0;
     pthread_mutex_lock(&h->lock);
     int rc = status_words(h, &s);
+    if (!rc) {
+        struct biss_proto_io io = biss_io(h);
+        rc = biss_proto_off_grid_get(&io, &off_grid);
+    }
     pthread_mutex_unlock(&h->lock);
     if (rc) {
         return rc;
@@ -171,5 +176,6 @@ int biss_get_stats(biss_t *h, struct biss_stats *st) {
     st->no_slave = s.no_slave;
     st->proc_errors = s.proc_errors;
     st->training = s.training;
+    st->off_grid = off_grid;
     return BISS_OK;
 }

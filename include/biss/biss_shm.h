@@ -39,7 +39,7 @@
 #ifndef BISS_SHM_H
 #define BISS_SHM_H
 
-#define BISS_SHM_VERSION        2       // 2: the result ring (1: two result buffers)
+#define BISS_SHM_VERSION        3       // 3: ST_OFF_GRID (2: the result ring; 1: two buffers)
 #define BISS_DRAM_BYTES         4096    // fits AM437x ICSS0's 4 KB data RAM
 
 // ---- limits ------------------------------------------------------------
@@ -134,6 +134,10 @@
                                         //      slaves x BISS_R_SLAVE_SIZE
 #define BISS_ST_RING_LAST       0x0CA   // u16: the last slot's highest start, BISS_RING_END - stride
 #define BISS_ST_RING_END        0x0CC
+
+// ---- link quality (firmware writes on each frame refused for it) ---------
+#define BISS_ST_OFF_GRID        0x0CC   // u32: frames with an SL edge off the bit grid (BISS_RF_OFF_GRID)
+#define BISS_ST_LINK_END        0x0D0
 
 // (control communication, continued: the program and its answers)
 #define BISS_CD_PROG            0x200   // 512 bytes
@@ -230,6 +234,10 @@
                                         // too short for the frame. With VALID and any flag it
                                         // may have; every period without a frame lies next to
                                         // a frame flagged so
+#define BISS_RF_OFF_GRID        0x100   // SL's samples around a bit's sample point disagreed (an
+                                        // edge off the bit grid: a glitch, a clock gained or
+                                        // lost), so never VALID; checked from H = 16 (below
+                                        // 10 MHz), never at H = 10 (pru_fw/README, "Bit grid")
 #define BISS_RF_SL_INIT         0x200   // SL stayed low: iC-MB4's INIT sent (two clocks, no
                                         // measurement), with NO_SLAVE; a training follows
 

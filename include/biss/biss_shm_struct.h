@@ -114,7 +114,8 @@ struct biss_shm {
     uint32_t ring_next;
     uint16_t ring_stride;
     uint16_t ring_last;
-    uint8_t gap_ring[BISS_PRIV - BISS_ST_RING_END];
+    uint32_t st_off_grid;
+    uint8_t gap_ring[BISS_PRIV - BISS_ST_LINK_END];
     uint8_t priv[BISS_PRIV_END - BISS_PRIV];
     uint8_t gap_priv[BISS_CD_PROG - BISS_PRIV_END];
     uint8_t cd_prog[BISS_SHM_CD_PROG_BYTES];
@@ -167,7 +168,8 @@ BISS_SHM_AT(cmd_trigger, BISS_CMD_TRIGGER);
 BISS_SHM_AT(ring_next, BISS_ST_RING_NEXT);
 BISS_SHM_AT(ring_stride, BISS_ST_RING_STRIDE);
 BISS_SHM_AT(ring_last, BISS_ST_RING_LAST);
-BISS_SHM_AT(gap_ring, BISS_ST_RING_END);
+BISS_SHM_AT(st_off_grid, BISS_ST_OFF_GRID);
+BISS_SHM_AT(gap_ring, BISS_ST_LINK_END);
 BISS_SHM_AT(st_pru, BISS_ST_PRU);
 
 BISS_SHM_AT(st, BISS_ST_MAGIC);

@@ -293,6 +293,9 @@ struct biss_sample {
     bool valid, crc_error, no_slave, proc_error, training, sma;
     bool ack_jump;         /* the ACK lay over half a bit from the average: bits read at
                               the wrong place, so not valid (a glitch, or the line changed) */
+    bool off_grid;         /* SL's samples around a bit's sample point disagreed: an edge
+                              off the bit grid, so not valid (checked below 10 MHz only:
+                              BISS_RF_OFF_GRID) */
     bool misframed;        /* host check: an ew_static slave's nE or nW read active, or a
                               max_speed slave's position jumped further than it can move,
                               so its bits were read wrong; valid is cleared (flags keep

@@ -143,7 +143,7 @@ pairs = [
                          "--freq", "1000000", "--frames", "40"]),
     ("pair-noise", ["--scenario", os.path.join(SCEN, "noise-both-30khz-jitter-two-pru.json"),
                     "--pru1-scenario", os.path.join(SCEN, "noise-both-30khz-jitter-two-pru.json"),
-                    "--seed", "3", "--frames", "60"]),
+                    "--seed", "3", "--frames", "40", "--max-ms", "100"]),
 ]
 for name, args in pairs:
     ref, ref_skip = run_pair(name, args, [])

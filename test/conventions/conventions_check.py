@@ -111,7 +111,7 @@ for cmd in ("info", "stats"):
     counts = {}
     for ms in ("2", "20"):
         r = run("bissctl", "--target", "emu", cmd, "--ms", ms)
-        m = re.search(r"^frames=(\d+) crc_errors=0 no_slave=0 proc_errors=0 training=1$", r.stdout, re.M)
+        m = re.search(r"^frames=(\d+) crc_errors=0 no_slave=0 proc_errors=0 training=1 off_grid=0$", r.stdout, re.M)
         counts[ms] = int(m.group(1)) if m else 0
         check(r.returncode == 0 and m and counts[ms] > 1 and
               ("emulated: counts after %s ms of simulated time" % ms) in r.stdout,

@@ -1,7 +1,8 @@
 /*
  * test_fw_timing.c - the static timing proof of the firmware's clocked part
  * (issue 13 item 2): every clocked block and every path through it, at
- * H = 10, 15, 25, 100 and 1024, stepped in the emulator from the block's
+ * H = 10, 15, 16, 20, 22, 25, 100 and 1024 (16..22: the bit-grid check's
+ * short and shortest long tails), stepped in the emulator from the block's
  * label with R30 writes timed: exactly H between MA's falling and rising
  * edge, 2H per period (fw_timing.h says how, and what a failure names).
  *
@@ -29,7 +30,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const unsigned halves[] = {10, 15, 25, 100, 1024};
+static const unsigned halves[] = {10, 15, 16, 20, 22, 25, 100, 1024};
 #define N_HALVES (sizeof(halves) / sizeof(halves[0]))
 
 static struct fw fw;

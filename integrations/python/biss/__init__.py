@@ -111,14 +111,15 @@ class Slave:
 
 class Sample:
     """One published frame (struct biss_sample): frame, seq, flags, valid,
-    crc_error, no_slave, proc_error, training, misframed, timestamp (IEP
+    crc_error, no_slave, proc_error, training, ack_jump, off_grid (an SL
+    edge off the bit grid, below 10 MHz), misframed, timestamp (IEP
     count of the first MA edge), proc_clocks, cds, sample_point,
     lag_periods, line_delay_ns; per slave positions, data, crc_ok, errors
     (nE), warnings (nW)."""
 
     SCALARS = ("seq", "frame", "flags", "valid", "crc_error", "no_slave", "proc_error", "training",
-               "sma", "ack_jump", "misframed", "timestamp", "proc_clocks", "cds", "sample_point",
-               "lag_periods", "nslaves", "safety")
+               "sma", "ack_jump", "off_grid", "misframed", "timestamp", "proc_clocks", "cds",
+               "sample_point", "lag_periods", "nslaves", "safety")
 
     def __init__(self, s):
         for k in self.SCALARS:
@@ -359,11 +360,11 @@ class Master:
 
     def stats(self):
         """biss_get_stats as a dict: frames, crc_errors, no_slave,
-        proc_errors, training."""
+        proc_errors, training, off_grid."""
         st = ffi.new("struct biss_stats *")
         _check(lib.biss_get_stats(self._handle(), st), "stats")
         return {k: getattr(st, k) for k in ("frames", "crc_errors", "no_slave", "proc_errors",
-                                            "training")}
+                                            "training", "off_grid")}
 
     # ---- discovery ------------------------------------------------------------
     def probe(self, freq_hz=1000000, frames=0, read_regs=True):
