@@ -156,6 +156,25 @@ struct biss_safety_state {
     struct biss_safety_stats stats;
 };
 
+/* Link quality (biss_link.c): the warning's block and count, the block in
+ * progress, the last frame judged, the counts. */
+struct biss_link_state {
+    uint32_t window, warn;
+    uint32_t block_frames, block_marginal;
+    bool warning, seen;
+    uint32_t last_frame;
+    struct biss_link_stats stats;
+};
+/* Counts cleared; the warning after `warn` marginal frames in a block of
+ * `window` (0: BISS_LINK_WARN, BISS_LINK_WINDOW). */
+void biss_link_init(struct biss_link_state *st, uint32_t window, uint32_t warn);
+/* A decoded sample's eye opening, eighths of a bit; -1 when its ACK was
+ * not measured (no slave, aborted, training). */
+int biss_link_eye(const struct biss_sample *s);
+/* Judges a decoded sample: sets s->link_eye and s->link_warning, counts
+ * (a frame read again keeps its verdict and is not counted twice). */
+void biss_link_check(struct biss_link_state *st, struct biss_sample *s);
+
 /* The safety fields of a configuration against its layout: 0,
  * BISS_E_SAFETY_LIFE, BISS_E_SAFETY_PAIR, BISS_E_SAFETY_CRC or
  * BISS_E_SAFETY_EW or BISS_E_SAFETY_SPEED. */

@@ -94,8 +94,9 @@ struct options {
     const char *svg;
     uint64_t svg_frame;
     int json;
-    double max_ms;   /* simulated time limit, 0: derived */
-    biss_cd_prog cd; /* a control frame to send, when cd_set */
+    double max_ms;                   /* simulated time limit, 0: derived */
+    uint64_t link_warn, link_window; /* --link-warn K[,N] (0: the defaults) */
+    biss_cd_prog cd;                 /* a control frame to send, when cd_set */
     int cd_set;
     const char *cd_what; /* the option that asked for it */
     /* fast paths switched off (--no-fast-path): the core's in its
@@ -182,6 +183,9 @@ static void usage(FILE *f) {
                "                               reads active is misframed, not valid\n"
                "  --check-speed S,CPS          slave S's position moves at most CPS counts a\n"
                "                               second: a frame beyond reach is misframed\n"
+               "  --link-warn K[,N]            the link warning after K marginal frames (an\n"
+               "                               eye of 2/8 bit or less) in a block of N\n"
+               "                               (default 1,10000; proto/biss_link.c)\n"
                "  --no-fast-path P   run without the emulator's fast path P (results are the\n"
                "                     same, only slower): ff (idle loops, and with it the\n"
                "                     next four), ff-counted (polls with a time-out counter),\n"
@@ -280,10 +284,10 @@ static void list_profiles(void) {
 
 /* Options that take a value. */
 static const char *const valued[] = {
-    "--profile",   "--scenario",   "--freq",       "--cable-m",  "--frames",
-    "--seed",      "--image",      "--soc",        "--vcd",      "--svg",
-    "--svg-frame", "--max-ms",     "--firmware",   "--reg-read", "--reg-write",
-    "--command",   "--check-life", "--check-pair", "--check-ew", "--check-speed"};
+    "--profile",  "--scenario",    "--freq",      "--cable-m", "--frames",     "--seed",
+    "--image",    "--soc",         "--vcd",       "--svg",     "--svg-frame",  "--max-ms",
+    "--firmware", "--reg-read",    "--reg-write", "--command", "--check-life", "--check-pair",
+    "--check-ew", "--check-speed", "--link-warn"};
 /* ... and those of the waveform output and the fast paths */
 static const char *const valued_out[] = {"--vcd-timescale", "--no-fast-path",  "--strict-window",
                                          "--contend",       "--pru",           "--pru1-profile",
@@ -486,6 +490,19 @@ static int set_option(struct options *o, const char *a, const char *v) {
         if (parse_u64(v, &o->svg_frame) || o->svg_frame == 0) {
             return usage_error("--svg-frame '%s': expected a frame number (1 is the first)", v);
         }
+    } else if (!strcmp(a, "--link-warn")) {
+        char *end = NULL;
+        unsigned long long k = strtoull(v, &end, 10), n = BISS_LINK_WINDOW;
+        if (end && *end == ',') {
+            n = strtoull(end + 1, &end, 10);
+        }
+        if (!end || *end || *v == '-' || k < 1 || k > UINT32_MAX || n < 1 || n > UINT32_MAX) {
+            return usage_error("--link-warn '%s': expected K[,N] (K marginal frames in a block "
+                               "of N, both >= 1)",
+                               v);
+        }
+        o->link_warn = k;
+        o->link_window = n;
     } else if (!strcmp(a, "--max-ms")) {
         if (parse_double(v, &o->max_ms) || o->max_ms <= 0 || o->max_ms > MAX_SIM_MS) {
             return usage_error("--max-ms '%s': expected ms, above 0 and at most %.0f", v,
@@ -938,6 +955,7 @@ static int run(const struct options *o) {
     struct fw_check fc;
     if (rc == 0 && fw_mode) {
         fw_check_attach(&fc, b);
+        biss_link_init(&fc.link, (uint32_t)o->link_window, (uint32_t)o->link_warn);
         rc = safety_checks(o, &fc.cfg);
         fc.cfg.trigger = (enum biss_trigger)o->trigger;
         fc.cfg.iep_period_ns = o->trigger == BISS_TRIG_IEP ? iep_period * 5u : 0; /* 5 ns counts */

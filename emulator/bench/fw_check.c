@@ -152,6 +152,7 @@ static void count(struct fw_check *fc, const struct biss_shm_result *res, struct
     fc->lag = smp->lag_periods;
     fc->nslaves = smp->nslaves;
     biss_safety_check(&fc->cfg, &fc->safety, smp);
+    biss_link_check(&fc->link, smp);
     if (smp->safety & BISS_SAFE_FAULTS) {
         fc->safety_faults++;
         fc->safety_first_fault = fc->safety_first_fault ? fc->safety_first_fault : smp->frame;
@@ -222,6 +223,7 @@ void fw_check_attach(struct fw_check *fc, struct bench *b) {
     bench_fw_config(b, &fc->cfg);
     fc->limit = UINT64_MAX;
     fc->watch = UINT64_MAX;
+    biss_link_init(&fc->link, 0, 0);
     fc->sl_delay_ps = (sim_ps)(line_nominal_delay_ps(&bench_link(b)->sc.sl_line) + 0.5);
     words_of(fc);
     pru_set_store_watch(bench_core(b), BISS_ST_SEQ, on_publish, fc);
@@ -243,7 +245,9 @@ void fw_check_restart(struct fw_check *fc, uint64_t limit) {
     uint64_t watch = fc->watch;
     struct fw_frame watched = fc->watched;
     sim_ps sl_delay = fc->sl_delay_ps;
+    uint32_t link_window = fc->link.window, link_warn = fc->link.warn;
     memset(fc, 0, sizeof(*fc));
+    biss_link_init(&fc->link, link_window, link_warn);
     fc->sl_delay_ps = sl_delay;
     fc->b = b;
     fc->cfg = cfg;

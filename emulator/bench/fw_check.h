@@ -40,12 +40,13 @@ struct fw_check {
     uint64_t crc_errors;    /* frames flagged with a CRC error */
     uint64_t mismatches;    /* frames with a word passed as right (CRC) but unlike what was sent */
     uint64_t no_slave, proc_errors, training;
-    uint64_t ack_jumps;     /* frames refused for an ACK away from the average */
-    uint64_t ack_jump_good; /* of those, frames whose every word was right: good frames lost */
-    uint64_t off_grid;      /* frames refused for an SL edge off the bit grid */
-    uint64_t off_grid_good; /* of those, frames whose every word was right */
-    uint64_t delay_frames;  /* publications with a line delay (valid or training) */
-    uint64_t unmatched;     /* valid frames whose slave record was gone */
+    uint64_t ack_jumps;          /* frames refused for an ACK away from the average */
+    uint64_t ack_jump_good;      /* of those, frames whose every word was right: good frames lost */
+    struct biss_link_state link; /* the link's eye and warning over every publication */
+    uint64_t off_grid;           /* frames refused for an SL edge off the bit grid */
+    uint64_t off_grid_good;      /* of those, frames whose every word was right */
+    uint64_t delay_frames;       /* publications with a line delay (valid or training) */
+    uint64_t unmatched;          /* valid frames whose slave record was gone */
     uint32_t last_flags;
     unsigned delay_raw, delay_avg, sample_point, lag, half;
     uint32_t delay_frame; /* the frame (the firmware's number, 1 the first) of those five */

@@ -216,6 +216,25 @@ static void print_wrong(const struct fw_check *fw) {
     }
 }
 
+/* The link's eye and warning over every publication (proto/biss_link.c). */
+static void add_link(cJSON *j, const struct biss_link_state *l) {
+    const struct biss_link_stats *k = &l->stats;
+    cJSON *o = cJSON_AddObjectToObject(j, "link");
+    cJSON_AddNumberToObject(o, "frames", k->frames);
+    cJSON *eye = cJSON_AddArrayToObject(o, "eye_histogram");
+    for (unsigned i = 0; i <= BISS_LINK_EYE_MAX; i++) {
+        cJSON_AddItemToArray(eye, cJSON_CreateNumber(k->eye[i]));
+    }
+    cJSON_AddNumberToObject(o, "eye_min", k->frames ? k->eye_min : BISS_LINK_EYE_MAX);
+    cJSON_AddNumberToObject(o, "eye_mean",
+                            k->frames ? (double)k->eye_sum / k->frames : BISS_LINK_EYE_MAX);
+    cJSON_AddNumberToObject(o, "marginal_frames", k->marginal);
+    cJSON_AddNumberToObject(o, "off_grid_frames", k->off_grid);
+    cJSON_AddNumberToObject(o, "warning_frames", k->warnings);
+    cJSON_AddNumberToObject(o, "warn", l->warn);
+    cJSON_AddNumberToObject(o, "window", l->window);
+}
+
 static void add_firmware(cJSON *j, struct bench *b, const struct fw_check *fw) {
     cJSON *f = cJSON_AddObjectToObject(j, "firmware");
     cJSON_AddNumberToObject(f, "publications", (double)fw->publications);
@@ -225,6 +244,7 @@ static void add_firmware(cJSON *j, struct bench *b, const struct fw_check *fw) {
     cJSON_AddNumberToObject(f, "ack_jumps_good_lost", (double)fw->ack_jump_good);
     cJSON_AddNumberToObject(f, "off_grid", (double)fw->off_grid);
     cJSON_AddNumberToObject(f, "off_grid_good_lost", (double)fw->off_grid_good);
+    add_link(j, &fw->link);
     cJSON_AddNumberToObject(f, "training_frames", (double)fw->training);
     if (fw->delay_frames) {
         cJSON_AddNumberToObject(f, "line_delay_ns", sim_fw_line_delay_ns(fw));
@@ -562,6 +582,13 @@ void sim_print_text(const struct sim_result *r) {
                (unsigned long long)fw->no_slave, (unsigned long long)fw->proc_errors,
                (unsigned long long)fw->ack_jumps, (unsigned long long)fw->off_grid);
         print_wrong(fw);
+        const struct biss_link_stats *k = &fw->link.stats;
+        if (k->frames) {
+            printf("link                 eye %.2f/8 bit on average, at least %u/8 (frames by eye "
+                   "0..4/8: %u %u %u %u %u); %u marginal, warning on %u frames (%u in %u)\n",
+                   (double)k->eye_sum / k->frames, k->eye_min, k->eye[0], k->eye[1], k->eye[2],
+                   k->eye[3], k->eye[4], k->marginal, k->warnings, fw->link.warn, fw->link.window);
+        }
         if (fw->delay_frames) {
             /* one frame's figures, the last one's: the firmware measures to 1/8 bit and
              * averages 4 frames, so a run's first frames may differ from its last by a step */

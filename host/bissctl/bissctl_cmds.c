@@ -109,6 +109,9 @@ static void print_sample(const struct biss_sample *s, const struct biss_config *
     if (s->valid) { /* the sample point (1/8 bit) and lag a data frame was read with */
         printf(" sample_point=%u lag=%u", s->sample_point, s->lag_periods);
     }
+    if (s->link_eye >= 0) { /* the nearest edge seen from a sample point (proto/biss_link.c) */
+        printf(" eye=%d/8%s", s->link_eye, s->link_warning ? " link-warning" : "");
+    }
     /* IEP counts of one PRU cycle, 5 ns (the firmware sets increment 1) */
     printf(" timestamp=%u (IEP counts of 5 ns: %.3f us)\n", s->timestamp, s->timestamp * 5e-3);
 }
@@ -120,6 +123,16 @@ static void print_stats(const struct biss_stats *st) {
 
 /* The safety checks' counts over the frames this run read, for the
  * checks configured (nothing without any). */
+/* The link's eye over the frames this run read (proto/biss_link.c). */
+static void print_link_stats(biss_t *h) {
+    struct biss_link_stats k;
+    if (biss_get_link_stats(h, &k) != BISS_OK || k.frames == 0) {
+        return;
+    }
+    printf("link: frames=%u eye_mean=%.2f/8 eye_min=%u/8 marginal=%u off_grid=%u warned=%u\n",
+           k.frames, (double)k.eye_sum / k.frames, k.eye_min, k.marginal, k.off_grid, k.warnings);
+}
+
 static void print_safety_stats(biss_t *h) {
     struct biss_config c;
     struct biss_safety_stats st;
@@ -275,6 +288,7 @@ int bissctl_read(biss_t *h, const struct bissctl_opts *o) {
         bissctl_json_end(h);
     } else {
         print_safety_stats(h);
+        print_link_stats(h);
     }
     return BISSCTL_OK;
 }

@@ -29,6 +29,10 @@ void bissctl_json_frame(const struct biss_sample *s, const struct biss_config *c
     if (s->flags & BISS_RF_IEP_LATE) {
         printf(", \"iep_late\": true");
     }
+    if (s->link_eye >= 0) {
+        printf(", \"link_eye\": %d, \"link_warning\": %s", s->link_eye,
+               s->link_warning ? "true" : "false");
+    }
     if (s->valid || s->training) {
         printf(", \"delay_ns\": %.1f", s->delay.ns);
     }

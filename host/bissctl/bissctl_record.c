@@ -32,7 +32,8 @@ struct rec_file {
  * their npy types. */
 static const struct {
     const char *name, *type;
-} frame_fields[] = {{"seq", "<u4"}, {"timestamp", "<u4"}, {"flags", "<u4"}, {"valid", "|u1"}};
+} frame_fields[] = {{"seq", "<u4"},   {"timestamp", "<u4"}, {"flags", "<u4"},
+                    {"valid", "|u1"}, {"link_eye", "|i1"},  {"link_warning", "|u1"}};
 static const struct {
     const char *name, *type;
 } slave_fields[] = {
@@ -90,12 +91,14 @@ static size_t put_le(unsigned char *p, uint64_t v, unsigned bytes) {
 }
 
 static int npy_row(struct rec_file *r, const struct biss_sample *s) {
-    unsigned char row[16 + BISS_API_MAX_SLAVES * 19];
+    unsigned char row[15 + BISS_API_MAX_SLAVES * 19];
     size_t n = 0;
     n += put_le(row + n, s->seq, 4);
     n += put_le(row + n, s->timestamp, 4);
     n += put_le(row + n, s->flags, 4);
     n += put_le(row + n, s->valid, 1);
+    n += put_le(row + n, (uint8_t)(int8_t)s->link_eye, 1); /* -1: not measured */
+    n += put_le(row + n, s->link_warning, 1);
     for (unsigned i = 0; i < r->nslaves; i++) {
         const struct biss_slave_result *sl = &s->slave[i];
         n += put_le(row + n, sl->position, 8);
@@ -121,7 +124,8 @@ static int csv_header(struct rec_file *r) {
 }
 
 static int csv_row(struct rec_file *r, const struct biss_sample *s) {
-    fprintf(r->f, "%u,%u,0x%x,%d", s->seq, s->timestamp, s->flags, s->valid);
+    fprintf(r->f, "%u,%u,0x%x,%d,%d,%d", s->seq, s->timestamp, s->flags, s->valid, s->link_eye,
+            s->link_warning);
     for (unsigned i = 0; i < r->nslaves; i++) {
         const struct biss_slave_result *sl = &s->slave[i];
         fprintf(r->f, ",%llu,0x%llx,%d,%d,%d", (unsigned long long)sl->position,

@@ -298,6 +298,16 @@ struct biss_stats {
 int biss_get_status(biss_t *h, struct biss_status *st);
 int biss_get_stats(biss_t *h, struct biss_stats *st);
 int biss_get_safety_stats(biss_t *h, struct biss_safety_stats *st);
+/* Link quality over the frames this handle read (each frame's eye opening:
+ * biss_sample.link_eye; proto/biss_link.c): the counts by eye, the
+ * marginal and off-grid frames, the warnings. */
+int biss_get_link_stats(biss_t *h, struct biss_link_stats *st);
+/* The warning (biss_sample.link_warning): set once `warn` marginal frames
+ * (eye <= BISS_LINK_EYE_MARGINAL) fall in one block of `window` frames
+ * read, held while the last whole block had as many (defaults
+ * BISS_LINK_WARN, BISS_LINK_WINDOW); both >= 1, else BISS_E_INVAL. Starts
+ * a new block. */
+int biss_set_link_warning(biss_t *h, uint32_t window, uint32_t warn);
 
 /* ---- the encoder firmware on a board (pru_slave/, host/lib/biss_enc.c) ----
  * Its configuration and limits: biss/biss_types.h, biss/biss_rules.h. */

@@ -111,6 +111,7 @@ int biss_handle_new(enum biss_target t, const struct biss_backend *be, unsigned 
         be->ops->close(be->ctx);
         return BISS_E_NOMEM;
     }
+    biss_link_init(&h->link, 0, 0);
     if (pthread_mutex_init(&h->lock, NULL) != 0) {
         be->ops->close(be->ctx);
         free(h);

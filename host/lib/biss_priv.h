@@ -93,6 +93,8 @@ struct biss {
     const char *problem;
     /* the safety checks over the frames this handle read (biss_safety.c) */
     struct biss_safety_state safety;
+    /* the link's eye and warning over the frames this handle read (biss_link.c) */
+    struct biss_link_state link;
 };
 
 /* Asks the backend for the right to change the firmware's state. */

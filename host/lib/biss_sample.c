@@ -57,6 +57,9 @@ int biss_result_to_sample(biss_t *h, const struct biss_shm_result *r, uint32_t s
     if (!rc && h->configured) {
         biss_safety_check(&h->cfg, &h->safety, s);
     }
+    if (!rc) {
+        biss_link_check(&h->link, s);
+    }
     return rc;
 }
 
@@ -148,6 +151,29 @@ const char *biss_shm_problem(biss_t *h) {
     const char *why = h->problem ? h->problem : "";
     pthread_mutex_unlock(&h->lock);
     return why;
+}
+
+int biss_get_link_stats(biss_t *h, struct biss_link_stats *st) {
+    if (!h || !st) {
+        return BISS_E_INVAL;
+    }
+    pthread_mutex_lock(&h->lock);
+    *st = h->link.stats;
+    pthread_mutex_unlock(&h->lock);
+    return BISS_OK;
+}
+
+int biss_set_link_warning(biss_t *h, uint32_t window, uint32_t warn) {
+    if (!h || window == 0 || warn == 0) {
+        return BISS_E_INVAL;
+    }
+    pthread_mutex_lock(&h->lock);
+    h->link.window = window;
+    h->link.warn = warn;
+    h->link.block_frames = 0;
+    h->link.block_marginal = 0;
+    pthread_mutex_unlock(&h->lock);
+    return BISS_OK;
 }
 
 int biss_get_safety_stats(biss_t *h, struct biss_safety_stats *st) {

@@ -308,7 +308,12 @@ struct biss_sample {
     struct biss_line_delay delay;
     unsigned nslaves;
     struct biss_slave_result slave[BISS_API_MAX_SLAVES];
-    uint32_t safety; /* the slaves' BISS_SAFE_* or'ed */
+    uint32_t safety;   /* the slaves' BISS_SAFE_* or'ed */
+    int link_eye;      /* eye opening, eighths of a bit (0..BISS_LINK_EYE_MAX): how far the
+                          nearest SL edge seen lay from the sample point (-1: no ACK measured,
+                          no figure); proto/biss_link.c */
+    bool link_warning; /* marginal frames (eye <= BISS_LINK_EYE_MARGINAL) reached the warning
+                          count in this block of frames or the last (biss_link_state) */
 };
 
 /* ---- safety counts ----------------------------------------------------- */
@@ -330,6 +335,27 @@ struct biss_safety_stats {
     uint32_t pos_resync[BISS_API_MAX_SLAVES];   /* ... beyond reach, but in reach of the
                                                    one refused before: taken as the new
                                                    reference, valid */
+};
+
+/* ---- link quality ------------------------------------------------------
+ *
+ * A frame's eye opening (biss_sample.link_eye) and the counts over the
+ * frames judged: libbiss's since the handle was opened (the frames it
+ * read), the bench's over every publication. */
+#define BISS_LINK_EYE_MAX      4     /* eighths: an edge on the bit grid, half a bit away */
+#define BISS_LINK_EYE_OFF_GRID 2     /* the most a frame flagged BISS_RF_OFF_GRID has */
+#define BISS_LINK_EYE_MARGINAL 2     /* at most this: a marginal frame */
+#define BISS_LINK_WINDOW       10000 /* default block of frames the warning counts in */
+#define BISS_LINK_WARN         1     /* default marginal frames in a block that warn */
+struct biss_link_stats {
+    uint32_t frames;                     /* frames judged (an ACK measured) */
+    uint32_t eye[BISS_LINK_EYE_MAX + 1]; /* of those, by eye opening */
+    uint64_t eye_sum;                    /* the sum of their eyes (mean: / frames) */
+    unsigned eye_min;                    /* the least (BISS_LINK_EYE_MAX before any) */
+    uint32_t marginal;                   /* eye <= BISS_LINK_EYE_MARGINAL */
+    uint32_t off_grid;                   /* BISS_RF_OFF_GRID among them */
+    uint32_t last_block_marginal;        /* marginal frames in the last whole block */
+    uint32_t warnings;                   /* frames judged with the warning set */
 };
 
 /* ---- the encoder firmware: a PRU as a BiSS-C slave (pru_slave/) -------

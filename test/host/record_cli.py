@@ -22,8 +22,8 @@ from checks import check, finish  # noqa: E402
 
 CTL = sys.argv[1]
 BASE = ["--target", "emu", "--freq", "10000000"]
-COLUMNS = ["seq", "timestamp", "flags", "valid", "s0_position", "s0_data", "s0_error",
-           "s0_warning", "s0_crc_ok"]
+COLUMNS = ["seq", "timestamp", "flags", "valid", "link_eye", "link_warning", "s0_position",
+           "s0_data", "s0_error", "s0_warning", "s0_crc_ok"]
 
 
 def record(path, *extra):

@@ -119,7 +119,7 @@ class Sample:
 
     SCALARS = ("seq", "frame", "flags", "valid", "crc_error", "no_slave", "proc_error", "training",
                "sma", "ack_jump", "off_grid", "misframed", "timestamp", "proc_clocks", "cds",
-               "sample_point", "lag_periods", "nslaves", "safety")
+               "sample_point", "lag_periods", "nslaves", "safety", "link_eye", "link_warning")
 
     def __init__(self, s):
         for k in self.SCALARS:
@@ -301,8 +301,8 @@ class Master:
 
     def read_batch(self, n, timeout_ms=100):
         """The next n published frames, each waited for in turn, as numpy
-        arrays: frame, valid, crc_error, timestamp (n) and position (n x
-        slaves). Frames the firmware published between two of them (a
+        arrays: frame, valid, crc_error, off_grid, link_eye, timestamp (n)
+        and position (n x slaves). Frames the firmware published between two of them (a
         slow host on a board) are not in it: compare `frame`."""
         import numpy as np
 
@@ -310,7 +310,8 @@ class Master:
         h = self._handle()
         last = self._latest_frame(s)
         out = {"frame": np.zeros(n, np.uint32), "valid": np.zeros(n, bool),
-               "crc_error": np.zeros(n, bool), "timestamp": np.zeros(n, np.uint32)}
+               "crc_error": np.zeros(n, bool), "off_grid": np.zeros(n, bool),
+               "link_eye": np.zeros(n, np.int8), "timestamp": np.zeros(n, np.uint32)}
         pos = None
         for i in range(n):
             _check(lib.biss_wait_sample(h, last, timeout_ms, s), "read_batch")
@@ -319,6 +320,7 @@ class Master:
             last = s.frame
             out["frame"][i], out["valid"][i] = s.frame, s.valid
             out["crc_error"][i], out["timestamp"][i] = s.crc_error, s.timestamp
+            out["off_grid"][i], out["link_eye"][i] = s.off_grid, s.link_eye
             for k in range(min(s.nslaves, pos.shape[1])):
                 pos[i, k] = s.slave[k].position
         out["position"] = pos if pos is not None else np.zeros((0, 0), np.uint64)
@@ -357,6 +359,23 @@ class Master:
                                          "cfg_ack", "cfg_error", "seq", "shm_version", "image_crc")}
         d["state_name"] = ffi.string(lib.biss_fw_state_name(st.state)).decode()
         return d
+
+    def link_stats(self):
+        """biss_get_link_stats as a dict over the frames this handle read:
+        frames, eye (counts by eye opening 0..4 eighths of a bit), eye_mean,
+        eye_min, marginal, off_grid, last_block_marginal, warnings."""
+        st = ffi.new("struct biss_link_stats *")
+        _check(lib.biss_get_link_stats(self._handle(), st), "link_stats")
+        d = {k: getattr(st, k) for k in ("frames", "eye_min", "marginal", "off_grid",
+                                         "last_block_marginal", "warnings")}
+        d["eye"] = list(st.eye)
+        d["eye_mean"] = st.eye_sum / st.frames if st.frames else float(d["eye_min"])
+        return d
+
+    def set_link_warning(self, window, warn):
+        """biss_set_link_warning: warn after `warn` marginal frames in a
+        block of `window` frames read."""
+        _check(lib.biss_set_link_warning(self._handle(), window, warn), "set_link_warning")
 
     def stats(self):
         """biss_get_stats as a dict: frames, crc_errors, no_slave,

@@ -125,6 +125,20 @@ def test_a_fault_in_the_scenario_shows_in_the_samples():
         b = m.read_batch(3000)
         assert 0 < int(b["crc_error"].sum()) <= m.stats()["crc_errors"]
         assert b["valid"].sum() > 2000  # most frames still read
+        # edges off the bit grid: refused (off_grid, never valid), counted by the
+        # firmware, and the link's figure and warning show them
+        assert int((b["off_grid"] & b["valid"]).sum()) == 0
+        assert 0 < int(b["off_grid"].sum()) <= m.stats()["off_grid"]
+        k = m.link_stats()
+        assert k["marginal"] >= int(b["off_grid"].sum()) and k["warnings"] > 0
+        assert k["eye_min"] <= 2 and sum(k["eye"]) == k["frames"]
+
+
+def test_a_clean_line_shows_a_full_eye(master):
+    master.read_batch(500)
+    k = master.link_stats()
+    assert k["frames"] >= 500 and k["marginal"] == 0 and k["warnings"] == 0
+    assert k["eye_min"] >= 3 and master.stats()["off_grid"] == 0
 
 
 def test_closed_master_refuses_calls():

@@ -1,0 +1,76 @@
+/* biss_link.c - how near a BiSS link is to failing, from what each frame's
+ * samples showed (biss_proto.h): the eye opening of a frame, and a warning
+ * that fires on marginal frames, before the CRC errors.
+ *
+ * The eye opening of a frame, in eighths of a bit, is how far the nearest
+ * SL edge the master saw lay from the place the bits were sampled at; a
+ * clean line leaves every edge on the bit grid, 4 eighths from the sample
+ * points. Two observations carry it (pru_fw/README.md, "Bit grid"):
+ *  - the ACK edge: this frame's position (DELAY_RAW) against the average
+ *    the sample point was taken from (DELAY_AVG), both in eighths: an edge
+ *    d eighths off leaves 4 - d (0 from 4 on: an ACK jump);
+ *  - the bit-grid check (BISS_RF_OFF_GRID, below 10 MHz): an edge within
+ *    2 eighths of a sample point (GRID_OLDER, GRID_NEWER), so at most 2.
+ * A frame with an eye of BISS_LINK_EYE_MARGINAL or less is marginal: its
+ * bits were read at most that far from an edge. The warning counts them
+ * in blocks of `window` frames judged: set from the frame that brings the
+ * current block's count to `warn`, and while the last whole block's count
+ * is at least `warn`. What the firmware cannot show at 10 MHz (no bit-grid
+ * check there) is left to the ACK edge: one edge a frame. */
+#include "biss_proto.h"
+
+#include <string.h>
+
+void biss_link_init(struct biss_link_state *st, uint32_t window, uint32_t warn) {
+    memset(st, 0, sizeof *st);
+    st->window = window ? window : BISS_LINK_WINDOW;
+    st->warn = warn ? warn : BISS_LINK_WARN;
+    st->stats.eye_min = BISS_LINK_EYE_MAX;
+}
+
+int biss_link_eye(const struct biss_sample *s) {
+    bool measured = s->valid || s->crc_error || s->ack_jump || s->off_grid || s->misframed;
+    if (!measured || s->training) {
+        return -1;
+    }
+    int d = (int)s->delay.raw - (int)s->delay.avg;
+    d = d < 0 ? -d : d;
+    int eye = d >= BISS_LINK_EYE_MAX ? 0 : BISS_LINK_EYE_MAX - d;
+    if (s->off_grid && eye > BISS_LINK_EYE_OFF_GRID) {
+        eye = BISS_LINK_EYE_OFF_GRID;
+    }
+    return eye;
+}
+
+void biss_link_check(struct biss_link_state *st, struct biss_sample *s) {
+    int eye = biss_link_eye(s);
+    s->link_eye = eye;
+    if (st->seen && s->frame == st->last_frame) { /* read again: its verdict stands */
+        s->link_warning = st->warning;
+        return;
+    }
+    if (eye < 0) {
+        s->link_warning = st->warning;
+        return;
+    }
+    st->seen = true;
+    st->last_frame = s->frame;
+    struct biss_link_stats *k = &st->stats;
+    k->frames++;
+    k->eye[eye]++;
+    k->eye_sum += (uint64_t)eye;
+    k->eye_min = (unsigned)eye < k->eye_min ? (unsigned)eye : k->eye_min;
+    k->off_grid += s->off_grid;
+    if (eye <= BISS_LINK_EYE_MARGINAL) {
+        k->marginal++;
+        st->block_marginal++;
+    }
+    st->warning = st->block_marginal >= st->warn || k->last_block_marginal >= st->warn;
+    if (++st->block_frames == st->window) {
+        k->last_block_marginal = st->block_marginal;
+        st->block_frames = 0;
+        st->block_marginal = 0;
+    }
+    k->warnings += st->warning;
+    s->link_warning = st->warning;
+}
