@@ -192,6 +192,7 @@ static void add_wrong(cJSON *j, const struct fw_check *fw) {
     cJSON *o = cJSON_AddObjectToObject(j, "wrong_frames");
     cJSON_AddNumberToObject(o, "valid_on_the_wire", (double)fw->wrong_by_class[WRONG_ON_WIRE]);
     cJSON_AddNumberToObject(o, "off_grid", (double)fw->wrong_by_class[WRONG_OFF_GRID]);
+    cJSON_AddNumberToObject(o, "between_samples", (double)fw->wrong_by_class[WRONG_BETWEEN]);
     cJSON_AddNumberToObject(o, "other", (double)fw->wrong_by_class[WRONG_OTHER]);
     cJSON *a = cJSON_AddArrayToObject(o, "first");
     for (unsigned k = 0; k < fw->nwrong; k++) {
@@ -205,9 +206,11 @@ static void print_wrong(const struct fw_check *fw) {
     if (!fw->mismatches) {
         return;
     }
-    printf("wrong but valid      %llu valid on the wire, %llu off-grid, %llu other\n",
+    printf("wrong but valid      %llu valid on the wire, %llu off-grid, %llu between samples, "
+           "%llu other\n",
            (unsigned long long)fw->wrong_by_class[WRONG_ON_WIRE],
            (unsigned long long)fw->wrong_by_class[WRONG_OFF_GRID],
+           (unsigned long long)fw->wrong_by_class[WRONG_BETWEEN],
            (unsigned long long)fw->wrong_by_class[WRONG_OTHER]);
     for (unsigned k = 0; k < fw->nwrong; k++) {
         char line[512];

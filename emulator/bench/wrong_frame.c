@@ -17,6 +17,8 @@ const char *wrong_class_name(enum wrong_class c) {
         return "valid on the wire";
     case WRONG_OFF_GRID:
         return "off-grid";
+    case WRONG_BETWEEN:
+        return "between samples";
     case WRONG_OTHER:
     case WRONG_CLASSES:
         break;
@@ -114,10 +116,21 @@ static int64_t circular(int64_t d, int64_t period) {
     return d;
 }
 
+/* Whether the master's samples saw the SL edge at t: the level at the
+ * sample instant after it still differs from the one at the instant
+ * before it (a pulse between the two leaves no trace). */
+static bool seen_by_samples(waveform *sl, const struct pru_core *core, sim_ps t) {
+    int64_t before, after;
+    if (!core || pru_gpi_sample_bracket(core, t, &before, &after) != 0) {
+        return true;
+    }
+    return waveform_level_at(sl, before) != waveform_level_at(sl, after);
+}
+
 /* SL at the master from the start bit to the slave's timeout: edges off
  * the grid the most of them share (within a fifth of a bit). */
 static void check_wire(waveform *sl, const biss_frame_record *rec, sim_ps now, int64_t period,
-                       struct wrong_frame *w) {
+                       const struct pru_core *core, struct wrong_frame *w) {
     int64_t t[512];
     unsigned n = 0;
     sim_ps end = rec->end_ps > rec->start_bit_ps ? rec->end_ps : now; /* still in its timeout */
@@ -146,13 +159,14 @@ static void check_wire(waveform *sl, const biss_frame_record *rec, sim_ps now, i
                 w->off_ps[w->off_grid] = d;
             }
             w->off_grid++;
+            w->off_grid_seen += seen_by_samples(sl, core, t[i]);
         }
     }
 }
 
 void wrong_frame_classify(const biss_chain_cfg *cfg, const biss_frame_record *rec,
                           const uint64_t *smp_data, uint32_t frame, waveform *sl, sim_ps now,
-                          int64_t period_ps, struct wrong_frame *w) {
+                          int64_t period_ps, const struct pru_core *core, struct wrong_frame *w) {
     *w = (struct wrong_frame){.frame = frame, .words = WORDS_UNKNOWN, .cls = WRONG_OTHER};
     if (!rec) {
         return;
@@ -210,10 +224,11 @@ void wrong_frame_classify(const biss_chain_cfg *cfg, const biss_frame_record *re
         }
         break;
     }
-    check_wire(sl, rec, now, period_ps, w);
+    check_wire(sl, rec, now, period_ps, core, w);
     bool slipped = w->words != WORDS_FLIPPED && w->words != WORDS_UNKNOWN;
     w->cls = w->words == WORDS_UNKNOWN ? WRONG_OTHER
-             : w->off_grid             ? WRONG_OFF_GRID
+             : w->off_grid_seen        ? WRONG_OFF_GRID
+             : w->off_grid             ? WRONG_BETWEEN
              : slipped                 ? WRONG_ON_WIRE
                                        : WRONG_OTHER;
 }
@@ -245,10 +260,10 @@ void wrong_frame_describe(const struct wrong_frame *w, char *buf, size_t len) {
     if (w->words != WORDS_UNKNOWN) {
         n = snprintf(buf + used, used < len ? len - used : 0,
                      "; %u of %u bits differ%s; position off by %lld counts; %u SL edges, %u off "
-                     "the grid",
+                     "the grid (%u seen by the samples)",
                      w->flipped_bits, w->nbits,
                      w->crc_poly_shifted ? " (the CRC polynomial times x^k)" : "",
-                     (long long)w->counts, w->edges, w->off_grid);
+                     (long long)w->counts, w->edges, w->off_grid, w->off_grid_seen);
         used += n > 0 ? (size_t)n : 0;
     }
     for (unsigned k = 0; k < w->off_grid && k < WRONG_MAX_EDGES; k++) {

@@ -17,8 +17,11 @@
  *               plus the round trip, within a fifth of a bit: jitter is a
  *               few ns) or not (an edge at a glitch's instant, or a glitch
  *               on SL itself).
- * The class: "off-grid" (an SL edge off the grid: a check that SL holds
- * still through each bit would see the frame), "valid on the wire" (every
+ * The class: "off-grid" (an SL edge off the grid that the master's samples
+ * saw: a check that SL holds still through each bit would see the frame),
+ * "between samples" (edges off the grid, but each a pulse that began and
+ * ended between two of the master's sample instants: its samples were a
+ * clean frame, no 8x sampling master sees it), "valid on the wire" (every
  * edge on the grid and the words a slip or more apart: SL at the master
  * was a clean frame of the wrong word, which no master can tell from a
  * true one), "other" (every edge on the grid but the words no slips apart:
@@ -27,11 +30,12 @@
 #define WRONG_FRAME_H
 
 #include "biss_slave.h"
+#include "pru_core.h"
 #include "waveform.h"
 
 #include <stdint.h>
 
-enum wrong_class { WRONG_ON_WIRE, WRONG_OFF_GRID, WRONG_OTHER, WRONG_CLASSES };
+enum wrong_class { WRONG_ON_WIRE, WRONG_OFF_GRID, WRONG_BETWEEN, WRONG_OTHER, WRONG_CLASSES };
 
 enum wrong_words {
     WORDS_SHIFT_AHEAD,  /* the slave one bit ahead from bit shift_at on */
@@ -59,6 +63,8 @@ struct wrong_frame {
     int crc_poly_shifted;            /* the flipped bits are the CRC polynomial times x^k */
     unsigned edges;                  /* SL edges at the master in the frame */
     unsigned off_grid;               /* of those, off the bit grid */
+    unsigned off_grid_seen;          /* of those, seen by the master's samples (a level that
+                                        still differed at the next sample instant) */
     int64_t off_ps[WRONG_MAX_EDGES]; /* their distance from the grid, ps */
     enum wrong_class cls;
 };
@@ -69,10 +75,12 @@ const char *wrong_class_name(enum wrong_class c);
  * words) against the record rec of what the chain sent; sl is SL at the
  * master (its history covers the frame), now the time it is recorded to
  * (a frame still in its timeout ends there), period_ps the MA period the
- * frame was clocked at. */
+ * frame was clocked at; core the master's PRU, whose GPI sample instants
+ * tell the edges its samples saw (NULL: every edge counts as seen). */
 void wrong_frame_classify(const biss_chain_cfg *cfg, const biss_frame_record *rec,
                           const uint64_t *smp_data, uint32_t frame, waveform *sl, sim_ps now,
-                          int64_t period_ps, struct wrong_frame *out);
+                          int64_t period_ps, const struct pru_core *core,
+                          struct wrong_frame *out);
 
 /* One line describing it ("frame 1234: off-grid: slave 0 shift ahead at bit 9 ..."). */
 void wrong_frame_describe(const struct wrong_frame *w, char *buf, size_t len);

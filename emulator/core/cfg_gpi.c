@@ -290,6 +290,16 @@ static int64_t gpi_next_cnt16(struct pru_core *c, int64_t cycle) {
     return cycle_of(edge_time(c, e));
 }
 
+int pru_gpi_sample_bracket(const struct pru_core *c, int64_t t_ps, int64_t *before_ps,
+                           int64_t *after_ps) {
+    if (gpi_mode(c) != MODE_SHIFT || period_ps(c) <= 0)
+        return -1;
+    int64_t d = c->p.gpi_delay_ps, k = last_edge(c, t_ps + d);
+    *before_ps = edge_time(c, k) - d;
+    *after_ps = edge_time(c, k + 1) - d;
+    return 0;
+}
+
 /* ---- CFG registers ---- */
 
 static uint32_t cfg_read(struct pru_core *c, uint32_t ofs, int64_t at) {

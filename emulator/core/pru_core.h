@@ -350,6 +350,13 @@ enum pru_stop pru_step(struct pru_core *c);
 /* State */
 int64_t pru_cycles(const struct pru_core *c); /* current time in cycles */
 int64_t pru_time_ps(const struct pru_core *c);
+/* In the GPI's 28-bit shift mode: the instants around t_ps at which the
+ * shift register samples the pins (a shift-clock edge less gpi_delay_ps),
+ * the last at or before t_ps and the next after it: 0; -1 in any other
+ * mode. A pin change between the two reaches the samples only if the
+ * level still differs at the second. */
+int pru_gpi_sample_bracket(const struct pru_core *c, int64_t t_ps, int64_t *before_ps,
+                           int64_t *after_ps);
 uint64_t pru_instructions(const struct pru_core *c); /* executed instructions */
 uint32_t pru_pc(const struct pru_core *c);
 void pru_set_pc(struct pru_core *c, uint32_t pc);

@@ -192,6 +192,10 @@ int main(int argc, char **argv) {
         printf("%s\n", bissctl_emulated_note);
     }
     rc = cmd->configure ? apply_config(h, &o) : BISSCTL_OK;
+    if (rc == BISSCTL_OK && o.link_warn &&
+        biss_set_link_warning(h, o.link_window, o.link_warn) != BISS_OK) {
+        rc = bissctl_fail("link warning", BISS_E_INVAL);
+    }
     if (rc == BISSCTL_OK) {
         rc = cmd->run(h, &o);
     }

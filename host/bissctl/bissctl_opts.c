@@ -79,6 +79,9 @@ static const char common_help[] =
     "  --check-speed S,CPS\n"
     "                     slave S's position moves at most CPS counts a second: a\n"
     "                     frame beyond reach of the last one accepted is misframed\n"
+    "  --link-warn K[,N]  the link warning (read, record) once K frames in a block\n"
+    "                     of N read are marginal: an SL edge seen 2/8 bit or less\n"
+    "                     from a sample point (default 1,10000; proto/biss_link.c)\n"
     "  --no-configure     leave the configuration as it is\n"
     "\n"
     "exit status: 0 done, 1 an error (the library's or the target's; a probe that\n"
@@ -369,6 +372,7 @@ enum {
     OPT_CHECK_LIFE,
     OPT_CHECK_EW,
     OPT_CHECK_SPEED,
+    OPT_LINK_WARN,
     OPT_CHECK_PAIR,
     OPT_NOCONF,
     OPT_MS,
@@ -411,6 +415,7 @@ static const struct option long_opts[] = {
     {"check-life", required_argument, NULL, OPT_CHECK_LIFE},
     {"check-ew", required_argument, NULL, OPT_CHECK_EW},
     {"check-speed", required_argument, NULL, OPT_CHECK_SPEED},
+    {"link-warn", required_argument, NULL, OPT_LINK_WARN},
     {"check-pair", required_argument, NULL, OPT_CHECK_PAIR},
     {"no-configure", no_argument, NULL, OPT_NOCONF},
     {"ms", required_argument, NULL, OPT_MS},
@@ -628,6 +633,22 @@ static int take_config_opt(int c, const char *arg, struct bissctl_opts *o) {
         return biss_safety_parse_ew(arg, &o->checks)
                    ? bissctl_usage_error("--check-ew '%s': expected S (slave 0..7)", arg)
                    : 0;
+    case OPT_LINK_WARN: {
+        char *end = NULL;
+        unsigned long long k = strtoull(arg, &end, 10), n = BISS_LINK_WINDOW;
+        if (end && *end == ',') {
+            n = strtoull(end + 1, &end, 10);
+        }
+        if (!end || *end || *arg == '-' || k < 1 || k > UINT32_MAX || n < 1 ||
+            n > UINT32_MAX) {
+            return bissctl_usage_error("--link-warn '%s': expected K[,N] (K marginal frames in "
+                                       "a block of N, both >= 1)",
+                                       arg);
+        }
+        o->link_warn = (uint32_t)k;
+        o->link_window = (uint32_t)n;
+        return 0;
+    }
     case OPT_CHECK_SPEED:
         return biss_safety_parse_speed(arg, &o->checks)
                    ? bissctl_usage_error(

@@ -64,6 +64,8 @@ struct master {
     hal_u32_t *age;        /* servo periods since the frame number last changed */
     hal_bit_t *running;    /* the firmware runs and publishes */
     hal_s32_t *last_error; /* the last libbiss error of a read (0: none) */
+    hal_s32_t *link_eye;   /* the frame's eye opening, eighths of a bit (-1: none measured) */
+    hal_bit_t *link_warning; /* marginal frames reached the warning (proto/biss_link.c) */
     unsigned nslaves;
     struct slave_pins s[BISS_API_MAX_SLAVES];
 };
@@ -145,6 +147,8 @@ static void read_biss(void *arg, long period) {
     }
     *c->frame = s.frame;
     *c->age = 0;
+    *c->link_eye = s.link_eye;
+    *c->link_warning = s.link_warning;
     publish(c, &s);
 }
 
@@ -203,6 +207,8 @@ static int make_pins(struct master *c, const char *n) {
     r |= hal_pin_u32_newf(HAL_OUT, &c->age, comp_id, "%s.frame-age", n);
     r |= hal_pin_bit_newf(HAL_OUT, &c->running, comp_id, "%s.running", n);
     r |= hal_pin_s32_newf(HAL_OUT, &c->last_error, comp_id, "%s.last-error", n);
+    r |= hal_pin_s32_newf(HAL_OUT, &c->link_eye, comp_id, "%s.link-eye", n);
+    r |= hal_pin_bit_newf(HAL_OUT, &c->link_warning, comp_id, "%s.link-warning", n);
     for (unsigned i = 0; i < c->nslaves && r == 0; i++) {
         struct slave_pins *p = &c->s[i];
         r |= hal_pin_u32_newf(HAL_OUT, &p->raw, comp_id, "%s.slave.%u.raw", n, i);

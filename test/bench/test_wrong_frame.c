@@ -124,7 +124,7 @@ START_TEST(shift_in_a_run_is_valid_on_the_wire) {
     draw(&sl, read, NULL, 0, 0, false);
     uint64_t data = word_from(read);
     struct wrong_frame w;
-    wrong_frame_classify(&cfg, &r, &data, 7, &sl, r.end_ps, T, &w);
+    wrong_frame_classify(&cfg, &r, &data, 7, &sl, r.end_ps, T, NULL, &w);
     char line[512];
     wrong_frame_describe(&w, line, sizeof line);
     printf("%s\n", line);
@@ -157,7 +157,7 @@ START_TEST(shift_at_a_boundary_is_off_grid) {
     draw(&sl, drawn, &glitch, 1, sent[k + 1], false);
     uint64_t data = word_from(read);
     struct wrong_frame w;
-    wrong_frame_classify(&cfg, &r, &data, 8, &sl, r.end_ps, T, &w);
+    wrong_frame_classify(&cfg, &r, &data, 8, &sl, r.end_ps, T, NULL, &w);
     char line[512];
     wrong_frame_describe(&w, line, sizeof line);
     printf("%s\n", line);
@@ -193,7 +193,7 @@ START_TEST(crc_polynomial_flips) {
     draw(&sl, read, glitches, 3, 0, true);
     uint64_t data = word_from(read);
     struct wrong_frame w;
-    wrong_frame_classify(&cfg, &r, &data, 9, &sl, r.end_ps, T, &w);
+    wrong_frame_classify(&cfg, &r, &data, 9, &sl, r.end_ps, T, NULL, &w);
     char line[512];
     wrong_frame_describe(&w, line, sizeof line);
     printf("%s\n", line);
@@ -204,7 +204,7 @@ START_TEST(crc_polynomial_flips) {
     waveform_free(&sl);
     if (w.words == WORDS_FLIPPED) { /* not a slip pattern too: a clean frame as sent, misread */
         draw(&sl, sent, NULL, 0, 0, false);
-        wrong_frame_classify(&cfg, &r, &data, 9, &sl, r.end_ps, T, &w);
+        wrong_frame_classify(&cfg, &r, &data, 9, &sl, r.end_ps, T, NULL, &w);
         ck_assert_int_eq(w.cls, WRONG_OTHER);
         waveform_free(&sl);
     }
@@ -217,7 +217,7 @@ START_TEST(no_record) {
     waveform_init(&sl, 1);
     uint64_t data = 0;
     struct wrong_frame w;
-    wrong_frame_classify(&cfg, NULL, &data, 1, &sl, 0, T, &w);
+    wrong_frame_classify(&cfg, NULL, &data, 1, &sl, 0, T, NULL, &w);
     ck_assert_int_eq(w.words, WORDS_UNKNOWN);
     ck_assert_int_eq(w.cls, WRONG_OTHER);
     ck_assert_str_eq(wrong_class_name(WRONG_ON_WIRE), "valid on the wire");

@@ -64,7 +64,10 @@ for args, text in [(["frobnicate"], "unknown command"),
 r = run("--freq", "10000000", "--cable-m", "2", "read", "-n", "5")
 check(r.returncode == 0, "read: rc %d %r" % (r.returncode, r.stderr))
 lines = r.stdout.splitlines()
-check(len(lines) == 5, "read -n 5 printed %d lines" % len(lines))
+# five frames, then the link's counts over the four that measured an ACK
+check(len(lines) == 6 and lines[5].startswith("link: frames=4 "),
+      "read -n 5 printed %d lines: %r" % (len(lines), lines[5:]))
+lines = lines[:5]
 frames = [int(m.group(1)) for m in (re.match(r"frame=(\d+) ", l) for l in lines) if m]
 check(frames == list(range(frames[0], frames[0] + 5)) if frames else False, "frames %r" % frames)
 # frames count from 1, as biss-sim's --svg-frame: the first is the training frame
@@ -73,7 +76,8 @@ data = [l for l in lines if " valid " in l]
 check(len(data) >= 4, "at least 4 data frames: %r" % lines)
 for l in data:
     check("s0.crc=ok" in l and "s0.nE=ok" in l and "s0.nW=ok" in l and "delay_ns=" in l
-          and re.search(r" sample_point=[0-7] lag=\d+ timestamp=\d+ \(IEP counts of 5 ns: \d+\.\d{3} us\)$", l), l)
+          and re.search(r" sample_point=[0-7] lag=\d+ eye=[34]/8 timestamp=\d+ "
+                        r"\(IEP counts of 5 ns: \d+\.\d{3} us\)$", l), l)
 
 # an explicit slave layout (the profile's own: 14 data bits, CRC6 0x43, nE/nW at 0)
 r = run("--freq", "10000000", "--slave", "14,6,0x43,0,0", "read", "-n", "3")
@@ -140,6 +144,27 @@ for args in [["command", "1", "4"], ["command", "1"], ["reg-read"], ["reg-read",
              ["--id", "8", "reg-read", "0"], ["info", "0x33"]]:
     r = run(*args)
     check(r.returncode == 2, "%r: rc %d %r" % (args, r.returncode, r.stderr))
+
+# the link's eye: a clean line's frames at 4/8 or 3/8 and no warning; both
+# lines glitched at 5 MHz: frames refused off the grid, marginal frames, the
+# warning from the first of them (--link-warn 1,100000: held to the end)
+r = run("--freq", "5000000", "read", "-n", "50")
+eyes = [int(x) for x in re.findall(r" eye=(\d)/8", r.stdout)]
+check(r.returncode == 0 and len(eyes) == 49 and min(eyes) >= 3 and "link-warning" not in r.stdout
+      and re.search(r"^link: frames=49 .* marginal=0 off_grid=0 warned=0$", r.stdout, re.M),
+      "clean eye: %r" % r.stdout[-300:])
+noise = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scenarios",
+                     "noise-both-30khz-jitter.json")
+r = run("--scenario", noise, "--freq", "5000000", "--link-warn", "1,100000", "read", "-n", "3000")
+lines = [x for x in r.stdout.splitlines() if x.startswith("frame=")]
+first = next((i for i, x in enumerate(lines) if " off-grid " in x), None)
+m = re.search(r"^link: frames=\d+ .* marginal=(\d+) off_grid=(\d+) warned=(\d+)$", r.stdout, re.M)
+check(r.returncode == 0 and first is not None and m and int(m.group(2)) > 0
+      and int(m.group(1)) >= int(m.group(2)) and "flags=0x1" in lines[first]
+      and all(" link-warning" in x for x in lines[first:] if " eye=" in x),
+      "noisy link: %r" % (m.group(0) if m else r.stdout[-300:]))
+r = run("--link-warn", "1,0", "read")
+check(r.returncode == 2 and "--link-warn '1,0'" in r.stderr, "--link-warn 1,0: %r" % r.stderr)
 
 # an SSI encoder: the layout from the profile, or given (the delay given too)
 r = run("--profile", "ssi", "--freq", "2000000", "read", "-n", "3")

@@ -51,6 +51,7 @@ wait_for 300 '[ "$(get slave.0.valid)" = TRUE ] && [ "$(get slave.0.turns)" -ge 
 # stopped: no emulated time passes either)
 halcmd stop
 f1=$(get frame); faults=$(get slave.0.faults); crc=$(get slave.0.crc-errors)
+eye=$(get link-eye); lw=$(get link-warning)
 raw=$(get slave.0.raw); turns=$(get slave.0.turns); p1=$(get slave.0.position)
 halcmd start
 # frames are 45.1 us apart (1 MHz): frame 100000 is 4.5 s into the run,
@@ -58,6 +59,7 @@ halcmd start
 [ "$(($f1))" -lt 100000 ] || fail "the first look came at frame $(($f1)), too late to be before the fault"
 [ "$faults" -eq 0 ] || fail "faults before the line fault"
 [ "$crc" -eq 0 ] || fail "CRC errors on a clean line"
+[ "$eye" -ge 3 ] && [ "$lw" = FALSE ] || fail "a clean line's eye $eye/8, link warning $lw"
 awk -v r="$(($raw))" -v t="$turns" -v p="$p1" 'BEGIN { d = p - (t + r / 4096); exit !(d < 0.01 && d > -0.01) }' ||
     fail "position $p1 is not turns $turns + raw $raw / 4096"
 sleep 0.3
