@@ -702,12 +702,15 @@ static size_t firmware_notes(const struct sim_result *r, char (*notes)[160], siz
     size_t n = 0;
     snprintf(notes[n++], 160,
              "firmware: frame %u, flags 0x%02x, line delay %.1f ns, sample point %u/8, lag %u, "
-             "timestamp %.3f us (IEP %u)",
+             "eye %d/8, timestamp %.3f us (IEP %u)",
              f->frame, f->flags, line_delay(f->delay_raw, f->delay_avg, f->half).ns,
-             f->sample_point, f->lag, f->timestamp * 5e-3, f->timestamp);
+             f->sample_point, f->lag, biss_link_eye(&f->sample), f->timestamp * 5e-3,
+             f->timestamp);
     if (!(f->flags & BISS_RF_VALID)) {
         snprintf(notes[n++], 160, "  no data in this frame (%s)",
-                 (f->flags & BISS_RF_TRAINING) ? "training frame" : "not valid");
+                 (f->flags & BISS_RF_TRAINING)   ? "training frame"
+                 : (f->flags & BISS_RF_OFF_GRID) ? "an SL edge off the bit grid"
+                                                 : "not valid");
         return n;
     }
     const slave_model *m = bench_link(r->b)->model;
@@ -746,12 +749,13 @@ int sim_write_svg(const struct sim_result *r, const char *path, uint64_t k, char
     struct svg_trace tr[4];
     for (int i = 0; i < 4; i++) {
         tr[i] =
-            (struct svg_trace){names[i], pins[i], i == 3 ? labels : NULL, i == 3 ? n : 0, NULL, 0};
+            (struct svg_trace){names[i], pins[i], i == 3 ? labels : NULL, i == 3 ? n : 0, NULL, 0,
+                               0, 0};
     }
     char title[200];
     snprintf(title, sizeof(title), "%s, %.3g MHz, %.1f m: frame %llu (frame 1 is the first)",
              l->sc.profile, r->freq_hz / 1e6, l->sc.ma_line.length_m, (unsigned long long)k);
-    struct svg_view v = {title, tr, 4, NULL, 0, NULL, NULL, 0, t0, t1};
+    struct svg_view v = {title, tr, 4, NULL, 0, NULL, NULL, NULL, 0, t0, t1};
     static struct svg_fw fw;
     char notes[1 + BISS_MAX_SLAVES][160];
     if (r->fw && r->fw->watched.seen) {
@@ -763,6 +767,13 @@ int sim_write_svg(const struct sim_result *r, const char *path, uint64_t k, char
         tr[1].nmarks = fw.nmarks;
         v.mark_legend = "where the firmware samples each bit at the master: MA rise + its "
                         "measured line delay + half a bit";
+        unsigned h = r->fw->watched.half;
+        if (h >= BISS_GRID_MIN_HALF) { /* the bit-grid check's window: a sample is H/4 cycles */
+            tr[1].before = (sim_ps)BISS_GRID_OLDER * h * PRU_PS_PER_CYCLE / 4;
+            tr[1].after = (sim_ps)BISS_GRID_NEWER * h * PRU_PS_PER_CYCLE / 4;
+            v.band_legend = "the bit-grid check: SL must hold still there (an edge in it: "
+                            "off-grid, the frame not valid)";
+        }
         v.arrows = fw.has_arrow ? &fw.arrow : NULL;
         v.narrows = fw.has_arrow ? 1 : 0;
         v.notes = notes;

@@ -42,6 +42,14 @@ static void draw_marks(FILE *f, const struct svg_trace *tr, double base, sim_ps 
             continue;
         }
         double x = x_of(tr->marks[i], t0, t1);
+        if (tr->before || tr->after) {
+            double xa = x_of(tr->marks[i] - tr->before, t0, t1);
+            double xb = x_of(tr->marks[i] + tr->after, t0, t1);
+            fprintf(f,
+                    "<rect class=\"band\" x=\"%.2f\" y=\"%.1f\" width=\"%.2f\" "
+                    "height=\"%.1f\"/>\n",
+                    xa, base - SWING - 4, xb - xa, SWING + 8);
+        }
         fprintf(f, "<line class=\"mark\" x1=\"%.2f\" y1=\"%.1f\" x2=\"%.2f\" y2=\"%.1f\"/>\n", x,
                 base - SWING - 4, x, base + 4);
         fprintf(f, "<circle class=\"mark\" cx=\"%.2f\" cy=\"%.1f\" r=\"2.5\"/>\n", x,
@@ -105,6 +113,12 @@ static void draw_notes(FILE *f, const struct svg_view *v, double y) {
         fprintf(f, "<text x=\"24\" y=\"%.1f\">%s</text>\n", y, v->mark_legend);
         y += NOTE;
     }
+    if (v->band_legend) {
+        fprintf(f, "<rect class=\"band\" x=\"9\" y=\"%.1f\" width=\"10\" height=\"10\"/>\n",
+                y - 9);
+        fprintf(f, "<text x=\"24\" y=\"%.1f\">%s</text>\n", y, v->band_legend);
+        y += NOTE;
+    }
     for (size_t i = 0; i < v->nnotes; i++, y += NOTE) {
         fprintf(f, "<text x=\"8\" y=\"%.1f\" xml:space=\"preserve\">%s</text>\n", y, v->notes[i]);
     }
@@ -122,7 +136,9 @@ int svg_scope_write(const char *path, const struct svg_view *v, char *err, size_
     FILE *f = out.f;
     double axis = TOP + ROW * (double)v->ntraces;
     double notes_y = axis + 44;
-    double height = notes_y + NOTE * (double)(v->nnotes + (v->mark_legend ? 1 : 0)) + 10;
+    double height =
+        notes_y +
+        NOTE * (double)(v->nnotes + (v->mark_legend ? 1 : 0) + (v->band_legend ? 1 : 0)) + 10;
     fprintf(f,
             "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%.0f\" height=\"%.0f\" "
             "font-family=\"monospace\" font-size=\"12\">\n"
@@ -133,6 +149,7 @@ int svg_scope_write(const char *path, const struct svg_view *v, char *err, size_
             ".axis{stroke:#444}.tick{stroke:#888}.name{font-weight:bold}"
             ".bit{text-anchor:middle;font-size:10px}.time{text-anchor:middle;fill:#444}"
             "line.mark{stroke:#d22;stroke-width:0.8}circle.mark{fill:#d22}"
+            "rect.band{fill:#d22;fill-opacity:0.12}"
             ".arrow{stroke:#c40;stroke-width:1.2}.atext{fill:#c40}"
             "</style>\n<rect width=\"100%%\" height=\"100%%\" fill=\"white\"/>\n"
             "<text x=\"8\" y=\"20\" font-size=\"14\">%s</text>\n",

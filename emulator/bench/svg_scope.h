@@ -26,6 +26,7 @@ struct svg_trace {
     size_t nlabels;
     const sim_ps *marks; /* instants marked on this trace, may be NULL */
     size_t nmarks;
+    sim_ps before, after; /* a band around each mark, that long before and after it (0: none) */
 };
 
 struct svg_arrow {
@@ -41,6 +42,7 @@ struct svg_view {
     const struct svg_arrow *arrows;
     size_t narrows;
     const char *mark_legend; /* what the marks are, NULL if there are none */
+    const char *band_legend; /* what the bands around them are, NULL if there are none */
     char (*notes)[160];      /* lines of text under the plot */
     size_t nnotes;
     sim_ps t0, t1; /* the window */

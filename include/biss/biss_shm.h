@@ -238,6 +238,11 @@
                                         // edge off the bit grid: a glitch, a clock gained or
                                         // lost), so never VALID; checked from H = 16 (below
                                         // 10 MHz), never at H = 10 (pru_fw/README, "Bit grid")
+// The bit-grid check's window (BISS_RF_OFF_GRID): the samples before and
+// after each bit's sample point that must agree with it, from H = 16 on.
+#define BISS_GRID_OLDER         2
+#define BISS_GRID_NEWER         2
+#define BISS_GRID_MIN_HALF      16
 #define BISS_RF_SL_INIT         0x200   // SL stayed low: iC-MB4's INIT sent (two clocks, no
                                         // measurement), with NO_SLAVE; a training follows
 
