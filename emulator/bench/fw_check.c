@@ -67,10 +67,9 @@ static void compare(struct fw_check *fc, const struct biss_sample *smp) {
             return; /* the classes are BiSS-C's, from its records */
         }
         struct wrong_frame wf;
-        wrong_frame_classify(&l->sc.biss, r, fc->data, smp->frame, &l->sl_master,
-                             pru_time_ps(bench_core(fc->b)),
-                             2 * (int64_t)smp->delay.half * PRU_PS_PER_CYCLE, bench_core(fc->b),
-                             &wf);
+        wrong_frame_classify(
+            &l->sc.biss, r, fc->data, smp->frame, &l->sl_master, pru_time_ps(bench_core(fc->b)),
+            2 * (int64_t)smp->delay.half * PRU_PS_PER_CYCLE, bench_core(fc->b), &wf);
         fc->wrong_by_class[wf.cls]++;
         if (fc->nwrong < FW_CHECK_WRONG_KEPT) {
             fc->wrong[fc->nwrong++] = wf;

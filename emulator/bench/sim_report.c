@@ -704,8 +704,7 @@ static size_t firmware_notes(const struct sim_result *r, char (*notes)[160], siz
              "firmware: frame %u, flags 0x%02x, line delay %.1f ns, sample point %u/8, lag %u, "
              "eye %d/8, timestamp %.3f us (IEP %u)",
              f->frame, f->flags, line_delay(f->delay_raw, f->delay_avg, f->half).ns,
-             f->sample_point, f->lag, biss_link_eye(&f->sample), f->timestamp * 5e-3,
-             f->timestamp);
+             f->sample_point, f->lag, biss_link_eye(&f->sample), f->timestamp * 5e-3, f->timestamp);
     if (!(f->flags & BISS_RF_VALID)) {
         snprintf(notes[n++], 160, "  no data in this frame (%s)",
                  (f->flags & BISS_RF_TRAINING)   ? "training frame"
@@ -748,9 +747,8 @@ int sim_write_svg(const struct sim_result *r, const char *path, uint64_t k, char
     static const char *const names[4] = {"MA master", "SL master", "MA slave", "SL slave"};
     struct svg_trace tr[4];
     for (int i = 0; i < 4; i++) {
-        tr[i] =
-            (struct svg_trace){names[i], pins[i], i == 3 ? labels : NULL, i == 3 ? n : 0, NULL, 0,
-                               0, 0};
+        tr[i] = (struct svg_trace){
+            names[i], pins[i], i == 3 ? labels : NULL, i == 3 ? n : 0, NULL, 0, 0, 0};
     }
     char title[200];
     snprintf(title, sizeof(title), "%s, %.3g MHz, %.1f m: frame %llu (frame 1 is the first)",

@@ -114,8 +114,7 @@ static void draw_notes(FILE *f, const struct svg_view *v, double y) {
         y += NOTE;
     }
     if (v->band_legend) {
-        fprintf(f, "<rect class=\"band\" x=\"9\" y=\"%.1f\" width=\"10\" height=\"10\"/>\n",
-                y - 9);
+        fprintf(f, "<rect class=\"band\" x=\"9\" y=\"%.1f\" width=\"10\" height=\"10\"/>\n", y - 9);
         fprintf(f, "<text x=\"24\" y=\"%.1f\">%s</text>\n", y, v->band_legend);
         y += NOTE;
     }
@@ -137,8 +136,8 @@ int svg_scope_write(const char *path, const struct svg_view *v, char *err, size_
     double axis = TOP + ROW * (double)v->ntraces;
     double notes_y = axis + 44;
     double height =
-        notes_y +
-        NOTE * (double)(v->nnotes + (v->mark_legend ? 1 : 0) + (v->band_legend ? 1 : 0)) + 10;
+        notes_y + NOTE * (double)(v->nnotes + (v->mark_legend ? 1 : 0) + (v->band_legend ? 1 : 0)) +
+        10;
     fprintf(f,
             "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%.0f\" height=\"%.0f\" "
             "font-family=\"monospace\" font-size=\"12\">\n"

@@ -79,8 +79,7 @@ const char *wrong_class_name(enum wrong_class c);
  * tell the edges its samples saw (NULL: every edge counts as seen). */
 void wrong_frame_classify(const biss_chain_cfg *cfg, const biss_frame_record *rec,
                           const uint64_t *smp_data, uint32_t frame, waveform *sl, sim_ps now,
-                          int64_t period_ps, const struct pru_core *core,
-                          struct wrong_frame *out);
+                          int64_t period_ps, const struct pru_core *core, struct wrong_frame *out);
 
 /* One line describing it ("frame 1234: off-grid: slave 0 shift ahead at bit 9 ..."). */
 void wrong_frame_describe(const struct wrong_frame *w, char *buf, size_t len);

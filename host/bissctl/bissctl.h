@@ -39,9 +39,9 @@ struct bissctl_opts {
     uint32_t slave_timeout_ns; /* --slave-timeout-ns: the slaves' shortest timeout, 0 unknown */
     double round_trip_ns;      /* --round-trip-ns (rates): a measured round trip, < 0 none */
     uint32_t link_warn, link_window; /* --link-warn K[,N] (0: libbiss's defaults) */
-    struct biss_config checks; /* --check-life, --check-pair: only their fields, added to
-                                  the layout (command line or profile) when it is known */
-    char errbuf[2048];         /* open's detail */
+    struct biss_config checks;       /* --check-life, --check-pair: only their fields, added to
+                                        the layout (command line or profile) when it is known */
+    char errbuf[2048];               /* open's detail */
 };
 
 /* Exit codes */

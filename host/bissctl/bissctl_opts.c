@@ -639,8 +639,7 @@ static int take_config_opt(int c, const char *arg, struct bissctl_opts *o) {
         if (end && *end == ',') {
             n = strtoull(end + 1, &end, 10);
         }
-        if (!end || *end || *arg == '-' || k < 1 || k > UINT32_MAX || n < 1 ||
-            n > UINT32_MAX) {
+        if (!end || *end || *arg == '-' || k < 1 || k > UINT32_MAX || n < 1 || n > UINT32_MAX) {
             return bissctl_usage_error("--link-warn '%s': expected K[,N] (K marginal frames in "
                                        "a block of N, both >= 1)",
                                        arg);

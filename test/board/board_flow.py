@@ -269,7 +269,9 @@ def attached_reads(b, cmd, label, where, env):
     states, cfg_seq = list(b.states), b.r32(CFG_SEQ)
     r = bissctl(cmd, [*where, "read", "-n", "3"], env)
     lines = r.stdout.splitlines()
-    check(r.returncode == 0 and len(lines) == 3 and all(" valid s0.pos=" in l for l in lines),
+    # three frames, then the link's counts over the frames read (proto/biss_link.c)
+    check(r.returncode == 0 and len(lines) == 4 and all(" valid s0.pos=" in l for l in lines[:3])
+          and lines[3].startswith("link: ") and " marginal=0 off_grid=0 " in lines[3],
           "%s attached read: %r %r" % (label, r.stdout, r.stderr))
     check("emulated" not in r.stdout, "%s: the hardware read says emulated" % label)
     r = bissctl(cmd, [*where, "info"], env)
