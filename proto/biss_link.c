@@ -19,7 +19,41 @@
  * check there) is left to the ACK edge: one edge a frame. */
 #include "biss_proto.h"
 
+#include <ctype.h>
+#include <stdlib.h>
 #include <string.h>
+
+/* A count of 1..2^32-1 in decimal digits only, up to a ',' or the end. */
+static bool parse_count(const char *s, const char **end, uint32_t *out) {
+    if (!isdigit((unsigned char)*s)) {
+        return false;
+    }
+    char *e = NULL;
+    unsigned long long v = strtoull(s, &e, 10);
+    *end = e;
+    if (v < 1 || v > UINT32_MAX) {
+        return false;
+    }
+    *out = (uint32_t)v;
+    return true;
+}
+
+int biss_link_parse(const char *arg, uint32_t *warn, uint32_t *window) {
+    const char *end = NULL;
+    uint32_t k, n = BISS_LINK_WINDOW;
+    if (!arg || !parse_count(arg, &end, &k)) {
+        return BISS_E_INVAL;
+    }
+    if (*end == ',' && !parse_count(end + 1, &end, &n)) {
+        return BISS_E_INVAL;
+    }
+    if (*end) {
+        return BISS_E_INVAL;
+    }
+    *warn = k;
+    *window = n;
+    return BISS_OK;
+}
 
 void biss_link_init(struct biss_link_state *st, uint32_t window, uint32_t warn) {
     memset(st, 0, sizeof *st);

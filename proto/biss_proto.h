@@ -165,6 +165,9 @@ struct biss_link_state {
     uint32_t last_frame;
     struct biss_link_stats stats;
 };
+/* Command-line spelling "K[,N]": the warning after K marginal frames in a
+ * block of N (default BISS_LINK_WINDOW), both 1..2^32-1: 0 or BISS_E_INVAL. */
+int biss_link_parse(const char *arg, uint32_t *warn, uint32_t *window);
 /* Counts cleared; the warning after `warn` marginal frames in a block of
  * `window` (0: BISS_LINK_WARN, BISS_LINK_WINDOW). */
 void biss_link_init(struct biss_link_state *st, uint32_t window, uint32_t warn);

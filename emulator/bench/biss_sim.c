@@ -95,7 +95,7 @@ struct options {
     uint64_t svg_frame;
     int json;
     double max_ms;                   /* simulated time limit, 0: derived */
-    uint64_t link_warn, link_window; /* --link-warn K[,N] (0: the defaults) */
+    uint32_t link_warn, link_window; /* --link-warn K[,N] (0: the defaults) */
     biss_cd_prog cd;                 /* a control frame to send, when cd_set */
     int cd_set;
     const char *cd_what; /* the option that asked for it */
@@ -491,18 +491,11 @@ static int set_option(struct options *o, const char *a, const char *v) {
             return usage_error("--svg-frame '%s': expected a frame number (1 is the first)", v);
         }
     } else if (!strcmp(a, "--link-warn")) {
-        char *end = NULL;
-        unsigned long long k = strtoull(v, &end, 10), n = BISS_LINK_WINDOW;
-        if (end && *end == ',') {
-            n = strtoull(end + 1, &end, 10);
-        }
-        if (!end || *end || *v == '-' || k < 1 || k > UINT32_MAX || n < 1 || n > UINT32_MAX) {
+        if (biss_link_parse(v, &o->link_warn, &o->link_window) != BISS_OK) {
             return usage_error("--link-warn '%s': expected K[,N] (K marginal frames in a block "
                                "of N, both >= 1)",
                                v);
         }
-        o->link_warn = k;
-        o->link_window = n;
     } else if (!strcmp(a, "--max-ms")) {
         if (parse_double(v, &o->max_ms) || o->max_ms <= 0 || o->max_ms > MAX_SIM_MS) {
             return usage_error("--max-ms '%s': expected ms, above 0 and at most %.0f", v,
@@ -955,7 +948,7 @@ static int run(const struct options *o) {
     struct fw_check fc;
     if (rc == 0 && fw_mode) {
         fw_check_attach(&fc, b);
-        biss_link_init(&fc.link, (uint32_t)o->link_window, (uint32_t)o->link_warn);
+        biss_link_init(&fc.link, o->link_window, o->link_warn);
         rc = safety_checks(o, &fc.cfg);
         fc.cfg.trigger = (enum biss_trigger)o->trigger;
         fc.cfg.iep_period_ns = o->trigger == BISS_TRIG_IEP ? iep_period * 5u : 0; /* 5 ns counts */

@@ -633,21 +633,12 @@ static int take_config_opt(int c, const char *arg, struct bissctl_opts *o) {
         return biss_safety_parse_ew(arg, &o->checks)
                    ? bissctl_usage_error("--check-ew '%s': expected S (slave 0..7)", arg)
                    : 0;
-    case OPT_LINK_WARN: {
-        char *end = NULL;
-        unsigned long long k = strtoull(arg, &end, 10), n = BISS_LINK_WINDOW;
-        if (end && *end == ',') {
-            n = strtoull(end + 1, &end, 10);
-        }
-        if (!end || *end || *arg == '-' || k < 1 || k > UINT32_MAX || n < 1 || n > UINT32_MAX) {
-            return bissctl_usage_error("--link-warn '%s': expected K[,N] (K marginal frames in "
-                                       "a block of N, both >= 1)",
-                                       arg);
-        }
-        o->link_warn = (uint32_t)k;
-        o->link_window = (uint32_t)n;
-        return 0;
-    }
+    case OPT_LINK_WARN:
+        return biss_link_parse(arg, &o->link_warn, &o->link_window)
+                   ? bissctl_usage_error("--link-warn '%s': expected K[,N] (K marginal frames "
+                                         "in a block of N, both >= 1)",
+                                         arg)
+                   : 0;
     case OPT_CHECK_SPEED:
         return biss_safety_parse_speed(arg, &o->checks)
                    ? bissctl_usage_error(
