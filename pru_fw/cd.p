@@ -218,12 +218,11 @@ CDC_ZEROS:
     ldi     Cd.zeros, 0                     // and the next frame's CDM: CD_PREPARE stores it all
 
 // The next frame's CDM for either CDS (the state in Cd: CD_COMMIT and
-// CD_ABORT fall or branch into it), and the state stored. Its PAD keeps
-// every path after a frame as long as it was when a branch led here: the
-// next free-run frame's poll (FE_POLL, 4-cycle turns) then reads SL on the
-// same cycles as before, against the same phase of the 8x shift clock.
+// CD_ABORT fall or branch into it), and the state stored. (A frame's path
+// through here keeps the length it had when a PAD stood here: FRAME_END's
+// bit-grid test took its cycle, so the next free-run frame's poll, FE_POLL,
+// reads SL on the same cycles, against the same phase of the 8x shift clock.)
 CD_PREPARE:
-    PAD
     ldi     CdCdm, 0                        // CDM 0 whatever the CDS
     qbne    CDP_RUN, Cd.cmd, 0
     lbco    NewCmd, c24, BISS_CD_CMD, 12    // NewCmd, NewSteps, DoneSeq

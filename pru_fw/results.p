@@ -135,8 +135,7 @@ FINAL_CRC_BIT:
 #define RES_BIAS        (P_SLAVES - BISS_R_SLAVE0)
 FRAME_END:
     ldi     ResFlags, BISS_RF_VALID
-    qbeq    FE_ON_GRID, GridSeen, 0         // a bit's samples disagreed (GRID_CHECK):
-    ldi     ResFlags, BISS_RF_OFF_GRID      // an edge off the bit grid, not valid
+    qbne    FE_OFF_GRID, GridSeen, 0        // a bit's samples disagreed (GRID_CHECK)
 FE_ON_GRID:
     mov     Kept, FrameR1                   // Cds and AckPos, for after
     jal     RET_STAMP, BUF_STAMP            // ResBuf; the timestamp, the busy clocks
@@ -232,11 +231,6 @@ FE_EW_DONE:
     add     CrcErrors, CrcErrors, 1
     sbco    CrcErrors, c24, BISS_ST_CRC_ERRORS, 4
 FE_NO_CRC_ERR:
-    qbbc    FE_NO_OFF_GRID, ResFlags, 8     // BISS_RF_OFF_GRID
-    lbco    OffGridFrames, c24, BISS_ST_OFF_GRID, 4
-    add     OffGridFrames, OffGridFrames, 1
-    sbco    OffGridFrames, c24, BISS_ST_OFF_GRID, 4
-FE_NO_OFF_GRID:
     mov     FrameR1, Kept                   // the CDM sent, Cds, AckPos
     jal     RET_POST, CD_COMMIT             // Cds in; and CD_PREPARE: the next frame's CDM
     // The history and the next frame's set-up from one burst (FRAME_REGS'
@@ -369,6 +363,15 @@ IEP_LATE:                                   // at once, timestamped as any frame
     jmp     IepLate                         // FRAME_STAMP, then period 0
 .leave iep_start
 
+// An edge off the bit grid (FRAME_END): not valid, counted now (before
+// the publication, so that the frames on time pay no test after it); the
+// CD_PREPARE PAD this test replaced keeps every other path's length.
+FE_OFF_GRID:
+    ldi     ResFlags, BISS_RF_OFF_GRID
+    lbco    OffGridFrames, c24, BISS_ST_OFF_GRID, 4
+    add     OffGridFrames, OffGridFrames, 1
+    sbco    OffGridFrames, c24, BISS_ST_OFF_GRID, 4
+    qba     FE_ON_GRID
 FE_ACK_JUMP:
     qbbs    FE_HIST_RESET, PrivNs, 31       // the second in a row
     set     PrivNs, PrivNs, 31

@@ -3,10 +3,11 @@
  * millisecond of PRU time loses none of 10^6 frames, each the position
  * the encoder model sent in it; one that polls too rarely loses exactly
  * the frames the ring could not keep, counted. The model's side comes
- * from a store watch on the firmware's publication counter (as the
- * bench's own checker, emulator/bench/fw_check.c): at each publication,
- * the record of the frame the slave model just sent, kept by publication
- * number; the reader never sees it. */
+ * from a store watch on the firmware's ST_BUF, the store that makes a slot
+ * the newest (the reader may take it before ST_SEQ's, one instruction
+ * later, when the emulator stops between them): at each publication, the
+ * record of the frame the slave model just sent, kept by the slot's
+ * publication number; the reader never sees it. */
 #include "libbiss-emu.h"
 
 #include "bench.h"
@@ -36,11 +37,11 @@ static void on_publish(void *ctx, uint32_t addr) {
     struct model_log *m = ctx;
     (void)addr;
     struct biss_proto_io io = bench_fw_io(m->b);
-    uint32_t seq;
-    ck_assert_int_eq(biss_proto_pub_seq(&io, &seq), BISS_OK);
-    if (seq == 0) {
-        return; /* the start-up clearing the status words */
+    struct biss_shm_result r0;
+    if (biss_proto_result_get(&io, 0, &r0) != BISS_OK) {
+        return; /* the start-up clearing the status words: no slot */
     }
+    uint32_t seq = r0.frame; /* the slot's publication number */
     ck_assert_uint_eq(seq, m->published + 1);
     m->published = seq;
     link_model *l = bench_link(m->b);
@@ -63,7 +64,7 @@ static biss_t *open_logged(struct model_log *m) {
     ck_assert_int_eq(biss_emu_open(&p, &h), BISS_OK);
     memset(m, 0, sizeof *m);
     m->b = biss_emu_bench(h);
-    pru_set_store_watch(bench_core(m->b), BISS_ST_SEQ, on_publish, m);
+    pru_set_store_watch(bench_core(m->b), BISS_ST_BUF, on_publish, m);
     struct biss_config c;
     biss_config_default(&c);
     c.freq_hz = FREQ;
