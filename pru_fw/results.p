@@ -363,9 +363,10 @@ IEP_LATE:                                   // at once, timestamped as any frame
     jmp     IepLate                         // FRAME_STAMP, then period 0
 .leave iep_start
 
-// An edge off the bit grid (FRAME_END): not valid, counted now (before
-// the publication, so that the frames on time pay no test after it); the
-// CD_PREPARE PAD this test replaced keeps every other path's length.
+// An edge off the bit grid (FRAME_END): not valid, and counted here,
+// before the publication, so that frames on the grid pay only FRAME_END's
+// test, whose cycle CD_PREPARE's PAD gave up (the path after a frame is as
+// long as before the check).
 FE_OFF_GRID:
     ldi     ResFlags, BISS_RF_OFF_GRID
     lbco    OffGridFrames, c24, BISS_ST_OFF_GRID, 4
