@@ -10,7 +10,8 @@
  *    the sample point was taken from (DELAY_AVG), both in eighths: an edge
  *    d eighths off leaves 4 - d (0 from 4 on: an ACK jump);
  *  - the bit-grid check (BISS_RF_OFF_GRID, below 10 MHz): an edge within
- *    2 eighths of a sample point (GRID_OLDER, GRID_NEWER), so at most 2.
+ *    2 eighths of a sample point (BISS_GRID_OLDER, BISS_GRID_NEWER: the
+ *    check's window, biss_shm.h), so at most 2.
  * A frame with an eye of BISS_LINK_EYE_MARGINAL or less is marginal: its
  * bits were read at most that far from an edge. The warning counts them
  * in blocks of `window` frames judged: set from the frame that brings the
@@ -22,6 +23,12 @@
 #include <ctype.h>
 #include <stdlib.h>
 #include <string.h>
+
+/* An edge the check saw lies no further from the sample point than the
+ * window reaches. */
+_Static_assert(BISS_LINK_EYE_OFF_GRID ==
+                   (BISS_GRID_OLDER > BISS_GRID_NEWER ? BISS_GRID_OLDER : BISS_GRID_NEWER),
+               "the off-grid eye is the check's window");
 
 /* A count of 1..2^32-1 in decimal digits only, up to a ',' or the end. */
 static bool parse_count(const char *s, const char **end, uint32_t *out) {
