@@ -342,10 +342,10 @@ struct biss_safety_stats {
  * A frame's eye opening (biss_sample.link_eye) and the counts over the
  * frames judged: libbiss's since the handle was opened (the frames it
  * read), the bench's over every publication. */
-#define BISS_LINK_EYE_MAX 4 /* eighths: an edge on the bit grid, half a bit away */
-#define BISS_LINK_EYE_OFF_GRID                                                                     \
-    2                                /* the most a frame flagged BISS_RF_OFF_GRID has: the         \
-                                        check's window, BISS_GRID_OLDER/NEWER (biss_shm.h) */
+/* the most a frame flagged BISS_RF_OFF_GRID has: the check's window,
+ * BISS_GRID_OLDER and BISS_GRID_NEWER (biss_shm.h) */
+#define BISS_LINK_EYE_OFF_GRID 2
+#define BISS_LINK_EYE_MAX      4     /* eighths: an edge on the bit grid, half a bit away */
 #define BISS_LINK_EYE_MARGINAL 2     /* at most this: a marginal frame */
 #define BISS_LINK_WINDOW       10000 /* default block of frames the warning counts in */
 #define BISS_LINK_WARN         1     /* default marginal frames in a block that warn */
