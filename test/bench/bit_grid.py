@@ -5,7 +5,9 @@ against the real firmware image on the emulator:
 1. Clean lines: no frame is refused, at every rate where the check runs
    (H >= 16: 6.25 MHz and below) and at 10 MHz, on the encoders of the
    profiles (20 us and the AD38's 650 ns timeout, a 3-word chain) and the
-   cable lengths TIDEP0022 Table 5 allows the rate.
+   cable lengths TIDEP0022 Table 5 allows the rate; and at the corners:
+   IEP and host triggers, 8-slave chains, register reads (CDM = 1) on the
+   longest cables, none refused, marginal or warned.
 2. Both lines glitched (test/scenarios/noise-both-30khz-jitter.json) at
    5 and 2 MHz: frames are refused for the grid, and every wrong word
    still published as valid is, by the bench's own look at SL at the
@@ -18,6 +20,7 @@ against the real firmware image on the emulator:
 usage: bit_grid.py BISS_SIM
 """
 import json
+import os
 import subprocess
 import sys
 
@@ -56,6 +59,31 @@ for profile, freq, cables in CLEAN:
         if f["off_grid"] != 0 or j["crc_errors"] != 0:
             failures.append("%s: %d frames refused off the grid, %d CRC errors on a clean line"
                             % (" ".join(args), f["off_grid"], j["crc_errors"]))
+
+# the envelope's corners where the check runs: the IEP and host triggers,
+# 8-slave chains (650 ns and 20 us timeouts) at the shortest checked tail
+# (6.25 MHz) and on the longest cable, control frames (CDM = 1) reading
+# registers on the longest cable a rate allows
+SCEN = os.path.join(os.path.dirname(os.path.abspath(sys.argv[2])) if len(sys.argv) > 2
+                    else "test/scenarios")
+CORNERS = [
+    ["--trigger", "iep", "--freq", "5000000", "--cable-m", "25"],
+    ["--profile", "hengstler-ad38", "--trigger", "iep", "--freq", "2000000", "--cable-m", "60"],
+    ["--trigger", "host", "--freq", "1000000", "--cable-m", "100"],
+    ["--scenario", os.path.join(SCEN, "chain8-650ns.json"), "--freq", "6250000", "--cable-m", "2"],
+    ["--scenario", os.path.join(SCEN, "chain8-20us.json"), "--freq", "1000000", "--cable-m", "100"],
+    ["--freq", "5000000", "--cable-m", "25", "--reg-read", "0:0x78:8"],
+    ["--freq", "1000000", "--cable-m", "100", "--reg-read", "0:0x44:8"],
+]
+for args in CORNERS:
+    j = run(args + ["--frames", "2000"])
+    if j is None:
+        continue
+    f, k = j["firmware"], j["link"]
+    if f["off_grid"] or j["crc_errors"] or k["marginal_frames"] or k["warning_frames"]:
+        failures.append("%s: %d refused off the grid, %d CRC errors, %d marginal, %d warned"
+                        % (" ".join(args), f["off_grid"], j["crc_errors"], k["marginal_frames"],
+                           k["warning_frames"]))
 
 NOISE = "test/scenarios/noise-both-30khz-jitter.json"
 for freq in (5000000, 2000000, 10000000):
