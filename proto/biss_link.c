@@ -86,7 +86,9 @@ int biss_link_eye(const struct biss_sample *s) {
 void biss_link_check(struct biss_link_state *st, struct biss_sample *s) {
     int eye = biss_link_eye(s);
     s->link_eye = eye;
-    if (st->seen && s->frame == st->last_frame) { /* read again: its verdict stands */
+    /* read again, or older than the last judged (the ring reader and the
+     * newest-sample read on one handle): judged once, in order */
+    if (st->seen && (int32_t)(s->frame - st->last_frame) <= 0) {
         s->link_warning = st->warning;
         return;
     }

@@ -175,7 +175,8 @@ void biss_link_init(struct biss_link_state *st, uint32_t window, uint32_t warn);
  * not measured (no slave, aborted, training). */
 int biss_link_eye(const struct biss_sample *s);
 /* Judges a decoded sample: sets s->link_eye and s->link_warning, counts
- * (a frame read again keeps its verdict and is not counted twice). */
+ * (a frame read again, or one older than the last judged, gets the
+ * warning as it stands and is not counted). */
 void biss_link_check(struct biss_link_state *st, struct biss_sample *s);
 
 /* The safety fields of a configuration against its layout: 0,

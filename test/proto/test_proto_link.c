@@ -1,8 +1,8 @@
 /* Link quality (proto/biss_link.c) on samples made here: the eye of a
  * frame from its ACK and the bit-grid flag, frames that give none, the
  * warning's blocks (set at once, held for the next whole block, dropped
- * after a clean one), a frame read twice, the counts, and the command-line
- * spelling. */
+ * after a clean one), a frame read twice or an older one, the counts, and
+ * the command-line spelling. */
 #include "biss_proto.h"
 
 #include "check_run.h"
@@ -120,6 +120,18 @@ START_TEST(test_read_twice_counts_once) {
     ck_assert_uint_eq(st.stats.frames, 1);
     ck_assert_uint_eq(st.stats.marginal, 1);
     ck_assert_uint_eq(st.stats.warnings, 1);
+    /* an older frame (a second reader on the handle): its eye, no count */
+    struct biss_sample old = frame(5, 30, 40);
+    biss_link_check(&st, &old);
+    ck_assert(old.link_eye == 0 && old.link_warning);
+    ck_assert_uint_eq(st.stats.frames, 1);
+    ck_assert_uint_eq(st.stats.eye[0], 0);
+    /* the frame number wraps: still newer */
+    biss_link_init(&st, 0, 0);
+    struct biss_sample a = frame(0xffffffffu, 40, 40), b = frame(1, 40, 40);
+    biss_link_check(&st, &a);
+    biss_link_check(&st, &b);
+    ck_assert_uint_eq(st.stats.frames, 2);
 }
 END_TEST
 
