@@ -300,7 +300,9 @@ int biss_get_stats(biss_t *h, struct biss_stats *st);
 int biss_get_safety_stats(biss_t *h, struct biss_safety_stats *st);
 /* Link quality over the frames this handle read (each frame's eye opening:
  * biss_sample.link_eye; proto/biss_link.c): the counts by eye, the
- * marginal and off-grid frames, the warnings. */
+ * marginal and off-grid frames, the warnings. Each frame counts once, in
+ * frame order: one older than a frame already read (the ring reader after
+ * biss_read_sample on one handle) keeps its eye but is not counted. */
 int biss_get_link_stats(biss_t *h, struct biss_link_stats *st);
 /* The warning (biss_sample.link_warning): set once `warn` marginal frames
  * (eye <= BISS_LINK_EYE_MARGINAL) fall in one block of `window` frames
