@@ -225,6 +225,22 @@ START_TEST(test_two_encoders_contended) {
 }
 END_TEST
 
+/* The AD38 on both lines at 5 m, PRU0's firmware on PRU0 and PRU1's image
+ * assembled with PRU0's scratch-pad bank (-DXFR_BANK=10) on PRU1: both
+ * store their slaves' results in the same bank. */
+static void same_bank_open(struct pair *p, const struct pru_params *pp) {
+    pair_open(p, PRU_SOC_AM335X, "hengstler-ad38", "hengstler-ad38", (const double[2]){5, 5}, pp);
+    e2e_start_firmware(&p->r[0]);
+    const char *defs[] = {"PRU_NUM=1", "XFR_BANK=10"};
+    struct pruasm_options opt = {.core = 3, .defines = defs, .ndefines = 2};
+    struct pruasm_image img;
+    struct pruasm_diag diag = {0};
+    ck_assert_msg(pruasm_assemble_file(&opt, FIRMWARE_SOURCE, &img, &diag) == 0, "%s",
+                  diag.first_error);
+    ck_assert_int_eq(bench_fw_start(p->r[1].b, img.words, img.nwords * 4), 0);
+    pruasm_image_free(&img);
+}
+
 /* The same encoder and cable on both lines at the same rate, frames on the
  * same cycle: the two PRUs store each slave's result in the same cycle.
  * With their own banks nothing collides and both read right; PRU1's image
@@ -239,16 +255,7 @@ START_TEST(test_same_line_both) {
     pru_params_default(&pp);
     pp.strict = PRU_STRICT_SPAD;
     pp.strict_everywhere = 1;
-    pair_open(&p, PRU_SOC_AM335X, "hengstler-ad38", "hengstler-ad38", (const double[2]){5, 5}, &pp);
-    e2e_start_firmware(&p.r[0]);
-    const char *defs[] = {"PRU_NUM=1", "XFR_BANK=10"};
-    struct pruasm_options opt = {.core = 3, .defines = defs, .ndefines = 2};
-    struct pruasm_image img;
-    struct pruasm_diag diag = {0};
-    ck_assert_msg(pruasm_assemble_file(&opt, FIRMWARE_SOURCE, &img, &diag) == 0, "%s",
-                  diag.first_error);
-    ck_assert_int_eq(bench_fw_start(p.r[1].b, img.words, img.nwords * 4), 0);
-    pruasm_image_free(&img);
+    same_bank_open(&p, &pp);
     struct biss_config c[2];
     for (unsigned i = 0; i < 2; i++) {
         bench_fw_config(p.r[i].b, &c[i]);
@@ -290,16 +297,7 @@ static void same_bank_run(bool ahead, bool ff, struct pair_end *e) {
     pru_params_default(&pp);
     pp.run_ahead = ahead;
     pp.fast_forward = ff;
-    pair_open(&p, PRU_SOC_AM335X, "hengstler-ad38", "hengstler-ad38", (const double[2]){5, 5}, &pp);
-    e2e_start_firmware(&p.r[0]);
-    const char *defs[] = {"PRU_NUM=1", "XFR_BANK=10"};
-    struct pruasm_options opt = {.core = 3, .defines = defs, .ndefines = 2};
-    struct pruasm_image img;
-    struct pruasm_diag diag = {0};
-    ck_assert_msg(pruasm_assemble_file(&opt, FIRMWARE_SOURCE, &img, &diag) == 0, "%s",
-                  diag.first_error);
-    ck_assert_int_eq(bench_fw_start(p.r[1].b, img.words, img.nwords * 4), 0);
-    pruasm_image_free(&img);
+    same_bank_open(&p, &pp);
     static const enum biss_trigger trigger[2] = {BISS_TRIGGER_IEP, BISS_TRIGGER_IEP_FOLLOW};
     for (unsigned i = 0; i < 2; i++) {
         fw_check_attach(&p.r[i].fc, p.r[i].b);
