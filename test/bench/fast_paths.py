@@ -19,16 +19,22 @@ SCEN = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scenarios
 tmp = tempfile.mkdtemp()
 
 
-def run(name, args, off):
-    vcd = os.path.join(tmp, "%s-%s.vcd" % (name, "-".join(off) or "all"))
-    cmd = [SIM, *args, "--json", "--vcd", vcd, "--vcd-timescale", "1ps"]
+def sim_json(args, off):
+    """biss-sim's JSON with the fast paths in off turned off; a failed run
+    ends the test."""
+    cmd = [SIM, *args, "--json"]
     for p in off:
         cmd += ["--no-fast-path", p]
     r = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
     if r.returncode:
         print("FAIL: %s exited %d: %s" % (" ".join(cmd), r.returncode, r.stderr))
         sys.exit(1)
-    j = json.loads(r.stdout)
+    return json.loads(r.stdout)
+
+
+def run(name, args, off):
+    vcd = os.path.join(tmp, "%s-%s.vcd" % (name, "-".join(off) or "all"))
+    j = sim_json([*args, "--vcd", vcd, "--vcd-timescale", "1ps"], off)
     del j["host_seconds"]
     skipped = j.pop("skipped_iterations")
     return j, open(vcd, "rb").read(), skipped
@@ -122,14 +128,7 @@ check("default-1MHz-100m" in skips_less["ff-count-loop"], "ff-count-loop at 1 MH
 
 
 def run_pair(name, args, off):
-    cmd = [SIM, *args, "--json"]
-    for p in off:
-        cmd += ["--no-fast-path", p]
-    r = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
-    if r.returncode:
-        print("FAIL: %s exited %d: %s" % (" ".join(cmd), r.returncode, r.stderr))
-        sys.exit(1)
-    j = json.loads(r.stdout)
+    j = sim_json(args, off)
     skipped = 0
     for pru in ("pru0", "pru1"):
         del j[pru]["host_seconds"]
