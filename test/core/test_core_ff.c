@@ -54,6 +54,14 @@ struct outcome {
     uint32_t r2;
 };
 
+/* The program's first words: GPCFG0 to shift mode at 80 MHz. Returns how
+ * many. */
+static unsigned shift_mode_80mhz(uint32_t *prog) {
+    prog[0] = ldi(R(1), 2u | 3u << 3);
+    prog[1] = burst(PRU_OP_SBCO, 4 * 1, 4, 8, 4); /* GPCFG0 */
+    return 2;
+}
+
 /* Shift mode at 80 MHz (the firmware's 8x clock at 10 MHz: 2.5 cycles a
  * sample, so Cnt_16 pulses every 40 cycles once SB is set), then a poll
  * with a time-out on R31 bit 0 low: qbbc DONE, r31, 0; sub r2, r2, 1;
@@ -66,9 +74,7 @@ static struct outcome counted_poll(enum path p, int64_t t_fall, unsigned count, 
     struct edge_in in = {t_fall};
     struct pru_core *c = ff_core(p, &in);
     uint32_t prog[16];
-    unsigned n = 0;
-    prog[n++] = ldi(R(1), 2u | 3u << 3);
-    prog[n++] = burst(PRU_OP_SBCO, 4 * 1, 4, 8, 4); /* GPCFG0 */
+    unsigned n = shift_mode_80mhz(prog);
     prog[n++] = ldi(R(2), count);
     prog[n++] = qbi(PRU_OP_QBBC, 0, R(31), 0); /* until the high level is sampled */
     if (field) { /* the newest 4 samples low: and r1.b3, r31.b0, 15; qbeq DONE, r1.b3, 0 */
@@ -198,9 +204,7 @@ static struct field_outcome field_poll(enum path p, int64_t t_fall, const struct
     struct edge_in in = {t_fall};
     struct pru_core *c = ff_core(p, &in);
     uint32_t prog[16];
-    unsigned n = 0;
-    prog[n++] = ldi(R(1), 2u | 3u << 3);
-    prog[n++] = burst(PRU_OP_SBCO, 4 * 1, 4, 8, 4); /* GPCFG0 */
+    unsigned n = shift_mode_80mhz(prog);
     if (f->other)
         prog[n++] = ldi(f->other, f->other == W0(2) ? 0x5a5a : 0x5a);
     prog[n++] = ldi(f->field, f->start);
