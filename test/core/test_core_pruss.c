@@ -253,6 +253,23 @@ START_TEST(spad_collision_strict) {
 }
 END_TEST
 
+/* An AM335x PRU-ICSS, PRU0 running w0 and PRU1 w1, run ahead or in turns
+ * of a cycle, with the fast-forward or without. */
+static struct pru_icss *pair_started(const uint32_t *w0, unsigned n0, const uint32_t *w1,
+                                     unsigned n1, bool ahead, bool ff) {
+    struct pru_params p;
+    pru_params_default(&p);
+    p.run_ahead = ahead;
+    p.fast_forward = ff;
+    struct pru_icss *s = pru_icss_new(PRU_SOC_AM335X, &p);
+    ck_assert_ptr_nonnull(s);
+    ck_assert_int_eq(pru_load_image(pru_icss_core(s, 0), w0, n0 * 4), 0);
+    ck_assert_int_eq(pru_load_image(pru_icss_core(s, 1), w1, n1 * 4), 0);
+    pru_start(pru_icss_core(s, 0));
+    pru_start(pru_icss_core(s, 1));
+    return s;
+}
+
 /* PRU0 polls a register of PRU1 through PRU1's CONTROL block (its debug
  * registers, 0x24414: R5) until PRU1, after a delay, sets it: the same
  * instructions with the fast-forward on as with it off (the block gives no
@@ -271,17 +288,8 @@ static void poll_other_pru(bool ff, uint64_t *insns, uint32_t *pc, bool ahead) {
     w1[n1++] = qbi(PRU_OP_QBNE, -1, R(3), 0);
     w1[n1++] = ldi(R(5), 7);
     w1[n1++] = halt();
-    struct pru_params p;
-    pru_params_default(&p);
-    p.fast_forward = ff;
-    p.run_ahead = ahead;
-    struct pru_icss *s = pru_icss_new(PRU_SOC_AM335X, &p);
-    ck_assert_ptr_nonnull(s);
+    struct pru_icss *s = pair_started(w0, n0, w1, n1, ahead, ff);
     struct pru_core *c0 = pru_icss_core(s, 0), *c1 = pru_icss_core(s, 1);
-    ck_assert_int_eq(pru_load_image(c0, w0, n0 * 4), 0);
-    ck_assert_int_eq(pru_load_image(c1, w1, n1 * 4), 0);
-    pru_start(c0);
-    pru_start(c1);
     if (ahead) {
         /* PRU1's countdown touches nothing of PRU0's: it runs ahead of
          * PRU0's first look at its registers, which then could not see
@@ -334,17 +342,8 @@ struct pair_end {
 
 static void run_pair(const uint32_t *w0, unsigned n0, const uint32_t *w1, unsigned n1, bool ahead,
                      bool ff, int64_t cycles, struct pair_end *e) {
-    struct pru_params p;
-    pru_params_default(&p);
-    p.run_ahead = ahead;
-    p.fast_forward = ff;
-    struct pru_icss *s = pru_icss_new(PRU_SOC_AM335X, &p);
-    ck_assert_ptr_nonnull(s);
+    struct pru_icss *s = pair_started(w0, n0, w1, n1, ahead, ff);
     struct pru_core *c[2] = {pru_icss_core(s, 0), pru_icss_core(s, 1)};
-    ck_assert_int_eq(pru_load_image(c[0], w0, n0 * 4), 0);
-    ck_assert_int_eq(pru_load_image(c[1], w1, n1 * 4), 0);
-    pru_start(c[0]);
-    pru_start(c[1]);
     /* in steps, as the bench runs: each run ends with both at its limit */
     for (int64_t t = 0; t < cycles; t += 997)
         ck_assert_int_ne(pru_icss_run_until_cycle(s, t + 997), PRU_STOP_FAULT);
