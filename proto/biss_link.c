@@ -64,9 +64,15 @@ int biss_link_parse(const char *arg, uint32_t *warn, uint32_t *window) {
 
 void biss_link_init(struct biss_link_state *st, uint32_t window, uint32_t warn) {
     memset(st, 0, sizeof *st);
+    biss_link_set_warning(st, window, warn);
+    st->stats.eye_min = BISS_LINK_EYE_MAX;
+}
+
+void biss_link_set_warning(struct biss_link_state *st, uint32_t window, uint32_t warn) {
     st->window = window ? window : BISS_LINK_WINDOW;
     st->warn = warn ? warn : BISS_LINK_WARN;
-    st->stats.eye_min = BISS_LINK_EYE_MAX;
+    st->block_frames = 0;
+    st->block_marginal = 0;
 }
 
 int biss_link_eye(const struct biss_sample *s) {

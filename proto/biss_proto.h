@@ -171,6 +171,9 @@ int biss_link_parse(const char *arg, uint32_t *warn, uint32_t *window);
 /* Counts cleared; the warning after `warn` marginal frames in a block of
  * `window` (0: BISS_LINK_WARN, BISS_LINK_WINDOW). */
 void biss_link_init(struct biss_link_state *st, uint32_t window, uint32_t warn);
+/* The warning's count and block (0: the default) from here on, a new
+ * block begun; the counts kept. */
+void biss_link_set_warning(struct biss_link_state *st, uint32_t window, uint32_t warn);
 /* A decoded sample's eye opening, eighths of a bit; -1 when its ACK was
  * not measured (no slave, aborted, training). */
 int biss_link_eye(const struct biss_sample *s);

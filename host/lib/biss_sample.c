@@ -168,10 +168,7 @@ int biss_set_link_warning(biss_t *h, uint32_t window, uint32_t warn) {
         return BISS_E_INVAL;
     }
     pthread_mutex_lock(&h->lock);
-    h->link.window = window;
-    h->link.warn = warn;
-    h->link.block_frames = 0;
-    h->link.block_marginal = 0;
+    biss_link_set_warning(&h->link, window, warn);
     pthread_mutex_unlock(&h->lock);
     return BISS_OK;
 }
