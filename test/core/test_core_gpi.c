@@ -232,6 +232,27 @@ START_TEST(shift_literal_values) {
 }
 END_TEST
 
+/* The sample instants around a time (pru_gpi_sample_bracket, the bench's
+ * look at what the samples saw): shift-clock edges at 12.5 ns * k less the
+ * synchronizer's 2 cycles; none outside shift mode. */
+START_TEST(shift_sample_bracket) {
+    struct pru_core *c = pru_core_new(PRU_SOC_AM335X, NULL);
+    int64_t before = 0, after = 0;
+    ck_assert_int_eq(pru_gpi_sample_bracket(c, 30000, &before, &after), -1); /* direct mode */
+    ck_assert_int_eq(pru_host_write32(c, GPCFG0, 2u | 3u << 3), 0);          /* 80 MHz */
+    ck_assert_int_eq(pru_gpi_sample_bracket(c, 30000, &before, &after), 0);
+    ck_assert_int_eq(before, 37500 - 10000); /* edge 3 sampled the pins at 27.5 ns */
+    ck_assert_int_eq(after, 50000 - 10000);
+    ck_assert_int_eq(pru_gpi_sample_bracket(c, 27500, &before, &after), 0); /* at an instant */
+    ck_assert_int_eq(before, 27500);
+    ck_assert_int_eq(after, 40000);
+    ck_assert_int_eq(pru_gpi_sample_bracket(c, 27499, &before, &after), 0);
+    ck_assert_int_eq(before, 15000);
+    ck_assert_int_eq(after, 27500);
+    pru_core_free(c);
+}
+END_TEST
+
 /* Instructions read R31 at their issue cycle: store R31 every 2 cycles. */
 START_TEST(shift_read_by_instructions) {
     static struct wave w;
@@ -374,6 +395,7 @@ Suite *gpi_suite(void) {
     tcase_add_loop_test(t, shift_all_divisor_combos, 0, NCOMBO);
     tcase_add_loop_test(t, shift_sparse_reads, 0, NCOMBO);
     tcase_add_test(t, shift_literal_values);
+    tcase_add_test(t, shift_sample_bracket);
     tcase_add_test(t, shift_read_by_instructions);
     tcase_add_test(t, direct_mode_delay);
     tcase_add_test(t, shift_poll_fast_forward_exact);
