@@ -117,11 +117,13 @@ static int64_t circular(int64_t d, int64_t period) {
 }
 
 /* Whether the master's samples saw the SL edge at t: the level at the
- * sample instant after it still differs from the one at the instant
- * before it (a pulse between the two leaves no trace). */
+ * first sample instant at or after it (a sample at the edge's instant
+ * takes the new level, as the waveform and the GPI do) still differs from
+ * the one at the last instant before it (a pulse between the two leaves
+ * no trace). */
 static bool seen_by_samples(waveform *sl, const struct pru_core *core, sim_ps t) {
     int64_t before, after;
-    if (!core || pru_gpi_sample_bracket(core, t, &before, &after) != 0) {
+    if (!core || pru_gpi_sample_bracket(core, t - 1, &before, &after) != 0) {
         return true;
     }
     return waveform_level_at(sl, before) != waveform_level_at(sl, after);

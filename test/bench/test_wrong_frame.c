@@ -211,6 +211,48 @@ START_TEST(crc_polynomial_flips) {
 }
 END_TEST
 
+/* The same frame's three 20 ns pulses (each starting 15 ns past a 25 ns
+ * mark) against the master's sample instants (the GPI's shift clock less
+ * its 2-cycle synchronizer): at 80 MHz (every 12.5 ns) a sample falls in
+ * each, off-grid; at 40 MHz (every 25 ns) set up 4 cycles in, the instants
+ * fall 5 ns before each pulse and at its end, so no sample saw one and the
+ * samples were a clean frame: between samples. */
+START_TEST(pulses_between_samples) {
+    uint64_t pos = 0x5a3;
+    uint8_t read[NB + 1];
+    bits_of(word_of(pos), read);
+    unsigned at = 3;
+    read[at] ^= 1;
+    read[at + 5] ^= 1;
+    read[at + 6] ^= 1;
+    biss_frame_record r = record_of(pos);
+    int64_t glitches[3] = {T0 + (at + 2) * T + 40000, T0 + (at + 7) * T + 40000,
+                           T0 + (at + 8) * T + 40000};
+    waveform sl;
+    draw(&sl, read, glitches, 3, 0, true);
+    uint64_t data = word_from(read);
+    struct pru_core *c = pru_core_new(PRU_SOC_AM335X, NULL);
+    ck_assert_int_eq(pru_host_write32(c, 0x4A326008u, 2u | 3u << 3), 0); /* GPCFG0: 80 MHz */
+    struct wrong_frame w;
+    wrong_frame_classify(&cfg, &r, &data, 9, &sl, r.end_ps, T, c, &w);
+    ck_assert_int_eq(w.cls, WRONG_OFF_GRID);
+    ck_assert_uint_eq(w.off_grid, 6);
+    ck_assert_uint_eq(w.off_grid_seen, 6);
+    pru_run_until_cycle(c, 4);
+    ck_assert_int_eq(pru_host_write32(c, 0x4A326008u, 2u | 8u << 3), 0); /* 40 MHz: 5 x 1 */
+    wrong_frame_classify(&cfg, &r, &data, 9, &sl, r.end_ps, T, c, &w);
+    char line[512];
+    wrong_frame_describe(&w, line, sizeof line);
+    printf("%s\n", line);
+    ck_assert_int_eq(w.cls, WRONG_BETWEEN);
+    ck_assert_uint_eq(w.off_grid, 6);
+    ck_assert_uint_eq(w.off_grid_seen, 0);
+    ck_assert_str_eq(wrong_class_name(w.cls), "between samples");
+    pru_core_free(c);
+    waveform_free(&sl);
+}
+END_TEST
+
 /* No record of the frame: nothing to compare, said so. */
 START_TEST(no_record) {
     waveform sl;
@@ -233,6 +275,7 @@ int main(void) {
     tcase_add_test(tc, shift_in_a_run_is_valid_on_the_wire);
     tcase_add_test(tc, shift_at_a_boundary_is_off_grid);
     tcase_add_test(tc, crc_polynomial_flips);
+    tcase_add_test(tc, pulses_between_samples);
     tcase_add_test(tc, no_record);
     suite_add_tcase(s, tc);
     return check_run(s);
