@@ -89,6 +89,9 @@ int bissctl_encoder(struct bissctl_opts *o);
 /* read --json (bissctl_json.c): one frame of the "frames" array (after the
  * opening, which the first prints), then the end with the safety counts. */
 void bissctl_json_frame(const struct biss_sample *s, const struct biss_config *c, bool first);
+/* A frame's state in a word: valid, crc-error, training, no-slave, proc-error, ack-jump,
+ * off-grid, misframed or invalid (read's lines and read --json's "state"). */
+const char *bissctl_frame_state(const struct biss_sample *s);
 void bissctl_json_end(biss_t *h);
 
 /* The rate against the line (bissctl_line.c, proto's rules and words):

@@ -82,15 +82,7 @@ static void print_safety(const struct biss_sample *s, const struct biss_config *
 }
 
 static void print_sample(const struct biss_sample *s, const struct biss_config *c) {
-    printf("frame=%u flags=0x%02x %s", s->frame, s->flags,
-           s->valid        ? (s->crc_error ? "crc-error" : "valid")
-           : s->training   ? "training"
-           : s->no_slave   ? "no-slave"
-           : s->proc_error ? "proc-error"
-           : s->ack_jump   ? "ack-jump"
-           : s->off_grid   ? "off-grid"
-           : s->misframed  ? "misframed"
-                           : "invalid");
+    printf("frame=%u flags=0x%02x %s", s->frame, s->flags, bissctl_frame_state(s));
     if (s->flags & BISS_RF_IEP_LATE) { /* off its IEP period's count (BISS_RF_IEP_LATE) */
         printf(" iep-late");
     }

@@ -5,7 +5,7 @@
 
 #include <stdio.h>
 
-static const char *state(const struct biss_sample *s) {
+const char *bissctl_frame_state(const struct biss_sample *s) {
     return s->valid        ? (s->crc_error ? "crc-error" : "valid")
            : s->training   ? "training"
            : s->no_slave   ? "no-slave"
@@ -25,7 +25,7 @@ static const char *life(uint32_t f) {
 
 void bissctl_json_frame(const struct biss_sample *s, const struct biss_config *c, bool first) {
     printf("%s\n    {\"frame\": %u, \"flags\": %u, \"state\": \"%s\", \"timestamp\": %u",
-           first ? "" : ",", s->frame, s->flags, state(s), s->timestamp);
+           first ? "" : ",", s->frame, s->flags, bissctl_frame_state(s), s->timestamp);
     if (s->flags & BISS_RF_IEP_LATE) {
         printf(", \"iep_late\": true");
     }
