@@ -75,6 +75,10 @@ void biss_link_set_warning(struct biss_link_state *st, uint32_t window, uint32_t
     st->block_marginal = 0;
 }
 
+double biss_link_eye_mean(const struct biss_link_stats *k) {
+    return k->frames ? (double)k->eye_sum / k->frames : BISS_LINK_EYE_MAX;
+}
+
 int biss_link_eye(const struct biss_sample *s) {
     bool measured = s->valid || s->crc_error || s->ack_jump || s->off_grid || s->misframed;
     if (!measured || s->training) {

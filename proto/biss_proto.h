@@ -174,6 +174,8 @@ void biss_link_init(struct biss_link_state *st, uint32_t window, uint32_t warn);
 /* The warning's count and block (0: the default) from here on, a new
  * block begun; the counts kept. */
 void biss_link_set_warning(struct biss_link_state *st, uint32_t window, uint32_t warn);
+/* The mean eye of the frames counted (BISS_LINK_EYE_MAX before any). */
+double biss_link_eye_mean(const struct biss_link_stats *k);
 /* A decoded sample's eye opening, eighths of a bit; -1 when its ACK was
  * not measured (no slave, aborted, training). */
 int biss_link_eye(const struct biss_sample *s);

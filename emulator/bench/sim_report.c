@@ -229,8 +229,7 @@ static void add_link(cJSON *j, const struct biss_link_state *l) {
         cJSON_AddItemToArray(eye, cJSON_CreateNumber(k->eye[i]));
     }
     cJSON_AddNumberToObject(o, "eye_min", k->frames ? k->eye_min : BISS_LINK_EYE_MAX);
-    cJSON_AddNumberToObject(o, "eye_mean",
-                            k->frames ? (double)k->eye_sum / k->frames : BISS_LINK_EYE_MAX);
+    cJSON_AddNumberToObject(o, "eye_mean", biss_link_eye_mean(k));
     cJSON_AddNumberToObject(o, "marginal_frames", k->marginal);
     cJSON_AddNumberToObject(o, "off_grid_frames", k->off_grid);
     cJSON_AddNumberToObject(o, "warning_frames", k->warnings);
@@ -589,8 +588,8 @@ void sim_print_text(const struct sim_result *r) {
         if (k->frames) {
             printf("link                 eye %.2f/8 bit on average, at least %u/8 (frames by eye "
                    "0..4/8: %u %u %u %u %u); %u marginal, warning on %u frames (%u in %u)\n",
-                   (double)k->eye_sum / k->frames, k->eye_min, k->eye[0], k->eye[1], k->eye[2],
-                   k->eye[3], k->eye[4], k->marginal, k->warnings, fw->link.warn, fw->link.window);
+                   biss_link_eye_mean(k), k->eye_min, k->eye[0], k->eye[1], k->eye[2], k->eye[3],
+                   k->eye[4], k->marginal, k->warnings, fw->link.warn, fw->link.window);
         }
         if (fw->delay_frames) {
             /* one frame's figures, the last one's: the firmware measures to 1/8 bit and

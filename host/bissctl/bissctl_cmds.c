@@ -122,7 +122,7 @@ static void print_link_stats(biss_t *h) {
         return;
     }
     printf("link: frames=%u eye_mean=%.2f/8 eye_min=%u/8 marginal=%u off_grid=%u warned=%u\n",
-           k.frames, (double)k.eye_sum / k.frames, k.eye_min, k.marginal, k.off_grid, k.warnings);
+           k.frames, biss_link_eye_mean(&k), k.eye_min, k.marginal, k.off_grid, k.warnings);
 }
 
 static void print_safety_stats(biss_t *h) {
