@@ -172,26 +172,35 @@ START_TEST(shift_at_a_boundary_is_off_grid) {
 }
 END_TEST
 
+/* Position 0x5a3's frame with three bits flipped in the pattern of the
+ * CRC6 polynomial (at bits 3, 8, 9: x^6 + x + 1 times x^(NB - 1 - 9)): the
+ * bits sent and read, the record, and SL drawn with a 20 ns glitch in the
+ * middle of each flipped bit (40 ns past its start). Returns the word read. */
+static uint64_t crc_flips(uint8_t *sent, uint8_t *read, biss_frame_record *r, waveform *sl) {
+    uint64_t pos = 0x5a3;
+    bits_of(word_of(pos), sent);
+    memcpy(read, sent, NB + 1);
+    unsigned at = 3;
+    read[at] ^= 1;
+    read[at + 5] ^= 1;
+    read[at + 6] ^= 1;
+    *r = record_of(pos);
+    int64_t glitches[3] = {T0 + (at + 2) * T + 40000, T0 + (at + 7) * T + 40000,
+                           T0 + (at + 8) * T + 40000};
+    draw(sl, read, glitches, 3, 0, true);
+    return word_from(read);
+}
+
 /* Three bits flipped in the pattern of the CRC6 polynomial (x^6 + x + 1,
  * at x^k): the same CRC passes; the SL glitches that flipped them put
  * their edges off the grid. Drawn clean instead (the frame as sent, every
  * edge on the grid), the master misread it: other. */
 START_TEST(crc_polynomial_flips) {
-    uint64_t pos = 0x5a3;
     uint8_t sent[NB + 1], read[NB + 1];
-    bits_of(word_of(pos), sent);
-    memcpy(read, sent, sizeof read);
-    unsigned at = 3; /* flips at bits at, at + 5, at + 6: x^6 + x + 1 times x^(NB-1-at-6) */
-    read[at] ^= 1;
-    read[at + 5] ^= 1;
-    read[at + 6] ^= 1;
-    ck_assert(passes(read));
-    biss_frame_record r = record_of(pos);
-    int64_t glitches[3] = {T0 + (at + 2) * T + 40000, T0 + (at + 7) * T + 40000,
-                           T0 + (at + 8) * T + 40000};
+    biss_frame_record r;
     waveform sl;
-    draw(&sl, read, glitches, 3, 0, true);
-    uint64_t data = word_from(read);
+    uint64_t data = crc_flips(sent, read, &r, &sl);
+    ck_assert(passes(read));
     struct wrong_frame w;
     wrong_frame_classify(&cfg, &r, &data, 9, &sl, r.end_ps, T, NULL, &w);
     char line[512];
@@ -218,19 +227,10 @@ END_TEST
  * fall 5 ns before each pulse and at its end, so no sample saw one and the
  * samples were a clean frame: between samples. */
 START_TEST(pulses_between_samples) {
-    uint64_t pos = 0x5a3;
-    uint8_t read[NB + 1];
-    bits_of(word_of(pos), read);
-    unsigned at = 3;
-    read[at] ^= 1;
-    read[at + 5] ^= 1;
-    read[at + 6] ^= 1;
-    biss_frame_record r = record_of(pos);
-    int64_t glitches[3] = {T0 + (at + 2) * T + 40000, T0 + (at + 7) * T + 40000,
-                           T0 + (at + 8) * T + 40000};
+    uint8_t sent[NB + 1], read[NB + 1];
+    biss_frame_record r;
     waveform sl;
-    draw(&sl, read, glitches, 3, 0, true);
-    uint64_t data = word_from(read);
+    uint64_t data = crc_flips(sent, read, &r, &sl);
     struct pru_core *c = pru_core_new(PRU_SOC_AM335X, NULL);
     ck_assert_int_eq(pru_host_write32(c, 0x4A326008u, 2u | 3u << 3), 0); /* GPCFG0: 80 MHz */
     struct wrong_frame w;
