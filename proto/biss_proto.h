@@ -204,6 +204,26 @@ void biss_safety_restart(struct biss_safety_state *st);
  * does its position become the reference). */
 void biss_safety_check(const struct biss_config *c, struct biss_safety_state *st,
                        struct biss_sample *s);
+/* One handle's frames taken by two readers: the newest sample now and
+ * then (BISS_READER_NEWEST) and the ring, every frame in order
+ * (BISS_READER_RING). Each reader's frames are judged against its own
+ * references, in its own frame order (a ring frame older than the newest
+ * one read is no step back in time); the counts are the handle's, each
+ * frame counted once: the first time a frame newer than every one counted
+ * is judged (as biss_link_check counts). */
+enum { BISS_READER_NEWEST, BISS_READER_RING, BISS_READERS };
+struct biss_safety_readers {
+    struct biss_safety_state reader[BISS_READERS];
+    struct biss_safety_stats stats;
+    bool counted;
+    uint32_t last_counted;
+};
+/* biss_safety_check by `reader`'s state; its counts added to r->stats
+ * when s->frame is newer than every frame counted. */
+void biss_safety_readers_check(const struct biss_config *c, struct biss_safety_readers *r,
+                               unsigned reader, struct biss_sample *s);
+/* A new configuration: both readers' references forgotten, the counts kept. */
+void biss_safety_readers_restart(struct biss_safety_readers *r);
 /* Command-line spellings: "S[,BITS]" (life counter of slave S, width
  * BITS, default its ew_shift) and "A,B,TOL[,SHIFT_A,SHIFT_B]" (a pair,
  * distinct_crc set) into c: 0, BISS_E_INVAL (not that form) or

@@ -368,6 +368,48 @@ void biss_safety_check(const struct biss_config *c, struct biss_safety_state *st
 /* ---- the command-line spellings bissctl and biss-sim share ---- */
 
 /* Comma-separated whole numbers: how many (at most max), or -1. */
+/* t += after - before, count by count; the last pair difference where
+ * the pair was compared. */
+static void stats_add(struct biss_safety_stats *t, const struct biss_safety_stats *before,
+                      const struct biss_safety_stats *after) {
+    for (unsigned i = 0; i < BISS_API_MAX_SLAVES; i++) {
+        t->lc_checked[i] += after->lc_checked[i] - before->lc_checked[i];
+        t->lc_frozen[i] += after->lc_frozen[i] - before->lc_frozen[i];
+        t->lc_skipped[i] += after->lc_skipped[i] - before->lc_skipped[i];
+        t->ew_checked[i] += after->ew_checked[i] - before->ew_checked[i];
+        t->ew_set[i] += after->ew_set[i] - before->ew_set[i];
+        t->pos_checked[i] += after->pos_checked[i] - before->pos_checked[i];
+        t->pos_jumped[i] += after->pos_jumped[i] - before->pos_jumped[i];
+        t->pos_resync[i] += after->pos_resync[i] - before->pos_resync[i];
+    }
+    for (unsigned k = 0; k < BISS_API_MAX_PAIRS; k++) {
+        uint32_t n = after->pair_checked[k] - before->pair_checked[k];
+        t->pair_checked[k] += n;
+        t->pair_disagree[k] += after->pair_disagree[k] - before->pair_disagree[k];
+        if (n) {
+            t->pair_last_diff[k] = after->pair_last_diff[k];
+        }
+    }
+}
+
+void biss_safety_readers_check(const struct biss_config *c, struct biss_safety_readers *r,
+                               unsigned reader, struct biss_sample *s) {
+    struct biss_safety_state *st = &r->reader[reader];
+    struct biss_safety_stats before = st->stats;
+    biss_safety_check(c, st, s);
+    if (!r->counted || (int32_t)(s->frame - r->last_counted) > 0) {
+        stats_add(&r->stats, &before, &st->stats);
+        r->counted = true;
+        r->last_counted = s->frame;
+    }
+}
+
+void biss_safety_readers_restart(struct biss_safety_readers *r) {
+    for (unsigned i = 0; i < BISS_READERS; i++) {
+        biss_safety_restart(&r->reader[i]);
+    }
+}
+
 static int numbers(const char *arg, unsigned long long *v, int max) {
     int n = 0;
     const char *p = arg;

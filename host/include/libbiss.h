@@ -297,6 +297,11 @@ struct biss_stats {
 
 int biss_get_status(biss_t *h, struct biss_status *st);
 int biss_get_stats(biss_t *h, struct biss_stats *st);
+/* The safety checks run on every sample read: the newest-sample reads
+ * (biss_read_sample, biss_wait_sample) and the ring's (biss_ring_read)
+ * each judged in their own frame order, so a ring frame read after a newer
+ * sample is judged against the ring's frame before it; the counts
+ * (biss_types.h) take each frame once. */
 int biss_get_safety_stats(biss_t *h, struct biss_safety_stats *st);
 /* Link quality over the frames this handle read (each frame's eye opening:
  * biss_sample.link_eye; proto/biss_link.c): the counts by eye, the

@@ -169,7 +169,7 @@ static int exchange(biss_t *h, struct biss_config *c) {
         }
         h->cfg = *c;
         h->configured = true;
-        biss_safety_restart(&h->safety); /* counters from a new layout's frames on */
+        biss_safety_readers_restart(&h->safety); /* references from a new layout's frames on */
         h->cfg_pub_seq_valid = true;
     }
     return rc;

@@ -91,8 +91,9 @@ struct biss {
     /* what the last BISS_E_SHM_RESULT refusal found in data RAM (a static
      * text of biss_result_check.c), or NULL */
     const char *problem;
-    /* the safety checks over the frames this handle read (biss_safety.c) */
-    struct biss_safety_state safety;
+    /* the safety checks over the frames this handle read, by the newest
+     * sample's reads and the ring's, each in its own order (biss_safety.c) */
+    struct biss_safety_readers safety;
     /* the link's eye and warning over the frames this handle read (biss_link.c) */
     struct biss_link_state link;
 };
@@ -150,8 +151,9 @@ int biss_read_image(biss_t *h, const char *path, bool master, struct biss_errbuf
 
 /* A published result as a sample (seq its publication number): refused
  * as BISS_E_SHM_RESULT, named in h->problem, where the firmware never
- * writes such words; the host's safety checks run on it. Handle locked. */
-int biss_result_to_sample(biss_t *h, const struct biss_shm_result *r, uint32_t seq,
+ * writes such words; the host's safety checks run on it as `reader`
+ * (BISS_READER_NEWEST or BISS_READER_RING) read it. Handle locked. */
+int biss_result_to_sample(biss_t *h, const struct biss_shm_result *r, uint32_t seq, unsigned reader,
                           struct biss_sample *s);
 
 /* Waits (handle locked) until done(h, arg) returns nonzero or timeout_ms

@@ -39,7 +39,7 @@ static int ring_read_locked(biss_t *h, struct biss_sample *out, unsigned max, un
         rc = biss_proto_ring_read(&io, &h->ring_cursor, raw, want, &got, &gone);
         *lost += gone;
         for (unsigned i = 0; !rc && i < got; i++) {
-            rc = biss_result_to_sample(h, &raw[i], raw[i].frame, &out[*n]);
+            rc = biss_result_to_sample(h, &raw[i], raw[i].frame, BISS_READER_RING, &out[*n]);
             *n += !rc;
         }
         if (got + gone < want) {

@@ -46,7 +46,7 @@ static int read_consistent(biss_t *h, struct biss_shm_result *r, uint32_t *seq) 
     return BISS_E_RETRY;
 }
 
-int biss_result_to_sample(biss_t *h, const struct biss_shm_result *r, uint32_t seq,
+int biss_result_to_sample(biss_t *h, const struct biss_shm_result *r, uint32_t seq, unsigned reader,
                           struct biss_sample *s) {
     const char *why = biss_result_problem(&h->cfg, h->configured, r);
     if (why) {
@@ -55,7 +55,7 @@ int biss_result_to_sample(biss_t *h, const struct biss_shm_result *r, uint32_t s
     }
     int rc = biss_sample_decode(&h->cfg, h->configured, seq, r, s);
     if (!rc && h->configured) {
-        biss_safety_check(&h->cfg, &h->safety, s);
+        biss_safety_readers_check(&h->cfg, &h->safety, reader, s);
     }
     if (!rc) {
         biss_link_check(&h->link, s);
@@ -70,7 +70,7 @@ static int read_sample_locked(biss_t *h, struct biss_sample *s) {
     if (!rc && h->configured && h->cfg_pub_seq_valid && (int32_t)(seq - h->cfg_pub_seq) <= 0) {
         return BISS_E_NO_SAMPLE; /* published under the previous configuration */
     }
-    return rc ? rc : biss_result_to_sample(h, &r, seq, s);
+    return rc ? rc : biss_result_to_sample(h, &r, seq, BISS_READER_NEWEST, s);
 }
 
 int biss_read_sample(biss_t *h, struct biss_sample *s) {

@@ -320,7 +320,9 @@ struct biss_sample {
 
 /* The safety checks' counts over the frames they judged: libbiss's since
  * the handle was opened, over the frames it read (biss_read_sample,
- * biss_wait_sample; each frame once); the bench's over every publication. */
+ * biss_wait_sample, biss_ring_read: each frame once, in frame order; a
+ * ring frame older than one the newest-sample read judged is judged in
+ * the ring's order but not counted); the bench's over every publication. */
 struct biss_safety_stats {
     uint32_t lc_checked[BISS_API_MAX_SLAVES]; /* frames whose life counter was compared */
     uint32_t lc_frozen[BISS_API_MAX_SLAVES];

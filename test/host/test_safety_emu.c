@@ -247,6 +247,80 @@ START_TEST(test_every_check_every_trigger) {
 }
 END_TEST
 
+/* The ring reader and the newest-sample read on one handle (a servo loop
+ * reading every frame, a monitor now and then): each judged in its own
+ * frame order, so a healthy encoder is never flagged, whichever read runs
+ * ahead, and every frame the ring gives is judged; the counts take each
+ * frame once, in frame order (a ring frame older than the newest read is
+ * judged, not counted: biss_link_check's rule). _i: IEP trigger (the speed
+ * check times frames by their numbers) or free-running (by timestamps). */
+#define RING_MAX 256
+static uint32_t newest_counted, counted_lc;
+
+static void judged(const struct biss_sample *s, bool ring, uint32_t first) {
+    ck_assert_msg(!(s->safety & BISS_SAFE_FAULTS) && !s->misframed, "%s frame %u flagged 0x%x%s",
+                  ring ? "ring" : "newest", s->frame, s->safety, s->misframed ? ", misframed" : "");
+    if (ring && s->frame > first + 2) {
+        ck_assert_msg((s->slave[0].safety & BISS_SAFE_LC_CHECKED) &&
+                          (s->slave[1].safety & BISS_SAFE_POS_CHECKED),
+                      "ring frame %u not judged (0x%x, 0x%x)", s->frame, s->slave[0].safety,
+                      s->slave[1].safety);
+    }
+    if (s->frame > newest_counted) {
+        newest_counted = s->frame;
+        counted_lc += (s->slave[0].safety & BISS_SAFE_LC_CHECKED) != 0;
+    }
+}
+
+START_TEST(test_ring_and_newest_on_one_handle) {
+    char path[64];
+    biss_t *h[2];
+    const char *healthy =
+        "{\"profile\": \"biss-safety-two-channel\", \"checks\": {\"life_counter\": [0, 1], "
+        "\"pairs\": [{\"a\": 0, \"b\": 1, \"shift_b\": 4, \"tolerance\": 16}], "
+        "\"max_speed\": [{\"slave\": 1, \"counts_per_s\": 80000}]}}";
+    open_two(0, scenario_file(path, sizeof path, healthy), h);
+    bool iep = _i == 0;
+    ck_assert_int_eq(
+        configure(h[0], iep ? BISS_TRIGGER_IEP : BISS_TRIGGER_FREERUN, iep ? PERIOD_NS : 0, false),
+        BISS_OK);
+    static struct biss_sample ring[RING_MAX];
+    struct biss_sample s;
+    uint32_t ring_frames = 0, newest_reads = 0, first = 0, last_ring = 0;
+    newest_counted = counted_lc = 0;
+    for (int round = 0; round < 12; round++) {
+        ck_assert_int_eq(biss_run_ms(h[0], 1), BISS_OK); /* 10 frames (IEP), ~45 (free) */
+        if (round % 2) { /* the newest frame first: ahead of every frame the ring holds */
+            ck_assert_int_eq(biss_read_sample(h[0], &s), BISS_OK);
+            judged(&s, false, first);
+            newest_reads++;
+        }
+        unsigned n;
+        uint32_t lost;
+        ck_assert_int_eq(biss_ring_read(h[0], ring, RING_MAX, &n, &lost), BISS_OK);
+        ck_assert_uint_eq(lost, 0);
+        for (unsigned i = 0; i < n; i++) {
+            first = first ? first : ring[i].frame;
+            ck_assert(last_ring == 0 || ring[i].frame == last_ring + 1);
+            last_ring = ring[i].frame;
+            judged(&ring[i], true, first);
+        }
+        ring_frames += n;
+    }
+    ck_assert_uint_ge(ring_frames, 100);
+    ck_assert_uint_ge(newest_reads, 6);
+    struct biss_safety_stats st;
+    ck_assert_int_eq(biss_get_safety_stats(h[0], &st), BISS_OK);
+    ck_assert_uint_eq(st.lc_checked[0], counted_lc);
+    ck_assert_uint_lt(st.lc_checked[0], ring_frames); /* the newest reads skipped some */
+    ck_assert_uint_eq(st.lc_skipped[0] + st.lc_frozen[0] + st.lc_skipped[1] + st.lc_frozen[1], 0);
+    ck_assert_uint_eq(st.pair_disagree[0] + st.pos_jumped[1], 0);
+    biss_close(h[0]);
+    biss_close(h[1]);
+    unlink(path);
+}
+END_TEST
+
 /* A speed check with no time to judge by refuses to be configured:
  * following no channel that owns the IEP (and given no period), or on the
  * timestamps while the other channel's IEP trigger restarts the count;
@@ -281,6 +355,7 @@ int main(void) {
     tcase_add_test(tc, test_configure_refuses_one_crc);
     tcase_add_loop_test(tc, test_every_check_every_trigger, 0, 8);
     tcase_add_test(tc, test_speed_check_without_time_refused);
+    tcase_add_loop_test(tc, test_ring_and_newest_on_one_handle, 0, 2);
     suite_add_tcase(s, tc);
     return check_run(s);
 }

@@ -105,6 +105,54 @@ START_TEST(test_frames_the_host_did_not_read) {
 }
 END_TEST
 
+/* Two readers of one handle: the ring frames 1..30 in order, the newest
+ * read frame 20 between its 10th and 11th; then a counter fault at 31..
+ * seen by the newest read first. Each reader judges its frames in its own
+ * order (ring frame 11 against 10, not against 20), the counts take each
+ * frame once, in frame order; a restart forgets both readers' references. */
+START_TEST(test_two_readers) {
+    struct biss_config c = two_channels();
+    struct biss_safety_readers r;
+    memset(&r, 0, sizeof r);
+    struct biss_sample s;
+    for (uint32_t n = 1; n <= 30; n++) {
+        if (n == 11) {
+            s = frame(20, 1000, 1000 >> 4, 20, 20);
+            biss_safety_readers_check(&c, &r, BISS_READER_NEWEST, &s);
+            ck_assert_uint_eq(s.safety, BISS_SAFE_PAIR_CHECKED); /* its first: no counter yet */
+        }
+        s = frame(n, 1000, 1000 >> 4, n, n);
+        biss_safety_readers_check(&c, &r, BISS_READER_RING, &s);
+        ck_assert_uint_eq(s.safety & BISS_SAFE_FAULTS, 0);
+        ck_assert_uint_eq(s.slave[0].safety & BISS_SAFE_LC_CHECKED,
+                          n > 1 ? BISS_SAFE_LC_CHECKED : 0);
+    }
+    /* counted: ring 2..10, newest 20 (no counter: pair only), ring 21..30 */
+    ck_assert_uint_eq(r.stats.lc_checked[0], 9 + 10);
+    ck_assert_uint_eq(r.stats.pair_checked[0], 10 + 1 + 10);
+    ck_assert_uint_eq(r.reader[BISS_READER_RING].stats.lc_checked[0], 29);
+    /* the counter stands still from 31: the newest read (frame 40 against
+     * 20) and the ring (31 against 30) each see it */
+    s = frame(40, 1000, 1000 >> 4, 30, 30);
+    biss_safety_readers_check(&c, &r, BISS_READER_NEWEST, &s);
+    ck_assert_uint_ne(s.safety & BISS_SAFE_LC_SKIP, 0);
+    s = frame(31, 1000, 1000 >> 4, 30, 30);
+    biss_safety_readers_check(&c, &r, BISS_READER_RING, &s);
+    ck_assert_uint_ne(s.safety & BISS_SAFE_LC_FROZEN, 0);
+    ck_assert_uint_eq(r.stats.lc_skipped[0], 1);
+    ck_assert_uint_eq(r.stats.lc_frozen[0], 0); /* frame 31 older than 40: not counted */
+    /* a new configuration: no reference left in either reader, counts kept */
+    biss_safety_readers_restart(&r);
+    s = frame(50, 1000, 1000 >> 4, 3, 3);
+    biss_safety_readers_check(&c, &r, BISS_READER_RING, &s);
+    ck_assert_uint_eq(s.safety & BISS_SAFE_LC_CHECKED, 0);
+    s = frame(51, 1000, 1000 >> 4, 9, 9);
+    biss_safety_readers_check(&c, &r, BISS_READER_NEWEST, &s);
+    ck_assert_uint_eq(s.safety & BISS_SAFE_LC_CHECKED, 0);
+    ck_assert_uint_eq(r.stats.lc_checked[0], 9 + 10 + 1);
+}
+END_TEST
+
 /* The firmware's frame number wraps at 2^32, the counter with it. */
 START_TEST(test_frame_number_wraps) {
     struct biss_config c = two_channels();
@@ -662,6 +710,7 @@ int main(void) {
     TCase *tc = tcase_create("checks");
     tcase_add_test(tc, test_counter_every_frame);
     tcase_add_test(tc, test_frames_the_host_did_not_read);
+    tcase_add_test(tc, test_two_readers);
     tcase_add_test(tc, test_frame_number_wraps);
     tcase_add_test(tc, test_frozen_and_skipping);
     tcase_add_test(tc, test_same_frame_read_again);
