@@ -376,6 +376,11 @@ CFG_DELAY_SAVE:                             // (stored with the history: P_DELAY
     sbco    &DelayWord, c28, P_DELAYS, P_HSUM - P_DELAYS // DelayWord, NewHist01, NewHist2K
     mov     NewNs, CfgSlavesTrig            // slaves, trigger, -, frames in the average (0)
     add     NewRecEnd, SlavesOff, REC_BASE  // the end record's register-file address
+    // Above CUT_MAX_HALF the frame's last period keeps its tails: no record
+    // lies at 0xff, so SWITCH_SHORT never cuts them (biss_master.p says why).
+    qbge    CFG_REC_END, CfgHalf, CUT_MAX_HALF
+    ldi     NewRecEnd, 0xff
+CFG_REC_END:
     // ACK limit in periods x 8: (BISS_MAX_DELAY_NS / 10 / H + 4) x 8
     mov     Num, BISS_MAX_DELAY_NS / 10
     mov     Den, CfgHalf

@@ -243,6 +243,14 @@
 #define BISS_GRID_OLDER         2
 #define BISS_GRID_NEWER         2
 #define BISS_GRID_MIN_HALF      16
+// The frame's last period and the idle polls after it (pru_fw/biss_master.p,
+// POST_MIN): the fewest cycles from the last R31 read of a frame to the
+// first poll for the slave's timeout end (measured 173, an SSI frame), and
+// the largest H at which the last period may cut its tails: 5 samples (one
+// past the last bit's end, H + H / 4 cycles) within those cycles. Above it
+// the frame ends 2H after that read (publication about 2H - 20 later).
+#define BISS_POST_MIN_CYCLES    170
+#define BISS_CUT_MAX_HALF       (BISS_POST_MIN_CYCLES * 4 / 5)
 #define BISS_RF_SL_INIT         0x200   // SL stayed low: iC-MB4's INIT sent (two clocks, no
                                         // measurement), with NO_SLAVE; a training follows
 
