@@ -105,6 +105,14 @@ START_TEST(test_frames_the_host_did_not_read) {
 }
 END_TEST
 
+/* Frame n (both counters at lc) judged as `reader` read it; its flags. */
+static uint32_t read_by(const struct biss_config *c, struct biss_safety_readers *r, unsigned reader,
+                        uint32_t n, uint32_t lc) {
+    struct biss_sample s = frame(n, 1000, 1000 >> 4, lc, lc);
+    biss_safety_readers_check(c, r, reader, &s);
+    return s.safety;
+}
+
 /* Two readers of one handle: the ring frames 1..30 in order, the newest
  * read frame 20 between its 10th and 11th; then a counter fault at 31..
  * seen by the newest read first. Each reader judges its frames in its own
@@ -114,18 +122,13 @@ START_TEST(test_two_readers) {
     struct biss_config c = two_channels();
     struct biss_safety_readers r;
     memset(&r, 0, sizeof r);
-    struct biss_sample s;
     for (uint32_t n = 1; n <= 30; n++) {
-        if (n == 11) {
-            s = frame(20, 1000, 1000 >> 4, 20, 20);
-            biss_safety_readers_check(&c, &r, BISS_READER_NEWEST, &s);
-            ck_assert_uint_eq(s.safety, BISS_SAFE_PAIR_CHECKED); /* its first: no counter yet */
+        if (n == 11) { /* its first: no counter yet, the pair only */
+            ck_assert_uint_eq(read_by(&c, &r, BISS_READER_NEWEST, 20, 20), BISS_SAFE_PAIR_CHECKED);
         }
-        s = frame(n, 1000, 1000 >> 4, n, n);
-        biss_safety_readers_check(&c, &r, BISS_READER_RING, &s);
-        ck_assert_uint_eq(s.safety & BISS_SAFE_FAULTS, 0);
-        ck_assert_uint_eq(s.slave[0].safety & BISS_SAFE_LC_CHECKED,
-                          n > 1 ? BISS_SAFE_LC_CHECKED : 0);
+        uint32_t f = read_by(&c, &r, BISS_READER_RING, n, n);
+        ck_assert_uint_eq(f & BISS_SAFE_FAULTS, 0);
+        ck_assert_uint_eq(f & BISS_SAFE_LC_CHECKED, n > 1 ? BISS_SAFE_LC_CHECKED : 0);
     }
     /* counted: ring 2..10, newest 20 (no counter: pair only), ring 21..30 */
     ck_assert_uint_eq(r.stats.lc_checked[0], 9 + 10);
@@ -133,22 +136,14 @@ START_TEST(test_two_readers) {
     ck_assert_uint_eq(r.reader[BISS_READER_RING].stats.lc_checked[0], 29);
     /* the counter stands still from 31: the newest read (frame 40 against
      * 20) and the ring (31 against 30) each see it */
-    s = frame(40, 1000, 1000 >> 4, 30, 30);
-    biss_safety_readers_check(&c, &r, BISS_READER_NEWEST, &s);
-    ck_assert_uint_ne(s.safety & BISS_SAFE_LC_SKIP, 0);
-    s = frame(31, 1000, 1000 >> 4, 30, 30);
-    biss_safety_readers_check(&c, &r, BISS_READER_RING, &s);
-    ck_assert_uint_ne(s.safety & BISS_SAFE_LC_FROZEN, 0);
+    ck_assert_uint_ne(read_by(&c, &r, BISS_READER_NEWEST, 40, 30) & BISS_SAFE_LC_SKIP, 0);
+    ck_assert_uint_ne(read_by(&c, &r, BISS_READER_RING, 31, 30) & BISS_SAFE_LC_FROZEN, 0);
     ck_assert_uint_eq(r.stats.lc_skipped[0], 1);
     ck_assert_uint_eq(r.stats.lc_frozen[0], 0); /* frame 31 older than 40: not counted */
     /* a new configuration: no reference left in either reader, counts kept */
     biss_safety_readers_restart(&r);
-    s = frame(50, 1000, 1000 >> 4, 3, 3);
-    biss_safety_readers_check(&c, &r, BISS_READER_RING, &s);
-    ck_assert_uint_eq(s.safety & BISS_SAFE_LC_CHECKED, 0);
-    s = frame(51, 1000, 1000 >> 4, 9, 9);
-    biss_safety_readers_check(&c, &r, BISS_READER_NEWEST, &s);
-    ck_assert_uint_eq(s.safety & BISS_SAFE_LC_CHECKED, 0);
+    ck_assert_uint_eq(read_by(&c, &r, BISS_READER_RING, 50, 3) & BISS_SAFE_LC_CHECKED, 0);
+    ck_assert_uint_eq(read_by(&c, &r, BISS_READER_NEWEST, 51, 9) & BISS_SAFE_LC_CHECKED, 0);
     ck_assert_uint_eq(r.stats.lc_checked[0], 9 + 10 + 1);
 }
 END_TEST
