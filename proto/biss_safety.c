@@ -365,9 +365,6 @@ void biss_safety_check(const struct biss_config *c, struct biss_safety_state *st
     remember(st, s);
 }
 
-/* ---- the command-line spellings bissctl and biss-sim share ---- */
-
-/* Comma-separated whole numbers: how many (at most max), or -1. */
 /* t += after - before, count by count; the last pair difference where
  * the pair was compared. */
 static void stats_add(struct biss_safety_stats *t, const struct biss_safety_stats *before,
@@ -410,6 +407,9 @@ void biss_safety_readers_restart(struct biss_safety_readers *r) {
     }
 }
 
+/* ---- the command-line spellings bissctl and biss-sim share ---- */
+
+/* Comma-separated whole numbers: how many (at most max), or -1. */
 static int numbers(const char *arg, unsigned long long *v, int max) {
     int n = 0;
     const char *p = arg;

@@ -74,22 +74,23 @@
 // cycles by the shape of the last slave, the last switch period taken as a
 // whole one where SWITCH_SHORT cut its tails; 6 more for FRAME_END's
 // branches before it).
-// The slave's timeout, after the last bit, is the first thing that tells
-// the idle polls after a frame (FE_POLL, IEP_POLL, SLAVE_IDLE: the newest
-// IDLE_MASK samples high) a slave in its timeout from a slave done: until
-// the samples reach past the last bit's end, a last bit of 1 looks the
-// same as SL high. The last bit is read from the last switch period's R31
-// snapshot as soon as its sample point is in it, with as few as 0 newer
-// samples; its end is 4 samples (H / 2) after the sample point. The work
-// after the frame up to the first poll's read takes at least POST_MIN
-// cycles (biss_shm.h; the shortest measured, 173, is an SSI frame's, which
-// goes through FE_SLOW); where 5 samples (H + H / 4, one past the end)
-// take longer than that, the last period keeps its tails instead of
-// cutting them (SWITCH_SHORT; CFG: the end record at 0xff), and the frame
-// ends 2H after that read: publication about 2H - 20 cycles later, only at
-// the slow rates (H > CUT_MAX_HALF = 136: 625 kHz and below). Found at
-// 200 kHz on 200 m (`test/bench/long_lines.py`): a free-running master
-// started its next frame inside the slave's timeout.
+// The idle polls after a frame (FE_POLL, IEP_POLL, SLAVE_IDLE) take SL's
+// newest IDLE_MASK samples all high for the end of the slave's timeout,
+// which iC-MB4 has "terminated and signaled to the BiSS master by a rising
+// edge" (datasheet, BiSS C frame); a last bit of 1 looks the same until
+// the samples reach past its end, where the timeout's low begins. The last
+// bit is read from the last switch period's R31 snapshot as soon as its
+// sample point is in it, with as few as 0 newer samples; its end is 4
+// samples (H / 2) after the sample point. The work after the frame up to
+// the first poll's read takes at least POST_MIN cycles (biss_shm.h; the
+// shortest measured, 173, an SSI frame's through FE_SLOW); where 5 samples
+// (H + H / 4 cycles, one past the end) take longer than that, the last
+// period keeps its tails instead of cutting them (SWITCH_SHORT; CFG: the
+// end record at 0xff), and the frame ends 2H after that read: publication
+// about 2H - 20 cycles later, only at the slow rates (H > CUT_MAX_HALF =
+// 136: 625 kHz and below). Found at 200 kHz on 200 m
+// (`test/bench/long_lines.py`): a free-running master started its next
+// frame inside the slave's timeout.
 #define POST_MIN        BISS_POST_MIN_CYCLES
 #define CUT_MAX_HALF    BISS_CUT_MAX_HALF
 
