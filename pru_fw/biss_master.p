@@ -83,7 +83,8 @@
 // sample point is in it, with as few as 0 newer samples; its end is 4
 // samples (H / 2) after the sample point. The work after the frame up to
 // the first poll's read takes at least POST_MIN cycles (biss_shm.h; the
-// shortest measured, 173, an SSI frame's through FE_SLOW); where 5 samples
+// shortest measured, 173, an SSI frame's through FE_SLOW; every frame's
+// count checked by `test/bench/post_frame.py`); where 5 samples
 // (H + H / 4 cycles, one past the end) take longer than that, the last
 // period keeps its tails instead of cutting them (SWITCH_SHORT; CFG: the
 // end record at 0xff), and the frame ends 2H after that read: publication

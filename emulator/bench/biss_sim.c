@@ -14,6 +14,7 @@
 #include "fw_cd.h"
 #include "fw_check.h"
 #include "pru_isa.h"
+#include "safe_file.h"
 #include "bench_fw.h"
 #include "default_image.h"
 #include "scenario_json.h"
@@ -91,6 +92,7 @@ struct options {
     double iep_period_ns;
     const char *vcd;
     int64_t vcd_unit_ps;
+    const char *trace; /* --trace: every instruction the PRU runs, to this file */
     const char *svg;
     uint64_t svg_frame;
     int json;
@@ -171,6 +173,9 @@ static void usage(FILE *f) {
                "  --vcd FILE         write MA/SL at master and slave and a frame wire (high\n"
                "                     while a frame is clocked) as VCD (scope bench)\n"
                "  --vcd-timescale U  1ps, 10ps, 100ps or 1ns (default); edges keep their order\n"
+               "  --trace FILE       write every instruction the PRU runs: cycle, PC, the\n"
+               "                     instruction, the registers it changed (pru-run's\n"
+               "                     --trace; idle loops the fast-forward skips are noted)\n"
                "  --svg FILE         write a scope view of one frame as SVG\n"
                "  --svg-frame K      which frame the SVG shows (default 2); frames count from 1,\n"
                "                     as bissctl's: frame 1 is the first (BiSS-C: training)\n"
@@ -290,9 +295,9 @@ static const char *const valued[] = {
     "--check-ew", "--check-speed", "--link-warn"};
 /* ... and those of the waveform output and the fast paths */
 static const char *const valued_out[] = {"--vcd-timescale", "--no-fast-path",  "--strict-window",
-                                         "--contend",       "--pru",           "--pru1-profile",
-                                         "--pru1-scenario", "--iep-period-ns", "--trigger",
-                                         "--pru1-firmware", "--settle-frames"};
+                                         "--trace",         "--contend",       "--pru",
+                                         "--pru1-profile",  "--pru1-scenario", "--iep-period-ns",
+                                         "--trigger",       "--pru1-firmware", "--settle-frames"};
 
 static int takes_value(const char *a) {
     for (size_t i = 0; i < sizeof(valued) / sizeof(valued[0]); i++) {
@@ -451,6 +456,8 @@ static int set_option(struct options *o, const char *a, const char *v) {
         o->soc = v;
     } else if (!strcmp(a, "--vcd")) {
         o->vcd = v;
+    } else if (!strcmp(a, "--trace")) {
+        o->trace = v;
     } else if (!strcmp(a, "--vcd-timescale")) {
         static const char *const units[] = {"1ps", "10ps", "100ps", "1ns"};
         static const int64_t ps[] = {1, 10, 100, 1000};
@@ -747,10 +754,10 @@ static void pru_num_define(unsigned pru, struct sim_defines *d) {
 
 /* A second encoder on PRU1 (sim_pair.h): the firmware on both PRUs. */
 static int run_pair(const struct options *o, const struct bench_config *cfg, unsigned half) {
-    if (o->image || o->vcd || o->svg || o->cd_set || o->pru || o->trigger_set) {
+    if (o->image || o->vcd || o->svg || o->cd_set || o->pru || o->trigger_set || o->trace) {
         return usage_error("--pru1-profile/--pru1-scenario run the firmware on both PRUs, PRU0 "
                            "on the IEP and PRU1 following it: not with --image, --vcd, --svg, "
-                           "--pru, --trigger or control frames");
+                           "--trace, --pru, --trigger or control frames");
     }
     struct sim_pair_run r = {.cfg = {*cfg, *cfg},
                              .half = half,
@@ -925,6 +932,7 @@ static int run(const struct options *o) {
     int64_t host_step = (int64_t)fmax(2 * frame_ps, 10 * SIM_PS_PER_US);
     struct pruasm_image img;
     int rc = 0;
+    struct safe_file trace = {.f = NULL};
     const char *own = own_image(o->pru); /* one per PRU */
     const char *path = fw_mode ? (o->firmware ? o->firmware : own) : o->image;
     if (fw_mode) {
@@ -944,6 +952,10 @@ static int run(const struct options *o) {
         rc = die("image of %zu words does not fit the IRAM of %s", img.nwords, o->soc);
     } else if (o->vcd && bench_open_vcd(b, o->vcd, o->vcd_unit_ps) != 0) {
         rc = die("cannot write the VCD: %s", bench_vcd_error(b));
+    } else if (o->trace && safe_file_open(&trace, o->trace, err, sizeof err) != 0) {
+        rc = die("--trace: %s", err);
+    } else if (trace.f) {
+        pru_set_trace(bench_core(b), trace.f);
     }
     struct fw_check fc;
     if (rc == 0 && fw_mode) {
@@ -1034,6 +1046,12 @@ static int run(const struct options *o) {
     }
     if (bench_close_vcd(b) != 0) {
         rc = die("error writing the VCD: %s", bench_vcd_error(b));
+    }
+    if (trace.f) {
+        pru_set_trace(bench_core(b), NULL);
+        if (safe_file_close(&trace, err, sizeof err) != 0) {
+            rc = die("--trace: %s", err);
+        }
     }
     if (o->json) {
         cJSON *j = sim_json(&res);

@@ -120,8 +120,19 @@ for args, words in [(["--profile", "nope"], "biss-sim: --profile 'nope': expecte
                     (["--svg-frame", "0"], "--svg-frame '0'")]:
     refused(args, words, 2)
 for args, words in [(["--image", "/nonexistent.bin"], "cannot read"),
-                    (["--scenario", "/nonexistent.json"], "nonexistent")]:
+                    (["--scenario", "/nonexistent.json"], "nonexistent"),
+                    (["--frames", "2", "--trace", "/nonexistent/t.txt"], "--trace: /nonexistent/t.txt"),
+                    (["--frames", "2", "--trace", "/tmp"], "--trace: /tmp: not a regular file")]:
     refused(args, words, 1)
+# --trace: every instruction the firmware ran, a line each (cycle, PC, the
+# instruction), the first one the start-up's at cycle 0
+with tempfile.TemporaryDirectory() as trace_dir:
+    path = os.path.join(trace_dir, "t.txt")
+    r = run("--frames", "2", "--trace", path)
+    lines = open(path).read().splitlines() if os.path.exists(path) else []
+    check(r.returncode == 0 and len(lines) > 1000 and lines[0].split()[:2] == ["0", "0000"]
+          and any(" r31" in l for l in lines), "--trace: %d, %d lines %r" % (
+              r.returncode, len(lines), lines[:1]))
 check(run("--help").returncode == 0 and "--profile" in run("--help").stdout, "--help")
 
 # options out of range: refused before the run, the value and the reason named
@@ -236,6 +247,7 @@ refused(["--frames", "3", "--pru1-profile", "generic", "--pru1-firmware", "/none
 for args, words in [(["--pru", "2"], "--pru '2': expected 0 or 1"),
                     (["--pru1-profile", "nope"], "--pru1-profile 'nope'"),
                     (["--pru1-profile", "generic", "--vcd", "x.vcd"], "not with"),
+                    (["--pru1-profile", "generic", "--trace", "x.txt"], "not with"),
                     (["--pru1-profile", "generic", "--trigger", "host"], "not with"),
                     (["--pru1-profile", "generic", "--iep-period-ns", "12"], "multiple of 5 ns"),
                     (["--trigger", "sometimes"], "--trigger 'sometimes': expected free, host or iep"),
