@@ -23,18 +23,24 @@ from there), free-running and IEP-triggered: every frame valid, none
 refused or lost; and at the worst corner a register read (CDM = 1 frames,
 whose MA rises only when the timeout is seen to end) completes.
 
-usage: long_lines.py BISS_SIM
+An 8-slave chain (test/scenarios/chain8-20us.json: the longest path after
+the frame) the same, every 50 m.
+
+usage: long_lines.py BISS_SIM SCENARIO_DIR
 """
 import json
+import os
 import subprocess
 import sys
 
-sim = sys.argv[1]
+sim, scenarios = sys.argv[1:3]
 FRAMES = 40
 # rate: the longest cable tested (the model's MA clock is swallowed some
 # 40 m further on for the AD38, the shortest of the three)
 RATES = {781250: 160, 625000: 180, 400000: 230, 250000: 300, 200000: 340, 125000: 400}
-PROFILES = ["tidep0022-test-encoder", "hengstler-ad38", "posital-kit-layout-biss-c"]
+PROFILES = [(["--profile", p], 10) for p in
+            ("tidep0022-test-encoder", "hengstler-ad38", "posital-kit-layout-biss-c")]
+PROFILES.append((["--scenario", os.path.join(scenarios, "chain8-20us.json")], 50))
 failures = []
 runs = 0
 
@@ -42,7 +48,7 @@ runs = 0
 def run(args):
     global runs
     runs += 1
-    r = subprocess.run([sim, "--json", "--max-ms", "200"] + args, capture_output=True, text=True)
+    r = subprocess.run([sim, "--json", "--max-ms", "1000"] + args, capture_output=True, text=True)
     try:
         return r.returncode, json.loads(r.stdout)
     except ValueError:
@@ -50,12 +56,12 @@ def run(args):
         return r.returncode, None
 
 
-for profile in PROFILES:
+for encoder, step in PROFILES:
     for freq, longest in RATES.items():
-        for m in range(0, longest + 1, 10):
+        for m in range(0, longest + 1, step):
             for trigger in ("free", "iep"):
-                args = ["--profile", profile, "--freq", str(freq), "--cable-m", str(m),
-                        "--frames", str(FRAMES), "--trigger", trigger]
+                args = encoder + ["--freq", str(freq), "--cable-m", str(m),
+                                  "--frames", str(FRAMES), "--trigger", trigger]
                 rc, j = run(args)
                 if j is None:
                     continue
