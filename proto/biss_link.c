@@ -96,18 +96,12 @@ int biss_link_eye(const struct biss_sample *s) {
 void biss_link_check(struct biss_link_state *st, struct biss_sample *s) {
     int eye = biss_link_eye(s);
     s->link_eye = eye;
-    /* read again, or older than the last judged (the ring reader and the
-     * newest-sample read on one handle): judged once, in order */
-    if (st->seen && (int32_t)(s->frame - st->last_frame) <= 0) {
+    /* no eye, or read again, or older than the last judged (the ring reader
+     * and the newest-sample read on one handle): judged once, in order */
+    if (eye < 0 || !biss_frame_order_next(&st->order, s->frame)) {
         s->link_warning = st->warning;
         return;
     }
-    if (eye < 0) {
-        s->link_warning = st->warning;
-        return;
-    }
-    st->seen = true;
-    st->last_frame = s->frame;
     struct biss_link_stats *k = &st->stats;
     k->frames++;
     k->eye[eye]++;

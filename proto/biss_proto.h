@@ -156,13 +156,32 @@ struct biss_safety_state {
     struct biss_safety_stats stats;
 };
 
+/* Counts that take each frame once, in frame order, whichever reader
+ * brings it (the ring reader and the newest-sample read on one handle):
+ * the newest frame counted so far. */
+struct biss_frame_order {
+    bool seen;
+    uint32_t last;
+};
+/* True, and frame the newest, when frame is newer than every one before
+ * (or the first; frame numbers wrap, so "newer" is a signed distance);
+ * false for a frame read again or older. */
+static inline bool biss_frame_order_next(struct biss_frame_order *o, uint32_t frame) {
+    if (o->seen && (int32_t)(frame - o->last) <= 0) {
+        return false;
+    }
+    o->seen = true;
+    o->last = frame;
+    return true;
+}
+
 /* Link quality (biss_link.c): the warning's block and count, the block in
- * progress, the last frame judged, the counts. */
+ * progress, the frames judged, the counts. */
 struct biss_link_state {
     uint32_t window, warn;
     uint32_t block_frames, block_marginal;
-    bool warning, seen;
-    uint32_t last_frame;
+    bool warning;
+    struct biss_frame_order order;
     struct biss_link_stats stats;
 };
 /* Command-line spelling "K[,N]": the warning after K marginal frames in a
@@ -215,8 +234,7 @@ enum { BISS_READER_NEWEST, BISS_READER_RING, BISS_READERS };
 struct biss_safety_readers {
     struct biss_safety_state reader[BISS_READERS];
     struct biss_safety_stats stats;
-    bool counted;
-    uint32_t last_counted;
+    struct biss_frame_order order; /* the frames counted */
 };
 /* biss_safety_check by `reader`'s state; its counts added to r->stats
  * when s->frame is newer than every frame counted. */

@@ -394,10 +394,8 @@ void biss_safety_readers_check(const struct biss_config *c, struct biss_safety_r
     struct biss_safety_state *st = &r->reader[reader];
     struct biss_safety_stats before = st->stats;
     biss_safety_check(c, st, s);
-    if (!r->counted || (int32_t)(s->frame - r->last_counted) > 0) {
+    if (biss_frame_order_next(&r->order, s->frame)) {
         stats_add(&r->stats, &before, &st->stats);
-        r->counted = true;
-        r->last_counted = s->frame;
     }
 }
 
