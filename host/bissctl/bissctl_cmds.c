@@ -113,8 +113,6 @@ static void print_stats(const struct biss_stats *st) {
            st->frames, st->crc_errors, st->no_slave, st->proc_errors, st->training, st->off_grid);
 }
 
-/* The safety checks' counts over the frames this run read, for the
- * checks configured (nothing without any). */
 /* The link's eye over the frames this run read (proto/biss_link.c). */
 static void print_link_stats(biss_t *h) {
     struct biss_link_stats k;
@@ -125,6 +123,8 @@ static void print_link_stats(biss_t *h) {
            k.frames, biss_link_eye_mean(&k), k.eye_min, k.marginal, k.off_grid, k.warnings);
 }
 
+/* The safety checks' counts over the frames this run read, for the
+ * checks configured (nothing without any). */
 static void print_safety_stats(biss_t *h) {
     struct biss_config c;
     struct biss_safety_stats st;
