@@ -62,6 +62,7 @@ struct bench {
     uint64_t frame_limit;     /* frames from this number on are not measured */
     sim_ps forgot_at;         /* when pin history was last dropped */
     struct bench_stats st;
+    bool ahead_overrun; /* bench_ahead_overrun() */
 
     link_model link; /* its per-edge state first */
     /* master-side MA edge times by edge number modulo MA_RING, so an edge
@@ -389,6 +390,7 @@ static struct bench *bench_on(const struct bench_config *cfg, struct pru_core *c
     link_set_sl_reach(&b->link, !cfg->no_sl_reach);
     link_set_line_settled(&b->link, !cfg->no_line_settled);
     link_set_slave_quick(&b->link, !cfg->no_slave_quick);
+    link_set_ma_ahead(&b->link, cfg->ma_ahead && !icss, PRU_PS_PER_CYCLE);
     struct pru_pins pins = {.ctx = b,
                             .inputs_at = pins_inputs_at,
                             .next_input_change = pins_next_change,
@@ -590,15 +592,21 @@ enum pru_stop bench_run_until(struct bench *b, int64_t t_ps) {
         }
         return why;
     }
+    link_set_ahead_until(&b->link, t_ps); /* the host looks at the link between runs */
     enum pru_stop why = pru_run_until_time(b->core, t_ps);
     bench_caught_up(b);
     return why;
+}
+
+bool bench_ahead_overrun(const struct bench *b) {
+    return b->ahead_overrun;
 }
 
 static void bench_caught_up(struct bench *b) {
     /* the link catches up with the core (a halted core leaves it behind) */
     int64_t now = pru_time_ps(b->core);
     link_sl(&b->link, now);
+    b->ahead_overrun = b->ahead_overrun || link_ahead_beyond(&b->link, now);
     if (b->vcd_on) {
         vcd_frame_update(b, now);
     }

@@ -43,6 +43,12 @@ struct bench_config {
     /* the fast path "slave-quick" off: every MA edge through a BiSS-C
      * chain's general step (link_set_slave_quick) */
     int no_slave_quick;
+    /* the fast path "ma-ahead" on (link_set_ma_ahead; off by default): a
+     * BiSS-C frame's clock edges taken by the slave when the core drives
+     * them. A run that stops short of such an edge's arrival (a halt, a
+     * fault) is then no longer the one the event order gives: the caller
+     * asks bench_ahead_overrun() and runs again without it. Single PRU. */
+    int ma_ahead;
 };
 
 /* Defaults: AM335x, MA on R30 bit 1, the "generic" profile. */
@@ -140,6 +146,9 @@ int bench_start_image(struct bench *b, const void *image, size_t bytes);
 
 /* Runs the PRU (and the link) until simulated time t_ps. */
 enum pru_stop bench_run_until(struct bench *b, int64_t t_ps);
+/* Whether a run stopped short of an MA edge the slave took ahead (the
+ * fast path "ma-ahead"): its results are not exact, run it again without. */
+bool bench_ahead_overrun(const struct bench *b);
 
 /* Runs until the slave has closed `frames` frames in all, the PRU halts or
  * faults, or max_ps of simulated time has passed. Frames beyond `frames`

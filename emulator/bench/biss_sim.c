@@ -104,7 +104,7 @@ struct options {
     /* fast paths switched off (--no-fast-path): the core's in its
      * parameters (otherwise the defaults), the link's here */
     struct pru_params core;
-    int no_sl_reach, no_line_settled, no_slave_quick;
+    int no_sl_reach, no_line_settled, no_slave_quick, no_ma_ahead;
     /* strict and contention modes (emulator/core/TIMING.md) */
     unsigned strict, strict_window;
     int strict_log;
@@ -203,9 +203,12 @@ static void usage(FILE *f) {
                "                     stays until an event could reach the master's pin),\n"
                "                     line-settled (a cable edge after a settled level\n"
                "                     without the low-pass arithmetic), slave-quick (a\n"
-               "                     BiSS-C chain's clock edges in one step), run-ahead\n"
-               "                     (two PRUs: each runs ahead to its next cross-PRU\n"
-               "                     event, not both cycle by cycle)\n"
+               "                     BiSS-C chain's clock edges in one step), ma-ahead\n"
+               "                     (those edges taken by the slave when the PRU drives\n"
+               "                     them; a run that halts or faults before one arrives\n"
+               "                     runs again without), run-ahead (two PRUs: each\n"
+               "                     runs ahead to its next cross-PRU event, not both\n"
+               "                     cycle by cycle)\n"
                "  --max-ms T         stop after T ms of simulated time (default: ample)\n"
                "  --strict[=RULES]   stop with a fault report on a construct of uncertain\n"
                "                     silicon behaviour in clocked code (between two MA edges\n"
@@ -475,10 +478,12 @@ static int set_option(struct options *o, const char *a, const char *v) {
             o->no_line_settled = 1;
         } else if (!strcmp(v, "slave-quick")) {
             o->no_slave_quick = 1;
+        } else if (!strcmp(v, "ma-ahead")) {
+            o->no_ma_ahead = 1;
         } else if (pru_params_fast_path_off(&o->core, v) != 0) {
             return usage_error("--no-fast-path '%s': expected ff, ff-counted, ff-r31-bits, "
                                "ff-loop-delay, ff-count-loop, fast-loop, leaf-call, sl-reach, "
-                               "line-settled, slave-quick or run-ahead",
+                               "line-settled, slave-quick, ma-ahead or run-ahead",
                                v);
         }
     } else if (!strcmp(a, "--strict-window")) {
@@ -580,6 +585,9 @@ static int build_config(const struct options *o, struct bench_config *cfg) {
     cfg->no_sl_reach = o->no_sl_reach;
     cfg->no_slave_quick = o->no_slave_quick;
     cfg->no_line_settled = o->no_line_settled;
+    /* not where the run writes as it goes (the VCD, the trace) or captures:
+     * a run that stops short of an edge taken ahead runs again (main) */
+    cfg->ma_ahead = !o->no_ma_ahead && !o->vcd && !o->svg && !o->trace;
     cfg->pru.strict = o->strict;
     cfg->pru.strict_log = o->strict_log;
     if (o->strict_window) {
@@ -866,6 +874,11 @@ static int safety_checks(const struct options *o, struct biss_config *c) {
     return rc ? die("safety checks: %s", sim_safety_problem(rc)) : 0;
 }
 
+/* run()'s answer when the fast path "ma-ahead" took an MA edge ahead that
+ * the run, stopped short of it, would not have delivered: it wrote
+ * nothing, and runs again without that fast path. */
+#define RUN_AGAIN (-2)
+
 static int run(const struct options *o) {
     struct bench_config cfg;
     int bad = build_config(o, &cfg);
@@ -1006,6 +1019,11 @@ static int run(const struct options *o) {
                             .host_step_ps = o->trigger == BISS_TRIG_HOST ? host_step : 0};
     enum pru_stop why = fw_mode ? run_firmware(b, &fc, &cd, &plan)
                                 : bench_run_frames(b, o->frames, max_ps, NULL, NULL);
+    if (bench_ahead_overrun(b)) { /* nothing written yet: again, exactly */
+        pruasm_image_free(&img);
+        bench_free(b);
+        return RUN_AGAIN;
+    }
     struct sim_result res = {.b = b,
                              .fw = fw_mode ? &fc : NULL,
                              .why = why,
@@ -1107,5 +1125,10 @@ int main(int argc, char **argv) {
     if (rc) {
         return rc < 0 ? 0 : rc;
     }
-    return run(&o);
+    rc = run(&o);
+    if (rc == RUN_AGAIN) {
+        o.no_ma_ahead = 1;
+        rc = run(&o);
+    }
+    return rc;
 }

@@ -131,6 +131,7 @@ void line_dir_init(line_dir *l, const line_params *p, event_queue *q, uint64_t s
     }
     l->settled_steps = 0;
     line_dir_set_settled_fast(l, 1);
+    l->hold = l->held = 0;
     l->pending = 0;
     l->pending_cross = 0;
     l->pending_ev = 0;
@@ -164,6 +165,35 @@ void line_dir_set_settled_fast(line_dir *l, int on) {
         l->settle_gap = (sim_ps)ceil(41.0 * l->tau);
         l->settled_cross = (sim_ps)llround(l->tau * log(2.0));
     }
+}
+
+void line_dir_set_hold(line_dir *l, int on) {
+    l->hold = on != 0;
+}
+
+void line_dir_schedule_held(line_dir *l) {
+    l->held = 0;
+    eq_schedule_as(l->q, l->held_out, l->held_id, on_output_edge, l, l->held_level);
+}
+
+void line_dir_take_held(line_dir *l) {
+    l->held = 0;
+    l->true_level = l->held_level;
+    l->edges_out++;
+    l->cur_level = l->held_level; /* send_current()'s, the sink told already */
+}
+
+/* The output event of an edge at out (after its crossing), or with hold
+ * on the same held for the owner under the id it would have had. */
+static eq_id schedule_or_hold(line_dir *l, sim_ps out, int level) {
+    if (!l->hold) {
+        return eq_schedule(l->q, out, on_output_edge, l, level);
+    }
+    l->held = 1;
+    l->held_out = out;
+    l->held_level = level;
+    l->held_id = eq_take_id(l->q);
+    return l->held_id;
 }
 
 /* Filter value at time t (>= t0), taken when the input goes to `level`. */
@@ -263,7 +293,7 @@ static __attribute__((noinline)) void input_general(line_dir *l, sim_ps t, int l
     l->pending = 1;
     l->pending_cross = cross;
     l->pending_out = out;
-    l->pending_ev = eq_schedule(l->q, out, on_output_edge, l, level);
+    l->pending_ev = schedule_or_hold(l, out, level);
 }
 
 /* The output event of the edge just placed, when the queue has to grow
@@ -312,6 +342,13 @@ void line_dir_input(line_dir *l, sim_ps t, int level) {
     l->pending = 1;
     l->pending_cross = cross;
     l->pending_out = out;
+    if (l->hold) { /* schedule_or_hold()'s, in line */
+        l->held = 1;
+        l->held_out = out;
+        l->held_level = level;
+        l->pending_ev = l->held_id = eq_take_id(l->q);
+        return;
+    }
     if (eq_fits(l->q, out)) {
         l->pending_ev = eq_put(l->q, out, on_output_edge, l, level);
         return;

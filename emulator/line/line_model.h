@@ -99,6 +99,17 @@ typedef struct {
     sim_ps settled_cross;
     unsigned long settled_steps;
 
+    /* Held outputs (line_dir_set_hold, for the fast path "ma-ahead"): an
+     * edge's output is not scheduled but held for the line's owner, under
+     * the id the queue would have given it, to be scheduled
+     * (line_dir_schedule_held) or taken by the sink at once
+     * (line_dir_take_held) before the next input. */
+    int hold;
+    int held;
+    int held_level;
+    sim_ps held_out;
+    eq_id held_id;
+
     int filt_level; /* receiver decision after the last committed crossing */
     int pending;    /* a crossing is computed but may still be cancelled */
     sim_ps pending_cross;
@@ -126,6 +137,19 @@ void line_dir_input(line_dir *l, sim_ps t, int level);
 /* Switches the fast path "line-settled" on (the default) or off: the
  * results are the same either way, only the filter arithmetic is spared. */
 void line_dir_set_settled_fast(line_dir *l, int on);
+
+/* Holds every output edge for the owner (on) instead of scheduling it
+ * (off, the default). After each line_dir_input() that leaves one held
+ * (l->held), the owner schedules it or lets its sink take it. */
+void line_dir_set_hold(line_dir *l, int on);
+/* Schedules the held output as line_dir_input() would have (the same id,
+ * so the same order among events of its time). */
+void line_dir_schedule_held(line_dir *l);
+/* The sink took the held output at its time (held_out, held_level): the
+ * line's output state moves on as its output event would move it. For a
+ * line without glitches and faults only (what the sink is told is then
+ * the output edge itself). */
+void line_dir_take_held(line_dir *l);
 
 /* Switches the fault state at time t (LINE_OK reconnects). */
 void line_dir_set_fault(line_dir *l, sim_ps t, line_fault f);

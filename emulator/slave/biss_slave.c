@@ -225,6 +225,15 @@ sim_ps biss_chain_timeout_ps(const biss_chain_cfg *c, sim_ps period_ps) {
     return t > 0 ? t : 1;
 }
 
+sim_ps biss_chain_least_timeout_ps(const biss_chain_cfg *c) {
+    if (c->timeout_mode == BISS_TIMEOUT_FIXED) {
+        return c->timeout_ps;
+    }
+    /* clamped to [min, max] in that order, then at least 1 */
+    sim_ps lo = c->adaptive_min_ps < c->adaptive_max_ps ? c->adaptive_min_ps : c->adaptive_max_ps;
+    return lo > 1 ? lo : 1;
+}
+
 static sim_ps timeout_len(const biss_slave *b) {
     const biss_chain_cfg *c = &b->cfg;
     sim_ps period = c->adaptive_max_ps;

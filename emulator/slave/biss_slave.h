@@ -111,6 +111,11 @@ int biss_chain_shared_id(const biss_chain_cfg *c, unsigned *first, unsigned *sec
 /* The timeout the chain's slaves apply while MA runs with period_ps: the
  * fixed one, or the adaptive factor x the period, clamped to [min, max]. */
 sim_ps biss_chain_timeout_ps(const biss_chain_cfg *c, sim_ps period_ps);
+/* The least timeout biss_chain_timeout_ps() gives for any period: an MA
+ * edge at the slave changes SL no sooner than this (the timeout it
+ * restarts) plus out_delay_ps later, unless it is a rising edge that sends
+ * a bit. */
+sim_ps biss_chain_least_timeout_ps(const biss_chain_cfg *c);
 /* Checks a configuration against its tables (biss_model.c): every range
  * and relation. Returns 0, or -1 with a message naming the field
  * ("slaves[0].crc_poly: ...") in err. */

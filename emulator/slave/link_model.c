@@ -1,5 +1,6 @@
 #include "link_model.h"
 
+#include <math.h>
 #include <string.h>
 
 /* Fan-out points: a pin is recorded, passed on, and shown to the observer. */
@@ -165,6 +166,54 @@ static void advance(link_model *l, sim_ps t) {
     }
 }
 
+/* Taking the held MA edge ahead (ma-ahead: when it is driven at t, not when
+ * it reaches the slave at held_out) changes nothing where the only events
+ * before its arrival are the SL side's (the slave's outputs and the SL
+ * line's, which touch neither the slave nor the MA line, and draw no
+ * random numbers without noise: ahead_applies()) and the slave's timeout
+ * moving on (on_timeout() before it is due), and nothing looks at the
+ * slave before it arrives. The line's part: no MA edge before it is still
+ * on its way in the queue; the line cannot swallow it (the next input
+ * comes ahead_gap later at the soonest, with the smaller driver skew, past
+ * its crossing); its output is the edge itself (no glitch, no fault). */
+static bool ahead_line_ok(const link_model *l, sim_ps t) {
+    const line_dir *m = &l->ma_line;
+    sim_ps skew = m->p.rise_extra_ps < m->p.fall_extra_ps ? m->p.rise_extra_ps : m->p.fall_extra_ps;
+    sim_ps next_in = t + l->ahead_gap + (skew < 0 ? skew : 0);
+    return l->ma_queued <= t && m->pending_cross <= next_in && m->cur_level != m->held_level &&
+           !m->glitching && m->fault == LINE_OK;
+}
+
+/* The rest: the caller does not look at the link before the arrival
+ * (ahead_until), the pin observer has no other pin to see (no VCD, no
+ * capture), the frame stays open until the arrival (its timeout due
+ * later); the timeout the edge restarts, at least the least one, lies
+ * beyond every edge driven before the arrival (ahead_applies()), so the
+ * order the slave takes for it now is the one it would take then. The
+ * slave's quick step decides the rest (taken, or refused having changed
+ * nothing). */
+static bool ahead_ok(const link_model *l, sim_ps t) {
+    const biss_slave *b = (const biss_slave *)l->slave;
+    sim_ps out = l->ma_line.held_out;
+    return out <= l->ahead_until && l->observer_pins == 1u << LINK_MA_SLAVE && b->st.in_frame &&
+           b->timeout_due > out && ahead_line_ok(l, t);
+}
+
+/* The MA line's held output: taken by the slave now, or scheduled. */
+static __attribute__((noinline)) void ma_held(link_model *l, sim_ps t) {
+    line_dir *m = &l->ma_line;
+    if (l->ahead_on && ahead_ok(l, t) &&
+        biss_slave_ma_edge_quick((biss_slave *)l->slave, m->held_out, m->held_level)) {
+        line_dir_take_held(m);
+        l->ahead_last = m->held_out;
+        record(l, LINK_MA_SLAVE, &l->ma_slave, m->held_out, m->held_level);
+        observe(l, LINK_MA_SLAVE, m->held_out, m->held_level);
+        return;
+    }
+    l->ma_queued = m->held_out;
+    line_dir_schedule_held(m);
+}
+
 void link_ma(link_model *l, sim_ps t, int level) {
     advance(l, t);
     if (waveform_last_level(&l->ma_master) == level) {
@@ -173,6 +222,9 @@ void link_ma(link_model *l, sim_ps t, int level) {
     record(l, LINK_MA_MASTER, &l->ma_master, t, level);
     observe(l, LINK_MA_MASTER, t, level);
     line_dir_input(&l->ma_line, t, level);
+    if (l->ma_line.held) {
+        ma_held(l, t);
+    }
 }
 
 int link_sl(link_model *l, sim_ps t) {
@@ -226,6 +278,35 @@ void link_set_slave_quick(link_model *l, int on) {
     }
 }
 
+/* The MA line's longest delay from input to output: the fixed delays, the
+ * larger driver skew, the low-pass crossing (at most tau ln 2: the filter
+ * starts no further than the old level), a picosecond of rounding and one
+ * of the line's "strictly after" rule. */
+static sim_ps ma_delay_max(const line_params *p) {
+    sim_ps skew = p->rise_extra_ps > p->fall_extra_ps ? p->rise_extra_ps : p->fall_extra_ps;
+    return line_fixed_delay_ps(p) + (skew > 0 ? skew : 0) +
+           (sim_ps)ceil(line_tau_ps(p) * log(2.0)) + 2;
+}
+
+/* Whether the scenario lets MA edges be taken ahead: a BiSS-C slave of its
+ * own (not an external one), both lines without noise and faults, and its
+ * least timeout longer than the MA line's delay (ahead_ok()). */
+static bool ahead_applies(const link_model *l) {
+    const line_params *ma = &l->sc.ma_line, *sl = &l->sc.sl_line;
+    if (l->model != &slave_model_biss || l->external) {
+        return false;
+    }
+    bool quiet = ma->jitter_rms_ps <= 0.0 && ma->glitch_rate_hz <= 0.0 && ma->fault == LINE_OK &&
+                 sl->jitter_rms_ps <= 0.0 && sl->glitch_rate_hz <= 0.0 && sl->fault == LINE_OK;
+    return quiet && biss_chain_least_timeout_ps(link_model_cfg(l)) > ma_delay_max(ma);
+}
+
+void link_set_ma_ahead(link_model *l, int on, sim_ps gap_ps) {
+    l->ahead_on = on && ahead_applies(l);
+    l->ahead_gap = gap_ps;
+    line_dir_set_hold(&l->ma_line, l->ahead_on);
+}
+
 void link_set_sl_reach(link_model *l, int on) {
     l->sl_reach_on = on;
 }
@@ -237,6 +318,9 @@ sim_ps link_next_sl_change(const link_model *l) {
 
 void link_set_external_slave(link_model *l, int on) {
     l->external = on && l->model == &slave_model_biss;
+    if (l->external) {
+        link_set_ma_ahead(l, 0, 0);
+    }
     l->ma_line.out = (sim_edge_sink){l->external ? at_ma_slave_external : at_ma_slave, l};
     if (l->external) {
         l->history_pins |= 1u << LINK_MA_SLAVE;

@@ -44,6 +44,15 @@ typedef struct {
      * path "sl-reach"; off: every pending event counts as a change) */
     sim_ps sl_reach_ps;
     int sl_reach_on;
+    /* The fast path "ma-ahead" (link_set_ma_ahead): a BiSS-C frame's clock
+     * edge taken by the slave when the master drives it. ahead_on: on and
+     * applicable to the scenario; ahead_until: no edge reaching the slave
+     * later is taken ahead (the caller's run end); ahead_gap: the least
+     * time between two MA edges at the master; ma_delay_max: the MA line's
+     * longest delay; ahead_last: the latest arrival taken ahead (0 none);
+     * ma_queued: the latest arrival of an MA edge left to the queue. */
+    bool ahead_on;
+    sim_ps ahead_until, ahead_gap, ma_delay_max, ahead_last, ma_queued;
     const slave_model *model; /* sc.model, here with the rest */
     slave_status *slave;      /* the model's state (its first member): &own.status */
     /* the BiSS-C chain's clock edges take its quick step, called directly
@@ -120,6 +129,25 @@ sim_ps link_next_sl_change(const link_model *l);
 /* A BiSS-C chain's quick step for clocked edges (biss_slave_set_quick) on
  * (default) or off: the fast path "slave-quick"; other models have none. */
 void link_set_slave_quick(link_model *l, int on);
+
+/* The fast path "ma-ahead" on or off (the default): an MA edge the BiSS-C
+ * slave takes with its quick step is taken when link_ma() drives it, not
+ * when it reaches the slave, where nothing before its arrival depends on
+ * it or it on them (link_model.c, ahead_ok()). gap_ps: the least time
+ * between two link_ma() edges (a PRU cycle). Call before any edge. The
+ * caller bounds the edges taken ahead with link_set_ahead_until() and,
+ * should it stop short of an arrival taken ahead (link_ahead_beyond()),
+ * must discard the run: the slave took an edge it would not have. */
+void link_set_ma_ahead(link_model *l, int on, sim_ps gap_ps);
+/* Edges reaching the slave after t are not taken ahead (the run's end: the
+ * caller looks at the link between runs). */
+static inline void link_set_ahead_until(link_model *l, sim_ps t) {
+    l->ahead_until = t;
+}
+/* Whether an edge taken ahead reaches the slave after t. */
+static inline bool link_ahead_beyond(const link_model *l, sim_ps t) {
+    return l->ahead_last > t;
+}
 
 /* Switches the fast path "sl-reach" of link_next_sl_change (on by default). */
 void link_set_sl_reach(link_model *l, int on);

@@ -121,6 +121,45 @@ check("image-1MHz" in skips_less["ff-loop-delay"], "ff-loop-delay at 1 MHz: %s" 
 check("default-1MHz-100m" in skips_less["ff-count-loop"], "ff-count-loop at 1 MHz: %s" % skips_less)
 
 
+# the slave taking a BiSS-C frame's clock edges when the core drives them
+# (ma-ahead): off wherever a VCD is written, so compared on the JSON alone,
+# on the clocked cases (chains, adaptive and fixed timeouts), a register
+# read (control frames), noise (where it does not apply), and a run that
+# halts with an edge taken ahead still on the cable (run again without it:
+# test_bench checks that such a run is told apart); the same results
+def run_json(args, off):
+    j = sim_json(args, off)
+    del j["host_seconds"]
+    j.pop("skipped_iterations")
+    return j
+
+
+def sim_any_exit(args, off):
+    """biss-sim's output and exit code, whatever the code."""
+    cmd = [SIM, *args, "--json"]
+    for p in off:
+        cmd += ["--no-fast-path", p]
+    r = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
+    j = json.loads(r.stdout)
+    del j["host_seconds"]
+    return j, r.returncode, r.stderr
+
+
+ahead_cases = cases + [
+    ("chain3-650ns", ["--scenario", os.path.join(SCEN, "chain3-650ns.json"), "--freq", "10000000",
+                      "--frames", "100"]),
+    ("chain1-650ns-5MHz", ["--scenario", os.path.join(SCEN, "chain1-650ns.json"), "--freq",
+                           "5000000", "--frames", "100"]),
+]
+for name, args in ahead_cases:
+    ref = run_json(args, ["ma-ahead"])
+    check(run_json(args, []) == ref, "%s without ma-ahead: other results" % name)
+halt = ["--image", os.path.join(os.path.dirname(__file__), "halt_in_frame.src"), "--freq", "10000000",
+        "--frames", "5"]
+on, off = sim_any_exit(halt, []), sim_any_exit(halt, ["ma-ahead"])
+check(on == off, "halted in a frame, without ma-ahead: %s vs %s" % (on, off))
+check(on[0]["stop"] == "halted" and on[0]["frames"] == 4, "halted in a frame: %s" % (on,))
+
 # two PRUs of one PRU-ICSS (no VCD with two): run ahead to each one's next
 # cross-PRU event or cycle by cycle, the same results; run ahead the
 # fast-forward reaches the polls it cannot reach a cycle at a time, so only

@@ -15,10 +15,11 @@
 
 static char src_dir[512];
 
-static struct pruasm_image assemble_clock(unsigned half, unsigned clocks, unsigned frames,
-                                          unsigned gap) {
+/* test/bench/<file> assembled with HALF, CLOCKS, FRAMES and GAP. */
+static struct pruasm_image assemble_frames(const char *file, unsigned half, unsigned clocks,
+                                           unsigned frames, unsigned gap) {
     char path[600], d1[32], d2[32], d3[32], d4[32];
-    snprintf(path, sizeof(path), "%s/test/bench/clock_frames.p", src_dir);
+    snprintf(path, sizeof(path), "%s/test/bench/%s", src_dir, file);
     snprintf(d1, sizeof(d1), "HALF=%u", half);
     snprintf(d2, sizeof(d2), "CLOCKS=%u", clocks);
     snprintf(d3, sizeof(d3), "FRAMES=%u", frames);
@@ -29,6 +30,11 @@ static struct pruasm_image assemble_clock(unsigned half, unsigned clocks, unsign
     struct pruasm_diag diag = {0};
     ck_assert_msg(pruasm_assemble_file(&opt, path, &img, &diag) == 0, "%s", diag.first_error);
     return img;
+}
+
+static struct pruasm_image assemble_clock(unsigned half, unsigned clocks, unsigned frames,
+                                          unsigned gap) {
+    return assemble_frames("clock_frames.p", half, clocks, frames, gap);
 }
 
 static struct bench *bench_with_image(struct bench_config *cfg, struct pruasm_image *img) {
@@ -68,6 +74,51 @@ START_TEST(test_clocked_frames_exact_timing) {
     ck_assert(r->acked && r->started && r->complete);
     bench_free(b);
     pruasm_image_free(&img);
+}
+END_TEST
+
+/* The fast path "ma-ahead" (bench_config ma_ahead): the slave takes a
+ * frame's clock edges when the core drives them. A run that ends where
+ * every edge has arrived measures what the event order gives; one that
+ * halts with an edge taken ahead still on the cable does not, and says so
+ * (bench_ahead_overrun), so that biss-sim runs it again without. */
+static void run_both(const char *file, struct bench *b[2], enum pru_stop why[2]) {
+    struct pruasm_image img = assemble_frames(file, 10, 30, 4, 8000);
+    for (int i = 0; i < 2; i++) {
+        struct bench_config cfg;
+        bench_config_default(&cfg);
+        cfg.ma_ahead = i;
+        b[i] = bench_with_image(&cfg, &img);
+        why[i] = bench_run_until(b[i], 2 * SIM_PS_PER_MS);
+    }
+    pruasm_image_free(&img);
+}
+
+START_TEST(test_ma_ahead_exact_or_overrun) {
+    struct bench *b[2];
+    enum pru_stop why[2];
+    run_both("clock_frames.p", b, why); /* halts in the gap after its frames */
+    ck_assert_int_eq(why[0], PRU_STOP_HALT);
+    ck_assert_int_eq(why[1], PRU_STOP_HALT);
+    ck_assert_int_gt(bench_link(b[1])->ahead_last, 0); /* edges were taken ahead */
+    ck_assert_int_eq(bench_link(b[0])->ahead_last, 0);
+    ck_assert(!bench_ahead_overrun(b[0]) && !bench_ahead_overrun(b[1]));
+    const struct bench_stats *s0 = bench_stats(b[0]), *s1 = bench_stats(b[1]);
+    ck_assert_uint_eq(s1->ma_edges_slave, s0->ma_edges_slave);
+    ck_assert_uint_eq(s1->half_periods, s0->half_periods);
+    ck_assert_uint_eq(s1->frames, 4);
+    ck_assert_uint_eq(s1->frames, s0->frames);
+    for (int i = 0; i < 2; i++) {
+        bench_free(b[i]);
+    }
+    run_both("halt_in_frame.src", b, why); /* halts right after a rise */
+    ck_assert_int_eq(why[1], PRU_STOP_HALT);
+    ck_assert(!bench_ahead_overrun(b[0]) && bench_ahead_overrun(b[1]));
+    /* the edge on the cable: the event order leaves it short of the slave */
+    ck_assert_uint_eq(bench_stats(b[1])->ma_edges_slave, bench_stats(b[0])->ma_edges_slave + 1);
+    for (int i = 0; i < 2; i++) {
+        bench_free(b[i]);
+    }
 }
 END_TEST
 
@@ -144,6 +195,7 @@ int main(void) {
     tcase_set_timeout(tc, 60);
     tcase_add_test(tc, test_clocked_frames_exact_timing);
     tcase_add_test(tc, test_round_trip_on_long_cable);
+    tcase_add_test(tc, test_ma_ahead_exact_or_overrun);
     tcase_add_test(tc, test_bad_config_is_refused);
     tcase_add_test(tc, test_fw_rates_and_error_names);
     suite_add_tcase(s, tc);
