@@ -173,14 +173,15 @@ int biss_reconfigure_locked(biss_t *h);
 /* Control communication transport (biss_control.c): puts the program in
  * data RAM, starts it, waits (triggering frames in host-trigger mode) and
  * reads the firmware's answer back. The codec (biss_cd.h) builds programs
- * and parses answers. */
-int biss_cd_exchange(biss_t *h, const biss_cd_prog *p, unsigned wait_limit, unsigned timeout_ms,
+ * and parses answers. A built frame after a program that stopped inside
+ * its control frame gets CDM 0 steps first (biss_cd_lead_in): *p moves. */
+int biss_cd_exchange(biss_t *h, biss_cd_prog *p, unsigned wait_limit, unsigned timeout_ms,
                      biss_cd_answer *a);
 /* The same in two halves, for the non-blocking forms: begin puts the
  * program and returns its command number; check returns BISS_E_CD_BUSY
  * until the firmware has ended it (asking for frames in host-trigger mode),
  * then reads the answer. */
-int biss_cd_begin(biss_t *h, const biss_cd_prog *p, unsigned wait_limit, uint32_t *cmd);
+int biss_cd_begin(biss_t *h, biss_cd_prog *p, unsigned wait_limit, uint32_t *cmd);
 int biss_cd_check(biss_t *h, uint32_t cmd, biss_cd_answer *a);
 /* A codec verdict as a BISS_E_* code. */
 int biss_cd_error(biss_cd_err e);
