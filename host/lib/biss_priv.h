@@ -96,6 +96,12 @@ struct biss {
     struct biss_safety_readers safety;
     /* the link's eye and warning over the frames this handle read (biss_link.c) */
     struct biss_link_state link;
+    /* following another channel's IEP with a speed check: the owner's
+     * period changed (biss_follow_period_locked), so the frames published
+     * before follow_from may lie across the change: no time between them
+     * is known, and their positions are not judged by max_speed */
+    bool follow_hold;
+    uint32_t follow_from;
 };
 
 /* Asks the backend for the right to change the firmware's state. */
@@ -148,6 +154,11 @@ int biss_open_params_check(const struct biss_open_params *p, struct biss_errbuf 
 /* An IRAM image from path into h, checked (biss_open.c); master: also
  * assembled for h's PRU. */
 int biss_read_image(biss_t *h, const char *path, bool master, struct biss_errbuf *e);
+
+/* Following another channel's IEP with a speed check (handle locked): the
+ * owning channel's period as it now runs (its block accepted), taken into
+ * the configuration when it changed (biss_configure.c). */
+int biss_follow_period_locked(biss_t *h);
 
 /* A published result as a sample (seq its publication number): refused
  * as BISS_E_SHM_RESULT, named in h->problem, where the firmware never

@@ -27,7 +27,10 @@ static int ring_start(biss_t *h) {
 
 static int ring_read_locked(biss_t *h, struct biss_sample *out, unsigned max, unsigned *n,
                             uint32_t *lost) {
-    int rc = h->ring_started ? BISS_OK : ring_start(h);
+    int rc = biss_follow_period_locked(h);
+    if (!rc && !h->ring_started) {
+        rc = ring_start(h);
+    }
     *lost = h->ring_skipped;
     h->ring_skipped = 0;
     struct biss_proto_io io = biss_io(h);

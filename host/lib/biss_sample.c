@@ -46,6 +46,30 @@ static int read_consistent(biss_t *h, struct biss_shm_result *r, uint32_t *seq) 
     return BISS_E_RETRY;
 }
 
+/* Frames a reader may still return from before follow_from: the ring's
+ * (one slot is being filled) and the frame under way. */
+#define FOLLOW_WINDOW (BISS_RING_SLOTS(1) + 2u)
+
+/* The configuration s is judged by: a follower's frames from before the
+ * owner's new period are judged without max_speed (biss_priv.h). */
+static const struct biss_config *judged_by(biss_t *h, uint32_t seq, struct biss_config *tmp) {
+    if (!h->follow_hold) {
+        return &h->cfg;
+    }
+    uint32_t before = h->follow_from - seq; /* 1.. for frames before it */
+    if (before == 0 || before > FOLLOW_WINDOW) {
+        if (seq - h->follow_from > FOLLOW_WINDOW && seq - h->follow_from < 0x80000000u) {
+            h->follow_hold = false; /* every reader is past it */
+        }
+        return &h->cfg;
+    }
+    *tmp = h->cfg;
+    for (unsigned i = 0; i < BISS_API_MAX_SLAVES; i++) {
+        tmp->slave[i].max_speed = 0;
+    }
+    return tmp;
+}
+
 int biss_result_to_sample(biss_t *h, const struct biss_shm_result *r, uint32_t seq, unsigned reader,
                           struct biss_sample *s) {
     const char *why = biss_result_problem(&h->cfg, h->configured, r);
@@ -55,7 +79,8 @@ int biss_result_to_sample(biss_t *h, const struct biss_shm_result *r, uint32_t s
     }
     int rc = biss_sample_decode(&h->cfg, h->configured, seq, r, s);
     if (!rc && h->configured) {
-        biss_safety_readers_check(&h->cfg, &h->safety, reader, s);
+        struct biss_config tmp;
+        biss_safety_readers_check(judged_by(h, seq, &tmp), &h->safety, reader, s);
     }
     if (!rc) {
         biss_link_check(&h->link, s);
@@ -66,7 +91,10 @@ int biss_result_to_sample(biss_t *h, const struct biss_shm_result *r, uint32_t s
 static int read_sample_locked(biss_t *h, struct biss_sample *s) {
     struct biss_shm_result r;
     uint32_t seq = 0;
-    int rc = read_consistent(h, &r, &seq);
+    int rc = biss_follow_period_locked(h);
+    if (!rc) {
+        rc = read_consistent(h, &r, &seq);
+    }
     if (!rc && h->configured && h->cfg_pub_seq_valid && (int32_t)(seq - h->cfg_pub_seq) <= 0) {
         return BISS_E_NO_SAMPLE; /* published under the previous configuration */
     }
