@@ -103,6 +103,7 @@ static const struct err_text errors[] = {
     {BISS_E_ENC_REG_WAIT, "encoder: register processing time over 255 frames, or an execute "
                           "bit other than 0 or 1"},
     {BISS_E_ENC_REFUSED, "the encoder firmware refused the configuration"},
+    {BISS_E_TRIGGER_PENDING, "the last trigger has not started its frame yet"},
 };
 
 const char *biss_strerror(int err) {

@@ -82,7 +82,8 @@
                                         // IEP count as its frames; this channel leaves the IEP alone
 
 // ---- commands (host writes, firmware clears) ---------------------------
-#define BISS_CMD_TRIGGER        0x050   // u32: nonzero: start one frame (BISS_TRIG_HOST)
+#define BISS_CMD_TRIGGER        0x050   // u32: nonzero: start one frame (BISS_TRIG_HOST); the
+                                        // firmware clears it as it starts the frame
 
 // ---- status (firmware writes) -------------------------------------------
 #define BISS_ST_PRU             0x07C   // u32: the PRU this image was assembled for (PRU_NUM: 0 or

@@ -124,6 +124,9 @@ enum biss_error {
     BISS_E_ENC_REG_WAIT = -76, /* register processing time over 255 frames, or an execute
                                   bit other than 0 or 1 */
     BISS_E_ENC_REFUSED = -77,  /* the encoder firmware refused the configuration */
+    /* host trigger: the last one has not started its frame yet (asked for
+     * again, that frame would come once) */
+    BISS_E_TRIGGER_PENDING = -78,
 };
 
 /* ---- configuration ----------------------------------------------------- */

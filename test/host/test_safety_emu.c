@@ -185,8 +185,10 @@ static uint32_t read_all(biss_t *h, bool host, uint32_t from) {
     struct biss_sample s;
     uint32_t after = 0, flags = 0;
     while (after < LAST_FRAME) {
-        if (host) {
-            ck_assert_int_eq(biss_trigger(h), BISS_OK);
+        if (host) { /* (pending: the training frame came before the last one's frame) */
+            int rc = biss_trigger(h);
+            ck_assert_msg(rc == BISS_OK || (rc == BISS_E_TRIGGER_PENDING && after == 1), "%s",
+                          biss_strerror(rc));
         }
         ck_assert_int_eq(biss_wait_sample(h, after, 5, &s), BISS_OK);
         ck_assert_msg(s.frame == after + 1 || after == 0, "frame %u after %u", s.frame, after);
