@@ -65,6 +65,9 @@ static int begin_locked(biss_t *h, biss_cd_prog *p, unsigned wait_limit, uint32_
     if (!h->configured) {
         return BISS_E_NOT_CONFIGURED;
     }
+    if (h->cfg.slave[0].ssi) {
+        return BISS_E_SSI_NO_CONTROL; /* its frames carry no CDM or CDS to answer it */
+    }
     int rc = biss_exclusive(h);
     if (!rc) {
         rc = rearm_locked(h, p);

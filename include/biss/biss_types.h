@@ -127,6 +127,9 @@ enum biss_error {
     /* host trigger: the last one has not started its frame yet (asked for
      * again, that frame would come once) */
     BISS_E_TRIGGER_PENDING = -78,
+    /* register access or a command configured for an SSI encoder, which has
+     * no control communication (no CDM, no CDS) */
+    BISS_E_SSI_NO_CONTROL = -79,
 };
 
 /* ---- configuration ----------------------------------------------------- */

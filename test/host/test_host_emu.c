@@ -447,6 +447,16 @@ static void ssi_run(const char *scenario_file, bool gray) {
                       (unsigned long long)rec->position);
     }
     ck_assert_uint_ne(s[0].slave[0].position, s[19].slave[0].position);
+    /* no control communication: refused by name (it was run, and failed as
+     * "no slave took the control frame") */
+    uint8_t b[4], ida;
+    ck_assert_int_eq(biss_reg_read(h, 0, 0x78, b, 4), BISS_E_SSI_NO_CONTROL);
+    ck_assert_int_eq(biss_command(h, 0x01, 0, false, &ida), BISS_E_SSI_NO_CONTROL);
+    biss_cd_job *j = (biss_cd_job *)1;
+    ck_assert_int_eq(biss_reg_write_start(h, 0, 0x60, b, 1, &j), BISS_E_SSI_NO_CONTROL);
+    ck_assert_ptr_null(j);
+    static const uint8_t ops[1] = {0};
+    ck_assert_int_eq(biss_cd_run(h, ops, 1, 0, 5, b), BISS_E_SSI_NO_CONTROL);
     biss_close(h);
 }
 
