@@ -249,6 +249,104 @@ START_TEST(test_back_to_back) {
 }
 END_TEST
 
+/* Frames after the IEP trigger was left: their timestamps (the IEP count
+ * at each frame's first MA edge) run on, each after the one before, and
+ * a speed check on them passes every frame (the encoder model moves
+ * slowly). The IEP owner's compare 0 restarted the count every period; a
+ * free-run or host configuration turns that off (pru_fw/config.p). */
+static void assert_count_runs_free(biss_t *h, enum biss_trigger t) {
+    drain(h);
+    uint32_t last = 0;
+    unsigned seen = 0;
+    for (unsigned round = 0; round < 40 && seen < FRAMES; round++) {
+        if (t == BISS_TRIGGER_HOST) {
+            int rc = biss_trigger(h);
+            ck_assert_msg(rc == BISS_OK || rc == BISS_E_TRIGGER_PENDING, "%s", biss_strerror(rc));
+        }
+        ck_assert_int_eq(biss_run_us(h, 100), BISS_OK);
+        struct biss_sample s[64];
+        unsigned n;
+        uint32_t lost;
+        ck_assert_int_eq(biss_ring_read(h, s, 64, &n, &lost), BISS_OK);
+        for (unsigned i = 0; i < n; i++) {
+            if (s[i].training) {
+                continue;
+            }
+            ck_assert_msg(s[i].valid, "%s: frame %u flags 0x%x safety 0x%x", biss_trigger_name(t),
+                          s[i].frame, s[i].flags, s[i].safety);
+            ck_assert_msg(seen == 0 || (s[i].safety & BISS_SAFE_POS_CHECKED),
+                          "%s: frame %u not compared", biss_trigger_name(t), s[i].frame);
+            ck_assert_msg(seen == 0 || (int32_t)(s[i].timestamp - last) > 0,
+                          "%s: frame %u at count %u, the one before at %u", biss_trigger_name(t),
+                          s[i].frame, s[i].timestamp, last);
+            last = s[i].timestamp;
+            seen++;
+        }
+    }
+    ck_assert_uint_ge(seen, FRAMES);
+}
+
+START_TEST(test_iep_left) {
+    static const enum biss_trigger after[] = {BISS_TRIGGER_FREERUN, BISS_TRIGGER_HOST};
+    struct biss_config base;
+    biss_t *h = open_emu("tidep0022-test-encoder", NULL, &base);
+    struct biss_config iep = base, next = base;
+    iep.trigger = BISS_TRIGGER_IEP;
+    iep.iep_period_ns = 40000;
+    next.trigger = after[_i];
+    next.slave[0].max_speed = 1e7;
+    ck_assert_int_eq(biss_configure(h, &iep), BISS_OK);
+    ck_assert_int_eq(biss_run_ms(h, 2), BISS_OK);
+    ck_assert_int_eq(biss_configure(h, &next), BISS_OK);
+    assert_count_runs_free(h, next.trigger);
+    biss_close(h);
+}
+END_TEST
+
+/* ... but not while the other PRU's channel owns the IEP: PRU1 configured
+ * free-run or host after PRU0 took the IEP trigger leaves PRU0's period
+ * as it was: every PRU0 frame on its count, one period after the last. */
+START_TEST(test_iep_kept_for_the_other) {
+    static const enum biss_trigger other[] = {BISS_TRIGGER_FREERUN, BISS_TRIGGER_HOST};
+    struct biss_open_params p[2];
+    for (unsigned i = 0; i < 2; i++) {
+        biss_open_params_default(&p[i]);
+        p[i].target = BISS_TARGET_EMU;
+        p[i].profile = "tidep0022-test-encoder";
+    }
+    biss_t *h[2];
+    int rc = biss_emu_open_pair(p, h);
+    ck_assert_msg(rc == BISS_OK, "open pair: %s", biss_strerror(rc));
+    struct biss_config c[2];
+    for (unsigned i = 0; i < 2; i++) {
+        biss_config_default(&c[i]);
+        c[i].freq_hz = 10000000;
+        ck_assert_int_eq(biss_config_from_emu(h[i], &c[i]), BISS_OK);
+    }
+    c[0].trigger = BISS_TRIGGER_IEP;
+    c[0].iep_period_ns = 40000;
+    c[1].trigger = other[_i];
+    ck_assert_int_eq(biss_configure(h[0], &c[0]), BISS_OK);
+    ck_assert_int_eq(biss_run_ms(h[0], 1), BISS_OK);
+    ck_assert_int_eq(biss_configure(h[1], &c[1]), BISS_OK);
+    drain(h[0]);
+    ck_assert_int_eq(biss_run_ms(h[0], 2), BISS_OK);
+    struct biss_sample s[64];
+    unsigned n;
+    uint32_t lost;
+    ck_assert_int_eq(biss_ring_read(h[0], s, 64, &n, &lost), BISS_OK);
+    ck_assert_uint_ge(n, 40);
+    for (unsigned i = 0; i < n; i++) {
+        ck_assert_msg(s[i].valid && !(s[i].flags & BISS_RF_IEP_LATE), "frame %u flags 0x%x",
+                      s[i].frame, s[i].flags);
+        ck_assert_msg(i == 0 || s[i].timestamp == s[i - 1].timestamp, "frame %u at count %u, %u",
+                      s[i].frame, s[i].timestamp, s[i - 1].timestamp);
+    }
+    biss_close(h[1]);
+    biss_close(h[0]);
+}
+END_TEST
+
 int main(void) {
     Suite *s = suite_create("host_reconfig");
     TCase *tc = tcase_create("reconfig");
@@ -258,6 +356,8 @@ int main(void) {
     tcase_add_test(tc, test_chain_shape);
     tcase_add_test(tc, test_ssi_and_back);
     tcase_add_loop_test(tc, test_back_to_back, 0, 2);
+    tcase_add_loop_test(tc, test_iep_left, 0, 2);
+    tcase_add_loop_test(tc, test_iep_kept_for_the_other, 0, 2);
     suite_add_tcase(s, tc);
     return check_run(s);
 }
