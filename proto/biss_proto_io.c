@@ -68,6 +68,13 @@ int biss_proto_pub_seq(const struct biss_proto_io *io, uint32_t *seq) {
     return rd(io, BISS_ST_SEQ, seq, 4);
 }
 
+int biss_proto_published(const struct biss_proto_io *io, uint32_t seq, bool *any) {
+    uint32_t buf = 0;
+    int rc = seq ? BISS_OK : rd(io, BISS_ST_BUF, &buf, 4);
+    *any = seq != 0 || buf != 0;
+    return rc;
+}
+
 int biss_proto_slot_check(uint32_t slot, unsigned nslaves) {
     /* any layout: on the grid every stride keeps (16 bytes), with a header's room */
     unsigned step = nslaves ? BISS_RING_STRIDE(nslaves) : BISS_R_SLAVE_SIZE;

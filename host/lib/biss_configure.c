@@ -190,6 +190,7 @@ static int exchange(biss_t *h, struct biss_config *c) {
     }
     if (!rc) {
         h->cfg_pub_seq = st.seq; /* publications from here on are of this layout */
+        h->cfg_pub_passed = false;
         if (h->ring_started && (int32_t)(st.seq - h->ring_cursor) > 0) {
             h->ring_skipped += st.seq - h->ring_cursor; /* the last layout's, unread */
             h->ring_cursor = st.seq;

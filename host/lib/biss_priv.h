@@ -82,6 +82,10 @@ struct biss {
      * layout), so they are no sample of this configuration. */
     uint32_t cfg_pub_seq;
     bool cfg_pub_seq_valid;
+    /* a newest-sample read saw a later publication: from then on every
+     * one is this configuration's (ST_SEQ moves on from cfg_pub_seq; how
+     * far tells nothing, the counter wraps: 2^31 frames are 12 h at 50 kHz) */
+    bool cfg_pub_passed;
     bool attached;
     /* biss_ring_read: the last publication returned or counted lost, and
      * the frames of an earlier layout a configuration skipped (lost) */

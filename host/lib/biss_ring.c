@@ -12,11 +12,15 @@ static int ring_start(biss_t *h) {
     } else {
         struct biss_proto_io io = biss_io(h);
         uint32_t seq;
+        bool any;
         int rc = biss_proto_pub_seq(&io, &seq);
+        if (!rc) {
+            rc = biss_proto_published(&io, seq, &any);
+        }
         if (rc) {
             return rc;
         }
-        h->ring_cursor = seq ? seq - 1 : 0;
+        h->ring_cursor = any ? seq - 1 : 0;
     }
     h->ring_started = true;
     return BISS_OK;

@@ -21,11 +21,15 @@ static int read_consistent(biss_t *h, struct biss_shm_result *r, uint32_t *seq) 
     unsigned n = h->configured ? h->cfg.nslaves : BISS_MAX_SLAVES;
     for (int i = 0; i < MAX_TRIES; i++) {
         uint32_t s1, s2;
+        bool any;
         int rc = biss_proto_pub_seq(&io, &s1);
+        if (!rc) {
+            rc = biss_proto_published(&io, s1, &any);
+        }
         if (rc) {
             return rc;
         }
-        if (s1 == 0) {
+        if (!any) {
             return BISS_E_NO_SAMPLE;
         }
         atomic_thread_fence(memory_order_acquire);
@@ -95,8 +99,11 @@ static int read_sample_locked(biss_t *h, struct biss_sample *s) {
     if (!rc) {
         rc = read_consistent(h, &r, &seq);
     }
-    if (!rc && h->configured && h->cfg_pub_seq_valid && (int32_t)(seq - h->cfg_pub_seq) <= 0) {
-        return BISS_E_NO_SAMPLE; /* published under the previous configuration */
+    if (!rc && h->configured && h->cfg_pub_seq_valid && !h->cfg_pub_passed) {
+        if (seq == h->cfg_pub_seq) {
+            return BISS_E_NO_SAMPLE; /* published under the previous configuration */
+        }
+        h->cfg_pub_passed = true;
     }
     return rc ? rc : biss_result_to_sample(h, &r, seq, BISS_READER_NEWEST, s);
 }
@@ -118,8 +125,9 @@ struct wait_arg {
     struct biss_sample *s;
 };
 
-/* Cheap poll of ST_SEQ; the whole sample only when it moved. Frame numbers
- * wrap, so "newer" is a signed distance. */
+/* Cheap poll of ST_SEQ; the whole sample only when it moved (or nothing
+ * was read yet: read_sample_locked tells whether anything was published).
+ * Frame numbers wrap, so "newer" is a signed distance. */
 static int newer_published(biss_t *h, void *arg) {
     struct wait_arg *w = arg;
     uint32_t seq;
@@ -128,7 +136,7 @@ static int newer_published(biss_t *h, void *arg) {
     if (rc) {
         return rc;
     }
-    if (seq == 0 || (w->read_once && seq == w->last_seq)) {
+    if (w->read_once && seq == w->last_seq) {
         return 0;
     }
     rc = read_sample_locked(h, w->s);
