@@ -333,7 +333,7 @@ int biss_proto_ring_read(const struct biss_proto_io *io, uint32_t *cursor,
 /* A control program: BISS_E_CD_STEPS for a length outside
  * 1..BISS_CD_MAX_STEPS, BISS_E_CD_BUSY while the last one runs, else puts
  * PROG, STEPS, WAIT_LIMIT and the IDA test, then CD_CMD = *cmd (the next
- * command number). */
+ * command number, never 0: the firmware's "none"). */
 int biss_proto_cd_put(const struct biss_proto_io *io, const biss_cd_prog *p, unsigned wait_limit,
                       uint32_t *cmd);
 /* The program's words alone (PROG, STEPS and WAIT_LIMIT, the IDA test),

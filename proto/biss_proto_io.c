@@ -144,7 +144,9 @@ int biss_proto_cd_put(const struct biss_proto_io *io, const biss_cd_prog *p, uns
     }
     rc = biss_proto_cd_load(io, p, wait_limit);
     atomic_thread_fence(memory_order_seq_cst);
-    *cmd = cd.cmd + 1;
+    /* the next number, past 0: the firmware's "no program" (pru_fw/cd.p,
+     * CdState.cmd); a program numbered 0 restarted every frame, never ended */
+    *cmd = cd.cmd + 1 == 0 ? 1 : cd.cmd + 1;
     if (!rc) {
         rc = wr(io, BISS_CD_CMD, cmd, 4);
     }

@@ -116,7 +116,7 @@
 // program's start and after each WAIT. When the program ends it sets
 // ST_CD_STATUS and echoes CD_CMD in ST_CD_SEQ. Frames keep coming as usual
 // throughout: control data never stops position data.
-#define BISS_CD_CMD             0x0B0   // u32 (host): incremented to run the program
+#define BISS_CD_CMD             0x0B0   // u32 (host): incremented to run the program (past 0: none)
 #define BISS_CD_STEPS           0x0B4   // u16 (host): program length, 1..BISS_CD_MAX_STEPS
 #define BISS_CD_WAIT_LIMIT      0x0B6   // u16 (host): frames with CDS 0 a WAIT may see (0: at once)
 #define BISS_ST_CD_SEQ          0x0B8   // u32: CD_CMD of the program last ended (or refused)

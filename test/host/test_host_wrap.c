@@ -177,6 +177,30 @@ START_TEST(test_half_the_counter_after_configuring) {
 }
 END_TEST
 
+/* The control program counter CD_CMD at 2^32 - 1 (the last program's,
+ * echoed in ST_CD_SEQ): the next register reads run and end as any. The
+ * firmware takes CD_CMD 0 for "no program" (pru_fw/cd.p, CdState.cmd). */
+START_TEST(test_control_counter_across_the_wrap) {
+    biss_t *h = open_emu();
+    configure(h, BISS_TRIGGER_FREERUN);
+    ck_assert_int_eq(biss_run_ms(h, 1), BISS_OK);
+    poke32(h, BISS_CD_CMD, 0xfffffffeu);
+    poke32(h, BISS_ST_CD_SEQ, 0xfffffffeu);
+    for (int i = 0; i < 3; i++) { /* ...ff, then past 0 */
+        uint8_t b[2];
+        int rc = biss_reg_read(h, 0, 0x78, b, 2);
+        ck_assert_msg(rc == BISS_OK, "read %d (CD_CMD 0x%x): %s", i, peek32(h, BISS_CD_CMD),
+                      biss_strerror(rc));
+        ck_assert_uint_eq(b[0], 0x46);
+        ck_assert_uint_eq(b[1], 0x3a);
+        ck_assert_uint_eq(peek32(h, BISS_ST_CD_SEQ), peek32(h, BISS_CD_CMD));
+    }
+    ck_assert_uint_ne(peek32(h, BISS_CD_CMD), 0);
+    ck_assert_uint_lt(peek32(h, BISS_CD_CMD), 3);
+    biss_close(h);
+}
+END_TEST
+
 int main(void) {
     Suite *s = suite_create("host_wrap");
     TCase *tc = tcase_create("wrap");
@@ -184,6 +208,7 @@ int main(void) {
     tcase_add_test(tc, test_host_trigger_across_the_wrap);
     tcase_add_test(tc, test_free_run_across_the_wrap);
     tcase_add_test(tc, test_half_the_counter_after_configuring);
+    tcase_add_test(tc, test_control_counter_across_the_wrap);
     suite_add_tcase(s, tc);
     return check_run(s);
 }
