@@ -18,7 +18,9 @@
 #include "check_run.h"
 
 #include <check.h>
+#include <stdio.h>
 #include <string.h>
+#include <unistd.h>
 
 #define FREQ 10000000u
 
@@ -201,6 +203,85 @@ START_TEST(test_control_counter_across_the_wrap) {
 }
 END_TEST
 
+/* The IEP count (the timestamps) set to `count`, as 21.5 s of running
+ * leave it once a wrap (COUNT, AM335x TRM 30.1.11.2.4: offset 0x0C). */
+static void set_iep_count(biss_t *h, uint32_t count) {
+    struct bench *b = biss_emu_bench(h);
+    uint32_t at = pru_soc_base(bench_config(b)->soc) + PRU_OFS_IEP + 0x0c;
+    ck_assert_int_eq(pru_host_write32(bench_core(b), at, count), 0);
+}
+
+/* The default encoder turning at 20000 counts/s, checked at 30000: its
+ * positions are all within reach, whatever the IEP count. */
+static biss_t *open_turning(char *path, size_t len) {
+    snprintf(path, len, "/tmp/biss-wrap-%ld.json", (long)getpid());
+    FILE *f = fopen(path, "w");
+    ck_assert_ptr_nonnull(f);
+    fputs("{\"biss\": {\"slaves\": [{\"speed_cps\": 20000}]}, "
+          "\"checks\": {\"max_speed\": [{\"slave\": 0, \"counts_per_s\": 30000}]}}",
+          f);
+    fclose(f);
+    struct biss_open_params p;
+    biss_open_params_default(&p);
+    p.target = BISS_TARGET_EMU;
+    p.scenario_file = path;
+    biss_t *h;
+    int rc = biss_emu_open(&p, &h);
+    ck_assert_msg(rc == BISS_OK, "open: %s", biss_strerror(rc));
+    return h;
+}
+
+/* Free-running and host-triggered, the IEP count passing 2^32 between two
+ * frames: the speed check's time between them is the modular difference,
+ * every position within reach (none misframed), each one judged. */
+START_TEST(test_timestamps_across_the_iep_wrap) {
+    static const enum biss_trigger trig[] = {BISS_TRIGGER_FREERUN, BISS_TRIGGER_HOST};
+    for (unsigned t = 0; t < 2; t++) {
+        char path[64];
+        biss_t *h = open_turning(path, sizeof path);
+        struct biss_config c;
+        biss_config_default(&c);
+        c.freq_hz = FREQ;
+        c.trigger = trig[t];
+        ck_assert_int_eq(biss_config_from_emu(h, &c), BISS_OK);
+        ck_assert_double_eq(c.slave[0].max_speed, 30000);
+        /* 500 us before the wrap: the count runs on through the
+         * configuration (free-run and host trigger leave it alone) */
+        set_iep_count(h, 0xffffffffu - 100000);
+        ck_assert_int_eq(biss_configure(h, &c), BISS_OK);
+        struct biss_sample buf[64];
+        unsigned judged = 0, wrapped = 0;
+        uint32_t last_ts = 0;
+        for (int poll = 0; poll < 150; poll++) {
+            if (trig[t] == BISS_TRIGGER_HOST) {
+                ck_assert_int_eq(biss_run_us(h, 20), BISS_OK); /* the frame before ended */
+                ck_assert_int_eq(biss_trigger(h), BISS_OK);
+            }
+            ck_assert_int_eq(biss_run_us(h, 10), BISS_OK);
+            unsigned n;
+            uint32_t lost;
+            ck_assert_int_eq(biss_ring_read(h, buf, 64, &n, &lost), BISS_OK);
+            ck_assert_uint_eq(lost, 0);
+            for (unsigned i = 0; i < n; i++) {
+                ck_assert_msg(!buf[i].misframed, "frame %u (timestamp %u) misframed", buf[i].frame,
+                              buf[i].timestamp);
+                ck_assert(buf[i].valid || buf[i].training);
+                judged += (buf[i].safety & BISS_SAFE_POS_CHECKED) != 0;
+                wrapped += last_ts > 0xf0000000u && buf[i].timestamp < 0x10000000u;
+                last_ts = buf[i].timestamp;
+            }
+        }
+        ck_assert_uint_eq(wrapped, 1);
+        ck_assert_uint_ge(judged, 60);
+        struct biss_safety_stats st;
+        ck_assert_int_eq(biss_get_safety_stats(h, &st), BISS_OK);
+        ck_assert_uint_eq(st.pos_jumped[0], 0);
+        biss_close(h);
+        unlink(path);
+    }
+}
+END_TEST
+
 int main(void) {
     Suite *s = suite_create("host_wrap");
     TCase *tc = tcase_create("wrap");
@@ -209,6 +290,7 @@ int main(void) {
     tcase_add_test(tc, test_free_run_across_the_wrap);
     tcase_add_test(tc, test_half_the_counter_after_configuring);
     tcase_add_test(tc, test_control_counter_across_the_wrap);
+    tcase_add_test(tc, test_timestamps_across_the_iep_wrap);
     suite_add_tcase(s, tc);
     return check_run(s);
 }
