@@ -349,7 +349,9 @@ struct biss_safety_stats {
  *
  * A frame's eye opening (biss_sample.link_eye) and the counts over the
  * frames judged: libbiss's since the handle was opened (the frames it
- * read), the bench's over every publication. */
+ * read), the bench's over every publication. After 2^32 - 1 frames the
+ * counts from frames to warnings start again from 0, together (the eye's
+ * mean, eye_sum / frames, stays the mean of the frames counted). */
 /* the most a frame flagged BISS_RF_OFF_GRID has: the check's window,
  * BISS_GRID_OLDER and BISS_GRID_NEWER (biss_shm.h) */
 #define BISS_LINK_EYE_OFF_GRID 2
