@@ -261,7 +261,8 @@ struct biss_line_verdict {
 struct biss_line_delay {
     uint16_t raw, avg;                   /* the firmware's DELAY_RAW / DELAY_AVG */
     unsigned half;                       /* H of the frame */
-    double bit8, cycles, ns;             /* from avg (the filtered value) */
+    double bit8, cycles, ns;             /* from avg (the filtered value); 0 for a round
+                                            trip under one bit/8 (H / 4 cycles) */
     double raw_bit8, raw_cycles, raw_ns; /* from raw (this frame alone) */
 };
 
