@@ -91,6 +91,8 @@ typedef struct {
     uint16_t ida;  /* command: step whose answer is IDA slot 0 (slot i: ida + i; biss_cd_set_ida) */
     bool ida_test; /* command: the firmware withholds P unless the IDA answers are ids */
     uint16_t end;  /* the step ending the control frame: last S = 0, or a command's P */
+    uint16_t lead; /* CDM 0 steps before the frame's S (biss_cd_lead_in); every index above counts
+                      them */
 } biss_cd_prog;
 
 /* What the firmware reports for a program (the data RAM words). */
@@ -188,6 +190,17 @@ biss_cd_err biss_cd_set_ida(biss_cd_prog *p, biss_cd_ida_at at);
 /* frames (1..BISS_CD_MAX_STEPS) of CDM 0: lets a slave left inside a
  * frame (after BISS_CD_E_NO_START or BISS_CD_E_FRAME) finish it and re-arm. */
 biss_cd_err biss_cd_build_idle(biss_cd_prog *p, unsigned frames);
+/* A program that stopped inside a control frame (status ERR_FRAME: a BiSS
+ * frame failed, a new configuration's training frame among them; ERR_WAIT)
+ * leaves the slave where it was. The 14 zeros the firmware sends before the
+ * next program cancel a frame still open at the 14th (TIDEP0022 §2.1.3), but
+ * a slave whose frame ended on one of them (a read byte's D, CRC, P and final
+ * S = 0 are all CDM 0) wants 14 fresh zeros from there (biss_cd_build.c,
+ * put_tail): up to 13 more before the next S. */
+#define BISS_CD_REARM_ZEROS 13
+/* frames (1..BISS_CD_MAX_STEPS) of CDM 0 put before a built program's S, every
+ * field's step moved with it (BISS_CD_E_TOO_LONG if it no longer fits). */
+biss_cd_err biss_cd_lead_in(biss_cd_prog *p, unsigned frames);
 /* Any program: n (1..BISS_CD_MAX_STEPS) BISS_CD_STEP values. */
 biss_cd_err biss_cd_build_raw(biss_cd_prog *p, const uint8_t *ops, unsigned n);
 

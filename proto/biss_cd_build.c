@@ -147,7 +147,7 @@ biss_cd_err biss_cd_set_idl(biss_cd_prog *p, biss_cd_idl_at at) {
         (at != BISS_CD_IDL_AT_S && at != BISS_CD_IDL_AT_CTS)) {
         return BISS_CD_E_ARG;
     }
-    p->idl = at == BISS_CD_IDL_AT_CTS;
+    p->idl = (uint16_t)(p->lead + (at == BISS_CD_IDL_AT_CTS));
     return BISS_CD_OK;
 }
 
@@ -156,7 +156,7 @@ biss_cd_err biss_cd_set_ida(biss_cd_prog *p, biss_cd_ida_at at) {
         (p->ida_test && at != BISS_CD_IDA_DEFAULT)) {
         return BISS_CD_E_ARG;
     }
-    p->ida = (uint16_t)(15u + (at == BISS_CD_IDA_AT_SLOT));
+    p->ida = (uint16_t)(p->lead + 15u + (at == BISS_CD_IDA_AT_SLOT));
     return BISS_CD_OK;
 }
 
@@ -169,6 +169,30 @@ biss_cd_err biss_cd_build_idle(biss_cd_prog *p, unsigned frames) {
     }
     start(p, BISS_CD_RAW);
     put_zeros(p, frames);
+    return BISS_CD_OK;
+}
+
+biss_cd_err biss_cd_lead_in(biss_cd_prog *p, unsigned frames) {
+    if (frames < 1) {
+        return BISS_CD_E_ARG;
+    }
+    if (frames > BISS_CD_MAX_STEPS - (unsigned)p->len) {
+        return BISS_CD_E_TOO_LONG;
+    }
+    memmove(p->op + frames, p->op, p->len);
+    memset(p->op, BISS_CDOP_0, frames);
+    p->len = (uint16_t)(p->len + frames);
+    uint16_t *at[] = {&p->rw, &p->idl, &p->ida, &p->end, &p->lead};
+    for (unsigned i = 0; i < sizeof at / sizeof at[0]; i++) {
+        *at[i] = (uint16_t)(*at[i] + frames);
+    }
+    for (unsigned i = 0; i < p->count; i++) {
+        biss_cd_byte_steps *b = &p->byte[i];
+        uint16_t *step[] = {&b->start, &b->wait, &b->data, &b->crc, &b->stop};
+        for (unsigned k = 0; k < sizeof step / sizeof step[0]; k++) {
+            *step[k] = (uint16_t)(*step[k] + frames);
+        }
+    }
     return BISS_CD_OK;
 }
 

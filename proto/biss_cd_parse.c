@@ -146,7 +146,7 @@ static void parse_register(const biss_cd_prog *p, const biss_cd_answer *a, biss_
     for (unsigned i = 0; r->idl_answered && i < 8; i++) {
         r->idl |= (uint8_t)(biss_cd_answer_bit(a, p->idl + i) << i);
     }
-    r->header_cds = recorded(a, 0, 9, limit);
+    r->header_cds = recorded(a, p->lead, 9, limit);
     r->rw_echo_ok = rw_echoed(p, a, limit);
     if (!r->rw_echo_ok) {
         r->err = p->rw + 2u > limit ? BISS_CD_E_FRAME : BISS_CD_E_NO_ECHO;
@@ -168,7 +168,7 @@ static void parse_register(const biss_cd_prog *p, const biss_cd_answer *a, biss_
 }
 
 static void parse_command(const biss_cd_prog *p, const biss_cd_answer *a, biss_cd_result *r) {
-    r->ida_cds = recorded(a, 15, 9, answered_limit(p, a));
+    r->ida_cds = recorded(a, p->lead + 15u, 9, answered_limit(p, a));
     if (p->ida + 8u > answered_limit(p, a)) {
         r->err = BISS_CD_E_FRAME;
         return;

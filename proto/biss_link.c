@@ -103,6 +103,16 @@ void biss_link_check(struct biss_link_state *st, struct biss_sample *s) {
         return;
     }
     struct biss_link_stats *k = &st->stats;
+    if (k->frames == UINT32_MAX) {
+        /* 2^32 - 1 frames judged (30 h at 40 kHz): the counts start again
+         * together, so the mean (eye_sum / frames) stays a mean */
+        k->frames = 0;
+        memset(k->eye, 0, sizeof k->eye);
+        k->eye_sum = 0;
+        k->marginal = 0;
+        k->off_grid = 0;
+        k->warnings = 0;
+    }
     k->frames++;
     k->eye[eye]++;
     k->eye_sum += (uint64_t)eye;

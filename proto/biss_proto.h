@@ -289,6 +289,12 @@ int biss_proto_trigger_get(const struct biss_proto_io *io, uint32_t *pending);
 int biss_proto_trigger(const struct biss_proto_io *io);
 /* The publication counter alone. */
 int biss_proto_pub_seq(const struct biss_proto_io *io, uint32_t *seq);
+/* Whether the firmware published anything since it started, ST_SEQ having
+ * read seq: the counter wraps from 2^32 - 1 to 0 (the frame published
+ * then is frame 0), so 0 alone does not say "nothing"; ST_BUF does (the
+ * start-up clears it, the first publication names its slot there before
+ * it bumps ST_SEQ). Reads ST_BUF only when seq is 0. */
+int biss_proto_published(const struct biss_proto_io *io, uint32_t seq, bool *any);
 /* The result slot ST_BUF names, its header and nslaves slave results
  * (the rest zeroed): 0, or BISS_E_SHM_RESULT for an offset that is no
  * slot of the ring. */
@@ -327,7 +333,7 @@ int biss_proto_ring_read(const struct biss_proto_io *io, uint32_t *cursor,
 /* A control program: BISS_E_CD_STEPS for a length outside
  * 1..BISS_CD_MAX_STEPS, BISS_E_CD_BUSY while the last one runs, else puts
  * PROG, STEPS, WAIT_LIMIT and the IDA test, then CD_CMD = *cmd (the next
- * command number). */
+ * command number, never 0: the firmware's "none"). */
 int biss_proto_cd_put(const struct biss_proto_io *io, const biss_cd_prog *p, unsigned wait_limit,
                       uint32_t *cmd);
 /* The program's words alone (PROG, STEPS and WAIT_LIMIT, the IDA test),

@@ -68,6 +68,13 @@ int biss_proto_pub_seq(const struct biss_proto_io *io, uint32_t *seq) {
     return rd(io, BISS_ST_SEQ, seq, 4);
 }
 
+int biss_proto_published(const struct biss_proto_io *io, uint32_t seq, bool *any) {
+    uint32_t buf = 0;
+    int rc = seq ? BISS_OK : rd(io, BISS_ST_BUF, &buf, 4);
+    *any = seq != 0 || buf != 0;
+    return rc;
+}
+
 int biss_proto_slot_check(uint32_t slot, unsigned nslaves) {
     /* any layout: on the grid every stride keeps (16 bytes), with a header's room */
     unsigned step = nslaves ? BISS_RING_STRIDE(nslaves) : BISS_R_SLAVE_SIZE;
@@ -137,7 +144,9 @@ int biss_proto_cd_put(const struct biss_proto_io *io, const biss_cd_prog *p, uns
     }
     rc = biss_proto_cd_load(io, p, wait_limit);
     atomic_thread_fence(memory_order_seq_cst);
-    *cmd = cd.cmd + 1;
+    /* the next number, past 0: the firmware's "no program" (pru_fw/cd.p,
+     * CdState.cmd); a program numbered 0 restarted every frame, never ended */
+    *cmd = cd.cmd + 1 == 0 ? 1 : cd.cmd + 1;
     if (!rc) {
         rc = wr(io, BISS_CD_CMD, cmd, 4);
     }

@@ -173,7 +173,9 @@ const char *biss_status_problem(const struct biss_shm_status *st, uint32_t st_pr
     if (st->state > BISS_STATE_NO_SLAVE) {
         return "firmware state (ST_STATE): not a BISS_STATE_*";
     }
-    if (st->seq != 0 ? biss_proto_slot_check(st->buf, 0) != BISS_OK : st->buf != 0) {
+    /* ST_BUF is 0 until the first publication, a slot from then on; ST_SEQ
+     * 0 with it nothing published, or the counter past 2^32 - 1 */
+    if (st->buf != 0 ? biss_proto_slot_check(st->buf, 0) != BISS_OK : st->seq != 0) {
         return "result slot (ST_BUF): not a slot of the ring";
     }
     if (st->cfg_error > BISS_CFGERR_SSI) {

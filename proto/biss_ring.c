@@ -18,6 +18,7 @@ static int rd(const struct biss_proto_io *io, uint32_t off, void *buf, size_t n)
  * (biss_proto_slot_seq: ST_SEQ's, or one more while the firmware is
  * between its stores of ST_BUF and ST_SEQ). */
 struct ring_head {
+    bool any; /* anything published since the start (biss_proto_published) */
     uint32_t seq;
     uint32_t slot;
     unsigned nslaves;
@@ -28,7 +29,10 @@ static int ring_head(const struct biss_proto_io *io, struct ring_head *h) {
         uint32_t buf;
         struct biss_shm_result hdr; /* its header only */
         int rc = rd(io, BISS_ST_SEQ, &h->seq, 4);
-        if (rc || h->seq == 0) {
+        if (!rc) {
+            rc = biss_proto_published(io, h->seq, &h->any);
+        }
+        if (rc || !h->any) {
             return rc;
         }
         atomic_thread_fence(memory_order_acquire);
@@ -63,7 +67,7 @@ int biss_proto_ring_read(const struct biss_proto_io *io, uint32_t *cursor,
     *lost = 0;
     struct ring_head h;
     int rc = ring_head(io, &h);
-    if (rc || h.seq == 0 || h.seq == *cursor) {
+    if (rc || !h.any || h.seq == *cursor) {
         return rc;
     }
     if ((int32_t)(h.seq - *cursor) < 0) {

@@ -5,11 +5,17 @@
 #include <string.h>
 
 /* biss_shm.h: the round trip is (DELAY - BISS_DELAY_ZERO) * H / 4 -
- * BISS_DELAY_ADJ_CYCLES PRU cycles of 5 ns; one bit/8 is H / 4 cycles. */
+ * BISS_DELAY_ADJ_CYCLES PRU cycles of 5 ns; one bit/8 is H / 4 cycles. A
+ * round trip shorter than the firmware can resolve there (the ACK in the
+ * first eighth it can see: DELAY = BISS_DELAY_ZERO) would come out as
+ * less than nothing (-BISS_DELAY_ADJ_CYCLES): it is 0, no line delay. */
 static void delay_of(uint16_t counts, unsigned half, double *bit8, double *cycles, double *ns) {
     const double ns_per_cycle = 1e9 / BISS_PRU_HZ;
     double unit = half / 4.0;
     *cycles = ((double)counts - BISS_DELAY_ZERO) * unit - BISS_DELAY_ADJ_CYCLES;
+    if (*cycles < 0) {
+        *cycles = 0;
+    }
     *bit8 = half ? *cycles / unit : 0.0;
     *ns = *cycles * ns_per_cycle;
 }

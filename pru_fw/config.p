@@ -85,6 +85,7 @@
 .assign Half, r9.w2, r9.w2, RingLast        //   ST_RING_LAST
 // CFG_IEP, and IEP_PERIOD (which the IEP frames call, r0..r12 only)
 .assign Word, r2, r2, IepReg                // a word for an IEP register: CMP0 (P - 1)
+.assign Byte, r2.b0, r2.b0, OtherTrigger    // the other PRU's BISS_CFG_TRIGGER (C25)
 .assign Half, r4.w0, r4.w0, IepHalf         // IEP_PERIOD: H
 .assign Word, r8, r8, IepCap                // 65536 x 2H
 // Accepted: the words for the private RAM
@@ -335,8 +336,17 @@ CFG_SSI_DONE:
     // IEP (owner and follower): the thresholds for the period are worked
     // out by the first IEP frame (P_IEP_KEY no CMP0: IEP_PERIOD). The owner
     // sets the period up (CMP0 = P - 1 resets the count after it); a
-    // follower takes the owner's, whenever it is set up.
-    qbbc    CFG_IEP_OK, CfgTrigger, 0       // BISS_TRIG_IEP (1) and IEP_FOLLOW (3)
+    // follower takes the owner's, whenever it is set up. Free-run and host:
+    // the count must run free (their timestamps), so compare 0 stops
+    // resetting it, which an owner before this configuration, or before a
+    // restart of this firmware, left on; unless the other PRU's block asks
+    // for the IEP trigger (it owns the IEP: libbiss's rule). Then on
+    // through the key (unused by these triggers) to CFG_IEP_OK.
+    qbbs    CFG_IEP_ON, CfgTrigger, 0       // BISS_TRIG_IEP (1) and IEP_FOLLOW (3)
+    lbco    OtherTrigger, c25, BISS_CFG_TRIGGER, 1
+    qbeq    CFG_IEP_OK, OtherTrigger, BISS_TRIG_IEP
+    sbco    XfrZero, c26, IEP_CMP_CFG, 4    // (the probe's last R0)
+CFG_IEP_ON:
     fill    &IepReg, 4
     sbco    IepReg, c28, P_IEP_KEY, 4       // none yet
     qbne    CFG_IEP_OK, CfgTrigger, BISS_TRIG_IEP

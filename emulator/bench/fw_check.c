@@ -189,7 +189,9 @@ static void on_publish(void *ctx, uint32_t addr) {
     struct biss_shm_result res;
     struct biss_sample smp;
     uint32_t seq;
-    if (biss_proto_pub_seq(&io, &seq) == BISS_OK && seq == 0) {
+    bool any;
+    if (biss_proto_pub_seq(&io, &seq) == BISS_OK &&
+        biss_proto_published(&io, seq, &any) == BISS_OK && !any) {
         return; /* the start-up clearing the status words: nothing published */
     }
     if (biss_proto_result_get(&io, BISS_MAX_SLAVES, &res) != BISS_OK ||

@@ -235,6 +235,9 @@ static int next_sample(biss_t *h, const struct bissctl_opts *o, uint32_t after,
         return biss_wait_sample(h, after, o->timeout_ms, s);
     }
     int rc = biss_trigger(h);
+    if (rc == BISS_E_TRIGGER_PENDING) {
+        rc = BISS_OK; /* the last one's frame is still to come (an untriggered one answered it) */
+    }
     while (rc == BISS_OK) {
         rc = biss_wait_sample(h, after, o->timeout_ms, s);
         if (rc == BISS_OK && !s->training) {

@@ -150,8 +150,10 @@ int biss_get_config(biss_t *h, struct biss_config *c);
  * first instruction (counters cleared) and re-applies the configuration. */
 int biss_start(biss_t *h);
 int biss_stop(biss_t *h);
-/* Host-trigger mode: asks for one frame. After each configuration (and
- * after a slave went missing) the firmware clocks one training frame of its
+/* Host-trigger mode: asks for one frame (BISS_E_TRIGGER_PENDING, asking
+ * for nothing, while the last one has not started its frame: the firmware
+ * takes one request at a time). After each configuration (and after a
+ * slave went missing) the firmware clocks one training frame of its
  * own, untriggered, to measure the line delay at the new rate: it is
  * published with `training` set and counts in biss_stats.training. */
 int biss_trigger(biss_t *h);

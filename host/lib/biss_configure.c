@@ -51,9 +51,10 @@ static int other_read(void *ctx, uint32_t off, void *buf, size_t n) {
 /* Whether the other PRU's channel owns the IEP: its firmware runs (any
  * state: without a slave it still resets the count) with the IEP trigger
  * in its block, accepted or not yet looked at (a configuration in flight
- * is taken as what it asks for), and *period_ns is its period. Not when
- * the other PRU cannot be read (not mapped) or runs nothing. */
-static bool iep_owner(biss_t *h, uint32_t *period_ns) {
+ * is taken as what it asks for; with `applied`, only one the firmware has
+ * accepted: the period the IEP runs), and *period_ns is its period. Not
+ * when the other PRU cannot be read (not mapped) or runs nothing. */
+static bool iep_owner(biss_t *h, bool applied, uint32_t *period_ns) {
     struct biss_proto_io io = {.read = other_read, .ctx = h};
     struct biss_shm_status st;
     struct biss_shm_config blk;
@@ -63,7 +64,8 @@ static bool iep_owner(biss_t *h, uint32_t *period_ns) {
     }
     *period_ns = blk.iep_period * 5u; /* 5 ns IEP counts */
     bool refused = st.cfg_ack == blk.seq && st.cfg_error != BISS_CFGERR_NONE;
-    return blk.seq != 0 && blk.trigger == BISS_TRIGGER_IEP && !refused;
+    bool pending = st.cfg_ack != blk.seq;
+    return blk.seq != 0 && blk.trigger == BISS_TRIGGER_IEP && !refused && !(applied && pending);
 }
 
 static bool speed_checked(const struct biss_config *c) {
@@ -84,7 +86,7 @@ static bool speed_checked(const struct biss_config *c) {
  * period has no time to judge by: BISS_E_SAFETY_SPEED). */
 static int iep_as_needed(biss_t *h, struct biss_config *c) {
     uint32_t period = 0;
-    bool owned = iep_owner(h, &period);
+    bool owned = iep_owner(h, false, &period);
     switch (c->trigger) {
     case BISS_TRIGGER_IEP:
         if (owned) {
@@ -105,6 +107,31 @@ static int iep_as_needed(biss_t *h, struct biss_config *c) {
         }
     }
     return biss_config_check(c);
+}
+
+/* The owner may take another period at any time (its own configuration):
+ * the frames counted from then on are that long, so a follower's speed
+ * check takes it, and judges no time across the change: the frame under
+ * way when it was seen may have begun in the old period (the owner's
+ * configuration restarts the count), so references start two publications
+ * on. */
+int biss_follow_period_locked(biss_t *h) {
+    uint32_t period;
+    if (!h->configured || h->cfg.trigger != BISS_TRIGGER_IEP_FOLLOW || !speed_checked(&h->cfg) ||
+        !iep_owner(h, true, &period) || period == h->cfg.iep_period_ns) {
+        return BISS_OK;
+    }
+    struct biss_proto_io io = biss_io(h);
+    uint32_t seq;
+    int rc = biss_proto_pub_seq(&io, &seq);
+    if (rc) {
+        return rc;
+    }
+    h->cfg.iep_period_ns = period;
+    h->follow_from = seq + 2;
+    h->follow_hold = true;
+    biss_safety_readers_restart(&h->safety);
+    return BISS_OK;
 }
 
 /* The configuration's exchange with the firmware (handle locked). */
@@ -163,12 +190,14 @@ static int exchange(biss_t *h, struct biss_config *c) {
     }
     if (!rc) {
         h->cfg_pub_seq = st.seq; /* publications from here on are of this layout */
+        h->cfg_pub_passed = false;
         if (h->ring_started && (int32_t)(st.seq - h->ring_cursor) > 0) {
             h->ring_skipped += st.seq - h->ring_cursor; /* the last layout's, unread */
             h->ring_cursor = st.seq;
         }
         h->cfg = *c;
         h->configured = true;
+        h->follow_hold = false;
         biss_safety_readers_restart(&h->safety); /* references from a new layout's frames on */
         h->cfg_pub_seq_valid = true;
     }

@@ -40,15 +40,38 @@ static int cd_ended(biss_t *h, void *arg) {
     return rc;
 }
 
+/* A built frame (register access, command) after a program that stopped
+ * inside its control frame, by this handle or any other: CDM 0 steps first,
+ * so the slave is armed again at its S (biss_cd.h, BISS_CD_REARM_ZEROS). A
+ * raw program runs as given (host/CD.md). */
+static int rearm_locked(biss_t *h, biss_cd_prog *p) {
+    if (p->kind == BISS_CD_RAW) {
+        return BISS_OK;
+    }
+    struct biss_proto_io io = biss_io(h);
+    biss_cd_answer last;
+    int rc = biss_proto_cd_answer(&io, &last);
+    if (rc || (last.status != BISS_CDST_ERR_FRAME && last.status != BISS_CDST_ERR_WAIT)) {
+        return rc;
+    }
+    return biss_cd_error(biss_cd_lead_in(p, BISS_CD_REARM_ZEROS));
+}
+
 /* Checks and puts a program (handle locked); *cmd is the CD_CMD it runs as. */
-static int begin_locked(biss_t *h, const biss_cd_prog *p, unsigned wait_limit, uint32_t *cmd) {
+static int begin_locked(biss_t *h, biss_cd_prog *p, unsigned wait_limit, uint32_t *cmd) {
     if (wait_limit > 0xffff) {
         return BISS_E_INVAL;
     }
     if (!h->configured) {
         return BISS_E_NOT_CONFIGURED;
     }
+    if (h->cfg.slave[0].ssi) {
+        return BISS_E_SSI_NO_CONTROL; /* its frames carry no CDM or CDS to answer it */
+    }
     int rc = biss_exclusive(h);
+    if (!rc) {
+        rc = rearm_locked(h, p);
+    }
     if (rc) {
         return rc;
     }
@@ -56,14 +79,14 @@ static int begin_locked(biss_t *h, const biss_cd_prog *p, unsigned wait_limit, u
     return biss_proto_cd_put(&io, p, wait_limit, cmd);
 }
 
-static int exchange_locked(biss_t *h, const biss_cd_prog *p, unsigned wait_limit,
-                           unsigned timeout_ms, biss_cd_answer *a) {
+static int exchange_locked(biss_t *h, biss_cd_prog *p, unsigned wait_limit, unsigned timeout_ms,
+                           biss_cd_answer *a) {
     struct cd_wait w = {.host_trigger = h->cfg.trigger == BISS_TRIGGER_HOST, .a = a};
     int rc = begin_locked(h, p, wait_limit, &w.cmd);
     return rc ? rc : biss_wait_for(h, timeout_ms, cd_ended, &w);
 }
 
-int biss_cd_exchange(biss_t *h, const biss_cd_prog *p, unsigned wait_limit, unsigned timeout_ms,
+int biss_cd_exchange(biss_t *h, biss_cd_prog *p, unsigned wait_limit, unsigned timeout_ms,
                      biss_cd_answer *a) {
     memset(a, 0, sizeof *a);
     biss_op_begin(h);
@@ -72,7 +95,7 @@ int biss_cd_exchange(biss_t *h, const biss_cd_prog *p, unsigned wait_limit, unsi
     return rc;
 }
 
-int biss_cd_begin(biss_t *h, const biss_cd_prog *p, unsigned wait_limit, uint32_t *cmd) {
+int biss_cd_begin(biss_t *h, biss_cd_prog *p, unsigned wait_limit, uint32_t *cmd) {
     biss_op_begin(h);
     int rc = begin_locked(h, p, wait_limit, cmd);
     biss_op_end(h);

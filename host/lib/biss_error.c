@@ -22,7 +22,8 @@ static const struct err_text errors[] = {
     {BISS_E_PROFILE, "unknown emulator profile"},
     {BISS_E_SCENARIO, "scenario file cannot be read or is invalid"},
     {BISS_E_EMU, "emulator bench cannot be built"},
-    {BISS_E_RATE_RANGE, "MA rate out of range (97.7 kHz .. 10 MHz: H = 10..1024 PRU cycles)"},
+    {BISS_E_RATE_RANGE, "MA rate out of range (10 MHz down to 125 kHz, the slowest in whole Hz: "
+                        "H = 10..1024 PRU cycles)"},
     {BISS_E_RATE_INEXACT, "MA rate is not 100 MHz divided by a whole number"},
     {BISS_E_RATE_SHIFT,
      "MA rate has no exact 8x shift clock (100 MHz / f must be a*b with 2 <= a, b <= 32)"},
@@ -103,6 +104,8 @@ static const struct err_text errors[] = {
     {BISS_E_ENC_REG_WAIT, "encoder: register processing time over 255 frames, or an execute "
                           "bit other than 0 or 1"},
     {BISS_E_ENC_REFUSED, "the encoder firmware refused the configuration"},
+    {BISS_E_TRIGGER_PENDING, "the last trigger has not started its frame yet"},
+    {BISS_E_SSI_NO_CONTROL, "an SSI encoder has no control communication (registers, commands)"},
 };
 
 const char *biss_strerror(int err) {

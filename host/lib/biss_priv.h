@@ -82,6 +82,10 @@ struct biss {
      * layout), so they are no sample of this configuration. */
     uint32_t cfg_pub_seq;
     bool cfg_pub_seq_valid;
+    /* a newest-sample read saw a later publication: from then on every
+     * one is this configuration's (ST_SEQ moves on from cfg_pub_seq; how
+     * far tells nothing, the counter wraps: 2^31 frames are 12 h at 50 kHz) */
+    bool cfg_pub_passed;
     bool attached;
     /* biss_ring_read: the last publication returned or counted lost, and
      * the frames of an earlier layout a configuration skipped (lost) */
@@ -96,6 +100,12 @@ struct biss {
     struct biss_safety_readers safety;
     /* the link's eye and warning over the frames this handle read (biss_link.c) */
     struct biss_link_state link;
+    /* following another channel's IEP with a speed check: the owner's
+     * period changed (biss_follow_period_locked), so the frames published
+     * before follow_from may lie across the change: no time between them
+     * is known, and their positions are not judged by max_speed */
+    bool follow_hold;
+    uint32_t follow_from;
 };
 
 /* Asks the backend for the right to change the firmware's state. */
@@ -149,6 +159,11 @@ int biss_open_params_check(const struct biss_open_params *p, struct biss_errbuf 
  * assembled for h's PRU. */
 int biss_read_image(biss_t *h, const char *path, bool master, struct biss_errbuf *e);
 
+/* Following another channel's IEP with a speed check (handle locked): the
+ * owning channel's period as it now runs (its block accepted), taken into
+ * the configuration when it changed (biss_configure.c). */
+int biss_follow_period_locked(biss_t *h);
+
 /* A published result as a sample (seq its publication number): refused
  * as BISS_E_SHM_RESULT, named in h->problem, where the firmware never
  * writes such words; the host's safety checks run on it as `reader`
@@ -173,14 +188,15 @@ int biss_reconfigure_locked(biss_t *h);
 /* Control communication transport (biss_control.c): puts the program in
  * data RAM, starts it, waits (triggering frames in host-trigger mode) and
  * reads the firmware's answer back. The codec (biss_cd.h) builds programs
- * and parses answers. */
-int biss_cd_exchange(biss_t *h, const biss_cd_prog *p, unsigned wait_limit, unsigned timeout_ms,
+ * and parses answers. A built frame after a program that stopped inside
+ * its control frame gets CDM 0 steps first (biss_cd_lead_in): *p moves. */
+int biss_cd_exchange(biss_t *h, biss_cd_prog *p, unsigned wait_limit, unsigned timeout_ms,
                      biss_cd_answer *a);
 /* The same in two halves, for the non-blocking forms: begin puts the
  * program and returns its command number; check returns BISS_E_CD_BUSY
  * until the firmware has ended it (asking for frames in host-trigger mode),
  * then reads the answer. */
-int biss_cd_begin(biss_t *h, const biss_cd_prog *p, unsigned wait_limit, uint32_t *cmd);
+int biss_cd_begin(biss_t *h, biss_cd_prog *p, unsigned wait_limit, uint32_t *cmd);
 int biss_cd_check(biss_t *h, uint32_t cmd, biss_cd_answer *a);
 /* A codec verdict as a BISS_E_* code. */
 int biss_cd_error(biss_cd_err e);

@@ -12,11 +12,15 @@ static int ring_start(biss_t *h) {
     } else {
         struct biss_proto_io io = biss_io(h);
         uint32_t seq;
+        bool any;
         int rc = biss_proto_pub_seq(&io, &seq);
+        if (!rc) {
+            rc = biss_proto_published(&io, seq, &any);
+        }
         if (rc) {
             return rc;
         }
-        h->ring_cursor = seq ? seq - 1 : 0;
+        h->ring_cursor = any ? seq - 1 : 0;
     }
     h->ring_started = true;
     return BISS_OK;
@@ -27,7 +31,10 @@ static int ring_start(biss_t *h) {
 
 static int ring_read_locked(biss_t *h, struct biss_sample *out, unsigned max, unsigned *n,
                             uint32_t *lost) {
-    int rc = h->ring_started ? BISS_OK : ring_start(h);
+    int rc = biss_follow_period_locked(h);
+    if (!rc && !h->ring_started) {
+        rc = ring_start(h);
+    }
     *lost = h->ring_skipped;
     h->ring_skipped = 0;
     struct biss_proto_io io = biss_io(h);

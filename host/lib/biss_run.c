@@ -67,9 +67,20 @@ int biss_trigger(biss_t *h) {
     } else if (h->cfg.trigger != BISS_TRIGGER_HOST) {
         rc = BISS_E_NOT_HOST_TRIG;
     } else {
+        /* The firmware clears CMD_TRIGGER when it starts the frame, and
+         * only then: a trigger written over one still set would ask for
+         * the same frame again. Read 0, no frame is owed, and the 1
+         * written next is the only one. */
         atomic_thread_fence(memory_order_seq_cst);
         struct biss_proto_io io = biss_io(h);
-        rc = biss_proto_trigger(&io);
+        uint32_t pending;
+        rc = biss_proto_trigger_get(&io, &pending);
+        if (!rc && pending) {
+            rc = BISS_E_TRIGGER_PENDING;
+        }
+        if (!rc) {
+            rc = biss_proto_trigger(&io);
+        }
     }
     pthread_mutex_unlock(&h->lock);
     return rc;

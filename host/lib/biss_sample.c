@@ -21,11 +21,15 @@ static int read_consistent(biss_t *h, struct biss_shm_result *r, uint32_t *seq) 
     unsigned n = h->configured ? h->cfg.nslaves : BISS_MAX_SLAVES;
     for (int i = 0; i < MAX_TRIES; i++) {
         uint32_t s1, s2;
+        bool any;
         int rc = biss_proto_pub_seq(&io, &s1);
+        if (!rc) {
+            rc = biss_proto_published(&io, s1, &any);
+        }
         if (rc) {
             return rc;
         }
-        if (s1 == 0) {
+        if (!any) {
             return BISS_E_NO_SAMPLE;
         }
         atomic_thread_fence(memory_order_acquire);
@@ -46,6 +50,30 @@ static int read_consistent(biss_t *h, struct biss_shm_result *r, uint32_t *seq) 
     return BISS_E_RETRY;
 }
 
+/* Frames a reader may still return from before follow_from: the ring's
+ * (one slot is being filled) and the frame under way. */
+#define FOLLOW_WINDOW (BISS_RING_SLOTS(1) + 2u)
+
+/* The configuration s is judged by: a follower's frames from before the
+ * owner's new period are judged without max_speed (biss_priv.h). */
+static const struct biss_config *judged_by(biss_t *h, uint32_t seq, struct biss_config *tmp) {
+    if (!h->follow_hold) {
+        return &h->cfg;
+    }
+    uint32_t before = h->follow_from - seq; /* 1.. for frames before it */
+    if (before == 0 || before > FOLLOW_WINDOW) {
+        if (seq - h->follow_from > FOLLOW_WINDOW && seq - h->follow_from < 0x80000000u) {
+            h->follow_hold = false; /* every reader is past it */
+        }
+        return &h->cfg;
+    }
+    *tmp = h->cfg;
+    for (unsigned i = 0; i < BISS_API_MAX_SLAVES; i++) {
+        tmp->slave[i].max_speed = 0;
+    }
+    return tmp;
+}
+
 int biss_result_to_sample(biss_t *h, const struct biss_shm_result *r, uint32_t seq, unsigned reader,
                           struct biss_sample *s) {
     const char *why = biss_result_problem(&h->cfg, h->configured, r);
@@ -55,7 +83,8 @@ int biss_result_to_sample(biss_t *h, const struct biss_shm_result *r, uint32_t s
     }
     int rc = biss_sample_decode(&h->cfg, h->configured, seq, r, s);
     if (!rc && h->configured) {
-        biss_safety_readers_check(&h->cfg, &h->safety, reader, s);
+        struct biss_config tmp;
+        biss_safety_readers_check(judged_by(h, seq, &tmp), &h->safety, reader, s);
     }
     if (!rc) {
         biss_link_check(&h->link, s);
@@ -66,9 +95,15 @@ int biss_result_to_sample(biss_t *h, const struct biss_shm_result *r, uint32_t s
 static int read_sample_locked(biss_t *h, struct biss_sample *s) {
     struct biss_shm_result r;
     uint32_t seq = 0;
-    int rc = read_consistent(h, &r, &seq);
-    if (!rc && h->configured && h->cfg_pub_seq_valid && (int32_t)(seq - h->cfg_pub_seq) <= 0) {
-        return BISS_E_NO_SAMPLE; /* published under the previous configuration */
+    int rc = biss_follow_period_locked(h);
+    if (!rc) {
+        rc = read_consistent(h, &r, &seq);
+    }
+    if (!rc && h->configured && h->cfg_pub_seq_valid && !h->cfg_pub_passed) {
+        if (seq == h->cfg_pub_seq) {
+            return BISS_E_NO_SAMPLE; /* published under the previous configuration */
+        }
+        h->cfg_pub_passed = true;
     }
     return rc ? rc : biss_result_to_sample(h, &r, seq, BISS_READER_NEWEST, s);
 }
@@ -90,8 +125,9 @@ struct wait_arg {
     struct biss_sample *s;
 };
 
-/* Cheap poll of ST_SEQ; the whole sample only when it moved. Frame numbers
- * wrap, so "newer" is a signed distance. */
+/* Cheap poll of ST_SEQ; the whole sample only when it moved (or nothing
+ * was read yet: read_sample_locked tells whether anything was published).
+ * Frame numbers wrap, so "newer" is a signed distance. */
 static int newer_published(biss_t *h, void *arg) {
     struct wait_arg *w = arg;
     uint32_t seq;
@@ -100,7 +136,7 @@ static int newer_published(biss_t *h, void *arg) {
     if (rc) {
         return rc;
     }
-    if (seq == 0 || (w->read_once && seq == w->last_seq)) {
+    if (w->read_once && seq == w->last_seq) {
         return 0;
     }
     rc = read_sample_locked(h, w->s);

@@ -82,7 +82,8 @@
                                         // IEP count as its frames; this channel leaves the IEP alone
 
 // ---- commands (host writes, firmware clears) ---------------------------
-#define BISS_CMD_TRIGGER        0x050   // u32: nonzero: start one frame (BISS_TRIG_HOST)
+#define BISS_CMD_TRIGGER        0x050   // u32: nonzero: start one frame (BISS_TRIG_HOST); the
+                                        // firmware clears it as it starts the frame
 
 // ---- status (firmware writes) -------------------------------------------
 #define BISS_ST_PRU             0x07C   // u32: the PRU this image was assembled for (PRU_NUM: 0 or
@@ -115,7 +116,7 @@
 // program's start and after each WAIT. When the program ends it sets
 // ST_CD_STATUS and echoes CD_CMD in ST_CD_SEQ. Frames keep coming as usual
 // throughout: control data never stops position data.
-#define BISS_CD_CMD             0x0B0   // u32 (host): incremented to run the program
+#define BISS_CD_CMD             0x0B0   // u32 (host): incremented to run the program (past 0: none)
 #define BISS_CD_STEPS           0x0B4   // u16 (host): program length, 1..BISS_CD_MAX_STEPS
 #define BISS_CD_WAIT_LIMIT      0x0B6   // u16 (host): frames with CDS 0 a WAIT may see (0: at once)
 #define BISS_ST_CD_SEQ          0x0B8   // u32: CD_CMD of the program last ended (or refused)

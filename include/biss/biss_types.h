@@ -124,6 +124,12 @@ enum biss_error {
     BISS_E_ENC_REG_WAIT = -76, /* register processing time over 255 frames, or an execute
                                   bit other than 0 or 1 */
     BISS_E_ENC_REFUSED = -77,  /* the encoder firmware refused the configuration */
+    /* host trigger: the last one has not started its frame yet (asked for
+     * again, that frame would come once) */
+    BISS_E_TRIGGER_PENDING = -78,
+    /* register access or a command configured for an SSI encoder, which has
+     * no control communication (no CDM, no CDS) */
+    BISS_E_SSI_NO_CONTROL = -79,
 };
 
 /* ---- configuration ----------------------------------------------------- */
@@ -255,7 +261,8 @@ struct biss_line_verdict {
 struct biss_line_delay {
     uint16_t raw, avg;                   /* the firmware's DELAY_RAW / DELAY_AVG */
     unsigned half;                       /* H of the frame */
-    double bit8, cycles, ns;             /* from avg (the filtered value) */
+    double bit8, cycles, ns;             /* from avg (the filtered value); 0 for a round
+                                            trip under one bit/8 (H / 4 cycles) */
     double raw_bit8, raw_cycles, raw_ns; /* from raw (this frame alone) */
 };
 
@@ -343,7 +350,9 @@ struct biss_safety_stats {
  *
  * A frame's eye opening (biss_sample.link_eye) and the counts over the
  * frames judged: libbiss's since the handle was opened (the frames it
- * read), the bench's over every publication. */
+ * read), the bench's over every publication. After 2^32 - 1 frames the
+ * counts from frames to warnings start again from 0, together (the eye's
+ * mean, eye_sum / frames, stays the mean of the frames counted). */
 /* the most a frame flagged BISS_RF_OFF_GRID has: the check's window,
  * BISS_GRID_OLDER and BISS_GRID_NEWER (biss_shm.h) */
 #define BISS_LINK_EYE_OFF_GRID 2

@@ -59,12 +59,13 @@ struct slave_pins {
 struct master {
     biss_t *h;
     bool emu;
-    long carry_ns;         /* emulated time owed (target=emu) */
-    hal_u32_t *frame;      /* the firmware's frame number of the sample on the pins */
-    hal_u32_t *age;        /* servo periods since the frame number last changed */
-    hal_bit_t *running;    /* the firmware runs and publishes */
-    hal_s32_t *last_error; /* the last libbiss error of a read (0: none) */
-    hal_s32_t *link_eye;   /* the frame's eye opening, eighths of a bit (-1: none measured) */
+    long carry_ns;           /* emulated time owed (target=emu) */
+    hal_u32_t *frame;        /* the firmware's frame number of the sample on the pins */
+    bool have_frame;         /* a sample is on the pins (frame numbers wrap: 0 is one) */
+    hal_u32_t *age;          /* servo periods since the frame number last changed */
+    hal_bit_t *running;      /* the firmware runs and publishes */
+    hal_s32_t *last_error;   /* the last libbiss error of a read (0: none) */
+    hal_s32_t *link_eye;     /* the frame's eye opening, eighths of a bit (-1: none measured) */
     hal_bit_t *link_warning; /* marginal frames reached the warning (proto/biss_link.c) */
     unsigned nslaves;
     struct slave_pins s[BISS_API_MAX_SLAVES];
@@ -141,11 +142,12 @@ static void read_biss(void *arg, long period) {
         (*c->age)++;
         return;
     }
-    if (s.frame == *c->frame && *c->frame != 0) {
+    if (c->have_frame && s.frame == *c->frame) {
         (*c->age)++;
         return;
     }
     *c->frame = s.frame;
+    c->have_frame = true;
     *c->age = 0;
     *c->link_eye = s.link_eye;
     *c->link_warning = s.link_warning;

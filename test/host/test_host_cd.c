@@ -293,6 +293,60 @@ START_TEST(test_emu_nonblocking) {
 }
 END_TEST
 
+/* Runs until n more frames are published. */
+static void run_frames(biss_t *h, uint32_t n) {
+    struct biss_stats s0, s;
+    ck_assert_int_eq(biss_get_stats(h, &s0), BISS_OK);
+    do {
+        ck_assert_int_eq(biss_run_us(h, 5), BISS_OK);
+        ck_assert_int_eq(biss_get_stats(h, &s), BISS_OK);
+    } while (s.frames - s0.frames < n);
+}
+
+/* A new configuration while a register read runs, at every point of it:
+ * the new rate's training frame (two clocks) fails the program
+ * (BISS_E_CD_FRAME) from its S on, and leaves the slave wherever it was in
+ * its control frame. The next read works all the same: its S waits until
+ * the slave is armed again (biss_cd_lead_in), whether the firmware's 14
+ * zeros cancelled its frame or it ended the frame on one of them. */
+START_TEST(test_emu_reconfigure_mid_read) {
+    biss_t *h = emu(BISS_TRIGGER_FREERUN);
+    struct biss_config c;
+    ck_assert_int_eq(biss_get_config(h, &c), BISS_OK);
+    uint8_t want[8];
+    for (unsigned i = 0; i < 8; i++) {
+        want[i] = regfile_read(slave_regs(h), 0x78 + i);
+    }
+    unsigned failed = 0;
+    /* 14 zeros, then S, the header, R W and 8 bytes of 15 steps */
+    for (uint32_t k = 1; k <= 14 + 19 + 8 * 15; k += 4) {
+        biss_cd_job *j;
+        ck_assert_int_eq(biss_reg_read_start(h, 0, 0x78, 8, &j), BISS_OK);
+        run_frames(h, k);
+        c.freq_hz = c.freq_hz == 10000000 ? 1000000 : 10000000;
+        ck_assert_int_eq(biss_configure(h, &c), BISS_OK);
+        int rc;
+        while ((rc = biss_cd_poll(h, j)) == BISS_E_CD_BUSY) {
+            ck_assert_int_eq(biss_run_us(h, 50), BISS_OK);
+        }
+        ck_assert_msg(rc == BISS_OK || rc == BISS_E_CD_FRAME, "%u frames in: %s", k,
+                      biss_strerror(rc));
+        failed += rc == BISS_E_CD_FRAME;
+        biss_cd_job_free(j);
+        uint8_t b[8];
+        rc = biss_reg_read(h, 0, 0x78, b, 8);
+        ck_assert_msg(rc == BISS_OK, "reconfigured %u frames into a read: the next read: %s", k,
+                      biss_strerror(rc));
+        ck_assert_mem_eq(b, want, 8);
+        /* and the next after it, started as usual (the last one ended well) */
+        ck_assert_int_eq(biss_reg_read(h, 0, 0x79, b, 1), BISS_OK);
+        ck_assert_uint_eq(b[0], want[1]);
+    }
+    ck_assert_uint_gt(failed, 20);
+    biss_close(h);
+}
+END_TEST
+
 int main(void) {
     Suite *s = suite_create("host_cd");
     TCase *tc = tcase_create("cd");
@@ -306,6 +360,7 @@ int main(void) {
     tcase_add_test(tc, test_emu_register_read_host_trigger);
     tcase_add_test(tc, test_emu_command);
     tcase_add_test(tc, test_emu_nonblocking);
+    tcase_add_test(tc, test_emu_reconfigure_mid_read);
     suite_add_tcase(s, tc);
     return check_run(s);
 }

@@ -195,6 +195,23 @@ START_TEST(test_host_trigger) {
         after = s.frame;
     }
     ck_assert_uint_eq(link_frames(l), 4);
+    /* triggers faster than frames (a frame takes some 25 us): each one
+     * taken is one frame, each one refused while the last was pending
+     * asks for none */
+    struct biss_stats before, after_run;
+    ck_assert_int_eq(biss_get_stats(h, &before), BISS_OK);
+    unsigned taken = 0, pending = 0;
+    for (int i = 0; i < 100; i++) {
+        int rc = biss_trigger(h);
+        ck_assert_msg(rc == BISS_OK || rc == BISS_E_TRIGGER_PENDING, "%s", biss_strerror(rc));
+        taken += rc == BISS_OK;
+        pending += rc == BISS_E_TRIGGER_PENDING;
+        ck_assert_int_eq(biss_run_us(h, 5), BISS_OK);
+    }
+    ck_assert_int_eq(biss_run_ms(h, 1), BISS_OK);
+    ck_assert_int_eq(biss_get_stats(h, &after_run), BISS_OK);
+    ck_assert_uint_gt(pending, 0);
+    ck_assert_uint_eq(after_run.frames - before.frames, taken);
     biss_close(h);
 }
 END_TEST
@@ -430,6 +447,16 @@ static void ssi_run(const char *scenario_file, bool gray) {
                       (unsigned long long)rec->position);
     }
     ck_assert_uint_ne(s[0].slave[0].position, s[19].slave[0].position);
+    /* no control communication: refused by name (it was run, and failed as
+     * "no slave took the control frame") */
+    uint8_t b[4], ida;
+    ck_assert_int_eq(biss_reg_read(h, 0, 0x78, b, 4), BISS_E_SSI_NO_CONTROL);
+    ck_assert_int_eq(biss_command(h, 0x01, 0, false, &ida), BISS_E_SSI_NO_CONTROL);
+    biss_cd_job *j = (biss_cd_job *)1;
+    ck_assert_int_eq(biss_reg_write_start(h, 0, 0x60, b, 1, &j), BISS_E_SSI_NO_CONTROL);
+    ck_assert_ptr_null(j);
+    static const uint8_t ops[1] = {0};
+    ck_assert_int_eq(biss_cd_run(h, ops, 1, 0, 5, b), BISS_E_SSI_NO_CONTROL);
     biss_close(h);
 }
 

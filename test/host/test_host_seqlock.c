@@ -343,6 +343,11 @@ START_TEST(test_trigger_modes) {
     ck_assert_int_eq(biss_configure(h, &c), BISS_OK);
     ck_assert_int_eq(biss_trigger(h), BISS_OK);
     ck_assert_uint_eq(fake_dram32(f, BISS_CMD_TRIGGER), 1);
+    /* not yet taken: asked for again, that frame would come once */
+    ck_assert_int_eq(biss_trigger(h), BISS_E_TRIGGER_PENDING);
+    fake_set_dram32(f, BISS_CMD_TRIGGER, 0); /* the firmware starts the frame */
+    ck_assert_int_eq(biss_trigger(h), BISS_OK);
+    ck_assert_uint_eq(fake_dram32(f, BISS_CMD_TRIGGER), 1);
     biss_close(h);
 }
 END_TEST

@@ -186,7 +186,10 @@ END_TEST
  * and 30 kHz on both lines, with jitter; 0.1 to 10 % of the frames hit,
  * most of them after the frame's end): the layout is still found, decided
  * on the frames its CRC fits, and the others are set aside and counted.
- * (At 700 kHz every frame is hit: not a case for discovery.) */
+ * At 10 kHz on SL about one frame in 1024 is hit in its bits, so whether
+ * one is set aside depends on where the glitches fall: the cases together
+ * set some aside. (At 700 kHz every frame is hit: not a case for
+ * discovery.) */
 START_TEST(noisy_line) {
     static const struct {
         const char *file;
@@ -196,6 +199,7 @@ START_TEST(noisy_line) {
                  {"noise-sl-100khz.json", 0x43},
                  {"noise-both-30khz-jitter.json", 0x43},
                  {"noise-both-30khz-jitter-crc16.json", 0x190D9}};
+    unsigned dropped = 0;
     for (unsigned k = 0; k < sizeof cases / sizeof cases[0]; k++) {
         char path[512];
         snprintf(path, sizeof path, "%s/%s", SCENARIO_DIR, cases[k].file);
@@ -208,8 +212,8 @@ START_TEST(noisy_line) {
                w->reason, w->dropped);
         ck_assert_int_eq(w->verdict, BISS_PROBE_UNIQUE);
         ck_assert_uint_eq(w->frames, FRAMES);
-        ck_assert_uint_gt(w->dropped, 0);
         ck_assert_uint_eq(w->dropped, w->frames - w->layout[0].good);
+        dropped += w->dropped;
         const struct biss_probe_slave *s = &w->layout[0].slave[0];
         ck_assert_uint_eq(w->layout[0].nslaves, 1);
         ck_assert_uint_eq(s->data_bits, 14);
@@ -218,6 +222,7 @@ START_TEST(noisy_line) {
         ck_assert(s->has_ew && s->ew_shift == 0 && s->lc_bits == 0);
         biss_close(h);
     }
+    ck_assert_uint_gt(dropped, 0);
 }
 END_TEST
 

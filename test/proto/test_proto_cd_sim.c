@@ -294,6 +294,90 @@ START_TEST(refused_program) {
 }
 END_TEST
 
+/* After a frame failed at any step of a read, the next access needs
+ * BISS_CD_REARM_ZEROS frames of CDM 0 before its S (biss_cd_lead_in): the
+ * slave is cancelled by the 14 zeros only if its frame is still open at the
+ * 14th; where it ended on one of them it wants 14 fresh ones. Without the
+ * lead-in some failure points leave the next read unanswered; with it every
+ * one works, and its answers are read at the steps the lead-in moved. */
+START_TEST(failure_then_lead_in) {
+    biss_ctrl c;
+    biss_ctrl_init(&c, 0, &sc.biss.s[0].regs, 0);
+    cd_sim_add(&g.sim, &c);
+    static biss_cd_prog fail, next;
+    ck_assert_int_eq(biss_cd_build_read(&fail, 0, 0x44, 2), BISS_CD_OK);
+    unsigned unarmed = 0;
+    for (unsigned lead = 0; lead <= 1; lead++) {
+        for (long k = 1; k < (long)fail.len; k++) {
+            biss_cd_result r;
+            g.sim.fail_frame = k;
+            biss_cd_err failed = run(&fail, 10, &r);
+            ck_assert_int_eq(g.sim.fail_frame == k, 1);
+            g.sim.fail_frame = -1;
+            /* (from the final S on, a failure costs nothing) */
+            ck_assert_int_eq(failed, k < (long)fail.end ? BISS_CD_E_FRAME : BISS_CD_OK);
+            ck_assert_int_eq(biss_cd_build_read(&next, 0, 0x67, 1), BISS_CD_OK);
+            if (lead) {
+                ck_assert_int_eq(biss_cd_lead_in(&next, BISS_CD_REARM_ZEROS), BISS_CD_OK);
+            }
+            biss_cd_err e = run(&next, 10, &r);
+            if (!lead) {
+                unarmed += e != BISS_CD_OK;
+                /* (a read failing unanswered ends its frame the slave's way) */
+                if (e != BISS_CD_OK) {
+                    ck_assert_int_eq(run(&next, 10, &r), BISS_CD_OK);
+                }
+                continue;
+            }
+            ck_assert_msg(e == BISS_CD_OK, "failed at step %ld: next read %s", k,
+                          biss_cd_strerror(e));
+            ck_assert_uint_eq(r.byte[0].data, 0x5f);
+            ck_assert(r.idl_answered);
+            ck_assert_uint_eq(r.idl, 0x01);
+            ck_assert_uint_eq(r.header_cds, 0x001);
+        }
+    }
+    ck_assert_uint_gt(unarmed, 0);
+}
+END_TEST
+
+/* The lead-in moves every field's step; the fields set afterwards count it. */
+START_TEST(lead_in_moves_the_fields) {
+    static biss_cd_prog p, q;
+    ck_assert_int_eq(biss_cd_build_read(&p, 2, 0x10, 3), BISS_CD_OK);
+    q = p;
+    ck_assert_int_eq(biss_cd_lead_in(&q, 5), BISS_CD_OK);
+    ck_assert_uint_eq(q.len, p.len + 5);
+    ck_assert_uint_eq(q.lead, 5);
+    for (unsigned i = 0; i < 5; i++) {
+        ck_assert_uint_eq(q.op[i], BISS_CDOP_0);
+    }
+    ck_assert_mem_eq(q.op + 5, p.op, p.len);
+    ck_assert_uint_eq(q.rw, p.rw + 5);
+    ck_assert_uint_eq(q.idl, p.idl + 5);
+    ck_assert_uint_eq(q.end, p.end + 5);
+    for (unsigned i = 0; i < 3; i++) {
+        ck_assert_uint_eq(q.byte[i].start, p.byte[i].start + 5);
+        ck_assert_uint_eq(q.byte[i].wait, p.byte[i].wait + 5);
+        ck_assert_uint_eq(q.byte[i].data, p.byte[i].data + 5);
+        ck_assert_uint_eq(q.byte[i].crc, p.byte[i].crc + 5);
+        ck_assert_uint_eq(q.byte[i].stop, p.byte[i].stop + 5);
+    }
+    ck_assert_int_eq(biss_cd_set_idl(&q, BISS_CD_IDL_AT_CTS), BISS_CD_OK);
+    ck_assert_uint_eq(q.idl, 6);
+    ck_assert_int_eq(biss_cd_build_command(&p, 0x01, 0, true), BISS_CD_OK);
+    q = p;
+    ck_assert_int_eq(biss_cd_lead_in(&q, BISS_CD_REARM_ZEROS), BISS_CD_OK);
+    ck_assert_uint_eq(q.ida, p.ida + BISS_CD_REARM_ZEROS);
+    ck_assert_uint_eq(biss_cd_ida_word(&q), biss_cd_ida_word(&p) + BISS_CD_REARM_ZEROS);
+    ck_assert_int_eq(biss_cd_set_ida(&q, BISS_CD_IDA_AT_CRC), BISS_CD_OK);
+    ck_assert_uint_eq(q.ida, p.ida + BISS_CD_REARM_ZEROS);
+    ck_assert_int_eq(biss_cd_lead_in(&q, 0), BISS_CD_E_ARG);
+    ck_assert_int_eq(biss_cd_lead_in(&q, BISS_CD_MAX_STEPS - q.len + 1), BISS_CD_E_TOO_LONG);
+    ck_assert_int_eq(biss_cd_lead_in(&q, BISS_CD_MAX_STEPS - q.len), BISS_CD_OK);
+}
+END_TEST
+
 /* Like the slaves, the firmware counts the 14 CDM 0 frames before a program
  * from the end of the last one, so programs back to back both work, the
  * second after 13 more frames of CDM 0 (the last frame's END is the first). */
@@ -489,6 +573,8 @@ int main(void) {
     tcase_add_test(tc, id_lock_either_slot);
     tcase_add_test(tc, ida_either_slot);
     tcase_add_test(tc, command_frame_failure);
+    tcase_add_test(tc, failure_then_lead_in);
+    tcase_add_test(tc, lead_in_moves_the_fields);
     tcase_add_test(tc, chain_register_access);
     suite_add_tcase(s, tc);
     return check_run(s);

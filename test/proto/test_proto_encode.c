@@ -206,6 +206,13 @@ START_TEST(test_delay_decode) {
     ck_assert_double_eq_tol(d.ns, ((100 - BISS_DELAY_ZERO) * 25.0 - BISS_DELAY_ADJ_CYCLES) * 5,
                             1e-9);
     ck_assert_uint_eq(d.half, 100);
+    /* the ACK in the first eighth the firmware resolves (a short line at a
+     * slow rate: 2 m at 125 kHz), or before it: no delay, not less */
+    biss_delay_decode(BISS_DELAY_ZERO - 1, BISS_DELAY_ZERO, 800, &d);
+    ck_assert(d.cycles == 0 && d.bit8 == 0 && d.ns == 0);
+    ck_assert(d.raw_cycles == 0 && d.raw_bit8 == 0 && d.raw_ns == 0);
+    biss_delay_decode(BISS_DELAY_ZERO + 1, BISS_DELAY_ZERO + 1, 800, &d);
+    ck_assert_double_eq_tol(d.cycles, 200.0 - BISS_DELAY_ADJ_CYCLES, 1e-9);
 }
 END_TEST
 

@@ -135,6 +135,32 @@ START_TEST(test_read_twice_counts_once) {
 }
 END_TEST
 
+/* 2^32 - 1 frames judged, all of eye 4: the next ones start the counts
+ * again, together, and the mean stays 4 (eye_sum over a wrapped frames
+ * count made it 2^32 times that). */
+START_TEST(test_counts_past_2_to_the_32) {
+    struct biss_link_state st;
+    biss_link_init(&st, 0, 0);
+    st.stats.frames = UINT32_MAX - 1;
+    st.stats.eye[4] = UINT32_MAX - 1;
+    st.stats.eye_sum = 4 * (uint64_t)(UINT32_MAX - 1);
+    for (uint32_t n = 1; n <= 3; n++) {
+        struct biss_sample s = frame(n, 40, 40);
+        biss_link_check(&st, &s);
+        ck_assert_int_eq(s.link_eye, 4);
+        ck_assert_double_eq(biss_link_eye_mean(&st.stats), 4.0);
+    }
+    ck_assert_uint_eq(st.stats.frames, 2);
+    ck_assert_uint_eq(st.stats.eye[4], 2);
+    ck_assert_uint_eq(st.stats.eye_sum, 8);
+    ck_assert_uint_eq(st.stats.marginal, 0);
+    struct biss_sample m = frame(4, 38, 40); /* eye 2: marginal */
+    biss_link_check(&st, &m);
+    ck_assert_uint_eq(st.stats.marginal, 1);
+    ck_assert_double_eq_tol(biss_link_eye_mean(&st.stats), 10.0 / 3, 1e-12);
+}
+END_TEST
+
 START_TEST(test_command_line_spelling) {
     uint32_t k = 0, n = 0;
     ck_assert_int_eq(biss_link_parse("3", &k, &n), BISS_OK);
@@ -161,6 +187,7 @@ int main(void) {
     tcase_add_test(tc, test_frames_without_an_eye);
     tcase_add_test(tc, test_warning_blocks);
     tcase_add_test(tc, test_read_twice_counts_once);
+    tcase_add_test(tc, test_counts_past_2_to_the_32);
     tcase_add_test(tc, test_command_line_spelling);
     suite_add_tcase(s, tc);
     return check_run(s);
