@@ -289,12 +289,12 @@ int biss_proto_trigger_get(const struct biss_proto_io *io, uint32_t *pending);
 int biss_proto_trigger(const struct biss_proto_io *io);
 /* The publication counter alone. */
 int biss_proto_pub_seq(const struct biss_proto_io *io, uint32_t *seq);
-/* Whether the firmware published anything since it started, ST_SEQ having
- * read seq: the counter wraps from 2^32 - 1 to 0 (the frame published
- * then is frame 0), so 0 alone does not say "nothing"; ST_BUF does (the
- * start-up clears it, the first publication names its slot there before
- * it bumps ST_SEQ). Reads ST_BUF only when seq is 0. */
-int biss_proto_published(const struct biss_proto_io *io, uint32_t seq, bool *any);
+/* The publication counter, and whether the firmware published anything
+ * since it started: the counter wraps from 2^32 - 1 to 0 (the frame
+ * published then is frame 0), so 0 alone does not say "nothing"; ST_BUF
+ * does (the start-up clears it, the first publication names its slot there
+ * before it bumps ST_SEQ). Reads ST_BUF only when ST_SEQ is 0. */
+int biss_proto_pub_seq_any(const struct biss_proto_io *io, uint32_t *seq, bool *any);
 /* The result slot ST_BUF names, its header and nslaves slave results
  * (the rest zeroed): 0, or BISS_E_SHM_RESULT for an offset that is no
  * slot of the ring. */

@@ -68,10 +68,13 @@ int biss_proto_pub_seq(const struct biss_proto_io *io, uint32_t *seq) {
     return rd(io, BISS_ST_SEQ, seq, 4);
 }
 
-int biss_proto_published(const struct biss_proto_io *io, uint32_t seq, bool *any) {
+int biss_proto_pub_seq_any(const struct biss_proto_io *io, uint32_t *seq, bool *any) {
     uint32_t buf = 0;
-    int rc = seq ? BISS_OK : rd(io, BISS_ST_BUF, &buf, 4);
-    *any = seq != 0 || buf != 0;
+    int rc = biss_proto_pub_seq(io, seq);
+    if (!rc && *seq == 0) {
+        rc = rd(io, BISS_ST_BUF, &buf, 4);
+    }
+    *any = *seq != 0 || buf != 0;
     return rc;
 }
 

@@ -18,7 +18,7 @@ static int rd(const struct biss_proto_io *io, uint32_t off, void *buf, size_t n)
  * (biss_proto_slot_seq: ST_SEQ's, or one more while the firmware is
  * between its stores of ST_BUF and ST_SEQ). */
 struct ring_head {
-    bool any; /* anything published since the start (biss_proto_published) */
+    bool any; /* anything published since the start (biss_proto_pub_seq_any) */
     uint32_t seq;
     uint32_t slot;
     unsigned nslaves;
@@ -28,10 +28,7 @@ static int ring_head(const struct biss_proto_io *io, struct ring_head *h) {
     for (int i = 0; i < MAX_TRIES; i++) {
         uint32_t buf;
         struct biss_shm_result hdr; /* its header only */
-        int rc = rd(io, BISS_ST_SEQ, &h->seq, 4);
-        if (!rc) {
-            rc = biss_proto_published(io, h->seq, &h->any);
-        }
+        int rc = biss_proto_pub_seq_any(io, &h->seq, &h->any);
         if (rc || !h->any) {
             return rc;
         }

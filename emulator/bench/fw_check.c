@@ -190,8 +190,7 @@ static void on_publish(void *ctx, uint32_t addr) {
     struct biss_sample smp;
     uint32_t seq;
     bool any;
-    if (biss_proto_pub_seq(&io, &seq) == BISS_OK &&
-        biss_proto_published(&io, seq, &any) == BISS_OK && !any) {
+    if (biss_proto_pub_seq_any(&io, &seq, &any) == BISS_OK && !any) {
         return; /* the start-up clearing the status words: nothing published */
     }
     if (biss_proto_result_get(&io, BISS_MAX_SLAVES, &res) != BISS_OK ||

@@ -13,10 +13,7 @@ static int ring_start(biss_t *h) {
         struct biss_proto_io io = biss_io(h);
         uint32_t seq;
         bool any;
-        int rc = biss_proto_pub_seq(&io, &seq);
-        if (!rc) {
-            rc = biss_proto_published(&io, seq, &any);
-        }
+        int rc = biss_proto_pub_seq_any(&io, &seq, &any);
         if (rc) {
             return rc;
         }

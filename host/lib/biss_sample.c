@@ -22,10 +22,7 @@ static int read_consistent(biss_t *h, struct biss_shm_result *r, uint32_t *seq) 
     for (int i = 0; i < MAX_TRIES; i++) {
         uint32_t s1, s2;
         bool any;
-        int rc = biss_proto_pub_seq(&io, &s1);
-        if (!rc) {
-            rc = biss_proto_published(&io, s1, &any);
-        }
+        int rc = biss_proto_pub_seq_any(&io, &s1, &any);
         if (rc) {
             return rc;
         }
