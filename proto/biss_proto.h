@@ -284,6 +284,8 @@ int biss_proto_id_put(const struct biss_proto_io *io, const struct biss_shm_id *
 int biss_proto_fw_pru_get(const struct biss_proto_io *io, uint32_t *pru);
 /* ST_OFF_GRID: the frames refused for an SL edge off the bit grid. */
 int biss_proto_off_grid_get(const struct biss_proto_io *io, uint32_t *frames);
+/* CFG_IEP_PERIOD alone: the block's IEP period, in counts of 5 ns. */
+int biss_proto_iep_period_get(const struct biss_proto_io *io, uint32_t *counts);
 /* CMD_TRIGGER: read (nonzero while a frame is pending) and set. */
 int biss_proto_trigger_get(const struct biss_proto_io *io, uint32_t *pending);
 int biss_proto_trigger(const struct biss_proto_io *io);

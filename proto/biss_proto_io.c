@@ -55,6 +55,10 @@ int biss_proto_off_grid_get(const struct biss_proto_io *io, uint32_t *frames) {
     return rd(io, BISS_ST_OFF_GRID, frames, 4);
 }
 
+int biss_proto_iep_period_get(const struct biss_proto_io *io, uint32_t *counts) {
+    return rd(io, BISS_CFG_IEP_PERIOD, counts, 4);
+}
+
 int biss_proto_trigger_get(const struct biss_proto_io *io, uint32_t *pending) {
     return rd(io, BISS_CMD_TRIGGER, pending, 4);
 }

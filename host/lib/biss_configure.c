@@ -117,8 +117,16 @@ static int iep_as_needed(biss_t *h, struct biss_config *c) {
  * on. */
 int biss_follow_period_locked(biss_t *h) {
     uint32_t period;
-    if (!h->configured || h->cfg.trigger != BISS_TRIGGER_IEP_FOLLOW || !speed_checked(&h->cfg) ||
-        !iep_owner(h, true, &period) || period == h->cfg.iep_period_ns) {
+    if (!h->configured || h->cfg.trigger != BISS_TRIGGER_IEP_FOLLOW || !speed_checked(&h->cfg)) {
+        return BISS_OK;
+    }
+    /* every read comes here: the owner's period word alone while it is
+     * the one followed, its whole blocks only when it differs */
+    struct biss_proto_io other = {.read = other_read, .ctx = h};
+    uint32_t counts;
+    if (biss_proto_iep_period_get(&other, &counts) != BISS_OK ||
+        counts * 5u == h->cfg.iep_period_ns || !iep_owner(h, true, &period) ||
+        period == h->cfg.iep_period_ns) {
         return BISS_OK;
     }
     struct biss_proto_io io = biss_io(h);
