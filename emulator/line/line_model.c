@@ -183,17 +183,19 @@ void line_dir_take_held(line_dir *l) {
     l->cur_level = l->held_level; /* send_current()'s, the sink told already */
 }
 
-/* The output event of an edge at out (after its crossing), or with hold
- * on the same held for the owner under the id it would have had. */
-static eq_id schedule_or_hold(line_dir *l, sim_ps out, int level) {
-    if (!l->hold) {
-        return eq_schedule(l->q, out, on_output_edge, l, level);
-    }
+/* With hold on: the output event of an edge at out held for the owner,
+ * under the id it would have had. */
+static inline eq_id hold_edge(line_dir *l, sim_ps out, int level) {
     l->held = 1;
     l->held_out = out;
     l->held_level = level;
     l->held_id = eq_take_id(l->q);
     return l->held_id;
+}
+
+/* The output event of an edge at out (after its crossing), or held. */
+static eq_id schedule_or_hold(line_dir *l, sim_ps out, int level) {
+    return l->hold ? hold_edge(l, out, level) : eq_schedule(l->q, out, on_output_edge, l, level);
 }
 
 /* Filter value at time t (>= t0), taken when the input goes to `level`. */
@@ -342,11 +344,8 @@ void line_dir_input(line_dir *l, sim_ps t, int level) {
     l->pending = 1;
     l->pending_cross = cross;
     l->pending_out = out;
-    if (l->hold) { /* schedule_or_hold()'s, in line */
-        l->held = 1;
-        l->held_out = out;
-        l->held_level = level;
-        l->pending_ev = l->held_id = eq_take_id(l->q);
+    if (l->hold) {
+        l->pending_ev = hold_edge(l, out, level);
         return;
     }
     if (eq_fits(l->q, out)) {
