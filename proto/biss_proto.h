@@ -134,11 +134,17 @@ void biss_delay_decode(uint16_t raw, uint16_t avg, unsigned half, struct biss_li
 
 /* ---- safety checks (biss_safety.c) ---- */
 
-/* A position the speed check compares with: its frame and IEP timestamp. */
+/* The host's clock at which a frame was read, microseconds (any monotonic
+ * clock: only differences count), or this: not known. */
+#define BISS_SAFETY_NO_CLOCK UINT64_MAX
+
+/* A position the speed check compares with: its frame, IEP timestamp and
+ * the host's clock when it was read. */
 struct biss_pos_ref {
     bool set;
     uint32_t frame, ts;
     uint64_t pos;
+    uint64_t read_us;
 };
 
 /* What the checks remember between frames: per slave the last life
@@ -223,6 +229,15 @@ void biss_safety_restart(struct biss_safety_state *st);
  * does its position become the reference). */
 void biss_safety_check(const struct biss_config *c, struct biss_safety_state *st,
                        struct biss_sample *s);
+/* The same for a frame read at the host's clock read_us (microseconds;
+ * BISS_SAFETY_NO_CLOCK: not known, which biss_safety_check passes): a
+ * max_speed position whose time since the reference is not known (the
+ * count between them half its range or more, or the two frames read half
+ * that range apart or more: biss_safety.c) is not judged, neither passed
+ * nor refused: BISS_SAFE_POS_UNTIMED, counted in pos_untimed, and it
+ * becomes the reference when the frame is accepted. */
+void biss_safety_check_read(const struct biss_config *c, struct biss_safety_state *st,
+                            struct biss_sample *s, uint64_t read_us);
 /* One handle's frames taken by two readers: the newest sample now and
  * then (BISS_READER_NEWEST) and the ring, every frame in order
  * (BISS_READER_RING). Each reader's frames are judged against its own
@@ -236,10 +251,10 @@ struct biss_safety_readers {
     struct biss_safety_stats stats;
     struct biss_frame_order order; /* the frames counted */
 };
-/* biss_safety_check by `reader`'s state; its counts added to r->stats
- * when s->frame is newer than every frame counted. */
+/* biss_safety_check_read by `reader`'s state; its counts added to
+ * r->stats when s->frame is newer than every frame counted. */
 void biss_safety_readers_check(const struct biss_config *c, struct biss_safety_readers *r,
-                               unsigned reader, struct biss_sample *s);
+                               unsigned reader, struct biss_sample *s, uint64_t read_us);
 /* A new configuration: both readers' references forgotten, the counts kept. */
 void biss_safety_readers_restart(struct biss_safety_readers *r);
 /* Command-line spellings: "S[,BITS]" (life counter of slave S, width

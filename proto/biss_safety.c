@@ -38,8 +38,27 @@
  * that time (the master waits for the slave to be ready), and the reach
  * with it, but the encoder moves while the master waits: bounding the
  * reach by the frames that ran instead would refuse positions the encoder
- * does reach (README, "Noise and faults"). A count that went backwards
- * tells no time at all: the position is refused, not passed unjudged. */
+ * does reach (README, "Noise and faults").
+ *
+ * Both counts are 32 bits wide and wrap. Read modulo 2^32 as a signed
+ * distance, a count under half its range (2^31: 10.7 s of IEP counts at
+ * 200 MHz) is the time; from half on, a count that ran on cannot be told
+ * from one that went back (another channel's IEP trigger restarting the
+ * count), and one that came round more than once reads as a short time.
+ * The host's clock tells the second case where the count cannot: the
+ * reader passes the clock at which it read each frame, and two frames it
+ * read half the count's range apart or more may lie a whole wrap further
+ * apart than their count says. Where either says so, the time is not
+ * known: the position is not judged (neither passed as within reach nor
+ * refused: refusing on a speed that cannot be computed would refuse every
+ * frame of a host that polls that slowly, the references never renewed),
+ * it is counted (pos_untimed) and flagged (BISS_SAFE_POS_UNTIMED), and,
+ * the frame accepted, it becomes the reference the next frame is judged
+ * by. What the clock cannot see is a reference read long after its frame
+ * (a host-triggered frame left unread): the count then reads short by a
+ * whole wrap and the reach is smaller than the truth, which may refuse a
+ * good position, never pass a wrong one (and two frames in a row that
+ * agree take over, as after any refusal). */
 #include "biss_proto.h"
 
 #include "biss/biss_rules.h"
@@ -225,46 +244,65 @@ static bool ew_static(const struct biss_config *c, struct biss_safety_state *st,
     return misframed;
 }
 
-/* Seconds from the reference's frame to frame s (the module comment),
- * or -1 where no time can be told: the IEP count went backwards (another
- * channel's IEP trigger restarts it every period, or the frames lie more
- * than 10.7 s apart). */
+/* Seconds from the reference's frame to frame s (the module comment), or
+ * -1 where no time can be told: the count between them (frame numbers
+ * under the IEP triggers, IEP counts otherwise) is 0 or half its range or
+ * more, or the host's clock read the two half that range apart or more
+ * (the count may have come round). */
 static double elapsed_s(const struct biss_config *c, const struct biss_pos_ref *ref,
-                        const struct biss_sample *s) {
-    if (c->trigger == BISS_TRIGGER_IEP || c->trigger == BISS_TRIGGER_IEP_FOLLOW) {
-        /* iep_period_ns > 0: biss_safety_config_check */
-        return (double)(uint32_t)(s->frame - ref->frame) * c->iep_period_ns * 1e-9;
-    }
-    int32_t counts = (int32_t)(s->timestamp - ref->ts);
-    return counts > 0 ? (double)counts / BISS_PRU_HZ : -1;
-}
-
-/* Slave i's position in frame s against a reference: 1 beyond reach
- * (further than max_speed times the time between, plus one count for the
- * two readings' rounding; distances modulo 2^width, a wrap is no jump; or
- * no time to tell it by), 0 within, -1 not judged (no reference, a reach
- * of half the circle or more). */
-static int beyond(const struct biss_config *c, unsigned i, const struct biss_pos_ref *ref,
-                  const struct biss_sample *s) {
-    if (!ref->set) {
+                        const struct biss_sample *s, uint64_t read_us) {
+    bool frames = c->trigger == BISS_TRIGGER_IEP || c->trigger == BISS_TRIGGER_IEP_FOLLOW;
+    /* iep_period_ns > 0: biss_safety_config_check */
+    uint32_t counts = frames ? s->frame - ref->frame : s->timestamp - ref->ts;
+    uint64_t count_ns = frames ? c->iep_period_ns : 1000000000u / BISS_PRU_HZ;
+    const uint32_t half = 0x80000000u;
+    if (counts == 0 || counts >= half) {
         return -1;
     }
-    double dt = elapsed_s(c, ref, s);
+    /* the clock's microseconds against half the count's range: read that
+     * long apart or more (whole microseconds, rounded up), no time */
+    uint64_t half_us = (half * count_ns + 999) / 1000;
+    if (read_us != BISS_SAFETY_NO_CLOCK && ref->read_us != BISS_SAFETY_NO_CLOCK &&
+        (read_us < ref->read_us || read_us - ref->read_us >= half_us)) {
+        return -1;
+    }
+    return frames ? (double)counts * c->iep_period_ns * 1e-9 : (double)counts / BISS_PRU_HZ;
+}
+
+/* Slave i's position in frame s against a reference (distances modulo
+ * 2^width: a wrap is no jump). */
+enum reach {
+    NOT_JUDGED, /* no reference, or a reach of half the circle or more */
+    UNTIMED,    /* no time known since the reference (elapsed_s) */
+    WITHIN,     /* within max_speed times the time between, plus one count
+                   for the two readings' rounding */
+    BEYOND,
+};
+
+static enum reach judge(const struct biss_config *c, unsigned i, const struct biss_pos_ref *ref,
+                        const struct biss_sample *s, uint64_t read_us) {
+    if (!ref->set) {
+        return NOT_JUDGED;
+    }
+    double dt = elapsed_s(c, ref, s, read_us);
     if (dt < 0) {
-        return 1;
+        return UNTIMED;
     }
     unsigned w = biss_proto_pos_bits(&c->slave[i]);
     double dist = (double)magnitude(circular_diff(s->slave[i].position, ref->pos, w));
     double reach = c->slave[i].max_speed * dt + 1.0;
     if (reach >= (double)(biss_low_mask(w) >> 1)) {
-        return -1;
+        return NOT_JUDGED;
     }
-    return dist > reach;
+    return dist > reach ? BEYOND : WITHIN;
 }
 
-static struct biss_pos_ref pos_ref(const struct biss_sample *s, unsigned i) {
-    return (struct biss_pos_ref){
-        .set = true, .frame = s->frame, .ts = s->timestamp, .pos = s->slave[i].position};
+static struct biss_pos_ref pos_ref(const struct biss_sample *s, unsigned i, uint64_t read_us) {
+    return (struct biss_pos_ref){.set = true,
+                                 .frame = s->frame,
+                                 .ts = s->timestamp,
+                                 .pos = s->slave[i].position,
+                                 .read_us = read_us};
 }
 
 /* The position of every max_speed slave against the last one accepted:
@@ -274,40 +312,47 @@ static struct biss_pos_ref pos_ref(const struct biss_sample *s, unsigned i) {
  * reference is the wrong one (a wrong position that passed within reach,
  * or the encoder set to a new position), and the check takes the newer
  * one (counted as a resync). A frame misframed by its nE/nW (ew) is no
- * such witness. */
+ * such witness. A position with no time known since the reference is not
+ * judged (counted, flagged): accepted, the frame renews the reference. */
 static bool positions(const struct biss_config *c, struct biss_safety_state *st,
-                      struct biss_sample *s, bool ew) {
+                      struct biss_sample *s, bool ew, uint64_t read_us) {
     bool misframed = false;
     for (unsigned i = 0; i < s->nslaves && i < BISS_API_MAX_SLAVES && i < c->nslaves; i++) {
         if (!c->slave[i].max_speed || !s->slave[i].crc_ok) {
             continue;
         }
-        int j = beyond(c, i, &st->pos[i], s);
-        if (j < 0) {
+        enum reach j = judge(c, i, &st->pos[i], s, read_us);
+        if (j == NOT_JUDGED) {
             continue;
         }
-        if (j && !ew) {
-            if (beyond(c, i, &st->refused[i], s) == 0) {
+        if (j == UNTIMED) {
+            s->slave[i].safety |= BISS_SAFE_POS_UNTIMED;
+            st->stats.pos_untimed[i]++;
+            continue;
+        }
+        if (j == BEYOND && !ew) {
+            if (judge(c, i, &st->refused[i], s, read_us) == WITHIN) {
                 st->stats.pos_resync[i]++;
-                j = 0;
+                j = WITHIN;
             } else {
-                st->refused[i] = pos_ref(s, i);
+                st->refused[i] = pos_ref(s, i, read_us);
             }
         }
-        s->slave[i].safety |= BISS_SAFE_POS_CHECKED | (j ? BISS_SAFE_POS_JUMP : 0);
+        bool jump = j == BEYOND;
+        s->slave[i].safety |= BISS_SAFE_POS_CHECKED | (jump ? BISS_SAFE_POS_JUMP : 0);
         st->stats.pos_checked[i]++;
-        st->stats.pos_jumped[i] += (uint32_t)j;
-        misframed = misframed || j;
+        st->stats.pos_jumped[i] += jump;
+        misframed = misframed || jump;
     }
     return misframed;
 }
 
 /* The positions of a frame accepted become the references. */
 static void accept_positions(const struct biss_config *c, struct biss_safety_state *st,
-                             const struct biss_sample *s) {
+                             const struct biss_sample *s, uint64_t read_us) {
     for (unsigned i = 0; i < s->nslaves && i < BISS_API_MAX_SLAVES && i < c->nslaves; i++) {
         if (c->slave[i].max_speed && s->slave[i].crc_ok) {
-            st->pos[i] = pos_ref(s, i);
+            st->pos[i] = pos_ref(s, i, read_us);
             st->refused[i].set = false;
         }
     }
@@ -326,6 +371,11 @@ static void remember(struct biss_safety_state *st, struct biss_sample *s) {
 
 void biss_safety_check(const struct biss_config *c, struct biss_safety_state *st,
                        struct biss_sample *s) {
+    biss_safety_check_read(c, st, s, BISS_SAFETY_NO_CLOCK);
+}
+
+void biss_safety_check_read(const struct biss_config *c, struct biss_safety_state *st,
+                            struct biss_sample *s, uint64_t read_us) {
     s->safety = 0;
     if (st->seen && s->frame == st->last_frame) {
         /* the same frame read again: the same verdicts, counted once */
@@ -348,7 +398,7 @@ void biss_safety_check(const struct biss_config *c, struct biss_safety_state *st
         return;
     }
     bool ew = ew_static(c, st, s);
-    bool far = positions(c, st, s, ew);
+    bool far = positions(c, st, s, ew, read_us);
     if (ew || far) {
         /* bits read one place off: no word of it is to be trusted, nor
          * judged (the life counters and positions keep their references) */
@@ -361,7 +411,7 @@ void biss_safety_check(const struct biss_config *c, struct biss_safety_state *st
         s->slave[i].safety |= life(&c->slave[i], st, i, s->frame, &s->slave[i]);
     }
     pairs(c, st, s);
-    accept_positions(c, st, s);
+    accept_positions(c, st, s, read_us);
     remember(st, s);
 }
 
@@ -378,6 +428,7 @@ static void stats_add(struct biss_safety_stats *t, const struct biss_safety_stat
         t->pos_checked[i] += after->pos_checked[i] - before->pos_checked[i];
         t->pos_jumped[i] += after->pos_jumped[i] - before->pos_jumped[i];
         t->pos_resync[i] += after->pos_resync[i] - before->pos_resync[i];
+        t->pos_untimed[i] += after->pos_untimed[i] - before->pos_untimed[i];
     }
     for (unsigned k = 0; k < BISS_API_MAX_PAIRS; k++) {
         uint32_t n = after->pair_checked[k] - before->pair_checked[k];
@@ -390,10 +441,10 @@ static void stats_add(struct biss_safety_stats *t, const struct biss_safety_stat
 }
 
 void biss_safety_readers_check(const struct biss_config *c, struct biss_safety_readers *r,
-                               unsigned reader, struct biss_sample *s) {
+                               unsigned reader, struct biss_sample *s, uint64_t read_us) {
     struct biss_safety_state *st = &r->reader[reader];
     struct biss_safety_stats before = st->stats;
-    biss_safety_check(c, st, s);
+    biss_safety_check_read(c, st, s, read_us);
     if (biss_frame_order_next(&r->order, s->frame)) {
         stats_add(&r->stats, &before, &st->stats);
     }

@@ -67,9 +67,10 @@ static void print_safety(const struct biss_sample *s, const struct biss_config *
         uint32_t f = s->slave[i].safety;
         if (c->slave[i].max_speed) {
             printf(" s%u.speed=%s", i,
-                   !(f & BISS_SAFE_POS_CHECKED) ? "-"
-                   : f & BISS_SAFE_POS_JUMP     ? "jump"
-                                                : "ok");
+                   f & BISS_SAFE_POS_UNTIMED      ? "untimed"
+                   : !(f & BISS_SAFE_POS_CHECKED) ? "-"
+                   : f & BISS_SAFE_POS_JUMP       ? "jump"
+                                                  : "ok");
         }
     }
     for (unsigned k = 0; k < c->npairs; k++) {
@@ -149,9 +150,9 @@ static void print_safety_stats(biss_t *h) {
     }
     for (unsigned i = 0; i < c.nslaves; i++) {
         if (c.slave[i].max_speed) {
-            printf("%ss%u.pos_checked=%u s%u.pos_jumped=%u s%u.pos_resync=%u",
+            printf("%ss%u.pos_checked=%u s%u.pos_jumped=%u s%u.pos_resync=%u s%u.pos_untimed=%u",
                    any ? " " : "safety: ", i, st.pos_checked[i], i, st.pos_jumped[i], i,
-                   st.pos_resync[i]);
+                   st.pos_resync[i], i, st.pos_untimed[i]);
             any = true;
         }
     }

@@ -91,9 +91,9 @@ void bissctl_json_end(biss_t *h) {
         for (unsigned i = 0; i < c.nslaves; i++) {
             if (c.slave[i].max_speed) {
                 printf("%s{\"slave\": %u, \"counts_per_s\": %.17g, \"checked\": %u, "
-                       "\"jumped\": %u, \"resync\": %u}",
+                       "\"jumped\": %u, \"resync\": %u, \"untimed\": %u}",
                        any ? ", " : "", i, c.slave[i].max_speed, st.pos_checked[i],
-                       st.pos_jumped[i], st.pos_resync[i]);
+                       st.pos_jumped[i], st.pos_resync[i], st.pos_untimed[i]);
                 any = true;
             }
         }

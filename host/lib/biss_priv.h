@@ -167,9 +167,15 @@ int biss_follow_period_locked(biss_t *h);
 /* A published result as a sample (seq its publication number): refused
  * as BISS_E_SHM_RESULT, named in h->problem, where the firmware never
  * writes such words; the host's safety checks run on it as `reader`
- * (BISS_READER_NEWEST or BISS_READER_RING) read it. Handle locked. */
+ * (BISS_READER_NEWEST or BISS_READER_RING) read it at the backend's clock
+ * read_us (biss_read_clock, taken after the result was read). Handle
+ * locked. */
 int biss_result_to_sample(biss_t *h, const struct biss_shm_result *r, uint32_t seq, unsigned reader,
-                          struct biss_sample *s);
+                          uint64_t read_us, struct biss_sample *s);
+/* The backend's clock for the speed check's time between two reads
+ * (proto/biss_safety.c), or BISS_SAFETY_NO_CLOCK when no speed check is
+ * configured (the clock is not read). */
+uint64_t biss_read_clock(biss_t *h);
 
 /* Waits (handle locked) until done(h, arg) returns nonzero or timeout_ms
  * of backend time passed; returns 0, BISS_E_TIMEOUT, or done's error if

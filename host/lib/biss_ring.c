@@ -42,8 +42,10 @@ static int ring_read_locked(biss_t *h, struct biss_sample *out, unsigned max, un
         uint32_t gone;
         rc = biss_proto_ring_read(&io, &h->ring_cursor, raw, want, &got, &gone);
         *lost += gone;
+        uint64_t read_us = got ? biss_read_clock(h) : BISS_SAFETY_NO_CLOCK; /* after the copy */
         for (unsigned i = 0; !rc && i < got; i++) {
-            rc = biss_result_to_sample(h, &raw[i], raw[i].frame, BISS_READER_RING, &out[*n]);
+            rc = biss_result_to_sample(h, &raw[i], raw[i].frame, BISS_READER_RING, read_us,
+                                       &out[*n]);
             *n += !rc;
         }
         if (got + gone < want) {

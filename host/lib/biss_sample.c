@@ -71,8 +71,17 @@ static const struct biss_config *judged_by(biss_t *h, uint32_t seq, struct biss_
     return tmp;
 }
 
+uint64_t biss_read_clock(biss_t *h) {
+    for (unsigned i = 0; h->configured && i < BISS_API_MAX_SLAVES; i++) {
+        if (h->cfg.slave[i].max_speed != 0) {
+            return h->be.ops->now_us(h->be.ctx);
+        }
+    }
+    return BISS_SAFETY_NO_CLOCK; /* no speed check to tell */
+}
+
 int biss_result_to_sample(biss_t *h, const struct biss_shm_result *r, uint32_t seq, unsigned reader,
-                          struct biss_sample *s) {
+                          uint64_t read_us, struct biss_sample *s) {
     const char *why = biss_result_problem(&h->cfg, h->configured, r);
     if (why) {
         h->problem = why; /* the firmware never writes it: junk, named */
@@ -81,7 +90,7 @@ int biss_result_to_sample(biss_t *h, const struct biss_shm_result *r, uint32_t s
     int rc = biss_sample_decode(&h->cfg, h->configured, seq, r, s);
     if (!rc && h->configured) {
         struct biss_config tmp;
-        biss_safety_readers_check(judged_by(h, seq, &tmp), &h->safety, reader, s);
+        biss_safety_readers_check(judged_by(h, seq, &tmp), &h->safety, reader, s, read_us);
     }
     if (!rc) {
         biss_link_check(&h->link, s);
@@ -102,7 +111,7 @@ static int read_sample_locked(biss_t *h, struct biss_sample *s) {
         }
         h->cfg_pub_passed = true;
     }
-    return rc ? rc : biss_result_to_sample(h, &r, seq, BISS_READER_NEWEST, s);
+    return rc ? rc : biss_result_to_sample(h, &r, seq, BISS_READER_NEWEST, biss_read_clock(h), s);
 }
 
 int biss_read_sample(biss_t *h, struct biss_sample *s) {

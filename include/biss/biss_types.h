@@ -182,11 +182,14 @@ struct biss_slave_config {
      * wrong, e.g. one place off after a clock the master never made: the
      * frame is not valid (BISS_SAFE_POS_JUMP, biss_sample misframed).
      * Distances are modulo 2^pos_bits (a wrap is no jump). The time comes
-     * from the frames' IEP timestamps (free-run, host trigger: a count that
-     * went backwards, frames more than 10.7 s apart or the count restarted,
-     * tells no time and the position is refused, not passed unjudged) or
-     * from the frame numbers times iep_period_ns (IEP trigger; iep-follow:
-     * the owning channel's period, which biss_configure reads from it).
+     * from the frames' IEP timestamps (free-run, host trigger) or from the
+     * frame numbers times iep_period_ns (IEP trigger; iep-follow: the
+     * owning channel's period, which biss_configure reads from it). Where
+     * no time is known (the count between the two frames half its range or
+     * more: 2^31 IEP counts, 10.7 s; or the frames read that long apart by
+     * the host's clock, so the count may have come round), the position is
+     * not judged, neither passed nor refused (BISS_SAFE_POS_UNTIMED), and
+     * becomes the reference for the next frame.
      * Configured on a trigger with no time (iep-follow with no owner and no
      * period; host or free-run while the other channel's IEP trigger
      * restarts the count), it is refused (BISS_E_SAFETY_SPEED). 0 = off;
@@ -288,6 +291,9 @@ struct biss_slave_result {
 #define BISS_SAFE_EW_SET       0x40  /* ... and one read active: misframed, the frame not valid */
 #define BISS_SAFE_POS_CHECKED  0x80  /* the position was compared with the last one accepted */
 #define BISS_SAFE_POS_JUMP     0x100 /* ... and lay beyond max_speed's reach: misframed */
+#define BISS_SAFE_POS_UNTIMED                                                                      \
+    0x200 /* not compared: no time known since the last one                                        \
+             accepted (max_speed); it is the reference now */
 #define BISS_SAFE_FAULTS                                                                           \
     (BISS_SAFE_LC_FROZEN | BISS_SAFE_LC_SKIP | BISS_SAFE_DISAGREE | BISS_SAFE_EW_SET |             \
      BISS_SAFE_POS_JUMP)
@@ -344,6 +350,10 @@ struct biss_safety_stats {
     uint32_t pos_resync[BISS_API_MAX_SLAVES];   /* ... beyond reach, but in reach of the
                                                    one refused before: taken as the new
                                                    reference, valid */
+    uint32_t pos_untimed[BISS_API_MAX_SLAVES];  /* max_speed: positions not compared, no
+                                                   time known since the last one accepted
+                                                   (BISS_SAFE_POS_UNTIMED): the reference
+                                                   taken again, valid */
 };
 
 /* ---- link quality ------------------------------------------------------

@@ -394,11 +394,11 @@ check(r.returncode == 2 and "--check-ew" in r.stderr, "--check-ew x: %r" % r.std
 # hold a step of 2 wherever the first frame falls in the encoder's motion)
 r = run("--freq", "10000000", "--check-speed", "0,60000", "read", "-n", "5")
 check(r.returncode == 0 and r.stdout.count(" valid ") == 4 and r.stdout.count("s0.speed=ok") == 3
-      and re.search(r"^safety: s0.pos_checked=3 s0.pos_jumped=0 s0.pos_resync=0$", r.stdout, re.M),
+      and re.search(r"^safety: s0.pos_checked=3 s0.pos_jumped=0 s0.pos_resync=0 s0.pos_untimed=0$", r.stdout, re.M),
       "healthy encoder, --check-speed 0,60000: %r %r" % (r.stdout, r.stderr))
 r = run("--freq", "10000000", "--check-speed", "0,10", "read", "-n", "12")
 check(r.returncode == 0 and " misframed " in r.stdout
-      and re.search(r"^safety: s0.pos_checked=10 s0.pos_jumped=[1-9] s0.pos_resync=[0-9]$", r.stdout,
+      and re.search(r"^safety: s0.pos_checked=10 s0.pos_jumped=[1-9] s0.pos_resync=[0-9] s0.pos_untimed=0$", r.stdout,
                     re.M),
       "--check-speed 0,10: %r %r" % (r.stdout, r.stderr))
 r = run("--freq", "10000000", "--check-speed", "0,60000", "read", "-n", "3", "--json")
@@ -406,7 +406,7 @@ try:
     sp = (json.loads(r.stdout).get("safety") or {}).get("max_speed")
 except ValueError:
     sp = None
-check(sp == [{"slave": 0, "counts_per_s": 60000, "checked": 1, "jumped": 0, "resync": 0}], "--check-speed --json: %r" % sp)
+check(sp == [{"slave": 0, "counts_per_s": 60000, "checked": 1, "jumped": 0, "resync": 0, "untimed": 0}], "--check-speed --json: %r" % sp)
 r = run("--check-speed", "0,x", "read")
 check(r.returncode == 2 and "--check-speed" in r.stderr, "--check-speed 0,x: %r" % r.stderr)
 # the range the scenario files take, 1e-9..1e18 (one rule)

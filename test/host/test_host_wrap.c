@@ -8,7 +8,9 @@
  *    the frame published as 0 is a frame like any other (biss_shm.h: the
  *    firmware adds 1 to ST_SEQ, modulo 2^32);
  *  - 2^31 publications and more after a configuration: still its frames;
- *  - the control program counter CD_CMD passing 2^32. */
+ *  - the control program counter CD_CMD passing 2^32;
+ *  - the IEP count (the timestamps) passing 2^32 between two frames, and
+ *    lying 2^31 or more counts on between two: the speed check's time. */
 #include "libbiss-emu.h"
 
 #include "bench.h"
@@ -282,6 +284,71 @@ START_TEST(test_timestamps_across_the_iep_wrap) {
 }
 END_TEST
 
+/* A host that triggers a frame every 10.7 s or more (as the IEP count
+ * shows it: the count is moved on between two frames, the encoder turns
+ * as ever): past half the counter the time since the last frame is not
+ * known, so the speed check neither passes nor refuses such a frame; it
+ * is valid and the reference for the next, which the check judges as
+ * ever. (Before, every frame from the first such gap on was refused as
+ * misframed: none valid for as long as the host polled so slowly.) */
+START_TEST(test_slow_host_trigger_speed_check) {
+    char path[64];
+    biss_t *h = open_turning(path, sizeof path);
+    struct biss_config c;
+    biss_config_default(&c);
+    c.freq_hz = FREQ;
+    c.trigger = BISS_TRIGGER_HOST;
+    ck_assert_int_eq(biss_config_from_emu(h, &c), BISS_OK);
+    ck_assert_int_eq(biss_configure(h, &c), BISS_OK);
+    ck_assert_int_eq(biss_run_ms(h, 1), BISS_OK); /* the training frame */
+    struct biss_sample s;
+    ck_assert_int_eq(biss_read_sample(h, &s), BISS_OK);
+    uint32_t after = s.frame;
+    trigger_one(h, after, &s); /* the first position: the reference */
+    after = s.frame;
+    /* 2^31 counts (10.74 s) and a little more after the frame before, as
+     * the frame starts later than the count is set; 10.74 s, 16.1 s and
+     * 21.47 s (a count that came round once more is the clock's to tell:
+     * test_proto_safety, test_speed_clock_came_round) */
+    static const uint32_t gap[] = {0x80000000u, 0x80000000u + 20000, 0xc0000000u, 0xfffff000u};
+    for (unsigned k = 0; k < 4; k++) {
+        ck_assert_int_eq(biss_run_us(h, 30), BISS_OK);
+        set_iep_count(h, s.timestamp + gap[k]);
+        trigger_one(h, after, &s);
+        after = s.frame;
+        ck_assert_msg(!s.misframed, "frame %u after a gap of 0x%x counts misframed", s.frame,
+                      gap[k]);
+        ck_assert_uint_eq(s.slave[0].safety, BISS_SAFE_POS_UNTIMED);
+    }
+    for (unsigned k = 0; k < 3; k++) { /* then 30 us apart: judged */
+        ck_assert_int_eq(biss_run_us(h, 30), BISS_OK);
+        trigger_one(h, after, &s);
+        after = s.frame;
+        ck_assert_uint_eq(s.slave[0].safety, BISS_SAFE_POS_CHECKED);
+    }
+    /* the ring reader, judging the same frames in its own order, alike */
+    struct biss_sample buf[16];
+    unsigned n;
+    uint32_t lost;
+    ck_assert_int_eq(biss_ring_read(h, buf, 16, &n, &lost), BISS_OK);
+    ck_assert_uint_eq(n, 9);
+    ck_assert_uint_eq(lost, 0);
+    for (unsigned i = 1; i < n; i++) {
+        ck_assert(buf[i].valid);
+        uint32_t want = i == 1 ? 0 : i < 6 ? BISS_SAFE_POS_UNTIMED : BISS_SAFE_POS_CHECKED;
+        ck_assert_msg(buf[i].slave[0].safety == want, "ring frame %u: 0x%x", buf[i].frame,
+                      buf[i].slave[0].safety);
+    }
+    struct biss_safety_stats st;
+    ck_assert_int_eq(biss_get_safety_stats(h, &st), BISS_OK);
+    ck_assert_uint_eq(st.pos_untimed[0], 4);
+    ck_assert_uint_eq(st.pos_checked[0], 3);
+    ck_assert_uint_eq(st.pos_jumped[0] + st.pos_resync[0], 0);
+    biss_close(h);
+    unlink(path);
+}
+END_TEST
+
 int main(void) {
     Suite *s = suite_create("host_wrap");
     TCase *tc = tcase_create("wrap");
@@ -291,6 +358,7 @@ int main(void) {
     tcase_add_test(tc, test_half_the_counter_after_configuring);
     tcase_add_test(tc, test_control_counter_across_the_wrap);
     tcase_add_test(tc, test_timestamps_across_the_iep_wrap);
+    tcase_add_test(tc, test_slow_host_trigger_speed_check);
     suite_add_tcase(s, tc);
     return check_run(s);
 }

@@ -109,7 +109,7 @@ END_TEST
 static uint32_t read_by(const struct biss_config *c, struct biss_safety_readers *r, unsigned reader,
                         uint32_t n, uint32_t lc) {
     struct biss_sample s = frame(n, 1000, 1000 >> 4, lc, lc);
-    biss_safety_readers_check(c, r, reader, &s);
+    biss_safety_readers_check(c, r, reader, &s, BISS_SAFETY_NO_CLOCK);
     return s.safety;
 }
 
@@ -599,8 +599,9 @@ END_TEST
 /* Free-running: the timestamps tell the time from one frame start to the
  * other, however long the master waited for the slave; a count that went
  * backwards (another channel's IEP trigger restarts it every period) tells
- * none: the position is refused rather than passed unjudged, and the next
- * frame, within reach of it, is taken. */
+ * none: the position is not judged, neither passed as within reach nor
+ * refused (BISS_SAFE_POS_UNTIMED), and becomes the reference, by which
+ * the next frame is judged. */
 START_TEST(test_speed_free_run_count_restarted) {
     struct biss_config c = speed_checked(); /* 50 000 counts/s: 1.1 a frame, reach 2.1 */
     struct biss_safety_state st;
@@ -610,20 +611,26 @@ START_TEST(test_speed_free_run_count_restarted) {
     /* one frame on, four frame times later (the master waited): reach 5.5 */
     ck_assert_uint_eq(at(&c, &st, 2, 4 * PERIOD, 1004, &v), BISS_SAFE_POS_CHECKED);
     ck_assert(v);
-    ck_assert_uint_eq(at(&c, &st, 3, 100, 1005, &v), BISS_SAFE_POS_CHECKED | BISS_SAFE_POS_JUMP);
-    ck_assert(!v);
+    ck_assert_uint_eq(at(&c, &st, 3, 100, 1005, &v), BISS_SAFE_POS_UNTIMED);
+    ck_assert(v);
     ck_assert_uint_eq(at(&c, &st, 4, 100 + PERIOD, 1006, &v), BISS_SAFE_POS_CHECKED);
     ck_assert(v);
-    ck_assert_uint_eq(st.stats.pos_resync[0], 1);
-    /* the same frame time again (no time passed) tells none either */
-    ck_assert_uint_eq(at(&c, &st, 5, 100 + PERIOD, 1006, &v),
+    ck_assert_uint_eq(at(&c, &st, 5, 100 + 2 * PERIOD, 1010, &v),
                       BISS_SAFE_POS_CHECKED | BISS_SAFE_POS_JUMP);
+    ck_assert(!v);
+    /* the same frame time again (no time passed, or a whole wrap) tells none either */
+    ck_assert_uint_eq(at(&c, &st, 6, 100 + PERIOD, 1006, &v), BISS_SAFE_POS_UNTIMED);
+    ck_assert(v);
+    ck_assert_uint_eq(st.stats.pos_untimed[0], 2);
+    ck_assert_uint_eq(st.stats.pos_checked[0], 3);
+    ck_assert_uint_eq(st.stats.pos_jumped[0], 1);
+    ck_assert_uint_eq(st.stats.pos_resync[0], 0);
 }
 END_TEST
 
 /* Host trigger: the timestamps alone (the host chooses when frames run);
- * a count that went backwards tells no time, and the position is refused
- * rather than passed unjudged; the next frame is taken. */
+ * a count that went backwards tells no time: the position is not judged
+ * and becomes the reference; the next frame is judged by it. */
 START_TEST(test_speed_host_trigger) {
     struct biss_config c = speed_checked();
     c.trigger = BISS_TRIGGER_HOST;
@@ -635,10 +642,135 @@ START_TEST(test_speed_host_trigger) {
     /* 1 ms later, 40 counts on: within 51 */
     ck_assert_uint_eq(at(&c, &st, 3, 1000 + PERIOD + 200000, 1041, &v), BISS_SAFE_POS_CHECKED);
     ck_assert(v);
-    ck_assert_uint_eq(at(&c, &st, 4, 500, 1041, &v), BISS_SAFE_POS_CHECKED | BISS_SAFE_POS_JUMP);
-    ck_assert(!v);
+    ck_assert_uint_eq(at(&c, &st, 4, 500, 1041, &v), BISS_SAFE_POS_UNTIMED);
+    ck_assert(v);
     ck_assert_uint_eq(at(&c, &st, 5, 500 + PERIOD, 1042, &v), BISS_SAFE_POS_CHECKED);
     ck_assert(v);
+}
+END_TEST
+
+/* A host polling slower than every 10.7 s (host trigger): from 2^31 IEP
+ * counts on (half the counter), a count that ran on reads as one that went
+ * back, so the time since the reference is not known. Such a frame is not
+ * judged by the speed check, neither passed nor refused: it is valid and
+ * its position becomes the reference; from there the check judges again.
+ * The gaps at the edge, 2^31 - 1 (judged: 10.74 s, reach 536 871), 2^31,
+ * 2^31 + 1 and 2^32 - 1, each with the encoder far from where it was;
+ * then a host polling every 11 s while the encoder turns at 40 000
+ * counts/s: every frame valid. (Before, every frame from the first such
+ * gap on was refused: the reference never renewed.) */
+START_TEST(test_speed_slow_poller) {
+    struct biss_config c = speed_checked();
+    c.trigger = BISS_TRIGGER_HOST;
+    struct biss_safety_state st;
+    biss_safety_init(&st);
+    bool v;
+    uint32_t ts = 1000;
+    uint64_t pos = 1000;
+    at(&c, &st, 1, ts, pos, &v);
+    ts += 0x7fffffffu;
+    pos += 536000;
+    ck_assert_uint_eq(at(&c, &st, 2, ts, pos, &v), BISS_SAFE_POS_CHECKED);
+    ck_assert(v);
+    static const uint32_t gap[] = {0x80000000u, 0x80000001u, 0xffffffffu};
+    for (unsigned k = 0; k < 3; k++) {
+        ts += gap[k];
+        pos += 3000000;
+        uint32_t f = at(&c, &st, 3 + k, ts, pos, &v);
+        ck_assert_msg(v, "a frame 0x%x counts on refused (0x%x)", gap[k], f);
+        ck_assert_uint_eq(f, BISS_SAFE_POS_UNTIMED);
+    }
+    /* judged again from the last one: 1 ms on, reach 51 */
+    ck_assert_uint_eq(at(&c, &st, 6, ts + 200000, pos + 50, &v), BISS_SAFE_POS_CHECKED);
+    ck_assert(v);
+    ck_assert_uint_eq(at(&c, &st, 7, ts + 400000, pos + 150, &v),
+                      BISS_SAFE_POS_CHECKED | BISS_SAFE_POS_JUMP);
+    ck_assert(!v);
+    ck_assert_uint_eq(st.stats.pos_untimed[0], 3);
+    ck_assert_uint_eq(st.stats.pos_checked[0], 3);
+    ck_assert_uint_eq(st.stats.pos_jumped[0], 1);
+    /* every 11 s (2.2 * 10^9 counts), 440 000 counts on each time */
+    biss_safety_init(&st);
+    ts = 7;
+    pos = 0;
+    for (uint32_t n = 1; n <= 20; n++, ts += 2200000000u, pos += 440000) {
+        uint32_t f = at(&c, &st, n, ts, pos & 0xffffff, &v);
+        ck_assert_msg(v, "frame %u refused (0x%x)", n, f);
+        ck_assert_uint_eq(f, n == 1 ? 0 : BISS_SAFE_POS_UNTIMED);
+    }
+    ck_assert_uint_eq(st.stats.pos_untimed[0], 19);
+    ck_assert_uint_eq(st.stats.pos_jumped[0] + st.stats.pos_checked[0], 0);
+}
+END_TEST
+
+/* Frame n with slave 0 at pos, IEP timestamp ts, read at the host's clock
+ * read_us; slave 0's flags, the frame's validity in *valid. */
+static uint32_t read_at(const struct biss_config *c, struct biss_safety_state *st, uint32_t n,
+                        uint32_t ts, uint64_t pos, uint64_t read_us, bool *valid) {
+    struct biss_sample s = frame(n, pos, 1000, 0, 0);
+    s.timestamp = ts;
+    biss_safety_check_read(c, st, &s, read_us);
+    ck_assert(s.misframed == !s.valid);
+    *valid = s.valid;
+    return s.slave[0].safety;
+}
+
+/* A count that came round once more between two frames reads as a short
+ * time: only the host's clock tells. Frames read 22 s apart by it, 22 s of
+ * IEP counts on (2^32 + 0.53 s: the count says 0.53 s, reach 26 844), the
+ * encoder 880 000 counts on: not judged, not refused (with no clock, as
+ * the bench judges, refused). Read 2^31 counts' time apart (10 737 418.24
+ * us) or more, a frame is not judged; under it, judged by its count. Under
+ * the IEP trigger the same by the frame numbers: 2^31 periods. */
+START_TEST(test_speed_clock_came_round) {
+    struct biss_config c = speed_checked();
+    c.trigger = BISS_TRIGGER_HOST;
+    struct biss_safety_state st;
+    biss_safety_init(&st);
+    bool v;
+    const uint32_t s22 = (uint32_t)(22ull * 200000000u); /* modulo 2^32 */
+    const uint64_t t0 = 5000000;
+    ck_assert_uint_eq(read_at(&c, &st, 1, 100, 1000, t0, &v), 0);
+    for (uint32_t k = 1; k <= 3; k++) {
+        uint32_t f =
+            read_at(&c, &st, 1 + k, 100 + k * s22, 1000 + k * 880000, t0 + k * 22000000u, &v);
+        ck_assert_msg(v && f == BISS_SAFE_POS_UNTIMED, "frame %u 22 s on: 0x%x", 1 + k, f);
+    }
+    ck_assert_uint_eq(st.stats.pos_untimed[0], 3);
+    /* the same frames with no clock: judged by the count alone, refused */
+    biss_safety_init(&st);
+    read_at(&c, &st, 1, 100, 1000, BISS_SAFETY_NO_CLOCK, &v);
+    ck_assert_uint_eq(read_at(&c, &st, 2, 100 + s22, 881000, BISS_SAFETY_NO_CLOCK, &v),
+                      BISS_SAFE_POS_CHECKED | BISS_SAFE_POS_JUMP);
+    /* the clock's edge: 1 ms of counts (reach 51), read 10 737 418 us
+     * apart (judged) or 10 737 419 us (not) */
+    biss_safety_init(&st);
+    read_at(&c, &st, 1, 100, 1000, t0, &v);
+    ck_assert_uint_eq(read_at(&c, &st, 2, 200100, 1040, t0 + 10737418u, &v), BISS_SAFE_POS_CHECKED);
+    ck_assert_uint_eq(read_at(&c, &st, 3, 400100, 1080, t0 + 2 * 10737418u, &v),
+                      BISS_SAFE_POS_CHECKED);
+    ck_assert_uint_eq(read_at(&c, &st, 4, 600100, 5000, t0 + 3 * 10737418u + 1, &v),
+                      BISS_SAFE_POS_UNTIMED);
+    ck_assert(v);
+    ck_assert_uint_eq(read_at(&c, &st, 5, 800100, 5100, t0 + 3 * 10737418u + 2, &v),
+                      BISS_SAFE_POS_CHECKED | BISS_SAFE_POS_JUMP);
+    ck_assert(!v);
+    /* a clock not known on either side: the count alone */
+    ck_assert_uint_eq(read_at(&c, &st, 6, 1000100, 5040, BISS_SAFETY_NO_CLOCK, &v),
+                      BISS_SAFE_POS_CHECKED);
+    /* IEP trigger, 100 us a frame: 2^31 periods are 214 748.3648 s */
+    c.trigger = BISS_TRIGGER_IEP;
+    c.iep_period_ns = 100000;
+    biss_safety_init(&st);
+    read_at(&c, &st, 10, 7, 1000, t0, &v);
+    ck_assert_uint_eq(read_at(&c, &st, 12, 7, 1011, t0 + 214748364799u, &v), BISS_SAFE_POS_CHECKED);
+    ck_assert_uint_eq(read_at(&c, &st, 14, 7, 1022, t0 + 2 * 214748364799u + 1, &v),
+                      BISS_SAFE_POS_UNTIMED);
+    /* and the frame numbers past half their range */
+    ck_assert_uint_eq(read_at(&c, &st, 14 + 0x80000000u, 7, 1022, BISS_SAFETY_NO_CLOCK, &v),
+                      BISS_SAFE_POS_UNTIMED);
+    ck_assert_uint_eq(read_at(&c, &st, 15 + 0x80000000u, 7, 1027, BISS_SAFETY_NO_CLOCK, &v),
+                      BISS_SAFE_POS_CHECKED);
 }
 END_TEST
 
@@ -721,6 +853,8 @@ int main(void) {
     tcase_add_test(tc, test_speed_iep);
     tcase_add_test(tc, test_speed_free_run_count_restarted);
     tcase_add_test(tc, test_speed_host_trigger);
+    tcase_add_test(tc, test_speed_slow_poller);
+    tcase_add_test(tc, test_speed_clock_came_round);
     tcase_add_test(tc, test_speed_and_ew);
     tcase_add_test(tc, test_speed_config);
     suite_add_tcase(s, tc);
