@@ -334,19 +334,37 @@ static inline uint32_t biss_proto_slot_seq(uint32_t st_seq, uint32_t slot_frame)
 /* ---- every frame: the result ring (biss_ring.c) ---- */
 
 /* Reads the publications after *cursor (ST_SEQ numbers; 0: from the
- * first), oldest first, at most max of them, into out (each a slot as the
- * firmware wrote it: out[i].frame is its publication number), *n of them;
- * *cursor moves past those returned and those lost. *lost (set, not
- * added to) counts the publications after *cursor the ring no longer held
- * whole: overwritten before this call, or while it copied them (ST_SEQ
- * read after the copy, biss_shm.h), or not of the ring's layout now (a
- * configuration since restarted it). Returns 0 (also with *n = 0: nothing
+ * first; however far behind, modulo 2^32), oldest first, at most max of
+ * them, into out (each a slot as the firmware wrote it: out[i].frame is
+ * its publication number), *n of them; *cursor moves past those returned
+ * and those lost. *lost (set, not added to) counts the publications after
+ * *cursor the ring no longer held whole: overwritten before this call, or
+ * while it copied them (ST_SEQ read after the copy, biss_shm.h), or not of
+ * the ring's layout now (a configuration since restarted it). Returns 0 (also with *n = 0: nothing
  * new, or nothing published yet), BISS_E_RETRY (the newest slot never
  * settled: racing publications 1000 times), BISS_E_SHM_RESULT (ST_BUF or
  * the newest slot's slave count is nothing the firmware writes) or the
  * transfer's error. */
 int biss_proto_ring_read(const struct biss_proto_io *io, uint32_t *cursor,
                          struct biss_shm_result *out, unsigned max, unsigned *n, uint32_t *lost);
+/* A ring reader's look at the firmware between its reads: the publication
+ * counter and the configuration in force (ST_SEQ, ST_CFG_ACK). */
+struct biss_ring_look {
+    uint32_t seq, cfg_ack;
+};
+int biss_proto_ring_look(const struct biss_proto_io *io, struct biss_ring_look *look);
+/* Whether the publication counter went back between two looks (the
+ * firmware restarted) rather than moved on by now->seq - then->seq
+ * (modulo 2^32, however far): it reads as behind (2^31 or more on) and a
+ * configuration was acknowledged in between (ST_CFG_ACK changed: a
+ * restarted firmware publishes nothing before one, and its start-up sets
+ * ST_CFG_ACK to 0xffffffff; libbiss numbers a restart's configuration on
+ * from the last one). What this cannot tell: a restart whose configuration
+ * took the number of the one before, not looked at in between (the
+ * firmware restarted by something else and configured by a handle new to
+ * it), which reads as far behind; and a reader 2^31 or more behind across
+ * another handle's configuration, which reads as a restart. */
+bool biss_proto_ring_restarted(const struct biss_ring_look *then, const struct biss_ring_look *now);
 /* A control program: BISS_E_CD_STEPS for a length outside
  * 1..BISS_CD_MAX_STEPS, BISS_E_CD_BUSY while the last one runs, else puts
  * PROG, STEPS, WAIT_LIMIT and the IDA test, then CD_CMD = *cmd (the next

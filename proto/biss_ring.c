@@ -67,13 +67,12 @@ int biss_proto_ring_read(const struct biss_proto_io *io, uint32_t *cursor,
     if (rc || !h.any || h.seq == *cursor) {
         return rc;
     }
-    if ((int32_t)(h.seq - *cursor) < 0) {
-        *cursor = 0; /* the counter went back: the firmware restarted */
-    }
     const uint32_t stride = BISS_RING_STRIDE(h.nslaves);
     const uint32_t slots = BISS_RING_SLOTS(h.nslaves);
-    /* The slot after the newest may be being filled already: slots - 1
-     * publications at most are whole. */
+    /* The publications after the cursor, modulo 2^32: a reader 2^31 or
+     * more behind is behind (a counter that went back is the caller's to
+     * tell, biss_proto_ring_restarted). The slot after the newest may be
+     * being filled already: slots - 1 publications at most are whole. */
     uint32_t pending = h.seq - *cursor;
     if (pending > slots - 1) {
         *lost = pending - (slots - 1);
@@ -119,4 +118,21 @@ int biss_proto_ring_read(const struct biss_proto_io *io, uint32_t *cursor,
     }
     *cursor += take;
     return BISS_OK;
+}
+
+int biss_proto_ring_look(const struct biss_proto_io *io, struct biss_ring_look *look) {
+    /* ST_SEQ to ST_CFG_ACK in one transfer: three words */
+    _Static_assert(BISS_ST_CFG_ACK > BISS_ST_SEQ, "ST_CFG_ACK after ST_SEQ");
+    uint32_t w[(BISS_ST_CFG_ACK - BISS_ST_SEQ) / 4 + 1];
+    int rc = rd(io, BISS_ST_SEQ, w, sizeof w);
+    if (!rc) {
+        look->seq = w[0];
+        look->cfg_ack = w[(BISS_ST_CFG_ACK - BISS_ST_SEQ) / 4];
+    }
+    return rc;
+}
+
+bool biss_proto_ring_restarted(const struct biss_ring_look *then,
+                               const struct biss_ring_look *now) {
+    return now->cfg_ack != then->cfg_ack && now->seq - then->seq >= 0x80000000u;
 }

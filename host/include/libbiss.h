@@ -189,7 +189,13 @@ int biss_line_delay(biss_t *h, struct biss_line_delay *d);
  * silent. The first call starts at the handle's configuration (the frames
  * of the configuration before it are not of this layout) or, on a handle
  * that did not configure, at the newest frame; a later configuration
- * counts the earlier layout's frames not yet read as lost. Frames beyond
+ * counts the earlier layout's frames not yet read as lost, and so does a
+ * restart by this handle (biss_start), after which the reader takes the
+ * new run from its first frame. However far behind (up to 2^32 - 1
+ * frames), lost is the count modulo 2^32; a firmware restarted by another
+ * handle shows as a counter that went back across a new configuration
+ * (ST_CFG_ACK), and the reader starts at its first frame (host/README.md,
+ * "Every frame"). Frames beyond
  * max wait for the next call (the ring keeps biss_ring_capacity of them).
  * Works the same on every target; on the emulator time moves only in the
  * blocking calls (biss_run_ms between reads: the host's poll period). */

@@ -174,7 +174,11 @@ static int configure_locked(biss_t *h, const struct biss_config *given) {
 
 static int exchange(biss_t *h, struct biss_config *c) {
     uint32_t seq = next_seq(h->cfg_seq);
-    int rc = write_block(h, c, seq);
+    /* the ring reader's look before: a restart since its last one */
+    int rc = biss_ring_follow(h, false);
+    if (!rc) {
+        rc = write_block(h, c, seq);
+    }
     if (rc) {
         return rc;
     }
@@ -187,7 +191,10 @@ static int exchange(biss_t *h, struct biss_config *c) {
     if (rc) {
         return rc;
     }
-    rc = biss_pru_image_check(h, NULL);
+    rc = biss_ring_follow(h, true); /* this configuration's ack: no restart */
+    if (!rc) {
+        rc = biss_pru_image_check(h, NULL);
+    }
     struct biss_proto_io io = biss_io(h);
     struct biss_shm_status st;
     if (!rc) {
@@ -199,7 +206,7 @@ static int exchange(biss_t *h, struct biss_config *c) {
     if (!rc) {
         h->cfg_pub_seq = st.seq; /* publications from here on are of this layout */
         h->cfg_pub_passed = false;
-        if (h->ring_started && (int32_t)(st.seq - h->ring_cursor) > 0) {
+        if (h->ring_started) {
             h->ring_skipped += st.seq - h->ring_cursor; /* the last layout's, unread */
             h->ring_cursor = st.seq;
         }

@@ -92,6 +92,10 @@ struct biss {
     uint32_t ring_cursor;
     uint32_t ring_skipped;
     bool ring_started;
+    /* the ring reader's last look at the counter and the configuration
+     * (biss_ring_follow) */
+    struct biss_ring_look ring_seen;
+    bool ring_seen_valid;
     /* what the last BISS_E_SHM_RESULT refusal found in data RAM (a static
      * text of biss_result_check.c), or NULL */
     const char *problem;
@@ -172,6 +176,18 @@ int biss_follow_period_locked(biss_t *h);
  * locked. */
 int biss_result_to_sample(biss_t *h, const struct biss_shm_result *r, uint32_t seq, unsigned reader,
                           uint64_t read_us, struct biss_sample *s);
+/* The ring reader's look at the firmware (handle locked; nothing before
+ * the reader's first call): when the publication counter went back since
+ * the last look, the firmware restarted (biss_proto_ring_restarted) and
+ * the reader starts again from its first publication (the old run's frames
+ * after the cursor cannot be known, and are not counted). own: the look
+ * just after this handle's configuration, whose ack is no restart. */
+int biss_ring_follow(biss_t *h, bool own);
+/* This handle restarts the firmware (halted, its data RAM about to be
+ * cleared): the old run's frames the ring reader did not take are lost,
+ * counted, and it reads the new run from its first publication. */
+int biss_ring_restart(biss_t *h);
+
 /* The backend's clock for the speed check's time between two reads
  * (proto/biss_safety.c), or BISS_SAFETY_NO_CLOCK when no speed check is
  * configured (the clock is not read). */

@@ -111,8 +111,26 @@ static int halt_and_settle(biss_t *h) {
     return rc;
 }
 
+/* What a restart leaves of the run before (the firmware halted): its
+ * frames the ring reader did not take (lost), and the number of its last
+ * configuration, which the next one's continues, so that every reader
+ * sees a restart as a new configuration (ST_CFG_ACK; biss_ring_follow). */
+static int end_run(biss_t *h) {
+    struct biss_proto_io io = biss_io(h);
+    struct biss_shm_config blk = {0};
+    int rc = biss_ring_restart(h);
+    if (!rc) {
+        rc = biss_proto_config_get(&io, &blk);
+    }
+    h->cfg_seq = blk.seq;
+    return rc;
+}
+
 int biss_pru_load_and_start(biss_t *h) {
     int rc = halt_and_settle(h);
+    if (!rc) {
+        rc = end_run(h);
+    }
     if (h->be.ops->pru_start) {
         /* the kernel loads the ELF (code, identification block) and starts */
         if (!rc) {
@@ -121,7 +139,6 @@ int biss_pru_load_and_start(biss_t *h) {
         if (!rc) {
             rc = h->be.ops->pru_start(h->be.ctx);
         }
-        h->cfg_seq = 0;
         return rc;
     }
     if (!rc) {
@@ -137,6 +154,5 @@ int biss_pru_load_and_start(biss_t *h) {
     if (!rc) {
         rc = write_control(h, ICSS_CTRL_ENABLE);
     }
-    h->cfg_seq = 0;
     return rc;
 }

@@ -23,6 +23,40 @@ static int ring_start(biss_t *h) {
     return BISS_OK;
 }
 
+int biss_ring_follow(biss_t *h, bool own) {
+    if (!h->ring_started) {
+        return BISS_OK;
+    }
+    struct biss_proto_io io = biss_io(h);
+    struct biss_ring_look now;
+    int rc = biss_proto_ring_look(&io, &now);
+    if (rc) {
+        return rc;
+    }
+    if (!own && h->ring_seen_valid && biss_proto_ring_restarted(&h->ring_seen, &now)) {
+        h->ring_cursor = 0;
+    }
+    h->ring_seen = now;
+    h->ring_seen_valid = true;
+    return BISS_OK;
+}
+
+int biss_ring_restart(biss_t *h) {
+    if (!h->ring_started) {
+        return BISS_OK;
+    }
+    struct biss_proto_io io = biss_io(h);
+    uint32_t seq;
+    int rc = biss_proto_pub_seq(&io, &seq);
+    if (rc) {
+        return rc;
+    }
+    h->ring_skipped += seq - h->ring_cursor;
+    h->ring_cursor = 0;
+    h->ring_seen_valid = false;
+    return BISS_OK;
+}
+
 /* Chunks of at most one ring's worth (the protocol layer's copy). */
 #define CHUNK BISS_RING_SLOTS(1)
 
@@ -31,6 +65,9 @@ static int ring_read_locked(biss_t *h, struct biss_sample *out, unsigned max, un
     int rc = biss_follow_period_locked(h);
     if (!rc && !h->ring_started) {
         rc = ring_start(h);
+    }
+    if (!rc) {
+        rc = biss_ring_follow(h, false);
     }
     *lost = h->ring_skipped;
     h->ring_skipped = 0;

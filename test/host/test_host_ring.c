@@ -56,7 +56,7 @@ static void on_publish(void *ctx, uint32_t addr) {
     m->position[seq % KEEP] = r ? f.word[0].position : 0;
 }
 
-static biss_t *open_logged(struct model_log *m) {
+static biss_t *open_logged_as(struct model_log *m, enum biss_trigger trigger) {
     struct biss_open_params p;
     biss_open_params_default(&p);
     p.target = BISS_TARGET_EMU;
@@ -68,6 +68,7 @@ static biss_t *open_logged(struct model_log *m) {
     struct biss_config c;
     biss_config_default(&c);
     c.freq_hz = FREQ;
+    c.trigger = trigger;
     ck_assert_int_eq(biss_config_from_emu(h, &c), BISS_OK);
     ck_assert_int_eq(biss_configure(h, &c), BISS_OK);
     unsigned cap;
@@ -75,6 +76,10 @@ static biss_t *open_logged(struct model_log *m) {
     ck_assert_uint_eq(cap, BISS_RING_SLOTS(c.nslaves) - 1);
     ck_assert_uint_eq(cap, 59); /* one slave: 48-byte slots from 0x480 to 0xFE0 */
     return h;
+}
+
+static biss_t *open_logged(struct model_log *m) {
+    return open_logged_as(m, BISS_TRIGGER_FREERUN);
 }
 
 /* One frame read against the model's record of its publication. */
@@ -215,6 +220,104 @@ START_TEST(test_partial_reads_and_reconfiguration) {
 }
 END_TEST
 
+/* One host-triggered frame, published. */
+static void one_frame(biss_t *h, const struct model_log *m) {
+    uint32_t before = m->published;
+    ck_assert_int_eq(biss_trigger(h), BISS_OK);
+    ck_assert_int_eq(biss_run_us(h, 30), BISS_OK); /* 22.6 us a frame */
+    ck_assert_uint_eq(m->published, before + 1);
+}
+
+/* A reader lagging exactly capacity - 1, capacity and capacity + 1 frames
+ * (58, 59, 60 of one slave; host trigger: the frames run when asked), with
+ * its first unread frame in each of the ring's 60 slots in turn, so that
+ * the ring's wrap falls at every place in the span read, and at none: it
+ * gets the newest min(lag, 59), in order, each the model's, and exactly
+ * the rest counted lost. Between two lags one or two frames more, read at
+ * once, move the first unread slot on (lag + 1 or + 2 frames: coprime to
+ * 60, so 60 turns visit every slot). A configuration starts the ring
+ * afresh at its first slot (biss_shm.h), with the training frame: frame s
+ * lies in slot (s - training) modulo 60. */
+START_TEST(test_lag_around_the_capacity) {
+    static struct model_log m;
+    biss_t *h = open_logged_as(&m, BISS_TRIGGER_HOST);
+    static struct biss_sample buf[256];
+    unsigned n;
+    uint32_t lost;
+    ck_assert_int_eq(biss_run_ms(h, 1), BISS_OK);
+    ck_assert_int_eq(biss_ring_read(h, buf, 256, &n, &lost), BISS_OK);
+    ck_assert_uint_eq(n, 1);
+    ck_assert(buf[0].training);
+    const uint32_t training = buf[0].seq;
+    static const unsigned lag[] = {58, 59, 60};
+    for (unsigned k = 0; k < 3; k++) {
+        uint64_t first_slots = 0;
+        for (unsigned turn = 0; turn < 60; turn++) {
+            first_slots |= 1ull << (m.published + 1 - training) % 60;
+            for (unsigned i = 0; i < lag[k]; i++) {
+                one_frame(h, &m);
+            }
+            ck_assert_int_eq(biss_ring_read(h, buf, 256, &n, &lost), BISS_OK);
+            unsigned want = lag[k] < 59 ? lag[k] : 59;
+            ck_assert_msg(n == want && lost == lag[k] - want, "%u behind from slot %u: %u, %u lost",
+                          lag[k], __builtin_ctzll(first_slots), n, lost);
+            for (unsigned i = 0; i < n; i++) {
+                ck_assert_uint_eq(buf[i].seq, m.published - (n - 1) + i);
+                check_frame(&m, &buf[i]);
+            }
+            unsigned more = (lag[k] + 1) % 60 ? 1 : 2;
+            for (unsigned i = 0; i < more; i++) {
+                one_frame(h, &m);
+            }
+            ck_assert_int_eq(biss_ring_read(h, buf, 256, &n, &lost), BISS_OK);
+            ck_assert_uint_eq(n, more);
+            ck_assert_uint_eq(lost, 0);
+        }
+        ck_assert_msg(first_slots == (1ull << 60) - 1, "%u behind: slots 0x%llx", lag[k],
+                      (unsigned long long)first_slots);
+    }
+    biss_close(h);
+}
+END_TEST
+
+/* This handle restarting the firmware (biss_stop, biss_start): the old
+ * run's frames the reader had not taken are counted lost, and it reads
+ * the new run from its first publication on (the training frame), each
+ * the model's; none lost after. */
+START_TEST(test_restart_reads_the_new_run) {
+    static struct model_log m;
+    biss_t *h = open_logged(&m);
+    static struct biss_sample buf[256];
+    unsigned n;
+    uint32_t lost;
+    ck_assert_int_eq(biss_run_ms(h, 1), BISS_OK);
+    ck_assert_int_eq(biss_ring_read(h, buf, 256, &n, &lost), BISS_OK);
+    uint32_t read = buf[n - 1].seq;
+    ck_assert_int_eq(biss_run_us(h, 500), BISS_OK); /* 22 frames, unread */
+    ck_assert_int_eq(biss_stop(h), BISS_OK);
+    uint32_t unread = m.published - read;
+    ck_assert_uint_ge(unread, 20);
+    m.published = 0; /* the new run counts from 1 */
+    ck_assert_int_eq(biss_start(h), BISS_OK);
+    ck_assert_int_eq(biss_run_ms(h, 1), BISS_OK);
+    ck_assert_int_eq(biss_ring_read(h, buf, 256, &n, &lost), BISS_OK);
+    ck_assert_uint_eq(lost, unread);
+    ck_assert_uint_eq(n, m.published);
+    ck_assert(buf[0].training);
+    for (unsigned i = 0; i < n; i++) {
+        ck_assert_uint_eq(buf[i].seq, 1 + i);
+        check_frame(&m, &buf[i]);
+    }
+    read = buf[n - 1].seq;
+    ck_assert_int_eq(biss_run_ms(h, 1), BISS_OK);
+    ck_assert_int_eq(biss_ring_read(h, buf, 256, &n, &lost), BISS_OK);
+    ck_assert_uint_eq(lost, 0);
+    ck_assert_uint_gt(n, 40);
+    ck_assert_uint_eq(buf[0].seq, read + 1);
+    biss_close(h);
+}
+END_TEST
+
 int main(void) {
     Suite *s = suite_create("host_ring");
     TCase *tc = tcase_create("ring");
@@ -222,6 +325,8 @@ int main(void) {
     tcase_add_test(tc, test_every_frame_of_a_million);
     tcase_add_test(tc, test_overrun_counted_exactly);
     tcase_add_test(tc, test_partial_reads_and_reconfiguration);
+    tcase_add_test(tc, test_lag_around_the_capacity);
+    tcase_add_test(tc, test_restart_reads_the_new_run);
     suite_add_tcase(s, tc);
     return check_run(s);
 }

@@ -176,6 +176,135 @@ START_TEST(test_ring_copy_being_refilled_is_lost) {
 }
 END_TEST
 
+/* The fake publishing frames from..to (publication numbers, none 0). */
+static void publish_span(struct fake *f, uint32_t from, uint32_t to) {
+    f->frame = from;
+    fake_steps(f, (to - from + 1) * (FAKE_RESULT_WORDS + 2));
+    ck_assert_uint_eq(fake_dram32(f, BISS_ST_SEQ), to);
+}
+
+/* A handle over a fake whose ring reader's last call took publication
+ * 1000 (frames 990..1000 published). */
+static biss_t *reader_at_1000(struct fake **f) {
+    biss_t *h = fake_handle(f);
+    (*f)->publishing = true;
+    publish_span(*f, 990, 1000);
+    struct biss_sample buf[32];
+    unsigned n;
+    uint32_t lost;
+    ck_assert_int_eq(biss_ring_read(h, buf, 32, &n, &lost), BISS_OK);
+    ck_assert_uint_eq(n, 1);
+    ck_assert_uint_eq(buf[0].seq, 1000); /* the newest, where a reader starts */
+    return h;
+}
+
+/* buf holds n frames: the `want` publications up to newest, in order,
+ * each whole. */
+static void assert_newest(const struct biss_sample *buf, unsigned n, unsigned want,
+                          uint32_t newest) {
+    ck_assert_uint_eq(n, want);
+    for (unsigned i = 0; i < n; i++) {
+        ck_assert_uint_eq(buf[i].seq, newest - (want - 1) + i);
+        assert_consistent(&buf[i]);
+    }
+}
+
+/* A reader that fell behind by `lag` publications with no configuration
+ * between: the newest 17 come, in order, and exactly the rest are counted
+ * lost, for any lag up to 2^32 - 1 (modulo 2^32: 2^31 and more behind is
+ * behind, not a counter that went back), and around the ring's 17. */
+START_TEST(test_ring_reader_far_behind) {
+    static const uint32_t lag[] = {16, 17, 18, 0x7fffffffu, 0x80000000u, 0x80000001u, 0xffffffffu};
+    for (unsigned k = 0; k < sizeof lag / sizeof lag[0]; k++) {
+        struct fake *f;
+        biss_t *h = reader_at_1000(&f);
+        uint32_t newest = 1000 + lag[k];
+        publish_span(f, lag[k] < 20 ? 1001 : newest - 19, newest);
+        struct biss_sample buf[32];
+        unsigned n;
+        uint32_t lost;
+        ck_assert_int_eq(biss_ring_read(h, buf, 32, &n, &lost), BISS_OK);
+        unsigned want = lag[k] < 17 ? lag[k] : 17;
+        ck_assert_msg(lost == lag[k] - want, "%u behind: %u lost", lag[k], lost);
+        assert_newest(buf, n, want, newest);
+        biss_close(h);
+    }
+}
+END_TEST
+
+/* The firmware restarted (by another process: its publications count
+ * from 1 again, and the data RAM keeps the old run's slots). A restarted
+ * firmware publishes nothing before a configuration, so the counter went
+ * back where it reads as behind (2^31 or more on since the last call) and
+ * ST_CFG_ACK changed: the reader starts again from the new run's first
+ * publication, however long it was away: 5 of them all come, of 40 the
+ * newest 17 (23 lost); none yet (the start-up's ST_CFG_ACK), nothing, then
+ * from the first. */
+START_TEST(test_ring_reader_after_a_restart) {
+    static const uint32_t run[] = {5, 40, 0};
+    for (unsigned k = 0; k < 3; k++) {
+        struct fake *f;
+        biss_t *h = reader_at_1000(&f);
+        if (run[k]) {
+            publish_span(f, 1, run[k]);
+            fake_set_dram32(f, BISS_ST_CFG_ACK, 7);
+        } else {
+            fake_set_dram32(f, BISS_ST_SEQ, 0); /* the start-up's */
+            fake_set_dram32(f, BISS_ST_BUF, 0);
+            fake_set_dram32(f, BISS_ST_CFG_ACK, 0xfffffffeu);
+        }
+        f->now_us += 3600000000u;
+        struct biss_sample buf[32];
+        unsigned n;
+        uint32_t lost;
+        ck_assert_int_eq(biss_ring_read(h, buf, 32, &n, &lost), BISS_OK);
+        unsigned want = run[k] < 17 ? run[k] : 17;
+        ck_assert_msg(lost == run[k] - want, "%u published since the restart: %u lost", run[k],
+                      lost);
+        assert_newest(buf, n, want, run[k]);
+        if (!run[k]) {
+            publish_span(f, 1, 3);
+            fake_set_dram32(f, BISS_ST_CFG_ACK, 7);
+            ck_assert_int_eq(biss_ring_read(h, buf, 32, &n, &lost), BISS_OK);
+            ck_assert_uint_eq(lost, 0);
+            assert_newest(buf, n, 3, 3);
+        }
+        biss_close(h);
+    }
+}
+END_TEST
+
+/* What the counter and ST_CFG_ACK cannot tell: a restart whose
+ * configuration took the number of the one before, not looked at in
+ * between (the firmware restarted by something else, configured by a
+ * handle new to it), reads as far behind: the frames that come are still
+ * exactly the new run's (the old run's slots are not theirs: counted
+ * lost), the lost count is that distance. And a reader 2^31 or more
+ * behind across another handle's configuration reads as after a restart:
+ * from publication 1. */
+START_TEST(test_ring_restart_neither_tells) {
+    struct fake *f;
+    biss_t *h = reader_at_1000(&f);
+    publish_span(f, 1, 5);
+    struct biss_sample buf[32];
+    unsigned n;
+    uint32_t lost;
+    ck_assert_int_eq(biss_ring_read(h, buf, 32, &n, &lost), BISS_OK);
+    assert_newest(buf, n, 5, 5);
+    ck_assert_uint_eq(lost, 5u - 1000u - 5u);
+    biss_close(h);
+
+    h = reader_at_1000(&f);
+    uint32_t newest = 1000 + 0x80000000u;
+    publish_span(f, newest - 19, newest);
+    fake_set_dram32(f, BISS_ST_CFG_ACK, 7);
+    ck_assert_int_eq(biss_ring_read(h, buf, 32, &n, &lost), BISS_OK);
+    ck_assert_uint_eq(lost, newest - 17); /* from publication 1 */
+    assert_newest(buf, n, 17, newest);
+    biss_close(h);
+}
+END_TEST
+
 /* The firmware stands between its stores of ST_BUF and ST_SEQ (the
  * emulator's PRU stops anywhere, and stands still while the host reads):
  * the slot ST_BUF names is whole and is the newest frame, for the ring
@@ -403,6 +532,9 @@ int main(void) {
     tcase_add_test(tc, test_reader_gives_up);
     tcase_add_test(tc, test_ring_reader_counts_what_it_misses);
     tcase_add_test(tc, test_ring_copy_being_refilled_is_lost);
+    tcase_add_test(tc, test_ring_reader_far_behind);
+    tcase_add_test(tc, test_ring_reader_after_a_restart);
+    tcase_add_test(tc, test_ring_restart_neither_tells);
     tcase_add_test(tc, test_between_st_buf_and_st_seq);
     tcase_add_test(tc, test_nothing_published);
     tcase_add_test(tc, test_wait_sample);
