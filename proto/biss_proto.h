@@ -379,6 +379,10 @@ int biss_proto_cd_answer(const struct biss_proto_io *io, biss_cd_answer *a);
 /* Whether the firmware has ended command cmd (1, 0 not yet, or an error);
  * with 1 the answer is read into *a. */
 int biss_proto_cd_ended(const struct biss_proto_io *io, uint32_t cmd, biss_cd_answer *a);
+/* Whether a program was put that the firmware has not ended (CD_CMD past
+ * ST_CD_SEQ: waiting for its zeros, or running): 1 with its number in
+ * *cmd, 0 none, or the transfer's error. */
+int biss_proto_cd_running(const struct biss_proto_io *io, uint32_t *cmd);
 
 /* ---- the encoder firmware (biss_encoder.c; include/biss/biss_slave_shm.h) ---- */
 

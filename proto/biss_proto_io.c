@@ -174,6 +174,16 @@ int biss_proto_cd_answer(const struct biss_proto_io *io, biss_cd_answer *a) {
     return rc;
 }
 
+int biss_proto_cd_running(const struct biss_proto_io *io, uint32_t *cmd) {
+    struct biss_shm_cd cd;
+    int rc = rd(io, BISS_CD_CMD, &cd, sizeof cd);
+    if (rc) {
+        return rc;
+    }
+    *cmd = cd.cmd;
+    return cd.cmd != cd.seq;
+}
+
 int biss_proto_cd_ended(const struct biss_proto_io *io, uint32_t cmd, biss_cd_answer *a) {
     struct biss_shm_cd cd;
     int rc = rd(io, BISS_CD_CMD, &cd, sizeof cd);

@@ -172,10 +172,25 @@ static int configure_locked(biss_t *h, const struct biss_config *given) {
     return rc;
 }
 
+/* An SSI configuration cuts the control program that has not ended when
+ * it is written (its verdict: biss_cd_check); *cut 1 and *cmd its number,
+ * or 0. */
+static int program_cut(biss_t *h, const struct biss_config *c, int *cut, uint32_t *cmd) {
+    struct biss_proto_io io = biss_io(h);
+    int rc = c->slave[0].ssi ? biss_proto_cd_running(&io, cmd) : 0;
+    *cut = rc > 0;
+    return rc < 0 ? rc : BISS_OK;
+}
+
 static int exchange(biss_t *h, struct biss_config *c) {
     uint32_t seq = next_seq(h->cfg_seq);
+    int cut = 0;
+    uint32_t cut_cmd = 0;
     /* the ring reader's look before: a restart since its last one */
     int rc = biss_ring_follow(h, false);
+    if (!rc) {
+        rc = program_cut(h, c, &cut, &cut_cmd);
+    }
     if (!rc) {
         rc = write_block(h, c, seq);
     }
@@ -209,6 +224,10 @@ static int exchange(biss_t *h, struct biss_config *c) {
         if (h->ring_started) {
             h->ring_skipped += st.seq - h->ring_cursor; /* the last layout's, unread */
             h->ring_cursor = st.seq;
+        }
+        if (cut) {
+            h->cd_cut = cut_cmd;
+            h->cd_cut_set = true;
         }
         h->cfg = *c;
         h->configured = true;

@@ -105,6 +105,10 @@ int biss_cd_begin(biss_t *h, biss_cd_prog *p, unsigned wait_limit, uint32_t *cmd
 int biss_cd_check(biss_t *h, uint32_t cmd, biss_cd_answer *a) {
     struct cd_wait w = {.cmd = cmd, .a = a};
     biss_op_begin(h);
+    if (h->cd_cut_set && h->cd_cut == cmd) {
+        biss_op_end(h);
+        return BISS_E_SSI_NO_CONTROL; /* an SSI configuration cut it */
+    }
     w.host_trigger = h->cfg.trigger == BISS_TRIGGER_HOST;
     int rc = cd_ended(h, &w); /* 1: the answer is in *a */
     if (rc == 0) {

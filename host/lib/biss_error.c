@@ -105,7 +105,8 @@ static const struct err_text errors[] = {
                           "bit other than 0 or 1"},
     {BISS_E_ENC_REFUSED, "the encoder firmware refused the configuration"},
     {BISS_E_TRIGGER_PENDING, "the last trigger has not started its frame yet"},
-    {BISS_E_SSI_NO_CONTROL, "an SSI encoder has no control communication (registers, commands)"},
+    {BISS_E_SSI_NO_CONTROL, "an SSI encoder has no control communication (registers, commands; "
+                            "a program running when SSI was configured ends with this)"},
 };
 
 const char *biss_strerror(int err) {

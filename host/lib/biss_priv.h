@@ -96,6 +96,11 @@ struct biss {
      * (biss_ring_follow) */
     struct biss_ring_look ring_seen;
     bool ring_seen_valid;
+    /* the control program an SSI configuration cut (still running when it
+     * was written: SSI frames carry no CDM or CDS to go on with), whose
+     * verdict is BISS_E_SSI_NO_CONTROL whatever the firmware ends it with */
+    uint32_t cd_cut;
+    bool cd_cut_set;
     /* what the last BISS_E_SHM_RESULT refusal found in data RAM (a static
      * text of biss_result_check.c), or NULL */
     const char *problem;

@@ -128,7 +128,8 @@ enum biss_error {
      * again, that frame would come once) */
     BISS_E_TRIGGER_PENDING = -78,
     /* register access or a command configured for an SSI encoder, which has
-     * no control communication (no CDM, no CDS) */
+     * no control communication (no CDM, no CDS); also the verdict of a
+     * program an SSI configuration cut (running when it was written) */
     BISS_E_SSI_NO_CONTROL = -79,
 };
 

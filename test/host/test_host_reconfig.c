@@ -13,6 +13,7 @@
 #include "libbiss-emu.h"
 
 #include "bench.h"
+#include "bench_fw.h"
 #include "biss/biss_shm.h"
 #include "ssi_slave.h"
 
@@ -347,6 +348,81 @@ START_TEST(test_iep_kept_for_the_other) {
 }
 END_TEST
 
+/* A control program running (or waiting for its 14 CDM zeros) when an SSI
+ * configuration is written: SSI frames carry no CDM or CDS, so it cannot
+ * end as a register access; its verdict is BISS_E_SSI_NO_CONTROL (not the
+ * CD error its CDS read on SSI frames would give), at once and from then
+ * on. Nothing else is lost: the SSI frames come, every one; back on
+ * BiSS-C a register read reads right. A program that ended before the
+ * configuration keeps its verdict and bytes. Swept over the program's
+ * life at 10 MHz (the zeros take 14 frames, 0.3 ms; the read about 1.5
+ * ms). */
+START_TEST(test_ssi_ends_a_running_program) {
+    struct biss_config base;
+    biss_t *h = open_emu("tidep0022-test-encoder", NULL, &base);
+    struct biss_config ssi = base;
+    ssi.nslaves = 1;
+    ssi.slave[0] = (struct biss_slave_config){.data_bits = 24, .ssi = true};
+    ssi.ssi_delay_ns = 100;
+    ck_assert_int_eq(biss_configure(h, &base), BISS_OK);
+    ck_assert_int_eq(biss_run_ms(h, 1), BISS_OK);
+    uint8_t want[2], got[2];
+    ck_assert_int_eq(biss_reg_read(h, 0, 0x78, want, 2), BISS_OK);
+    unsigned seen[2] = {0, 0}; /* running, ended */
+    for (unsigned us = 0; us <= 3000; us += 250) {
+        ck_assert_int_eq(biss_configure(h, &base), BISS_OK);
+        ck_assert_int_eq(biss_run_ms(h, 1), BISS_OK);
+        biss_cd_job *j;
+        ck_assert_int_eq(biss_reg_read_start(h, 0, 0x78, 2, &j), BISS_OK);
+        ck_assert_int_eq(biss_run_us(h, us), BISS_OK);
+        struct biss_proto_io io = bench_fw_io(biss_emu_bench(h));
+        uint32_t cmd;
+        int running = biss_proto_cd_running(&io, &cmd);
+        ck_assert_int_ge(running, 0);
+        bool ended = !running; /* by the firmware, not polled yet */
+        seen[ended]++;
+        drain(h);
+        ck_assert_int_eq(biss_configure(h, &ssi), BISS_OK);
+        int rc = biss_cd_poll(h, j);
+        ck_assert_msg(rc == (ended ? BISS_OK : BISS_E_SSI_NO_CONTROL),
+                      "%u us into the program (%s): %s", us, ended ? "ended" : "running",
+                      biss_strerror(rc));
+        /* 2 ms of SSI frames (about 23 us each), every one read */
+        uint32_t lost_total = 0, last = 0, frames = 0;
+        for (unsigned k = 0; k < 20; k++) {
+            ck_assert_int_eq(biss_run_us(h, 100), BISS_OK);
+            struct biss_sample s[64];
+            unsigned n;
+            uint32_t lost;
+            ck_assert_int_eq(biss_ring_read(h, s, 64, &n, &lost), BISS_OK);
+            lost_total += lost;
+            for (unsigned i = 0; i < n; i++) {
+                ck_assert_msg(s[i].valid && s[i].nslaves == 1, "SSI frame %u", s[i].frame);
+                ck_assert(last == 0 || s[i].seq == last + 1);
+                last = s[i].seq;
+            }
+            frames += n;
+        }
+        ck_assert_uint_le(lost_total, 1); /* the BiSS-C frame under way at the ack */
+        ck_assert_uint_ge(frames, 80);
+        ck_assert_int_eq(biss_cd_poll(h, j), rc);
+        ck_assert_int_eq(biss_cd_job_bytes(j, got), rc);
+        if (ended) {
+            ck_assert_mem_eq(got, want, 2);
+        }
+        biss_cd_job_free(j);
+        ck_assert_int_eq(biss_configure(h, &base), BISS_OK);
+        ck_assert_int_eq(biss_run_ms(h, 1), BISS_OK);
+        rc = biss_reg_read(h, 0, 0x78, got, 2);
+        ck_assert_msg(rc == BISS_OK, "back on BiSS-C: %s", biss_strerror(rc));
+        ck_assert_mem_eq(got, want, 2);
+    }
+    ck_assert_uint_ge(seen[0], 5);
+    ck_assert_uint_ge(seen[1], 5);
+    biss_close(h);
+}
+END_TEST
+
 int main(void) {
     Suite *s = suite_create("host_reconfig");
     TCase *tc = tcase_create("reconfig");
@@ -355,6 +431,7 @@ int main(void) {
     tcase_add_loop_test(tc, test_trigger_changes, 0, 4);
     tcase_add_test(tc, test_chain_shape);
     tcase_add_test(tc, test_ssi_and_back);
+    tcase_add_test(tc, test_ssi_ends_a_running_program);
     tcase_add_loop_test(tc, test_back_to_back, 0, 2);
     tcase_add_loop_test(tc, test_iep_left, 0, 2);
     tcase_add_loop_test(tc, test_iep_kept_for_the_other, 0, 2);
