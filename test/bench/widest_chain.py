@@ -10,7 +10,10 @@ free-running, host- and IEP-triggered.
 
 Every frame must be valid, every position the one the encoder model sent,
 every MA half period H, MA high for at least H before every frame's first
-falling edge, and nothing refused or flagged.
+falling edge, and nothing refused or flagged. Each run also reads the last
+slave's registers 0x78-0x7F through control frames (its CDS comes after
+the other seven slaves' 560 bits): they must read "WIDEST-7", as the
+scenario sets them.
 
 usage: widest_chain.py BISS_SIM SCENARIO
 """
@@ -28,7 +31,7 @@ for freq, cables in CASES.items():
     for m in cables:
         for trigger in ("free", "host", "iep"):
             args = ["--scenario", scenario, "--freq", str(freq), "--cable-m", str(m),
-                    "--frames", str(FRAMES), "--trigger", trigger]
+                    "--frames", str(FRAMES), "--trigger", trigger, "--reg-read", "7:0x78:8"]
             runs += 1
             r = subprocess.run([sim, "--json"] + args, capture_output=True, text=True)
             try:
@@ -50,6 +53,9 @@ for freq, cables in CASES.items():
             half = j["ma_half_period_cycles"]
             if half["min"] != half["max"] or half["min"] != 100000000 // freq:
                 bad["ma_half_period_cycles"] = half
+            cd = j["control"]
+            if cd["result"] != "ok" or bytes(cd["bytes"]) != b"WIDEST-7":
+                bad["control"] = cd
             starts = j["frame_starts"]
             if starts["ma_high_shorter_than_half"] or starts["frames"] < FRAMES - 1:
                 bad["ma_high"] = (starts["frames"], starts["ma_high_shorter_than_half"])
