@@ -118,7 +118,7 @@ int biss_config_check(const struct biss_config *c) {
         c->trigger != BISS_TRIGGER_FREERUN && c->trigger != BISS_TRIGGER_IEP_FOLLOW) {
         return BISS_E_TRIGGER;
     }
-    if (c->proc_limit > 0xffff) {
+    if (c->proc_limit > BISS_MAX_PROC_LIMIT) {
         return BISS_E_PROC_LIMIT;
     }
     rc = check_ssi(c);

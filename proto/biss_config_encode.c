@@ -34,7 +34,9 @@ void biss_config_encode_half(const struct biss_config *c, unsigned half,
     out->nslaves = (uint8_t)c->nslaves;
     out->trigger = (uint8_t)c->trigger;
     out->iep_period = c->trigger == BISS_TRIGGER_IEP ? c->iep_period_ns / 5 : 0;
-    out->proc_limit = (uint16_t)c->proc_limit;
+    /* the firmware gives up when the busy count reaches the word: the
+     * longest accepted + 1 (biss_shm.h), so no u16 value waits forever */
+    out->proc_limit = (uint16_t)(c->proc_limit + 1);
     out->ssi_delay_ns = c->slave[0].ssi ? (uint16_t)c->ssi_delay_ns : 0;
     for (unsigned i = 0; i < c->nslaves && i < BISS_MAX_SLAVES; i++) {
         encode_slave(&c->slave[i], &out->slave[i]);
@@ -105,7 +107,7 @@ int biss_config_decode(const struct biss_shm_config *in, struct biss_config *c,
     c->nslaves = in->nslaves;
     c->trigger = (enum biss_trigger)in->trigger;
     c->iep_period_ns = in->iep_period * 5u;
-    c->proc_limit = in->proc_limit;
+    c->proc_limit = in->proc_limit ? in->proc_limit - 1u : 0; /* 0 gives up as 1 does */
     c->ssi_delay_ns = in->ssi_delay_ns;
     for (unsigned i = 0; i < c->nslaves; i++) {
         const struct biss_shm_slave_cfg *s = &in->slave[i];

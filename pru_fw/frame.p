@@ -226,7 +226,7 @@ SW_TOP:
     jal     RET_LEAF, DLY_S1                // 7..8
     DELAY
     MA_RISE
-    qblt    PROC_ERROR, Busy, ProcLimit     // 1: limit < busy: give up after this rise
+    qble    PROC_ERROR, Busy, ProcLimit     // 1: busy reached the limit: give up after this rise
     jal     RET_LEAF, DLY_S5                // 2..7
     DELAY
     qba     SW_TOP

@@ -140,7 +140,7 @@ static const sf_field chain_fields[] = {
      .expect = "expected an array of 1 to 8 slave objects"},
     C("output_delay_ns", SF_PS, out_delay_ps, 0, 0, SF_MAX_EDGE_NS),
     C("busy_ns", SF_PS, busy_ps, 0, 0, SF_MAX_FRAME_NS),
-    C("busy_clocks", SF_UNSIGNED, busy_clocks, 0, 0, 10000),
+    C("busy_clocks", SF_UNSIGNED, busy_clocks, 0, 0, 1000000),
     {.name = "timeout", .kind = SF_OBJECT, .offset = 0, .sub = &timeout_table},
     SF_END,
 };

@@ -37,7 +37,7 @@ static const struct err_text errors[] = {
     {BISS_E_POS_BITS, "position bits do not fit in the data word above nE/nW"},
     {BISS_E_TRIGGER, "unknown trigger mode (host, iep, iep-follow, free)"},
     {BISS_E_IEP_PERIOD, "IEP period not a multiple of 5 ns or shorter than one frame"},
-    {BISS_E_PROC_LIMIT, "processing-time limit above 65535 MA clocks"},
+    {BISS_E_PROC_LIMIT, "processing-time limit above 65534 MA clocks"},
     {BISS_E_SSI, "SSI: one slave only, without CRC or nE/nW, delay at most 65535 ns"},
     {BISS_E_TIMEOUT, "timed out waiting for the firmware"},
     {BISS_E_NOT_RUNNING, "firmware not running (no magic in data RAM)"},

@@ -39,7 +39,8 @@
 #ifndef BISS_SHM_H
 #define BISS_SHM_H
 
-#define BISS_SHM_VERSION        3       // 3: ST_OFF_GRID (2: the result ring; 1: two buffers)
+#define BISS_SHM_VERSION        4       // 4: CFG_PROC_LIMIT ends a busy count (3: ST_OFF_GRID;
+                                        // 2: the result ring; 1: two buffers)
 #define BISS_DRAM_BYTES         4096    // fits AM437x ICSS0's 4 KB data RAM
 
 // ---- limits ------------------------------------------------------------
@@ -56,7 +57,8 @@
 #define BISS_CFG_NSLAVES        0x006   // u8:  slaves in the chain, 1..8
 #define BISS_CFG_TRIGGER        0x007   // u8:  BISS_TRIG_*
 #define BISS_CFG_IEP_PERIOD     0x008   // u32: frame period in IEP counts (5 ns) for BISS_TRIG_IEP
-#define BISS_CFG_PROC_LIMIT     0x00C   // u16: longest processing time (busy) accepted, MA clocks
+#define BISS_CFG_PROC_LIMIT     0x00C   // u16: busy clocks at which a frame is given up, the longest
+                                        // accepted + 1 (so every value ends a busy that never ends)
 #define BISS_CFG_SSI_DELAY_NS   0x00E   // u16: SSI only: the line's round trip in ns (an SSI
                                         //      slave gives no ACK to measure it by)
 #define BISS_CFG_SLAVE0         0x010   // first of BISS_MAX_SLAVES slave blocks

@@ -23,6 +23,9 @@ extern "C" {
 #define BISS_API_MAX_SLAVES 8
 #define BISS_PRU_HZ         200000000u /* PRU clock: 5 ns per cycle */
 #define BISS_HALF_CLOCK_HZ  100000000u /* f = 100 MHz / H */
+/* the longest processing time (busy) a frame may take, MA clocks: the firmware
+ * gives up at this + 1 busy clocks, a 16-bit count */
+#define BISS_MAX_PROC_LIMIT 65534u
 
 /* ---- errors ------------------------------------------------------------ */
 enum biss_error {
@@ -49,7 +52,7 @@ enum biss_error {
     BISS_E_POS_BITS = -19,       /* position bits do not fit above nE/nW */
     BISS_E_TRIGGER = -20,        /* unknown trigger mode */
     BISS_E_IEP_PERIOD = -21,     /* IEP period not a multiple of 5 ns or shorter than a frame */
-    BISS_E_PROC_LIMIT = -22,     /* processing-time limit above 65535 MA clocks */
+    BISS_E_PROC_LIMIT = -22,     /* processing-time limit above BISS_MAX_PROC_LIMIT */
     BISS_E_SSI = -23,            /* SSI: not one slave, or with CRC or nE/nW, or delay > 65535 ns */
     BISS_E_TIMEOUT = -24,        /* the firmware did not answer in time */
     BISS_E_NOT_RUNNING = -25,    /* firmware not running (no magic in data RAM) */
@@ -220,7 +223,7 @@ struct biss_config {
     struct biss_slave_config slave[BISS_API_MAX_SLAVES];
     enum biss_trigger trigger;
     uint32_t iep_period_ns; /* BISS_TRIGGER_IEP: frame period, multiple of 5 ns */
-    uint32_t proc_limit;    /* longest processing time (busy) accepted, MA clocks, <= 65535 */
+    uint32_t proc_limit;    /* longest processing time (busy) accepted, MA clocks, <= 65534 */
     uint32_t ssi_delay_ns;  /* SSI only: the line's round trip in ns (<= 65535); an SSI
                                slave sends no ACK the firmware could measure it by */
     unsigned npairs;        /* safety: position pair checks, 0..BISS_API_MAX_PAIRS */

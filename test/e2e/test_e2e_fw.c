@@ -183,6 +183,61 @@ START_TEST(test_processing_time_limit) {
 }
 END_TEST
 
+/* ---- processing time at the firmware's 16-bit busy count: a slave busy
+ * for 65534 clocks (BISS_MAX_PROC_LIMIT) passes at that limit and aborts
+ * one below it; one busy longer than the count holds (70000 clocks) aborts
+ * at the API's longest limit, every frame, none published valid (a count
+ * that wrapped to 0 would have taken the start bit at 70000 - 65536 and
+ * published 4464 clocks as a valid frame) ---- */
+static void busy_run(struct e2e_run *r, unsigned busy_clocks, unsigned limit, uint64_t n) {
+    scenario sc;
+    ck_assert_int_eq(profile_by_name("tidep0022-test-encoder", &sc), 0);
+    sc.biss.busy_clocks = busy_clocks;
+    e2e_bench_scenario(r, &sc, NULL);
+    r->fc.cfg.trigger = BISS_TRIGGER_FREERUN;
+    r->fc.cfg.proc_limit = limit;
+    e2e_configure(r, 10);
+    /* the training frames, then n publications of 6.6 ms (65536 clocks) or so */
+    e2e_run_publications(r, 6, 60 * SIM_PS_PER_MS);
+    fw_check_restart(&r->fc, UINT64_MAX);
+    e2e_run_publications(r, n, (int64_t)n * 10 * SIM_PS_PER_MS);
+}
+
+START_TEST(test_processing_time_16_bit_limit) {
+    struct e2e_run r;
+    busy_run(&r, BISS_MAX_PROC_LIMIT, BISS_MAX_PROC_LIMIT, 2);
+    ck_assert_uint_eq(r.fc.frames, 2);
+    ck_assert_uint_eq(r.fc.proc_clocks_max, BISS_MAX_PROC_LIMIT);
+    ck_assert_uint_eq(r.fc.proc_errors, 0);
+    ck_assert_uint_eq(r.fc.mismatches, 0);
+    e2e_free(&r);
+    busy_run(&r, BISS_MAX_PROC_LIMIT, BISS_MAX_PROC_LIMIT - 1, 2);
+    ck_assert_uint_eq(r.fc.frames, 0);
+    ck_assert_uint_ge(r.fc.proc_errors, 2);
+    e2e_free(&r);
+}
+END_TEST
+
+START_TEST(test_busy_past_the_count) {
+    struct biss_config c;
+    biss_config_default(&c);
+    c.nslaves = 1;
+    c.slave[0].data_bits = 1;
+    /* the longest limit the API accepts */
+    c.proc_limit = 0xffff;
+    while (biss_config_check(&c) == BISS_E_PROC_LIMIT) {
+        c.proc_limit--;
+    }
+    ck_assert_int_eq(biss_config_check(&c), BISS_OK);
+    struct e2e_run r;
+    busy_run(&r, 70000, c.proc_limit, 2);
+    ck_assert_uint_eq(r.fc.frames, 0);
+    ck_assert_uint_ge(r.fc.proc_errors, 2);
+    ck_assert_uint_eq(r.fc.mismatches, 0);
+    e2e_free(&r);
+}
+END_TEST
+
 /* ---- a slave that goes away (SL stuck low, or open: reads high) and
  * comes back: reported as no slave, retried, never halted ---- */
 START_TEST(test_disconnect_and_reconnect) {
@@ -446,6 +501,8 @@ int main(void) {
     tcase_add_loop_test(tc, test_data_word_widths, 0, (int)(sizeof(widths) / sizeof(widths[0])));
     tcase_add_loop_test(tc, test_bad_config_is_flagged, 0, (int)(sizeof(bad) / sizeof(bad[0])));
     tcase_add_test(tc, test_processing_time_limit);
+    tcase_add_test(tc, test_processing_time_16_bit_limit);
+    tcase_add_test(tc, test_busy_past_the_count);
     tcase_add_loop_test(tc, test_disconnect_and_reconnect, 0, 3);
     tcase_add_test(tc, test_host_trigger);
     tcase_add_test(tc, test_iep_trigger_period);

@@ -205,7 +205,7 @@ START_TEST(test_config_bytes_in_data_ram) {
     ck_assert_uint_eq(b[BISS_CFG_HALF] | b[BISS_CFG_HALF + 1] << 8, 20);
     ck_assert_uint_eq(b[BISS_CFG_NSLAVES], 1);
     ck_assert_uint_eq(b[BISS_CFG_TRIGGER], BISS_TRIG_FREERUN);
-    ck_assert_uint_eq(b[BISS_CFG_PROC_LIMIT] | b[BISS_CFG_PROC_LIMIT + 1] << 8, 250);
+    ck_assert_uint_eq(b[BISS_CFG_PROC_LIMIT] | b[BISS_CFG_PROC_LIMIT + 1] << 8, 251); /* + 1 */
     ck_assert_uint_eq(b[BISS_CFG_SLAVE0 + BISS_CFG_S_DATA_BITS], 14);
     ck_assert_uint_eq(b[BISS_CFG_SLAVE0 + BISS_CFG_S_CRC_BITS], 6);
     ck_assert_uint_eq(b[BISS_CFG_SLAVE0 + BISS_CFG_S_EW_SHIFT], 0);

@@ -99,7 +99,7 @@ static void configuration(const struct biss_proto_io *io) {
     SAME(get(BISS_CFG_NSLAVES, 1), 2);
     SAME(get(BISS_CFG_TRIGGER, 1), BISS_TRIG_IEP);
     SAME(get(BISS_CFG_IEP_PERIOD, 4), 20000);
-    SAME(get(BISS_CFG_PROC_LIMIT, 2), 300);
+    SAME(get(BISS_CFG_PROC_LIMIT, 2), 301); /* the busy count that ends the frame */
     uint32_t s0 = BISS_CFG_SLAVE0, s1 = BISS_CFG_SLAVE0 + BISS_CFG_SLAVE_SIZE;
     SAME(get(s0 + BISS_CFG_S_DATA_BITS, 1), 26);
     SAME(get(s0 + BISS_CFG_S_CRC_BITS, 1), 6);

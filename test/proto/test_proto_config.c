@@ -204,9 +204,9 @@ START_TEST(test_trigger_proc) {
     c.trigger = (enum biss_trigger)4;
     ck_assert_int_eq(biss_config_check(&c), BISS_E_TRIGGER);
     c = good();
-    c.proc_limit = 65535;
+    c.proc_limit = BISS_MAX_PROC_LIMIT; /* 65534: the firmware's count ends at 65535 */
     ck_assert_int_eq(biss_config_check(&c), BISS_OK);
-    c.proc_limit = 65536;
+    c.proc_limit = 65535;
     ck_assert_int_eq(biss_config_check(&c), BISS_E_PROC_LIMIT);
 }
 END_TEST

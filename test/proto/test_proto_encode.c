@@ -61,7 +61,7 @@ START_TEST(test_config_bytes) {
     ck_assert_uint_eq(u8(b, BISS_CFG_NSLAVES), 2);
     ck_assert_uint_eq(u8(b, BISS_CFG_TRIGGER), BISS_TRIG_IEP);
     ck_assert_uint_eq(u32(b, BISS_CFG_IEP_PERIOD), 20000); /* 5 ns counts */
-    ck_assert_uint_eq(u16(b, BISS_CFG_PROC_LIMIT), 300);
+    ck_assert_uint_eq(u16(b, BISS_CFG_PROC_LIMIT), 301);   /* the busy count that ends it */
     ck_assert_uint_eq(u8(b, BISS_CFG_SSI_DELAY_NS), 0);
     unsigned s0 = BISS_CFG_SLAVE0, s1 = BISS_CFG_SLAVE0 + BISS_CFG_SLAVE_SIZE;
     ck_assert_uint_eq(u8(b, s0 + BISS_CFG_S_DATA_BITS), 30);
