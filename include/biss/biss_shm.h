@@ -243,8 +243,11 @@
                                         // 10 MHz), never at H = 10 (pru_fw/README, "Bit grid")
 // The bit-grid check's window (BISS_RF_OFF_GRID): the samples before and
 // after each bit's sample point that must agree with it, from H = 16 on.
+// One after, two before: the next bit's edge lies about 3.5 samples after
+// the sample point and this bit's 4.5 before it, so each side keeps two
+// samples to spare (pru_fw/README, "Bit grid": the evidence).
 #define BISS_GRID_OLDER         2
-#define BISS_GRID_NEWER         2
+#define BISS_GRID_NEWER         1
 #define BISS_GRID_MIN_HALF      16
 // The frame's last period and the idle polls after it (pru_fw/biss_master.p,
 // POST_MIN): the fewest cycles from the last R31 read of a frame to the
