@@ -10,8 +10,8 @@
  *    the sample point was taken from (DELAY_AVG), both in eighths: an edge
  *    d eighths off leaves 4 - d (0 from 4 on: an ACK jump);
  *  - the bit-grid check (BISS_RF_OFF_GRID, below 10 MHz): an edge within
- *    2 eighths of a sample point (BISS_GRID_OLDER, BISS_GRID_NEWER: the
- *    check's window, biss_shm.h), so at most 2.
+ *    2 eighths before a sample point or 1 after it (BISS_GRID_OLDER,
+ *    BISS_GRID_NEWER: the check's window, biss_shm.h), so at most 2.
  * A frame with an eye of BISS_LINK_EYE_MARGINAL or less is marginal: its
  * bits were read at most that far from an edge. The warning counts them
  * in blocks of `window` frames judged: set from the frame that brings the

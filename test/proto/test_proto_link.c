@@ -32,7 +32,7 @@ START_TEST(test_eye_from_the_ack_and_the_grid) {
     ck_assert_int_eq(biss_link_eye(&s), 0); /* half a bit: an ACK jump */
     s = frame(1, 60, 40);
     ck_assert_int_eq(biss_link_eye(&s), 0);
-    /* refused off the grid: an edge within 2/8 of a sample point */
+    /* refused off the grid: an edge within 2/8 before a sample point or 1/8 after */
     s = frame(1, 40, 40);
     s.valid = false;
     s.off_grid = true;
