@@ -20,7 +20,8 @@ against the real firmware image on the emulator:
    the last bits, read from the last switch period's snapshot, only the
    first is checked (pru_fw/README.md, "Bit grid": 4 such in 3 x 10^5
    frames at 1, 2 and 5 MHz; with no check the CRC6 passes about 1 in 64
-   of the frames the check refuses here, some 20 to 40); none a misread
+   of the frames the check refuses here with a wrong word, some 15 and 25);
+   none a misread
    clean frame. At 10 MHz
    (H = 10, no room: the check does not run) no frame is ever refused for
    it.
