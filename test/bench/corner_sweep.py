@@ -59,8 +59,8 @@ def draw(rng, case):
                {"mode": "fixed", "ns": max(650, int(period_ns * rng.uniform(0.56, 2.0)) + 1)}
                if kind == "short" else {"mode": "adaptive", "factor": 1.5, "min_ns": 650})
     # processing times as datasheets give them (the AD38's 2.3-2.5 us), in
-    # 100 ns steps: the encoder firmware meets one to within a PRU cycle or
-    # so of an MA rise (pru_slave/README.md), the model to the picosecond
+    # 100 ns steps: the encoder firmware meets one to within a cycle and a
+    # half of an MA rise (pru_slave/README.md), the model to the picosecond
     busy = rng.choice([0, 0, 2400, 100 * rng.randint(0, 200)])
     scenario = {"profile": "generic",
                 "biss": {"busy_ns": busy, "timeout": timeout, "slaves": slaves}}
