@@ -68,13 +68,19 @@ static bool iep_owner(biss_t *h, bool applied, uint32_t *period_ns) {
     return blk.seq != 0 && blk.trigger == BISS_TRIGGER_IEP && !refused && !(applied && pending);
 }
 
-static bool speed_checked(const struct biss_config *c) {
+bool biss_speed_checked(const struct biss_config *c) {
     for (unsigned i = 0; i < BISS_API_MAX_SLAVES; i++) {
         if (c->slave[i].max_speed != 0) {
             return true;
         }
     }
     return false;
+}
+
+void biss_speed_unchecked(struct biss_config *c) {
+    for (unsigned i = 0; i < BISS_API_MAX_SLAVES; i++) {
+        c->slave[i].max_speed = 0;
+    }
 }
 
 /* The IEP as c needs it, into *c: the IEP trigger is refused while the
@@ -102,7 +108,7 @@ static int iep_as_needed(biss_t *h, struct biss_config *c) {
         }
         break;
     default:
-        if (owned && speed_checked(c)) {
+        if (owned && biss_speed_checked(c)) {
             return BISS_E_SAFETY_SPEED;
         }
     }
@@ -117,7 +123,8 @@ static int iep_as_needed(biss_t *h, struct biss_config *c) {
  * on. */
 int biss_follow_period_locked(biss_t *h) {
     uint32_t period;
-    if (!h->configured || h->cfg.trigger != BISS_TRIGGER_IEP_FOLLOW || !speed_checked(&h->cfg)) {
+    if (!h->configured || h->cfg.trigger != BISS_TRIGGER_IEP_FOLLOW ||
+        !biss_speed_checked(&h->cfg)) {
         return BISS_OK;
     }
     /* every read comes here: the owner's period word alone while it is
@@ -246,9 +253,7 @@ int biss_configure(biss_t *h, const struct biss_config *c) {
      * (configure_locked): the speed check's need of it is judged there */
     struct biss_config first = *c;
     if (first.trigger == BISS_TRIGGER_IEP_FOLLOW && !first.iep_period_ns) {
-        for (unsigned i = 0; i < BISS_API_MAX_SLAVES; i++) {
-            first.slave[i].max_speed = 0;
-        }
+        biss_speed_unchecked(&first);
     }
     int rc = biss_config_check(&first);
     if (rc) {

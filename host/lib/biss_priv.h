@@ -193,6 +193,11 @@ int biss_ring_follow(biss_t *h, bool own);
  * counted, and it reads the new run from its first publication. */
 int biss_ring_restart(biss_t *h);
 
+/* Whether any slave of c has a speed check (max_speed), and c without
+ * them (every max_speed 0). */
+bool biss_speed_checked(const struct biss_config *c);
+void biss_speed_unchecked(struct biss_config *c);
+
 /* The backend's clock for the speed check's time between two reads
  * (proto/biss_safety.c), or BISS_SAFETY_NO_CLOCK when no speed check is
  * configured (the clock is not read). */

@@ -65,17 +65,13 @@ static const struct biss_config *judged_by(biss_t *h, uint32_t seq, struct biss_
         return &h->cfg;
     }
     *tmp = h->cfg;
-    for (unsigned i = 0; i < BISS_API_MAX_SLAVES; i++) {
-        tmp->slave[i].max_speed = 0;
-    }
+    biss_speed_unchecked(tmp);
     return tmp;
 }
 
 uint64_t biss_read_clock(biss_t *h) {
-    for (unsigned i = 0; h->configured && i < BISS_API_MAX_SLAVES; i++) {
-        if (h->cfg.slave[i].max_speed != 0) {
-            return h->be.ops->now_us(h->be.ctx);
-        }
+    if (h->configured && biss_speed_checked(&h->cfg)) {
+        return h->be.ops->now_us(h->be.ctx);
     }
     return BISS_SAFETY_NO_CLOCK; /* no speed check to tell */
 }
