@@ -31,6 +31,7 @@ void pru_params_default(struct pru_params *p) {
     p->ff_count_loop = 1;
     p->fast_loop = 1;
     p->leaf_call = 1;
+    p->straight_run = 1;
     p->run_ahead = 1;
     p->strict = 0;
     p->strict_everywhere = 0;
@@ -60,6 +61,8 @@ int pru_params_fast_path_off(struct pru_params *p, const char *name) {
         p->fast_loop = 0;
     else if (strcmp(name, "leaf-call") == 0)
         p->leaf_call = 0;
+    else if (strcmp(name, "straight-run") == 0)
+        p->straight_run = 0;
     else if (strcmp(name, "run-ahead") == 0)
         p->run_ahead = 0;
     else
@@ -138,7 +141,10 @@ struct pru_core *pru_core_new(enum pru_soc soc, const struct pru_params *params)
     c->shared = calloc(1, c->shared_bytes ? c->shared_bytes : 1);
     c->iram0 = calloc(c->iram_words, 4);
     c->iram1 = calloc(c->iram_words, 4);
-    c->pd = calloc(c->iram_words + 1u, sizeof *c->pd); /* + the end of IRAM (predecode.c) */
+    /* + the end of IRAM (predecode.c); one cache line each */
+    c->pd = aligned_alloc(_Alignof(struct pd), (c->iram_words + 1u) * sizeof *c->pd);
+    if (c->pd)
+        memset(c->pd, 0, (c->iram_words + 1u) * sizeof *c->pd);
     if (!c->dram0 || !c->dram1 || !c->shared || !c->iram0 || !c->iram1 || !c->pd) {
         pru_core_free(c);
         return NULL;

@@ -97,6 +97,115 @@ enum {
 };
 _Static_assert(PD_KIND_END <= UINT8_MAX, "struct pd keeps kinds in a uint8_t");
 
+/*
+ * The fast kinds of the single-cycle instructions that only touch registers
+ * and carry and go on to pc + 1 (no branch, jump, R30 or R31): what a
+ * straight run is made of (with R31 reads of them, PD_R31_READ). X(label,
+ * kind), the label naming the fast loop's handlers (exec.c).
+ */
+#define PD_STRAIGHT_KINDS(X)                                                                       \
+    X(add, PRU_OP_ADD)                                                                             \
+    X(adc, PRU_OP_ADC)                                                                             \
+    X(sub, PRU_OP_SUB)                                                                             \
+    X(suc, PRU_OP_SUC)                                                                             \
+    X(lsl, PRU_OP_LSL)                                                                             \
+    X(lsr, PRU_OP_LSR)                                                                             \
+    X(rsb, PRU_OP_RSB)                                                                             \
+    X(rsc, PRU_OP_RSC)                                                                             \
+    X(and, PRU_OP_AND)                                                                             \
+    X(or, PRU_OP_OR)                                                                               \
+    X(xor, PRU_OP_XOR)                                                                             \
+    X(not, PRU_OP_NOT)                                                                             \
+    X(min, PRU_OP_MIN)                                                                             \
+    X(max, PRU_OP_MAX)                                                                             \
+    X(clr, PRU_OP_CLR)                                                                             \
+    X(set, PRU_OP_SET)                                                                             \
+    X(nop, PRU_OP_NOP0)                                                                            \
+    X(ldi, PRU_OP_LDI)                                                                             \
+    X(lmbd, PRU_OP_LMBD)                                                                           \
+    X(add32, PD_ADD32)                                                                             \
+    X(sub32, PD_SUB32)                                                                             \
+    X(add32i, PD_ADD32I)                                                                           \
+    X(sub32i, PD_SUB32I)                                                                           \
+    X(adc32, PD_ADC32)                                                                             \
+    X(and32, PD_AND32)                                                                             \
+    X(or32, PD_OR32)                                                                               \
+    X(xor32, PD_XOR32)                                                                             \
+    X(lsl32, PD_LSL32)                                                                             \
+    X(lsr32, PD_LSR32)                                                                             \
+    X(lsl32i, PD_LSL32I)                                                                           \
+    X(lsr32i, PD_LSR32I)                                                                           \
+    X(ldi32, PD_LDI32)                                                                             \
+    X(subi, PD_SUBI)                                                                               \
+    X(mini, PD_MINI)                                                                               \
+    X(minb32i, PD_MINB32I)                                                                         \
+    X(sub32b, PD_SUB32B)                                                                           \
+    X(subbbi, PD_SUBBBI)
+
+/* The fast kinds of the quick branches (QBxx, QBA), as above */
+#define PD_QUICK_KINDS(X)                                                                          \
+    X(qbgt, PRU_OP_QBGT)                                                                           \
+    X(qbge, PRU_OP_QBGE)                                                                           \
+    X(qblt, PRU_OP_QBLT)                                                                           \
+    X(qble, PRU_OP_QBLE)                                                                           \
+    X(qbeq, PRU_OP_QBEQ)                                                                           \
+    X(qbne, PRU_OP_QBNE)                                                                           \
+    X(qba, PRU_OP_QBA)                                                                             \
+    X(qbbs, PRU_OP_QBBS)                                                                           \
+    X(qbbc, PRU_OP_QBBC)                                                                           \
+    X(qbne32, PD_QBNE32)                                                                           \
+    X(qbeq32, PD_QBEQ32)                                                                           \
+    X(qbbs32, PD_QBBS32)                                                                           \
+    X(qbbc32, PD_QBBC32)                                                                           \
+    X(qbne32i, PD_QBNE32I)                                                                         \
+    X(qbeq32i, PD_QBEQ32I)                                                                         \
+    X(qbeqi, PD_QBEQI)                                                                             \
+    X(qbnei, PD_QBNEI)                                                                             \
+    X(qbbs32i, PD_QBBS32I)                                                                         \
+    X(qbbc32i, PD_QBBC32I)                                                                         \
+    X(qbeqbi, PD_QBEQBI)                                                                           \
+    X(qbnebi, PD_QBNEBI)                                                                           \
+    X(qbeqwi, PD_QBEQWI)                                                                           \
+    X(qbnewi, PD_QBNEWI)
+
+/*
+ * What the fast loop dispatches on (struct pd .go): .fast, or
+ * - PD_RUN + the place of its kind in PD_STRAIGHT_KINDS (PD_RUN_R31 for an
+ *   R31 read) for the first of a straight run of two or more (.run): the
+ *   run goes without the checks between its instructions (the cycle limit,
+ *   a LOOP end) if neither falls within it or at its end
+ *   (pru_params.straight_run);
+ * - PD_FORWARD + the place of its kind in PD_QUICK_KINDS for a quick branch
+ *   forward: taken or not, it comes to no loop the fast-forward looks at;
+ * - PD_PAIR_* for a pair of instructions of the firmware's clocked bit
+ *   loops (pru_fw/) that runs as one in a straight run, the second reading
+ *   the first's result (outside a run: the first's own handler):
+ *   PD_PAIR_MIN_SUB  min rB.bK, rA, imm; sub rA, rA, rB.bK (B not A), the
+ *                    first of a run;
+ *   PD_PAIR_LSL_XOR  lsl rA, rB, imm; xor rC, rA, op2, the first of a run;
+ *   PD_PAIR_XOR_QBBS xor rA, rB, op2; qbbs forward, rA, imm: a run's last
+ *                    and the branch after it
+ *   (registers whole where no field is named).
+ */
+enum {
+#define PD_PLACE(label, kind) PD_PLACE_##label,
+    PD_STRAIGHT_KINDS(PD_PLACE) PD_STRAIGHT_COUNT,
+};
+enum {
+    PD_QUICK_KINDS(PD_PLACE) PD_QUICK_COUNT,
+#undef PD_PLACE
+};
+enum {
+    PD_RUN = PD_KIND_END,
+    PD_RUN_R31 = PD_RUN + PD_STRAIGHT_COUNT,
+    PD_FORWARD,
+    PD_PAIR_MIN_SUB = PD_FORWARD + PD_QUICK_COUNT,
+    PD_PAIR_LSL_XOR,
+    PD_PAIR_XOR_QBBS,
+    PD_GO_END,
+};
+_Static_assert(PD_GO_END <= UINT8_MAX, "struct pd keeps .go in a uint8_t");
+
 /* Flags of a predecoded instruction that need work outside the handler. */
 #define PD_READS_R31  0x01u /* refresh R31 from the inputs before executing */
 #define PD_WRITES_R30 0x02u /* tell the pins if R30 changed */
@@ -112,7 +221,8 @@ _Static_assert(PD_KIND_END <= UINT8_MAX, "struct pd keeps kinds in a uint8_t");
  * value in imm, so "field | imm" reads either form without a branch.
  */
 struct pd {
-    uint8_t fast; /* kind for the fast loop: PD_SLOW if flags or not register-only */
+    /* one cache line each (core.c allocates them aligned) */
+    _Alignas(64) uint8_t fast; /* kind for the fast loop: PD_SLOW if flags or not register-only */
     uint8_t kind;
     uint8_t flags;
     uint8_t rd, rdsh;
@@ -128,6 +238,11 @@ struct pd {
     struct pru_insn in;
     uint8_t inner; /* PD_R31_READ: the fast kind to run once R31 is read */
     uint8_t xfast; /* PD_XPRU: the fast kind once the other PRU is there */
+    uint8_t go;    /* what the fast loop dispatches on: .fast, or PD_RUN ... */
+    /* the straight run from here: how many of PD_STRAIGHT_KINDS (or R31
+     * reads of them) follow from this one on, this one included (0: this
+     * is none of them; UINT16_MAX: so many or more) */
+    uint16_t run;
 };
 
 /* Lazily evaluated 28-bit GPI shift register (cfg_gpi.c). */

@@ -532,90 +532,92 @@ void exec_recheck(struct pru_core *c) {
  * A straight-line instruction never compares pc with the end of IRAM: the
  * predecoded word one past it leaves the loop (PD_END), and quick branches
  * out of IRAM go through exec_one() (predecode.c); only JMP and JAL check.
+ *
+ * It dispatches on the predecoded .go (core_priv.h): a straight run of
+ * register-only instructions (.run) that ends before the cycle limit and
+ * before any LOOP end runs in the handlers of rkinds[], which only advance
+ * to the next (pc and cycle moved to the run's end once, at its start);
+ * the firmware's frequent pairs run there as one (PD_PAIR_*), and a quick
+ * branch forward skips BRANCHED()'s look back (PD_FORWARD).
  */
 static void run_fast(struct pru_core *c, int64_t limit) {
     /* every kind not named (PD_SLOW, ...) goes the slow way */
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Woverride-init"
-    static const void *const kinds[PD_KIND_END] = {
-        [0 ... PD_KIND_END - 1] = &&k_slow,
-        [PRU_OP_ADD] = &&k_add,
-        [PRU_OP_ADC] = &&k_adc,
-        [PRU_OP_SUB] = &&k_sub,
-        [PRU_OP_SUC] = &&k_suc,
-        [PRU_OP_LSL] = &&k_lsl,
-        [PRU_OP_LSR] = &&k_lsr,
-        [PRU_OP_RSB] = &&k_rsb,
-        [PRU_OP_RSC] = &&k_rsc,
-        [PRU_OP_AND] = &&k_and,
-        [PRU_OP_OR] = &&k_or,
-        [PRU_OP_XOR] = &&k_xor,
-        [PRU_OP_NOT] = &&k_not,
-        [PRU_OP_MIN] = &&k_min,
-        [PRU_OP_MAX] = &&k_max,
-        [PRU_OP_CLR] = &&k_clr,
-        [PRU_OP_SET] = &&k_set,
-        [PRU_OP_NOP0] = &&k_nop,
-        [PRU_OP_LDI] = &&k_ldi,
-        [PRU_OP_LMBD] = &&k_lmbd,
-        [PRU_OP_JMP] = &&k_jmp,
-        [PRU_OP_JAL] = &&k_jal,
-        [PRU_OP_QBGT] = &&k_qbgt,
-        [PRU_OP_QBGE] = &&k_qbge,
-        [PRU_OP_QBLT] = &&k_qblt,
-        [PRU_OP_QBLE] = &&k_qble,
-        [PRU_OP_QBEQ] = &&k_qbeq,
-        [PRU_OP_QBNE] = &&k_qbne,
-        [PRU_OP_QBA] = &&k_qba,
-        [PRU_OP_QBBS] = &&k_qbbs,
-        [PRU_OP_QBBC] = &&k_qbbc,
-        [PD_R31_READ] = &&k_r31,
-        [PD_R30_WRITE] = &&k_r30,
-        [PD_R30_XOR] = &&k_r30_xor,
-        [PD_ADD32] = &&k_add32,
-        [PD_SUB32] = &&k_sub32,
-        [PD_QBNE32] = &&k_qbne32,
-        [PD_QBEQ32] = &&k_qbeq32,
-        [PD_QBBS32] = &&k_qbbs32,
-        [PD_QBBC32] = &&k_qbbc32,
-        [PD_ADD32I] = &&k_add32i,
-        [PD_SUB32I] = &&k_sub32i,
-        [PD_QBNE32I] = &&k_qbne32i,
-        [PD_QBEQ32I] = &&k_qbeq32i,
-        [PD_ADC32] = &&k_adc32,
-        [PD_AND32] = &&k_and32,
-        [PD_OR32] = &&k_or32,
-        [PD_XOR32] = &&k_xor32,
-        [PD_LSL32] = &&k_lsl32,
-        [PD_LSR32] = &&k_lsr32,
-        [PD_LSL32I] = &&k_lsl32i,
-        [PD_LSR32I] = &&k_lsr32i,
-        [PD_LDI32] = &&k_ldi32,
-        [PD_SUBI] = &&k_subi,
-        [PD_MINI] = &&k_mini,
-        [PD_QBEQI] = &&k_qbeqi,
-        [PD_QBNEI] = &&k_qbnei,
-        [PD_JALI] = &&k_jali,
-        [PD_MINB32I] = &&k_minb32i,
-        [PD_SUB32B] = &&k_sub32b,
-        [PD_SUBBBI] = &&k_subbbi,
-        [PD_QBEQBI] = &&k_qbeqbi,
-        [PD_QBNEBI] = &&k_qbnebi,
-        [PD_QBEQWI] = &&k_qbeqwi,
-        [PD_QBNEWI] = &&k_qbnewi,
-        [PD_R30_XORB] = &&k_r30_xorb,
-        [PD_QBBS32I] = &&k_qbbs32i,
-        [PD_QBBC32I] = &&k_qbbc32i,
-        [PD_MVI_LD] = &&k_mvi_ld,
-        [PD_XFR_FIXED] = &&k_xfr_fixed,
-        [PD_XPRU] = &&k_xpru,
+    /* the kinds that are not straight, and their handlers */
+#define OTHER_KINDS(X)                                                                             \
+    X(qbgt, PRU_OP_QBGT)                                                                           \
+    X(qbge, PRU_OP_QBGE)                                                                           \
+    X(qblt, PRU_OP_QBLT)                                                                           \
+    X(qble, PRU_OP_QBLE)                                                                           \
+    X(qbeq, PRU_OP_QBEQ)                                                                           \
+    X(qbne, PRU_OP_QBNE)                                                                           \
+    X(qba, PRU_OP_QBA)                                                                             \
+    X(qbbs, PRU_OP_QBBS)                                                                           \
+    X(qbbc, PRU_OP_QBBC)                                                                           \
+    X(jmp, PRU_OP_JMP)                                                                             \
+    X(jal, PRU_OP_JAL)                                                                             \
+    X(r31, PD_R31_READ)                                                                            \
+    X(r30, PD_R30_WRITE)                                                                           \
+    X(r30_xor, PD_R30_XOR)                                                                         \
+    X(qbne32, PD_QBNE32)                                                                           \
+    X(qbeq32, PD_QBEQ32)                                                                           \
+    X(qbbs32, PD_QBBS32)                                                                           \
+    X(qbbc32, PD_QBBC32)                                                                           \
+    X(qbne32i, PD_QBNE32I)                                                                         \
+    X(qbeq32i, PD_QBEQ32I)                                                                         \
+    X(qbeqi, PD_QBEQI)                                                                             \
+    X(qbnei, PD_QBNEI)                                                                             \
+    X(jali, PD_JALI)                                                                               \
+    X(qbeqbi, PD_QBEQBI)                                                                           \
+    X(qbnebi, PD_QBNEBI)                                                                           \
+    X(qbeqwi, PD_QBEQWI)                                                                           \
+    X(qbnewi, PD_QBNEWI)                                                                           \
+    X(r30_xorb, PD_R30_XORB)                                                                       \
+    X(qbbs32i, PD_QBBS32I)                                                                         \
+    X(qbbc32i, PD_QBBC32I)                                                                         \
+    X(mvi_ld, PD_MVI_LD)                                                                           \
+    X(xfr_fixed, PD_XFR_FIXED)                                                                     \
+    X(xpru, PD_XPRU)
+#define K_ENTRY(label, kind)  [kind] = &&k_##label,
+#define R_ENTRY(label, kind)  [kind] = &&r_##label,
+#define E_ENTRY(label, kind)  [PD_RUN + PD_PLACE_##label] = &&e_##label,
+#define RE_ENTRY(label, kind) [PD_RUN + PD_PLACE_##label] = &&r_##label,
+#define F_ENTRY(label, kind)  [PD_FORWARD + PD_PLACE_##label] = &&f_##label,
+    static const void *const kinds[PD_GO_END] = {
+        [0 ... PD_GO_END - 1] = &&k_slow,
+        OTHER_KINDS(K_ENTRY) PD_STRAIGHT_KINDS(K_ENTRY) PD_STRAIGHT_KINDS(E_ENTRY)
+            PD_QUICK_KINDS(F_ENTRY)[PD_RUN_R31] = &&e_r31,
+        [PD_PAIR_MIN_SUB] = &&e_min_sub,
+        [PD_PAIR_LSL_XOR] = &&e_lsl_xor,
+        [PD_PAIR_XOR_QBBS] = &&k_xor32,
         [PD_END] = &&out,
     };
+    /* inside a straight run: its instructions without the checks, and
+     * after its last one the next instruction's own handler */
+    static const void *const rkinds[PD_GO_END] = {
+        [0 ... PD_GO_END - 1] = &&k_slow,
+        OTHER_KINDS(K_ENTRY) PD_STRAIGHT_KINDS(R_ENTRY) PD_STRAIGHT_KINDS(RE_ENTRY)
+            PD_QUICK_KINDS(F_ENTRY)[PD_R31_READ] = &&r_r31,
+        [PD_RUN_R31] = &&r_r31,
+        [PD_PAIR_MIN_SUB] = &&r_min_sub,
+        [PD_PAIR_LSL_XOR] = &&r_lsl_xor,
+        [PD_PAIR_XOR_QBBS] = &&r_xor_qbbs,
+        [PD_END] = &&out,
+    };
+#undef K_ENTRY
+#undef R_ENTRY
+#undef E_ENTRY
+#undef RE_ENTRY
+#undef F_ENTRY
+#undef OTHER_KINDS
 #pragma GCC diagnostic pop
     const struct pd *pd = c->pd;
     const uint32_t n = c->iram_words;
     const bool ff = c->ff_on;
     const bool leaf = c->p.leaf_call != 0;
+    const bool runs = c->p.straight_run != 0;
+    uint32_t run_pc = 0; /* (the pc a straight instruction in a run sets: unused) */
     uint32_t *r = c->r;
     uint32_t pc = c->pc;
     int carry = c->carry;
@@ -638,7 +640,7 @@ static void run_fast(struct pru_core *c, int64_t limit) {
         if (__builtin_expect(cyc >= limit, 0))                                                     \
             goto out;                                                                              \
         d = &pd[pc];                                                                               \
-        goto *kinds[d->fast];                                                                      \
+        goto *kinds[d->go];                                                                        \
     } while (0)
     /* after a one-cycle instruction that went on to pc + 1 */
 #define NEXT()                                                                                     \
@@ -684,6 +686,18 @@ static void run_fast(struct pru_core *c, int64_t limit) {
     exec_simple(r, d, kind, &pc, &carry);                                                          \
     BRANCHED_FAR()
 
+    /* at the first instruction of a straight run (pru_params.straight_run):
+     * on as inside the run (rkinds: no checks between its instructions,
+     * pc and cycle at its end from the start) if no limit and no LOOP end
+     * falls within it or at its end, else to `otherwise` */
+#define RUN_ENTER(otherwise)                                                                       \
+    do {                                                                                           \
+        if (!runs || (uint64_t)(limit - cyc) <= d->run || loop_end - pc - 1u < d->run)             \
+            goto otherwise;                                                                        \
+        pc += d->run;                                                                              \
+        cyc += d->run;                                                                             \
+    } while (0)
+
     /* after JMP or JAL from `old`, each with its own dispatch (a return's
      * next instruction is not a call's): a register target may lie outside
      * IRAM (exec_run() faults); a call of a routine further up (the
@@ -721,80 +735,16 @@ top:
         goto out;
     DISPATCH();
 
-k_add:
-    STRAIGHT(PRU_OP_ADD);
-k_adc:
-    STRAIGHT(PRU_OP_ADC);
-k_sub:
-    STRAIGHT(PRU_OP_SUB);
-k_suc:
-    STRAIGHT(PRU_OP_SUC);
-k_lsl:
-    STRAIGHT(PRU_OP_LSL);
-k_lsr:
-    STRAIGHT(PRU_OP_LSR);
-k_rsb:
-    STRAIGHT(PRU_OP_RSB);
-k_rsc:
-    STRAIGHT(PRU_OP_RSC);
-k_and:
-    STRAIGHT(PRU_OP_AND);
-k_or:
-    STRAIGHT(PRU_OP_OR);
-k_xor:
-    STRAIGHT(PRU_OP_XOR);
-k_not:
-    STRAIGHT(PRU_OP_NOT);
-k_min:
-    STRAIGHT(PRU_OP_MIN);
-k_max:
-    STRAIGHT(PRU_OP_MAX);
-k_clr:
-    STRAIGHT(PRU_OP_CLR);
-k_set:
-    STRAIGHT(PRU_OP_SET);
-k_nop:
-    STRAIGHT(PRU_OP_NOP0);
-k_ldi:
-    STRAIGHT(PRU_OP_LDI);
-k_lmbd:
-    STRAIGHT(PRU_OP_LMBD);
-k_add32:
-    STRAIGHT(PD_ADD32);
-k_sub32:
-    STRAIGHT(PD_SUB32);
-k_add32i:
-    STRAIGHT(PD_ADD32I);
-k_sub32i:
-    STRAIGHT(PD_SUB32I);
-k_adc32:
-    STRAIGHT(PD_ADC32);
-k_and32:
-    STRAIGHT(PD_AND32);
-k_or32:
-    STRAIGHT(PD_OR32);
-k_xor32:
-    STRAIGHT(PD_XOR32);
-k_lsl32:
-    STRAIGHT(PD_LSL32);
-k_lsr32:
-    STRAIGHT(PD_LSR32);
-k_lsl32i:
-    STRAIGHT(PD_LSL32I);
-k_lsr32i:
-    STRAIGHT(PD_LSR32I);
-k_ldi32:
-    STRAIGHT(PD_LDI32);
-k_subi:
-    STRAIGHT(PD_SUBI);
-k_mini:
-    STRAIGHT(PD_MINI);
-k_minb32i:
-    STRAIGHT(PD_MINB32I);
-k_sub32b:
-    STRAIGHT(PD_SUB32B);
-k_subbbi:
-    STRAIGHT(PD_SUBBBI);
+    /* each straight kind: its handler (k_); at the start of a straight run
+     * (e_), the run (r_) if it fits */
+#define STRAIGHT_HANDLERS(label, kind)                                                             \
+    k_##label : STRAIGHT(kind);                                                                    \
+    e_##label : RUN_ENTER(k_##label);                                                              \
+    r_##label : exec_simple(r, d, kind, &run_pc, &carry);                                          \
+    d++;                                                                                           \
+    goto *rkinds[d->go];
+    PD_STRAIGHT_KINDS(STRAIGHT_HANDLERS)
+#undef STRAIGHT_HANDLERS
 k_qbgt:
     BRANCH(PRU_OP_QBGT);
 k_qbge:
@@ -841,6 +791,12 @@ k_qbeqwi:
     BRANCH_FAR(PD_QBEQWI);
 k_qbnewi:
     BRANCH_FAR(PD_QBNEWI);
+    /* a quick branch forward (PD_FORWARD): nothing for BRANCHED() */
+#define FORWARD_HANDLER(label, kind)                                                               \
+    f_##label : exec_simple(r, d, kind, &pc, &carry);                                              \
+    NEXT();
+    PD_QUICK_KINDS(FORWARD_HANDLER)
+#undef FORWARD_HANDLER
 k_jmp:
     old = pc;
     exec_simple(r, d, PRU_OP_JMP, &pc, &carry);
@@ -858,6 +814,40 @@ k_jali:
 k_r31: /* R31 read first; then the instruction's own handler */
     r[31] = gpi_r31(c, cyc);
     goto *kinds[d->inner];
+    /* the firmware's pairs (PD_PAIR_*) in a run: the second reads the
+     * first's result as computed */
+e_min_sub:
+    RUN_ENTER(k_minb32i);
+r_min_sub : {
+    uint32_t a = r[d->rs1];
+    uint8_t m = (uint8_t)(a < d->imm ? a : d->imm);
+    *rf_byte(r, d->rd, d->rdsh) = m;
+    carry = a >= m;
+    r[d->rs1] = a - m;
+    d += 2;
+    goto *rkinds[d->go];
+}
+e_lsl_xor:
+    RUN_ENTER(k_lsl32i);
+r_lsl_xor : {
+    uint32_t v = r[d->rs1] << (d->imm & 31u);
+    r[d->rd] = v;
+    r[d[1].rd] = v ^ op2w(r, &d[1]); /* op2 after the first's write */
+    d += 2;
+    goto *rkinds[d->go];
+}
+r_xor_qbbs : { /* the run's last; the branch at pc, in its cycle */
+    uint32_t v = r[d->rs1] ^ op2w(r, d);
+    r[d->rd] = v;
+    d++;
+    pc = (v >> (d->imm & 31u)) & 1u ? d->target : pc + 1;
+    NEXT();
+}
+e_r31: /* an R31 read (k_r31), the first of a straight run */
+    RUN_ENTER(k_r31);
+r_r31: /* ... or in a run: cyc is d->run cycles on, at the run's end */
+    r[31] = gpi_r31(c, cyc - d->run);
+    goto *rkinds[d->inner];
 
 k_r30: /* as exec_one(): the pins see the new R30 at the end of its cycle */
     exec_simple(r, d, d->kind, &pc, &carry);
@@ -967,6 +957,7 @@ out:
 #undef BRANCHED_FAR
 #undef JUMPED
 #undef LEAF_CALL
+#undef RUN_ENTER
 }
 
 enum pru_stop exec_run(struct pru_core *c, int64_t limit, bool one_step) {

@@ -213,7 +213,66 @@ static uint8_t r30_form(const struct pd *d) {
     return same && bytes ? PD_R30_XORB : PD_R30_XOR;
 }
 
-void predecode_word(struct pru_core *c, uint32_t pc) {
+/* The place of fast kind `fast` in PD_STRAIGHT_KINDS, or -1 if a straight
+ * run has none of it. */
+static int straight(uint8_t fast) {
+    switch (fast) {
+#define PLACE_CASE(label, kind)                                                                    \
+    case kind:                                                                                     \
+        return PD_PLACE_##label;
+        PD_STRAIGHT_KINDS(PLACE_CASE)
+    default:
+        return -1;
+    }
+}
+
+/* The place of fast kind `fast` in PD_QUICK_KINDS, or -1. */
+static int quick(uint8_t fast) {
+    switch (fast) {
+        PD_QUICK_KINDS(PLACE_CASE)
+#undef PLACE_CASE
+    default:
+        return -1;
+    }
+}
+
+/* The firmware's pair (PD_PAIR_*) that the word at pc begins, or 0. */
+static uint8_t pair(const struct pru_core *c, uint32_t pc) {
+    const struct pd *d = &c->pd[pc], *n = &c->pd[pc + 1];
+    if (d->fast == PD_MINB32I && n->fast == PD_SUB32B && n->rs1 == d->rs1 && n->rd == d->rs1 &&
+        n->rs2 == d->rd && n->rs2sh == d->rdsh && d->rd != d->rs1)
+        return PD_PAIR_MIN_SUB;
+    if (d->fast == PD_LSL32I && n->fast == PD_XOR32 && n->rs1 == d->rd)
+        return PD_PAIR_LSL_XOR;
+    if (d->fast == PD_XOR32 && n->fast == PD_QBBS32I && n->rs1 == d->rd && n->target > pc + 1)
+        return PD_PAIR_XOR_QBBS;
+    return 0;
+}
+
+/* The straight run from word pc on (from the word after it) and the fast
+ * loop's dispatch (.go; a run of one is not worth its check). Returns
+ * whether the run changed. */
+static bool set_run(struct pru_core *c, uint32_t pc) {
+    struct pd *d = &c->pd[pc];
+    int place = straight(d->fast), q = quick(d->fast);
+    bool r31 = d->fast == PD_R31_READ && straight(d->inner) >= 0;
+    uint32_t run = place >= 0 || r31 ? 1u + c->pd[pc + 1].run : 0u;
+    uint16_t old = d->run;
+    d->run = (uint16_t)(run < UINT16_MAX ? run : UINT16_MAX);
+    bool first = run >= 2 && run < UINT16_MAX; /* (the run's end known) */
+    uint8_t p = pair(c, pc);
+    if (p == PD_PAIR_XOR_QBBS || (p && first))
+        d->go = p;
+    else if (first)
+        d->go = (uint8_t)(r31 ? PD_RUN_R31 : PD_RUN + place);
+    else if (q >= 0 && d->target > pc)
+        d->go = (uint8_t)(PD_FORWARD + q);
+    else
+        d->go = d->fast;
+    return d->run != old;
+}
+
+static void decode_word(struct pru_core *c, uint32_t pc) {
     struct pd *d = &c->pd[pc];
     c->iram_gen++; /* what ff.c decoded from IRAM may be out of date */
     memset(d, 0, sizeof *d);
@@ -253,13 +312,25 @@ void predecode_word(struct pru_core *c, uint32_t pc) {
     }
 }
 
+void predecode_word(struct pru_core *c, uint32_t pc) {
+    decode_word(c, pc);
+    /* the runs of this word and of the straight words before it, as far
+     * back as they change */
+    set_run(c, pc);
+    while (pc > 0 && set_run(c, pc - 1))
+        pc--;
+}
+
 void predecode_all(struct pru_core *c) {
     for (uint32_t pc = 0; pc < c->iram_words; pc++)
-        predecode_word(c, pc);
+        decode_word(c, pc);
     /* one past the last word: the fast loop leaves there, so that it never
      * compares pc with the end of IRAM after a straight-line instruction */
     struct pd *end = &c->pd[c->iram_words];
     memset(end, 0, sizeof *end);
     end->kind = PD_BAD;
     end->fast = PD_END;
+    end->go = PD_END;
+    for (uint32_t pc = c->iram_words; pc-- > 0;)
+        set_run(c, pc);
 }

@@ -110,6 +110,12 @@ struct pru_params {
      * is replayed from a memo of what it read and wrote (leaf.h
      * leaf_call(); results are identical). */
     int leaf_call;
+    /* With fast_loop, a run of single-cycle register-only instructions
+     * without a branch (predecode.c set_run()) goes without the checks
+     * between its instructions (the cycle limit, a LOOP end) when neither
+     * falls within it or at its end, and the firmware's frequent pairs of
+     * instructions in it run as one (results are identical). */
+    int straight_run;
     /* Two PRUs of one PRU-ICSS (pruss.h): each core runs ahead of the other
      * up to its next cross-PRU event (TIMING.md "Two PRUs") instead of
      * both taking turns cycle by cycle; 0: cycle by cycle (results are
@@ -190,9 +196,8 @@ void pru_params_default(struct pru_params *p);
 
 /* Turns the core's fast path `name` off (--no-fast-path of pru-run and
  * biss-sim): ff (all of the fast-forward), ff-counted, ff-r31-bits,
- * ff-loop-delay, ff-count-loop, fast-loop, leaf-call, run-ahead. Returns 0,
- * or -1 if
- * there is none of that name. */
+ * ff-loop-delay, ff-count-loop, fast-loop, leaf-call, straight-run,
+ * run-ahead. Returns 0, or -1 if there is none of that name. */
 int pru_params_fast_path_off(struct pru_params *p, const char *name);
 
 /*

@@ -57,7 +57,9 @@ static void usage(FILE *f) {
             "                   slower): ff (all), ff-counted, ff-r31-bits, ff-loop-delay,\n"
             "                   ff-count-loop (emulator/core/TIMING.md \"Fast-forward\"),\n"
             "                   fast-loop (the threaded loop: every instruction the general way),\n"
-            "                   leaf-call (delay calls replayed from a memo)\n"
+            "                   leaf-call (delay calls replayed from a memo),\n"
+            "                   straight-run (runs of register-only instructions without\n"
+            "                   the checks between them)\n"
             "  --help           this text\n"
             "\n"
             "exit status: 0 halted, 1 an unreadable or unfit file, 2 bad usage, 3 fault,\n"
@@ -164,7 +166,7 @@ static int take_opt(int c, const char *val, struct opts *o) {
     case OPT_NO_FAST_PATH:
         if (pru_params_fast_path_off(&o->params, val))
             return bad("--no-fast-path '%s': expected ff, ff-counted, ff-r31-bits, "
-                       "ff-loop-delay, ff-count-loop, fast-loop or leaf-call",
+                       "ff-loop-delay, ff-count-loop, fast-loop, leaf-call or straight-run",
                        val);
         return 0;
     case OPT_MAX_CYCLES:

@@ -77,7 +77,10 @@ paths = ["ff-counted", "ff-r31-bits", "ff-loop-delay", "ff-count-loop", "ff"]
 # skipped either
 # the BiSS-C slave's quick step (biss_slave_set_quick): a clocked MA edge
 # in one step, the adaptive timeout's included; it skips nothing either
-loops = ["fast-loop", "leaf-call", "line-settled", "slave-quick"]
+# the core's straight runs (predecode.c set_run(), exec.c RUN_ENTER): runs
+# of register-only instructions, and the firmware's pairs in them, without
+# the checks between them; nothing skipped either
+loops = ["fast-loop", "leaf-call", "line-settled", "slave-quick", "straight-run"]
 # the link's bound on the next SL change (link_next_sl_change): it may
 # change how far the core skips, so only the results and the VCD count
 bounds = ["sl-reach"]
@@ -153,7 +156,10 @@ ahead_cases = cases + [
 ]
 for name, args in ahead_cases:
     ref = run_json(args, ["ma-ahead"])
-    check(run_json(args, []) == ref, "%s without ma-ahead: other results" % name)
+    on = run_json(args, [])
+    check(on == ref, "%s without ma-ahead: other results" % name)
+    # the core's straight runs where the slave takes the edges ahead (no VCD)
+    check(run_json(args, ["straight-run"]) == on, "%s without straight-run: other results" % name)
 halt = ["--image", os.path.join(os.path.dirname(__file__), "halt_in_frame.src"), "--freq", "10000000",
         "--frames", "5"]
 on, off = sim_any_exit(halt, []), sim_any_exit(halt, ["ma-ahead"])

@@ -227,8 +227,8 @@ START_TEST(no_fast_path) {
     ck_assert_ptr_nonnull(strstr(ref, "\ncycles=150002\ninstructions=150002\n"));
     const char *names[] = {
         "ff",        "ff-counted", "ff-r31-bits", "ff-loop-delay", "ff-count-loop",
-        "fast-loop", "leaf-call"};
-    for (unsigned i = 0; i < 7; i++) {
+        "fast-loop", "leaf-call",  "straight-run"};
+    for (unsigned i = 0; i < sizeof names / sizeof names[0]; i++) {
         snprintf(args, sizeof args, "--no-fast-path %s --dump-regs '%s'", names[i], img);
         ck_assert_int_eq(run(args), 0);
         ck_assert_str_eq(slurp(outf), ref);

@@ -1,0 +1,373 @@
+/*
+ * Check suite: straight runs (pru_params.straight_run; predecode.c
+ * set_run(), exec.c RUN_ENTER) give exactly what running their
+ * instructions one by one does.
+ *
+ * The predecode gives every word the length of the run of single-cycle
+ * register-only instructions without a branch (and R31 reads of them)
+ * from it on (struct pd .run) and what the fast loop dispatches on (.go):
+ * the first of a run of two or more, a quick branch forward, a pair of the
+ * firmware's clocked bit loop run as one. Here:
+ * - a program shaped like the firmware's bit loop gets the runs, pairs and
+ *   forward branches it should, and random IRAM writes leave every word's
+ *   run and dispatch those of the whole image predecoded anew;
+ * - random programs of runs (ALU ops on fields, the pairs with their
+ *   operands aliased or not, R31 reads of inputs that change every cycle,
+ *   forward branches, countdown loops, LOOPs whose end falls inside a run)
+ *   run in random chunks of cycles (so the cycle limit falls inside runs)
+ *   with straight runs on, off and without the fast loop: after every
+ *   chunk the registers, carry, PC, cycles and instructions agree.
+ */
+#include "check_run.h"
+#include "core_priv.h" /* struct pd: .run and .go */
+#include "core_test_util.h"
+#include "test_rng.h"
+
+#include <stdbool.h>
+#include <stdio.h>
+
+static uint64_t rng_state;
+
+static uint32_t rnd(void) {
+    return test_rng_next(&rng_state);
+}
+
+/* The firmware's bit loop (pru_fw/, the clocked half periods; its R30
+ * writes and delay call left out): the sample shifted in from R31, the
+ * CRC, the half periods' cycles taken from r12. */
+#define BIT_WORDS 19u
+static void make_bit_loop(uint32_t *w) {
+    const uint32_t loop[BIT_WORDS] = {
+        /* 0 */ alu(PRU_OP_LSL, R(2), R(31), B0(10)), /* R31 read, first of a run of 5 */
+        /* 1 */ alu(PRU_OP_ADD, R(3), R(2), R(2)),
+        /* 2 */ alu(PRU_OP_ADC, R(4), R(4), R(4)),
+        /* 3 */ alu(PRU_OP_ADC, R(5), R(5), R(5)),
+        /* 4 */ alu(PRU_OP_XOR, R(3), R(6), R(2)), /* with 5: PD_PAIR_XOR_QBBS */
+        /* 5 */ qbi(PRU_OP_QBBS, 3, R(3), 31),
+        /* 6 */ alui(PRU_OP_LSL, R(6), R(6), 1),
+        /* 7 */ qba(3),
+        /* 8 */ alui(PRU_OP_LSL, R(6), R(6), 1), /* with 9: PD_PAIR_LSL_XOR */
+        /* 9 */ alu(PRU_OP_XOR, R(6), R(6), R(8)),
+        /* 10 */ alui(PRU_OP_MIN, B0(11), R(12), 2), /* with 11: PD_PAIR_MIN_SUB */
+        /* 11 */ alu(PRU_OP_SUB, R(12), R(12), B0(11)),
+        /* 12 */ alui(PRU_OP_MIN, B1(11), R(12), 2), /* with 13: PD_PAIR_MIN_SUB */
+        /* 13 */ alu(PRU_OP_SUB, R(12), R(12), B1(11)),
+        /* 14 */ alui(PRU_OP_SUB, B0(7), B0(7), 1),
+        /* 15 */ qbi(PRU_OP_QBEQ, 2, W0(9), 0),
+        /* 16 */ halt(),
+        /* 17 */ qbi(PRU_OP_QBNE, -17, B0(7), 0),
+        /* 18 */ halt(),
+    };
+    memcpy(w, loop, sizeof loop);
+}
+
+static struct pru_core *loaded(const uint32_t *w, size_t n, int straight_run, int fast_loop) {
+    struct pru_params p;
+    pru_params_default(&p);
+    p.straight_run = straight_run;
+    p.fast_loop = fast_loop;
+    struct pru_core *c = pru_core_new(PRU_SOC_AM335X, &p);
+    ck_assert_ptr_nonnull(c);
+    ck_assert_int_eq(pru_load_image(c, w, n * 4), 0);
+    return c;
+}
+
+START_TEST(bit_loop_predecoded) {
+    uint32_t w[BIT_WORDS];
+    make_bit_loop(w);
+    struct pru_core *c = loaded(w, BIT_WORDS, 1, 1);
+    static const uint16_t run[BIT_WORDS] = {5, 4, 3, 2, 1, 0, 1, 0, 7, 6,
+                                            5, 4, 3, 2, 1, 0, 0, 0, 0};
+    for (unsigned pc = 0; pc < BIT_WORDS; pc++)
+        ck_assert_msg(c->pd[pc].run == run[pc], "word %u: run %u, not %u", pc, c->pd[pc].run,
+                      run[pc]);
+    ck_assert_uint_eq(c->pd[0].go, PD_RUN_R31);
+    ck_assert_uint_eq(c->pd[1].go, PD_RUN + PD_PLACE_add32);
+    ck_assert_uint_eq(c->pd[2].go, PD_RUN + PD_PLACE_adc32);
+    ck_assert_uint_eq(c->pd[4].go, PD_PAIR_XOR_QBBS);
+    ck_assert_uint_eq(c->pd[5].go, PD_FORWARD + PD_PLACE_qbbs32i);
+    ck_assert_uint_eq(c->pd[6].go, PD_LSL32I); /* a run of one */
+    ck_assert_uint_eq(c->pd[7].go, PD_FORWARD + PD_PLACE_qba);
+    ck_assert_uint_eq(c->pd[8].go, PD_PAIR_LSL_XOR);
+    ck_assert_uint_eq(c->pd[9].go, PD_RUN + PD_PLACE_xor32);
+    ck_assert_uint_eq(c->pd[10].go, PD_PAIR_MIN_SUB);
+    ck_assert_uint_eq(c->pd[11].go, PD_RUN + PD_PLACE_sub32b);
+    ck_assert_uint_eq(c->pd[12].go, PD_PAIR_MIN_SUB);
+    ck_assert_uint_eq(c->pd[14].go, PD_SUBBBI); /* the run's last */
+    ck_assert_uint_eq(c->pd[15].go, PD_FORWARD + PD_PLACE_qbeqwi);
+    ck_assert_uint_eq(c->pd[17].go, PD_QBNEBI);         /* backward */
+    ck_assert_uint_eq(c->pd[c->iram_words].go, PD_END); /* one past IRAM */
+    pru_core_free(c);
+}
+END_TEST
+
+/* Pairs whose operands are not the firmware's are not run as one. */
+START_TEST(pairs_need_their_operands) {
+    const uint32_t w[] = {
+        alui(PRU_OP_MIN, B0(11), R(12), 2),
+        alu(PRU_OP_SUB, R(12), R(12), B1(11)), /* b1 */
+        alui(PRU_OP_MIN, B0(12), R(12), 2),
+        alu(PRU_OP_SUB, R(12), R(12), B0(12)), /* B is A */
+        alui(PRU_OP_MIN, B0(11), R(12), 2),
+        alu(PRU_OP_SUB, R(13), R(12), B0(11)), /* rd */
+        alui(PRU_OP_LSL, R(6), R(6), 1),
+        alu(PRU_OP_XOR, R(6), R(7), R(6)), /* rs1 */
+        alu(PRU_OP_XOR, R(3), R(6), R(2)),
+        qbi(PRU_OP_QBBS, -1, R(3), 31), /* backward */
+        alu(PRU_OP_XOR, R(3), R(6), R(2)),
+        qbi(PRU_OP_QBBS, 2, R(4), 31), /* rs1 */
+        halt(),
+        halt(),
+    };
+    struct pru_core *c = loaded(w, sizeof w / sizeof w[0], 1, 1);
+    for (unsigned pc = 0; pc < sizeof w / sizeof w[0]; pc++)
+        ck_assert_msg(c->pd[pc].go < PD_PAIR_MIN_SUB, "word %u: a pair (%u)", pc, c->pd[pc].go);
+    pru_core_free(c);
+}
+END_TEST
+
+/* A random word for the IRAM writes: straight, a branch, an R31 read, a
+ * HALT, one of a pair. */
+static uint32_t rnd_word(void) {
+    switch (rnd() % 6) {
+    case 0:
+        return halt();
+    case 1:
+        return qbi(qb_ops[rnd() % N_QB_OPS], (int)(rnd() % 5) - 2, R(1 + rnd() % 3), rnd() % 4);
+    case 2:
+        return alu(PRU_OP_AND, R(1 + rnd() % 3), R(31), R(2));
+    case 3:
+        return rnd() % 2 ? alui(PRU_OP_MIN, B0(11), R(12), 2)
+                         : alu(PRU_OP_SUB, R(12), R(12), B0(11));
+    default:
+        return alu(alu_ops[rnd() % N_ALU_OPS], R(1 + rnd() % 3), R(1 + rnd() % 3), R(2));
+    }
+}
+
+START_TEST(iram_writes_keep_runs) {
+    rng_state = 0x2545F4914F6CDD1Dull;
+    enum { WORDS = 64 };
+    uint32_t w[WORDS];
+    for (unsigned i = 0; i < WORDS; i++)
+        w[i] = rnd_word();
+    struct pru_core *c = loaded(w, WORDS, 1, 1);
+    uint32_t iram = pru_soc_base(PRU_SOC_AM335X) + 0x34000u; /* PRU0 IRAM, host view */
+    for (unsigned rep = 0; rep < 2000; rep++) {
+        unsigned at = rnd() % 4 ? rnd() % 12 + 20 : rnd() % WORDS; /* often one stretch */
+        w[at] = rnd_word();
+        ck_assert_int_eq(pru_host_write32(c, iram + 4 * at, w[at]), 0);
+        if (rep % 10)
+            continue;
+        struct pru_core *fresh = loaded(w, WORDS, 1, 1);
+        for (unsigned pc = 0; pc <= WORDS; pc++) {
+            ck_assert_msg(c->pd[pc].run == fresh->pd[pc].run, "write %u: word %u run %u, anew %u",
+                          rep, pc, c->pd[pc].run, fresh->pd[pc].run);
+            ck_assert_msg(c->pd[pc].go == fresh->pd[pc].go, "write %u: word %u go %u, anew %u", rep,
+                          pc, c->pd[pc].go, fresh->pd[pc].go);
+        }
+        pru_core_free(fresh);
+    }
+    pru_core_free(c);
+}
+END_TEST
+
+/* Inputs that change every cycle: an R31 read in a run must be made in its
+ * own cycle. */
+static uint32_t inputs_at(void *ctx, int64_t t_ps) {
+    (void)ctx;
+    uint64_t k = (uint64_t)(t_ps / PRU_PS_PER_CYCLE);
+    return (uint32_t)(k * 0x9E3779B1u ^ (k >> 3)) & 0x3fffffffu;
+}
+
+/* A field r1..r8 (any of them), or r12 (the pair's counter). */
+static unsigned rnd_field(void) {
+    unsigned reg = rnd() % 5 ? 1 + rnd() % 8 : 12;
+    return rnd() % 3 ? R(reg) : ((rnd() % 7) << 5) | reg;
+}
+
+/* One straight instruction into w at *n. */
+static void straight(uint32_t *w, unsigned *n) {
+    switch (rnd() % 10) {
+    case 0:
+        w[(*n)++] = ldi(rnd_field(), rnd() & 0xffffu);
+        break;
+    case 1: /* an R31 read of it */
+        w[(*n)++] = alu(rnd() % 2 ? PRU_OP_XOR : PRU_OP_ADD, rnd_field(), R(31), rnd_field());
+        break;
+    case 2:
+        w[(*n)++] = alu(PRU_OP_AND, R(0), R(0), R(0)); /* a pad */
+        break;
+    case 3:
+        w[(*n)++] = alui(alu_ops[rnd() % N_ALU_OPS], rnd_field(), rnd_field(), rnd() % 256);
+        break;
+    default:
+        w[(*n)++] = alu(alu_ops[rnd() % N_ALU_OPS], rnd_field(), rnd_field(), rnd_field());
+        break;
+    }
+}
+
+/* One of the firmware's pairs, its registers drawn so that they alias now
+ * and then. */
+static void pair(uint32_t *w, unsigned *n) {
+    unsigned a = 1 + rnd() % 8, b = 1 + rnd() % 8, x = 1 + rnd() % 8;
+    switch (rnd() % 3) {
+    case 0: {
+        if (b == a)
+            b = a % 8 + 1;
+        unsigned field = ((rnd() % 4) << 5) | b; /* rB.b0..b3 */
+        w[(*n)++] = alui(PRU_OP_MIN, field, R(a), rnd() % 4);
+        w[(*n)++] = alu(PRU_OP_SUB, R(a), R(a), field);
+        break;
+    }
+    case 1:
+        w[(*n)++] = alui(PRU_OP_LSL, R(a), R(b), rnd() % 32);
+        w[(*n)++] = rnd() % 2 ? alu(PRU_OP_XOR, R(x), R(a), R(rnd() % 2 ? a : b))
+                              : alui(PRU_OP_XOR, R(x), R(a), rnd() % 256);
+        break;
+    default: /* the branch over up to 3 straight ones */
+        w[(*n)++] = alu(PRU_OP_XOR, R(a), R(b), R(x));
+        unsigned skip = rnd() % 4;
+        w[(*n)++] = qbi(PRU_OP_QBBS, 1 + (int)skip, R(a), rnd() % 32);
+        for (unsigned i = 0; i < skip; i++)
+            straight(w, n);
+        break;
+    }
+}
+
+/* Whatever comes next in a random program: mostly straight, pairs,
+ * branches forward; outside a loop's body also a countdown or a LOOP. */
+static void item(uint32_t *w, unsigned *n, bool in_loop);
+
+static void items(uint32_t *w, unsigned *n, unsigned k) {
+    for (unsigned i = 0; i < k; i++)
+        item(w, n, true);
+}
+
+static void item(uint32_t *w, unsigned *n, bool in_loop) {
+    unsigned r = rnd() % (in_loop ? 16 : 20);
+    if (r < 10) {
+        straight(w, n);
+    } else if (r < 14) {
+        pair(w, n);
+    } else if (r < 16) { /* a branch forward over straight ones */
+        unsigned skip = rnd() % 4;
+        w[(*n)++] = rnd() % 2
+                        ? qbi(qb_ops[rnd() % N_QB_OPS], 1 + (int)skip, rnd_field(), rnd() % 4)
+                        : qb(qb_ops[rnd() % N_QB_OPS], 1 + (int)skip, rnd_field(), rnd_field());
+        for (unsigned i = 0; i < skip; i++)
+            straight(w, n);
+    } else if (r < 18) { /* a countdown over straight ones and pairs */
+        w[(*n)++] = ldi(B3(9), 1 + rnd() % 4);
+        unsigned top = *n;
+        items(w, n, 1 + rnd() % 4);
+        w[(*n)++] = alui(PRU_OP_SUB, B3(9), B3(9), 1);
+        w[*n] = qbi(PRU_OP_QBNE, -(int)(*n - top), B3(9), 0);
+        (*n)++;
+    } else { /* a LOOP whose end lies inside a run: straight ones after it */
+        unsigned at = (*n)++;
+        items(w, n, 1 + rnd() % 5);
+        w[at] = loopi(*n - at, 1 + rnd() % 4);
+        straight(w, n);
+        straight(w, n);
+    }
+}
+
+#define WORDS    600u
+#define PROGRAMS 300u
+
+static void make_program(uint32_t *w) {
+    for (unsigned i = 0; i < WORDS; i++)
+        w[i] = halt();
+    unsigned n = 0;
+    while (n < WORDS - 80)
+        item(w, &n, false);
+}
+
+enum mode { RUNS_ON, RUNS_OFF, GENERAL, MODES };
+
+static struct pru_core *core_for(const uint32_t *w, enum mode m, uint32_t seed,
+                                 const struct pru_pins *pins) {
+    struct pru_core *c = loaded(w, WORDS, m == RUNS_ON, m != GENERAL);
+    pru_set_pins(c, pins);
+    pru_start(c);
+    uint64_t s = rng_state;
+    rng_state = seed | 1u;
+    for (unsigned i = 0; i < 30; i++)
+        pru_set_reg(c, i, rnd() % 4 ? rnd() % 8 : rnd());
+    rng_state = s;
+    return c;
+}
+
+static void same_state(struct pru_core *const *c, unsigned prog, int64_t end) {
+    for (unsigned m = 1; m < MODES; m++) {
+        for (unsigned i = 0; i < 32; i++)
+            ck_assert_msg(pru_reg(c[0], i) == pru_reg(c[m], i),
+                          "program %u, cycle %lld: r%u 0x%08x, mode %u 0x%08x", prog,
+                          (long long)end, i, pru_reg(c[0], i), m, pru_reg(c[m], i));
+        ck_assert_msg(pru_carry(c[0]) == pru_carry(c[m]), "program %u, cycle %lld: carry %d/%d",
+                      prog, (long long)end, pru_carry(c[0]), pru_carry(c[m]));
+        ck_assert_msg(pru_pc(c[0]) == pru_pc(c[m]), "program %u, cycle %lld: pc %u/%u", prog,
+                      (long long)end, pru_pc(c[0]), pru_pc(c[m]));
+        ck_assert_int_eq(pru_cycles(c[0]), pru_cycles(c[m]));
+        ck_assert_uint_eq(pru_instructions(c[0]), pru_instructions(c[m]));
+        ck_assert_int_eq(pru_get_fault(c[0])->cause, pru_get_fault(c[m])->cause);
+    }
+}
+
+/* Chunks a program may take (its bound: work, not wall-clock time). */
+#define MAX_CHUNKS 20000u
+
+START_TEST(random_runs_match) {
+    rng_state = 0x9E3779B97F4A7C15ull;
+    static uint32_t w[WORDS];
+    const struct pru_pins pins = {.inputs_at = inputs_at};
+    unsigned firsts = 0, pairs = 0;
+    for (unsigned prog = 0; prog < PROGRAMS; prog++) {
+        make_program(w);
+        struct pru_core *c[MODES];
+        uint32_t seed = rnd();
+        for (unsigned m = 0; m < MODES; m++)
+            c[m] = core_for(w, (enum mode)m, seed, &pins);
+        for (unsigned pc = 0; pc < WORDS; pc++) {
+            firsts += c[RUNS_ON]->pd[pc].go >= PD_RUN && c[RUNS_ON]->pd[pc].go <= PD_RUN_R31;
+            pairs += c[RUNS_ON]->pd[pc].go >= PD_PAIR_MIN_SUB;
+        }
+        unsigned chunks = 0;
+        for (; chunks < MAX_CHUNKS; chunks++) {
+            /* mostly short: the limit inside a run */
+            int64_t end = pru_cycles(c[0]) + 1 + rnd() % (rnd() % 4 ? 6 : 200);
+            enum pru_stop s[MODES];
+            for (unsigned m = 0; m < MODES; m++)
+                s[m] = pru_run_until_cycle(c[m], end);
+            for (unsigned m = 1; m < MODES; m++)
+                ck_assert_int_eq(s[m], s[0]);
+            same_state(c, prog, end);
+            if (s[0] != PRU_STOP_LIMIT)
+                break;
+        }
+        ck_assert_msg(pru_halted(c[0]), "program %u did not halt (%u chunks)", prog, chunks);
+        for (unsigned m = 0; m < MODES; m++)
+            pru_core_free(c[m]);
+    }
+    /* the programs had runs and pairs to take */
+    printf("runs: %u firsts of runs, %u pairs in %u programs\n", firsts, pairs, PROGRAMS);
+    ck_assert_uint_gt(firsts, 20u * PROGRAMS);
+    ck_assert_uint_gt(pairs, 5u * PROGRAMS);
+}
+END_TEST
+
+static Suite *runs_suite(void) {
+    Suite *s = suite_create("core_runs");
+    TCase *t = tcase_create("runs");
+    tcase_set_timeout(t, 0); /* none: bounded by its work (MAX_CHUNKS) */
+    tcase_add_test(t, bit_loop_predecoded);
+    tcase_add_test(t, pairs_need_their_operands);
+    tcase_add_test(t, iram_writes_keep_runs);
+    tcase_add_test(t, random_runs_match);
+    suite_add_tcase(s, t);
+    return s;
+}
+
+int main(void) {
+    return check_run(runs_suite());
+}
