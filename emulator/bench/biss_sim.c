@@ -199,7 +199,10 @@ static void usage(FILE *f) {
                "                     ff-count-loop (countdown delays run at once),\n"
                "                     fast-loop (the core's threaded execute loop: every\n"
                "                     instruction the general way), leaf-call (delay\n"
-               "                     calls replayed from a memo), sl-reach (the SL input\n"
+               "                     calls replayed from a memo), straight-run (runs of\n"
+               "                     register-only instructions without the checks\n"
+               "                     between them, the firmware's bit-loop pairs as\n"
+               "                     one), sl-reach (the SL input\n"
                "                     stays until an event could reach the master's pin),\n"
                "                     line-settled (a cable edge after a settled level\n"
                "                     without the low-pass arithmetic), slave-quick (a\n"
@@ -482,8 +485,8 @@ static int set_option(struct options *o, const char *a, const char *v) {
             o->no_ma_ahead = 1;
         } else if (pru_params_fast_path_off(&o->core, v) != 0) {
             return usage_error("--no-fast-path '%s': expected ff, ff-counted, ff-r31-bits, "
-                               "ff-loop-delay, ff-count-loop, fast-loop, leaf-call, sl-reach, "
-                               "line-settled, slave-quick, ma-ahead or run-ahead",
+                               "ff-loop-delay, ff-count-loop, fast-loop, leaf-call, straight-run, "
+                               "sl-reach, line-settled, slave-quick, ma-ahead or run-ahead",
                                v);
         }
     } else if (!strcmp(a, "--strict-window")) {
