@@ -184,7 +184,12 @@ _Static_assert(PD_KIND_END <= UINT8_MAX, "struct pd keeps kinds in a uint8_t");
  *                    first of a run;
  *   PD_PAIR_LSL_XOR  lsl rA, rB, imm; xor rC, rA, op2, the first of a run;
  *   PD_PAIR_XOR_QBBS xor rA, rB, op2; qbbs forward, rA, imm: a run's last
- *                    and the branch after it
+ *                    and the branch after it;
+ *   PD_PAIR_CALL_RET jal rX, imm (a call of a routine FF_MAX_BODY words or
+ *                    more back): with a JMP there that returns (the
+ *                    firmware's shortest delay, DLY_S1), the call and the
+ *                    return as one, checked as it runs (the JMP is another
+ *                    word: otherwise the call's own handler)
  *   (registers whole where no field is named).
  */
 enum {
@@ -202,6 +207,7 @@ enum {
     PD_PAIR_MIN_SUB = PD_FORWARD + PD_QUICK_COUNT,
     PD_PAIR_LSL_XOR,
     PD_PAIR_XOR_QBBS,
+    PD_PAIR_CALL_RET,
     PD_GO_END,
 };
 _Static_assert(PD_GO_END <= UINT8_MAX, "struct pd keeps .go in a uint8_t");

@@ -591,6 +591,7 @@ static void run_fast(struct pru_core *c, int64_t limit) {
         [PD_PAIR_MIN_SUB] = &&e_min_sub,
         [PD_PAIR_LSL_XOR] = &&e_lsl_xor,
         [PD_PAIR_XOR_QBBS] = &&k_xor32,
+        [PD_PAIR_CALL_RET] = &&e_call_ret,
         [PD_END] = &&out,
     };
     /* inside a straight run: its instructions without the checks, and
@@ -603,6 +604,7 @@ static void run_fast(struct pru_core *c, int64_t limit) {
         [PD_PAIR_MIN_SUB] = &&r_min_sub,
         [PD_PAIR_LSL_XOR] = &&r_lsl_xor,
         [PD_PAIR_XOR_QBBS] = &&r_xor_qbbs,
+        [PD_PAIR_CALL_RET] = &&e_call_ret,
         [PD_END] = &&out,
     };
 #undef K_ENTRY
@@ -809,8 +811,25 @@ k_jal:
 k_jali:
     old = pc;
     exec_simple(r, d, PD_JALI, &pc, &carry);
+jali_called:
     LEAF_CALL();
     JUMPED();
+e_call_ret: /* PD_PAIR_CALL_RET: the JAL (in IRAM, far back: no JUMPED()
+             * but the disarm), and if a JMP there returns, within the
+             * limit and meeting no LOOP end at the routine, the JMP too
+             * (forward: nothing for BRANCHED()); else as k_jali */
+    old = pc;
+    pc = d->imm & 0xffffu;
+    wr(r, d, old + 1);
+    if (runs && pd[pc].go == PRU_OP_JMP && cyc + 1 < limit && pc != loop_end &&
+        (op2v(r, &pd[pc]) & 0xffffu) == old + 1) {
+        if (ff)
+            ff_disarm(c);
+        pc = old + 1;
+        cyc++;
+        NEXT();
+    }
+    goto jali_called;
 k_r31: /* R31 read first; then the instruction's own handler */
     r[31] = gpi_r31(c, cyc);
     goto *kinds[d->inner];

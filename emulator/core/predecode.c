@@ -267,6 +267,9 @@ static bool set_run(struct pru_core *c, uint32_t pc) {
         d->go = (uint8_t)(r31 ? PD_RUN_R31 : PD_RUN + place);
     else if (q >= 0 && d->target > pc)
         d->go = (uint8_t)(PD_FORWARD + q);
+    else if (d->fast == PD_JALI && (d->imm & 0xffffu) < c->iram_words &&
+             (d->imm & 0xffffu) + FF_MAX_BODY <= pc)
+        d->go = PD_PAIR_CALL_RET; /* (what the routine is: looked at as it runs) */
     else
         d->go = d->fast;
     return d->run != old;

@@ -7,12 +7,14 @@
  * register-only instructions without a branch (and R31 reads of them)
  * from it on (struct pd .run) and what the fast loop dispatches on (.go):
  * the first of a run of two or more, a quick branch forward, a pair of the
- * firmware's clocked bit loop run as one. Here:
+ * firmware's clocked bit loop run as one, a call from far below (which
+ * runs as one with its routine's JMP if that returns). Here:
  * - a program shaped like the firmware's bit loop gets the runs, pairs and
  *   forward branches it should, and random IRAM writes leave every word's
  *   run and dispatch those of the whole image predecoded anew;
  * - random programs of runs (ALU ops on fields, the pairs with their
- *   operands aliased or not, R31 reads of inputs that change every cycle,
+ *   operands aliased or not, calls of routines of one JMP that returns or
+ *   goes elsewhere, R31 reads of inputs that change every cycle,
  *   forward branches, countdown loops, LOOPs whose end falls inside a run)
  *   run in random chunks of cycles (so the cycle limit falls inside runs)
  *   with straight runs on, off and without the fast loop: after every
@@ -126,6 +128,69 @@ START_TEST(pairs_need_their_operands) {
 }
 END_TEST
 
+/* A call from FF_MAX_BODY words or more below is PD_PAIR_CALL_RET; one
+ * from nearer, or of a target past IRAM, is not; run as one or not, the
+ * calls of a one-JMP routine give what the single steps give, also with
+ * a LOOP ending at the return and with the JMP going elsewhere. */
+START_TEST(call_return_as_one) {
+    uint32_t w[40];
+    for (unsigned i = 0; i < 40; i++)
+        w[i] = alui(PRU_OP_ADD, R(7), R(7), 1);
+    w[0] = qba(3);
+    w[1] = jmpr(R(5));    /* the routine */
+    w[2] = jmpr(W0(6));   /* a JMP elsewhere: r6 = 26 */
+    w[3] = jali(R(5), 1); /* near: not as one */
+    w[4] = ldi(R(6), 26);
+    w[5] = qba(6);                            /* to 11 */
+    w[6] = alu(PRU_OP_ADD, R(9), R(9), R(5)); /* a routine that is no JMP, ... */
+    w[7] = jmpr(R(5));                        /* ... whose op2 is the link */
+    w[8] = loopi(2, 2);                       /* its end a routine's JMP */
+    w[9] = qba(23);                           /* to 32 */
+    w[10] = jmpr(R(5));
+    w[20] = jali(W0(5), 1);                  /* as one */
+    w[21] = loopi(3, 2);                     /* ... */
+    w[22] = alui(PRU_OP_ADD, R(8), R(8), 1); /* ... */
+    w[23] = jali(R(5), 1);                   /* as one, the return the LOOP's end */
+    w[24] = jali(R(5), 2);                   /* to 26: 25 skipped */
+    w[25] = qba(-17);                        /* to 8 */
+    w[26] = jali(W2(5), 1);                  /* r5 = 27 << 16 | 25: to 25 */
+    w[30] = jali(R(5), 50);                  /* past IRAM: not as one */
+    w[32] = jali(R(5), 10);                  /* the LOOP's end: not as one */
+    w[33] = jali(R(5), 6);
+    w[34] = halt();
+    enum { ONE_RUN, CHUNKS, OFF, GENERAL_PATH, CORES };
+    struct pru_core *c[CORES] = {loaded(w, 40, 1, 1), loaded(w, 40, 1, 1), loaded(w, 40, 0, 1),
+                                 loaded(w, 40, 0, 0)};
+    ck_assert_uint_eq(c[0]->pd[3].go, PD_JALI);
+    ck_assert_uint_eq(c[0]->pd[20].go, PD_PAIR_CALL_RET);
+    ck_assert_uint_eq(c[0]->pd[23].go, PD_PAIR_CALL_RET);
+    ck_assert_uint_eq(c[0]->pd[24].go, PD_PAIR_CALL_RET);
+    ck_assert_uint_eq(c[0]->pd[26].go, PD_PAIR_CALL_RET);
+    ck_assert_uint_eq(c[0]->pd[30].go, PD_JALI);
+    for (unsigned m = 0; m < CORES; m++) {
+        pru_start(c[m]);
+        /* CHUNKS: limits 1 to 3 cycles on, between a call and its return */
+        for (unsigned k = 0; k < 1000 && !pru_halted(c[m]); k++)
+            pru_run_until_cycle(c[m], pru_cycles(c[m]) + (m == CHUNKS ? 1 + k % 3 : 1000));
+        ck_assert(pru_halted(c[m]));
+    }
+    for (unsigned m = 1; m < CORES; m++) {
+        for (unsigned i = 0; i < 32; i++)
+            ck_assert_uint_eq(pru_reg(c[0], i), pru_reg(c[m], i));
+        ck_assert_uint_eq(pru_pc(c[0]), pru_pc(c[m]));
+        ck_assert_int_eq(pru_cycles(c[0]), pru_cycles(c[m]));
+        ck_assert_uint_eq(pru_instructions(c[0]), pru_instructions(c[m]));
+    }
+    ck_assert_uint_eq(pru_reg(c[0], 8), 2); /* the LOOPs ran twice */
+    ck_assert_uint_eq(pru_reg(c[0], 7), 9); /* 11 .. 19, once */
+    ck_assert_uint_eq(pru_reg(c[0], 9), 34);
+    ck_assert_uint_eq(pru_reg(c[0], 5), 34);
+    ck_assert_int_eq(pru_cycles(c[0]), 38);
+    for (unsigned m = 0; m < CORES; m++)
+        pru_core_free(c[m]);
+}
+END_TEST
+
 /* A random word for the IRAM writes: straight, a branch, an R31 read, a
  * HALT, one of a pair. */
 static uint32_t rnd_word(void) {
@@ -234,6 +299,27 @@ static void pair(uint32_t *w, unsigned *n) {
     }
 }
 
+/* The routines at the program's start (make_program()): word y (1..8) is
+ * jmp r<y>; word CALL_PAD a pad before jmp r9 (no JMP at the target). */
+#define CALL_PAD      9u
+#define ROUTINE_WORDS 11u
+
+/* A call of a routine: r<y> the address past the word after the call
+ * (where the JMP goes unless the link write makes it the return), the
+ * link r<x>, its low or high half, x often y. */
+static void call(uint32_t *w, unsigned *n) {
+    if (rnd() % 5 == 0) {
+        w[(*n)++] = jali(W0(9), CALL_PAD); /* (B3(9): a countdown's) */
+        return;
+    }
+    unsigned y = 1 + rnd() % 8, x = rnd() % 4 ? y : 1 + rnd() % 8;
+    unsigned link = rnd() % 3 ? R(x) : rnd() % 2 ? W0(x) : W2(x);
+    unsigned past = *n + 3;
+    w[(*n)++] = ldi(R(y), past);
+    w[(*n)++] = jali(link, y);
+    straight(w, n); /* skipped unless it returns */
+}
+
 /* Whatever comes next in a random program: mostly straight, pairs,
  * branches forward; outside a loop's body also a countdown or a LOOP. */
 static void item(uint32_t *w, unsigned *n, bool in_loop);
@@ -244,7 +330,13 @@ static void items(uint32_t *w, unsigned *n, unsigned k) {
 }
 
 static void item(uint32_t *w, unsigned *n, bool in_loop) {
-    unsigned r = rnd() % (in_loop ? 16 : 20);
+    unsigned r = rnd() % (in_loop ? 18 : 22);
+    if (r >= 16 && (r < 18 || !in_loop)) {
+        call(w, n);
+        return;
+    }
+    if (r >= 18)
+        r -= 2;
     if (r < 10) {
         straight(w, n);
     } else if (r < 14) {
@@ -278,7 +370,12 @@ static void item(uint32_t *w, unsigned *n, bool in_loop) {
 static void make_program(uint32_t *w) {
     for (unsigned i = 0; i < WORDS; i++)
         w[i] = halt();
-    unsigned n = 0;
+    w[0] = qba(ROUTINE_WORDS);
+    for (unsigned y = 1; y <= 8; y++)
+        w[y] = jmpr(R(y));
+    w[CALL_PAD] = alu(PRU_OP_AND, R(0), R(0), R(0));
+    w[CALL_PAD + 1] = jmpr(R(9));
+    unsigned n = ROUTINE_WORDS;
     while (n < WORDS - 80)
         item(w, &n, false);
 }
@@ -321,7 +418,7 @@ START_TEST(random_runs_match) {
     rng_state = 0x9E3779B97F4A7C15ull;
     static uint32_t w[WORDS];
     const struct pru_pins pins = {.inputs_at = inputs_at};
-    unsigned firsts = 0, pairs = 0;
+    unsigned firsts = 0, pairs = 0, calls = 0;
     for (unsigned prog = 0; prog < PROGRAMS; prog++) {
         make_program(w);
         struct pru_core *c[MODES];
@@ -331,6 +428,7 @@ START_TEST(random_runs_match) {
         for (unsigned pc = 0; pc < WORDS; pc++) {
             firsts += c[RUNS_ON]->pd[pc].go >= PD_RUN && c[RUNS_ON]->pd[pc].go <= PD_RUN_R31;
             pairs += c[RUNS_ON]->pd[pc].go >= PD_PAIR_MIN_SUB;
+            calls += c[RUNS_ON]->pd[pc].go == PD_PAIR_CALL_RET;
         }
         unsigned chunks = 0;
         for (; chunks < MAX_CHUNKS; chunks++) {
@@ -350,9 +448,11 @@ START_TEST(random_runs_match) {
             pru_core_free(c[m]);
     }
     /* the programs had runs and pairs to take */
-    printf("runs: %u firsts of runs, %u pairs in %u programs\n", firsts, pairs, PROGRAMS);
+    printf("runs: %u firsts of runs, %u pairs (%u calls) in %u programs\n", firsts, pairs, calls,
+           PROGRAMS);
     ck_assert_uint_gt(firsts, 20u * PROGRAMS);
     ck_assert_uint_gt(pairs, 5u * PROGRAMS);
+    ck_assert_uint_gt(calls, 3u * PROGRAMS);
 }
 END_TEST
 
@@ -362,6 +462,7 @@ static Suite *runs_suite(void) {
     tcase_set_timeout(t, 0); /* none: bounded by its work (MAX_CHUNKS) */
     tcase_add_test(t, bit_loop_predecoded);
     tcase_add_test(t, pairs_need_their_operands);
+    tcase_add_test(t, call_return_as_one);
     tcase_add_test(t, iram_writes_keep_runs);
     tcase_add_test(t, random_runs_match);
     suite_add_tcase(s, t);
