@@ -185,6 +185,9 @@ _Static_assert(PD_KIND_END <= UINT8_MAX, "struct pd keeps kinds in a uint8_t");
  *   PD_PAIR_LSL_XOR  lsl rA, rB, imm; xor rC, rA, op2, the first of a run;
  *   PD_PAIR_XOR_QBBS xor rA, rB, op2; qbbs forward, rA, imm: a run's last
  *                    and the branch after it;
+ *   PD_PAIR_ADD_ADC2 add rA, rB, op2; adc rC, rD, rE; adc rF, rG, rH: the
+ *                    carry chain of three (the firmware's SHIFT_IN), in a
+ *                    run (each reads what the one before it wrote);
  *   PD_PAIR_CALL_RET jal rX, imm (a call of a routine FF_MAX_BODY words or
  *                    more back): with a JMP there that returns (the
  *                    firmware's shortest delay, DLY_S1), the call and the
@@ -208,6 +211,7 @@ enum {
     PD_PAIR_LSL_XOR,
     PD_PAIR_XOR_QBBS,
     PD_PAIR_CALL_RET,
+    PD_PAIR_ADD_ADC2,
     PD_GO_END,
 };
 _Static_assert(PD_GO_END <= UINT8_MAX, "struct pd keeps .go in a uint8_t");

@@ -592,6 +592,7 @@ static void run_fast(struct pru_core *c, int64_t limit) {
         [PD_PAIR_LSL_XOR] = &&e_lsl_xor,
         [PD_PAIR_XOR_QBBS] = &&k_xor32,
         [PD_PAIR_CALL_RET] = &&e_call_ret,
+        [PD_PAIR_ADD_ADC2] = &&e_add_adc2,
         [PD_END] = &&out,
     };
     /* inside a straight run: its instructions without the checks, and
@@ -605,6 +606,7 @@ static void run_fast(struct pru_core *c, int64_t limit) {
         [PD_PAIR_LSL_XOR] = &&r_lsl_xor,
         [PD_PAIR_XOR_QBBS] = &&r_xor_qbbs,
         [PD_PAIR_CALL_RET] = &&e_call_ret,
+        [PD_PAIR_ADD_ADC2] = &&r_add_adc2,
         [PD_END] = &&out,
     };
 #undef K_ENTRY
@@ -853,6 +855,19 @@ r_lsl_xor : {
     r[d->rd] = v;
     r[d[1].rd] = v ^ op2w(r, &d[1]); /* op2 after the first's write */
     d += 2;
+    goto *rkinds[d->go];
+}
+e_add_adc2:
+    RUN_ENTER(k_add32);
+r_add_adc2 : { /* each in turn, the carry passed on */
+    uint32_t a = r[d->rs1], s = a + op2v(r, d);
+    r[d->rd] = s;
+    uint64_t t = (uint64_t)r[d[1].rs1] + op2w(r, &d[1]) + (s < a);
+    r[d[1].rd] = (uint32_t)t;
+    uint64_t u = (uint64_t)r[d[2].rs1] + op2w(r, &d[2]) + (t >> 32);
+    r[d[2].rd] = (uint32_t)u;
+    carry = (int)(u >> 32);
+    d += 3;
     goto *rkinds[d->go];
 }
 r_xor_qbbs : { /* the run's last; the branch at pc, in its cycle */

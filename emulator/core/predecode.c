@@ -246,6 +246,8 @@ static uint8_t pair(const struct pru_core *c, uint32_t pc) {
         return PD_PAIR_LSL_XOR;
     if (d->fast == PD_XOR32 && n->fast == PD_QBBS32I && n->rs1 == d->rd && n->target > pc + 1)
         return PD_PAIR_XOR_QBBS;
+    if (d->fast == PD_ADD32 && n->fast == PD_ADC32 && n[1].fast == PD_ADC32)
+        return PD_PAIR_ADD_ADC2; /* (n is not the word past IRAM: n[1] is there) */
     return 0;
 }
 
@@ -318,10 +320,12 @@ static void decode_word(struct pru_core *c, uint32_t pc) {
 void predecode_word(struct pru_core *c, uint32_t pc) {
     decode_word(c, pc);
     /* the runs of this word and of the straight words before it, as far
-     * back as they change */
+     * back as they change, and the dispatch of the two before it (a
+     * PD_PAIR_ADD_ADC2 reads two words on) */
     set_run(c, pc);
-    while (pc > 0 && set_run(c, pc - 1))
-        pc--;
+    for (uint32_t k = 1; k <= pc; k++)
+        if (!set_run(c, pc - k) && k >= 2)
+            break;
 }
 
 void predecode_all(struct pru_core *c) {

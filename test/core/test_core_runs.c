@@ -12,10 +12,11 @@
  * - a program shaped like the firmware's bit loop gets the runs, pairs and
  *   forward branches it should, and random IRAM writes leave every word's
  *   run and dispatch those of the whole image predecoded anew;
- * - random programs of runs (ALU ops on fields, the pairs with their
- *   operands aliased or not, calls of routines of one JMP that returns or
- *   goes elsewhere, R31 reads of inputs that change every cycle,
- *   forward branches, countdown loops, LOOPs whose end falls inside a run)
+ * - random programs of runs (ALU ops on fields, the pairs and the carry
+ *   chain of three with their operands aliased or not, calls of routines
+ *   of one JMP that returns or goes elsewhere, R31 reads of inputs that
+ *   change every cycle, forward branches, countdown loops, LOOPs whose end
+ *   falls inside a run)
  *   run in random chunks of cycles (so the cycle limit falls inside runs)
  *   with straight runs on, off and without the fast loop: after every
  *   chunk the registers, carry, PC, cycles and instructions agree.
@@ -41,7 +42,7 @@ static uint32_t rnd(void) {
 static void make_bit_loop(uint32_t *w) {
     const uint32_t loop[BIT_WORDS] = {
         /* 0 */ alu(PRU_OP_LSL, R(2), R(31), B0(10)), /* R31 read, first of a run of 5 */
-        /* 1 */ alu(PRU_OP_ADD, R(3), R(2), R(2)),
+        /* 1 */ alu(PRU_OP_ADD, R(3), R(2), R(2)),    /* with 2, 3: PD_PAIR_ADD_ADC2 */
         /* 2 */ alu(PRU_OP_ADC, R(4), R(4), R(4)),
         /* 3 */ alu(PRU_OP_ADC, R(5), R(5), R(5)),
         /* 4 */ alu(PRU_OP_XOR, R(3), R(6), R(2)), /* with 5: PD_PAIR_XOR_QBBS */
@@ -84,7 +85,7 @@ START_TEST(bit_loop_predecoded) {
         ck_assert_msg(c->pd[pc].run == run[pc], "word %u: run %u, not %u", pc, c->pd[pc].run,
                       run[pc]);
     ck_assert_uint_eq(c->pd[0].go, PD_RUN_R31);
-    ck_assert_uint_eq(c->pd[1].go, PD_RUN + PD_PLACE_add32);
+    ck_assert_uint_eq(c->pd[1].go, PD_PAIR_ADD_ADC2);
     ck_assert_uint_eq(c->pd[2].go, PD_RUN + PD_PLACE_adc32);
     ck_assert_uint_eq(c->pd[4].go, PD_PAIR_XOR_QBBS);
     ck_assert_uint_eq(c->pd[5].go, PD_FORWARD + PD_PLACE_qbbs32i);
@@ -119,6 +120,16 @@ START_TEST(pairs_need_their_operands) {
         alu(PRU_OP_XOR, R(3), R(6), R(2)),
         qbi(PRU_OP_QBBS, 2, R(4), 31), /* rs1 */
         halt(),
+        halt(),
+        alu(PRU_OP_ADD, R(3), R(2), R(2)),
+        alu(PRU_OP_ADC, R(4), R(4), R(4)),
+        alu(PRU_OP_ADD, R(5), R(5), R(5)), /* no ADC */
+        alu(PRU_OP_ADD, R(3), R(2), R(2)),
+        alu(PRU_OP_ADC, R(4), R(4), R(4)),
+        alu(PRU_OP_ADC, W0(5), W0(5), W0(5)), /* a field */
+        alui(PRU_OP_ADD, R(3), R(2), 1),      /* an immediate */
+        alu(PRU_OP_ADC, R(4), R(4), R(4)),
+        alu(PRU_OP_ADC, R(5), R(5), R(5)),
         halt(),
     };
     struct pru_core *c = loaded(w, sizeof w / sizeof w[0], 1, 1);
@@ -192,9 +203,11 @@ START_TEST(call_return_as_one) {
 END_TEST
 
 /* A random word for the IRAM writes: straight, a branch, an R31 read, a
- * HALT, one of a pair. */
+ * HALT, one of a pair or of a carry chain. */
 static uint32_t rnd_word(void) {
-    switch (rnd() % 6) {
+    switch (rnd() % 7) {
+    case 5: /* of a carry chain */
+        return alu(rnd() % 2 ? PRU_OP_ADD : PRU_OP_ADC, R(1 + rnd() % 3), R(1 + rnd() % 3), R(2));
     case 0:
         return halt();
     case 1:
@@ -217,6 +230,16 @@ START_TEST(iram_writes_keep_runs) {
         w[i] = rnd_word();
     struct pru_core *c = loaded(w, WORDS, 1, 1);
     uint32_t iram = pru_soc_base(PRU_SOC_AM335X) + 0x34000u; /* PRU0 IRAM, host view */
+    /* a carry chain made and unmade by its last word: the run stays */
+    const uint32_t chain[4] = {alu(PRU_OP_ADD, R(1), R(2), R(2)), alu(PRU_OP_ADC, R(3), R(3), R(3)),
+                               alu(PRU_OP_ADC, R(4), R(4), R(4)), alu(PRU_OP_ADD, R(5), R(5), 0)};
+    for (unsigned i = 0; i < 4; i++)
+        ck_assert_int_eq(pru_host_write32(c, iram + 4 * (40 + i), chain[i]), 0);
+    ck_assert_uint_eq(c->pd[40].go, PD_PAIR_ADD_ADC2);
+    ck_assert_int_eq(pru_host_write32(c, iram + 4 * 42, alu(PRU_OP_XOR, R(4), R(4), R(4))), 0);
+    ck_assert_uint_eq(c->pd[40].go, PD_RUN + PD_PLACE_add32);
+    for (unsigned i = 0; i < 4; i++) /* as they were */
+        ck_assert_int_eq(pru_host_write32(c, iram + 4 * (40 + i), w[40 + i]), 0);
     for (unsigned rep = 0; rep < 2000; rep++) {
         unsigned at = rnd() % 4 ? rnd() % 12 + 20 : rnd() % WORDS; /* often one stretch */
         w[at] = rnd_word();
@@ -275,7 +298,14 @@ static void straight(uint32_t *w, unsigned *n) {
  * and then. */
 static void pair(uint32_t *w, unsigned *n) {
     unsigned a = 1 + rnd() % 8, b = 1 + rnd() % 8, x = 1 + rnd() % 8;
-    switch (rnd() % 3) {
+    switch (rnd() % 4) {
+    case 2: /* the carry chain, or nearly (its last no ADC) */
+        w[(*n)++] = alu(PRU_OP_ADD, R(a), R(b), rnd() % 2 ? R(x) : ((rnd() % 7) << 5) | x);
+        w[(*n)++] = rnd() % 2 ? alu(PRU_OP_ADC, R(x), R(x), R(a))
+                              : alui(PRU_OP_ADC, R(b), R(a), rnd() % 256);
+        w[(*n)++] = alu(rnd() % 4 ? PRU_OP_ADC : PRU_OP_ADD, R(1 + rnd() % 8), R(1 + rnd() % 8),
+                        R(1 + rnd() % 8));
+        break;
     case 0: {
         if (b == a)
             b = a % 8 + 1;
@@ -418,7 +448,7 @@ START_TEST(random_runs_match) {
     rng_state = 0x9E3779B97F4A7C15ull;
     static uint32_t w[WORDS];
     const struct pru_pins pins = {.inputs_at = inputs_at};
-    unsigned firsts = 0, pairs = 0, calls = 0;
+    unsigned firsts = 0, pairs = 0, calls = 0, chains = 0;
     for (unsigned prog = 0; prog < PROGRAMS; prog++) {
         make_program(w);
         struct pru_core *c[MODES];
@@ -429,6 +459,7 @@ START_TEST(random_runs_match) {
             firsts += c[RUNS_ON]->pd[pc].go >= PD_RUN && c[RUNS_ON]->pd[pc].go <= PD_RUN_R31;
             pairs += c[RUNS_ON]->pd[pc].go >= PD_PAIR_MIN_SUB;
             calls += c[RUNS_ON]->pd[pc].go == PD_PAIR_CALL_RET;
+            chains += c[RUNS_ON]->pd[pc].go == PD_PAIR_ADD_ADC2;
         }
         unsigned chunks = 0;
         for (; chunks < MAX_CHUNKS; chunks++) {
@@ -448,11 +479,12 @@ START_TEST(random_runs_match) {
             pru_core_free(c[m]);
     }
     /* the programs had runs and pairs to take */
-    printf("runs: %u firsts of runs, %u pairs (%u calls) in %u programs\n", firsts, pairs, calls,
-           PROGRAMS);
+    printf("runs: %u firsts of runs, %u pairs (%u calls, %u carry chains) in %u programs\n", firsts,
+           pairs, calls, chains, PROGRAMS);
     ck_assert_uint_gt(firsts, 20u * PROGRAMS);
     ck_assert_uint_gt(pairs, 5u * PROGRAMS);
     ck_assert_uint_gt(calls, 3u * PROGRAMS);
+    ck_assert_uint_gt(chains, 2u * PROGRAMS);
 }
 END_TEST
 
