@@ -78,8 +78,9 @@ paths = ["ff-counted", "ff-r31-bits", "ff-loop-delay", "ff-count-loop", "ff"]
 # the BiSS-C slave's quick step (biss_slave_set_quick): a clocked MA edge
 # in one step, the adaptive timeout's included; it skips nothing either
 # the core's straight runs (predecode.c set_run(), exec.c RUN_ENTER): runs
-# of register-only instructions, and the firmware's pairs in them, without
-# the checks between them; nothing skipped either
+# of register-only instructions, and the firmware's pairs and carry chain
+# in them, without the checks between them, and a call of a routine that is
+# one returning JMP as one with it; nothing skipped either
 loops = ["fast-loop", "leaf-call", "line-settled", "slave-quick", "straight-run"]
 # the link's bound on the next SL change (link_next_sl_change): it may
 # change how far the core skips, so only the results and the VCD count
