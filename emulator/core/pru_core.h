@@ -114,7 +114,9 @@ struct pru_params {
      * without a branch (predecode.c set_run()) goes without the checks
      * between its instructions (the cycle limit, a LOOP end) when neither
      * falls within it or at its end, and the firmware's frequent pairs of
-     * instructions in it run as one (results are identical). */
+     * instructions (and its add/adc/adc carry chain) in it run as one, as
+     * does a call from far below of a routine that is one returning JMP
+     * (results are identical). */
     int straight_run;
     /* Two PRUs of one PRU-ICSS (pruss.h): each core runs ahead of the other
      * up to its next cross-PRU event (TIMING.md "Two PRUs") instead of
