@@ -544,38 +544,17 @@ static void run_fast(struct pru_core *c, int64_t limit) {
     /* every kind not named (PD_SLOW, ...) goes the slow way */
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Woverride-init"
-    /* the kinds that are not straight, and their handlers */
+    /* the kinds that are not straight (the quick branches and the rest),
+     * and their handlers */
 #define OTHER_KINDS(X)                                                                             \
-    X(qbgt, PRU_OP_QBGT)                                                                           \
-    X(qbge, PRU_OP_QBGE)                                                                           \
-    X(qblt, PRU_OP_QBLT)                                                                           \
-    X(qble, PRU_OP_QBLE)                                                                           \
-    X(qbeq, PRU_OP_QBEQ)                                                                           \
-    X(qbne, PRU_OP_QBNE)                                                                           \
-    X(qba, PRU_OP_QBA)                                                                             \
-    X(qbbs, PRU_OP_QBBS)                                                                           \
-    X(qbbc, PRU_OP_QBBC)                                                                           \
+    PD_QUICK_KINDS(X)                                                                              \
     X(jmp, PRU_OP_JMP)                                                                             \
     X(jal, PRU_OP_JAL)                                                                             \
     X(r31, PD_R31_READ)                                                                            \
     X(r30, PD_R30_WRITE)                                                                           \
     X(r30_xor, PD_R30_XOR)                                                                         \
-    X(qbne32, PD_QBNE32)                                                                           \
-    X(qbeq32, PD_QBEQ32)                                                                           \
-    X(qbbs32, PD_QBBS32)                                                                           \
-    X(qbbc32, PD_QBBC32)                                                                           \
-    X(qbne32i, PD_QBNE32I)                                                                         \
-    X(qbeq32i, PD_QBEQ32I)                                                                         \
-    X(qbeqi, PD_QBEQI)                                                                             \
-    X(qbnei, PD_QBNEI)                                                                             \
     X(jali, PD_JALI)                                                                               \
-    X(qbeqbi, PD_QBEQBI)                                                                           \
-    X(qbnebi, PD_QBNEBI)                                                                           \
-    X(qbeqwi, PD_QBEQWI)                                                                           \
-    X(qbnewi, PD_QBNEWI)                                                                           \
     X(r30_xorb, PD_R30_XORB)                                                                       \
-    X(qbbs32i, PD_QBBS32I)                                                                         \
-    X(qbbc32i, PD_QBBC32I)                                                                         \
     X(mvi_ld, PD_MVI_LD)                                                                           \
     X(xfr_fixed, PD_XFR_FIXED)                                                                     \
     X(xpru, PD_XPRU)
