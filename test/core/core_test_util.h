@@ -173,4 +173,24 @@ static const int qb_ops[] = {PRU_OP_QBGT, PRU_OP_QBGE, PRU_OP_QBLT, PRU_OP_QBLE,
 #define N_ALU_OPS (sizeof alu_ops / sizeof alu_ops[0])
 #define N_QB_OPS  (sizeof qb_ops / sizeof qb_ops[0])
 
+/* Cores c[1..n-1] are where c[0] is (registers, carry, pc, cycles,
+ * instructions, fault): the same program run different ways, after
+ * program prog's chunk that ended at cycle end. */
+static inline void same_core_state(struct pru_core *const *c, unsigned n, unsigned prog,
+                                   int64_t end) {
+    for (unsigned m = 1; m < n; m++) {
+        for (unsigned i = 0; i < 32; i++)
+            ck_assert_msg(pru_reg(c[0], i) == pru_reg(c[m], i),
+                          "program %u, cycle %lld: r%u 0x%08x, mode %u 0x%08x", prog,
+                          (long long)end, i, pru_reg(c[0], i), m, pru_reg(c[m], i));
+        ck_assert_msg(pru_carry(c[0]) == pru_carry(c[m]), "program %u, cycle %lld: carry %d/%d",
+                      prog, (long long)end, pru_carry(c[0]), pru_carry(c[m]));
+        ck_assert_msg(pru_pc(c[0]) == pru_pc(c[m]), "program %u, cycle %lld: pc %u/%u", prog,
+                      (long long)end, pru_pc(c[0]), pru_pc(c[m]));
+        ck_assert_int_eq(pru_cycles(c[0]), pru_cycles(c[m]));
+        ck_assert_uint_eq(pru_instructions(c[0]), pru_instructions(c[m]));
+        ck_assert_int_eq(pru_get_fault(c[0])->cause, pru_get_fault(c[m])->cause);
+    }
+}
+
 #endif

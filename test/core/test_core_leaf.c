@@ -187,22 +187,6 @@ static struct pru_core *core_for(const uint32_t *w, enum mode m, uint32_t seed) 
     return c;
 }
 
-static void same_state(struct pru_core *const *c, unsigned prog, int64_t chunk_end) {
-    for (unsigned m = 1; m < MODES; m++) {
-        for (unsigned i = 0; i < 32; i++)
-            ck_assert_msg(pru_reg(c[0], i) == pru_reg(c[m], i),
-                          "program %u, cycle %lld: r%u 0x%08x, mode %u 0x%08x", prog,
-                          (long long)chunk_end, i, pru_reg(c[0], i), m, pru_reg(c[m], i));
-        ck_assert_msg(pru_carry(c[0]) == pru_carry(c[m]), "program %u, cycle %lld: carry %d/%d",
-                      prog, (long long)chunk_end, pru_carry(c[0]), pru_carry(c[m]));
-        ck_assert_msg(pru_pc(c[0]) == pru_pc(c[m]), "program %u, cycle %lld: pc %u/%u", prog,
-                      (long long)chunk_end, pru_pc(c[0]), pru_pc(c[m]));
-        ck_assert_int_eq(pru_cycles(c[0]), pru_cycles(c[m]));
-        ck_assert_uint_eq(pru_instructions(c[0]), pru_instructions(c[m]));
-        ck_assert_int_eq(pru_get_fault(c[0])->cause, pru_get_fault(c[m])->cause);
-    }
-}
-
 /* Chunks a program may take: one that has not halted by then fails (the
  * suite's bound is its work, PROGRAMS programs of at most MAX_CHUNKS
  * chunks, not a wall-clock time, which a loaded machine would overrun). */
@@ -222,7 +206,7 @@ static uint64_t compare_runs(const uint32_t *w, unsigned prog, unsigned most) {
             s[m] = pru_run_until_cycle(c[m], end);
         for (unsigned m = 1; m < MODES; m++)
             ck_assert_int_eq(s[m], s[0]);
-        same_state(c, prog, end);
+        same_core_state(c, MODES, prog, end);
         if (s[0] != PRU_STOP_LIMIT)
             break;
     }

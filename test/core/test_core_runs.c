@@ -425,22 +425,6 @@ static struct pru_core *core_for(const uint32_t *w, enum mode m, uint32_t seed,
     return c;
 }
 
-static void same_state(struct pru_core *const *c, unsigned prog, int64_t end) {
-    for (unsigned m = 1; m < MODES; m++) {
-        for (unsigned i = 0; i < 32; i++)
-            ck_assert_msg(pru_reg(c[0], i) == pru_reg(c[m], i),
-                          "program %u, cycle %lld: r%u 0x%08x, mode %u 0x%08x", prog,
-                          (long long)end, i, pru_reg(c[0], i), m, pru_reg(c[m], i));
-        ck_assert_msg(pru_carry(c[0]) == pru_carry(c[m]), "program %u, cycle %lld: carry %d/%d",
-                      prog, (long long)end, pru_carry(c[0]), pru_carry(c[m]));
-        ck_assert_msg(pru_pc(c[0]) == pru_pc(c[m]), "program %u, cycle %lld: pc %u/%u", prog,
-                      (long long)end, pru_pc(c[0]), pru_pc(c[m]));
-        ck_assert_int_eq(pru_cycles(c[0]), pru_cycles(c[m]));
-        ck_assert_uint_eq(pru_instructions(c[0]), pru_instructions(c[m]));
-        ck_assert_int_eq(pru_get_fault(c[0])->cause, pru_get_fault(c[m])->cause);
-    }
-}
-
 /* Chunks a program may take (its bound: work, not wall-clock time). */
 #define MAX_CHUNKS 20000u
 
@@ -470,7 +454,7 @@ START_TEST(random_runs_match) {
                 s[m] = pru_run_until_cycle(c[m], end);
             for (unsigned m = 1; m < MODES; m++)
                 ck_assert_int_eq(s[m], s[0]);
-            same_state(c, prog, end);
+            same_core_state(c, MODES, prog, end);
             if (s[0] != PRU_STOP_LIMIT)
                 break;
         }
