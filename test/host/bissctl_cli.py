@@ -561,17 +561,25 @@ SLV_MAGIC, SLV_PRU, SLV_ACK, SLV_ERR, SLV_FRAMES, SLV_MA_BIT = 0x120, 0x124, 0x1
 def play_encoder(mem, stop, slaves_seen):
     """The encoder's start-up whenever PRU1 runs without its magic (a load
     clears data RAM), then an ack for each configuration, its frames
-    counted."""
+    counted. A PRU does nothing while it is loaded, but this thread may be
+    between two reads when a load clears data RAM: a sequence number read
+    before the clearing and an ack read after it would ack an old
+    configuration in the new image. Only this thread writes the magic (on
+    its next turn), so the magic still there after both reads says that
+    they saw one image."""
     import time
+    magic = 0x564c5342
     while not stop.is_set():
         up = rd(mem, BASE + CTRL1) & 2
-        if up and rd(mem, BASE + D1 + SLV_MAGIC) != 0x564c5342:
+        if up and rd(mem, BASE + D1 + SLV_MAGIC) != magic:
             wr(mem, BASE + D1 + SLV_PRU, 1)
             wr(mem, BASE + D1 + SLV_MA_BIT, 1, 1)
-            wr(mem, BASE + D1 + SLV_MAGIC, 0x564c5342)
+            wr(mem, BASE + D1 + SLV_MAGIC, magic)
         seq = rd(mem, BASE + D1 + SLV_CFG_SEQ)
-        if up and seq and seq != rd(mem, BASE + D1 + SLV_ACK):
-            slaves_seen.append(rd(mem, BASE + D1 + SLV_NSLAVES, 1))
+        ack = rd(mem, BASE + D1 + SLV_ACK)
+        nslaves = rd(mem, BASE + D1 + SLV_NSLAVES, 1)
+        if up and seq and seq != ack and rd(mem, BASE + D1 + SLV_MAGIC) == magic:
+            slaves_seen.append(nslaves)
             wr(mem, BASE + D1 + SLV_ERR, 0)
             wr(mem, BASE + D1 + SLV_FRAMES, 4321)
             wr(mem, BASE + D1 + SLV_ACK, seq)
