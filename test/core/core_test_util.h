@@ -193,4 +193,26 @@ static inline void same_core_state(struct pru_core *const *c, unsigned n, unsign
     }
 }
 
+/* Runs cores c[0..n-1] (one program, run different ways) in the same random
+ * chunks of cycles, mostly of at most `most_short`, one in four of at most
+ * `most_long` (rnd: the suite's generator), until they stop other than at
+ * the limit or max_chunks chunks have run, comparing them after each
+ * chunk; the program must have halted. Returns the chunks run. */
+static inline unsigned run_same_chunks(struct pru_core *const *c, unsigned n, unsigned prog,
+                                       unsigned max_chunks, uint32_t (*rnd)(void),
+                                       unsigned most_short, unsigned most_long) {
+    unsigned chunks = 0;
+    for (; chunks < max_chunks; chunks++) {
+        int64_t end = pru_cycles(c[0]) + 1 + rnd() % (rnd() % 4 ? most_short : most_long);
+        enum pru_stop s0 = pru_run_until_cycle(c[0], end);
+        for (unsigned m = 1; m < n; m++)
+            ck_assert_int_eq(pru_run_until_cycle(c[m], end), s0);
+        same_core_state(c, n, prog, end);
+        if (s0 != PRU_STOP_LIMIT)
+            break;
+    }
+    ck_assert_msg(pru_halted(c[0]), "program %u did not halt (%u chunks)", prog, chunks);
+    return chunks;
+}
+
 #endif

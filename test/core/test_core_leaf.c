@@ -199,18 +199,7 @@ static uint64_t compare_runs(const uint32_t *w, unsigned prog, unsigned most) {
     uint32_t seed = rnd();
     for (unsigned m = 0; m < MODES; m++)
         c[m] = core_for(w, (enum mode)m, seed);
-    for (unsigned chunks = 0; chunks < MAX_CHUNKS; chunks++) {
-        int64_t end = pru_cycles(c[0]) + 1 + rnd() % (rnd() % 4 ? most / 10 : most);
-        enum pru_stop s[MODES];
-        for (unsigned m = 0; m < MODES; m++)
-            s[m] = pru_run_until_cycle(c[m], end);
-        for (unsigned m = 1; m < MODES; m++)
-            ck_assert_int_eq(s[m], s[0]);
-        same_core_state(c, MODES, prog, end);
-        if (s[0] != PRU_STOP_LIMIT)
-            break;
-    }
-    ck_assert_msg(pru_halted(c[0]), "program %u did not halt", prog);
+    run_same_chunks(c, MODES, prog, MAX_CHUNKS, rnd, most / 10, most);
     uint64_t hits = c[LEAF_ON]->leaf_hits;
     ck_assert_uint_eq(c[LEAF_OFF]->leaf_hits, 0);
     for (unsigned m = 0; m < MODES; m++)

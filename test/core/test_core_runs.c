@@ -445,20 +445,8 @@ START_TEST(random_runs_match) {
             calls += c[RUNS_ON]->pd[pc].go == PD_PAIR_CALL_RET;
             chains += c[RUNS_ON]->pd[pc].go == PD_PAIR_ADD_ADC2;
         }
-        unsigned chunks = 0;
-        for (; chunks < MAX_CHUNKS; chunks++) {
-            /* mostly short: the limit inside a run */
-            int64_t end = pru_cycles(c[0]) + 1 + rnd() % (rnd() % 4 ? 6 : 200);
-            enum pru_stop s[MODES];
-            for (unsigned m = 0; m < MODES; m++)
-                s[m] = pru_run_until_cycle(c[m], end);
-            for (unsigned m = 1; m < MODES; m++)
-                ck_assert_int_eq(s[m], s[0]);
-            same_core_state(c, MODES, prog, end);
-            if (s[0] != PRU_STOP_LIMIT)
-                break;
-        }
-        ck_assert_msg(pru_halted(c[0]), "program %u did not halt (%u chunks)", prog, chunks);
+        /* mostly short: the limit inside a run */
+        run_same_chunks(c, MODES, prog, MAX_CHUNKS, rnd, 6, 200);
         for (unsigned m = 0; m < MODES; m++)
             pru_core_free(c[m]);
     }
