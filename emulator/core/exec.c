@@ -491,7 +491,8 @@ static __attribute__((noinline)) bool mvi_load(struct pru_core *c, uint32_t *r, 
         return false; /* the read wraps (or the pointer is out of the file) */
     if (d->rs2)
         fld_set(r, d->rs1, d->rs1sh, d->rs1mask, ptr);
-    r[31] = gpi_r31(c, cyc); /* as exec_mvi(): whatever the pointer points at */
+    if (ptr + d->rdw > 124u) /* the word reaches R31 (as exec_mvi()) */
+        r[31] = gpi_r31(c, cyc);
     uint32_t val;
     memcpy(&val, (uint8_t *)r + ptr, sizeof val); /* up to byte 130: r[32] */
     if (d->rs2sh)

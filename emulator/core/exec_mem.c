@@ -176,7 +176,7 @@ int exec_xfr_fixed(struct pru_core *c, const struct pd *d, int64_t cycle) {
 /* MVIx: register-file pointers are byte fields of r1; addresses wrap at 128. */
 static uint32_t mvi_read(struct pru_core *c, unsigned addr, unsigned size) {
     uint32_t v = 0;
-    rf_before_read(c, 0, RF_BYTES);
+    rf_before_read(c, addr, size); /* a read that wraps past byte 127 covers R31 */
     for (unsigned i = 0; i < size; i++)
         v |= (uint32_t)rf(c)[(addr + i) & 0x7fu] << (8u * i);
     return v;

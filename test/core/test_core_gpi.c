@@ -299,6 +299,57 @@ START_TEST(direct_mode_delay) {
 }
 END_TEST
 
+/* An MVI load through a pointer reads the pins only where the word it
+ * loads reaches R31 (bytes 124..127), on the fast path as on the general
+ * one (exec_mvi(), rf_before_read()): a load below R31 leaves the inputs
+ * unasked; one that reaches it loads their value. */
+static int pin_reads;
+static uint32_t counted_in(void *ctx, int64_t t) {
+    (void)ctx;
+    (void)t;
+    pin_reads++;
+    return 0x5au;
+}
+
+START_TEST(mvi_reads_pins_only_at_r31) {
+    static const struct {
+        int op;
+        uint32_t ptr;
+        int reads;
+    } cases[] = {{PRU_OP_MVID, 16, 0},
+                 {PRU_OP_MVIW, 122, 0},
+                 {PRU_OP_MVIB, 123, 0},
+                 {PRU_OP_MVID, 121, 1},
+                 {PRU_OP_MVIB, 124, 1}};
+    for (int fast = 0; fast < 2; fast++) {
+        for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+            struct pru_params p;
+            pru_params_default(&p);
+            struct pru_core *c = pru_core_new(PRU_SOC_AM335X, &p);
+            struct pru_pins pins = {.inputs_at = counted_in};
+            pru_set_pins(c, &pins);
+            uint32_t prog[] = {ldi(R(1), cases[i].ptr),
+                               mvi(cases[i].op, PRU_MVI_DIRECT, R(2), PRU_MVI_IND, B0(1)), halt()};
+            pru_load_image(c, prog, sizeof prog);
+            pru_start(c);
+            pin_reads = 0;
+            if (fast) {
+                ck_assert_int_eq(pru_run(c, 100), PRU_STOP_HALT);
+            } else {
+                for (int s = 0; s < 3; s++)
+                    pru_step(c);
+            }
+            ck_assert_int_eq(pin_reads > 0, cases[i].reads);
+            if (cases[i].ptr == 124)
+                ck_assert_uint_eq(pru_reg(c, 2), 0x5a);
+            if (cases[i].ptr == 121)
+                ck_assert_uint_eq(pru_reg(c, 2) >> 24, 0x5a);
+            pru_core_free(c);
+        }
+    }
+}
+END_TEST
+
 /* Wait for the start bit (wbs r31.t29), then sample 5 bytes 8 shift clocks
  * apart; with and without fast-forward the results are identical. */
 /* Without fast-forward, with it, and with it on pins that give inputs_run
@@ -398,6 +449,7 @@ Suite *gpi_suite(void) {
     tcase_add_test(t, shift_sample_bracket);
     tcase_add_test(t, shift_read_by_instructions);
     tcase_add_test(t, direct_mode_delay);
+    tcase_add_test(t, mvi_reads_pins_only_at_r31);
     tcase_add_test(t, shift_poll_fast_forward_exact);
     tcase_add_test(t, cnt16_event_to_intc);
     tcase_add_test(t, unsupported_modes_fault);
