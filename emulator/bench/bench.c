@@ -141,14 +141,12 @@ static void vcd_frame_edge(struct bench *b, uint64_t frame, sim_ps t_master);
 
 /* In line in both of on_pin()'s paths: the one without the VCD (vcd
  * false) then makes no call and saves no registers. */
-static inline __attribute__((always_inline)) void ma_reached_slave(struct bench *b, int level,
-                                                                   bool vcd) {
+static inline __attribute__((always_inline)) void
+ma_edge_measured(struct bench *b, int level, bool active, uint64_t frame, bool vcd) {
     uint64_t idx = b->st.ma_edges_slave++;
     /* idx < ma_edges_master && ma_edges_master - idx <= MA_RING, in one
      * unsigned compare (idx >= ma_edges_master wraps to a large value) */
     bool timed = b->st.ma_edges_master - idx - 1 < MA_RING;
-    bool active = link_in_frame(&b->link);
-    uint64_t frame = slave_frames(b); /* the open frame's number, when active */
     if (active) {
         b->current_frame = frame;
     }
@@ -159,6 +157,69 @@ static inline __attribute__((always_inline)) void ma_reached_slave(struct bench 
         account_edge(b, frame, b->ma_times[idx % MA_RING], level);
     } else {
         b->prev_frame = 0;
+    }
+}
+
+static inline __attribute__((always_inline)) void ma_reached_slave(struct bench *b, int level,
+                                                                   bool vcd) {
+    /* the open frame's number, when active */
+    ma_edge_measured(b, level, link_in_frame(&b->link), slave_frames(b), vcd);
+}
+
+/* The MA edges taken ahead that the link counted (link_batch_ahead()),
+ * measured as each would have been when it reached the slave: inside the
+ * frame they were counted in, their levels alternating. Before anything
+ * looks at the measurements or the link tells of another pin. */
+static __attribute__((noinline)) void take_ahead(struct bench *b) {
+    uint64_t frame;
+    int level;
+    uint64_t n = link_take_ahead(&b->link, &frame, &level);
+    /* ma_edge_measured() for each, until they continue an accounted
+     * frame (each one after is timed too: the ring holds later edges
+     * longer) */
+    for (; n &&
+           !(b->prev_frame == frame + 1 &&
+             b->st.ma_edges_master - b->st.ma_edges_slave - 1 < MA_RING && b->cap_state != CAP_ON);
+         n--, level ^= 1) {
+        ma_edge_measured(b, level, true, frame, false);
+    }
+    if (!n) {
+        return;
+    }
+    /* then account_edge()'s half periods in a loop, in local variables */
+    struct bench_stats *st = &b->st;
+    uint64_t idx = st->ma_edges_slave, hn = st->half_periods;
+    int64_t lo = st->half_min_ps, hi = st->half_max_ps, prev_t = b->prev_t,
+            pending = b->pending_half;
+    st->ma_edges_slave += n;
+    b->current_frame = frame; /* as it is already: set with prev_frame */
+    for (; n; n--, level ^= 1, idx++) {
+        int64_t t = b->ma_times[idx % MA_RING], h = t - prev_t;
+        if (pending > 0) {
+            lo = hn == 0 || pending < lo ? pending : lo;
+            hi = hn == 0 || pending > hi ? pending : hi;
+            hn++;
+        }
+        pending = 0;
+        if (level) {
+            lo = hn == 0 || h < lo ? h : lo;
+            hi = hn == 0 || h > hi ? h : hi;
+            hn++;
+        } else {
+            pending = h;
+        }
+        prev_t = t;
+    }
+    st->half_periods = hn;
+    st->half_min_ps = lo;
+    st->half_max_ps = hi;
+    b->prev_t = prev_t;
+    b->pending_half = pending;
+}
+
+static inline void ahead_taken(struct bench *b) {
+    if (b->link.batch_n) {
+        take_ahead(b);
     }
 }
 
@@ -289,6 +350,7 @@ static __attribute__((noinline)) void on_pin_watched(struct bench *b, link_pin p
  * saved registers. */
 static void on_pin(void *ctx, link_pin pin, sim_ps t, int level) {
     struct bench *b = ctx;
+    ahead_taken(b);
     if (!b->vcd_on && b->cap_state == CAP_OFF && pin == LINK_MA_SLAVE) {
         ma_reached_slave(b, level, false);
         return;
@@ -391,6 +453,8 @@ static struct bench *bench_on(const struct bench_config *cfg, struct pru_core *c
     link_set_line_settled(&b->link, !cfg->no_line_settled);
     link_set_slave_quick(&b->link, !cfg->no_slave_quick);
     link_set_ma_ahead(&b->link, cfg->ma_ahead && !icss, PRU_PS_PER_CYCLE);
+    /* their measurements in batches (take_ahead), half the ring at most */
+    link_batch_ahead(&b->link, cfg->no_ahead_batch ? 0 : MA_RING / 2);
     struct pru_pins pins = {.ctx = b,
                             .inputs_at = pins_inputs_at,
                             .next_input_change = pins_next_change,
@@ -532,6 +596,7 @@ int bench_open_vcd(struct bench *b, const char *path, int64_t unit_ps) {
     const line_params *ma = &b->link.sc.ma_line;
     b->vcd_ma_lag = (sim_ps)(line_nominal_delay_ps(ma) + 10 * ma->jitter_rms_ps) + SIM_PS_PER_US;
     b->vcd_frame_open = false;
+    ahead_taken(b);
     b->vcd_on = true;
     observe_pins_update(b);
     sim_ps now = eq_now(&b->link.q);
@@ -606,6 +671,7 @@ static void bench_caught_up(struct bench *b) {
     /* the link catches up with the core (a halted core leaves it behind) */
     int64_t now = pru_time_ps(b->core);
     link_sl(&b->link, now);
+    ahead_taken(b);
     b->ahead_overrun = b->ahead_overrun || link_ahead_beyond(&b->link, now);
     if (b->vcd_on) {
         vcd_frame_update(b, now);
@@ -634,6 +700,7 @@ enum pru_stop bench_run_frames(struct bench *b, uint64_t frames, int64_t max_ps,
     const int64_t step = 100 * SIM_PS_PER_US;
     int64_t end = pru_time_ps(b->core) + max_ps;
     /* a step may close a frame or two more; they are not measured */
+    ahead_taken(b);
     b->frame_limit = frames;
     enum pru_stop why = PRU_STOP_LIMIT;
     while (slave_frames(b) < frames && pru_time_ps(b->core) < end) {
@@ -651,6 +718,7 @@ enum pru_stop bench_run_frames(struct bench *b, uint64_t frames, int64_t max_ps,
 }
 
 const struct bench_stats *bench_stats(struct bench *b) {
+    ahead_taken(b);
     marks_scan(b);
     uint64_t n = slave_frames(b);
     b->st.frames = n < b->frame_limit ? n : b->frame_limit;
@@ -667,10 +735,12 @@ void bench_set_ma_half(struct bench *b, unsigned half) {
 }
 
 void bench_set_frame_limit(struct bench *b, uint64_t frames) {
+    ahead_taken(b); /* measured under the limit they were taken under */
     b->frame_limit = frames;
 }
 
 void bench_reset_stats(struct bench *b) {
+    ahead_taken(b);
     marks_scan(b); /* what came before the reset is not measured after it */
     uint64_t edges_master = b->st.ma_edges_master, edges_slave = b->st.ma_edges_slave;
     memset(&b->st, 0, sizeof(b->st));
@@ -705,6 +775,7 @@ uint32_t bench_ssi_delay_ns(const struct bench *b) {
 }
 
 void bench_capture_frame(struct bench *b, uint64_t k) {
+    ahead_taken(b);
     capture_free(b);
     b->cap_state = CAP_ARMED;
     b->cap_frame = k;

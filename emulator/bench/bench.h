@@ -49,6 +49,9 @@ struct bench_config {
      * fault) is then no longer the one the event order gives: the caller
      * asks bench_ahead_overrun() and runs again without it. Single PRU. */
     int ma_ahead;
+    /* the fast path "ahead-batch" off: the edges "ma-ahead" takes are
+     * measured one by one, not in batches (link_batch_ahead) */
+    int no_ahead_batch;
 };
 
 /* Defaults: AM335x, MA on R30 bit 1, the "generic" profile. */

@@ -104,7 +104,7 @@ struct options {
     /* fast paths switched off (--no-fast-path): the core's in its
      * parameters (otherwise the defaults), the link's here */
     struct pru_params core;
-    int no_sl_reach, no_line_settled, no_slave_quick, no_ma_ahead;
+    int no_sl_reach, no_line_settled, no_slave_quick, no_ma_ahead, no_ahead_batch;
     /* strict and contention modes (emulator/core/TIMING.md) */
     unsigned strict, strict_window;
     int strict_log;
@@ -210,7 +210,9 @@ static void usage(FILE *f) {
                "                     BiSS-C chain's clock edges in one step), ma-ahead\n"
                "                     (those edges taken by the slave when the PRU drives\n"
                "                     them; a run that halts or faults before one arrives\n"
-               "                     runs again without), run-ahead (two PRUs: each\n"
+               "                     runs again without), ahead-batch (the bench's\n"
+               "                     measurements of those edges in batches, not one by\n"
+               "                     one), run-ahead (two PRUs: each\n"
                "                     runs ahead to its next cross-PRU event, not both\n"
                "                     cycle by cycle)\n"
                "  --max-ms T         stop after T ms of simulated time (default: ample)\n"
@@ -484,10 +486,13 @@ static int set_option(struct options *o, const char *a, const char *v) {
             o->no_slave_quick = 1;
         } else if (!strcmp(v, "ma-ahead")) {
             o->no_ma_ahead = 1;
+        } else if (!strcmp(v, "ahead-batch")) {
+            o->no_ahead_batch = 1;
         } else if (pru_params_fast_path_off(&o->core, v) != 0) {
             return usage_error("--no-fast-path '%s': expected ff, ff-counted, ff-r31-bits, "
                                "ff-loop-delay, ff-count-loop, fast-loop, leaf-call, straight-run, "
-                               "sl-reach, line-settled, slave-quick, ma-ahead or run-ahead",
+                               "sl-reach, line-settled, slave-quick, ma-ahead, ahead-batch or "
+                               "run-ahead",
                                v);
         }
     } else if (!strcmp(a, "--strict-window")) {
@@ -592,6 +597,7 @@ static int build_config(const struct options *o, struct bench_config *cfg) {
     /* not where the run writes as it goes (the VCD, the trace) or captures:
      * a run that stops short of an edge taken ahead runs again (main) */
     cfg->ma_ahead = !o->no_ma_ahead && !o->vcd && !o->svg && !o->trace;
+    cfg->no_ahead_batch = o->no_ahead_batch;
     cfg->pru.strict = o->strict;
     cfg->pru.strict_log = o->strict_log;
     if (o->strict_window) {

@@ -207,6 +207,13 @@ static __attribute__((noinline)) void ma_held(link_model *l, sim_ps t) {
         line_dir_take_held(m);
         l->ahead_last = m->held_out;
         record(l, LINK_MA_SLAVE, &l->ma_slave, m->held_out, m->held_level);
+        if (l->batch_n < l->batch_max) { /* counted for the observer (link_batch_ahead) */
+            if (l->batch_n++ == 0) {
+                l->batch_frame = link_frames(l);
+                l->batch_level = m->held_level;
+            }
+            return;
+        }
         observe(l, LINK_MA_SLAVE, m->held_out, m->held_level);
         return;
     }

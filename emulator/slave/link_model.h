@@ -53,6 +53,12 @@ typedef struct {
      * ma_queued: the latest arrival of an MA edge left to the queue. */
     bool ahead_on;
     sim_ps ahead_until, ahead_gap, ma_delay_max, ahead_last, ma_queued;
+    /* The edges taken ahead told to the observer in a batch
+     * (link_batch_ahead()): at most batch_max at a time; batch_n of them
+     * since it last took them, all of the open frame batch_frame, the
+     * first at level batch_level, the next ones alternating. */
+    uint64_t batch_max, batch_n, batch_frame;
+    int batch_level;
     const slave_model *model; /* sc.model, here with the rest */
     slave_status *slave;      /* the model's state (its first member): &own.status */
     /* the BiSS-C chain's clock edges take its quick step, called directly
@@ -143,6 +149,25 @@ void link_set_ma_ahead(link_model *l, int on, sim_ps gap_ps);
  * caller looks at the link between runs). */
 static inline void link_set_ahead_until(link_model *l, sim_ps t) {
     l->ahead_until = t;
+}
+/* Up to max MA edges taken ahead (0: none) are not shown to the observer
+ * one by one but counted for it to take (link_take_ahead()), which it
+ * must do before it is told of any pin and before it looks at what it
+ * made of the edges. They are MA at the slave pin, each after the one
+ * before in time and the other level, all inside one open frame; the
+ * observer sees no other pin while they are taken (ahead_ok()). */
+static inline void link_batch_ahead(link_model *l, uint64_t max) {
+    l->batch_max = max;
+}
+/* The edges counted since the last call: their number, and in *frame the
+ * open frame's number (link_frames() when they were taken) and in *level
+ * the first one's level. */
+static inline uint64_t link_take_ahead(link_model *l, uint64_t *frame, int *level) {
+    uint64_t n = l->batch_n;
+    l->batch_n = 0;
+    *frame = l->batch_frame;
+    *level = l->batch_level;
+    return n;
 }
 /* Whether an edge taken ahead reaches the slave after t. */
 static inline bool link_ahead_beyond(const link_model *l, sim_ps t) {

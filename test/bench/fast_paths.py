@@ -159,12 +159,15 @@ for name, args in ahead_cases:
     ref = run_json(args, ["ma-ahead"])
     on = run_json(args, [])
     check(on == ref, "%s without ma-ahead: other results" % name)
+    # the bench's measurements of those edges one by one, not in batches
+    check(run_json(args, ["ahead-batch"]) == on, "%s without ahead-batch: other results" % name)
     # the core's straight runs where the slave takes the edges ahead (no VCD)
     check(run_json(args, ["straight-run"]) == on, "%s without straight-run: other results" % name)
 halt = ["--image", os.path.join(os.path.dirname(__file__), "halt_in_frame.src"), "--freq", "10000000",
         "--frames", "5"]
 on, off = sim_any_exit(halt, []), sim_any_exit(halt, ["ma-ahead"])
 check(on == off, "halted in a frame, without ma-ahead: %s vs %s" % (on, off))
+check(sim_any_exit(halt, ["ahead-batch"]) == on, "halted in a frame, without ahead-batch")
 check(on[0]["stop"] == "halted" and on[0]["frames"] == 4, "halted in a frame: %s" % (on,))
 
 # two PRUs of one PRU-ICSS (no VCD with two): run ahead to each one's next

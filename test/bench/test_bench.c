@@ -122,6 +122,69 @@ START_TEST(test_ma_ahead_exact_or_overrun) {
 }
 END_TEST
 
+/* The fast path "ahead-batch": the edges taken ahead measured in batches
+ * (link_batch_ahead) of at most 1, 2, 5 or the bench's own number, or
+ * one by one (0), or none taken ahead: the same measurements and the same
+ * capture, with the run in short steps and a reset, a frame limit and a
+ * capture set between them. */
+START_TEST(test_ahead_batches_measure_alike) {
+    struct pruasm_image img = assemble_clock(10, 30, 6, 8000);
+    static const uint64_t max[] = {UINT64_MAX, 0, 1, 2, 5, 2048}; /* UINT64_MAX: not ahead */
+    struct bench_stats st[6];
+    sim_ps cap[6][2];
+    for (int i = 0; i < 6; i++) {
+        struct bench_config cfg;
+        bench_config_default(&cfg);
+        cfg.ma_ahead = i > 0;
+        struct bench *b = bench_with_image(&cfg, &img);
+        if (i > 0) {
+            link_batch_ahead(bench_link(b), max[i]);
+        }
+        enum pru_stop why = PRU_STOP_LIMIT;
+        for (sim_ps t = 3 * SIM_PS_PER_US; why == PRU_STOP_LIMIT; t += 3 * SIM_PS_PER_US) {
+            why = bench_run_until(b, t);
+            if (t == 51 * SIM_PS_PER_US) {
+                bench_reset_stats(b); /* after the second frame's clocks */
+            }
+            if (t == 90 * SIM_PS_PER_US) {
+                bench_set_frame_limit(b, 4); /* in the third's */
+            }
+            if (t == 99 * SIM_PS_PER_US) {
+                bench_capture_frame(b, 3); /* in the third's gap */
+            }
+        }
+        ck_assert_int_eq(why, PRU_STOP_HALT);
+        bench_run_until(b, pru_time_ps(bench_core(b)) + 100 * SIM_PS_PER_US);
+        ck_assert(!bench_ahead_overrun(b));
+        if (i > 0) {
+            ck_assert_int_gt(bench_link(b)->ahead_last, 0);
+        }
+        waveform *pins[4];
+        ck_assert_int_eq(bench_capture_get(b, pins, &cap[i][0], &cap[i][1]), 0);
+        st[i] = *bench_stats(b);
+        bench_free(b);
+    }
+    ck_assert_uint_eq(st[0].frames, 4);
+    ck_assert_uint_eq(st[0].half_periods, 2 * 59); /* frames 2 and 3 */
+    for (int i = 1; i < 6; i++) {
+        ck_assert_uint_eq(st[i].frames, st[0].frames);
+        ck_assert_uint_eq(st[i].frames_started, st[0].frames_started);
+        ck_assert_uint_eq(st[i].half_periods, st[0].half_periods);
+        ck_assert_int_eq(st[i].half_min_ps, st[0].half_min_ps);
+        ck_assert_int_eq(st[i].half_max_ps, st[0].half_max_ps);
+        ck_assert_uint_eq(st[i].periods, st[0].periods);
+        ck_assert_int_eq(st[i].period_min_ps, st[0].period_min_ps);
+        ck_assert_int_eq(st[i].period_max_ps, st[0].period_max_ps);
+        ck_assert(st[i].period_sum_ps == st[0].period_sum_ps);
+        ck_assert_uint_eq(st[i].ma_edges_master, st[0].ma_edges_master);
+        ck_assert_uint_eq(st[i].ma_edges_slave, st[0].ma_edges_slave);
+        ck_assert_int_eq(cap[i][0], cap[0][0]);
+        ck_assert_int_eq(cap[i][1], cap[0][1]);
+    }
+    pruasm_image_free(&img);
+}
+END_TEST
+
 /* The SL answer reaches the master one round trip after the MA edge that
  * caused it: check the ACK edge on a 100 m cable. */
 START_TEST(test_round_trip_on_long_cable) {
@@ -196,6 +259,7 @@ int main(void) {
     tcase_add_test(tc, test_clocked_frames_exact_timing);
     tcase_add_test(tc, test_round_trip_on_long_cable);
     tcase_add_test(tc, test_ma_ahead_exact_or_overrun);
+    tcase_add_test(tc, test_ahead_batches_measure_alike);
     tcase_add_test(tc, test_bad_config_is_refused);
     tcase_add_test(tc, test_fw_rates_and_error_names);
     suite_add_tcase(s, tc);
