@@ -170,17 +170,22 @@ static inline __attribute__((always_inline)) void ma_reached_slave(struct bench 
  * measured as each would have been when it reached the slave: inside the
  * frame they were counted in, their levels alternating. Before anything
  * looks at the measurements or the link tells of another pin. */
+/* Whether account_edge() would take the next edge to reach the slave, of
+ * the open frame `frame`, as one more edge of a frame under way: the
+ * frame measured, the edge timed, no capture in it. */
+static bool continues_frame(const struct bench *b, uint64_t frame) {
+    return frame < b->frame_limit && b->prev_frame == frame + 1 &&
+           b->st.ma_edges_master - b->st.ma_edges_slave - 1 < MA_RING && b->cap_state != CAP_ON;
+}
+
 static __attribute__((noinline)) void take_ahead(struct bench *b) {
     uint64_t frame;
     int level;
     uint64_t n = link_take_ahead(&b->link, &frame, &level);
-    /* ma_edge_measured() for each, until they continue an accounted
-     * frame (each one after is timed too: the ring holds later edges
-     * longer) */
-    for (; n &&
-           !(b->prev_frame == frame + 1 &&
-             b->st.ma_edges_master - b->st.ma_edges_slave - 1 < MA_RING && b->cap_state != CAP_ON);
-         n--, level ^= 1) {
+    /* ma_edge_measured() for each, until they continue a frame measured
+     * under the limit (then so do the rest: the ring holds later edges
+     * longer, the limit and the capture stay) */
+    for (; n && !continues_frame(b, frame); n--, level ^= 1) {
         ma_edge_measured(b, level, true, frame, false);
     }
     if (!n) {
