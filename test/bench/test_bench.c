@@ -126,7 +126,7 @@ END_TEST
  * (link_batch_ahead) of at most 1, 2, 5 or the bench's own number, or
  * one by one (0), or none taken ahead: the same measurements and the same
  * capture, with the run in short steps and a capture, a reset and a
- * frame limit set between them (the limit in a frame's clocks, below its
+ * frame limit set between them (the limit in a frame's clocks, at its
  * number: its later edges are not measured). */
 START_TEST(test_ahead_batches_measure_alike) {
     struct pruasm_image img = assemble_clock(10, 30, 6, 8000);
