@@ -757,11 +757,13 @@ void bench_reset_stats(struct bench *b) {
     b->pending_half = 0;
 }
 
-uint64_t bench_current_frame(const struct bench *b) {
+uint64_t bench_current_frame(struct bench *b) {
+    ahead_taken(b);
     return b->current_frame;
 }
 
-int64_t bench_frame_start_ps(const struct bench *b) {
+int64_t bench_frame_start_ps(struct bench *b) {
+    ahead_taken(b);
     return b->have_frame_start ? b->frame_start_t : -1;
 }
 

@@ -180,10 +180,10 @@ const struct bench_config *bench_config(const struct bench *b);
 
 /* The slave's number for the frame the master began last (its first MA
  * edge has reached the slave), or UINT64_MAX before the first. */
-uint64_t bench_current_frame(const struct bench *b);
+uint64_t bench_current_frame(struct bench *b);
 /* When that frame's first MA edge left the master pin (ps), -1 before the
  * first frame measured. */
-int64_t bench_frame_start_ps(const struct bench *b);
+int64_t bench_frame_start_ps(struct bench *b);
 
 /* Round trip the master sees from an MA edge to the SL answer, per the
  * models: MA line + slave output delay + SL line, nominal (no jitter). */
