@@ -166,10 +166,6 @@ static inline __attribute__((always_inline)) void ma_reached_slave(struct bench 
     ma_edge_measured(b, level, link_in_frame(&b->link), slave_frames(b), vcd);
 }
 
-/* The MA edges taken ahead that the link counted (link_batch_ahead()),
- * measured as each would have been when it reached the slave: inside the
- * frame they were counted in, their levels alternating. Before anything
- * looks at the measurements or the link tells of another pin. */
 /* Whether account_edge() would take the next edge to reach the slave, of
  * the open frame `frame`, as one more edge of a frame under way: the
  * frame measured, the edge timed, no capture in it. */
@@ -178,6 +174,10 @@ static bool continues_frame(const struct bench *b, uint64_t frame) {
            b->st.ma_edges_master - b->st.ma_edges_slave - 1 < MA_RING && b->cap_state != CAP_ON;
 }
 
+/* The MA edges taken ahead that the link counted (link_batch_ahead()),
+ * measured as each would have been when it reached the slave: inside the
+ * frame they were counted in, their levels alternating. Before anything
+ * looks at the measurements or the link tells of another pin. */
 static __attribute__((noinline)) void take_ahead(struct bench *b) {
     uint64_t frame;
     int level;
