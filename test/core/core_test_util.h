@@ -10,6 +10,7 @@
 
 #include "pru_core.h"
 #include "pru_isa.h"
+#include "test_rng.h"
 
 #include <check.h>
 #include <string.h>
@@ -140,6 +141,16 @@ static inline void mov32(uint32_t *w, unsigned *n, unsigned reg, uint32_t v) {
     w[(*n)++] = ldi(W0(reg), v & 0xffff);
 }
 
+/* An AM335x core with parameters p (NULL: the defaults) and the program
+ * loaded, not started. */
+static inline struct pru_core *core_loaded(const struct pru_params *p, const uint32_t *w,
+                                           size_t n) {
+    struct pru_core *c = pru_core_new(PRU_SOC_AM335X, p);
+    ck_assert_ptr_nonnull(c);
+    ck_assert_int_eq(pru_load_image(c, w, n * 4), 0);
+    return c;
+}
+
 /* A core with the program loaded, started, not yet run. */
 static inline struct pru_core *core_with(enum pru_soc soc, const uint32_t *w, size_t n) {
     struct pru_core *c = pru_core_new(soc, NULL);
@@ -147,6 +158,14 @@ static inline struct pru_core *core_with(enum pru_soc soc, const uint32_t *w, si
     ck_assert_int_eq(pru_load_image(c, w, n * 4), 0);
     pru_start(c);
     return c;
+}
+
+/* r0..r29 from the random stream seed: three in four below `small`, the
+ * rest any value (the random-program suites start each core alike). */
+static inline void seed_regs(struct pru_core *c, uint32_t seed, uint32_t small) {
+    uint64_t st = seed | 1u;
+    for (unsigned i = 0; i < 30; i++)
+        pru_set_reg(c, i, test_rng_next(&st) % 4 ? test_rng_next(&st) % small : test_rng_next(&st));
 }
 
 /* Run a program on an AM335x PRU0 until HALT (asserted). */

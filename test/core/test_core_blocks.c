@@ -71,9 +71,7 @@ START_TEST(load_costs_by_block) {
             pru_params_default(&p);
             unsigned *cost = (unsigned *)((char *)&p + blocks[i].field);
             *cost += 10 * k;
-            struct pru_core *c = pru_core_new(PRU_SOC_AM335X, &p);
-            ck_assert_ptr_nonnull(c);
-            ck_assert_int_eq(pru_load_image(c, w, n * 4), 0);
+            struct pru_core *c = core_loaded(&p, w, n);
             pru_start(c);
             ck_assert_int_eq(pru_run_until_cycle(c, 1000), PRU_STOP_HALT);
             cycles[k] = pru_cycles(c);

@@ -325,12 +325,11 @@ START_TEST(mvi_reads_pins_only_at_r31) {
         for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
             struct pru_params p;
             pru_params_default(&p);
-            struct pru_core *c = pru_core_new(PRU_SOC_AM335X, &p);
-            struct pru_pins pins = {.inputs_at = counted_in};
-            pru_set_pins(c, &pins);
             uint32_t prog[] = {ldi(R(1), cases[i].ptr),
                                mvi(cases[i].op, PRU_MVI_DIRECT, R(2), PRU_MVI_IND, B0(1)), halt()};
-            pru_load_image(c, prog, sizeof prog);
+            struct pru_core *c = core_loaded(&p, prog, sizeof prog / sizeof prog[0]);
+            struct pru_pins pins = {.inputs_at = counted_in};
+            pru_set_pins(c, &pins);
             pru_start(c);
             pin_reads = 0;
             if (fast) {

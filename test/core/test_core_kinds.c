@@ -110,9 +110,7 @@ static struct pru_core *run_case(const struct kcase *k, int fast_loop) {
     w[1] = k->word;
     for (unsigned i = 2; i < PROG_LEN; i++)
         w[i] = halt();
-    struct pru_core *c = pru_core_new(PRU_SOC_AM335X, &p);
-    ck_assert_ptr_nonnull(c);
-    ck_assert_int_eq(pru_load_image(c, w, sizeof w), 0);
+    struct pru_core *c = core_loaded(&p, w, sizeof w / sizeof w[0]);
     if (k->spad) {
         ck_assert_int_eq(pru_host_write32(c, CFG_SPP_ADDR, k->spp), 0);
         memcpy(c->spad, k->bank, sizeof k->bank);

@@ -175,15 +175,9 @@ static struct pru_core *core_for(const uint32_t *w, enum mode m, uint32_t seed) 
     pru_params_default(&p);
     p.leaf_call = m == LEAF_ON;
     p.fast_loop = m != GENERAL;
-    struct pru_core *c = pru_core_new(PRU_SOC_AM335X, &p);
-    ck_assert_ptr_nonnull(c);
-    ck_assert_int_eq(pru_load_image(c, w, WORDS * 4), 0);
+    struct pru_core *c = core_loaded(&p, w, WORDS);
     pru_start(c);
-    uint64_t s = rng_state;
-    rng_state = seed | 1u;
-    for (unsigned i = 0; i < 30; i++)
-        pru_set_reg(c, i, rnd() % 4 ? rnd() % 4 : rnd());
-    rng_state = s;
+    seed_regs(c, seed, 4);
     return c;
 }
 

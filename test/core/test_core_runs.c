@@ -69,10 +69,7 @@ static struct pru_core *loaded(const uint32_t *w, size_t n, int straight_run, in
     pru_params_default(&p);
     p.straight_run = straight_run;
     p.fast_loop = fast_loop;
-    struct pru_core *c = pru_core_new(PRU_SOC_AM335X, &p);
-    ck_assert_ptr_nonnull(c);
-    ck_assert_int_eq(pru_load_image(c, w, n * 4), 0);
-    return c;
+    return core_loaded(&p, w, n);
 }
 
 START_TEST(bit_loop_predecoded) {
@@ -417,11 +414,7 @@ static struct pru_core *core_for(const uint32_t *w, enum mode m, uint32_t seed,
     struct pru_core *c = loaded(w, WORDS, m == RUNS_ON, m != GENERAL);
     pru_set_pins(c, pins);
     pru_start(c);
-    uint64_t s = rng_state;
-    rng_state = seed | 1u;
-    for (unsigned i = 0; i < 30; i++)
-        pru_set_reg(c, i, rnd() % 4 ? rnd() % 8 : rnd());
-    rng_state = s;
+    seed_regs(c, seed, 8);
     return c;
 }
 

@@ -20,9 +20,7 @@ static struct pru_core *run_spad(const uint32_t *w, size_t n, uint32_t spp, int 
     pru_params_default(&p);
     p.xfr_shift_sub = sub;
     p.xfr_shift_fill = fill;
-    struct pru_core *c = pru_core_new(PRU_SOC_AM335X, &p);
-    ck_assert_ptr_nonnull(c);
-    ck_assert_int_eq(pru_load_image(c, w, n * 4), 0);
+    struct pru_core *c = core_loaded(&p, w, n);
     ck_assert_int_eq(pru_host_write32(c, CFG_SPP_ADDR, spp), 0);
     pru_start(c);
     ck_assert_int_eq(pru_run(c, 1000), want);
