@@ -191,33 +191,25 @@ static __attribute__((noinline)) void take_ahead(struct bench *b) {
     if (!n) {
         return;
     }
-    /* then account_edge()'s half periods in a loop, in local variables */
+    /* then account_edge()'s half periods of a frame under way, in a loop */
     struct bench_stats *st = &b->st;
-    uint64_t idx = st->ma_edges_slave, hn = st->half_periods;
-    int64_t lo = st->half_min_ps, hi = st->half_max_ps, prev_t = b->prev_t,
-            pending = b->pending_half;
+    uint64_t idx = st->ma_edges_slave;
+    int64_t prev_t = b->prev_t, pending = b->pending_half;
     st->ma_edges_slave += n;
     b->current_frame = frame; /* as it is already: set with prev_frame */
     for (; n; n--, level ^= 1, idx++) {
-        int64_t t = b->ma_times[idx % MA_RING], h = t - prev_t;
+        int64_t t = b->ma_times[idx % MA_RING];
         if (pending > 0) {
-            lo = hn == 0 || pending < lo ? pending : lo;
-            hi = hn == 0 || pending > hi ? pending : hi;
-            hn++;
+            count_half_period(st, pending);
         }
         pending = 0;
         if (level) {
-            lo = hn == 0 || h < lo ? h : lo;
-            hi = hn == 0 || h > hi ? h : hi;
-            hn++;
+            count_half_period(st, t - prev_t);
         } else {
-            pending = h;
+            pending = t - prev_t;
         }
         prev_t = t;
     }
-    st->half_periods = hn;
-    st->half_min_ps = lo;
-    st->half_max_ps = hi;
     b->prev_t = prev_t;
     b->pending_half = pending;
 }
