@@ -308,9 +308,55 @@ static void restart_timeout(biss_slave *b, sim_ps t) {
 
 /* ---- MA edges ---- */
 
-static void on_rise(biss_slave *b, sim_ps t) {
+/* What a rising MA edge at t is to the frame, before it is taken. */
+enum rise_kind { RISE_FIRST, RISE_ACK, RISE_BUSY, RISE_START, RISE_BIT };
+
+static inline enum rise_kind rise_kind(const biss_slave *b, sim_ps t) {
+    if (__builtin_expect(b->started, 1)) { /* a clocked frame's bits: laid out first */
+        return RISE_BIT;
+    }
+    unsigned rises = b->rises + 1; /* this rise's number in the frame */
+    if (rises == 1) {
+        return RISE_FIRST;
+    }
+    if (rises == 2) {
+        return RISE_ACK;
+    }
+    bool clocks_ok = rises >= 3 + b->cfg.busy_clocks;
+    bool time_ok = t - b->cur.ack_ps >= b->cfg.busy_ps;
+    return clocks_ok && time_ok ? RISE_START : RISE_BUSY;
+}
+
+/* The SL level a rise drives: the ACK's low, the start bit, the next data
+ * bit (low past the last); busy clocks and the first rise drive none. */
+static inline int rise_sl(const biss_slave *b, enum rise_kind kind) {
+    if (kind == RISE_BIT) {
+        return b->bit < b->nbits ? b->bits[b->bit] : 0;
+    }
+    return kind == RISE_START;
+}
+
+/* A rise's steps but the first rise's and SL's. */
+static inline void take_rise(biss_slave *b, sim_ps t, enum rise_kind kind) {
     b->rises++;
-    if (b->rises == 1) {
+    if (kind == RISE_BIT) {
+        if (b->bit < b->nbits && ++b->bit == b->nbits) {
+            b->cur.last_bit_ps = t;
+        }
+    } else if (kind == RISE_ACK) {
+        b->cur.acked = true;
+        b->cur.ack_ps = t;
+    } else if (kind == RISE_START) {
+        b->started = true;
+        b->cur.started = true;
+        b->cur.start_bit_ps = t;
+    }
+}
+
+static void on_rise(biss_slave *b, sim_ps t) {
+    enum rise_kind kind = rise_kind(b, t);
+    if (kind == RISE_FIRST) {
+        b->rises++;
         /* [MB4] "BiSS C Frame": "With the first rising edge at MAx all
          * sensors start calculating their sensor data" - the position is
          * taken here, not at the falling edge that starts the frame. */
@@ -321,28 +367,11 @@ static void on_rise(biss_slave *b, sim_ps t) {
         b->latches++;
         return;
     }
-    if (b->rises == 2) {
-        b->cur.acked = true;
-        b->cur.ack_ps = t;
-        drive_sl(b, t, 0);
-        return;
+    int level = rise_sl(b, kind);
+    take_rise(b, t, kind);
+    if (kind != RISE_BUSY) {
+        drive_sl(b, t, level);
     }
-    if (!b->started) {
-        bool clocks_ok = b->rises >= 3 + b->cfg.busy_clocks;
-        bool time_ok = t - b->cur.ack_ps >= b->cfg.busy_ps;
-        if (clocks_ok && time_ok) {
-            b->started = true;
-            b->cur.started = true;
-            b->cur.start_bit_ps = t;
-            drive_sl(b, t, 1);
-        }
-        return;
-    }
-    int level = b->bit < b->nbits ? b->bits[b->bit] : 0;
-    if (b->bit < b->nbits && ++b->bit == b->nbits) {
-        b->cur.last_bit_ps = t;
-    }
-    drive_sl(b, t, level);
 }
 
 /* MA's new level at t, and the times of the edges before it. */
@@ -388,27 +417,24 @@ bool biss_slave_ma_edge_quick(biss_slave *b, sim_ps t, int level) {
     if (!b->timeout_ev || b->timeout_ev_at > due) {
         return false; /* restart_timeout() would schedule */
     }
-    int sl = 0;
-    bool drive = false;
+    int sl = -1; /* the SL level the rise drives, -1 none */
     if (level) {
-        if (b->rises < 2 || !b->started || b->bit + 1 == b->nbits) {
-            return false; /* the first rise, the ACK, the busy clocks; the last bit */
+        enum rise_kind kind = rise_kind(b, t);
+        if (kind == RISE_FIRST) {
+            return false; /* it builds the frame's data */
         }
-        /* on_rise() after the start bit, but for the last bit, and its drive_sl() */
-        sl = b->bit < b->nbits ? b->bits[b->bit] : 0;
-        drive = sl_moves(b, sl);
-        if (drive && !eq_fits(b->q, t + b->cfg.out_delay_ps)) {
-            return false;
+        if (kind != RISE_BUSY && sl_moves(b, rise_sl(b, kind))) {
+            if (!eq_fits(b->q, t + b->cfg.out_delay_ps)) {
+                return false;
+            }
+            sl = rise_sl(b, kind);
         }
+        take_rise(b, t, kind); /* its fields and note_ma()'s are apart */
     }
     note_ma(b, t, level);
-    if (level) {
-        b->rises++;
-        b->bit += b->bit < b->nbits;
-        if (drive) {
-            b->sl_sched = sl;
-            eq_put(b->q, t + b->cfg.out_delay_ps, emit_sl, b, sl);
-        }
+    if (sl >= 0) {
+        b->sl_sched = sl;
+        eq_put(b->q, t + b->cfg.out_delay_ps, emit_sl, b, sl);
     }
     /* restart_timeout(): the pending event stays */
     b->timeout_due = due;

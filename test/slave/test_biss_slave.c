@@ -117,6 +117,25 @@ START_TEST(busy_time_delays_start_bit) {
 }
 END_TEST
 
+/* The start bit's rise is the first at or past busy_ps after the ACK:
+ * rise 5 lies 3 us after it. */
+START_TEST(busy_time_boundary) {
+    const sim_ps busy[2] = {3000 * NS, 3000 * NS + 1};
+    const char *want[2] = {"10001", "100001"};
+    for (int i = 0; i < 2; i++) {
+        biss_chain_cfg *c = cfg_12bit(0x800);
+        c->busy_ps = busy[i];
+        bench *x = bench_new(c, 500 * NS);
+        int bits[32];
+        char s[64];
+        rig_frame(&x->r, 28, 0, 0, 30 * US, bits);
+        bits_str(bits, 0, (int)strlen(want[i]), s);
+        ck_assert_str_eq(s, want[i]);
+        bench_free(x);
+    }
+}
+END_TEST
+
 START_TEST(busy_clocks_delay_start_bit) {
     biss_chain_cfg *c = cfg_12bit(0x800);
     c->busy_clocks = 1;
@@ -497,12 +516,23 @@ END_TEST
  * send the same SL edges, schedule the same events (ids) and close the
  * same frame records. */
 static unsigned long quick_hits;
+/* rises the quick step took before the start bit: the ACK, busy clocks,
+ * the start bit's */
+static unsigned long quick_acks, quick_busy, quick_starts;
 
 static void edge_quick_or_general(void *ctx, sim_ps t, int level) {
-    if (biss_slave_ma_edge_quick(ctx, t, level)) {
-        quick_hits++;
-    } else {
-        biss_slave_ma_edge_general(ctx, t, level);
+    biss_slave *b = ctx;
+    unsigned rises = b->rises;
+    bool started = b->started;
+    if (!biss_slave_ma_edge_quick(b, t, level)) {
+        biss_slave_ma_edge_general(b, t, level);
+        return;
+    }
+    quick_hits++;
+    if (level && rises == 1) {
+        quick_acks++;
+    } else if (level && !started) {
+        *(b->started ? &quick_starts : &quick_busy) += 1;
     }
 }
 
@@ -543,7 +573,7 @@ START_TEST(quick_step_matches_general) {
     }
     x[0]->r.slave = (sim_edge_sink){edge_quick_or_general, &x[0]->b};
     x[1]->r.slave = (sim_edge_sink){edge_general, &x[1]->b};
-    quick_hits = 0;
+    quick_hits = quick_acks = quick_busy = quick_starts = 0;
     uint64_t seed = 0x9e3779b97f4a7c15u + (uint64_t)_i;
     sim_ps t = 2 * US, h = 100 * NS;
     int level = 1;
@@ -585,6 +615,11 @@ START_TEST(quick_step_matches_general) {
     } else {
         ck_assert_uint_gt(quick_hits, edges / 2);
         ck_assert_uint_lt(quick_hits, edges);
+        ck_assert_uint_gt(quick_acks, 100);
+        ck_assert_uint_gt(quick_starts, 100);
+    }
+    if (_i == 1) { /* busy clocks only here */
+        ck_assert_uint_gt(quick_busy, 100);
     }
     ck_assert_uint_eq(x[0]->r.q.next_id, x[1]->r.q.next_id);
     ck_assert_uint_gt(x[0]->b.st.frames, 100);
@@ -613,6 +648,7 @@ int main(void) {
     tcase_add_test(tc, error_bit_active_low);
     tcase_add_test(tc, output_delay_after_ma_edge);
     tcase_add_test(tc, busy_time_delays_start_bit);
+    tcase_add_test(tc, busy_time_boundary);
     tcase_add_test(tc, busy_clocks_delay_start_bit);
     tcase_add_test(tc, fixed_timeout_then_sl_high);
     tcase_add_test(tc, lost_slave_holds_sl_low_until_a_new_frame_ends);
