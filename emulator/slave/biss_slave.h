@@ -191,9 +191,9 @@ void biss_slave_init(biss_slave *b, const biss_chain_cfg *cfg, event_queue *q, s
 void biss_slave_ma_edge(biss_slave *b, sim_ps t, int level);
 /* biss_slave_ma_edge() for an edge of a frame but its first rise (the
  * timeout's event pending no later than the new deadline, room in the
- * queue): the same steps with no call, so a
- * caller that has its own calls in tail position only saves no registers.
- * Returns false, having changed nothing, for any other edge. */
+ * queue): the same steps with no call, so a caller that has its own calls
+ * in tail position only saves no registers. Returns false, having changed
+ * nothing, for any other edge. */
 bool biss_slave_ma_edge_quick(biss_slave *b, sim_ps t, int level);
 /* The quick step on (default) or off: off, every edge takes the general
  * step (the same results, slower: the fast path "slave-quick"). */
