@@ -99,6 +99,22 @@ static void count_half_period(struct bench_stats *st, int64_t h) {
     st->half_periods++;
 }
 
+/* The half period up to an edge at t of a frame under way (the last edge
+ * at prev_t): counted at a rise, with the one before it that a fall left
+ * pending; a fall's waits in *pending for the next rise. */
+static inline void count_continuing(struct bench_stats *st, int64_t *pending, int64_t prev_t,
+                                    int64_t t, int level) {
+    if (*pending > 0) {
+        count_half_period(st, *pending);
+    }
+    *pending = 0;
+    if (level) {
+        count_half_period(st, t - prev_t);
+    } else {
+        *pending = t - prev_t;
+    }
+}
+
 /* An MA edge the slave took as part of frame `frame`, timed at the master.
  * A half period that ends in a falling edge counts once the next rising
  * edge comes in the same frame: a frame's last falling edge is the CDM
@@ -106,15 +122,7 @@ static void count_half_period(struct bench_stats *st, int64_t h) {
 static void account_edge(struct bench *b, uint64_t frame, int64_t t, int level) {
     struct bench_stats *st = &b->st;
     if (b->prev_frame == frame + 1) {
-        if (b->pending_half > 0) {
-            count_half_period(st, b->pending_half);
-        }
-        b->pending_half = 0;
-        if (level) {
-            count_half_period(st, t - b->prev_t);
-        } else {
-            b->pending_half = t - b->prev_t;
-        }
+        count_continuing(st, &b->pending_half, b->prev_t, t, level);
     } else {
         b->pending_half = 0;
         st->frames_started++;
@@ -139,14 +147,20 @@ static void account_edge(struct bench *b, uint64_t frame, int64_t t, int level) 
 
 static void vcd_frame_edge(struct bench *b, uint64_t frame, sim_ps t_master);
 
+/* Whether the ring still holds the master's time of the idx-th edge to
+ * reach the slave: idx < ma_edges_master && ma_edges_master - idx <=
+ * MA_RING, in one unsigned compare (idx >= ma_edges_master wraps to a
+ * large value). */
+static inline bool ring_holds(const struct bench *b, uint64_t idx) {
+    return b->st.ma_edges_master - idx - 1 < MA_RING;
+}
+
 /* In line in both of on_pin()'s paths: the one without the VCD (vcd
  * false) then makes no call and saves no registers. */
 static inline __attribute__((always_inline)) void
 ma_edge_measured(struct bench *b, int level, bool active, uint64_t frame, bool vcd) {
     uint64_t idx = b->st.ma_edges_slave++;
-    /* idx < ma_edges_master && ma_edges_master - idx <= MA_RING, in one
-     * unsigned compare (idx >= ma_edges_master wraps to a large value) */
-    bool timed = b->st.ma_edges_master - idx - 1 < MA_RING;
+    bool timed = ring_holds(b, idx);
     if (active) {
         b->current_frame = frame;
     }
@@ -171,7 +185,7 @@ static inline __attribute__((always_inline)) void ma_reached_slave(struct bench 
  * frame measured, the edge timed, no capture in it. */
 static bool continues_frame(const struct bench *b, uint64_t frame) {
     return frame < b->frame_limit && b->prev_frame == frame + 1 &&
-           b->st.ma_edges_master - b->st.ma_edges_slave - 1 < MA_RING && b->cap_state != CAP_ON;
+           ring_holds(b, b->st.ma_edges_slave) && b->cap_state != CAP_ON;
 }
 
 /* The MA edges taken ahead that the link counted (link_batch_ahead()),
@@ -199,15 +213,7 @@ static __attribute__((noinline)) void take_ahead(struct bench *b) {
     b->current_frame = frame; /* as it is already: set with prev_frame */
     for (; n; n--, level ^= 1, idx++) {
         int64_t t = b->ma_times[idx % MA_RING];
-        if (pending > 0) {
-            count_half_period(st, pending);
-        }
-        pending = 0;
-        if (level) {
-            count_half_period(st, t - prev_t);
-        } else {
-            pending = t - prev_t;
-        }
+        count_continuing(st, &pending, prev_t, t, level);
         prev_t = t;
     }
     b->prev_t = prev_t;
@@ -697,8 +703,7 @@ enum pru_stop bench_run_frames(struct bench *b, uint64_t frames, int64_t max_ps,
     const int64_t step = 100 * SIM_PS_PER_US;
     int64_t end = pru_time_ps(b->core) + max_ps;
     /* a step may close a frame or two more; they are not measured */
-    ahead_taken(b);
-    b->frame_limit = frames;
+    bench_set_frame_limit(b, frames);
     enum pru_stop why = PRU_STOP_LIMIT;
     while (slave_frames(b) < frames && pru_time_ps(b->core) < end) {
         int64_t next = pru_time_ps(b->core) + step;
