@@ -423,11 +423,12 @@ bool biss_slave_ma_edge_quick(biss_slave *b, sim_ps t, int level) {
         if (kind == RISE_FIRST) {
             return false; /* it builds the frame's data */
         }
-        if (kind != RISE_BUSY && sl_moves(b, rise_sl(b, kind))) {
+        int level_sl = rise_sl(b, kind);
+        if (kind != RISE_BUSY && sl_moves(b, level_sl)) {
             if (!eq_fits(b->q, t + b->cfg.out_delay_ps)) {
                 return false;
             }
-            sl = rise_sl(b, kind);
+            sl = level_sl;
         }
         take_rise(b, t, kind); /* its fields and note_ma()'s are apart */
     }
