@@ -325,6 +325,7 @@ struct ff_body {
 #define LEAF_MAX_BYTES 16u    /* bytes read first, bytes written */
 #define LEAF_RETRY     64u    /* calls a refused routine lets pass before another look, */
 #define LEAF_RETRY_MAX 65536u /* ... doubled each time it is refused again */
+#define LEAF_PAID      16u    /* replays that repay a recording (leaf.c leaf_other) */
 struct leaf_memo {
     /* what a replay looks at first */
     uint64_t key;      /* target | link rd << 16 | link shift << 24 | link mask << 32 */
@@ -339,8 +340,10 @@ struct leaf_memo {
     uint8_t cin_read, cin_val;     /* the carry read before written: 1 and its value */
     uint8_t carry_keep, carry_set; /* after it: carry & keep | set */
     bool more;
+    uint32_t hits; /* replays since it was recorded */
     /* the record */
-    uint32_t retry;      /* refused: calls to let pass before another look */
+    uint32_t retry;      /* refused: calls to let pass before another look; */
+                         /* accepted: calls with other inputs (leaf_other) */
     uint32_t retry_next; /* ... what retry started from */
     uint8_t n_in, n_out;
     uint8_t in_at[LEAF_MAX_BYTES], in_val[LEAF_MAX_BYTES];
@@ -440,8 +443,9 @@ struct pru_core {
     FILE *trace;
     struct ff_probe ff;
     struct leaf_memo leaf[LEAF_MEMOS];
-    uint64_t leaf_hits; /* leaf calls replayed from a memo */
-    bool checked;       /* strict or contention on: every instruction through exec_checked() */
+    uint64_t leaf_hits;    /* leaf calls replayed from a memo */
+    uint64_t leaf_records; /* leaf calls recorded (leaf.c leaf_record) */
+    bool checked;          /* strict or contention on: every instruction through exec_checked() */
     struct strict_state st;
 
     /* The PRU-ICSS around the core (pruss.c): pru0 holds the blocks both

@@ -158,6 +158,7 @@ static __attribute__((noinline)) void leaf_record(struct pru_core *c, struct lea
     uint8_t st[RF_BYTES] = {0};
     const uint8_t *rf = (const uint8_t *)r;
     memcpy(r, c->r, sizeof r);
+    c->leaf_records++;
     *m = (struct leaf_memo){.key = leaf_key(jal, target),
                             .iram_gen = c->iram_gen,
                             .retry = LEAF_RETRY,
@@ -236,6 +237,14 @@ static __attribute__((noinline)) void leaf_record(struct pru_core *c, struct lea
     }
 }
 
+/* The calls to let pass before the next look: LEAF_RETRY, then twice the
+ * last, up to LEAF_RETRY_MAX. */
+static uint32_t leaf_backoff(uint32_t last) {
+    if (!last)
+        return LEAF_RETRY;
+    return last < LEAF_RETRY_MAX / 2 ? 2 * last : LEAF_RETRY_MAX;
+}
+
 /* A new record of the call into m, which it replaces when accepted, or
  * when refused unless m is a memo of another routine still current (a
  * routine refused at once costs little to look at again). True if
@@ -246,11 +255,41 @@ bool leaf_learn(struct pru_core *c, struct leaf_memo *m, const struct pd *jal, u
     leaf_record(c, &rec, jal, jal_pc, target, carry);
     bool again = m->key == rec.key && m->iram_gen == rec.iram_gen && !m->cycles;
     if (!rec.cycles && again) /* refused again: look twice as seldom */
-        rec.retry = m->retry_next < LEAF_RETRY_MAX / 2 ? 2 * m->retry_next : LEAF_RETRY_MAX;
+        rec.retry = leaf_backoff(m->retry_next);
     rec.retry_next = rec.retry;
+    if (rec.cycles)
+        rec.retry = rec.retry_next = 0; /* accepted: leaf_other()'s from here */
     if (rec.cycles || !m->cycles || m->iram_gen != c->iram_gen)
         *m = rec;
     return rec.cycles != 0;
+}
+
+/* A recording costs several times the routine's run, so a memo that has
+ * not repaid its own (LEAF_PAID replays) when the inputs change is not
+ * recorded again at once: calls with other inputs run the routine, the
+ * next `retry` of them, a number that doubles each time (leaf_backoff()).
+ * A routine that reads data does that: the firmware's delay tails end in
+ * the bit-grid check from H = 16 on (pru_fw/config.p DLY_CHK), which reads
+ * the sample register, a pattern that changes at almost every call; at
+ * H = 16 to 25 (4 to 6.25 MHz) the tails have no turn back and would be
+ * recorded every time. */
+bool leaf_other(struct pru_core *c, struct leaf_memo *m, const struct pd *jal, uint32_t jal_pc,
+                uint32_t target, int carry) {
+    if (m->retry) {
+        m->retry--;
+        return false;
+    }
+    uint32_t next = m->hits >= LEAF_PAID ? 0 : leaf_backoff(m->retry_next);
+    struct leaf_memo rec;
+    leaf_record(c, &rec, jal, jal_pc, target, carry);
+    if (!rec.cycles) { /* refused for these inputs: m stays for its own */
+        m->hits = 0;
+        m->retry = m->retry_next = next;
+        return false;
+    }
+    rec.retry = rec.retry_next = next;
+    *m = rec;
+    return true;
 }
 
 /* The inputs and outputs past the first two (m->more). */

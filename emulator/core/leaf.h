@@ -19,6 +19,12 @@ static inline uint64_t leaf_key(const struct pd *jal, uint32_t target) {
 __attribute__((noinline)) bool leaf_learn(struct pru_core *c, struct leaf_memo *m,
                                           const struct pd *jal, uint32_t jal_pc, uint32_t target,
                                           int carry);
+/* leaf.c: memo m, accepted, does not apply to these inputs: a new record
+ * of the call into m (true if accepted: then it applies), or none for now
+ * (false). */
+__attribute__((noinline)) bool leaf_other(struct pru_core *c, struct leaf_memo *m,
+                                          const struct pd *jal, uint32_t jal_pc, uint32_t target,
+                                          int carry);
 __attribute__((noinline)) bool leaf_more_same(const struct leaf_memo *m, const uint8_t *rf);
 __attribute__((noinline)) void leaf_more_apply(const struct leaf_memo *m, uint8_t *rf);
 
@@ -51,7 +57,7 @@ leaf_call(struct pru_core *c, const struct pd *jal, uint32_t jal_pc, uint32_t ta
                         (unsigned)(rf[m->in1_at] ^ m->in1_val) |
                         ((unsigned)(*carry ^ m->cin_val) & m->cin_read);
         bool same = diff == 0 && (!m->more || leaf_more_same(m, rf));
-        if (__builtin_expect(!same, 0) && !leaf_learn(c, m, jal, jal_pc, target, *carry))
+        if (__builtin_expect(!same, 0) && !leaf_other(c, m, jal, jal_pc, target, *carry))
             return 0; /* other inputs */
     }
     uint32_t ret = jal_pc + 1;
@@ -76,6 +82,7 @@ leaf_call(struct pru_core *c, const struct pd *jal, uint32_t jal_pc, uint32_t ta
         }
     }
     *carry = (*carry & m->carry_keep) | m->carry_set;
+    m->hits++;
     c->leaf_hits++;
     return m->cycles;
 }
