@@ -367,7 +367,7 @@ struct ff_probe {
     int carry;
     uint64_t skipped;
     uint32_t r31_mask;              /* R31 bits the armed loop looks at (horizons of R31 reads) */
-    struct ff_body body[FF_BODIES]; /* by loop top modulo FF_BODIES */
+    struct ff_body body[FF_BODIES]; /* any body in any entry (ff.c body()) */
 };
 
 /* Strict and contention modes (strict.c). Violations wait in `pending`
@@ -460,6 +460,12 @@ struct pru_core {
      * front of it); CYCLE_NEVER while the core runs alone or the two take
      * turns cycle by cycle. */
     int64_t xlimit;
+    /* ff.c body(): the entry of ff.body looked up last, the one to take
+     * next, and the bodies decoded (last in the struct: the fields above
+     * keep their places, which the two-PRU runs' speed turned out to
+     * depend on by a few per cent) */
+    uint32_t ff_body_last, ff_body_next;
+    uint64_t ff_decoded;
 };
 
 /* pruss.c: run-ahead. Whether the cross-PRU event at cycle (an

@@ -205,6 +205,7 @@ static void count_loop(struct ff_body *b, const struct pru_insn *in, uint32_t n)
 static __attribute__((noinline)) const struct ff_body *
 body_decode(struct pru_core *c, struct ff_body *b, uint32_t top, uint32_t pc) {
     uint32_t n = pc - top + 1;
+    c->ff_decoded++;
     const uint32_t *w = &c->iram0[top];
     struct pru_insn in[FF_MAX_BODY];
     for (uint32_t i = 0; i < n; i++) {
@@ -223,16 +224,32 @@ body_decode(struct pru_core *c, struct ff_body *b, uint32_t top, uint32_t pc) {
     return b;
 }
 
+/* Whether cache entry b holds the body [top, pc] of IRAM as it is. */
+static inline bool body_is(const struct pru_core *c, const struct ff_body *b, uint32_t top,
+                           uint32_t pc) {
+    return b->top == top && b->pc == pc && b->iram_gen == c->iram_gen;
+}
+
 /* The body [top, pc] analysed, from the cache while IRAM is unchanged (in
  * line: the decoding's stack frame costs more than the look-up); NULL if
- * it does not decode. */
+ * it does not decode. Any entry holds any body, the oldest replaced: the
+ * firmware's loops lie at tops that share their low bits (its period loop
+ * and SL poll at 10 MHz at 623 and 727, its delay turns and polls at
+ * 1 MHz at 258, 366 and 742), and with one entry by the top modulo 8 they
+ * took each other's place, decoded again every frame. */
 static inline const struct ff_body *body(struct pru_core *c, uint32_t top, uint32_t pc) {
-    struct ff_body *b = &c->ff.body[top % FF_BODIES];
     if (pc >= c->iram_words || pc - top + 1 > FF_MAX_BODY)
         return NULL;
-    if (b->top == top && b->pc == pc && b->iram_gen == c->iram_gen)
-        return b;
-    return body_decode(c, b, top, pc);
+    if (body_is(c, &c->ff.body[c->ff_body_last], top, pc)) /* the same loop again */
+        return &c->ff.body[c->ff_body_last];
+    for (unsigned i = 0; i < FF_BODIES; i++) {
+        if (body_is(c, &c->ff.body[i], top, pc)) {
+            c->ff_body_last = i;
+            return &c->ff.body[i];
+        }
+    }
+    c->ff_body_last = c->ff_body_next++ % FF_BODIES;
+    return body_decode(c, &c->ff.body[c->ff_body_last], top, pc);
 }
 
 /* Iterations a counted poll (body b, NULL if none) may still skip:

@@ -7,6 +7,7 @@
  * skippable run as they are.
  */
 #include "check_run.h"
+#include "core_priv.h" /* ff_decoded: the bodies decoded */
 #include "core_test_util.h"
 
 #include <stdint.h>
@@ -427,6 +428,63 @@ START_TEST(count_loop_with_state_runs) {
 }
 END_TEST
 
+/* Countdown loops at tops[0..n), taken in turn 40 times by an outer loop
+ * too long for the fast-forward: r1 counts down 3 in each, r2 counts the
+ * loops done. */
+static struct outcome loops_in_turn(enum path p, const unsigned *tops, unsigned n_loops,
+                                    uint64_t *decoded) {
+    struct pru_core *c = ff_core(p, NULL);
+    uint32_t prog[200];
+    unsigned n = 0;
+    prog[n++] = ldi(R(5), 40);
+    unsigned outer = n;
+    for (unsigned i = 0; i < n_loops; i++) {
+        prog[n++] = ldi(R(1), 3);
+        while (n < tops[i])
+            prog[n++] = alu(PRU_OP_AND, R(0), R(0), R(0)); /* a pad */
+        prog[n++] = alui(PRU_OP_SUB, R(1), R(1), 1);
+        prog[n++] = qbi(PRU_OP_QBNE, -1, R(1), 0);
+        prog[n++] = alui(PRU_OP_ADD, R(2), R(2), 1);
+    }
+    prog[n++] = alui(PRU_OP_SUB, R(5), R(5), 1);
+    prog[n] = qbi(PRU_OP_QBNE, (int)outer - (int)n, R(5), 0);
+    n++;
+    prog[n++] = halt();
+    ck_assert_uint_le(n, 200);
+    pru_load_image(c, prog, n * 4);
+    pru_start(c);
+    ck_assert_int_eq(pru_run(c, 100000), PRU_STOP_HALT);
+    struct outcome o = {pru_cycles(c), pru_instructions(c), pru_ff_skipped(c), pru_reg(c, 2)};
+    *decoded = c->ff_decoded;
+    pru_core_free(c);
+    return o;
+}
+
+/* Loops taken in turn keep their decoded bodies wherever their tops lie
+ * (ff.c body(): any body in any entry). With one entry by the top modulo
+ * 8, the firmware's period loop and SL poll at 10 MHz (tops 623 and 727)
+ * and its delay turns and polls at 1 MHz (258, 366, 742) were decoded
+ * again every frame. Two and three loops, their tops 8 to 64 words apart
+ * (the same modulo 8): each body decoded once, with the cycles,
+ * instructions and registers of running them without the fast-forward. */
+START_TEST(loops_in_turn_decoded_once) {
+    for (unsigned n_loops = 2; n_loops <= 3; n_loops++) {
+        for (unsigned a = 20; a < 28; a++) { /* the outer loop: no body it looks at */
+            for (unsigned d = 8; d <= 64; d += 8) {
+                const unsigned tops[3] = {a, a + d, a + 2 * d};
+                uint64_t decoded, none_decoded;
+                struct outcome all = loops_in_turn(ALL, tops, n_loops, &decoded);
+                struct outcome ref = loops_in_turn(NONE, tops, n_loops, &none_decoded);
+                same(&all, &ref, "loops in turn", (int64_t)(a * 1000 + d));
+                ck_assert_uint_eq(ref.r2, 40 * n_loops);
+                ck_assert_uint_eq(decoded, n_loops);
+                ck_assert_uint_eq(none_decoded, 0);
+            }
+        }
+    }
+}
+END_TEST
+
 int main(void) {
     Suite *s = suite_create("core_ff");
     TCase *tc = tcase_create("ff");
@@ -439,6 +497,7 @@ int main(void) {
     tcase_add_test(tc, loop_with_work_runs);
     tcase_add_test(tc, count_loop_exact);
     tcase_add_test(tc, count_loop_with_state_runs);
+    tcase_add_test(tc, loops_in_turn_decoded_once);
     suite_add_tcase(s, tc);
     return check_run(s);
 }
