@@ -451,9 +451,7 @@ static struct outcome loops_in_turn(enum path p, const unsigned *tops, unsigned 
     n++;
     prog[n++] = halt();
     ck_assert_uint_le(n, 200);
-    pru_load_image(c, prog, n * 4);
-    pru_start(c);
-    ck_assert_int_eq(pru_run(c, 100000), PRU_STOP_HALT);
+    run_to_halt(c, prog, n, 1000000, 10000000);
     struct outcome o = {pru_cycles(c), pru_instructions(c), pru_ff_skipped(c), pru_reg(c, 2)};
     *decoded = c->ff_decoded;
     pru_core_free(c);
