@@ -254,11 +254,11 @@ bool leaf_learn(struct pru_core *c, struct leaf_memo *m, const struct pd *jal, u
     struct leaf_memo rec;
     leaf_record(c, &rec, jal, jal_pc, target, carry);
     bool again = m->key == rec.key && m->iram_gen == rec.iram_gen && !m->cycles;
-    if (!rec.cycles && again) /* refused again: look twice as seldom */
+    if (rec.cycles)
+        rec.retry = 0; /* accepted: leaf_other()'s from here */
+    else if (again)    /* refused again: look twice as seldom */
         rec.retry = leaf_backoff(m->retry_next);
     rec.retry_next = rec.retry;
-    if (rec.cycles)
-        rec.retry = rec.retry_next = 0; /* accepted: leaf_other()'s from here */
     if (rec.cycles || !m->cycles || m->iram_gen != c->iram_gen)
         *m = rec;
     return rec.cycles != 0;
