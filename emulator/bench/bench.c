@@ -62,7 +62,8 @@ struct bench {
     uint64_t frame_limit;     /* frames from this number on are not measured */
     sim_ps forgot_at;         /* when pin history was last dropped */
     struct bench_stats st;
-    bool ahead_overrun; /* bench_ahead_overrun() */
+    bool ahead_overrun;          /* bench_ahead_overrun() */
+    struct sl_tape_writer *tape; /* SL at the master recorded (bench_tape_record), or NULL */
 
     link_model link; /* its per-edge state first */
     /* master-side MA edge times by edge number modulo MA_RING, so an edge
@@ -569,6 +570,10 @@ void bench_free(struct bench *b) {
     }
     capture_free(b);
     bench_close_vcd(b);
+    if (b->tape && b->tape->f) {
+        fclose(b->tape->f); /* not finished: the tape has no end, and is refused */
+    }
+    free(b->tape);
     if (b->peer) {
         b->peer->peer = NULL;
     }
@@ -679,6 +684,9 @@ static void bench_caught_up(struct bench *b) {
     if (b->vcd_on) {
         vcd_frame_update(b, now);
     }
+    if (b->tape) { /* before its history is dropped */
+        sl_tape_append(b->tape, &b->link.sl_master);
+    }
     /* SL at the master older than a millisecond is never looked at again;
      * it is dropped every 16 ms: each drop moves the millisecond that is
      * kept, so dropping every millisecond cost 2 % of the run */
@@ -695,6 +703,38 @@ static void bench_caught_up(struct bench *b) {
         b->forgot_at = now;
     }
     /* MA at both ends and SL at the slave keep no history (bench_on) */
+}
+
+int bench_tape_record(struct bench *b, const char *path, char *err, size_t errlen) {
+    if (b->peer || b->encoder) {
+        snprintf(err, errlen, "%s: SL on tape is a slave model's to one PRU", path);
+        return -1;
+    }
+    b->tape = malloc(sizeof *b->tape);
+    if (!b->tape) {
+        snprintf(err, errlen, "%s: out of memory", path);
+        return -1;
+    }
+    if (sl_tape_create(b->tape, path, b->link.sl_master.initial, err, errlen) != 0) {
+        free(b->tape);
+        b->tape = NULL;
+        return -1;
+    }
+    return 0;
+}
+
+int bench_tape_finish(struct bench *b, char *err, size_t errlen) {
+    bench_caught_up(b); /* the last edges */
+    return sl_tape_finish(b->tape, b->core, pru_soc_base(b->cfg.soc), err, errlen);
+}
+
+void bench_tape_play(struct bench *b, struct sl_tape *t) {
+    struct pru_pins pins = sl_tape_pins(t);
+    pru_set_pins(b->core, &pins);
+}
+
+bool bench_tape_same(struct bench *b, const struct sl_tape *t) {
+    return sl_tape_same(t, b->core, pru_soc_base(b->cfg.soc));
 }
 
 enum pru_stop bench_run_frames(struct bench *b, uint64_t frames, int64_t max_ps,

@@ -21,6 +21,7 @@
 #include "iep_track.h"
 #include "link_model.h"
 #include "pru_core.h"
+#include "sl_tape.h"
 #include "waveform.h"
 
 #include <stdbool.h>
@@ -138,6 +139,18 @@ int bench_open_vcd(struct bench *b, const char *path, int64_t unit_ps);
 int bench_close_vcd(struct bench *b);
 /* Why the VCD could not be opened or written: its path and the reason. */
 const char *bench_vcd_error(const struct bench *b);
+
+/* SL at the master's pin on tape (sl_tape.h). bench_tape_record: every
+ * edge from the start of the run written to path as the run goes (a core
+ * alone; 0, or -1 with the path and errno's text in err);
+ * bench_tape_finish ends the tape with the run's end (0 or -1 as well).
+ * bench_tape_play: the core reads SL from tape t instead of the link, and
+ * its MA edges go nowhere (no model runs); bench_tape_same then tells
+ * whether the run was the recorded one (sl_tape_same). */
+int bench_tape_record(struct bench *b, const char *path, char *err, size_t errlen);
+int bench_tape_finish(struct bench *b, char *err, size_t errlen);
+void bench_tape_play(struct bench *b, struct sl_tape *t);
+bool bench_tape_same(struct bench *b, const struct sl_tape *t);
 
 /* The core, for loading images, host access to its memories and running. */
 struct pru_core *bench_core(struct bench *b);

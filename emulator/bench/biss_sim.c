@@ -93,6 +93,10 @@ struct options {
     const char *vcd;
     int64_t vcd_unit_ps;
     const char *trace; /* --trace: every instruction the PRU runs, to this file */
+    /* SL at the master on tape (sl_tape.h): recorded to this file, or
+     * played back from it (loaded by main into tape) */
+    const char *sl_record, *sl_replay;
+    struct sl_tape *tape;
     const char *svg;
     uint64_t svg_frame;
     int json;
@@ -176,6 +180,13 @@ static void usage(FILE *f) {
                "  --trace FILE       write every instruction the PRU runs: cycle, PC, the\n"
                "                     instruction, the registers it changed (pru-run's\n"
                "                     --trace; idle loops the fast-forward skips are noted)\n"
+               "  --sl-record FILE   write SL at the master's pin as the run goes (a tape)\n"
+               "  --sl-replay FILE   the run again without the cable and encoder models: the\n"
+               "                     PRU reads SL from the tape --sl-record wrote, its MA\n"
+               "                     goes nowhere; the same options as the recording give\n"
+               "                     the same run (checked: instructions, cycles and the\n"
+               "                     RAMs at the end); prints what the PRU did and the\n"
+               "                     time it took: the core's cost without the models\n"
                "  --svg FILE         write a scope view of one frame as SVG\n"
                "  --svg-frame K      which frame the SVG shows (default 2); frames count from 1,\n"
                "                     as bissctl's: frame 1 is the first (BiSS-C: training)\n"
@@ -302,10 +313,10 @@ static const char *const valued[] = {
     "--firmware", "--reg-read",    "--reg-write", "--command", "--check-life", "--check-pair",
     "--check-ew", "--check-speed", "--link-warn"};
 /* ... and those of the waveform output and the fast paths */
-static const char *const valued_out[] = {"--vcd-timescale", "--no-fast-path",  "--strict-window",
-                                         "--trace",         "--contend",       "--pru",
-                                         "--pru1-profile",  "--pru1-scenario", "--iep-period-ns",
-                                         "--trigger",       "--pru1-firmware", "--settle-frames"};
+static const char *const valued_out[] = {
+    "--vcd-timescale", "--no-fast-path",  "--strict-window", "--trace",         "--contend",
+    "--pru",           "--pru1-profile",  "--pru1-scenario", "--iep-period-ns", "--trigger",
+    "--pru1-firmware", "--settle-frames", "--sl-record",     "--sl-replay"};
 
 static int takes_value(const char *a) {
     for (size_t i = 0; i < sizeof(valued) / sizeof(valued[0]); i++) {
@@ -466,6 +477,10 @@ static int set_option(struct options *o, const char *a, const char *v) {
         o->vcd = v;
     } else if (!strcmp(a, "--trace")) {
         o->trace = v;
+    } else if (!strcmp(a, "--sl-record")) {
+        o->sl_record = v;
+    } else if (!strcmp(a, "--sl-replay")) {
+        o->sl_replay = v;
     } else if (!strcmp(a, "--vcd-timescale")) {
         static const char *const units[] = {"1ps", "10ps", "100ps", "1ns"};
         static const int64_t ps[] = {1, 10, 100, 1000};
@@ -911,6 +926,15 @@ static int run(const struct options *o) {
                    &line) != 0) {
         return EXIT_ERROR;
     }
+    if ((o->sl_record || o->sl_replay) &&
+        (o->pru1_profile || o->pru1_scenario || o->encoder || o->image)) {
+        return usage_error("--sl-record, --sl-replay: the firmware on one PRU, SL from the "
+                           "encoder models (not --image, --encoder or a second encoder)");
+    }
+    if (o->sl_replay && (o->sl_record || o->vcd || o->svg || o->cd_set)) {
+        return usage_error("--sl-replay runs no model: not with --sl-record, --vcd, --svg or "
+                           "control frames");
+    }
     if (o->pru1_profile || o->pru1_scenario) {
         if (o->encoder) {
             return die("--encoder runs on PRU1: not with a second encoder");
@@ -924,6 +948,10 @@ static int run(const struct options *o) {
         o->encoder ? new_loop(&cfg, half, err, sizeof err) : bench_new(&cfg, err, sizeof(err));
     if (!b) {
         return die("%s", err);
+    }
+    if (o->sl_record && bench_tape_record(b, o->sl_record, err, sizeof err) != 0) {
+        bench_free(b);
+        return die("--sl-record: %s", err);
     }
     struct sim_encoder enc = {0};
     if (o->encoder && start_encoder(o, b, &cfg, &enc) != 0) {
@@ -1026,6 +1054,9 @@ static int run(const struct options *o) {
                             .show = tty,
                             .prog = o->cd_set ? &o->cd : NULL,
                             .host_step_ps = o->trigger == BISS_TRIG_HOST ? host_step : 0};
+    if (o->tape) {
+        bench_tape_play(b, o->tape);
+    }
     enum pru_stop why = fw_mode ? run_firmware(b, &fc, &cd, &plan)
                                 : bench_run_frames(b, o->frames, max_ps, NULL, NULL);
     if (bench_ahead_overrun(b)) { /* nothing written yet: again, exactly */
@@ -1056,6 +1087,21 @@ static int run(const struct options *o) {
         pru_contend_stats(bench_core(b), &n, &stall);
         fprintf(stderr, "biss-sim: contention: %llu PRU accesses stalled, %llu cycles\n",
                 (unsigned long long)n, (unsigned long long)stall);
+    }
+    if (o->tape) { /* what the PRU did, not what the models did: none ran */
+        bool same = bench_tape_same(b, o->tape);
+        sim_print_replay(&res, o->sl_replay, same, o->json);
+        if (!same && rc == 0) {
+            rc = die("--sl-replay: not the run recorded on %s (its %llu instructions and "
+                     "%lld cycles against %llu and %lld here, or other results): run it with "
+                     "the options it was recorded with",
+                     o->sl_replay, (unsigned long long)o->tape->insns, (long long)o->tape->cycles,
+                     (unsigned long long)pru_instructions(bench_core(b)),
+                     (long long)pru_cycles(bench_core(b)));
+        }
+        pruasm_image_free(&img);
+        bench_free(b);
+        return rc;
     }
     uint32_t built_for = o->pru;
     struct biss_proto_io io = bench_fw_io(b);
@@ -1119,6 +1165,9 @@ static int run(const struct options *o) {
                               : "the limit for these frames; --max-ms sets it");
         rc = EXIT_TIMEOUT;
     }
+    if (o->sl_record && bench_tape_finish(b, err, sizeof err) != 0) {
+        rc = die("--sl-record: %s", err);
+    }
     pruasm_image_free(&img);
     bench_free(b);
     return rc;
@@ -1134,10 +1183,19 @@ int main(int argc, char **argv) {
     if (rc) {
         return rc < 0 ? 0 : rc;
     }
+    struct sl_tape tape = {0};
+    if (o.sl_replay) {
+        char err[PATH_MAX + 128];
+        if (sl_tape_load(&tape, o.sl_replay, err, sizeof err) != 0) {
+            return die("--sl-replay: %s", err);
+        }
+        o.tape = &tape;
+    }
     rc = run(&o);
     if (rc == RUN_AGAIN) {
         o.no_ma_ahead = 1;
         rc = run(&o);
     }
+    sl_tape_free(&tape);
     return rc;
 }

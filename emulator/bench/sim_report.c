@@ -568,6 +568,31 @@ static void print_control(const struct fw_cd *cd) {
     }
 }
 
+void sim_print_replay(const struct sim_result *r, const char *tape, bool same, bool json) {
+    struct pru_core *c = bench_core(r->b);
+    double cycles = (double)pru_cycles(c), insns = (double)pru_instructions(c);
+    if (json) {
+        cJSON *j = cJSON_CreateObject();
+        cJSON_AddStringToObject(j, "sl_replay", tape);
+        cJSON_AddBoolToObject(j, "same_run", same);
+        cJSON_AddStringToObject(j, "stop", stop_name(r->why));
+        cJSON_AddNumberToObject(j, "frames", (double)r->fw->frames);
+        cJSON_AddNumberToObject(j, "crc_errors", (double)r->fw->crc_errors);
+        cJSON_AddNumberToObject(j, "pru_cycles", cycles);
+        cJSON_AddNumberToObject(j, "pru_instructions", insns);
+        cJSON_AddNumberToObject(j, "host_seconds", r->host_seconds);
+        sim_print_json_object(j);
+        return;
+    }
+    printf("SL replayed from %s: %s\n", tape,
+           same ? "the recorded run, instruction for instruction" : "NOT the recorded run");
+    printf("frames:        %llu valid, %llu with a CRC error\n", (unsigned long long)r->fw->frames,
+           (unsigned long long)r->fw->crc_errors);
+    printf("PRU:           %.0f cycles, %.0f instructions\n", cycles, insns);
+    printf("host:          %.3f s, %.2fx real time, no cable or encoder model\n", r->host_seconds,
+           r->host_seconds > 0 ? cycles * 5e-9 / r->host_seconds : 0.0);
+}
+
 void sim_print_text(const struct sim_result *r) {
     struct bench *b = r->b;
     const struct bench_stats *st = bench_stats(b);

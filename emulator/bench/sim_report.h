@@ -28,6 +28,9 @@ void sim_print_json(const struct sim_result *r);
 cJSON *sim_json(const struct sim_result *r);
 void sim_print_json_object(cJSON *j);
 void sim_print_text(const struct sim_result *r);
+/* A run of biss-sim --sl-replay (the firmware's): whether it was the run
+ * on the tape, what the PRU did, and the host's time; JSON or text. */
+void sim_print_replay(const struct sim_result *r, const char *tape, bool same, bool json);
 
 /* The SVG of the captured frame, numbered k as biss-sim and bissctl count
  * frames (1 = the first frame, the training frame of a BiSS-C run): the
