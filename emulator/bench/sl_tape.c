@@ -62,22 +62,8 @@ int sl_tape_create(struct sl_tape_writer *w, const char *path, int initial, char
     return 0;
 }
 
-/* The first edge of wf later than t (the edges are in time order). */
-static size_t first_after(const waveform *wf, sim_ps t) {
-    size_t lo = 0, hi = wf->len;
-    while (lo < hi) {
-        size_t mid = lo + (hi - lo) / 2;
-        if (wf->edges[mid].t <= t) {
-            lo = mid + 1;
-        } else {
-            hi = mid;
-        }
-    }
-    return lo;
-}
-
 void sl_tape_append(struct sl_tape_writer *w, const waveform *wf) {
-    for (size_t i = first_after(wf, w->last); i < wf->len; i++) {
+    for (size_t i = waveform_index_after(wf, w->last); i < wf->len; i++) {
         put(w, wf->edges[i].t * 2 + (wf->edges[i].level ? 1 : 0));
         w->last = wf->edges[i].t;
         w->edges++;

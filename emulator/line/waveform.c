@@ -53,6 +53,10 @@ static size_t first_after(const waveform *w, size_t lo, size_t hi, sim_ps t) {
     return lo;
 }
 
+size_t waveform_index_after(const waveform *w, sim_ps t) {
+    return first_after(w, 0, w->len, t);
+}
+
 /* Number of transitions with time <= t. Starts from the last answer and
  * walks, falling back to a binary search for long jumps. */
 static size_t count_upto(waveform *w, sim_ps t) {

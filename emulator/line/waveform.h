@@ -52,6 +52,10 @@ int waveform_level_at(waveform *w, sim_ps t);
 /* Time of the first transition strictly after t, or SIM_NEVER. */
 sim_ps waveform_next_after(waveform *w, sim_ps t);
 
+/* The index of the first transition strictly after t (len if none), by
+ * binary search, leaving the record's place for the calls above alone. */
+size_t waveform_index_after(const waveform *w, sim_ps t);
+
 /* Level at time t, and in *next the time of the first transition after t
  * (SIM_NEVER if none): waveform_level_at and waveform_next_after at once. */
 int waveform_level_next(waveform *w, sim_ps t, sim_ps *next);
