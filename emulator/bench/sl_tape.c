@@ -66,7 +66,6 @@ void sl_tape_append(struct sl_tape_writer *w, const waveform *wf) {
     for (size_t i = waveform_index_after(wf, w->last); i < wf->len; i++) {
         put(w, wf->edges[i].t * 2 + (wf->edges[i].level ? 1 : 0));
         w->last = wf->edges[i].t;
-        w->edges++;
     }
 }
 

@@ -35,9 +35,8 @@
 struct sl_tape_writer {
     FILE *f;
     const char *path;
-    sim_ps last;    /* the last edge written (-1: none) */
-    uint64_t edges; /* edges written */
-    int err;        /* errno of the first failed write, 0 none */
+    sim_ps last; /* the last edge written (-1: none) */
+    int err;     /* errno of the first failed write, 0 none */
 };
 
 /* Creates path and writes the header; 0, or -1 with the path and errno's
