@@ -590,7 +590,7 @@ void sim_print_replay(const struct sim_result *r, const char *tape, bool same, b
            (unsigned long long)r->fw->crc_errors);
     printf("PRU:           %.0f cycles, %.0f instructions\n", cycles, insns);
     printf("host:          %.3f s, %.2fx real time, no cable or encoder model\n", r->host_seconds,
-           r->host_seconds > 0 ? cycles * 5e-9 / r->host_seconds : 0.0);
+           r->host_seconds > 0 ? cycles * PRU_PS_PER_CYCLE / SIM_PS_PER_S / r->host_seconds : 0.0);
 }
 
 void sim_print_text(const struct sim_result *r) {
